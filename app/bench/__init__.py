@@ -1,0 +1,104 @@
+"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|all] [--json] [--out DIR] [--quick]`.
+
+Speed is measured here, never asserted in tests. Every figure is a median over repeated runs, and
+every comparison is a ratio against a baseline run in the same process, so the numbers mean the
+same on a slow machine and a fast one. Each benchmark module has
+
+    def run(report: Report) -> dict      # prints tables, writes charts, returns the numbers
+
+and is listed in BENCHMARKS below.
+"""
+
+from __future__ import annotations
+
+import importlib
+import json
+import os
+import statistics
+import sys
+import time
+from typing import Any, Callable, Sequence
+
+BENCHMARKS = {           # name -> module (imported only when run)
+    "cloth": "app.bench.cloth",
+    "integrators": "app.bench.integrators",
+    "pymunk": "app.bench.pymunk_bench",
+}
+
+
+class Report:
+    """Where a benchmark prints tables, shows progress and saves charts."""
+
+    def __init__(self, out_dir: str = "bench-results", as_json: bool = False, quick: bool = False):
+        self.out_dir = out_dir
+        self.as_json = as_json        # with --json, tables go to stderr and JSON to stdout
+        self.quick = quick            # fewer repeats and sizes (used by the tests)
+        self.charts: list[str] = []
+
+    def _out(self):
+        return sys.stderr if self.as_json else sys.stdout
+
+    def progress(self, msg: str) -> None:
+        """One line of progress on stderr (never mixed into --json output)."""
+        print(f"  .. {msg}", file=sys.stderr, flush=True)
+
+    def say(self, msg: str = "") -> None:
+        print(msg, file=self._out(), flush=True)
+
+    def table(self, title: str, headers: Sequence[str], rows: Sequence[Sequence[Any]]) -> None:
+        """Print an aligned text table (numbers formatted with 4 significant digits)."""
+        cells = [[_cell(v) for v in row] for row in rows]
+        widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h)
+                  for i, h in enumerate(headers)]
+        out = self._out()
+        print(f"\n{title}", file=out)
+        print("  ".join(h.rjust(w) for h, w in zip(headers, widths)), file=out)
+        print("  ".join("-" * w for w in widths), file=out)
+        for r in cells:
+            print("  ".join(c.rjust(w) for c, w in zip(r, widths)), file=out)
+        out.flush()
+
+    def chart_path(self, name: str) -> str:
+        path = os.path.join(self.out_dir, name)
+        self.charts.append(path)
+        return path
+
+
+def _cell(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.4g}"
+    return str(v)
+
+
+def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1, number: int = 1) -> float:
+    """Median wall time in seconds of `number` calls of fn, over `repeats` runs (after warm-up)."""
+    for _ in range(warmup):
+        fn()
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(number):
+            fn()
+        times.append((time.perf_counter() - t0) / number)
+    return statistics.median(times)
+
+
+def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-results",
+                   quick: bool = False) -> int:
+    """Run one benchmark or all; print tables (or JSON); return an exit code."""
+    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+    names = list(BENCHMARKS) if which == "all" else [which]
+    report = Report(out_dir, as_json, quick)
+    results: dict[str, Any] = {}
+    for name in names:
+        module = importlib.import_module(BENCHMARKS[name])
+        report.say(f"=== bench {name} ===")
+        t0 = time.perf_counter()
+        results[name] = module.run(report)
+        report.progress(f"{name} done in {time.perf_counter() - t0:.1f} s")
+    if report.charts:
+        report.say("\ncharts: " + ", ".join(report.charts))
+    if as_json:
+        print(json.dumps(results if which == "all" else results[which], indent=1))
+    return 0

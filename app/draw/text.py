@@ -1,0 +1,37 @@
+"""Text for the HUD, panels and charts: one cached font per size, and a large-text switch so the
+back row of a classroom can read it (the window toggles `TEXT.scale`)."""
+
+from __future__ import annotations
+
+import pygame
+
+
+class _TextSettings:
+    scale: float = 1.0
+
+
+TEXT = _TextSettings()
+_cache: dict[int, pygame.font.Font] = {}
+
+
+def font(size: int) -> pygame.font.Font:
+    """pygame's default font at `size` pixels (times the large-text scale), cached."""
+    size = max(6, int(round(size * TEXT.scale)))
+    if size not in _cache:
+        if not pygame.font.get_init():
+            pygame.font.init()
+        _cache[size] = pygame.font.Font(None, size)
+    return _cache[size]
+
+
+def blit_lines(surface: pygame.Surface, lines: list[str], pos: tuple[int, int], size: int = 20,
+               color=(235, 235, 235), shadow=(0, 0, 0), spacing: int = 2) -> int:
+    """Draw lines of text from `pos` downwards with a 1-px shadow; return the y below the last."""
+    f = font(size)
+    x, y = pos
+    for line in lines:
+        if shadow is not None:
+            surface.blit(f.render(line, True, shadow), (x + 1, y + 1))
+        surface.blit(f.render(line, True, color), (x, y))
+        y += f.get_linesize() + spacing
+    return y

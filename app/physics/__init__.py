@@ -1,0 +1,1 @@
+"""Hand-written physics: NumPy only, no pygame (particles, forces, integrators, constraints, cloth)."""

@@ -1,0 +1,335 @@
+"""The Scene contract: what every scene of the lab declares and which hooks the shell calls.
+
+A scene is a class that
+  * names itself (`name` for the command line, `title`, `category`) and documents itself in its
+    docstring (the window's help overlay shows it: say what the scene shows and list its controls);
+  * declares its tunable `params` (each a `Param`: default, type, range or choices, one-line help)
+    and the physical `effects` it can simulate (each an `Effect`, on or off);
+  * builds its world in `build()` from `self.p` (resolved parameter values) and `self.on` (the set of
+    effects that are on), and advances it in `step(h)`.
+
+The shell (window, headless runner, tests, benchmarks) drives every scene the same way:
+
+    scene = SceneClass({"iterations": 5, "shear": False})   # validated, then build()
+    scene.advance()                                        # one fixed step = `substeps` x step(h)
+    scene.handle_event(InputEvent("mouse_down", pos=(x, y), button=1))
+    scene.draw(surface, view)                              # view: app.draw.view.View
+    scene.metrics(), scene.state_hash(), scene.is_finite()
+
+Every hook has a do-nothing default, so a scene overrides only what it uses.
+Coordinates: world units are pixels at zoom 1, y grows downwards, gravity is (0, +g).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import random
+from dataclasses import dataclass
+from typing import Any, Iterable, Mapping
+
+import numpy as np
+
+
+class ParamError(ValueError):
+    """A parameter value (or name) that the scene does not accept; the message is one line."""
+
+
+TRUE_WORDS = ("on", "true", "yes", "1")
+FALSE_WORDS = ("off", "false", "no", "0")
+
+
+@dataclass(frozen=True)
+class Param:
+    """A tunable value of a scene.
+
+    kind is int, float, bool or str (str needs `choices`). Numbers need `lo` and `hi` (inclusive).
+    `rebuild=True` means a change rebuilds the scene (e.g. grid size); False means the scene reads
+    the new value on its next step (e.g. constraint iterations).
+    """
+
+    name: str
+    default: Any
+    kind: type
+    lo: float | None = None
+    hi: float | None = None
+    choices: tuple[str, ...] | None = None
+    help: str = ""
+    rebuild: bool = True
+
+    def accepted(self) -> str:
+        """Describe the accepted values, for error messages and the help text."""
+        if self.kind is bool:
+            return "on or off"
+        if self.choices is not None:
+            return "one of " + ", ".join(self.choices)
+        word = "an integer" if self.kind is int else "a number"
+        return f"{word} from {_fmt(self.lo)} to {_fmt(self.hi)}"
+
+    def parse(self, value: Any) -> Any:
+        """Return `value` (text from the command line or the panel, or a Python value) converted
+        to this parameter's type; raise ParamError naming the problem and what is accepted."""
+        bad = f"parameter '{self.name}' got {value!r}"
+        if self.kind is bool:
+            if isinstance(value, (bool, np.bool_)):
+                return bool(value)
+            word = str(value).strip().lower()
+            if word in TRUE_WORDS:
+                return True
+            if word in FALSE_WORDS:
+                return False
+            raise ParamError(f"{bad}: accepted values are {self.accepted()}")
+        if self.choices is not None:
+            word = str(value).strip()
+            if word not in self.choices:
+                raise ParamError(f"{bad}: accepted values are {self.accepted()}")
+            return word
+        if isinstance(value, (bool, np.bool_)):
+            raise ParamError(f"{bad}: not a number; accepted: {self.accepted()}")
+        if self.kind is int:
+            number = _parse_int(value)
+            if number is None:
+                raise ParamError(f"{bad}: not an integer; accepted: {self.accepted()}")
+        else:
+            try:
+                number = float(value)
+            except (TypeError, ValueError):
+                raise ParamError(f"{bad}: not a number; accepted: {self.accepted()}") from None
+            if not math.isfinite(number):
+                raise ParamError(f"{bad}: must be finite; accepted: {self.accepted()}")
+        if (self.lo is not None and number < self.lo) or (self.hi is not None and number > self.hi):
+            raise ParamError(f"{bad}: out of range; accepted: {self.accepted()}")
+        return number
+
+
+def _parse_int(value: Any) -> int | None:
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return int(value) if math.isfinite(value) and float(value).is_integer() else None
+    try:
+        return int(str(value).strip())
+    except ValueError:
+        return None
+
+
+def _fmt(x: float | None) -> str:
+    if x is None:
+        return "any"
+    return str(int(x)) if float(x).is_integer() else f"{x:g}"
+
+
+@dataclass(frozen=True)
+class Effect:
+    """A physical effect a scene can simulate. Off means it costs nothing: the scene's step must
+    not compute it at all (no zero-filled force, no loop skipped by an `if` per element)."""
+
+    name: str
+    default: bool = True
+    help: str = ""
+    rebuild: bool = False
+
+
+# Every scene has these; a scene may re-declare one (same name) to change its default or range.
+COMMON_PARAMS: tuple[Param, ...] = (
+    Param("hertz", 60, int, 1, 1000, help="physics steps per simulated second (dt = 1/hertz)",
+          rebuild=False),
+    Param("substeps", 1, int, 1, 50, help="sub-steps inside each step (each of dt/substeps)",
+          rebuild=False),
+    Param("seed", 0, int, 0, 2**31 - 1, help="seed of the scene's random numbers"),
+)
+
+
+@dataclass
+class InputEvent:
+    """A mouse or key event in the format of `--input` files and `--record`.
+
+    kind: "mouse_down" | "mouse_up" | "mouse_move" | "key_down" | "key_up".
+    pos: world coordinates (pixels at zoom 1, y down); button: 1 left, 3 right; key: pygame key name.
+    """
+
+    kind: str
+    pos: tuple[float, float] = (0.0, 0.0)
+    button: int = 0
+    key: str = ""
+    t: float = 0.0
+
+    def to_json(self) -> dict:
+        d: dict[str, Any] = {"t": round(self.t, 6), "type": self.kind}
+        if self.kind.startswith("mouse"):
+            d["pos"] = [round(float(self.pos[0]), 2), round(float(self.pos[1]), 2)]
+            if self.kind != "mouse_move":
+                d["button"] = self.button
+        else:
+            d["key"] = self.key
+        return d
+
+
+class Scene:
+    """Base class of every scene. Subclasses set the class attributes and override hooks."""
+
+    name: str = ""
+    title: str = ""
+    category: str = ""
+    params: tuple[Param, ...] = ()
+    effects: tuple[Effect, ...] = ()
+    world_size: tuple[int, int] = (960, 720)   # the area the scene draws in, world pixels
+    background: tuple[int, int, int] = (22, 24, 30)
+
+    def __init__(self, overrides: Mapping[str, Any] | None = None):
+        self.p: dict[str, Any] = {prm.name: prm.default for prm in self.all_params()}
+        self.on: set[str] = {e.name for e in self.effects if e.default}
+        for key, value in (overrides or {}).items():
+            self._assign(key, value)
+        self.time = 0.0      # simulated seconds since build
+        self.steps = 0       # fixed steps since build
+        self.build_world()
+
+    # ----- declarations ---------------------------------------------------------------------
+    @classmethod
+    def all_params(cls) -> tuple[Param, ...]:
+        """The scene's params followed by the common ones it does not re-declare."""
+        own = {p.name for p in cls.params}
+        return tuple(cls.params) + tuple(p for p in COMMON_PARAMS if p.name not in own)
+
+    @classmethod
+    def param(cls, name: str) -> Param | None:
+        return next((p for p in cls.all_params() if p.name == name), None)
+
+    @classmethod
+    def effect(cls, name: str) -> Effect | None:
+        return next((e for e in cls.effects if e.name == name), None)
+
+    @classmethod
+    def setting_names(cls) -> list[str]:
+        return [p.name for p in cls.all_params()] + [e.name for e in cls.effects]
+
+    @classmethod
+    def check_setting(cls, key: str, value: Any) -> Any:
+        """Validate one `--set KEY=VALUE` (param or effect); return the parsed value."""
+        prm = cls.param(key)
+        if prm is not None:
+            return prm.parse(value)
+        if cls.effect(key) is not None:
+            return Param(key, True, bool).parse(value)
+        raise ParamError(f"scene '{cls.name}' has no parameter or effect '{key}'; accepted: "
+                         + ", ".join(cls.setting_names()))
+
+    def _assign(self, key: str, value: Any) -> bool:
+        """Set a param or effect; return True if the change needs a rebuild."""
+        parsed = self.check_setting(key, value)
+        if self.param(key) is not None:
+            changed = self.p[key] != parsed
+            self.p[key] = parsed
+            return changed and self.param(key).rebuild
+        changed = (key in self.on) != parsed
+        (self.on.add if parsed else self.on.discard)(key)
+        if changed:
+            self.effect_changed(key, parsed)
+        return changed and self.effect(key).rebuild
+
+    def set(self, key: str, value: Any) -> None:
+        """Change a param or effect while running (the panel, tests). A bad value raises
+        ParamError and leaves everything as it was; a change that needs it rebuilds the scene."""
+        self.check_setting(key, value)
+        if self._assign(key, value):
+            self.reset()
+
+    def settings(self) -> dict[str, Any]:
+        """All resolved parameter values and the effects' on/off state."""
+        return dict(self.p)
+
+    # ----- time -----------------------------------------------------------------------------
+    @property
+    def dt(self) -> float:
+        return 1.0 / self.p["hertz"]
+
+    def advance(self) -> None:
+        """One fixed step of dt: `substeps` calls of step(dt / substeps)."""
+        n = self.p["substeps"]
+        h = self.dt / n
+        for _ in range(n):
+            self.step(h)
+        self.time += self.dt
+        self.steps += 1
+
+    def build_world(self) -> None:
+        self.time = 0.0
+        self.steps = 0
+        self.rng = np.random.default_rng(self.p["seed"])
+        self.random = random.Random(self.p["seed"])
+        self.build()
+
+    def reset(self) -> None:
+        """Rebuild the world from the current params and effects (the R key)."""
+        self.build_world()
+
+    # ----- hooks (override what you use) ------------------------------------------------------
+    def build(self) -> None:
+        """Create the world from self.p and self.on."""
+
+    def step(self, h: float) -> None:
+        """Advance the world by h seconds (one substep)."""
+
+    def draw(self, surface, view) -> None:
+        """Draw the world on a pygame surface through `view` (app.draw.view.View)."""
+
+    def handle_event(self, event: InputEvent) -> None:
+        """React to a mouse or key event (positions already in world coordinates)."""
+
+    def effect_changed(self, name: str, on: bool) -> None:
+        """Called when an effect is switched while running (after self.on changed)."""
+
+    def metrics(self) -> dict[str, float]:
+        """Scene-specific numbers (names are part of the contract in DESIGN.md)."""
+        return {}
+
+    def hud_lines(self) -> list[str]:
+        """Extra lines of text for the HUD (a verdict, a hint)."""
+        return []
+
+    def effect_costs(self) -> dict[str, float]:
+        """Milliseconds per step spent on each active effect, where the scene measures it."""
+        return {}
+
+    def state_arrays(self) -> Iterable[np.ndarray]:
+        """The arrays that make up the physical state (used by state_hash and is_finite)."""
+        return ()
+
+    def state_hash(self) -> str:
+        """A hash of the physical state: equal in two runs with the same inputs."""
+        return hash_arrays(*self.state_arrays())
+
+    def is_finite(self) -> bool:
+        """True while every state value is finite."""
+        return all(bool(np.isfinite(a).all()) for a in self.state_arrays())
+
+    def snapshot(self) -> Any:
+        """A copy of the state, for rolling back after the simulation goes non-finite.
+        None means 'rebuild instead'."""
+        return None
+
+    def restore(self, snap: Any) -> None:
+        """Go back to a state returned by snapshot()."""
+        if snap is None:
+            self.reset()
+
+
+def hash_arrays(*arrays: np.ndarray) -> str:
+    """SHA-256 (first 16 hex digits) of the arrays' exact bytes, shapes and dtypes."""
+    h = hashlib.sha256()
+    for a in arrays:
+        a = np.ascontiguousarray(a)
+        h.update(str((a.shape, a.dtype.str)).encode())
+        h.update(a.tobytes())
+    return h.hexdigest()[:16]
+
+
+def docstring_help(scene_cls: type[Scene]) -> str:
+    """The scene's docstring, dedented, for the help overlay and --list --verbose."""
+    import inspect
+    return inspect.cleandoc(scene_cls.__doc__ or scene_cls.title)
+
+
+__all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "COMMON_PARAMS",
+           "hash_arrays", "docstring_help"]

@@ -1,0 +1,21 @@
+"""The registry: every scene of the lab, in menu order (explicit, so adding a scene is one line).
+
+Each entry is a Scene subclass (see app/scene.py). The window's menu, `--list`, `--scene all`,
+the smoke tests and the benchmarks all read this list.
+"""
+
+from __future__ import annotations
+
+from app.scene import Scene
+
+SCENES: list[type[Scene]] = [
+]
+
+
+def scene_names() -> list[str]:
+    return [s.name for s in SCENES]
+
+
+def get_scene(name: str) -> type[Scene] | None:
+    """The scene class called `name`, or None."""
+    return next((s for s in SCENES if s.name == name), None)
