@@ -1,0 +1,132 @@
+"""What every pymunk scene shares: the space, stepping, dragging bodies with the mouse, the state
+for hashing and the non-finite guard, and snapshots for rollback.
+
+A pymunk scene subclasses PymunkScene and fills the space in `build_space()`:
+
+    class Balls(PymunkScene):
+        name = "balls"
+        def build_space(self, space: pymunk.Space) -> None:
+            ...add bodies, shapes and joints...
+
+Dragging (the usual pymunk pattern): the mouse holds a kinematic body; pressing the left button on
+a dynamic body joins the two with a PivotJoint whose force is bounded (`max_force`), so a dragged
+body pushes others and is held by its joints instead of teleporting through them.
+
+pymunk (Chipmunk2D) aborts the whole process on some bad values (iterations=0, negative damping) and
+silently accepts others (a NaN time step). Every number that reaches pymunk here comes from a
+declared Param, whose range keeps such values out.
+"""
+
+from __future__ import annotations
+
+import copy
+from typing import Any, Iterable
+
+import numpy as np
+import pymunk
+import pymunk.batch
+
+from app.scene import InputEvent, Param, Scene
+
+# The fields read for the state hash and the finiteness check, all at once.
+_STATE_FIELDS = (pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
+                 | pymunk.batch.BodyFields.VELOCITY | pymunk.batch.BodyFields.ANGULAR_VELOCITY)
+
+PYMUNK_PARAMS: tuple[Param, ...] = (
+    Param("gravity", 900.0, float, 0.0, 5000.0, help="gravity, px/s^2 (downwards)", rebuild=False),
+    Param("iterations", 10, int, 1, 200, help="pymunk solver iterations per step", rebuild=False),
+)
+
+
+class PymunkScene(Scene):
+    """Base of the pymunk scenes. Subclasses add their own params to PYMUNK_PARAMS."""
+
+    params = PYMUNK_PARAMS
+    world_keys: tuple[str, ...] = ("space",)   # attributes that hold world state (for snapshots)
+    drag_force: float = 50000.0                 # bound on the mouse joint's force, N (px units)
+
+    def build(self) -> None:
+        self.space = pymunk.Space()
+        self.space.iterations = self.p["iterations"]
+        self.space.gravity = (0.0, self.p["gravity"])
+        self.mouse_body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        self.mouse_joint: pymunk.PivotJoint | None = None
+        self._buffer = pymunk.batch.Buffer()
+        self.build_space(self.space)
+
+    def build_space(self, space: pymunk.Space) -> None:
+        """Add the scene's bodies, shapes and joints."""
+
+    def step(self, h: float) -> None:
+        self.space.iterations = self.p["iterations"]
+        self.space.gravity = (0.0, self.p["gravity"])
+        self.space.step(h)
+
+    # ----- mouse --------------------------------------------------------------------------
+    def handle_event(self, event: InputEvent) -> None:
+        if event.kind == "mouse_move":
+            self.mouse_body.position = event.pos
+        elif event.kind == "mouse_down" and event.button == 1:
+            self.mouse_body.position = event.pos
+            if not self.grab(event.pos):
+                self.on_click(event.pos, event.button)
+        elif event.kind == "mouse_down":
+            self.on_click(event.pos, event.button)
+        elif event.kind == "mouse_up" and event.button == 1:
+            self.release()
+
+    def grab(self, pos: tuple[float, float]) -> bool:
+        """Join the dynamic body under `pos` (within 5 px) to the mouse; True if one was found."""
+        self.release()
+        hit = self.space.point_query_nearest(pos, 5.0, pymunk.ShapeFilter())
+        if hit is None or hit.shape is None or hit.shape.body.body_type != pymunk.Body.DYNAMIC:
+            return False
+        body = hit.shape.body
+        # Grab at the nearest point on the shape, so a touch at the rim does not jerk the body.
+        anchor = hit.point if hit.distance > 0 else pos
+        self.mouse_joint = pymunk.PivotJoint(self.mouse_body, body, (0, 0),
+                                             body.world_to_local(anchor))
+        self.mouse_joint.max_force = self.drag_force
+        self.mouse_joint.error_bias = (1 - 0.15) ** 60
+        self.space.add(self.mouse_joint)
+        return True
+
+    def release(self) -> None:
+        if self.mouse_joint is not None:
+            if self.mouse_joint in self.space.constraints:
+                self.space.remove(self.mouse_joint)
+            self.mouse_joint = None
+
+    def on_click(self, pos: tuple[float, float], button: int) -> None:
+        """A click that grabbed nothing (e.g. drop a ball there)."""
+
+    # ----- state --------------------------------------------------------------------------
+    def body_state(self) -> np.ndarray:
+        """Position, angle, velocity and angular velocity of every non-static body, one row each
+        (x, y, angle, vx, vy, w), read from pymunk in one batch call."""
+        self._buffer.clear()
+        pymunk.batch.get_space_bodies(self.space, _STATE_FIELDS, self._buffer)
+        return np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(-1, 6).copy()
+
+    def state_arrays(self) -> Iterable[np.ndarray]:
+        return (self.body_state(),)
+
+    def snapshot(self) -> Any:
+        """A deep copy of the world (the space and the scene's lists of its objects, copied
+        together so they still refer to each other). A drag in progress is left out of it."""
+        joint = self.mouse_joint
+        if joint is not None:
+            self.space.remove(joint)
+        try:
+            return copy.deepcopy({k: getattr(self, k) for k in self.world_keys})
+        finally:
+            if joint is not None:
+                self.space.add(joint)
+
+    def restore(self, snap: Any) -> None:
+        if snap is None:
+            self.reset()
+            return
+        self.release()
+        for key, value in copy.deepcopy(snap).items():
+            setattr(self, key, value)
