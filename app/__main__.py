@@ -1,0 +1,181 @@
+"""The command line: `python -m app ...` (see README.md, "Command line").
+
+    python -m app                          window, scene menu
+    python -m app --scene cloth            window, open one scene
+    python -m app --list                   one line per scene: name, title
+    python -m app --headless --scene NAME [--seconds S | --steps N] [--set KEY=VALUE]...
+                  [--input EVENTS.json] [--screenshot OUT.png] [--json]
+    python -m app --headless --scene all   every scene in turn
+    python -m app bench [cloth|integrators|pymunk|all] [--json] [--out DIR] [--quick]
+
+Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+from typing import NoReturn
+
+EXIT_OK, EXIT_NONFINITE, EXIT_USAGE = 0, 1, 2
+
+
+class UsageError(Exception):
+    """Bad usage: the message is the one line printed on stderr."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but an error is one line and exit code 2 (no usage block)."""
+
+    def error(self, message: str) -> NoReturn:
+        raise UsageError(message)
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number; accepted: seconds > 0")
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: a finite number "
+                                         "of seconds > 0")
+    return value
+
+
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer; accepted: steps >= 1")
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: steps >= 1")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="python -m app", description="A classroom lab for physics in computer "
+                "animation and games. Without options: a window with the scene menu.")
+    p.add_argument("--scene", help="scene to open (see --list); 'all' with --headless")
+    p.add_argument("--list", action="store_true", help="list the scenes: name, title")
+    p.add_argument("--headless", action="store_true", help="run without a window")
+    length = p.add_mutually_exclusive_group()
+    length.add_argument("--seconds", type=_positive_float, help="simulated seconds to run "
+                        "(headless; default 5); with --screenshot in the window: wall seconds")
+    length.add_argument("--steps", type=_positive_int, help="fixed steps to run (headless)")
+    p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                   help="set a parameter or effect (on/off); repeatable")
+    p.add_argument("--input", metavar="EVENTS.json", help="replay timed mouse and key events")
+    p.add_argument("--screenshot", metavar="OUT.png", help="save the last frame as a PNG")
+    p.add_argument("--json", action="store_true", help="print one JSON summary per scene")
+    p.add_argument("--record", metavar="FILE", help="window: save your mouse and key events "
+                   "in the --input format")
+    p.add_argument("--large-text", action="store_true", help="window: start with large text")
+    return p
+
+
+def parse_sets(pairs: list[str]) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for pair in pairs:
+        key, sep, value = pair.partition("=")
+        if not sep or not key.strip():
+            raise UsageError(f"--set {pair!r}: expected KEY=VALUE, e.g. --set substeps=4")
+        out[key.strip()] = value.strip()
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        if argv and argv[0] == "bench":
+            return bench_main(argv[1:])
+        return app_main(argv)
+    except UsageError as e:
+        print(f"python -m app: error: {e}", file=sys.stderr)
+        return EXIT_USAGE
+
+
+def app_main(argv: list[str]) -> int:
+    args = build_parser().parse_args(argv)
+    from app.scene import ParamError
+    from scenes import SCENES, get_scene, scene_names
+
+    if args.list:
+        for cls in SCENES:
+            print(f"{cls.name:18} {cls.title}")
+        return EXIT_OK
+
+    accepted = ", ".join(scene_names())
+    if args.scene is None:
+        classes = []
+    elif args.scene == "all":
+        if not args.headless:
+            raise UsageError("--scene all runs every scene in turn and needs --headless")
+        classes = list(SCENES)
+    else:
+        cls = get_scene(args.scene)
+        if cls is None:
+            raise UsageError(f"unknown scene {args.scene!r}; accepted: {accepted}"
+                             + (", all" if args.headless else ""))
+        classes = [cls]
+
+    overrides = parse_sets(args.set)
+    if overrides and not classes:
+        raise UsageError("--set needs --scene NAME (parameters belong to a scene)")
+    for key, value in overrides.items():
+        owners = [c for c in classes if key in c.setting_names()]
+        if not owners:
+            names = sorted({n for c in classes for n in c.setting_names()})
+            where = f"scene '{classes[0].name}'" if len(classes) == 1 else "any scene"
+            raise UsageError(f"--set {key}: {where} has no parameter or effect '{key}'; "
+                             f"accepted: {', '.join(names)}")
+        for cls in owners:
+            try:
+                cls.check_setting(key, value)
+            except ParamError as e:
+                raise UsageError(f"--set {key}={value}: {cls.name} {e}") from None
+
+    events = None
+    if args.input:
+        from app.headless import InputFileError, load_events
+        try:
+            events = load_events(args.input)
+        except InputFileError as e:
+            raise UsageError(str(e)) from None
+
+    if args.headless:
+        if args.record:
+            raise UsageError("--record records what you do in the window; it needs no --headless")
+        if not classes:
+            raise UsageError(f"--headless needs --scene NAME or --scene all; accepted: {accepted}")
+        from app.headless import run_headless
+        return run_headless(classes, overrides, args.steps, args.seconds, events,
+                            args.screenshot, args.json)
+
+    if args.steps is not None or args.json:
+        raise UsageError("--steps and --json are for --headless runs")
+    from app.window import run_window
+    return run_window(classes[0].name if classes else None, overrides, record=args.record,
+                      screenshot=args.screenshot, seconds=args.seconds,
+                      large_text=args.large_text, events=events)
+
+
+def bench_main(argv: list[str]) -> int:
+    from app.bench import BENCHMARKS, run_benchmarks
+    choices = list(BENCHMARKS) + ["all"]
+    p = _Parser(prog="python -m app bench", description="benchmark tables and PNG charts")
+    p.add_argument("which", nargs="?", default="all",
+                   help=f"what to measure; accepted: {', '.join(choices)}")
+    p.add_argument("--json", action="store_true", help="print the numbers as JSON on stdout")
+    p.add_argument("--out", default="bench-results", help="folder for the PNG charts")
+    p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats (a smoke run)")
+    args = p.parse_args(argv)
+    if args.which not in choices:
+        raise UsageError(f"unknown benchmark {args.which!r}; accepted: {', '.join(choices)}")
+    return run_benchmarks(args.which, args.json, args.out, args.quick)
+
+
+if __name__ == "__main__":
+    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    sys.exit(main())

@@ -1,0 +1,216 @@
+"""The headless runner behind `--headless`: the same scene code as the window, no window.
+
+It builds a scene, replays timed input events, advances a fixed number of steps, times every step
+(drawing excluded), watches that the state stays finite, and reports a summary (the JSON object of
+DESIGN.md). It is also the engine of the determinism tests: two runs with the same arguments give
+the same `state_hash`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import statistics
+import sys
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from app.scene import InputEvent, Scene
+
+EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
+DEFAULT_SECONDS = 5.0
+
+
+class InputFileError(ValueError):
+    """An --input file that cannot be read or does not follow the format (one-line message)."""
+
+
+def parse_events(data: Any, source: str = "input") -> list[InputEvent]:
+    """Validate a decoded --input document (a list of event objects); return the events sorted
+    by time. Raises InputFileError naming the first problem."""
+    if not isinstance(data, list):
+        raise InputFileError(f"{source}: expected a JSON list of events, got {type(data).__name__}")
+    events = []
+    for i, item in enumerate(data):
+        where = f"{source}: event {i}"
+        if not isinstance(item, dict):
+            raise InputFileError(f"{where}: expected an object like "
+                                 '{"t": 0.5, "type": "mouse_down", "button": 1, "pos": [x, y]}')
+        t = item.get("t")
+        if isinstance(t, bool) or not isinstance(t, (int, float)) or not math.isfinite(t) or t < 0:
+            raise InputFileError(f"{where}: 't' must be a finite number of seconds >= 0, got {t!r}")
+        kind = item.get("type")
+        if kind not in EVENT_TYPES:
+            raise InputFileError(f"{where}: 'type' must be one of {', '.join(EVENT_TYPES)}, "
+                                 f"got {kind!r}")
+        if kind.startswith("mouse"):
+            pos = item.get("pos")
+            if (not isinstance(pos, list) or len(pos) != 2
+                    or any(isinstance(v, bool) or not isinstance(v, (int, float))
+                           or not math.isfinite(v) for v in pos)):
+                raise InputFileError(f"{where}: 'pos' must be [x, y], two finite numbers, "
+                                     f"got {pos!r}")
+            button = item.get("button", 0 if kind == "mouse_move" else None)
+            if kind != "mouse_move" and button not in (1, 2, 3):
+                raise InputFileError(f"{where}: 'button' must be 1 (left), 2 or 3 (right), "
+                                     f"got {button!r}")
+            events.append(InputEvent(kind, (float(pos[0]), float(pos[1])), int(button or 0),
+                                     t=float(t)))
+        else:
+            key = item.get("key")
+            if not isinstance(key, str) or not key:
+                raise InputFileError(f"{where}: 'key' must be a key name such as \"r\", got {key!r}")
+            events.append(InputEvent(kind, key=key, t=float(t)))
+    events.sort(key=lambda e: e.t)   # stable: simultaneous events keep their order
+    return events
+
+
+def load_events(path: str) -> list[InputEvent]:
+    """Read and validate an --input file."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except OSError as e:
+        raise InputFileError(f"cannot read --input file '{path}': {e.strerror or e}") from None
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise InputFileError(f"--input file '{path}' is not valid JSON: {e}") from None
+    return parse_events(data, f"--input file '{path}'")
+
+
+def deliver(scene: Scene, event: InputEvent) -> None:
+    """Give one event to the scene, as the window does: R resets, everything else goes to the
+    scene's handle_event."""
+    if event.kind == "key_down" and event.key == "r":
+        scene.reset()
+    elif not (event.kind == "key_up" and event.key == "r"):
+        scene.handle_event(event)
+
+
+@dataclass
+class RunResult:
+    scene: Scene
+    steps: int
+    wall_seconds: float
+    step_seconds: list[float] = field(default_factory=list)
+    finite: bool = True
+    events: int = 0
+
+    def summary(self) -> dict[str, Any]:
+        """The JSON summary object of DESIGN.md."""
+        s = self.scene
+        return {
+            "scene": s.name,
+            "steps": self.steps,
+            "sim_seconds": round(self.steps * s.dt, 9),
+            "wall_seconds": round(self.wall_seconds, 6),
+            "step_ms": round(statistics.median(self.step_seconds) * 1000, 6)
+            if self.step_seconds else 0.0,
+            "params": clean(s.settings()),
+            "effects": sorted(s.on),
+            "metrics": clean(s.metrics()),
+            "state_hash": s.state_hash(),
+            "finite": self.finite,
+            "events": self.events,
+        }
+
+
+def clean(value: Any) -> Any:
+    """Make a value JSON-safe: NumPy scalars to Python numbers, NaN and infinities to None."""
+    if isinstance(value, dict):
+        return {str(k): clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [clean(v) for v in value]
+    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) -> RunResult:
+    """Advance `scene` by `steps` fixed steps, delivering each event before the first step that
+    starts at or after its time. Stops early if the state goes non-finite."""
+    pending = list(events or [])
+    result = RunResult(scene, 0, 0.0)
+    start = time.perf_counter()
+    for k in range(steps):
+        now = k * scene.dt + 1e-9
+        while pending and pending[0].t <= now:
+            deliver(scene, pending.pop(0))
+            result.events += 1
+        t0 = time.perf_counter()
+        scene.advance()
+        result.step_seconds.append(time.perf_counter() - t0)
+        result.steps += 1
+        if not scene.is_finite():
+            result.finite = False
+            break
+    result.wall_seconds = time.perf_counter() - start
+    return result
+
+
+def render(scene: Scene, path: str) -> None:
+    """Draw the scene's current frame with its own drawing code and save it as a PNG."""
+    import pygame
+
+    from app.draw.text import blit_lines
+    from app.draw.view import View
+
+    surface = pygame.Surface(scene.world_size)
+    surface.fill(scene.background)
+    scene.draw(surface, View())
+    blit_lines(surface, [f"{scene.title}   t = {scene.time:.2f} s"], (10, 8), size=22)
+    folder = os.path.dirname(path)
+    if folder:
+        os.makedirs(folder, exist_ok=True)
+    pygame.image.save(surface, path)
+
+
+def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
+                 seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
+                 as_json: bool) -> int:
+    """Run each scene in turn; print one JSON object per scene (or a readable summary)."""
+    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+    code = 0
+    for cls in scene_classes:
+        mine = {k: v for k, v in overrides.items() if k in cls.setting_names()}
+        scene = cls(mine)
+        n = steps if steps is not None else max(1, round((seconds or DEFAULT_SECONDS) / scene.dt))
+        result = run_scene(scene, n, events)
+        summary = result.summary()
+        if screenshot:
+            path = screenshot
+            if len(scene_classes) > 1:
+                root, ext = os.path.splitext(screenshot)
+                path = f"{root}-{scene.name}{ext or '.png'}"
+            render(scene, path)
+            summary["screenshot"] = path
+        if as_json:
+            print(json.dumps(summary, allow_nan=False), flush=True)
+        else:
+            print(describe(summary), flush=True)
+        if not result.finite:
+            print(f"{scene.name}: the simulation went non-finite (NaN or inf) at step "
+                  f"{result.steps} (t = {result.steps * scene.dt:.3f} s); try a smaller dt "
+                  f"(raise hertz) or more substeps", file=sys.stderr)
+            code = 1
+    return code
+
+
+def describe(summary: dict[str, Any]) -> str:
+    """A readable few lines for a run without --json."""
+    metrics = ", ".join(f"{k}={_short(v)}" for k, v in summary["metrics"].items())
+    lines = [f"{summary['scene']}: {summary['steps']} steps, {summary['sim_seconds']:.3g} s simulated "
+             f"in {summary['wall_seconds']:.3g} s, {summary['step_ms']:.3g} ms/step, "
+             f"finite={summary['finite']}, hash {summary['state_hash']}",
+             f"  metrics: {metrics}"]
+    if "screenshot" in summary:
+        lines.append(f"  screenshot: {summary['screenshot']}")
+    return "\n".join(lines)
+
+
+def _short(v: Any) -> str:
+    return f"{v:.4g}" if isinstance(v, float) else str(v)
