@@ -162,3 +162,16 @@ def test_screenshot_writes_a_png(toy_registry, capsys, tmp_path):
     out = tmp_path / "shot.png"
     assert main(["--headless", "--scene", "toy", "--steps", "3", "--screenshot", str(out)]) == 0
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_r_key_in_the_input_resets_the_scene_like_the_window(toy_registry, capsys, tmp_path):
+    path = tmp_path / "events.json"
+    path.write_text(json.dumps([{"t": 0.25, "type": "key_down", "key": "r"},
+                                {"t": 0.25, "type": "key_up", "key": "r"}]))
+    assert main(["--headless", "--scene", "toy", "--steps", "30", "--json",
+                 "--input", str(path)]) == 0
+    reset_run = json.loads(capsys.readouterr().out)
+    # 15 steps before the reset, 15 after it: the state is that of a fresh 15-step run.
+    assert main(["--headless", "--scene", "toy", "--steps", "15", "--json"]) == 0
+    fresh = json.loads(capsys.readouterr().out)
+    assert reset_run["state_hash"] == fresh["state_hash"]
