@@ -1,0 +1,227 @@
+"""Drawing helpers of the window's overlays: the HUD box, banners, the help overlay and the scene menu.
+
+Everything here draws plain text on dark, half-transparent boxes so it stays readable from the back
+of a classroom over any scene. Sizes are at text scale 1; `app.draw.text.TEXT.scale` (the F2
+large-text switch) enlarges them all. No state lives here: the window decides what to show.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import pygame
+
+from app.draw.text import font
+
+HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 px lines
+HELP_SIZE = 28
+TITLE_SIZE = 44
+MENU_SIZE = 32
+BOX_COLOR = (8, 10, 14, 190)
+TEXT_COLOR = (235, 235, 235)
+DIM_COLOR = (170, 178, 190)
+WARN_COLOR = (255, 200, 90)
+ERROR_COLOR = (255, 120, 110)
+ACCENT_COLOR = (120, 190, 255)
+
+
+def fmt_number(x) -> str:
+    """A compact form of a metric: integers as they are, floats with 4 significant digits."""
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, int):
+        return str(x)
+    try:
+        v = float(x)
+    except (TypeError, ValueError):
+        return str(x)
+    if not math.isfinite(v):
+        return str(v)
+    if v.is_integer() and abs(v) < 1e9:
+        return str(int(v))
+    if abs(v) >= 1e5 or abs(v) < 1e-3:
+        return f"{v:.3g}"
+    return f"{v:.4g}"
+
+
+def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
+    """Split `text` into lines no wider than `width` pixels (paragraph breaks kept)."""
+    lines: list[str] = []
+    for para in text.split("\n"):
+        indent = para[: len(para) - len(para.lstrip())]
+        words = para.split()
+        if not words:
+            lines.append("")
+            continue
+        line = indent + words[0]
+        for w in words[1:]:
+            candidate = line + " " + w
+            if f.size(candidate)[0] <= width:
+                line = candidate
+            else:
+                lines.append(line)
+                line = indent + "  " + w if indent else w
+        lines.append(line)
+    return lines
+
+
+@dataclass
+class Line:
+    """One line of overlay text and its colour."""
+    text: str
+    color: tuple[int, int, int] = TEXT_COLOR
+
+
+def _as_line(item) -> Line:
+    return item if isinstance(item, Line) else Line(str(item))
+
+
+def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: int = HUD_SIZE,
+             pad: int = 8, max_width: int | None = None) -> pygame.Rect:
+    """Draw lines on a dark backing box whose top-left is `pos`; return the box's rectangle.
+    Lines wider than `max_width` are wrapped."""
+    f = font(size)
+    items = [_as_line(x) for x in lines]
+    if max_width is not None:
+        wrapped: list[Line] = []
+        for item in items:
+            wrapped += [Line(t, item.color) for t in wrap(item.text, f, max_width - 2 * pad)]
+        items = wrapped
+    if not items:
+        return pygame.Rect(pos, (0, 0))
+    rendered = [(f.render(it.text, True, it.color), f.render(it.text, True, (0, 0, 0)))
+                for it in items]
+    w = max(img.get_width() for img, _ in rendered) + 2 * pad
+    h = len(rendered) * f.get_linesize() + 2 * pad
+    box = pygame.Surface((w, h), pygame.SRCALPHA)
+    box.fill(BOX_COLOR)
+    surface.blit(box, pos)
+    y = pos[1] + pad
+    for img, shadow in rendered:
+        surface.blit(shadow, (pos[0] + pad + 1, y + 1))
+        surface.blit(img, (pos[0] + pad, y))
+        y += f.get_linesize()
+    return pygame.Rect(pos, (w, h))
+
+
+def banner(surface: pygame.Surface, text: str, area: pygame.Rect, color=WARN_COLOR,
+           size: int = 28, y: int | None = None, bottom: int | None = None) -> pygame.Rect:
+    """A wrapped message centred horizontally in `area`: its top at `y` if given, else ending
+    20 px above `bottom` (default: the bottom of `area`). Return its rectangle."""
+    f = font(size)
+    width = min(area.width - 40, int(900 * max(1.0, f.get_linesize() / 20)))
+    lines = wrap(text, f, width - 24)
+    h = len(lines) * f.get_linesize() + 24
+    w = max(f.size(t)[0] for t in lines) + 24
+    top = (area.bottom if bottom is None else bottom) - h - 20 if y is None else y
+    rect = pygame.Rect(area.centerx - w // 2, top, w, h)
+    box = pygame.Surface(rect.size, pygame.SRCALPHA)
+    box.fill((40, 10, 10, 225) if color == ERROR_COLOR or color == WARN_COLOR else BOX_COLOR)
+    surface.blit(box, rect.topleft)
+    pygame.draw.rect(surface, color, rect, 2)
+    yy = rect.top + 12
+    for t in lines:
+        surface.blit(f.render(t, True, color), (rect.left + 12, yy))
+        yy += f.get_linesize()
+    return rect
+
+
+COMMON_KEYS = [
+    ("Space", "pause / resume"),
+    (".", "single step (one fixed step of dt)"),
+    ("- / =", "slow motion x1 -> x1/2 -> x1/4 -> x1/8, and back"),
+    ("R", "reset the scene"),
+    ("H or F1", "this help"),
+    ("F2", "large text on / off"),
+    ("F12", "screenshot to screenshots/"),
+    ("Tab", "hide / show the parameter panel"),
+    ("PageUp / PageDown", "previous / next scene"),
+    ("Esc", "back to the menu (quit from the menu)"),
+]
+
+
+def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: str) -> None:
+    """The help overlay: the scene's docstring and the common keys, over `area`."""
+    shade = pygame.Surface(area.size, pygame.SRCALPHA)
+    shade.fill((5, 6, 9, 225))
+    surface.blit(shade, area.topleft)
+    x, y = area.left + 24, area.top + 18
+    width = area.width - 48
+    f_title, f = font(TITLE_SIZE), font(HELP_SIZE)
+    surface.blit(f_title.render(title, True, ACCENT_COLOR), (x, y))
+    y += f_title.get_linesize() + 6
+    doc_lines = wrap(doc, f, width)
+    keys_height = (len(COMMON_KEYS) + 2) * f.get_linesize()
+    room = (area.bottom - 10 - keys_height - y) // f.get_linesize()
+    if len(doc_lines) > room:
+        doc_lines = doc_lines[: max(room - 1, 0)] + ["..."]
+    for t in doc_lines:
+        surface.blit(f.render(t, True, TEXT_COLOR), (x, y))
+        y += f.get_linesize()
+    y += f.get_linesize() // 2
+    surface.blit(f.render("Common keys", True, ACCENT_COLOR), (x, y))
+    y += f.get_linesize()
+    key_w = max(f.size(k)[0] for k, _ in COMMON_KEYS) + 20
+    for k, what in COMMON_KEYS:
+        surface.blit(f.render(k, True, WARN_COLOR), (x, y))
+        surface.blit(f.render(what, True, TEXT_COLOR), (x + key_w, y))
+        y += f.get_linesize()
+
+
+@dataclass
+class MenuEntry:
+    """One scene in the menu: its index in the registry and the rectangle that opens it."""
+    index: int
+    rect: pygame.Rect
+
+
+def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str = "",
+              message_color=ERROR_COLOR) -> list[MenuEntry]:
+    """Draw the scene menu (grouped by category, in registry order of first appearance) and
+    return the clickable entries."""
+    surface.fill((18, 20, 26))
+    W, H = surface.get_size()
+    f_title, f, f_small = font(TITLE_SIZE), font(MENU_SIZE), font(HUD_SIZE)
+    x, y = 40, 28
+    surface.blit(f_title.render("Physics for animation and games: choose a scene", True,
+                                ACCENT_COLOR), (x, y))
+    y += f_title.get_linesize() + 4
+    hint = "click a scene or press its number;  PageUp/PageDown, arrows + Enter;  Esc quits"
+    surface.blit(f_small.render(hint, True, DIM_COLOR), (x, y))
+    y += f_small.get_linesize() + 14
+    entries: list[MenuEntry] = []
+    if not scenes:
+        surface.blit(f.render("No scenes registered yet (scenes/__init__.py SCENES is empty).",
+                              True, WARN_COLOR), (x, y))
+    categories: list[str] = []
+    for cls in scenes:
+        cat = getattr(cls, "category", "") or "Other"
+        if cat not in categories:
+            categories.append(cat)
+    for cat in categories:
+        surface.blit(f_small.render(cat.upper(), True, DIM_COLOR), (x, y))
+        y += f_small.get_linesize() + 2
+        for i, cls in enumerate(scenes):
+            if (getattr(cls, "category", "") or "Other") != cat:
+                continue
+            number = f"{i + 1}" if i < 9 else " "
+            title = cls.title or cls.name
+            first = (cls.__doc__ or "").strip().split("\n")[0].strip()
+            row_h = f.get_linesize() + f_small.get_linesize() + 8
+            rect = pygame.Rect(x - 10, y - 4, W - 2 * x + 20, row_h)
+            if i == selected:
+                pygame.draw.rect(surface, (40, 60, 90), rect, border_radius=6)
+            surface.blit(f.render(number, True, WARN_COLOR), (x, y))
+            surface.blit(f.render(title, True, TEXT_COLOR), (x + 40, y))
+            name_x = x + 60 + f.size(title)[0]
+            surface.blit(f_small.render(f"--scene {cls.name}", True, DIM_COLOR),
+                         (name_x, y + (f.get_linesize() - f_small.get_linesize()) // 2))
+            sub = wrap(first, f_small, W - 2 * x - 40)[0] if first else ""
+            surface.blit(f_small.render(sub, True, DIM_COLOR), (x + 40, y + f.get_linesize()))
+            entries.append(MenuEntry(i, rect))
+            y += row_h + 6
+        y += 10
+    if message:
+        banner(surface, message, surface.get_rect(), color=message_color, size=HUD_SIZE)
+    return entries

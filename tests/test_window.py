@@ -1,0 +1,322 @@
+"""The interactive window, driven without its main loop (SDL dummy driver, see conftest.py).
+
+A tiny scene defined here (not registered) stands in for the real ones: a particle falling under
+gravity, with an int param, a float param, a choice, a bool and two effects. The tests press keys
+and type values the way a user would, by posting pygame events or pygame-gui events to
+Window.handle_pygame_event, and check what the shell did to the scene.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pygame
+import pygame_gui
+import pytest
+
+from app.draw.text import TEXT
+from app.scene import Effect, InputEvent, Param, Scene
+from app.window import NONFINITE_TEXT, SNAPSHOT_EVERY, Window, run_window
+
+
+class Tiny(Scene):
+    """A point falling under gravity (window test scene).
+
+    U kicks it upwards.
+    """
+
+    name = "tiny"
+    title = "Tiny test scene"
+    category = "Test"
+    params = (
+        Param("count", 3, int, 1, 20, help="number of points"),
+        Param("g", 100.0, float, 0.0, 1000.0, help="gravity", rebuild=False),
+        Param("method", "euler", str, choices=("euler", "verlet"), rebuild=False),
+        Param("blowup", False, bool, help="go NaN at step 40", rebuild=False),
+    )
+    effects = (Effect("gravity"), Effect("drag", False))
+
+    def build(self):
+        n = self.p["count"]
+        self.x = np.zeros((n, 2)) + (100.0, 100.0)
+        self.v = np.zeros((n, 2))
+        self.seen: list[InputEvent] = []
+
+    def step(self, h):
+        if "gravity" in self.on:
+            self.v[:, 1] += self.p["g"] * h
+        self.x += self.v * h
+        if self.p["blowup"] and self.steps >= 40:
+            self.x[0, 0] = np.nan
+
+    def handle_event(self, event):
+        self.seen.append(event)
+        if event.kind == "key_down" and event.key == "u":
+            self.v[:, 1] -= 50.0
+
+    def draw(self, surface, view):
+        for p in self.x:
+            if np.isfinite(p).all():
+                pygame.draw.circle(surface, (200, 200, 255), view.pt(p), int(view.len(5)) + 1)
+
+    def metrics(self):
+        return {"y": float(self.x[0, 1]), "n": len(self.x)}
+
+    def state_arrays(self):
+        return (self.x, self.v)
+
+    def snapshot(self):
+        return (self.x.copy(), self.v.copy())
+
+    def restore(self, snap):
+        if snap is None:
+            self.reset()
+        else:
+            self.x, self.v = snap[0].copy(), snap[1].copy()
+
+
+class Other(Tiny):
+    """A second scene, for switching."""
+    name = "other"
+    title = "Other"
+
+
+@pytest.fixture
+def window(tmp_path):
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    w = Window(screen, [Tiny, Other], screenshot_dir=tmp_path / "shots")
+    assert w.open_scene(Tiny)
+    yield w
+    w.set_large_text(False)
+    TEXT.scale = 1.0
+
+
+def key(w: Window, k: int, up: bool = True) -> None:
+    name = pygame.key.name(k)
+    w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
+                                             unicode=name if len(name) == 1 else ""))
+    if up:
+        w.handle_pygame_event(pygame.event.Event(pygame.KEYUP, key=k, mod=0, scancode=0,
+                                                 unicode=""))
+
+
+def mouse(w: Window, kind: int, pos, button: int = 1) -> None:
+    if kind == pygame.MOUSEMOTION:
+        ev = pygame.event.Event(kind, pos=pos, rel=(0, 0), buttons=(0, 0, 0))
+    else:
+        ev = pygame.event.Event(kind, pos=pos, button=button)
+    w.handle_pygame_event(ev)
+
+
+def test_space_pauses_and_resumes(window):
+    window.update(0.05)
+    steps = window.scene.steps
+    assert steps == 3                      # 0.05 s at 60 Hz
+    key(window, pygame.K_SPACE)
+    assert window.clock.paused
+    window.update(0.5)
+    assert window.scene.steps == steps
+    key(window, pygame.K_SPACE)
+    window.update(0.05)
+    assert window.scene.steps == steps + 3
+
+
+def test_period_single_steps_exactly_one(window):
+    key(window, pygame.K_PERIOD)           # pauses and asks for one step
+    assert window.update(0.1) == 1
+    assert window.update(0.1) == 0
+    assert window.scene.steps == 1
+    key(window, pygame.K_PERIOD)
+    window.update(0.0)
+    assert window.scene.steps == 2
+    assert window.scene.time == pytest.approx(2 / 60)
+
+
+def test_minus_is_slow_motion_not_a_smaller_dt(window):
+    dt = window.scene.dt
+    key(window, pygame.K_MINUS)
+    assert window.clock.slow_motion == 0.5
+    assert window.scene.dt == dt
+    assert window.update(0.1) == 3         # 0.1 s of frames = 0.05 s simulated = 3 steps of dt
+    key(window, pygame.K_MINUS)
+    key(window, pygame.K_MINUS)
+    key(window, pygame.K_MINUS)
+    assert window.clock.slow_motion == 0.125
+    key(window, pygame.K_EQUALS)
+    assert window.clock.slow_motion == 0.25
+    assert "speed x1/4" in " ".join(str(getattr(l, "text", l)) for l in window.hud_lines())
+
+
+def test_r_resets(window):
+    window.update(0.1)
+    window.scene.x[:] = 500.0
+    key(window, pygame.K_r)
+    assert window.scene.time == 0.0 and window.scene.steps == 0
+    assert window.scene.x[0, 0] == 100.0
+
+
+def test_f2_toggles_large_text_and_widens_the_panel(window):
+    narrow = window.panel.rect.width
+    key(window, pygame.K_F2)
+    assert TEXT.scale == pytest.approx(1.6)
+    assert window.panel.rect.width > narrow
+    window.render()
+    key(window, pygame.K_F2)
+    assert TEXT.scale == 1.0
+    assert window.panel.rect.width == narrow
+
+
+def test_bad_typed_value_is_refused_and_the_old_one_kept(window):
+    panel = window.panel
+    for bad in ("abc", "nan", "inf", "99", "2.5", ""):
+        panel.submit_text("count", bad)
+        assert window.scene.p["count"] == 3
+        assert panel.entries["count"].get_text() == "3"
+    assert any("count" in text for _, text, _ in window.messages)
+    panel.submit_text("g", "-1")
+    assert window.scene.p["g"] == 100.0
+    window.render()                        # the error banner draws without trouble
+
+
+def test_valid_values_change_the_scene(window):
+    panel = window.panel
+    window.update(0.1)
+    panel.submit_text("g", "250.5")
+    assert window.scene.p["g"] == 250.5
+    assert window.scene.steps > 0          # g does not rebuild
+    panel.submit_text("count", "7")
+    assert window.scene.p["count"] == 7
+    assert len(window.scene.x) == 7 and window.scene.steps == 0   # count rebuilds
+    # the slider snaps an int param to integers
+    ctl = panel.numbers["count"]
+    window.handle_pygame_event(pygame.event.Event(
+        pygame_gui.UI_HORIZONTAL_SLIDER_MOVED, {"value": 333, "ui_element": ctl.slider}))
+    assert isinstance(window.scene.p["count"], int) and 1 <= window.scene.p["count"] <= 20
+    # choices, bool params and effects
+    window.handle_pygame_event(pygame.event.Event(
+        pygame_gui.UI_DROP_DOWN_MENU_CHANGED,
+        {"text": "verlet", "ui_element": panel.dropdowns["method"]}))
+    assert window.scene.p["method"] == "verlet"
+    window.handle_pygame_event(pygame.event.Event(
+        pygame_gui.UI_BUTTON_PRESSED, {"ui_element": panel.toggles["drag"]}))
+    assert "drag" in window.scene.on
+    window.handle_pygame_event(pygame.event.Event(
+        pygame_gui.UI_BUTTON_PRESSED, {"ui_element": panel.toggles["gravity"]}))
+    assert "gravity" not in window.scene.on
+
+
+def test_keys_typed_into_the_panel_do_not_reach_the_shell(window):
+    window.update(0.1)
+    steps = window.scene.steps
+    window.panel.entries["g"].focus()
+    key(window, pygame.K_r)
+    key(window, pygame.K_SPACE)
+    assert window.scene.steps == steps and not window.clock.paused
+
+
+def test_non_finite_state_rolls_back_and_pauses(window):
+    window.scene.set("blowup", True)
+    for _ in range(100):
+        window.update(1 / 60)
+        if window.clock.paused:
+            break
+    scene = window.scene
+    assert window.clock.paused
+    assert scene.is_finite()
+    assert scene.steps == SNAPSHOT_EVERY
+    assert scene.time == pytest.approx(SNAPSHOT_EVERY / 60)
+    assert window.nonfinite_banner.startswith("The simulation went non-finite")
+    assert window.nonfinite_banner == NONFINITE_TEXT.format(bad=41 / 60, good=30 / 60)
+    window.render()
+    key(window, pygame.K_SPACE)            # resuming clears the banner
+    assert not window.nonfinite_banner
+
+
+def test_recording_writes_input_json_in_world_coordinates(window, tmp_path):
+    # a smaller window: the world is drawn at half size, so screen and world pixels differ
+    window.resize(pygame.display.set_mode((800, 600)))
+    view = window.view
+    assert view.scale < 1
+    window.update(0.1)
+    start = view.pt((100.0, 200.0))
+    end = view.pt((300.0, 250.0))
+    mouse(window, pygame.MOUSEBUTTONDOWN, start, 1)
+    mouse(window, pygame.MOUSEMOTION, end)
+    mouse(window, pygame.MOUSEBUTTONUP, end, 1)
+    key(window, pygame.K_u)
+    key(window, pygame.K_SPACE)            # a shell key: not the scene's, not recorded
+    mouse(window, pygame.MOUSEBUTTONDOWN, (790, 300), 1)   # over the panel: not recorded
+    out = tmp_path / "rec.json"
+    assert window.write_recording(out) == 5
+    events = json.loads(out.read_text())
+    assert [e["type"] for e in events] == ["mouse_down", "mouse_move", "mouse_up",
+                                           "key_down", "key_up"]
+    tol = 1.0 / view.scale
+    assert events[0]["pos"] == pytest.approx([100.0, 200.0], abs=tol)
+    assert events[0]["button"] == 1
+    assert events[2]["pos"] == pytest.approx([300.0, 250.0], abs=tol)
+    assert events[3]["key"] == "u"
+    assert all(e["t"] == pytest.approx(6 / 60) for e in events)
+    assert window.scene.seen[0].pos == pytest.approx((100.0, 200.0), abs=tol)
+
+
+def test_replayed_events_reach_the_scene_at_their_time(tmp_path):
+    pygame.display.init()
+    screen = pygame.display.set_mode((1280, 800))
+    w = Window(screen, [Tiny], events=[InputEvent("key_down", key="u", t=0.05)],
+               screenshot_dir=tmp_path)
+    w.open_scene(Tiny)
+    w.update(0.02)
+    assert not w.scene.seen
+    w.update(0.1)
+    assert [e.key for e in w.scene.seen] == ["u"]
+    assert w.recorded == []                # replayed events are not the user's
+
+
+def test_f12_writes_a_png(window, tmp_path):
+    key(window, pygame.K_F12)
+    window.render()
+    shots = list((tmp_path / "shots").glob("tiny-*.png"))
+    assert len(shots) == 1
+    assert pygame.image.load(str(shots[0])).get_size() == (1280, 800)
+    assert any("screenshot saved" in text for _, text, _ in window.messages)
+
+
+def test_help_menu_and_scene_switching(window):
+    key(window, pygame.K_h)
+    assert window.show_help
+    window.render()
+    key(window, pygame.K_ESCAPE)           # closes the help first
+    assert not window.show_help and window.scene is not None
+    key(window, pygame.K_PAGEDOWN)
+    assert type(window.scene) is Other
+    key(window, pygame.K_ESCAPE)
+    assert window.scene is None
+    window.render()
+    key(window, pygame.K_1)
+    assert type(window.scene) is Tiny
+    key(window, pygame.K_TAB)
+    assert window.panel is None and window.world_area().width == 1280
+    key(window, pygame.K_ESCAPE)
+    key(window, pygame.K_ESCAPE)           # Esc in the menu quits
+    assert not window.running
+
+
+def test_a_scene_that_fails_to_build_shows_the_error(window):
+    assert not window.open_scene(Tiny, {"count": "999"})
+    assert window.scene is None
+    assert "count" in window.menu_message
+    window.render()
+
+
+def test_no_display_returns_2_with_one_line(monkeypatch, capsys):
+    def refuse(*args, **kwargs):
+        raise pygame.error("x11 not available")
+    monkeypatch.setattr(pygame.display, "set_mode", refuse)
+    assert run_window(None, {}) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1
+    assert err.startswith("no display for the window: x11 not available; use --headless")
