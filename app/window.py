@@ -321,6 +321,7 @@ class Window:
         self.step_times: deque[tuple[float, float]] = deque()   # (wall, ms per advance)
         self.last_step_ms = float("nan")
         self.recorded: list[dict] = []        # events delivered to the scene, --input format
+        self.session_steps = 0                # steps since the scene was opened (not reset by R)
         self._dragging: set[int] = set()      # mouse buttons pressed in the world area
         self._replay = sorted(events or [], key=lambda e: e.t)
         self._replay_index = 0
@@ -350,6 +351,9 @@ class Window:
         self.clock = FixedStepClock()
         self.show_help = False
         self._dragging.clear()
+        self.recorded = []
+        self.session_steps = 0
+        self._replay_index = 0
         self._after_rebuild()
         self._layout()
         if pygame.display.get_init():
@@ -379,15 +383,17 @@ class Window:
         self.open_scene(self.scenes[i % len(self.scenes)])
 
     def _after_rebuild(self) -> None:
-        """The scene was (re)built: time restarts at 0, so do the recording and the replay."""
-        self.recorded = []
+        """The scene was (re)built: forget the old state's snapshot and step times."""
         self.nonfinite_banner = ""
         self.step_times.clear()
-        self._replay_index = 0
         self._last_good = (self.scene.snapshot(), self.scene.time, self.scene.steps)
 
     def reset_scene(self) -> None:
+        """R: rebuild the scene. The recording keeps it as a key "r" event, which the headless
+        runner replays as a reset too."""
         if self.scene is not None:
+            self.recorded.append(InputEvent("key_down", key="r", t=self.session_time).to_json())
+            self.recorded.append(InputEvent("key_up", key="r", t=self.session_time).to_json())
             self.scene.reset()
             self._after_rebuild()
             if self.panel:
@@ -498,7 +504,8 @@ class Window:
 
     def _mouse_event(self, ev: pygame.event.Event, consumed: bool) -> None:
         in_world = self.world_area().collidepoint(ev.pos) and not consumed
-        world = self.view.to_world(ev.pos)
+        x, y = self.view.to_world(ev.pos)
+        world = (round(x, 2), round(y, 2))     # as recorded, so a replay sees the same numbers
         if ev.type == pygame.MOUSEBUTTONDOWN and ev.button in (1, 3) and in_world:
             self._dragging.add(ev.button)
             self.deliver(InputEvent("mouse_down", pos=world, button=ev.button))
@@ -509,11 +516,18 @@ class Window:
         elif ev.type == pygame.MOUSEMOTION and (in_world or self._dragging):
             self.deliver(InputEvent("mouse_move", pos=world))
 
+    @property
+    def session_time(self) -> float:
+        """Simulated seconds since the scene was opened, counted as the headless runner counts
+        them (steps x dt), so a recording replays with --input at the same steps. Equal to
+        scene.time until the first R."""
+        return self.session_steps * self.scene.dt if self.scene is not None else 0.0
+
     def deliver(self, event: InputEvent) -> None:
-        """Hand an event to the scene at the current simulated time and record it."""
+        """Hand an event to the scene now (before the next step) and record it."""
         if self.scene is None:
             return
-        event.t = self.scene.time
+        event.t = self.session_time
         self.scene.handle_event(event)
         self.recorded.append(event.to_json())
 
@@ -611,6 +625,7 @@ class Window:
             t0 = time.perf_counter()
             scene.advance()
             ms = (time.perf_counter() - t0) * 1000.0
+            self.session_steps += 1
             self.step_times.append((self.wall, ms))
             self.last_step_ms = ms
             if scene.steps % SNAPSHOT_EVERY == 0 and scene.is_finite():
@@ -644,11 +659,15 @@ class Window:
         if self.scene is None or type(self.scene) is not self._replay_scene:
             return
         while (self._replay_index < len(self._replay)
-               and self._replay[self._replay_index].t <= self.scene.time + 1e-9):
+               and self._replay[self._replay_index].t <= self.session_time + 1e-9):
             ev = self._replay[self._replay_index]
             self._replay_index += 1
-            self.scene.handle_event(InputEvent(ev.kind, tuple(ev.pos), ev.button, ev.key,
-                                               self.scene.time))
+            if ev.kind == "key_down" and ev.key == "r":       # as app.headless.deliver does
+                self.scene.reset()
+                self._after_rebuild()
+            elif not (ev.kind == "key_up" and ev.key == "r"):
+                self.scene.handle_event(InputEvent(ev.kind, tuple(ev.pos), ev.button, ev.key,
+                                                   self.session_time))
 
     # --- what the HUD reads ----------------------------------------------------------------
     @property
@@ -671,9 +690,9 @@ class Window:
         lines: list = [L(scene.title or scene.name, hud.ACCENT_COLOR)]
         ms = self.step_ms
         ms_text = "-" if math.isnan(ms) else f"{ms:.2f}"
-        lines.append(f"{self.fps:.0f} fps  |  physics {ms_text} ms/step  |  "
-                     f"dt = 1/{scene.p['hertz']} s, {scene.p['substeps']} substep"
-                     f"{'s' if scene.p['substeps'] != 1 else ''}")
+        sub = scene.p["substeps"]
+        lines.append(f"{self.fps:.0f} fps  |  physics {ms_text} ms/step  |  dt = 1/{scene.p['hertz']} s"
+                     + (f" in {sub} substeps" if sub > 1 else ""))
         state = f"t = {scene.time:.2f} s  |  speed x{_slow_text(self.clock.slow_motion)}"
         if self.clock.paused:
             state += "  |  PAUSED (space resumes, . steps)"
@@ -758,8 +777,9 @@ class Window:
         pygame.image.save(self.screen, str(path))
 
     def write_recording(self, path: str | Path) -> int:
-        """Write the events delivered to the scene since it was last (re)built, in the --input
-        format (one event per line); return how many."""
+        """Write the events delivered to the scene since it was opened, and the R resets, in the
+        --input format (one event per line); return how many. Panel changes are not events: a
+        demo that changes parameters replays with the values given by --set."""
         body = ",\n".join(" " + json.dumps(e) for e in self.recorded)
         Path(path).write_text("[\n" + body + ("\n" if body else "") + "]\n")
         return len(self.recorded)
@@ -787,10 +807,33 @@ def _slow_text(factor: float) -> str:
 # ----------------------------------------------------------------------------------------------
 # the main loop (python -m app without --headless)
 # ----------------------------------------------------------------------------------------------
+class _quiet_stderr:
+    """Silence file descriptor 2 (C libraries' messages) inside a `with` block."""
+
+    def __enter__(self):
+        import os
+        sys.stderr.flush()
+        self.saved = os.dup(2)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 2)
+        os.close(devnull)
+
+    def __exit__(self, *exc):
+        import os
+        os.dup2(self.saved, 2)
+        os.close(self.saved)
+        return False
+
+
 def _open_display(size: tuple[int, int]) -> pygame.Surface:
     """Open the window; raise pygame.error if there is no usable display."""
     import os
-    pygame.display.init()
+    if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY")
+                                                 or os.environ.get("WAYLAND_DISPLAY")):
+        with _quiet_stderr():     # SDL's own probing prints "XDG_RUNTIME_DIR is invalid" lines
+            pygame.display.init()
+    else:
+        pygame.display.init()
     driver = pygame.display.get_driver()
     # SDL quietly falls back to an invisible 'offscreen' window when there is no display; that
     # is no window for a person, unless someone asked for it (tests, SDL_VIDEODRIVER=dummy).
@@ -843,5 +886,5 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     finally:
         if record:
             window.write_recording(record)
-        pygame.quit()
+        pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
     return 0

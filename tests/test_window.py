@@ -54,6 +54,8 @@ class Tiny(Scene):
         self.seen.append(event)
         if event.kind == "key_down" and event.key == "u":
             self.v[:, 1] -= 50.0
+        if event.kind == "mouse_down":
+            self.x[0] = event.pos
 
     def draw(self, surface, view):
         for p in self.x:
@@ -90,7 +92,6 @@ def window(tmp_path):
     w = Window(screen, [Tiny, Other], screenshot_dir=tmp_path / "shots")
     assert w.open_scene(Tiny)
     yield w
-    w.set_large_text(False)
     TEXT.scale = 1.0
 
 
@@ -260,7 +261,28 @@ def test_recording_writes_input_json_in_world_coordinates(window, tmp_path):
     assert events[2]["pos"] == pytest.approx([300.0, 250.0], abs=tol)
     assert events[3]["key"] == "u"
     assert all(e["t"] == pytest.approx(6 / 60) for e in events)
+    assert [InputEvent(e["type"], tuple(e.get("pos", (0, 0))), e.get("button", 0), e.get("key", ""))
+            .to_json()["type"] for e in events] == [e["type"] for e in events]
     assert window.scene.seen[0].pos == pytest.approx((100.0, 200.0), abs=tol)
+
+
+def test_a_recorded_demo_replays_headless_to_the_same_state(window, tmp_path):
+    from app.headless import load_events, run_scene
+    window.update(0.05)
+    mouse(window, pygame.MOUSEBUTTONDOWN, window.view.pt((400.0, 300.0)), 1)
+    window.update(0.05)
+    key(window, pygame.K_u)
+    window.update(0.1)
+    key(window, pygame.K_r)                # recorded as a reset
+    window.update(0.05)
+    mouse(window, pygame.MOUSEBUTTONDOWN, window.view.pt((50.0, 60.0)), 3)
+    key(window, pygame.K_u)
+    window.update(0.1)
+    out = tmp_path / "demo.json"
+    window.write_recording(out)
+    replay = run_scene(Tiny(), window.session_steps, load_events(str(out)))
+    assert replay.scene.state_hash() == window.scene.state_hash()
+    assert replay.scene.time == pytest.approx(window.scene.time)
 
 
 def test_replayed_events_reach_the_scene_at_their_time(tmp_path):
@@ -320,3 +342,13 @@ def test_no_display_returns_2_with_one_line(monkeypatch, capsys):
     err = capsys.readouterr().err
     assert err.count("\n") == 1
     assert err.startswith("no display for the window: x11 not available; use --headless")
+
+
+def test_run_window_screenshot_after_seconds_and_record(monkeypatch, tmp_path):
+    import scenes
+    monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    shot, rec = tmp_path / "w.png", tmp_path / "rec.json"
+    assert run_window("tiny", {"g": "50"}, record=str(rec), screenshot=str(shot),
+                      seconds=0.2) == 0
+    assert pygame.image.load(str(shot)).get_size() == (1280, 800)
+    assert json.loads(rec.read_text()) == []

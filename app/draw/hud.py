@@ -199,6 +199,9 @@ def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str
         cat = getattr(cls, "category", "") or "Other"
         if cat not in categories:
             categories.append(cat)
+    row_full = f.get_linesize() + f_small.get_linesize() + 14
+    needed = len(categories) * (f_small.get_linesize() + 12) + len(scenes) * row_full
+    compact = y + needed > H - 10        # too many for the window: drop the docstring lines
     for cat in categories:
         surface.blit(f_small.render(cat.upper(), True, DIM_COLOR), (x, y))
         y += f_small.get_linesize() + 2
@@ -208,7 +211,7 @@ def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str
             number = f"{i + 1}" if i < 9 else " "
             title = cls.title or cls.name
             first = (cls.__doc__ or "").strip().split("\n")[0].strip()
-            row_h = f.get_linesize() + f_small.get_linesize() + 8
+            row_h = f.get_linesize() + (0 if compact else f_small.get_linesize()) + 8
             rect = pygame.Rect(x - 10, y - 4, W - 2 * x + 20, row_h)
             if i == selected:
                 pygame.draw.rect(surface, (40, 60, 90), rect, border_radius=6)
@@ -217,8 +220,9 @@ def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str
             name_x = x + 60 + f.size(title)[0]
             surface.blit(f_small.render(f"--scene {cls.name}", True, DIM_COLOR),
                          (name_x, y + (f.get_linesize() - f_small.get_linesize()) // 2))
-            sub = wrap(first, f_small, W - 2 * x - 40)[0] if first else ""
-            surface.blit(f_small.render(sub, True, DIM_COLOR), (x + 40, y + f.get_linesize()))
+            if first and not compact:
+                sub = wrap(first, f_small, W - 2 * x - 40)[0]
+                surface.blit(f_small.render(sub, True, DIM_COLOR), (x + 40, y + f.get_linesize()))
             entries.append(MenuEntry(i, rect))
             y += row_h + 6
         y += 10
