@@ -7,8 +7,12 @@ the smoke tests and the benchmarks all read this list.
 from __future__ import annotations
 
 from app.scene import Scene
+from scenes.double_pendulum import DoublePendulumScene
+from scenes.newtons_cradle import NewtonsCradleScene
 
 SCENES: list[type[Scene]] = [
+    NewtonsCradleScene,
+    DoublePendulumScene,
 ]
 
 

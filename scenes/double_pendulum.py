@@ -1,0 +1,300 @@
+"""Double pendulum (the lecture's exercise): two bobs on pin joints, released high, beside a ghost of
+the same pendulum integrated from its equations of motion. Watch the engine and the exact solution
+part ways.
+
+What it shows.
+  * Chaos: released high, the double pendulum is so sensitive to its state that pymunk's tiny
+    per-step errors (a first-order integrator with an iterative joint solver) grow exponentially.
+    The ghost (orange) is the reference, app/physics/double_pendulum_ode.py: Lagrange's equations
+    of two point masses on massless rods, integrated with RK4 at `ref_substeps` steps per physics
+    step. Both start identical; after a few seconds they part. The moment the tips are more than
+    10 px apart is marked on screen (a cross where it happened) and reported as `divergence_time`.
+    Released low (angles of ~10 degrees) the motion is regular and the two stay together for good.
+  * Energy: a pendulum without friction keeps its energy. An engine that loses or gains energy
+    shows it in the HUD (`energy_drift`, relative to the energy at release). pymunk's pin joint is
+    "soft" by default: it corrects only part of the length error each step (error_bias = fraction
+    of the error left after one second, 0.0018 by default), and that lazy correction bleeds energy
+    away: about 17% in a minute at hertz 120 x substeps 10. Here the joints correct all of it each
+    step (`error_bias` 0), which keeps the drift under 0.1% over a minute. Raise `error_bias` to
+    0.0018 to see pymunk's default, or lower substeps.
+  * Why point masses match pymunk's round bobs: the pins hold each bob at its centre of mass, so
+    no joint force turns a bob; its spin stays zero and drops out of the energy.
+
+Effects: `reference` (the ghost; off = not integrated at all), `trail` (a fading trail of the
+tip, and of the ghost's tip).
+
+Metrics (DESIGN.md): `energy_drift` ((E - E0) / E0 now, E measured from the lowest configuration),
+`reference_divergence` (px between the pymunk tip and the ghost's tip now; -1 with the reference
+off), `divergence_time` (simulated seconds from release until the tips first part by more than
+10 px; -1 while they have not, and with the reference off). Also `energy_drift_max` (largest
+|drift| seen) and `pin_error` (largest rod length error now, px).
+
+Mouse: drag a bob with the left button. When you let go, the ghost restarts from the dragged
+state (positions and velocities), the energy baseline is the energy at that moment, and the
+divergence clock starts again from zero: a new release.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Iterable
+
+import numpy as np
+import pygame
+import pymunk
+
+from app.draw import pymunk_draw as D
+from app.physics.double_pendulum_ode import DoublePendulumODE
+from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
+from app.scene import Effect, Param
+
+PIVOT = (480.0, 350.0)
+BOB_RADIUS = 14.0
+PART_PX = 10.0           # tips further apart than this: the engine and the reference have parted
+
+PENDULUM_PARAMS: tuple[Param, ...] = (
+    Param("hertz", 120, int, 1, 1000, help="physics steps per simulated second (dt = 1/hertz)",
+          rebuild=False),
+    Param("substeps", 10, int, 1, 50, help="sub-steps per step (pin joints are stiffer with more)",
+          rebuild=False),
+    Param("angle1", 120.0, float, -180.0, 180.0, help="release angle of the upper rod, degrees "
+          "from straight down"),
+    Param("angle2", 150.0, float, -180.0, 180.0, help="release angle of the lower rod, degrees"),
+    Param("length1", 160.0, float, 20.0, 170.0, help="upper rod length, px"),
+    Param("length2", 160.0, float, 20.0, 170.0, help="lower rod length, px"),
+    Param("mass1", 1.0, float, 0.05, 20.0, help="upper bob mass"),
+    Param("mass2", 1.0, float, 0.05, 20.0, help="lower bob mass"),
+    Param("error_bias", 0.0, float, 0.0, 1.0, help="pin joints: fraction of the length error left "
+          "after 1 s (pymunk's default 0.0018; 0 = fix it all each step)", rebuild=False),
+    Param("ref_substeps", 10, int, 1, 200, help="RK4 steps of the reference per physics step",
+          rebuild=False),
+    Param("trail_seconds", 3.0, float, 0.1, 30.0, help="length of the tip's trail, seconds"),
+)
+
+ROD_COLOR = (235, 235, 235)
+BOB_COLOR = (86, 180, 233)
+GHOST_COLOR = (230, 159, 0)
+TRAIL_COLOR = (86, 180, 233)
+MARK_COLOR = (230, 97, 76)
+
+
+class DoublePendulumScene(PymunkScene):
+    """Double pendulum: pymunk's bobs on pin joints beside an orange ghost integrated from the
+    equations of motion with RK4 at a tiny step. Released high, the motion is chaotic and the two
+    part after a few seconds (marked on screen); released low they stay together. The HUD shows
+    the energy drift.
+
+    Mouse: drag a bob; letting go restarts the ghost from the dragged state. Effects: reference
+    (the ghost), trail. Try error_bias 0.0018 (pymunk's default) or substeps 1.
+    """
+
+    name = "double_pendulum"
+    title = "Double pendulum vs. its equations"
+    category = "Rigid bodies (pymunk)"
+    params = PYMUNK_PARAMS + PENDULUM_PARAMS
+    effects = (Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
+               Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
+    world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
+
+    # ----- building -------------------------------------------------------------------------
+    def build_space(self, space: pymunk.Space) -> None:
+        p = self.p
+        t1, t2 = math.radians(p["angle1"]), math.radians(p["angle2"])
+        l1, l2 = p["length1"], p["length2"]
+        p1 = (PIVOT[0] + l1 * math.sin(t1), PIVOT[1] + l1 * math.cos(t1))
+        p2 = (p1[0] + l2 * math.sin(t2), p1[1] + l2 * math.cos(t2))
+        self.bobs: list[pymunk.Body] = []
+        for mass, pos in ((p["mass1"], p1), (p["mass2"], p2)):
+            body = pymunk.Body(mass, pymunk.moment_for_circle(mass, 0, BOB_RADIUS))
+            body.position = pos
+            shape = pymunk.Circle(body, BOB_RADIUS)       # for grabbing; bobs never collide
+            shape.filter = pymunk.ShapeFilter(group=1)
+            space.add(body, shape)
+            self.bobs.append(body)
+        self.joints = [pymunk.PinJoint(space.static_body, self.bobs[0], PIVOT, (0, 0)),
+                       pymunk.PinJoint(self.bobs[0], self.bobs[1], (0, 0), (0, 0))]
+        space.add(*self.joints)
+        self.ode = DoublePendulumODE(l1, l2, p["mass1"], p["mass2"], p["gravity"], (t1, t2, 0, 0))
+        n = max(2, round(p["trail_seconds"] * p["hertz"]))
+        self.trail = Trail(n)
+        self.ghost_trail = Trail(n)
+        self.track = {"energy0": 0.0, "start": 0.0, "divergence_time": -1.0, "mark": None,
+                      "energy_drift_max": 0.0}
+        self.new_release()
+
+    def new_release(self) -> None:
+        """Start comparing from the engine's state now: the ghost takes it over, the energy now is
+        the baseline, the divergence clock restarts, the trails are cleared."""
+        b1, b2 = self.bobs
+        self.ode.set_from_cartesian(PIVOT, b1.position, b1.velocity, b2.position, b2.velocity)
+        self.ode.g = self.p["gravity"]
+        self.track.update(energy0=self.energy(), start=self.time, divergence_time=-1.0,
+                          mark=None, energy_drift_max=0.0)
+        self.trail.clear()
+        self.ghost_trail.clear()
+
+    # ----- stepping -------------------------------------------------------------------------
+    def step(self, h: float) -> None:
+        for joint in self.joints:
+            joint.error_bias = self.p["error_bias"]
+        super().step(h)
+
+    def advance(self) -> None:
+        super().advance()                      # pymunk: substeps x step(h)
+        if self.mouse_joint is not None:       # held by the mouse: nothing to compare yet
+            return
+        t = self.track
+        drift = self.energy_drift()
+        t["energy_drift_max"] = max(t["energy_drift_max"], abs(drift))
+        tip = self.bobs[1].position
+        if "reference" in self.on:
+            self.ode.g = self.p["gravity"]
+            self.ode.advance(self.dt, self.p["ref_substeps"])
+            ghost_tip = self.ode.positions(PIVOT)[1]
+            if t["divergence_time"] < 0 and math.dist(tip, ghost_tip) > PART_PX:
+                t["divergence_time"] = self.time - t["start"]
+                t["mark"] = (float(tip[0]), float(tip[1]))
+            if "trail" in self.on:
+                self.ghost_trail.add(ghost_tip)
+        if "trail" in self.on:
+            self.trail.add(tip)
+
+    def effect_changed(self, name: str, on: bool) -> None:
+        if name == "reference" and on:         # the ghost restarts from the engine's state
+            self.new_release()
+        if name == "trail" and not on:
+            self.trail.clear()
+            self.ghost_trail.clear()
+
+    # ----- mouse ----------------------------------------------------------------------------
+    def release(self) -> None:
+        held = self.mouse_joint is not None
+        super().release()
+        if held:
+            self.new_release()
+
+    # ----- measuring ------------------------------------------------------------------------
+    def energy(self) -> float:
+        """Kinetic (incl. spin) + potential energy of the bobs, zero when both hang straight down
+        at rest (y is down, so a bob's height above its lowest point is lowest_y - y)."""
+        g, l1, l2 = self.p["gravity"], self.p["length1"], self.p["length2"]
+        lowest = (PIVOT[1] + l1, PIVOT[1] + l1 + l2)
+        e = 0.0
+        for body, y0 in zip(self.bobs, lowest):
+            e += (0.5 * body.mass * body.velocity.length_squared
+                  + 0.5 * body.moment * body.angular_velocity ** 2
+                  + body.mass * g * (y0 - body.position.y))
+        return e
+
+    def energy_drift(self) -> float:
+        e0 = self.track["energy0"]
+        return (self.energy() - e0) / e0 if e0 > 1e-9 else 0.0
+
+    def pin_error(self) -> float:
+        b1, b2 = self.bobs
+        return max(abs(math.dist(PIVOT, b1.position) - self.p["length1"]),
+                   abs(math.dist(b1.position, b2.position) - self.p["length2"]))
+
+    def divergence(self) -> float:
+        """Distance between the engine's tip and the ghost's tip now, px (-1: no reference)."""
+        if "reference" not in self.on:
+            return -1.0
+        return math.dist(self.bobs[1].position, self.ode.positions(PIVOT)[1])
+
+    # ----- state ----------------------------------------------------------------------------
+    def state_arrays(self) -> Iterable[np.ndarray]:
+        bobs = np.array([(*b.position, b.angle, *b.velocity, b.angular_velocity)
+                         for b in self.bobs])
+        return (bobs, np.array(self.ode.state))
+
+    # ----- reporting ------------------------------------------------------------------------
+    def metrics(self) -> dict[str, float]:
+        on = "reference" in self.on
+        return {"energy_drift": self.energy_drift(),
+                "reference_divergence": self.divergence(),
+                "divergence_time": self.track["divergence_time"] if on else -1.0,
+                "energy_drift_max": self.track["energy_drift_max"],
+                "pin_error": self.pin_error()}
+
+    def hud_lines(self) -> list[str]:
+        m = self.metrics()
+        lines = [f"energy drift: {100 * m['energy_drift']:+.3f}% "
+                 f"(worst {100 * m['energy_drift_max']:.3f}%)"]
+        if self.mouse_joint is not None:
+            lines.append("held by the mouse: the ghost restarts when you let go")
+        elif "reference" not in self.on:
+            lines.append("reference off (the ghost is not integrated)")
+        elif m["divergence_time"] >= 0:
+            lines.append(f"parted from the exact solution after {m['divergence_time']:.2f} s "
+                         f"(now {m['reference_divergence']:.0f} px apart)")
+        else:
+            lines.append(f"still with the exact solution: {m['reference_divergence']:.2f} px "
+                         f"apart after {self.time - self.track['start']:.1f} s")
+        return lines
+
+    # ----- drawing --------------------------------------------------------------------------
+    def draw(self, surface: pygame.Surface, view) -> None:
+        if "trail" in self.on:
+            if "reference" in self.on:
+                self.ghost_trail.draw(surface, view, GHOST_COLOR)
+            self.trail.draw(surface, view, TRAIL_COLOR)
+        if "reference" in self.on and self.mouse_joint is None:
+            g1, g2 = self.ode.positions(PIVOT)
+            pygame.draw.aalines(surface, GHOST_COLOR, False, [view.pt(PIVOT), view.pt(g1),
+                                                              view.pt(g2)])
+            for g in (g1, g2):
+                pygame.draw.circle(surface, GHOST_COLOR, view.pt(g), max(2.0, view.len(BOB_RADIUS)),
+                                   2)
+        b1, b2 = self.bobs
+        pygame.draw.aalines(surface, ROD_COLOR, False, [view.pt(PIVOT), view.pt(b1.position),
+                                                        view.pt(b2.position)])
+        pygame.draw.circle(surface, ROD_COLOR, view.pt(PIVOT), max(2.0, view.len(4)))
+        for body in self.bobs:
+            D.draw_circle(surface, view, body.position, body.angle, BOB_RADIUS, BOB_COLOR)
+        mark = self.track["mark"]
+        if mark is not None and "reference" in self.on:
+            c, r = view.pt(mark), max(4.0, view.len(9))
+            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), 3)
+            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), 3)
+            from app.draw.text import blit_lines
+            blit_lines(surface, [f"parted at {self.track['divergence_time']:.2f} s"],
+                       (int(c[0] + r + 4), int(c[1] - r)), 18, MARK_COLOR)
+        self.draw_mouse(surface, view)
+
+
+class Trail:
+    """The last n positions of a point, in a ring buffer (one row per physics step)."""
+
+    def __init__(self, n: int):
+        self.xy = np.zeros((n, 2))
+        self.count = 0          # positions stored so far (at most n)
+        self.head = 0           # where the next one goes
+
+    def clear(self) -> None:
+        self.count = 0
+        self.head = 0
+
+    def add(self, p) -> None:
+        self.xy[self.head] = (p[0], p[1])
+        self.head = (self.head + 1) % len(self.xy)
+        self.count = min(self.count + 1, len(self.xy))
+
+    def points(self) -> np.ndarray:
+        """The stored positions, oldest first."""
+        if self.count < len(self.xy):
+            return self.xy[:self.count]
+        return np.roll(self.xy, -self.head, axis=0)     # the ring unrolled: oldest .. newest
+
+    def draw(self, surface: pygame.Surface, view, color, pieces: int = 12) -> None:
+        """The trail in `pieces` stretches, the older the darker (a fade without per-pixel
+        alpha)."""
+        pts = view.pts(self.points())
+        if len(pts) < 2:
+            return
+        edges = np.linspace(0, len(pts) - 1, pieces + 1).astype(int)
+        for i in range(pieces):
+            a, b = edges[i], edges[i + 1]
+            if b - a < 1:
+                continue
+            fade = 0.15 + 0.85 * (i + 1) / pieces
+            pygame.draw.aalines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist())

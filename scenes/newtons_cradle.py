@@ -1,0 +1,299 @@
+"""Newton's cradle (the lecture's pymunk classwork): N equal balls hang on strings side by side;
+lift k of them, let go, and k balls swing out at the far end while the middle ones stay still.
+
+What it shows. An elastic collision of equal masses swaps their velocities, so momentum AND energy
+pass down the row ball by ball: k balls in, k balls out. A real cradle's balls touch; the
+compression wave runs through them in microseconds, one contact at a time.
+
+Why a cradle is hard for an impulse solver (the teaching point). Chipmunk (pymunk) finds every
+contact at the start of a step and solves them all *together*, iteratively, at the velocity level:
+each contact's target is "separate at e times the approach speed", where the approach speed is
+the one the step started with. If the balls touch at rest, the first ball's contact sees an
+approach speed v but the next contacts see 0, so the solver only asks them not to interpenetrate:
+it pushes the whole row along together, like one soft lump, and several balls leave slowly
+instead of one ball leaving fast. The cure is to make the real cradle's sequence happen in the
+simulation:
+  * `gap`: a hair of space between the balls at rest (default 0.02 px, invisible), so each impact
+    is a separate collision of TWO balls, one after the other. A negative gap presses the balls
+    together (overlapping by less than the slop, so their contacts persist at rest): then 1 ball in
+    sends the whole row of 4 off together at 41% of the speed, "1 in, 0 out", the solver's answer
+    for simultaneous contacts. At gap 0 the balls touch exactly and the result hangs on rounding.
+    A large gap works too, but every impact then carries a ball across the gap before it stops,
+    and the middle balls creep (see below);
+  * elasticity 0.9999999 on every ball (the slide's hint). pymunk multiplies the two shapes'
+    values, so a contact gets e = 0.9999998; e = 1 exactly is allowed too. Friction 0: a rubbing
+    contact would spin the balls and take energy;
+  * many small steps (hertz 120, substeps 30): a ball moves v*h per substep and is found already
+    overlapping its neighbour by up to that much. Every impact shifts the struck balls forward by
+    roughly gap + v*h, and the middle balls, being pendulums of the same period as the swing,
+    collect these shifts in step with it, so their wobble grows by that amount every impact.
+    With h = 1/3600 s it stays under a pixel over ten seconds; at substeps 5 it is several pixels
+    and the row visibly shuffles;
+  * the strings are PinJoints to fixed anchors with their error fully corrected every step
+    (error_bias 0), so a string does not stretch and slowly bleed energy; collision_slop is small
+    (0.01 px) so resting contacts are not allowed to overlap.
+Break it on purpose: gap -0.01 (touching), gap 5, substeps 2, elasticity 0.9 (the energy drains and
+the swings shrink), damping 0.99 (air drag: space.damping is the fraction of velocity kept per
+second; 1 is none. Negative values would abort pymunk, so the range is 0..1).
+
+Metrics (DESIGN.md): `lifted` (k actually lifted: at most balls-1, a larger value is clamped),
+`balls_out` (balls that swing out past half the release amplitude in the first half-swing after
+the first impact; counted while that window is open, then frozen), `middle_max_drift` (largest
+distance from its rest position, px, of any ball that is neither lifted nor expected out: balls
+k .. N-k-1; 0 when there are none), `energy_ratio` (kinetic + potential energy now / at release).
+Also `release_speed` (px/s, the lifted balls just before the first impact) and `out_speed_ratio`
+(the slowest of the k far balls' top speed after the impact / release speed).
+
+Controls: drag a ball with the left mouse button (the strings hold it). Letting go re-arms the
+measurement: the balls more than a radius from rest count as lifted and the energy at that moment
+is the new baseline. Parameters: balls, lifted, angle, gap, elasticity, damping, substeps,
+iterations, gravity.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Iterable
+
+import numpy as np
+import pygame
+import pymunk
+
+from app.draw import pymunk_draw as D
+from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
+from app.scene import Param
+
+RADIUS = 24.0            # ball radius, px
+STRING = 280.0           # string length, anchor to ball centre, px
+ANCHOR_Y = 130.0         # height of the anchor bar
+MASS = 1.0
+SLOP = 0.01              # collision_slop: allowed overlap of resting contacts, px
+
+CRADLE_PARAMS: tuple[Param, ...] = (
+    Param("hertz", 120, int, 1, 1000, help="physics steps per simulated second (dt = 1/hertz)",
+          rebuild=False),
+    Param("substeps", 30, int, 1, 50, help="sub-steps per step: a cradle needs small steps",
+          rebuild=False),
+    Param("balls", 5, int, 2, 9, help="number of balls in the row"),
+    Param("lifted", 1, int, 1, 8, help="balls lifted and released (at most balls-1)"),
+    Param("angle", 30.0, float, 1.0, 60.0, help="lift angle of the released balls, degrees"),
+    Param("gap", 0.02, float, -1.0, 20.0,
+          help="space between neighbouring balls at rest, px (< 0: pressed together)"),
+    Param("elasticity", 0.9999999, float, 0.0, 1.0, help="elasticity of each ball (1 = no loss)"),
+    Param("damping", 1.0, float, 0.0, 1.0,
+          help="space.damping: fraction of velocity kept per second (1 = none)", rebuild=False),
+)
+
+BALL_COLOR = (86, 180, 233)
+LIFTED_COLOR = (240, 200, 70)
+STRING_COLOR = (200, 200, 210)
+REST_COLOR = (90, 95, 110)
+
+
+class NewtonsCradleScene(PymunkScene):
+    """Newton's cradle: lift k balls, release, and k balls swing out at the other end while the
+    middle ones stay still, if the impulse solver sees one two-ball collision at a time. The HUD
+    gives the verdict ("2 in, 2 out") and the energy left.
+
+    Mouse: drag a ball (letting go re-arms the verdict). Try to break it: gap -0.01 (balls
+    pressed together), gap 5, substeps 2, elasticity 0.9, damping 0.99.
+    """
+
+    name = "newtons_cradle"
+    title = "Newton's cradle (pymunk)"
+    category = "Rigid bodies (pymunk)"
+    params = PYMUNK_PARAMS + CRADLE_PARAMS
+    world_keys = ("space", "bodies", "strings", "track")
+
+    # ----- building -------------------------------------------------------------------------
+    def build_space(self, space: pymunk.Space) -> None:
+        space.collision_slop = SLOP
+        space.damping = self.p["damping"]
+        n = self.p["balls"]
+        k = min(self.p["lifted"], n - 1)
+        pitch = 2 * RADIUS + self.p["gap"]
+        w = self.world_size[0]
+        self.anchors = np.array([(w / 2 + (i - (n - 1) / 2) * pitch, ANCHOR_Y) for i in range(n)])
+        self.rest = self.anchors + (0.0, STRING)
+        self.bodies: list[pymunk.Body] = []
+        self.strings: list[pymunk.PinJoint] = []
+        lift = math.radians(self.p["angle"])
+        for i, (ax, ay) in enumerate(self.anchors):
+            body = pymunk.Body(MASS, pymunk.moment_for_circle(MASS, 0, RADIUS))
+            th = -lift if i < k else 0.0       # the first k balls are pulled out to the left
+            body.position = (ax + STRING * math.sin(th), ay + STRING * math.cos(th))
+            ball = pymunk.Circle(body, RADIUS)
+            ball.elasticity = self.p["elasticity"]
+            ball.friction = 0.0
+            string = pymunk.PinJoint(space.static_body, body, (ax, ay), (0, 0))
+            string.error_bias = 0.0            # correct the whole length error every step
+            space.add(body, ball, string)
+            self.bodies.append(body)
+            self.strings.append(string)
+        self.amplitude = STRING * math.sin(lift)     # horizontal reach of the release
+        self.arm(k)
+
+    def arm(self, k: int, side: int = +1) -> None:
+        """Start a measurement: k balls count as lifted, at the left end (side +1, they swing in
+        to the right) or the right end (side -1); the energy now is the baseline, and the first
+        impact is still to come."""
+        self.track = {
+            "lifted": k,
+            "side": side,
+            "energy0": self.energy(),
+            "impact_time": -1.0,          # simulated time of the first impact, -1 before it
+            "release_speed": 0.0,
+            "last_speed": 0.0,            # mean speed of the lifted balls at the previous step
+            "reach": np.zeros(self.p["balls"]),       # furthest swing onwards since impact
+            "top_speed": np.zeros(self.p["balls"]),   # top speed since impact
+            "balls_out": 0,
+            "window_open": False,
+            "middle_max_drift": 0.0,
+        }
+
+    def half_period(self) -> float:
+        """Half the small-angle period of one string, pi sqrt(L/g) (inf without gravity)."""
+        g = self.p["gravity"]
+        return math.pi * math.sqrt(STRING / g) if g > 0 else math.inf
+
+    # ----- stepping -------------------------------------------------------------------------
+    def step(self, h: float) -> None:
+        self.space.damping = self.p["damping"]
+        super().step(h)
+
+    def advance(self) -> None:
+        super().advance()
+        self.observe()
+
+    def xv(self) -> tuple[np.ndarray, np.ndarray]:
+        """Positions (n, 2) and velocities (n, 2) of the balls, in order along the row."""
+        rows = np.array([(*b.position, *b.velocity) for b in self.bodies])
+        return rows[:, :2], rows[:, 2:]
+
+    def displacements(self) -> np.ndarray:
+        """Each ball's horizontal distance from its rest position, px (+ = to the right)."""
+        return np.array([b.position.x for b in self.bodies]) - self.rest[:, 0]
+
+    def groups(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Index arrays of the lifted balls, the far balls expected out, and the middle balls
+        (neither; empty when 2k >= N), for the current measurement."""
+        k, n = self.track["lifted"], len(self.bodies)
+        left, right = np.arange(k), np.arange(n - k, n)
+        middle = np.arange(k, max(k, n - k))
+        return (left, right, middle) if self.track["side"] > 0 else (right, left, middle)
+
+    def observe(self) -> None:
+        """Per step bookkeeping for the metrics: the first impact, the release speed, who swings
+        out in the half-swing after it, and the middle balls' drift."""
+        t = self.track
+        lifted, _, middle = self.groups()
+        xy, v = self.xv()
+        speed = np.hypot(v[:, 0], v[:, 1])
+        onwards = t["side"] * (xy[:, 0] - self.rest[:, 0])   # displacement in the swing's direction
+        if len(middle):
+            t["middle_max_drift"] = max(t["middle_max_drift"],
+                                        float(np.abs(onwards[middle]).max()))
+        if t["impact_time"] < 0 and len(lifted):
+            others = np.delete(speed, lifted)
+            expected = math.sqrt(2 * self.p["gravity"] * STRING
+                                 * (1 - math.cos(math.radians(self.p["angle"]))))
+            if others.max() > max(0.05 * expected, 1.0):
+                t["impact_time"] = self.time
+                t["release_speed"] = t["last_speed"]
+                t["window_open"] = True
+            else:
+                t["last_speed"] = float(speed[lifted].mean())
+        if t["window_open"]:
+            t["reach"] = np.maximum(t["reach"], onwards)
+            t["top_speed"] = np.maximum(t["top_speed"], speed)
+            t["balls_out"] = int(np.count_nonzero(t["reach"] > 0.5 * self.amplitude))
+            if self.time - t["impact_time"] > 0.9 * self.half_period():
+                t["window_open"] = False
+
+    # ----- energy -----------------------------------------------------------------------------
+    def energy(self) -> float:
+        """Kinetic + potential energy of the balls, potential zero with every ball at rest."""
+        xy, v = self.xv()
+        w = np.array([b.angular_velocity for b in self.bodies])
+        moment = self.bodies[0].moment
+        kinetic = 0.5 * MASS * float((v ** 2).sum()) + 0.5 * moment * float((w ** 2).sum())
+        height = self.rest[:, 1] - xy[:, 1]               # y is down: up is rest_y - y
+        return kinetic + MASS * self.p["gravity"] * float(height.sum())
+
+    # ----- mouse ----------------------------------------------------------------------------
+    def release(self) -> None:
+        held = self.mouse_joint is not None
+        super().release()
+        if held:
+            self.rearm_after_drag()
+
+    def rearm_after_drag(self) -> None:
+        """After a drag: the balls more than a radius from rest at one end of the row are the new
+        lifted group (the larger run if both ends are out); none if every ball is out."""
+        out = np.abs(self.displacements()) > RADIUS
+        n = len(out)
+        left = n if out.all() else int(np.argmin(out))           # run of displaced balls
+        right = n if out.all() else int(np.argmin(out[::-1]))
+        k = max(left, right) if max(left, right) < n else 0
+        self.arm(k, side=+1 if left >= right else -1)
+
+    # ----- state ----------------------------------------------------------------------------
+    def state_arrays(self) -> Iterable[np.ndarray]:
+        xy, v = self.xv()
+        return (xy, v)
+
+    # ----- reporting ------------------------------------------------------------------------
+    def metrics(self) -> dict[str, float]:
+        t = self.track
+        k = t["lifted"]
+        e0 = t["energy0"]
+        far = t["top_speed"][self.groups()[1]]
+        ratio = (float(far.min()) / t["release_speed"]
+                 if len(far) and t["release_speed"] > 0 else 0.0)
+        return {
+            "lifted": k,
+            "balls_out": t["balls_out"],
+            "middle_max_drift": t["middle_max_drift"],
+            "energy_ratio": self.energy() / e0 if e0 > 0 else 1.0,
+            "release_speed": t["release_speed"],
+            "out_speed_ratio": ratio,
+        }
+
+    def hud_lines(self) -> list[str]:
+        m = self.metrics()
+        k, out = int(m["lifted"]), int(m["balls_out"])
+        lines = []
+        if self.p["lifted"] > self.p["balls"] - 1:
+            lines.append(f"lifted {self.p['lifted']} -> {k}: a row of {self.p['balls']} "
+                         f"can lift at most {self.p['balls'] - 1}")
+        t = self.track
+        if k == 0:
+            lines.append("nothing lifted: drag a ball out and let go")
+        elif t["impact_time"] < 0:
+            lines.append(f"{k} lifted, released: waiting for the impact")
+        else:
+            good = out == k and m["middle_max_drift"] < 2.0 and m["out_speed_ratio"] >= 0.97
+            verdict = "like a real cradle" if good else "NOT like a real cradle"
+            lines.append(f"{k} in, {out} out{' (so far)' if t['window_open'] else ''}: {verdict}")
+            lines.append(f"out speed {100 * m['out_speed_ratio']:.1f}% of "
+                         f"{m['release_speed']:.0f} px/s; middle drift "
+                         f"{m['middle_max_drift']:.2f} px")
+        lines.append(f"energy left: {100 * m['energy_ratio']:.2f}%")
+        return lines
+
+    # ----- drawing --------------------------------------------------------------------------
+    def draw(self, surface: pygame.Surface, view) -> None:
+        a, b = self.anchors[:, 0].min() - 2 * RADIUS, self.anchors[:, 0].max() + 2 * RADIUS
+        D.draw_segment(surface, view, (a, ANCHOR_Y - 6), (b, ANCHOR_Y - 6), 4, D.STATIC)
+        for (rx, ry) in self.rest:          # tick marks under the rest positions
+            pygame.draw.line(surface, REST_COLOR, view.pt((rx, ry + RADIUS + 4)),
+                             view.pt((rx, ry + RADIUS + 14)), 2)
+        lifted = set(self.groups()[0].tolist())
+        for i, (body, string) in enumerate(zip(self.bodies, self.strings)):
+            pygame.draw.aaline(surface, STRING_COLOR, view.pt(string.anchor_a),
+                               view.pt(body.position))
+            pygame.draw.circle(surface, STRING_COLOR, view.pt(string.anchor_a),
+                               max(2.0, view.len(3)))
+            color = LIFTED_COLOR if i in lifted else BALL_COLOR
+            D.draw_circle(surface, view, body.position, body.angle, RADIUS, color)
+        self.draw_mouse(surface, view)
