@@ -12,6 +12,12 @@ Dragging (the usual pymunk pattern): the mouse holds a kinematic body; pressing 
 a dynamic body joins the two with a PivotJoint whose force is bounded (`max_force`), so a dragged
 body pushes others and is held by its joints instead of teleporting through them.
 
+Reading many bodies at once: `body_rows(fields)` returns the body ids and the requested fields of
+every body in ONE pymunk.batch call. The batch lists sleeping bodies too (Chipmunk's
+cpSpaceEachBody walks the awake bodies, then the static ones, then the sleeping groups), so
+`sleeping_rows(ids)` tells which rows sleep from that order alone, with no call per body. The base
+adds one shapeless static "marker" body to every space, so that order always has a static part.
+
 pymunk (Chipmunk2D) aborts the whole process on some bad values (iterations=0, negative damping) and
 silently accepts others (a NaN time step). Every number that reaches pymunk here comes from a
 declared Param, whose range keeps such values out.
@@ -52,14 +58,20 @@ class PymunkScene(Scene):
         self.mouse_body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         self.mouse_joint: pymunk.PivotJoint | None = None
         self._buffer = pymunk.batch.Buffer()
+        # A static body without shapes: it costs nothing and guarantees the batch's row order
+        # (awake | static | sleeping) has a static part to split at (see sleeping_rows).
+        self.space.add(pymunk.Body(body_type=pymunk.Body.STATIC))
         self.build_space(self.space)
+        self.refresh_static_ids()
 
     def build_space(self, space: pymunk.Space) -> None:
         """Add the scene's bodies, shapes and joints."""
 
     def step(self, h: float) -> None:
         self.space.iterations = self.p["iterations"]
-        self.space.gravity = (0.0, self.p["gravity"])
+        if self.space.gravity.y != self.p["gravity"]:
+            # only on a change: setting gravity wakes every sleeping body (Chipmunk)
+            self.space.gravity = (0.0, self.p["gravity"])
         self.space.step(h)
 
     # ----- mouse --------------------------------------------------------------------------
@@ -100,9 +112,49 @@ class PymunkScene(Scene):
     def on_click(self, pos: tuple[float, float], button: int) -> None:
         """A click that grabbed nothing (e.g. drop a ball there)."""
 
+    # ----- reading many bodies at once --------------------------------------------------------
+    def refresh_static_ids(self) -> None:
+        """Remember the ids of the space's static bodies (called after build_space and restore;
+        call it again if a scene adds static bodies later)."""
+        ids = [b.id for b in self.space.bodies if b.body_type == pymunk.Body.STATIC]
+        self._static_ids = np.array(sorted(ids + [self.space.static_body.id]), dtype=np.int64)
+
+    def body_rows(self, fields: pymunk.batch.BodyFields) -> tuple[np.ndarray, np.ndarray]:
+        """(ids, data) of every body in the space (awake, static and sleeping), in one batch call:
+        ids (n,) int64 body ids, data (n, k) float64 with the fields in pymunk's order (position
+        x y, angle, velocity x y, angular velocity, force x y, torque; those asked for)."""
+        self._buffer.clear()
+        pymunk.batch.get_space_bodies(self.space, fields | pymunk.batch.BodyFields.BODY_ID,
+                                      self._buffer)
+        ids = np.frombuffer(self._buffer.int_buf(), dtype=np.int64).copy()
+        data = np.frombuffer(self._buffer.float_buf(), dtype=np.float64)
+        return ids, data.reshape(len(ids), -1).copy()
+
+    def static_rows(self, ids: np.ndarray) -> np.ndarray:
+        """Bool mask of the rows (from body_rows) that are static bodies."""
+        return np.isin(ids, self._static_ids)
+
+    def sleeping_rows(self, ids: np.ndarray, static: np.ndarray | None = None) -> np.ndarray:
+        """Bool mask of the rows (from body_rows) that are sleeping bodies: the rows after the
+        last static one, by the batch's order awake | static | sleeping (tested against
+        Body.is_sleeping in tests/test_falling_balls.py)."""
+        static = self.static_rows(ids) if static is None else static
+        asleep = np.zeros(len(ids), dtype=bool)
+        last = np.flatnonzero(static)
+        if len(last):
+            asleep[last[-1] + 1:] = True
+        return asleep
+
+    def draw_mouse(self, surface, view) -> None:
+        """Draw the mouse's drag joint while a body is held (call it at the end of draw)."""
+        if self.mouse_joint is not None:
+            from app.draw.pymunk_draw import draw_pivot_joint
+            draw_pivot_joint(surface, view, self.mouse_joint)
+
     # ----- state --------------------------------------------------------------------------
     def body_state(self) -> np.ndarray:
-        """Position, angle, velocity and angular velocity of every non-static body, one row each
+        """Position, angle, velocity and angular velocity of every body in the space (dynamic,
+        kinematic, static and sleeping; static rows do not change), one row each
         (x, y, angle, vx, vy, w), read from pymunk in one batch call."""
         self._buffer.clear()
         pymunk.batch.get_space_bodies(self.space, _STATE_FIELDS, self._buffer)
@@ -130,3 +182,9 @@ class PymunkScene(Scene):
         self.release()
         for key, value in copy.deepcopy(snap).items():
             setattr(self, key, value)
+        self.refresh_static_ids()      # the copies are new bodies with new ids
+        self.restored()
+
+    def restored(self) -> None:
+        """Called after restore() put copied objects in place: rebuild anything keyed by body
+        ids or holding references to the old objects."""

@@ -8,9 +8,13 @@ from __future__ import annotations
 
 from app.scene import Scene
 from scenes.double_pendulum import DoublePendulumScene
+from scenes.falling_balls import FallingBallsScene
 from scenes.newtons_cradle import NewtonsCradleScene
+from scenes.pivoting_l import PivotingLScene
 
 SCENES: list[type[Scene]] = [
+    FallingBallsScene,
+    PivotingLScene,
     NewtonsCradleScene,
     DoublePendulumScene,
 ]

@@ -1,0 +1,296 @@
+"""Falling balls: the lecture's first pymunk program. Balls drop in at random places, land on a
+static L made of two segments, roll off and fall out of the world, where they are removed.
+
+The lecture idea (pymunk tutorial, "add_ball" and "add_static_L"):
+  * a ball is a Body (mass, moment of inertia from `moment_for_circle`) plus a Circle shape;
+  * the L is two Segment shapes on one STATIC body: it never moves and costs almost nothing;
+  * the space is stepped with a FIXED time step (dt = 1/hertz), never the frame time;
+  * "You might notice that we never delete balls. This will make the simulation require more and
+    more memory and use more and more CPU": balls that leave the world are removed from the space,
+    so the number of live balls levels off (the HUD shows spawned / removed / alive);
+  * sleeping: a ball group that has rested for `sleep_time_threshold` seconds falls asleep and is
+    skipped by the solver until something touches it (drawn dimmer; the HUD says how many).
+    Turn on `container` to catch every ball in a box and watch the settled pile fall asleep.
+  * tunneling: a ball whose centre goes from above the L's long segment to below it between two
+    steps (inside its x-extent) has passed THROUGH it; the `tunneled` metric counts them. Raise
+    gravity, lower hertz or shrink the radius to look for it.
+
+Pymunk's tutorial uses y up (balls start at y=550); this lab uses y DOWN with gravity (0, +g), so
+the layout is mirrored: the balls come in at the top and fall down onto the L, which is the
+tutorial's L scaled by 1.5 to fill the 960x720 world.
+
+Controls: drag a ball (or anything that moves) with the left mouse button; a left click on empty
+space drops a ball there. Parameters: spawn_rate, radius, max_balls, friction, container,
+gravity, iterations; effect: sleeping.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Iterable
+
+import numpy as np
+import pygame
+import pymunk
+import pymunk.batch
+
+from app.draw import pymunk_draw as D
+from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
+from app.scene import Effect, Param
+
+S = 1.5                      # the tutorial's lengths scaled to this world
+L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
+L_LONG = ((-150 * S, 0.0), (255 * S, 0.0))      # the long arm, in the L body's frame
+L_LIP = ((-150 * S, 0.0), (-150 * S, -50 * S))  # the short arm, pointing UP (y down)
+L_RADIUS = 5 * S
+SPAWN_X = (-180 * S, 80 * S)  # the tutorial's random.randint(120, 380) relative to the L at 300
+SLEEP_TIME = 0.5              # seconds at rest before a group of bodies falls asleep
+
+_POS_ANGLE = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
+
+BALL_PARAMS: tuple[Param, ...] = (
+    Param("spawn_rate", 4.0, float, 0.0, 200.0, help="balls dropped per simulated second",
+          rebuild=False),
+    Param("radius", 14.0 * S, float, 2.0, 60.0, help="ball radius, px"),
+    Param("max_balls", 500, int, 1, 5000, help="no new ball while this many are alive",
+          rebuild=False),
+    Param("friction", 0.5, float, 0.0, 2.0, help="friction of balls and the L"),
+    Param("container", False, bool, help="a box around the world catches the balls (a pile)"),
+)
+
+
+class FallingBallsScene(PymunkScene):
+    """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
+    world. Sleeping lets a settled pile cost almost nothing; `tunneled` counts balls that passed
+    through the L.
+
+    Mouse: drag a ball with the left button; left click on empty space drops a ball there.
+    Effect `sleeping`: resting balls fall asleep (drawn dimmer). Param `container`: a box that
+    catches every ball, to build a pile and watch it fall asleep.
+    """
+
+    name = "falling_balls"
+    title = "Falling balls (pymunk)"
+    category = "Rigid bodies (pymunk)"
+    params = PYMUNK_PARAMS + BALL_PARAMS
+    effects = (Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
+    world_keys = ("space", "balls", "L_shapes", "L_body", "counts", "_spawn_due")
+
+    # ----- building -------------------------------------------------------------------------
+    def build_space(self, space: pymunk.Space) -> None:
+        self.counts = {"spawned": 0, "removed": 0, "tunneled": 0}
+        self._spawn_due = 0.0             # simulated seconds until the next ball
+        self.balls: list[pymunk.Circle] = []
+        self.L_body, self.L_shapes = self.add_L(space)
+        if self.p.get("container", False):
+            self.add_container(space)
+        self.set_sleeping("sleeping" in self.on)
+        self.restored()
+
+    def add_L(self, space: pymunk.Space) -> tuple[pymunk.Body, list[pymunk.Segment]]:
+        """The tutorial's add_static_L: two segments on one static body."""
+        body = pymunk.Body(body_type=pymunk.Body.STATIC)
+        body.position = L_ORIGIN
+        shapes = [pymunk.Segment(body, a, b, L_RADIUS) for a, b in (L_LONG, L_LIP)]
+        for s in shapes:
+            s.friction = self.p["friction"]
+        space.add(body, *shapes)
+        return body, shapes
+
+    def add_container(self, space: pymunk.Space) -> None:
+        """A floor and two walls at the world's edges (on the space's own static body)."""
+        w, h = self.world_size
+        t = 10.0
+        walls = [pymunk.Segment(space.static_body, a, b, t)
+                 for a, b in (((0, h), (w, h)), ((0, 0), (0, h)), ((w, 0), (w, h)))]
+        for s in walls:
+            s.friction = self.p["friction"]
+        space.add(*walls)
+        self.walls = walls
+
+    def restored(self) -> None:
+        """(Re)build the table of ball body ids, in the order of self.balls."""
+        self._ids = np.array([shape.body.id for shape in self.balls], dtype=np.int64)
+        self._sorter = np.argsort(self._ids)
+
+    def ball_index(self, ids: np.ndarray) -> np.ndarray:
+        """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
+        a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search."""
+        if len(self._ids) == 0:
+            return np.full(len(ids), -1, dtype=np.int64)
+        pos = np.searchsorted(self._ids, ids, sorter=self._sorter).clip(0, len(self._ids) - 1)
+        k = self._sorter[pos]
+        return np.where(self._ids[k] == ids, k, -1)
+
+    def set_sleeping(self, on: bool) -> None:
+        """Sleeping on: groups at rest for SLEEP_TIME fall asleep. Off: the threshold is infinite,
+        so Chipmunk never counts idle time for sleeping, and sleepers are woken."""
+        self.space.sleep_time_threshold = SLEEP_TIME if on else math.inf
+        if not on:
+            for body in self.space.bodies:
+                if body.body_type == pymunk.Body.DYNAMIC and body.is_sleeping:
+                    body.activate()
+
+    def effect_changed(self, name: str, on: bool) -> None:
+        if name == "sleeping":
+            self.set_sleeping(on)
+
+    # ----- balls ----------------------------------------------------------------------------
+    def add_ball(self, pos: tuple[float, float], index: bool = True) -> pymunk.Circle:
+        """The tutorial's add_ball: mass 1, moment for a solid circle, a Circle shape."""
+        mass, radius = 1.0, self.p["radius"]
+        body = pymunk.Body(mass, pymunk.moment_for_circle(mass, 0, radius, (0, 0)))
+        body.position = pos
+        shape = pymunk.Circle(body, radius, (0, 0))
+        shape.friction = self.p["friction"]
+        self.space.add(body, shape)
+        self.balls.append(shape)
+        if index:          # add_balls indexes once at the end
+            self.restored()
+        self.counts["spawned"] += 1
+        return shape
+
+    def add_balls(self, n: int, gap: float = 0.5) -> int:
+        """Drop up to n balls at once in a hexagonal grid, filling the world from the bottom
+        up and skipping places taken by a shape (to build big piles quickly: the benchmark and
+        the tests). Returns how many were added."""
+        r = self.p["radius"]
+        w, h = self.world_size
+        dx, dy = 2 * r + gap, (2 * r + gap) * math.sqrt(3) / 2
+        added, row = 0, 0
+        y = h - 10 - r - gap if self.p.get("container", False) else h - r - gap
+        while added < n and y > r:
+            x = r + 10 + gap + (dx / 2 if row % 2 else 0)
+            while added < n and x < w - 10 - r:
+                if not self.space.point_query((x, y), r + gap, pymunk.ShapeFilter()):
+                    self.add_ball((x, y), index=False)
+                    added += 1
+                x += dx
+            y -= dy
+            row += 1
+        self.restored()
+        return added
+
+    def remove_balls(self, which: np.ndarray) -> None:
+        """Remove the balls with these indices from the space and from the list (the
+        tutorial's balls_to_remove)."""
+        if len(which) == 0:
+            return
+        gone = set(which.tolist())
+        if self.mouse_joint is not None and self.ball_index(
+                np.array([self.mouse_joint.b.id]))[0] in gone:
+            self.release()
+        for k in gone:
+            shape = self.balls[k]
+            self.space.remove(shape, shape.body)
+        self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
+        self.counts["removed"] += len(gone)
+        self.restored()
+
+    def read_balls(self, fields: pymunk.batch.BodyFields = pymunk.batch.BodyFields.POSITION
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(index into self.balls (n,), data (n, k), asleep (n,)) of every ball, in batch order,
+        from one batch read."""
+        ids, data = self.body_rows(fields)
+        asleep = self.sleeping_rows(ids)
+        k = self.ball_index(ids)
+        ball = k >= 0
+        return k[ball], data[ball], asleep[ball]
+
+    # ----- stepping -------------------------------------------------------------------------
+    def step(self, h: float) -> None:
+        k0, xy0, _ = self.read_balls()
+        L0 = self.L_pose()
+        super().step(h)
+        k, xy1, _ = self.read_balls()
+        # the same balls, but a body falling asleep or waking moves its row: line up by ball
+        before = np.empty_like(xy0)
+        before[k0] = xy0
+        self.count_tunneled(before[k], xy1, L0, self.L_pose())
+        self.remove_fallen(k, xy1)
+        self.spawn(h)
+
+    def L_pose(self) -> tuple[float, float, float]:
+        x, y = self.L_body.position
+        return x, y, self.L_body.angle
+
+    def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
+                       L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
+        """Count balls whose centre crossed the L's long arm from above to below in this step
+        while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
+        balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order."""
+        if len(xy1) == 0:
+            return
+        p0, p1 = _to_local(xy0, L0), _to_local(xy1, L1)
+        (ax, _), (bx, _) = L_LONG
+        crossed = (p0[:, 1] < 0) & (p1[:, 1] >= 0)           # above the arm, then on/below it
+        inside = (p0[:, 0] >= ax) & (p0[:, 0] <= bx) & (p1[:, 0] >= ax) & (p1[:, 0] <= bx)
+        self.counts["tunneled"] += int(np.count_nonzero(crossed & inside))
+
+    def remove_fallen(self, k: np.ndarray, xy: np.ndarray) -> None:
+        """Remove the balls (indices k, centres xy) whose centre left the world: below it or
+        far to a side."""
+        w, h = self.world_size
+        r = self.p["radius"]
+        out = (xy[:, 1] > h + 2 * r) | (xy[:, 0] < -2 * r) | (xy[:, 0] > w + 2 * r)
+        if out.any():
+            self.remove_balls(k[out])
+
+    def spawn(self, h: float) -> None:
+        """Drop balls at a steady rate at random x above the L (seeded: self.random)."""
+        rate = self.p["spawn_rate"]
+        if rate <= 0:
+            return
+        self._spawn_due -= h
+        while self._spawn_due <= 0:
+            self._spawn_due += 1.0 / rate
+            if len(self.balls) >= self.p["max_balls"]:
+                continue
+            x = L_ORIGIN[0] + self.random.uniform(*SPAWN_X)
+            self.add_ball((x, -self.p["radius"]))
+
+    # ----- mouse ----------------------------------------------------------------------------
+    def on_click(self, pos: tuple[float, float], button: int) -> None:
+        if button == 1 and not self.space.point_query(pos, self.p["radius"], pymunk.ShapeFilter()):
+            self.add_ball(pos)
+
+    # ----- drawing --------------------------------------------------------------------------
+    def draw(self, surface: pygame.Surface, view) -> None:
+        for s in getattr(self, "walls", ()):
+            D.draw_shape(surface, view, s, D.STATIC)
+        self.draw_L(surface, view)
+        _, data, asleep = self.read_balls(_POS_ANGLE)
+        D.draw_circles(surface, view, data[:, :2], data[:, 2], self.p["radius"], D.BALL, asleep)
+        self.draw_mouse(surface, view)
+
+    def draw_L(self, surface: pygame.Surface, view) -> None:
+        D.draw_shapes(surface, view, self.L_shapes, D.STATIC)
+
+    # ----- reporting ------------------------------------------------------------------------
+    def asleep_count(self) -> int:
+        """How many balls sleep now."""
+        _, _, asleep = self.read_balls()
+        return int(np.count_nonzero(asleep))
+
+    def metrics(self) -> dict[str, float]:
+        return {"balls_spawned": self.counts["spawned"], "balls_removed": self.counts["removed"],
+                "balls_alive": len(self.balls), "tunneled": self.counts["tunneled"],
+                "balls_asleep": self.asleep_count()}
+
+    def hud_lines(self) -> list[str]:
+        c = self.counts
+        lines = [f"balls: {len(self.balls)} alive, {c['spawned']} spawned, "
+                 f"{c['removed']} removed",
+                 f"asleep: {self.asleep_count()} of {len(self.balls)}"
+                 + ("" if "sleeping" in self.on else " (sleeping off)")]
+        if c["tunneled"]:
+            lines.append(f"TUNNELED through the L: {c['tunneled']}")
+        return lines
+
+
+def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
+    """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""
+    x, y, a = pose
+    c, s = math.cos(a), math.sin(a)
+    d = xy - (x, y)
+    return np.column_stack((c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]))

@@ -1,0 +1,145 @@
+"""Pivoting L: "Joints. Just wait and the L will tip over." The L of the falling-balls scene is now
+a moving body, pinned at its rotation centre and held by a slide joint that limits how far it turns.
+
+The lecture idea (pymunk tutorial, "add_L"):
+  * the L is a DYNAMIC body (mass 10, moment 10000 in the tutorial) carrying the two segments;
+  * a PinJoint ties it to a static "rotation centre" body: both anchors at (0, 0), so the L can
+    only turn about that point (the pin keeps the distance between the anchors at 0);
+  * a SlideJoint(L, rotation_limit_body, (-100, 0), (0, 0), 0, 25) joins a point on the L's long
+    arm to a second static body: like a pin joint, but the distance may be anything from min to
+    max, so the L turns freely until the joint reaches 25 and then stops;
+  * balls keep landing on the L; as they collect on one side it tips until the slide joint stops it,
+    and the balls roll off. Balls that leave the world are removed.
+A lesson in the numbers: a PinJoint keeps a DISTANCE (here 0) between its anchors, so it pushes
+only along the line between them; with both anchors on one point it acts only once they have
+separated, and a ball's blow sideways opens a gap that the joint then closes step by step. The
+`pin_error` metric shows it (1.5 to 2 px with one substep, under 1 px with two: the default here);
+set `pivot=pivot` for a PivotJoint, which holds both directions at once.
+
+On screen: the pin (white dot), the slide joint's allowed range (the green band from its min to its
+max, measured from the static anchor; the dot on the L turns red at a limit).
+
+Metrics: angle_deg (the L's angle), slide_distance (between the slide joint's anchors now),
+slide_min / slide_max (over the run), pin_error (largest distance between the pin's anchors seen:
+a perfect pin keeps it 0).
+
+Layout as in falling_balls: y down, the tutorial's lengths scaled by 1.5 (so the slide's max is
+25 * 1.5 = 37.5 px by default).
+
+Controls: drag the L or a ball with the left mouse button; a left click on empty space drops a
+ball there. Parameters: spawn_rate, radius, max_balls, friction, slide_max, L_mass, pivot,
+gravity, iterations, substeps (2 here); effect: sleeping.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pygame
+import pymunk
+
+from app.draw import pymunk_draw as D
+from app.pymunk_scene import PYMUNK_PARAMS
+from app.scene import COMMON_PARAMS, Param
+from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
+    FallingBallsScene
+
+SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
+
+PIVOT_PARAMS: tuple[Param, ...] = (
+    Param("slide_max", 25 * S, float, 0.0, 150.0,
+          help="the slide joint's max distance, px (the tutorial's 25, scaled)"),
+    Param("L_mass", 10.0, float, 0.1, 1000.0, help="mass of the L (moment scales with it)"),
+    Param("pivot", "pin", str, choices=("pin", "pivot"),
+          help="joint at the rotation centre: the tutorial's PinJoint, or a PivotJoint"),
+)
+# Two substeps by default: the slide joint then overshoots its max by about 1 px instead of 3 to 4
+# when a loaded L slams into it, and the pin holds within 1 px (see the module docstring).
+_SUBSTEPS = next(p for p in COMMON_PARAMS if p.name == "substeps")
+SUBSTEPS_2 = Param("substeps", 2, int, _SUBSTEPS.lo, _SUBSTEPS.hi, help=_SUBSTEPS.help,
+                   rebuild=False)
+_SPAWN = next(p for p in BALL_PARAMS if p.name == "spawn_rate")
+SPAWN_2 = Param("spawn_rate", 2.0, float, _SPAWN.lo, _SPAWN.hi, help=_SPAWN.help
+                + " (the tutorial: one every 25 ticks at 50 fps)", rebuild=False)
+
+
+class PivotingLScene(FallingBallsScene):
+    """Pivoting L: an L pinned at its rotation centre (PinJoint) and held by a SlideJoint (0 to
+    its max) to a second static body; balls land on it until it tips. The pin and the slide
+    joint's range are drawn.
+
+    Mouse: drag the L or a ball with the left button; left click on empty space drops a ball.
+    """
+
+    name = "pivoting_l"
+    title = "Pivoting L: pin and slide joints (pymunk)"
+    category = "Rigid bodies (pymunk)"
+    params = PYMUNK_PARAMS + (SPAWN_2,) \
+        + tuple(p for p in BALL_PARAMS if p.name not in ("container", "spawn_rate")) \
+        + PIVOT_PARAMS + (SUBSTEPS_2,)
+    world_keys = FallingBallsScene.world_keys + ("pin", "slide", "record")
+
+    def build_space(self, space: pymunk.Space) -> None:
+        super().build_space(space)
+        self.record = {"slide_min": self.slide_distance(), "slide_max": self.slide_distance(),
+                       "pin_error": self.pin_error()}
+
+    def add_L(self, space: pymunk.Space) -> tuple[pymunk.Body, list[pymunk.Segment]]:
+        """The tutorial's add_L: a dynamic L, a pin at its rotation centre, a slide joint."""
+        rotation_center_body = pymunk.Body(body_type=pymunk.Body.STATIC)
+        rotation_center_body.position = L_ORIGIN
+        rotation_limit_body = pymunk.Body(body_type=pymunk.Body.STATIC)
+        rotation_limit_body.position = (L_ORIGIN[0] + SLIDE_ANCHOR[0], L_ORIGIN[1])
+
+        mass = self.p["L_mass"]
+        body = pymunk.Body(mass, 10000 * S * S * mass / 10.0)   # the tutorial's (10, 10000)
+        body.position = L_ORIGIN
+        shapes = [pymunk.Segment(body, a, b, L_RADIUS) for a, b in (L_LONG, L_LIP)]
+        for s in shapes:
+            s.friction = self.p["friction"]
+
+        joint = pymunk.PinJoint if self.p["pivot"] == "pin" else pymunk.PivotJoint
+        self.pin = joint(body, rotation_center_body, (0, 0), (0, 0))
+        self.slide = pymunk.SlideJoint(body, rotation_limit_body, SLIDE_ANCHOR, (0, 0),
+                                       0, self.p["slide_max"])
+        space.add(rotation_center_body, rotation_limit_body, body, *shapes, self.pin, self.slide)
+        return body, shapes
+
+    # ----- the joints, measured -------------------------------------------------------------
+    @staticmethod
+    def anchor_distance(joint: pymunk.Constraint) -> float:
+        """Distance between a joint's two anchors in the world, px."""
+        return (joint.a.local_to_world(joint.anchor_a)
+                - joint.b.local_to_world(joint.anchor_b)).length
+
+    def slide_distance(self) -> float:
+        return self.anchor_distance(self.slide)
+
+    def pin_error(self) -> float:
+        return self.anchor_distance(self.pin)
+
+    def step(self, h: float) -> None:
+        super().step(h)
+        d = self.slide_distance()
+        r = self.record
+        r["slide_min"], r["slide_max"] = min(r["slide_min"], d), max(r["slide_max"], d)
+        r["pin_error"] = max(r["pin_error"], self.pin_error())
+
+    # ----- drawing and reporting --------------------------------------------------------------
+    def draw_L(self, surface: pygame.Surface, view) -> None:
+        D.draw_shapes(surface, view, self.L_shapes, D.DYNAMIC)
+        D.draw_slide_joint(surface, view, self.slide)
+        D.draw_pin_joint(surface, view, self.pin)     # the pin: anchors and the gap between them
+
+    def metrics(self) -> dict[str, float]:
+        m = {"angle_deg": math.degrees(self.L_body.angle),
+             "slide_distance": self.slide_distance(),
+             "slide_min": self.record["slide_min"], "slide_max": self.record["slide_max"],
+             "pin_error": self.record["pin_error"]}
+        m.update(super().metrics())
+        return m
+
+    def hud_lines(self) -> list[str]:
+        return [f"L angle {math.degrees(self.L_body.angle):6.1f} deg   slide "
+                f"{self.slide_distance():5.1f} px (range {self.slide.min:g}..{self.slide.max:g})",
+                f"largest pin error {self.record['pin_error']:.3f} px"] + super().hud_lines()
