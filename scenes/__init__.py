@@ -7,12 +7,14 @@ the smoke tests and the benchmarks all read this list.
 from __future__ import annotations
 
 from app.scene import Scene
+from scenes.cloth import ClothScene
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.pivoting_l import PivotingLScene
 
 SCENES: list[type[Scene]] = [
+    ClothScene,
     FallingBallsScene,
     PivotingLScene,
     NewtonsCradleScene,

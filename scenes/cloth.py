@@ -1,0 +1,197 @@
+"""Verlet cloth: the lecture's centrepiece, grabbed with the mouse, honest about what accuracy costs.
+
+What it shows: a grid of particles joined by rigid rods (Jakobsen, GDC 2001), moved by the
+velocity-less Verlet step and kept together by relaxing the rods again and again. The lines are
+coloured by how much each rod is stretched (a heat map of |length/rest - 1|), so raising
+`iterations` or `substeps` shows at once what it gains (cooler colours) and what it costs (the
+HUD's ms per step). Physics: app/physics/cloth.py; drawing: app/draw/cloth_draw.py.
+
+Controls:
+  LMB       grab the nearest particle and drag it; let go and it stays locked there
+  RMB       unlock a locked particle (a pin, or one you dropped)
+  U         unlock everything and restore the default pins
+Settings: iterations and substeps change live; try --set shear=off, --set tearing=on,
+--set pins=corners, --set wind=on.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from app.physics.cloth import FORCE_NAMES, PIN_CHOICES, SET_NAMES, WIND_FIELDS, Cloth
+from app.scene import Effect, InputEvent, Param, Scene
+
+UNLOCK_KEY = "u"
+
+
+class ClothScene(Scene):
+    """Verlet cloth (Jakobsen's rods relaxed by local iteration), strain shown as a heat map.
+
+    LMB: grab a particle, drag it, drop it: it stays locked where you drop it.
+    RMB: unlock a locked particle.   U: unlock all and restore the default pins.
+    Raise `iterations` or `substeps` and watch the stretch fall and the ms per step rise.
+    Effects: gravity, drag, wind, shear, bending, tearing (each on/off).
+    """
+
+    name = "cloth"
+    title = "Verlet cloth"
+    category = "Hand-written physics"
+    params = (
+        Param("rows", 30, int, 2, 256, help="particles from top to bottom"),
+        Param("cols", 40, int, 2, 256, help="particles from left to right"),
+        Param("spacing", 18.0, float, 2.0, 60.0,
+              help="rest length of a rod in px (shrunk if the cloth would not fit the world)"),
+        Param("iterations", 10, int, 1, 100,
+              help="relaxation sweeps over all rods per substep", rebuild=False),
+        Param("substeps", 1, int, 1, 50,
+              help="sub-steps inside each step (each of dt/substeps)", rebuild=False),
+        Param("g", 980.0, float, 0.0, 5000.0, help="gravity in px/s^2 (downwards)",
+              rebuild=False),
+        Param("drag_coef", 0.01, float, 0.0, 0.5,
+              help="fraction of velocity lost per substep (0.01: Verlet's 2 becomes 1.99)",
+              rebuild=False),
+        Param("wind_strength", 600.0, float, 0.0, 5000.0, help="wind acceleration in px/s^2",
+              rebuild=False),
+        Param("wind_field", "gust", str, choices=WIND_FIELDS,
+              help="gust: travelling gusts; lecture: the slide's (sin(x*y*t), cos(t))",
+              rebuild=False),
+        Param("tear_ratio", 2.5, float, 1.05, 20.0,
+              help="a rod breaks when stretched beyond this times its rest length", rebuild=False),
+        Param("pins", "top", str, choices=PIN_CHOICES,
+              help="what holds the cloth: the whole top row, its two corners, or nothing"),
+        Param("precision", "float32", str, choices=("float32", "float64"),
+              help="float type of the positions (float32: about twice as fast)"),
+    )
+    effects = (
+        Effect("gravity", True, "gravity pulls every particle down"),
+        Effect("drag", True, "velocity-proportional damping (Verlet 2 -> 1.99)"),
+        Effect("wind", False, "a wind field pushes the cloth"),
+        Effect("shear", True, "diagonal rods: resist shearing"),
+        Effect("bending", False, "skip-one rods: resist folding"),
+        Effect("tearing", False, "rods stretched beyond tear_ratio break"),
+    )
+
+    # ----- world --------------------------------------------------------------------------------
+    def build(self) -> None:
+        p = self.p
+        rows, cols = p["rows"], p["cols"]
+        w, h = self.world_size
+        spacing = min(p["spacing"], 0.8 * w / (cols - 1), 0.7 * h / (rows - 1))
+        origin = ((w - spacing * (cols - 1)) / 2, 0.2 * h)   # below the HUD
+        dtype = np.float32 if p["precision"] == "float32" else np.float64
+        self.cloth = Cloth(rows, cols, spacing, origin, p["pins"], self.on, dtype)
+        self.cloth.world = (float(w), float(h))
+        self.grab_radius = max(14.0, 1.2 * spacing)
+        self.mouse: tuple[float, float] | None = None
+        self._costs: dict[str, float] = {}
+        self._cost_mark = (0, dict(self.cloth.spent))
+        self._sync()
+
+    def _sync(self) -> None:
+        """Hand the live-tunable params to the cloth (cheap: read on every substep)."""
+        c, p = self.cloth, self.p
+        c.iterations = p["iterations"]
+        c.gravity = p["g"]
+        c.drag = p["drag_coef"]
+        c.wind_strength = p["wind_strength"]
+        c.wind_field = p["wind_field"]
+        c.tear_ratio = p["tear_ratio"]
+
+    def effect_changed(self, name: str, on: bool) -> None:
+        if hasattr(self, "cloth"):
+            self.cloth.set_effects(self.on)
+
+    def step(self, h: float) -> None:
+        self._sync()
+        self.cloth.step(h)
+
+    # ----- the mouse ----------------------------------------------------------------------------
+    def handle_event(self, event: InputEvent) -> None:
+        c = self.cloth
+        if event.kind.startswith("mouse"):
+            self.mouse = (float(event.pos[0]), float(event.pos[1]))
+        if event.kind == "mouse_down" and event.button == 1:
+            cell = c.nearest(event.pos, self.grab_radius)
+            if cell is not None:
+                c.grab(cell, event.pos)
+        elif event.kind == "mouse_move" and c.grabbed is not None:
+            c.move_grab(event.pos)
+        elif event.kind == "mouse_up" and event.button == 1 and c.grabbed is not None:
+            c.release(event.pos)
+        elif event.kind == "mouse_down" and event.button == 3 and c.grabbed is None:
+            cell = c.nearest(event.pos, self.grab_radius, c.locked)
+            if cell is not None:
+                c.unlock(*cell)
+        elif event.kind == "key_down" and event.key == UNLOCK_KEY:
+            c.unlock_all()
+
+    # ----- drawing ------------------------------------------------------------------------------
+    def draw(self, surface, view) -> None:
+        from app.draw.cloth_draw import draw_cloth, draw_legend
+        hover = None
+        if self.mouse is not None and self.cloth.grabbed is None:
+            hover = self.cloth.nearest(self.mouse, self.grab_radius)
+        draw_cloth(surface, view, self.cloth, hover)
+        draw_legend(surface, view, self.world_size)
+
+    # ----- reports ------------------------------------------------------------------------------
+    def metrics(self) -> dict[str, float]:
+        c = self.cloth
+        s = c.structural_stretch()
+        return {
+            "particles": c.rows * c.cols,
+            "constraints": c.constraint_count(),
+            "iterations": self.p["iterations"],
+            "substeps": self.p["substeps"],
+            "max_stretch": float(s.max()) if s.size else 0.0,
+            "mean_stretch": float(s.mean()) if s.size else 0.0,
+            "pinned_drift": c.pinned_drift(),
+            "torn": c.torn_count(),
+            "locked": int(np.count_nonzero(c.locked)),
+        }
+
+    def effect_costs(self) -> dict[str, float]:
+        """ms per step of each active effect (and of the structural rods and the Verlet step),
+        averaged since the last call, lightly smoothed."""
+        steps0, spent0 = self._cost_mark
+        if self.steps > steps0:
+            spent = self.cloth.spent
+            n = self.steps - steps0
+            for k in spent:
+                now = (spent[k] - spent0.get(k, 0.0)) * 1000.0 / n
+                self._costs[k] = now if k not in self._costs else 0.7 * self._costs[k] + 0.3 * now
+            self._cost_mark = (self.steps, dict(spent))
+        shown = [k for k in FORCE_NAMES + SET_NAMES + ("tearing",)
+                 if k in self.on or k == "structural"]
+        return {k: self._costs.get(k, 0.0) for k in shown}
+
+    def hud_lines(self) -> list[str]:
+        c, m = self.cloth, self.metrics()
+        costs = self.effect_costs()
+        step_ms = sum(costs.values()) + self._costs.get("verlet", 0.0)
+        sets = "+".join(rs.name for rs in c.active_sets)
+        it, sub = self.p["iterations"], self.p["substeps"]
+        lines = [
+            f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets})",
+            f"{it} iterations x {sub} substeps = {it * sub} sweeps/step: {step_ms:.2f} ms/step",
+            f"stretch: mean {m['mean_stretch'] * 100:.2f}%  max {m['max_stretch'] * 100:.1f}%",
+        ]
+        if m["torn"]:
+            lines.append(f"torn rods: {m['torn']}")
+        lines.append("LMB grab + lock   RMB unlock   U unlock all")
+        return lines
+
+    # ----- state --------------------------------------------------------------------------------
+    def state_arrays(self):
+        return self.cloth.state_arrays()
+
+    def snapshot(self):
+        return self.cloth.snapshot()
+
+    def restore(self, snap) -> None:
+        if snap is None:
+            self.reset()
+        else:
+            self.cloth.restore(snap)
