@@ -698,9 +698,6 @@ class Window:
             state += "  |  PAUSED (space resumes, . steps)"
         slow = self.clock.paused or self.clock.slow_motion != 1.0
         lines.append(L(state, hud.WARN_COLOR if slow else hud.TEXT_COLOR))
-        metrics = scene.metrics()
-        if metrics:
-            lines.append("  |  ".join(f"{k} {hud.fmt_number(v)}" for k, v in metrics.items()))
         lines += [str(x) for x in scene.hud_lines()]
         costs = scene.effect_costs()
         if costs:
@@ -709,6 +706,13 @@ class Window:
             if color != hud.ERROR_COLOR:
                 lines.append(L(text, color))
         return lines
+
+    def metric_lines(self) -> list:
+        """The scene's metrics() for the box at the bottom of the world area."""
+        metrics = self.scene.metrics()
+        if not metrics:
+            return []
+        return ["  |  ".join(f"{k} {hud.fmt_number(v)}" for k, v in metrics.items())]
 
     # --- drawing ---------------------------------------------------------------------------
     def render(self) -> None:
@@ -729,12 +733,16 @@ class Window:
         s = TEXT.scale
         hud.text_box(screen, self.hud_lines(), (area.left + 8, area.top + 8),
                      max_width=min(area.width - 16, int(640 * s)))
+        bottom = area.bottom - 6
+        metric_lines = self.metric_lines()
+        if metric_lines:
+            bottom = hud.text_box(screen, metric_lines, (area.left + 8, area.bottom - 6),
+                                  max_width=area.width - 16, from_bottom=True).top
         if self.show_help:
             hud.help_overlay(screen, area, scene.title or scene.name, docstring_help(type(scene)))
         if self.nonfinite_banner:
             hud.banner(screen, self.nonfinite_banner, area, hud.WARN_COLOR,
                        y=area.centery - int(60 * s))
-        bottom = area.bottom
         for _, text, color in reversed(self.messages):
             if color == hud.ERROR_COLOR:
                 bottom = hud.banner(screen, text, area, color, size=hud.HUD_SIZE,

@@ -18,7 +18,7 @@ HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 p
 HELP_SIZE = 28
 TITLE_SIZE = 44
 MENU_SIZE = 32
-BOX_COLOR = (8, 10, 14, 190)
+BOX_COLOR = (8, 10, 14, 160)     # see-through enough to show the world behind the HUD
 TEXT_COLOR = (235, 235, 235)
 DIM_COLOR = (170, 178, 190)
 WARN_COLOR = (255, 200, 90)
@@ -78,9 +78,9 @@ def _as_line(item) -> Line:
 
 
 def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: int = HUD_SIZE,
-             pad: int = 8, max_width: int | None = None) -> pygame.Rect:
-    """Draw lines on a dark backing box whose top-left is `pos`; return the box's rectangle.
-    Lines wider than `max_width` are wrapped."""
+             pad: int = 8, max_width: int | None = None, from_bottom: bool = False) -> pygame.Rect:
+    """Draw lines on a dark backing box whose top-left is `pos` (bottom-left if `from_bottom`);
+    return the box's rectangle. Lines wider than `max_width` are wrapped."""
     f = font(size)
     items = [_as_line(x) for x in lines]
     if max_width is not None:
@@ -96,6 +96,8 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
     h = len(rendered) * f.get_linesize() + 2 * pad
     box = pygame.Surface((w, h), pygame.SRCALPHA)
     box.fill(BOX_COLOR)
+    if from_bottom:
+        pos = (pos[0], pos[1] - h)
     surface.blit(box, pos)
     y = pos[1] + pad
     for img, shadow in rendered:
@@ -169,6 +171,12 @@ def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: st
         y += f.get_linesize()
 
 
+def _one_line(text: str, f: pygame.font.Font, width: int) -> str:
+    """`text` cut at a word so that it fits `width` pixels, with "..." if cut."""
+    lines = wrap(text, f, width - f.size(" ...")[0])
+    return lines[0] + (" ..." if len(lines) > 1 else "") if lines else ""
+
+
 @dataclass
 class MenuEntry:
     """One scene in the menu: its index in the registry and the rectangle that opens it."""
@@ -210,7 +218,7 @@ def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str
                 continue
             number = f"{i + 1}" if i < 9 else " "
             title = cls.title or cls.name
-            first = (cls.__doc__ or "").strip().split("\n")[0].strip()
+            first = " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
             row_h = f.get_linesize() + (0 if compact else f_small.get_linesize()) + 8
             rect = pygame.Rect(x - 10, y - 4, W - 2 * x + 20, row_h)
             if i == selected:
@@ -221,7 +229,7 @@ def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str
             surface.blit(f_small.render(f"--scene {cls.name}", True, DIM_COLOR),
                          (name_x, y + (f.get_linesize() - f_small.get_linesize()) // 2))
             if first and not compact:
-                sub = wrap(first, f_small, W - 2 * x - 40)[0]
+                sub = _one_line(first, f_small, W - 2 * x - 40)
                 surface.blit(f_small.render(sub, True, DIM_COLOR), (x + 40, y + f.get_linesize()))
             entries.append(MenuEntry(i, rect))
             y += row_h + 6
