@@ -10,6 +10,7 @@ from app.scene import Scene
 from scenes.cloth import ClothScene
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
+from scenes.integrators import IntegratorsScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.pivoting_l import PivotingLScene
 
@@ -19,6 +20,7 @@ SCENES: list[type[Scene]] = [
     PivotingLScene,
     NewtonsCradleScene,
     DoublePendulumScene,
+    IntegratorsScene,
 ]
 
 

@@ -1,0 +1,318 @@
+"""Test problems for the integrators, each with its exact (or reference) solution and its energy,
+and the two experiments the lab runs on them: order of convergence and stability limit.
+
+* MassOnSpring: a bob hanging from a pinned anchor by an undamped spring, under gravity (one
+  unary force, one n-ary force). Its motion along the spring is harmonic with omega = sqrt(k/m):
+  exact solution y(t) = y_eq + A cos(omega t). With rest=0 and gravity=0 it is the textbook
+  oscillator x'' = -omega^2 x in 2-D, linear everywhere: the stability experiment uses that one.
+* Pendulum: a bob on a circle of radius L, written as a 1-D particle at arc length s = L theta
+  (force: gravity's tangential part). No closed form at a large angle, so the reference is RK4 at
+  a tiny step (h = 1e-4 s): far more accurate than anything compared against it.
+* TwoBodyOrbit: two bodies under their mutual attraction (a spatial force) on a Kepler ellipse;
+  exact solution from Kepler's equation E - e sin E = n t (solved by Newton's method).
+
+Units are the lab's: pixels, seconds, y down. Each problem's origin is its anchor / pivot / centre
+of mass; the scene places it on screen. `error(ps, t)` is the relative phase-space error
+sqrt(sum |x - x_ref|^2 + |v - v_ref|^2 / omega^2) / scale over the free particles (velocities
+count too, so a run that happens to pass the right point with the wrong speed is not 'exact').
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Callable
+
+import numpy as np
+
+from app.physics.forces import Attraction, Gravity, PendulumGravity, Springs
+from app.physics.integrators import check_step, get_integrator
+from app.physics.particles import ParticleSystem
+
+
+class Problem:
+    """A system with a known answer. Subclasses set the class attributes and implement
+    make_system, exact, energy, points and phase."""
+
+    name = ""
+    title = ""
+    omega = 1.0        # characteristic angular frequency (1/s): the HUD's omega*dt uses it
+    scale = 1.0        # characteristic length (px): errors are relative to it
+    period = 1.0       # seconds
+    horizon = 1.0      # the benchmark's end time T (s)
+    phase_labels = ("x", "v")
+
+    def make_system(self) -> ParticleSystem:
+        """A fresh particle system in the initial state."""
+        raise NotImplementedError
+
+    def exact(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """Exact (or reference) positions and velocities at time t, shaped like ps.x and ps.v."""
+        raise NotImplementedError
+
+    def energy(self, x: np.ndarray, v: np.ndarray) -> float:
+        """Total energy of the state (x, v)."""
+        raise NotImplementedError
+
+    def points(self, x: np.ndarray) -> np.ndarray:
+        """World points (k, 2), relative to the problem's origin, of the bodies to draw."""
+        return x
+
+    def phase(self, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+        """One (position, velocity) pair for the phase portrait."""
+        raise NotImplementedError
+
+    def phase_curve(self, samples: int = 200) -> np.ndarray:
+        """The exact trajectory in the phase portrait: a closed curve, shape (samples, 2)."""
+        raise NotImplementedError
+
+    def error(self, ps: ParticleSystem, t: float) -> float:
+        """Relative phase-space error of ps against the exact solution at time t."""
+        x_ref, v_ref = self.exact(t)
+        dx = (ps.x - x_ref) * ps.free
+        dv = (ps.v - v_ref) * ps.free / self.omega
+        return math.sqrt(float(np.sum(dx * dx) + np.sum(dv * dv))) / self.scale
+
+
+class MassOnSpring(Problem):
+    name = "spring"
+    title = "mass on a spring"
+    phase_labels = ("displacement (px)", "velocity (px/s)")
+
+    def __init__(self, omega: float = 9.0, rest: float = 180.0, gravity: float = 980.0,
+                 amplitude: float = 120.0, mass: float = 1.0):
+        self.omega, self.rest, self.g, self.mass = omega, rest, gravity, mass
+        self.k = mass * omega * omega
+        self.length_eq = rest + mass * gravity / self.k     # spring length at rest, hanging
+        self.amplitude = self.scale = amplitude
+        self.period = 2 * math.pi / omega
+        self.horizon = 2.0
+
+    def make_system(self) -> ParticleSystem:
+        x = np.array([[0.0, 0.0], [0.0, self.length_eq + self.amplitude]])
+        forces = [Springs([0], [1], self.k, 0.0, rest=self.rest)]
+        if self.g:
+            forces.append(Gravity((0.0, self.g)))
+        return ParticleSystem(x, np.zeros_like(x), self.mass, forces, pinned=[0])
+
+    def exact(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        wt = self.omega * t
+        x = np.array([[0.0, 0.0], [0.0, self.length_eq + self.amplitude * math.cos(wt)]])
+        v = np.array([[0.0, 0.0], [0.0, -self.amplitude * self.omega * math.sin(wt)]])
+        return x, v
+
+    def energy(self, x: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + spring + gravity energy, zero at rest in equilibrium."""
+        bob, vb = x[1], v[1]
+        stretch = math.hypot(*(bob - x[0])) - self.rest
+        height = bob[1] - self.length_eq                     # below the equilibrium, y down
+        stretch_eq = self.length_eq - self.rest
+        return (0.5 * self.mass * float(vb @ vb) + 0.5 * self.k * (stretch * stretch - stretch_eq ** 2)
+                - self.mass * self.g * height)
+
+    def phase(self, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+        return float(x[1, 1] - self.length_eq), float(v[1, 1])
+
+    def phase_curve(self, samples: int = 200) -> np.ndarray:
+        wt = np.linspace(0, 2 * math.pi, samples)
+        return np.stack((self.amplitude * np.cos(wt), -self.amplitude * self.omega * np.sin(wt)), 1)
+
+
+class Pendulum(Problem):
+    name = "pendulum"
+    title = "pendulum"
+    phase_labels = ("angle (rad)", "angular velocity (rad/s)")
+
+    def __init__(self, length: float = 200.0, gravity: float = 980.0, angle: float = 1.2,
+                 mass: float = 1.0, reference_step: float = 1e-4):
+        self.length, self.g, self.angle, self.mass = length, gravity, angle, mass
+        self.omega = math.sqrt(gravity / length)
+        self.scale = length * angle                          # the arc amplitude
+        self.period = 2 * math.pi / self.omega               # small-angle period
+        self.horizon = 3.0
+        self.reference_step = reference_step
+        self._ref = (0.0, angle, 0.0)                        # (t, theta, theta') of the reference
+
+    def make_system(self) -> ParticleSystem:
+        return ParticleSystem([[self.length * self.angle]], [[0.0]], self.mass,
+                              [PendulumGravity(self.g, self.length)])
+
+    def exact(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """The reference: RK4 on theta'' = -(g/L) sin theta at a step <= reference_step, carried
+        forward from the last time asked (the scene asks for increasing times)."""
+        t0, th, om = self._ref
+        if t < t0:
+            t0, th, om = 0.0, self.angle, 0.0
+        n = math.ceil((t - t0) / self.reference_step - 1e-9)
+        if n > 0:
+            h, c = (t - t0) / n, self.g / self.length
+            for _ in range(n):                               # scalar RK4 (a pure-Python loop is
+                k1t, k1o = om, -c * math.sin(th)             # the fastest way for one number)
+                k2t, k2o = om + h / 2 * k1o, -c * math.sin(th + h / 2 * k1t)
+                k3t, k3o = om + h / 2 * k2o, -c * math.sin(th + h / 2 * k2t)
+                k4t, k4o = om + h * k3o, -c * math.sin(th + h * k3t)
+                th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t)
+                om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o)
+            self._ref = (t, th, om)
+        return np.array([[self.length * th]]), np.array([[self.length * om]])
+
+    def energy(self, x: np.ndarray, v: np.ndarray) -> float:
+        theta = float(x[0, 0]) / self.length
+        return 0.5 * self.mass * float(v[0, 0]) ** 2 + self.mass * self.g * self.length * (1 - math.cos(theta))
+
+    def points(self, x: np.ndarray) -> np.ndarray:
+        theta = x[:, 0] / self.length
+        return np.stack((self.length * np.sin(theta), self.length * np.cos(theta)), axis=1)
+
+    def phase(self, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+        return float(x[0, 0]) / self.length, float(v[0, 0]) / self.length
+
+    def phase_curve(self, samples: int = 200) -> np.ndarray:
+        """Energy conservation: theta'^2 = 2 (g/L) (cos theta - cos theta0)."""
+        theta = self.angle * np.cos(np.linspace(0, 2 * math.pi, samples))
+        speed = np.sqrt(np.maximum(2 * self.omega ** 2 * (np.cos(theta) - math.cos(self.angle)), 0))
+        sign = np.where(np.linspace(0, 2 * math.pi, samples) <= math.pi, -1.0, 1.0)
+        return np.stack((theta, sign * speed), 1)
+
+
+class TwoBodyOrbit(Problem):
+    name = "orbit"
+    title = "two-body orbit"
+    phase_labels = ("separation r (px)", "dr/dt (px/s)")
+
+    def __init__(self, semi_major: float = 150.0, eccentricity: float = 0.5, period: float = 2.0,
+                 masses: tuple[float, float] = (3.0, 1.0)):
+        self.a, self.e, self.period = semi_major, eccentricity, period
+        self.m = np.array(masses, dtype=float)
+        self.omega = 2 * math.pi / period                    # mean motion n
+        self.gm = self.omega ** 2 * semi_major ** 3          # Kepler's third law: n^2 a^3 = G M
+        self.G = self.gm / self.m.sum()
+        self.b = semi_major * math.sqrt(1 - eccentricity ** 2)
+        self.scale = semi_major
+        self.horizon = period
+
+    def make_system(self) -> ParticleSystem:
+        x, v = self.exact(0.0)
+        return ParticleSystem(x, v, self.m, [Attraction(self.G, 2)])
+
+    def exact(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        mean = self.omega * t
+        E = mean if self.e < 0.8 else math.pi
+        for _ in range(50):                                  # Newton on E - e sin E = n t
+            dE = (E - self.e * math.sin(E) - mean) / (1 - self.e * math.cos(E))
+            E -= dE
+            if abs(dE) < 1e-15:
+                break
+        rate = self.omega / (1 - self.e * math.cos(E))       # dE/dt
+        r = np.array([self.a * (math.cos(E) - self.e), self.b * math.sin(E)])
+        dr = np.array([-self.a * math.sin(E) * rate, self.b * math.cos(E) * rate])
+        share = self.m[::-1, None] / self.m.sum() * np.array([[-1.0], [1.0]])
+        return share * r, share * dr                         # centre of mass at rest at 0
+
+    def energy(self, x: np.ndarray, v: np.ndarray) -> float:
+        r = math.hypot(*(x[1] - x[0]))
+        kinetic = 0.5 * float(np.sum(self.m[:, None] * v * v))
+        return kinetic - self.G * self.m[0] * self.m[1] / r
+
+    def phase(self, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+        d, dv = x[1] - x[0], v[1] - v[0]
+        r = math.hypot(*d)
+        return r, float(d @ dv) / r
+
+    def exact_orbit_points(self, samples: int = 200) -> np.ndarray:
+        """The exact path of the lighter body (the last one) around the centre of mass."""
+        E = np.linspace(0, 2 * math.pi, samples)
+        r = np.stack((self.a * (np.cos(E) - self.e), self.b * np.sin(E)), 1)
+        return r * self.m[0] / self.m.sum()
+
+    def phase_curve(self, samples: int = 200) -> np.ndarray:
+        """r = a (1 - e cos E), dr/dt = a e sin E dE/dt over one orbit."""
+        E = np.linspace(0, 2 * math.pi, samples)
+        rate = self.omega / (1 - self.e * np.cos(E))
+        return np.stack((self.a * (1 - self.e * np.cos(E)), self.a * self.e * np.sin(E) * rate), 1)
+
+
+PROBLEMS: dict[str, Callable[[], Problem]] = {
+    "spring": MassOnSpring, "pendulum": Pendulum, "orbit": TwoBodyOrbit}
+
+
+def make_problem(name: str) -> Problem:
+    """A fresh problem called `name`; ValueError listing the accepted names otherwise."""
+    if name not in PROBLEMS:
+        raise ValueError(f"unknown problem {name!r}; accepted: " + ", ".join(PROBLEMS))
+    return PROBLEMS[name]()
+
+
+def oscillator(omega: float = 1.0) -> MassOnSpring:
+    """The undamped linear oscillator x'' = -omega^2 x (zero-rest-length spring, no gravity)."""
+    return MassOnSpring(omega=omega, rest=0.0, gravity=0.0, amplitude=1.0)
+
+
+# ----- experiments ----------------------------------------------------------------------------------
+def run(problem: Problem, integrator: str, h: float, steps: int) -> ParticleSystem:
+    """A fresh system of `problem` advanced by `steps` steps of h."""
+    step, h = get_integrator(integrator).step, check_step(h)
+    ps = problem.make_system()
+    for _ in range(steps):
+        step(ps, h)
+    return ps
+
+
+def error_at(problem: Problem, integrator: str, T: float, steps: int) -> tuple[float, int]:
+    """(relative error at time T, derivative evaluations + Jacobian products) for `steps` steps."""
+    ps = run(problem, integrator, T / steps, steps)
+    return problem.error(ps, T), ps.evals + ps.jac_products
+
+
+def convergence_order(problem: Problem, integrator: str, steps: list[int],
+                      T: float | None = None) -> tuple[float, list[float]]:
+    """The measured order: slope of log(error) against log(h) by least squares over runs of
+    `steps` steps each to time T; returns (order, errors)."""
+    T = problem.horizon if T is None else T
+    errors = [error_at(problem, integrator, T, n)[0] for n in steps]
+    slope = np.polyfit(np.log(T / np.asarray(steps, dtype=float)), np.log(errors), 1)[0]
+    return float(slope), errors
+
+
+def energy_growth(integrator: str, omega_h: float, steps: int = 2000) -> float:
+    """On the undamped oscillator at this omega*h: the largest energy over the last quarter of the
+    run divided by the largest over the first quarter (inf if it blew up). Bounded methods give
+    about 1; a growth factor per step > 1 shows up as a large ratio."""
+    problem = oscillator()
+    ps = problem.make_system()
+    step, h = get_integrator(integrator).step, check_step(omega_h / problem.omega)
+    quarter = steps // 4
+    energies = np.empty(steps)
+    for k in range(steps):
+        step(ps, h)
+        energies[k] = problem.energy(ps.x, ps.v)
+        if not math.isfinite(energies[k]) or energies[k] > 1e12:
+            return math.inf
+    return float(energies[-quarter:].max() / energies[:quarter].max())
+
+
+def is_stable(integrator: str, omega_h: float, steps: int = 2000, tolerance: float = 1.01) -> bool:
+    """The growth criterion: stable if the energy's maximum grew by less than `tolerance`."""
+    return energy_growth(integrator, omega_h, steps) < tolerance
+
+
+def stability_limit(integrator: str, lo: float = 0.1, hi: float = 20.0, steps: int = 2000,
+                    rel_tol: float = 2e-3) -> float:
+    """The measured stability limit in omega*h on the undamped oscillator, by bisection between
+    lo and hi (geometric midpoints). 0.0 if it already grows at lo (no limit: unstable at every
+    step size we can test), inf if it is still stable at hi (unconditionally stable)."""
+    if not is_stable(integrator, lo, steps):
+        return 0.0
+    if is_stable(integrator, hi, steps):
+        return math.inf
+    while hi / lo > 1 + rel_tol:
+        mid = math.sqrt(lo * hi)
+        if is_stable(integrator, mid, steps):
+            lo = mid
+        else:
+            hi = mid
+    return math.sqrt(lo * hi)
+
+
+__all__ = ["Problem", "MassOnSpring", "Pendulum", "TwoBodyOrbit", "PROBLEMS", "make_problem",
+           "oscillator", "run", "error_at", "convergence_order", "energy_growth", "is_stable",
+           "stability_limit"]

@@ -1,0 +1,360 @@
+"""The integrator lab: one system, six integrators at once, and what accuracy costs.
+
+What it shows: the same problem (a mass on a spring, a pendulum, or a two-body orbit) run side
+by side by forward Euler, symplectic Euler, Verlet, midpoint (RK2), RK4 and implicit Euler, each in
+its own colour, with the exact (or reference) solution as a white ghost. Left: the systems.
+Right, top: the phase portrait (position against velocity; the exact orbit is the white loop).
+Right, bottom: energy over time, E/E0. Bottom left: per integrator the microseconds per step
+(measured while it runs), the relative phase-space error against the exact solution, and E/E0.
+
+The lecture idea: explicit methods are cheap per step but only conditionally stable, implicit
+methods cost a linear solve per step and are stable at any step. Turn `hertz` down and watch
+omega*dt in the HUD: forward Euler spirals out at every dt, implicit Euler spirals in, Verlet and
+symplectic Euler hold their energy until omega*dt passes 2 and then blow up, RK4 holds until 2.83.
+An integrator that blows up (non-finite, or 1000x the problem's size away) is frozen and marked
+"blew up at t = ..."; the others run on.
+
+Controls: `problem` chooses the system; `hertz` sets dt = 1/hertz (1..1000); each integrator is an
+effect you can switch off (only the ones shown are computed; switching restarts the race);
+R restarts. From the command line: --set problem=orbit --set hertz=8 --set euler=off.
+"""
+
+from __future__ import annotations
+
+import math
+import statistics
+import time
+from collections import deque
+from dataclasses import dataclass, field
+
+import numpy as np
+import pygame
+
+from app.draw.text import font
+from app.draw.view import View
+from app.physics.integrators import INTEGRATORS, Integrator
+from app.physics.particles import ParticleSystem
+from app.physics.problems import PROBLEMS, Problem, make_problem
+from app.scene import Effect, Param, Scene
+
+COLORS = {"euler": (230, 97, 76), "symplectic_euler": (250, 150, 60), "verlet": (240, 200, 70),
+          "midpoint": (120, 200, 120), "rk4": (86, 180, 233), "implicit_euler": (200, 130, 230)}
+SHORT = {"euler": "Euler", "symplectic_euler": "sympl.", "verlet": "Verlet",
+         "midpoint": "midpt", "rk4": "RK4", "implicit_euler": "impl."}
+GHOST = (235, 235, 235)
+BLOWUP_SIZE = 1000.0        # a run farther than this many problem scales away has blown up
+SAMPLE_DT = 1.0 / 120.0     # plots keep at most 120 samples per simulated second
+PLOT_SECONDS = 10.0         # the energy plot shows the last 10 s
+
+# Layout in world pixels (960 x 720, y down): x, y, w, h.
+SYSTEM_RECT = (0, 0, 480, 520)
+TABLE_RECT = (0, 525, 480, 195)
+PHASE_RECT = (490, 10, 460, 345)
+ENERGY_RECT = (490, 370, 460, 340)
+
+
+@dataclass
+class Run:
+    """One integrator's copy of the system, with its measurements."""
+
+    name: str
+    integrator: Integrator
+    ps: ParticleSystem
+    color: tuple[int, int, int]
+    blew_up_t: float | None = None
+    error: float = 0.0
+    energy_ratio: float = 1.0
+    step_seconds: deque = field(default_factory=lambda: deque(maxlen=31))
+    energy: deque = field(default_factory=lambda: deque(maxlen=int(PLOT_SECONDS / SAMPLE_DT)))
+    phase: deque = field(default_factory=lambda: deque(maxlen=400))
+    trail: deque = field(default_factory=lambda: deque(maxlen=400))
+
+    @property
+    def step_us(self) -> float:
+        return statistics.median(self.step_seconds) * 1e6 if self.step_seconds else 0.0
+
+
+class IntegratorsScene(Scene):
+    __doc__ = __doc__
+    name = "integrators"
+    title = "Integrator lab: what accuracy costs"
+    category = "Particles"
+    params = (
+        Param("problem", "spring", str, choices=tuple(PROBLEMS),
+              help="the system every integrator runs: mass on a spring, pendulum, two-body orbit"),
+        Param("hertz", 60, int, 1, 1000, rebuild=False,
+              help="steps per simulated second (dt = 1/hertz); the HUD shows omega*dt"),
+    )
+    effects = tuple(Effect(name, True, f"{info.title}: {info.note}", rebuild=True)
+                    for name, info in INTEGRATORS.items())
+
+    # ----- world ---------------------------------------------------------------------------------
+    def build(self) -> None:
+        self.problem: Problem = make_problem(self.p["problem"])
+        self.runs = [Run(name, info, self.problem.make_system(), COLORS[name])
+                     for name, info in INTEGRATORS.items() if name in self.on]
+        ps0 = self.problem.make_system()
+        self.e0 = self.problem.energy(ps0.x, ps0.v)
+        self.t = 0.0                                   # simulated time, advanced per substep
+        self.sample_times: deque = deque(maxlen=int(PLOT_SECONDS / SAMPLE_DT))
+        self.exact_trail: deque = deque(maxlen=400)
+        self.last_sample = -math.inf
+        self.curve = self.problem.phase_curve()
+        self._exact_cache: tuple[float, np.ndarray, np.ndarray] | None = None
+        self._sample()
+
+    def live(self) -> list[Run]:
+        return [r for r in self.runs if r.blew_up_t is None]
+
+    def exact(self) -> tuple[np.ndarray, np.ndarray]:
+        """The exact (or reference) state now, computed once per simulated time."""
+        if self._exact_cache is None or self._exact_cache[0] != self.t:
+            self._exact_cache = (self.t, *self.problem.exact(self.t))
+        return self._exact_cache[1], self._exact_cache[2]
+
+    def step(self, h: float) -> None:
+        for run in self.live():
+            ps = run.ps
+            before = ps.x, ps.v           # integrators make new arrays: these stay the last good state
+            t0 = time.perf_counter()
+            run.integrator.step(ps, h)
+            run.step_seconds.append(time.perf_counter() - t0)
+            if not ps.is_finite() or np.abs(ps.x).max() > BLOWUP_SIZE * self.problem.scale:
+                ps.x, ps.v = before       # freeze at the last finite state
+                ps.x_prev = None
+                run.error = self.problem.error(ps, self.t)
+                run.blew_up_t = self.t + h
+        self.t += h
+        if self.t - self.last_sample >= SAMPLE_DT - 1e-12:
+            self._sample()
+
+    def _sample(self) -> None:
+        """Record energy, phase point and trail of every live run (and the exact solution)."""
+        self.last_sample = self.t
+        self.sample_times.append(self.t)
+        x, v = self.exact()
+        self.exact_trail.append(self.problem.phase(x, v))
+        for run in self.runs:
+            if run.blew_up_t is None:
+                run.energy_ratio = self.problem.energy(run.ps.x, run.ps.v) / self.e0
+                run.phase.append(self.problem.phase(run.ps.x, run.ps.v))
+                run.trail.append(self.problem.points(run.ps.x)[-1])
+            run.energy.append(run.energy_ratio)
+
+    # ----- contract ------------------------------------------------------------------------------
+    @property
+    def omega_h(self) -> float:
+        return self.problem.omega * self.dt / self.p["substeps"]
+
+    def metrics(self) -> dict[str, float]:
+        m: dict[str, float] = {"omega_dt": self.omega_h}
+        for run in self.runs:
+            if run.blew_up_t is None:
+                run.error = self.problem.error(run.ps, self.t)
+                run.energy_ratio = self.problem.energy(run.ps.x, run.ps.v) / self.e0
+            m[f"{run.name}_error"] = float(run.error)
+            m[f"{run.name}_step_us"] = float(run.step_us)
+            m[f"{run.name}_energy_ratio"] = float(run.energy_ratio)
+            m[f"{run.name}_blew_up_t"] = -1.0 if run.blew_up_t is None else run.blew_up_t
+        return m
+
+    def effect_costs(self) -> dict[str, float]:
+        return {run.name: run.step_us / 1000.0 for run in self.live()}
+
+    def hud_lines(self) -> list[str]:
+        z = self.omega_h
+        lines = [f"{self.problem.title}: omega*dt = {z:.3f}   (limits: Verlet/symplectic 2, "
+                 f"RK4 2.83, Euler/midpoint none, implicit none)"]
+        for run in self.runs:
+            if run.blew_up_t is not None:
+                lines.append(f"{run.integrator.title} blew up at t = {run.blew_up_t:.2f} s")
+        return lines
+
+    def state_arrays(self):
+        """The live runs' states only: a run that blew up is frozen and reported, so the scene
+        whose point is to show explicit Euler exploding never goes non-finite itself."""
+        arrays = []
+        for run in self.live():
+            arrays += [run.ps.x, run.ps.v]
+        return arrays
+
+    def snapshot(self):
+        return (self.t, self.time, self.steps,
+                [(r.ps.copy_state(), r.blew_up_t, r.error, r.energy_ratio) for r in self.runs])
+
+    def restore(self, snap) -> None:
+        self.t, self.time, self.steps, runs = snap
+        for run, (state, blew_up_t, error, ratio) in zip(self.runs, runs):
+            run.ps.restore_state(state)
+            run.blew_up_t, run.error, run.energy_ratio = blew_up_t, error, ratio
+        self._exact_cache = None
+
+    # ----- drawing -------------------------------------------------------------------------------
+    def draw(self, surface: pygame.Surface, view: View) -> None:
+        self.metrics()                                   # refresh errors and energies for the table
+        size = max(11, int(round(15 * view.scale)))
+        self._draw_systems(surface, view, size)
+        self._draw_table(surface, view, size)
+        self._draw_phase(surface, view, size)
+        self._draw_energy(surface, view, size)
+
+    def _screen_rect(self, view: View, rect) -> pygame.Rect:
+        x, y = view.pt(rect[:2])
+        return pygame.Rect(x, y, round(view.len(rect[2])), round(view.len(rect[3])))
+
+    def _frame(self, surface, view, rect, title: str, size: int) -> pygame.Rect:
+        r = self._screen_rect(view, rect)
+        pygame.draw.rect(surface, (32, 35, 44), r)
+        pygame.draw.rect(surface, (70, 74, 88), r, 1)
+        surface.blit(font(size).render(title, True, (200, 200, 210)), (r.x + 6, r.y + 4))
+        return r
+
+    def _text(self, surface, view, pos, text, color, size) -> None:
+        surface.blit(font(size).render(text, True, color), view.pt(pos))
+
+    # left: the systems
+    def _draw_systems(self, surface, view, size) -> None:
+        clip = self._frame(surface, view, SYSTEM_RECT, f"{self.problem.title}  (white: exact)", size)
+        old_clip = surface.get_clip()
+        surface.set_clip(clip)
+        x_ref, _ = self.exact()
+        kind = self.problem.name
+        if kind == "spring":
+            for i, name in enumerate(INTEGRATORS):
+                origin = np.array([40.0 + 80.0 * i, 40.0])
+                run = next((r for r in self.runs if r.name == name), None)
+                self._text(surface, view, origin + (-24, 440), SHORT[name], COLORS[name], size)
+                pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)), view.pt(origin + (18, 0)), 3)
+                ghost = origin + self.problem.points(x_ref)[-1]
+                pygame.draw.circle(surface, GHOST, view.pt(ghost), max(2, round(view.len(12))), 1)
+                if run is None:
+                    continue
+                bob = np.clip(origin + self.problem.points(run.ps.x)[-1], -1e4, 1e4)
+                self._spring(surface, view, origin, bob, run.color)
+                pygame.draw.circle(surface, run.color, view.pt(bob), max(2, round(view.len(10))))
+                if run.blew_up_t is not None:
+                    self._text(surface, view, origin + (-36, 400), f"blew up", run.color, size)
+                    self._text(surface, view, origin + (-36, 416), f"t={run.blew_up_t:.2f}s", run.color, size)
+        else:
+            origin = np.array([240.0, 170.0] if kind == "pendulum" else [240.0, 270.0])
+            if kind == "orbit":
+                ellipse = self.problem.exact_orbit_points()
+                pygame.draw.lines(surface, (90, 90, 100), True, view.pts(origin + ellipse), 1)
+            for run in self.runs:
+                pts = np.clip(origin + self.problem.points(run.ps.x), -1e4, 1e4)
+                if kind == "pendulum":
+                    pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), 1)
+                elif len(run.trail) > 1:
+                    trail = np.clip(origin + np.array(run.trail), -1e4, 1e4)
+                    pygame.draw.lines(surface, run.color, False, view.pts(trail), 1)
+                for k, p in enumerate(pts):
+                    radius = 10 if kind == "pendulum" else 6 + 3 * (k == 0)
+                    pygame.draw.circle(surface, run.color, view.pt(p), max(2, round(view.len(radius))))
+            for k, p in enumerate(origin + self.problem.points(x_ref)):
+                radius = 13 if kind == "pendulum" else 8 + 3 * (k == 0)
+                pygame.draw.circle(surface, GHOST, view.pt(p), max(2, round(view.len(radius))), 1)
+            pygame.draw.circle(surface, (150, 150, 160), view.pt(origin), max(2, round(view.len(4))))
+            y = 490
+            for run in self.runs:
+                if run.blew_up_t is not None:
+                    self._text(surface, view, (10, y), f"{run.integrator.title} blew up at "
+                               f"t={run.blew_up_t:.2f} s", run.color, size)
+                    y -= 18
+        surface.set_clip(old_clip)
+
+    def _spring(self, surface, view, a, b, color) -> None:
+        """A zig-zag from a to b (12 coils)."""
+        s = np.linspace(0.0, 1.0, 26)
+        d = b - a
+        normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
+        wiggle = np.where(np.arange(26) % 2 == 0, -1.0, 1.0) * 8.0
+        wiggle[[0, 1, -2, -1]] = 0.0
+        pts = a + s[:, None] * d + wiggle[:, None] * normal
+        pygame.draw.lines(surface, color, False, view.pts(pts), 1)
+
+    # bottom left: the table
+    def _draw_table(self, surface, view, size) -> None:
+        self._frame(surface, view, TABLE_RECT, "integrator", size)
+        x0, y0 = TABLE_RECT[0] + 8, TABLE_RECT[1] + 26
+        for x, head in ((150, "us/step"), (236, "error"), (320, "E/E0")):
+            self._text(surface, view, (x0 + x, TABLE_RECT[1] + 4), head, (200, 200, 210), size)
+        for i, (name, info) in enumerate(INTEGRATORS.items()):
+            y = y0 + 26 * i
+            run = next((r for r in self.runs if r.name == name), None)
+            color = COLORS[name] if run else (110, 110, 110)
+            pygame.draw.rect(surface, color, (*view.pt((x0, y + 2)), round(view.len(10)), round(view.len(10))))
+            self._text(surface, view, (x0 + 16, y), info.title, color, size)
+            if run is None:
+                self._text(surface, view, (x0 + 150, y), "off", color, size)
+                continue
+            self._text(surface, view, (x0 + 150, y), f"{run.step_us:7.1f}", color, size)
+            self._text(surface, view, (x0 + 230, y), f"{run.error:9.2e}", color, size)
+            self._text(surface, view, (x0 + 320, y), f"{run.energy_ratio:.4g}", color, size)
+            if run.blew_up_t is not None:
+                self._text(surface, view, (x0 + 395, y), f"blew up", color, size)
+
+    # right: the two plots
+    def _plot_map(self, rect, xlo, xhi, ylo, yhi):
+        """data -> world point inside rect (margins for labels); far-off points are pulled in
+        to +-1e4 px so pygame never sees a huge coordinate (the panel clips them anyway)."""
+        x, y, w, h = rect[0] + 40, rect[1] + 26, rect[2] - 50, rect[3] - 46
+
+        def to_world(px: np.ndarray, py: np.ndarray) -> np.ndarray:
+            pts = np.stack((x + (px - xlo) / (xhi - xlo) * w, y + h - (py - ylo) / (yhi - ylo) * h), -1)
+            return np.clip(pts, -1e4, 1e4)
+        return to_world
+
+    def _draw_phase(self, surface, view, size) -> None:
+        qlab, plab = self.problem.phase_labels
+        clip = self._frame(surface, view, PHASE_RECT, f"phase portrait: {plab} against {qlab}", size)
+        c = self.curve
+        qlo, qhi = c[:, 0].min(), c[:, 0].max()
+        plo, phi = c[:, 1].min(), c[:, 1].max()
+        qpad, ppad = 0.35 * (qhi - qlo), 0.35 * (phi - plo)
+        to_world = self._plot_map(PHASE_RECT, qlo - qpad, qhi + qpad, plo - ppad, phi + ppad)
+        old_clip = surface.get_clip()
+        surface.set_clip(clip.inflate(-2, -24).move(0, 10))
+        pygame.draw.lines(surface, (150, 150, 155), True, view.pts(to_world(c[:, 0], c[:, 1])), 1)
+        for run in self.runs:
+            if len(run.phase) > 1:
+                pts = np.array(run.phase)
+                pygame.draw.lines(surface, run.color, False, view.pts(to_world(pts[:, 0], pts[:, 1])), 2)
+            if run.phase:
+                q, p = run.phase[-1]
+                pygame.draw.circle(surface, run.color, view.pt(to_world(np.array(q), np.array(p))),
+                                   max(2, round(view.len(5))))
+        if self.exact_trail:
+            q, p = self.exact_trail[-1]
+            pygame.draw.circle(surface, GHOST, view.pt(to_world(np.array(q), np.array(p))),
+                               max(2, round(view.len(7))), 1)
+        surface.set_clip(old_clip)
+
+    def _draw_energy(self, surface, view, size) -> None:
+        clip = self._frame(surface, view, ENERGY_RECT, "energy E/E0 over time (log scale, last 10 s)", size)
+        if len(self.sample_times) < 2:
+            return
+        t = np.array(self.sample_times)
+        # log10(E/E0): geometric growth (forward Euler) and decay (implicit Euler) are straight lines
+        values = [np.log10(np.maximum(np.array(r.energy)[-len(t):], 1e-9)) for r in self.runs]
+        data = np.concatenate(values + [np.array([-0.02, 0.02])])
+        lo, hi = max(float(data.min()), -6.0), min(float(data.max()), 6.0)
+        pad = 0.08 * (hi - lo)
+        lo, hi = lo - pad, hi + pad
+        tlo, thi = max(t[-1] - PLOT_SECONDS, 0.0), max(t[-1], PLOT_SECONDS)
+        to_world = self._plot_map(ENERGY_RECT, tlo, thi, lo, hi)
+        old_clip = surface.get_clip()
+        surface.set_clip(clip.inflate(-2, -24).move(0, 10))
+        one = to_world(np.array([tlo, thi]), np.array([0.0, 0.0]))
+        pygame.draw.line(surface, (120, 120, 125), view.pt(one[0]), view.pt(one[1]), 1)
+        for run, e in zip(self.runs, values):
+            n = min(len(e), len(t))
+            if n > 1:
+                clipped = np.clip(e[-n:], lo, hi)
+                pygame.draw.lines(surface, run.color, False, view.pts(to_world(t[-n:], clipped)), 2)
+        surface.set_clip(old_clip)
+        for value in (lo, 0.0, hi):
+            p = to_world(np.array(tlo), np.array(value))
+            self._text(surface, view, (ENERGY_RECT[0] + 2, float(p[1]) - 6), f"{10 ** value:.3g}",
+                       (170, 170, 180), size - 2)
+        self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 80, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
+                   f"t = {self.t:.1f} s", (170, 170, 180), size - 2)
