@@ -1,6 +1,6 @@
-"""Double pendulum (the lecture's exercise): two bobs on pin joints, released high, beside a ghost of
-the same pendulum integrated from its equations of motion. Watch the engine and the exact solution
-part ways.
+"""Double pendulum (the lecture's exercise): two bobs on pin joints, released high, beside a
+ghost of the same pendulum integrated from its equations of motion. Watch the engine and the exact
+solution part ways.
 
 What it shows.
   * Chaos: released high, the double pendulum is so sensitive to its state that pymunk's tiny

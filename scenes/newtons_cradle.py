@@ -130,16 +130,18 @@ class NewtonsCradleScene(PymunkScene):
             space.add(body, ball, string)
             self.bodies.append(body)
             self.strings.append(string)
-        self.amplitude = STRING * math.sin(lift)     # horizontal reach of the release
         self.arm(k)
 
     def arm(self, k: int, side: int = +1) -> None:
         """Start a measurement: k balls count as lifted, at the left end (side +1, they swing in
         to the right) or the right end (side -1); the energy now is the baseline, and the first
         impact is still to come."""
+        lifted = np.arange(k) if side > 0 else np.arange(len(self.bodies) - k, len(self.bodies))
+        dx = np.abs(self.displacements()[lifted])
         self.track = {
             "lifted": k,
             "side": side,
+            "amplitude": float(dx.mean()) if k else 0.0,   # how far out they were let go, px
             "energy0": self.energy(),
             "impact_time": -1.0,          # simulated time of the first impact, -1 before it
             "release_speed": 0.0,
@@ -194,10 +196,12 @@ class NewtonsCradleScene(PymunkScene):
             t["middle_max_drift"] = max(t["middle_max_drift"],
                                         float(np.abs(onwards[middle]).max()))
         if t["impact_time"] < 0 and len(lifted):
+            # The impact: the lifted group is at the bottom (its leading ball within half a
+            # radius of rest) and a ball outside it has picked up speed.
+            lead = lifted[-1] if t["side"] > 0 else lifted[0]
             others = np.delete(speed, lifted)
-            expected = math.sqrt(2 * self.p["gravity"] * STRING
-                                 * (1 - math.cos(math.radians(self.p["angle"]))))
-            if others.max() > max(0.05 * expected, 1.0):
+            if (abs(onwards[lead]) < 0.5 * RADIUS
+                    and others.max() > max(0.25 * t["last_speed"], 1.0)):
                 t["impact_time"] = self.time
                 t["release_speed"] = t["last_speed"]
                 t["window_open"] = True
@@ -206,7 +210,7 @@ class NewtonsCradleScene(PymunkScene):
         if t["window_open"]:
             t["reach"] = np.maximum(t["reach"], onwards)
             t["top_speed"] = np.maximum(t["top_speed"], speed)
-            t["balls_out"] = int(np.count_nonzero(t["reach"] > 0.5 * self.amplitude))
+            t["balls_out"] = int(np.count_nonzero(t["reach"] > 0.5 * t["amplitude"]))
             if self.time - t["impact_time"] > 0.9 * self.half_period():
                 t["window_open"] = False
 

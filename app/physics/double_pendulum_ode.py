@@ -16,16 +16,16 @@ d = theta1 - theta2 and D = 2 m1 + m2 - m2 cos(2 d):
 
 These are integrated with classical Runge-Kutta (RK4) at a step much smaller than anything the
 eye can see, so for the lecture the result is "the exact solution". The motion is chaotic for high
-releases: two runs that differ by a hair part ways after a few seconds, which is what the scene shows
-by running the same pendulum in pymunk beside this one.
+releases: two runs that differ by a hair part ways after a few seconds, which is what the scene
+shows by running the same pendulum in pymunk beside this one.
 
 Why point masses match pymunk's bobs: pymunk's bobs are discs with a moment of inertia, but both
 pin joints hold them at their centres of mass, so no joint force has a lever arm on a bob, the bobs
 never start spinning and their rotation drops out of the energy. Point masses are the exact model.
 
 The step uses plain float arithmetic (the math module): one state of four numbers is far too small
-for arrays to pay off (NumPy's per-call overhead would make the tiny-step reference about ten times
-slower). `positions` returns a NumPy array for drawing and comparing.
+for arrays to pay off: the same RK4 step on a 4-element NumPy array took ~65 us against ~20 us
+here (measured while other work ran). `positions` returns a NumPy array for drawing and comparing.
 """
 
 from __future__ import annotations

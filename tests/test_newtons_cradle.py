@@ -1,0 +1,116 @@
+"""Newton's cradle: k balls in, k balls out, for every k, at the first impact and still at 10 s.
+
+"Still true at 10 s" is checked over the last 3.6 simulated seconds of a 10 s run (more than one
+full swing; the period is about 3.57 s at the default 30 degrees):
+  * every lifted ball swings back out to the left to at least 90% of the release amplitude, and
+    every far ball out to the right as far;
+  * no ball outside the lifted group goes left of its rest position by 2 px or more, and no ball
+    outside the far group goes right by 2 px or more: the swing alternates k in / k out and the
+    balls that should rest stay within 2 px;
+  * the middle balls (neither lifted nor far) stayed within 2 px over the whole run.
+"""
+
+import numpy as np
+import pytest
+
+from app.scene import InputEvent, ParamError
+from scenes.newtons_cradle import NewtonsCradleScene
+
+N = 5
+
+
+def run(seconds: float, **overrides) -> tuple[NewtonsCradleScene, np.ndarray]:
+    """Run the cradle; return it and the displacements of every ball at every step (steps, n)."""
+    scene = NewtonsCradleScene(overrides)
+    rows = []
+    for _ in range(round(seconds * scene.p["hertz"])):
+        scene.advance()
+        rows.append(scene.displacements())
+    return scene, np.array(rows)
+
+
+@pytest.mark.parametrize("k", range(1, N))
+def test_k_in_k_out_at_first_impact_and_after_ten_seconds(k):
+    scene, dx = run(10.0, lifted=k)
+    m = scene.metrics()
+    amplitude = scene.track["amplitude"]
+    # The first impact: k balls out, as fast as the k that came in, the middle ones still.
+    assert m["lifted"] == k
+    assert m["balls_out"] == k
+    assert m["release_speed"] > 200.0
+    assert m["out_speed_ratio"] >= 0.97
+    assert m["middle_max_drift"] < 2.0
+    # After 10 s: the last full swing still alternates k in / k out.
+    last = dx[-round(3.6 * scene.p["hertz"]):]
+    lifted, far = np.arange(k), np.arange(N - k, N)
+    assert (last[:, lifted].min(axis=0) <= -0.9 * amplitude).all()
+    assert (last[:, far].max(axis=0) >= 0.9 * amplitude).all()
+    assert last[:, k:].min() > -2.0, "a ball that was not lifted swung out to the left"
+    assert last[:, :N - k].max() < 2.0, "a ball that is not at the far end swung out"
+    assert m["energy_ratio"] > 0.99
+
+
+def test_touching_balls_break_it_the_teaching_point():
+    # Balls pressed together: their contacts exist at rest, the solver treats the row as one lump
+    # and the single incoming ball sends it off slowly: 1 in, 0 out.
+    scene, _ = run(2.0, lifted=1, gap=-0.01)
+    m = scene.metrics()
+    assert m["balls_out"] == 0
+    assert m["out_speed_ratio"] < 0.6
+
+
+def test_few_substeps_make_the_middle_balls_creep():
+    scene, _ = run(10.0, lifted=2, substeps=2)
+    assert scene.metrics()["balls_out"] == 2
+    assert scene.metrics()["middle_max_drift"] > 2.0
+
+
+def test_damping_and_inelastic_balls_lose_energy():
+    assert run(5.0, damping=0.99)[0].metrics()["energy_ratio"] < 0.97
+    assert run(5.0, elasticity=0.9)[0].metrics()["energy_ratio"] < 0.8
+
+
+def test_lifted_is_clamped_to_balls_minus_one():
+    scene = NewtonsCradleScene({"balls": 3, "lifted": 8})
+    assert scene.metrics()["lifted"] == 2
+    assert any("at most 2" in line for line in scene.hud_lines())
+
+
+def test_dragging_a_ball_out_and_letting_go_rearms_the_measurement():
+    # Lifted by only 1 degree (5 px: less than a radius, so it does not count as lifted), then the
+    # right-hand ball is dragged 120 px out to the right and let go: 1 lifted, at the right end.
+    scene = NewtonsCradleScene({"lifted": 1, "angle": 1.0})
+    x, y = scene.bodies[-1].position
+    scene.handle_event(InputEvent("mouse_down", (x, y), 1))
+    for i in range(1, 61):
+        scene.handle_event(InputEvent("mouse_move", (x + 2 * i, y - 0.25 * i)))
+        scene.advance()
+    for _ in range(30):                       # hold still a moment
+        scene.advance()
+    scene.handle_event(InputEvent("mouse_up", (x + 120, y - 15), 1))
+    assert scene.track["lifted"] == 1 and scene.track["side"] == -1
+    assert scene.metrics()["energy_ratio"] == pytest.approx(1.0)
+    for _ in range(240):
+        scene.advance()
+    m = scene.metrics()
+    assert m["balls_out"] == 1 and m["out_speed_ratio"] >= 0.97
+
+
+def test_two_runs_hash_the_same():
+    a, _ = run(1.0, lifted=2)
+    b, _ = run(1.0, lifted=2)
+    assert a.state_hash() == b.state_hash()
+    c, _ = run(1.0, lifted=3)
+    assert c.state_hash() != a.state_hash()
+
+
+@pytest.mark.parametrize("key,value", [("balls", 1), ("balls", 10), ("lifted", 0),
+                                       ("angle", 90), ("gap", -2), ("elasticity", 1.5),
+                                       ("damping", -0.1), ("damping", 1.5), ("iterations", 0),
+                                       ("substeps", 0), ("gap", float("nan"))])
+def test_bad_values_are_refused(key, value):
+    with pytest.raises(ParamError):
+        NewtonsCradleScene({key: value})
+    scene = NewtonsCradleScene()
+    with pytest.raises(ParamError):
+        scene.set(key, value)
