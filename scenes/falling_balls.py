@@ -132,7 +132,8 @@ class FallingBallsScene(PymunkScene):
                     body.activate()
 
     def effect_changed(self, name: str, on: bool) -> None:
-        if name == "sleeping":
+        # (also called for overrides given to __init__, before build: then build does it)
+        if name == "sleeping" and hasattr(self, "space"):
             self.set_sleeping(on)
 
     # ----- balls ----------------------------------------------------------------------------

@@ -1,0 +1,161 @@
+"""Falling balls (the pymunk tutorial): balls never pass through the L, the live count levels off
+because fallen balls are removed, the mouse drags and drops balls, a settled pile falls asleep,
+runs are deterministic, bad values are refused before they reach pymunk."""
+
+import math
+
+import numpy as np
+import pygame
+import pymunk
+import pytest
+
+from app.draw.view import View
+from app.scene import InputEvent, ParamError
+from scenes.falling_balls import L_LONG, L_ORIGIN, FallingBallsScene
+
+
+def run(seconds: float, **overrides) -> FallingBallsScene:
+    scene = FallingBallsScene(overrides)
+    for _ in range(int(round(seconds * scene.p["hertz"]))):
+        scene.advance()
+    return scene
+
+
+def test_live_balls_level_off_and_none_pass_through_the_L():
+    # Two simulated minutes at 30 Hz with 20 balls a second (2400 balls): with no cap from
+    # max_balls, the live count is bounded only because fallen balls are removed.
+    scene = FallingBallsScene({"hertz": 30, "spawn_rate": 20, "max_balls": 5000})
+    alive = []
+    for _ in range(30 * 120):
+        scene.advance()
+        alive.append(len(scene.balls))
+    m = scene.metrics()
+    assert m["balls_spawned"] == 2400
+    assert m["balls_spawned"] == m["balls_removed"] + m["balls_alive"]
+    assert m["balls_removed"] > 2000
+    first, second = max(alive[:1800]), max(alive[1800:])
+    assert second <= 1.2 * first and second < 300
+    assert m["tunneled"] == 0
+    assert len(scene.space.bodies) == m["balls_alive"] + 2     # the balls, the L, the marker
+
+
+@pytest.mark.slow
+def test_ten_minutes_at_60_hz_stay_bounded():
+    scene = FallingBallsScene({"spawn_rate": 10, "max_balls": 5000})
+    peak = [0, 0]
+    for i in range(60 * 600):
+        scene.advance()
+        half = i >= 60 * 300
+        peak[half] = max(peak[half], len(scene.balls))
+    assert peak[1] <= 1.2 * peak[0] and scene.metrics()["tunneled"] == 0
+
+
+def test_the_tunneling_detector_sees_a_ball_go_through():
+    # The detector itself: a centre moving from 10 px above the long arm to 10 px below it
+    # counts; one moving beside the L, or from below to above, does not.
+    scene = FallingBallsScene({"spawn_rate": 0})
+    pose = scene.L_pose()
+    x_in, x_out = L_ORIGIN[0] + 50, L_ORIGIN[0] + L_LONG[1][0] + 40
+    y = L_ORIGIN[1]
+    before = np.array([[x_in, y - 10], [x_out, y - 10], [x_in, y + 10]])
+    after = np.array([[x_in, y + 10], [x_out, y + 10], [x_in, y - 10]])
+    scene.count_tunneled(before, after, pose, pose)
+    assert scene.metrics()["tunneled"] == 1
+
+
+def test_a_ball_dropped_on_the_L_lands_on_it():
+    scene = FallingBallsScene({"spawn_rate": 0, "friction": 1.0})
+    scene.add_ball((L_ORIGIN[0] - 150, 100))            # just right of the lip
+    for _ in range(180):
+        scene.advance()
+    x, y = scene.balls[0].body.position
+    r = scene.p["radius"]
+    top = L_ORIGIN[1] - 5 * 1.5                          # the arm's upper surface
+    assert y == pytest.approx(top - r, abs=1.0)
+
+
+def test_dragging_a_ball_moves_it_and_a_click_on_empty_space_drops_one():
+    scene = FallingBallsScene({"spawn_rate": 0})
+    ball = scene.add_ball((700, 150))
+    scene.handle_event(InputEvent("mouse_down", (700, 150), 1))
+    assert scene.mouse_joint is not None
+    for i in range(1, 61):                               # to (760, 90) in one second
+        scene.handle_event(InputEvent("mouse_move", (700 + i, 150 - i)))
+        scene.advance()
+    scene.handle_event(InputEvent("mouse_up", (760, 90), 1))
+    assert scene.mouse_joint is None
+    assert (ball.body.position - (760, 90)).length < 10
+
+    scene.handle_event(InputEvent("mouse_down", (200, 100), 1))   # nothing there
+    scene.handle_event(InputEvent("mouse_up", (200, 100), 1))
+    assert len(scene.balls) == 2 and scene.metrics()["balls_spawned"] == 2
+    assert tuple(scene.balls[-1].body.position) == (200, 100)
+
+
+def test_a_settled_pile_falls_asleep_and_the_batch_order_tells_who_sleeps():
+    scene = FallingBallsScene({"spawn_rate": 0, "container": True, "radius": 10})
+    assert scene.add_balls(300) == 300
+    for _ in range(240):
+        scene.advance()
+    m = scene.metrics()
+    assert m["balls_asleep"] == 300
+    assert any(line.startswith("asleep: 300 of 300") for line in scene.hud_lines())
+    # the split of the batch order (awake | static | asleep) matches Body.is_sleeping, asleep,
+    # while a kick wakes the pile, and a moment later
+    for _ in range(2):
+        k, _, asleep = scene.read_balls()
+        assert np.array_equal(asleep, [scene.balls[i].body.is_sleeping for i in k])
+        scene.balls[0].body.apply_impulse_at_local_point((0, -3000))
+        scene.advance()
+    assert not scene.balls[0].body.is_sleeping
+    # sleeping off: everybody wakes and stays awake
+    scene.set("sleeping", False)
+    for _ in range(60):
+        scene.advance()
+    assert scene.metrics()["balls_asleep"] == 0
+    assert not any(s.body.is_sleeping for s in scene.balls)
+
+
+def test_sleeping_off_sets_an_infinite_threshold():
+    scene = FallingBallsScene({"sleeping": False})
+    assert math.isinf(scene.space.sleep_time_threshold)
+
+
+def test_two_runs_hash_the_same():
+    a, b = run(4.0, spawn_rate=10), run(4.0, spawn_rate=10)
+    assert a.state_hash() == b.state_hash() and a.metrics() == b.metrics()
+    assert run(4.0, spawn_rate=10, seed=1).state_hash() != a.state_hash()
+
+
+def test_snapshot_and_restore_bring_back_the_same_state():
+    scene = run(2.0, spawn_rate=10)
+    before, counts, snap = scene.state_hash(), scene.metrics(), scene.snapshot()
+    for _ in range(60):
+        scene.advance()
+    assert scene.state_hash() != before
+    scene.restore(snap)
+    assert scene.state_hash() == before and scene.metrics() == counts
+    for _ in range(60):                     # and it runs on: balls keep coming and leaving
+        scene.advance()
+    assert scene.is_finite() and scene.metrics()["balls_spawned"] > counts["balls_spawned"]
+
+
+@pytest.mark.parametrize("key, value", [("iterations", 0), ("gravity", float("nan")),
+                                        ("radius", -1), ("spawn_rate", -1), ("max_balls", 0),
+                                        ("friction", float("inf"))])
+def test_bad_values_are_refused(key, value):
+    with pytest.raises(ParamError):
+        FallingBallsScene({key: value})
+
+
+def test_draws_a_pile_with_sleepers_and_a_drag():
+    scene = FallingBallsScene({"spawn_rate": 0, "container": True, "radius": 8})
+    scene.add_balls(400)
+    for _ in range(150):
+        scene.advance()
+    x, y = scene.balls[-1].body.position
+    scene.handle_event(InputEvent("mouse_down", (x, y), 1))
+    scene.advance()
+    surface = pygame.Surface(scene.world_size)
+    scene.draw(surface, View())
+    assert surface.get_at((int(x), int(y)))[:3] != scene.background

@@ -1,0 +1,76 @@
+"""Pivoting L (the tutorial's joints): while balls keep landing for a simulated minute the slide
+joint stays within its range and the pin holds; the L tips; it can be dragged; runs are
+deterministic; bad values are refused."""
+
+import pygame
+import pytest
+
+from app.draw.view import View
+from app.scene import InputEvent, ParamError
+from scenes.falling_balls import L_ORIGIN
+from scenes.pivoting_l import PivotingLScene
+
+
+def run(seconds: float, **overrides) -> PivotingLScene:
+    scene = PivotingLScene(overrides)
+    for _ in range(int(round(seconds * scene.p["hertz"]))):
+        scene.advance()
+    return scene
+
+
+def test_a_minute_of_landing_balls_keeps_the_slide_in_range_and_the_pin_together():
+    # Defaults: 2 balls a second (the tutorial's rate), 60 Hz, 2 substeps.
+    scene = PivotingLScene()
+    lowest, highest = scene.slide.max, 0.0
+    for _ in range(60 * 60):
+        scene.advance()
+        d = scene.slide_distance()
+        lowest, highest = min(lowest, d), max(highest, d)
+    m = scene.metrics()
+    assert 120 <= m["balls_spawned"] <= 121 and m["balls_removed"] > 60
+    assert (m["slide_min"], m["slide_max"]) == pytest.approx((lowest, highest))
+    assert scene.slide.min - 0.5 <= m["slide_min"] and m["slide_max"] <= scene.slide.max + 2.0
+    assert m["slide_max"] > scene.slide.max - 2.0             # it did tip all the way
+    assert m["pin_error"] < 1.0
+    assert m["tunneled"] == 0
+
+
+def test_just_wait_and_the_L_tips_over():
+    scene = run(10.0)
+    assert abs(scene.metrics()["angle_deg"]) > 10.0          # the slide allows about 14.5
+
+
+def test_a_pivot_joint_holds_tighter_than_the_pin():
+    pin, pivot = run(20.0, substeps=1), run(20.0, substeps=1, pivot="pivot")
+    assert pivot.metrics()["pin_error"] < pin.metrics()["pin_error"]
+
+
+def test_dragging_the_L_turns_it():
+    scene = PivotingLScene({"spawn_rate": 0})
+    x, y = L_ORIGIN[0] + 300, L_ORIGIN[1]                    # on the long arm, right side
+    scene.handle_event(InputEvent("mouse_down", (x, y), 1))
+    assert scene.mouse_joint is not None and scene.mouse_joint.b is scene.L_body
+    for i in range(1, 31):
+        scene.handle_event(InputEvent("mouse_move", (x, y + 2 * i)))
+        scene.advance()
+    scene.handle_event(InputEvent("mouse_up", (x, y + 60), 1))
+    assert scene.metrics()["angle_deg"] > 5.0                # right arm down: clockwise on screen
+
+
+def test_two_runs_hash_the_same():
+    assert run(3.0).state_hash() == run(3.0).state_hash()
+
+
+@pytest.mark.parametrize("key, value", [("iterations", 0), ("gravity", float("nan")),
+                                        ("radius", -1), ("slide_max", -5), ("L_mass", 0),
+                                        ("pivot", "glue"), ("container", True)])
+def test_bad_values_are_refused(key, value):
+    with pytest.raises(ParamError):
+        PivotingLScene({key: value})
+
+
+def test_draws_the_L_and_its_joints():
+    scene = run(1.0)
+    surface = pygame.Surface(scene.world_size)
+    scene.draw(surface, View())
+    assert surface.get_at((int(L_ORIGIN[0]), int(L_ORIGIN[1])))[:3] != scene.background
