@@ -17,6 +17,13 @@ second, the median physics milliseconds per step over the last second (the time 
 If the state goes non-finite (NaN or inf) the window rolls back to the last good snapshot, pauses
 and says so, instead of drawing garbage or crashing.
 
+`--record FILE` writes the mouse and key events the scene received (and each R, as a key "r" the
+headless runner also treats as a reset) in the `--input` format: positions in world coordinates,
+t in simulated seconds counted as the headless runner counts them (steps x dt since the scene was
+opened). So a demo done by hand replays headless, step for step:
+`python -m app --headless --scene NAME --input FILE --steps N`. Panel changes are not events:
+give them with --set.
+
 The `Window` class does the work and never owns the main loop, so tests drive it directly
 (handle_pygame_event, update, render); `run_window` is the loop the command line calls.
 """
@@ -37,7 +44,7 @@ from typing import Any, Sequence
 import pygame
 
 from app.draw import hud
-from app.draw.text import TEXT
+from app.draw.text import TEXT, font
 from app.draw.view import View
 from app.loop import FixedStepClock
 from app.scene import InputEvent, ParamError, Scene, docstring_help
@@ -707,12 +714,11 @@ class Window:
                 lines.append(L(text, color))
         return lines
 
-    def metric_lines(self) -> list:
-        """The scene's metrics() for the box at the bottom of the world area."""
-        metrics = self.scene.metrics()
-        if not metrics:
-            return []
-        return ["  |  ".join(f"{k} {hud.fmt_number(v)}" for k, v in metrics.items())]
+    def metric_lines(self, width: int) -> list[str]:
+        """The scene's metrics() for the box at the bottom of the world area, packed into lines
+        of at most `width` pixels."""
+        items = [f"{k} {hud.fmt_number(v)}" for k, v in self.scene.metrics().items()]
+        return hud.pack(items, font(hud.HUD_SIZE), width - 16)
 
     # --- drawing ---------------------------------------------------------------------------
     def render(self) -> None:
@@ -734,12 +740,10 @@ class Window:
         hud.text_box(screen, self.hud_lines(), (area.left + 8, area.top + 8),
                      max_width=min(area.width - 16, int(640 * s)))
         bottom = area.bottom - 6
-        metric_lines = self.metric_lines()
+        metric_lines = self.metric_lines(area.width - 16)
         if metric_lines:
             bottom = hud.text_box(screen, metric_lines, (area.left + 8, area.bottom - 6),
                                   max_width=area.width - 16, from_bottom=True).top
-        if self.show_help:
-            hud.help_overlay(screen, area, scene.title or scene.name, docstring_help(type(scene)))
         if self.nonfinite_banner:
             hud.banner(screen, self.nonfinite_banner, area, hud.WARN_COLOR,
                        y=area.centery - int(60 * s))
@@ -753,6 +757,9 @@ class Window:
                              self.panel.rect.bottomleft, 2)
         if self.manager is not None:
             self.manager.draw_ui(screen)
+        if self.show_help:       # over the whole window: the room needs the space for big text
+            hud.help_overlay(screen, screen.get_rect(), scene.title or scene.name,
+                             docstring_help(type(scene)))
         self._save_pending()
 
     # --- screenshots and recording -----------------------------------------------------------

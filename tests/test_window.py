@@ -352,3 +352,16 @@ def test_run_window_screenshot_after_seconds_and_record(monkeypatch, tmp_path):
                       seconds=0.2) == 0
     assert pygame.image.load(str(shot)).get_size() == (1280, 800)
     assert json.loads(rec.read_text()) == []
+
+
+def test_typing_a_value_and_enter_sets_it(window):
+    entry = window.panel.entries["g"]
+    entry.focus()
+    entry.set_text("")
+    pygame.event.clear()
+    window.handle_pygame_event(pygame.event.Event(pygame.TEXTINPUT, text="42"))
+    key(window, pygame.K_RETURN)
+    for ev in pygame.event.get():          # pygame-gui posts UI_TEXT_ENTRY_FINISHED
+        window.handle_pygame_event(ev)
+    assert window.scene.p["g"] == 42.0
+    assert not window.panel.is_typing()

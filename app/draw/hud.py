@@ -66,6 +66,17 @@ def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
     return lines
 
 
+def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") -> list[str]:
+    """Join items with `sep` into lines no wider than `width`, never splitting an item."""
+    lines: list[str] = []
+    for item in items:
+        if lines and f.size(lines[-1] + sep + item)[0] <= width:
+            lines[-1] += sep + item
+        else:
+            lines.append(item)
+    return lines
+
+
 @dataclass
 class Line:
     """One line of overlay text and its colour."""
@@ -143,32 +154,50 @@ COMMON_KEYS = [
 ]
 
 
+def reflow(doc: str) -> str:
+    """Join a docstring's hard-wrapped lines into paragraphs (so the overlay can wrap them to its
+    own width); list items, indented lines and blank lines keep their line breaks."""
+    out: list[str] = []
+    for line in doc.split("\n"):
+        stripped = line.strip()
+        starts_item = stripped[:1] in ("-", "*", "+") or stripped[:2].rstrip(".").isdigit()
+        joinable = (out and out[-1].strip() and stripped and not starts_item
+                    and not line.startswith((" ", "\t")) and not out[-1].rstrip().endswith(":"))
+        if joinable:
+            out[-1] = out[-1].rstrip() + " " + stripped
+        else:
+            out.append(line.rstrip())
+    return "\n".join(out)
+
+
 def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: str) -> None:
     """The help overlay: the scene's docstring and the common keys, over `area`."""
     shade = pygame.Surface(area.size, pygame.SRCALPHA)
-    shade.fill((5, 6, 9, 225))
+    shade.fill((5, 6, 9, 235))
     surface.blit(shade, area.topleft)
     x, y = area.left + 24, area.top + 18
     width = area.width - 48
     f_title, f = font(TITLE_SIZE), font(HELP_SIZE)
     surface.blit(f_title.render(title, True, ACCENT_COLOR), (x, y))
     y += f_title.get_linesize() + 6
-    doc_lines = wrap(doc, f, width)
-    keys_height = (len(COMMON_KEYS) + 2) * f.get_linesize()
+    key_w = max(f.size(k)[0] for k, _ in COMMON_KEYS) + 24
+    key_rows = [(k, wrap(what, f, width - key_w)) for k, what in COMMON_KEYS]
+    keys_height = (sum(len(r) for _, r in key_rows) + 2) * f.get_linesize()
+    doc_lines = wrap(reflow(doc), f, width)
     room = (area.bottom - 10 - keys_height - y) // f.get_linesize()
     if len(doc_lines) > room:
-        doc_lines = doc_lines[: max(room - 1, 0)] + ["..."]
+        doc_lines = doc_lines[: max(room - 1, 0)] + ["... (F2 turns large text off; more in the scene's module docstring)"]
     for t in doc_lines:
         surface.blit(f.render(t, True, TEXT_COLOR), (x, y))
         y += f.get_linesize()
     y += f.get_linesize() // 2
     surface.blit(f.render("Common keys", True, ACCENT_COLOR), (x, y))
     y += f.get_linesize()
-    key_w = max(f.size(k)[0] for k, _ in COMMON_KEYS) + 20
-    for k, what in COMMON_KEYS:
+    for k, rows in key_rows:
         surface.blit(f.render(k, True, WARN_COLOR), (x, y))
-        surface.blit(f.render(what, True, TEXT_COLOR), (x + key_w, y))
-        y += f.get_linesize()
+        for what in rows:
+            surface.blit(f.render(what, True, TEXT_COLOR), (x + key_w, y))
+            y += f.get_linesize()
 
 
 def _one_line(text: str, f: pygame.font.Font, width: int) -> str:
