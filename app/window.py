@@ -57,6 +57,7 @@ LARGE_TEXT_SCALE = 1.6
 FPS_CAP = 60
 SNAPSHOT_EVERY = 30               # steps between last-good snapshots
 MESSAGE_SECONDS = 4.0
+MAX_METRIC_LINES = 2              # lines of metrics at the bottom of the world
 NO_DISPLAY = "no display for the window: {}; use --headless, or run under xvfb-run"
 
 NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf) at t={bad:.3f} s: rolled back to "
@@ -718,7 +719,15 @@ class Window:
         """The scene's metrics() for the box at the bottom of the world area, packed into lines
         of at most `width` pixels."""
         items = [f"{k} {hud.fmt_number(v)}" for k, v in self.scene.metrics().items()]
-        return hud.pack(items, font(hud.HUD_SIZE), width - 16)
+        f = font(hud.HUD_SIZE)
+        lines = hud.pack(items, f, width - 16)
+        if len(lines) > MAX_METRIC_LINES:       # keep the world visible; --json has them all
+            shown = hud.pack(items, f, width - 16 - f.size("  |  +99 more (--json)")[0])
+            shown = shown[:MAX_METRIC_LINES]
+            more = len(items) - sum(line.count("  |  ") + 1 for line in shown)
+            shown[-1] += f"  |  +{more} more (--json)"
+            lines = shown
+        return lines
 
     # --- drawing ---------------------------------------------------------------------------
     def render(self) -> None:
