@@ -1,0 +1,209 @@
+"""`python -m app bench integrators`: what accuracy costs, integrator by integrator.
+
+For each test problem (mass on a spring, pendulum, two-body orbit; app/physics/problems.py) and
+each integrator it sweeps the step h (halving omega*h), runs to the problem's time T and records
+the relative phase-space error at T, the derivative evaluations used (implicit Euler: plus its
+Jacobian-vector products, each about as costly as one evaluation) and the wall time (steps x the
+median microseconds per step, timed over a batch of steps). It then reports
+
+  * work-precision charts (error against wall time, against evaluations, and against omega*h) and
+    the same numbers as tables;
+  * the measured order of convergence (slope of log error against log h over the smallest steps)
+    beside the theoretical one;
+  * the measured stability limit in omega*h on the undamped oscillator (bisection with a growth
+    criterion) beside the theoretical one;
+  * which integrator reaches a relative error of 1e-3 and 1e-6 in the least time.
+
+Timings are medians but the machine may be busy with other work: compare them within one run.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+
+from app.bench import Report, median_time
+from app.draw.plot import LineChart, save_grid
+from app.physics.integrators import INTEGRATORS
+from app.physics.problems import PROBLEMS, make_problem, stability_limit
+from scenes.integrators import COLORS
+
+TARGETS = (1e-3, 1e-6)
+# Sweep of omega*h per order: (largest, halvings). Low orders need small steps to show their slope.
+SWEEP = {1: (0.4, 8), 2: (0.4, 7), 4: (0.8, 6)}
+QUICK_SWEEP = {1: (0.4, 3), 2: (0.4, 3), 4: (0.8, 3)}
+
+
+def _time_per_step(problem, name: str, h: float, quick: bool) -> float:
+    """Median seconds per step, timed over a batch of steps on a fresh system."""
+    ps, step = problem.make_system(), INTEGRATORS[name].step
+    batch = 10 if quick else 40
+
+    def steps() -> None:
+        for _ in range(batch):
+            step(ps, h)
+    return median_time(steps, repeats=3 if quick else 5, warmup=1) / batch
+
+
+def sweep(problem, name: str, quick: bool) -> list[dict[str, float]]:
+    """One point per step size: omega*h, steps, evaluations, us/step, wall ms, error at T."""
+    T = problem.horizon
+    top, halvings = (QUICK_SWEEP if quick else SWEEP)[INTEGRATORS[name].order]
+    points = []
+    for k in range(halvings + 1):
+        steps = math.ceil(problem.omega * T / (top / 2 ** k))
+        h = T / steps
+        ps, step = problem.make_system(), INTEGRATORS[name].step
+        for _ in range(steps):
+            step(ps, h)
+        error = problem.error(ps, T) if ps.is_finite() else math.inf
+        us = _time_per_step(problem, name, h, quick) * 1e6
+        points.append({"omega_dt": problem.omega * h, "steps": steps,
+                       "evals": ps.evals + ps.jac_products, "us_per_step": us,
+                       "wall_ms": steps * us / 1000.0, "error": error})
+    return points
+
+
+def measured_order(points: list[dict[str, float]]) -> float | None:
+    """Slope of log(error) against log(h) over the (up to) 4 smallest steps whose error lies
+    between round-off (1e-11) and 0.1 (the asymptotic range)."""
+    good = [p for p in points if 1e-11 < p["error"] < 0.1][-4:]
+    if len(good) < 2:
+        return None
+    h = np.log([p["omega_dt"] for p in good])
+    e = np.log([p["error"] for p in good])
+    return float(np.polyfit(h, e, 1)[0])
+
+
+def time_to_reach(points: list[dict[str, float]], target: float, order: float
+                  ) -> tuple[float, bool]:
+    """Wall ms needed for error <= target: interpolated in log-log between the sweep points that
+    bracket it, or extrapolated (flag True) from the smallest step with error ~ h^order."""
+    errors = [p["error"] for p in points]
+    j = len(points)
+    while j > 0 and errors[j - 1] <= target:      # first index from which all errors stay <= target
+        j -= 1
+    if j == 0:
+        return points[0]["wall_ms"], False         # already reached at the largest step
+    if j < len(points):
+        a, b = points[j - 1], points[j]
+        if math.isfinite(a["error"]) and a["error"] > 0 and b["error"] > 0:
+            s = math.log(target / a["error"]) / math.log(b["error"] / a["error"])
+            return math.exp(math.log(a["wall_ms"]) + s * math.log(b["wall_ms"] / a["wall_ms"])), False
+        return b["wall_ms"], False
+    last = points[-1]
+    if not (math.isfinite(last["error"]) and last["error"] > 0):
+        return math.inf, True
+    return last["wall_ms"] * (last["error"] / target) ** (1.0 / order), True
+
+
+def _json_number(x: float | None) -> float | None:
+    return None if x is None or not math.isfinite(x) else float(x)
+
+
+def run(report: Report) -> dict[str, Any]:
+    quick = report.quick
+    report.say("Work-precision of the six integrators (timings measured while other work ran; "
+               "compare them within this run only).")
+    results: dict[str, Any] = {"problems": {}, "order": {}, "stability": {}, "fastest": {}}
+    charts: list[LineChart] = []
+    total = len(PROBLEMS) * len(INTEGRATORS)
+    done = 0
+    for pname in PROBLEMS:
+        problem = make_problem(pname)
+        T = problem.horizon
+        per: dict[str, Any] = {}
+        by_wall = LineChart(f"{problem.title}: error at T={T:g} s vs time", "wall time (ms)",
+                            "relative error", logx=True, logy=True)
+        by_evals = LineChart(f"{problem.title}: error vs work", "derivative evaluations",
+                             "relative error", logx=True, logy=True)
+        by_step = LineChart(f"{problem.title}: error vs step (slope = order)", "omega*dt",
+                            "relative error", logx=True, logy=True)
+        rows = []
+        for name, info in INTEGRATORS.items():
+            done += 1
+            report.progress(f"[{done}/{total}] {pname}: {name}")
+            t0 = time.perf_counter()
+            points = sweep(problem, name, quick)
+            order = measured_order(points)
+            per[name] = {"points": [{k: _json_number(v) for k, v in p.items()} for p in points],
+                         "order_measured": order, "order_theory": info.order,
+                         "seconds": time.perf_counter() - t0}
+            shown = [p for p in points if math.isfinite(p["error"]) and p["error"] > 0]
+            for chart, key in ((by_wall, "wall_ms"), (by_evals, "evals"), (by_step, "omega_dt")):
+                chart.add(info.title, [p[key] for p in shown], [p["error"] for p in shown],
+                          color=COLORS[name])
+            for p in points:
+                rows.append([name, p["omega_dt"], p["steps"], p["evals"], p["us_per_step"],
+                             p["wall_ms"], p["error"]])
+        report.table(f"work-precision: {problem.title}, error at T = {T:g} s",
+                     ["integrator", "omega*dt", "steps", "evals", "us/step", "wall ms", "error"], rows)
+        charts += [by_wall, by_evals, by_step]
+        results["problems"][pname] = per
+
+        fastest = {}
+        for target in TARGETS:
+            times = {}
+            for name, info in INTEGRATORS.items():
+                order = per[name]["order_measured"] or info.order
+                ms, extrapolated = time_to_reach(
+                    [p for p in per[name]["points"] if p["error"] is not None] or
+                    [{"wall_ms": math.inf, "error": math.inf}], target, max(order, 0.5))
+                times[name] = (ms, extrapolated)
+            winner = min(times, key=lambda n: times[n][0])
+            fastest[f"{target:g}"] = {"winner": winner,
+                                      "ms": {n: _json_number(ms) for n, (ms, _) in times.items()},
+                                      "extrapolated": [n for n, (_, x) in times.items() if x]}
+        results["fastest"][pname] = fastest
+
+    report.table("order of convergence: measured (slope over the smallest steps) vs theory",
+                 ["integrator", "theory"] + list(PROBLEMS),
+                 [[name, info.order] + [_fmt_order(results["problems"][p][name]["order_measured"])
+                                        for p in PROBLEMS]
+                  for name, info in INTEGRATORS.items()])
+    results["order"] = {name: {p: results["problems"][p][name]["order_measured"] for p in PROBLEMS}
+                        | {"theory": info.order} for name, info in INTEGRATORS.items()}
+
+    stab_rows = []
+    for name, info in INTEGRATORS.items():
+        report.progress(f"stability limit: {name}")
+        limit = stability_limit(name, steps=400 if quick else 1000, rel_tol=2e-2 if quick else 2e-3)
+        results["stability"][name] = {"measured": _json_number(limit) if limit > 0 else 0.0,
+                                      "theory": _json_number(info.stability_limit),
+                                      "measured_text": _fmt_limit(limit),
+                                      "theory_text": _fmt_limit(info.stability_limit)}
+        stab_rows.append([name, _fmt_limit(info.stability_limit), _fmt_limit(limit), info.note])
+    report.table("stability limit in omega*dt, undamped oscillator (growth over many steps)",
+                 ["integrator", "theory", "measured", "note"], stab_rows)
+    report.say("  (measured 'none': the energy already grows at omega*dt = 0.1, the smallest tested; "
+               "'unconditional': still bounded at 20, the largest tested)")
+
+    fast_rows = []
+    for pname, by_target in results["fastest"].items():
+        for target, entry in by_target.items():
+            ms = entry["ms"]
+            fast_rows.append([pname, target, entry["winner"]] + [
+                ("~" if n in entry["extrapolated"] else "") + (f"{ms[n]:.3g}" if ms[n] else "inf")
+                for n in INTEGRATORS])
+    report.table("wall ms to reach a relative error (~ = extrapolated beyond the sweep)",
+                 ["problem", "error", "fastest"] + list(INTEGRATORS), fast_rows)
+
+    path = save_grid(charts, report.chart_path("integrators_work_precision.png"), cols=3,
+                     cell=(760, 470))
+    results["charts"] = [path]
+    return results
+
+
+def _fmt_order(order: float | None) -> str:
+    return "-" if order is None else f"{order:.2f}"
+
+
+def _fmt_limit(limit: float) -> str:
+    if limit == 0:
+        return "none"
+    if math.isinf(limit):
+        return "unconditional"
+    return f"{limit:.3f}"

@@ -1,0 +1,201 @@
+"""The integrator lab's physics facts: orders of convergence, stability limits, energy behaviour on
+the undamped oscillator, implicit Euler on a stiff n-particle chain, force Jacobians, refusals,
+the scene's blow-up handling, and a quick run of the benchmark."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from app.bench import Report
+from app.bench.integrators import run as run_bench
+from app.physics.forces import Attraction, Drag, Gravity, PendulumGravity, Springs
+from app.physics.integrators import INTEGRATORS, get_integrator, integrate
+from app.physics.particles import ParticleSystem
+from app.physics.problems import (convergence_order, make_problem, oscillator, run,
+                                  stability_limit)
+from app.scene import ParamError
+from scenes.integrators import IntegratorsScene
+
+FIRST_STEP = {1: 0.02, 2: 0.05, 4: 0.2}     # omega*h of the coarsest run, per order
+
+
+@pytest.mark.parametrize("name", list(INTEGRATORS))
+def test_measured_order_matches_theory(name):
+    problem, T = make_problem("spring"), 0.9            # T: not a whole period
+    n0 = math.ceil(problem.omega * T / FIRST_STEP[INTEGRATORS[name].order])
+    order, errors = convergence_order(problem, name, [n0, 2 * n0, 4 * n0], T)
+    assert abs(order - INTEGRATORS[name].order) < 0.15, (order, errors)
+
+
+@pytest.mark.parametrize("name", ["symplectic_euler", "verlet", "rk4"])
+def test_stability_limit_within_5_percent(name):
+    limit = stability_limit(name, lo=1.0, hi=4.0, steps=400, rel_tol=0.01)
+    theory = INTEGRATORS[name].stability_limit
+    assert abs(limit - theory) < 0.05 * theory, limit
+
+
+def test_no_limit_for_euler_and_midpoint_and_none_needed_for_implicit_euler():
+    assert stability_limit("euler", steps=400) == 0.0
+    assert stability_limit("midpoint", steps=400) == 0.0
+    assert stability_limit("implicit_euler", steps=400) == math.inf
+
+
+@pytest.mark.parametrize("omega_h", [0.01, 0.1, 0.5, 1.0, 2.0, 5.0])
+def test_forward_euler_gains_and_implicit_euler_loses_energy_at_every_step(omega_h):
+    problem = oscillator()
+    for name, factor in (("euler", 1 + omega_h ** 2), ("implicit_euler", 1 / (1 + omega_h ** 2))):
+        ps = problem.make_system()
+        energies = [problem.energy(ps.x, ps.v)]
+        for _ in range(min(40, int(10 / math.log10(1 + omega_h ** 2)))):   # 10 decades at most
+            INTEGRATORS[name](ps, omega_h / problem.omega)
+            energies.append(problem.energy(ps.x, ps.v))
+        ratios = np.array(energies[1:]) / np.array(energies[:-1])
+        # on x'' = -omega^2 x every step multiplies the energy by exactly this factor
+        np.testing.assert_allclose(ratios, factor, rtol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["symplectic_euler", "verlet"])
+@pytest.mark.parametrize("omega_h", [0.5, 1.5])
+def test_symplectic_methods_keep_energy_bounded_below_their_limit(name, omega_h):
+    problem = oscillator()
+    ps = problem.make_system()
+    e0 = problem.energy(ps.x, ps.v)
+    energies = np.empty(10_000)
+    step, h = INTEGRATORS[name].step, omega_h / problem.omega
+    for k in range(energies.size):
+        step(ps, h)
+        energies[k] = problem.energy(ps.x, ps.v) / e0
+    # symplectic Euler conserves v^2 + w^2 x^2 - w h w^2 x v exactly, so E/E0 stays within
+    # [1/(1 + w h/2), 1/(1 - w h/2)]; Verlet (with its velocity estimate) inside the same band
+    lo, hi = 1 / (1 + omega_h / 2), 1 / (1 - omega_h / 2)
+    assert lo * 0.999 < energies.min() and energies.max() < hi * 1.001
+    assert energies[-1000:].max() == pytest.approx(energies[:1000].max(), rel=1e-3)   # no drift
+
+
+def spring_chain(n: int = 20, ks: float = 1e4, spacing: float = 20.0) -> ParticleSystem:
+    """A horizontal chain of n unit masses, stiff springs, pinned at the left end, gravity on."""
+    x = np.stack((np.arange(n) * spacing, np.zeros(n)), axis=1)
+    springs = Springs(np.arange(n - 1), np.arange(1, n), ks, kd=1.0, x0=x)
+    return ParticleSystem(x, np.zeros_like(x), 1.0, [Gravity((0.0, 980.0)), springs], pinned=[0])
+
+
+def test_implicit_euler_stays_stable_on_a_stiff_chain_where_explicit_euler_blows_up():
+    h = 1 / 60                                            # omega_max h = sqrt(4 ks / m) h = 3.3
+    explicit = integrate(spring_chain(), "euler", h, 200)
+    assert not explicit.is_finite() or np.abs(explicit.x).max() > 1e6
+    ps = integrate(spring_chain(), "implicit_euler", h, 200)
+    assert ps.is_finite()
+    length = 19 * 20.0
+    assert np.hypot(*ps.x.T).max() < 1.1 * length        # stays a chain hanging from its pin
+    assert np.all(ps.x[0] == 0.0)                         # the pin holds
+    stretch = np.linalg.norm(np.diff(ps.x, axis=0), axis=1) / 20.0 - 1
+    assert np.abs(stretch).max() < 0.05
+    assert ps.cg_iterations > 0
+
+
+def test_force_jacobian_products_match_finite_differences():
+    rng = np.random.default_rng(3)
+    n = 6
+    x = rng.normal(size=(n, 2)) * 40
+    v = rng.normal(size=(n, 2))
+    cases = [[Springs([0, 1, 2, 3], [1, 2, 3, 5], 50.0, 0.0, rest=1.0)],   # all stretched
+             [Attraction(1e4, n, softening=2.0)], [Drag(0.7)], [Gravity((0, 980))]]
+    for forces in cases:
+        ps = ParticleSystem(x, v, rng.uniform(1, 2, n), forces)
+        dfdx, dfdv = ps.force_jacobians(x, v)
+        w, e = rng.normal(size=x.shape), 1e-6
+        fx = (ps.force(x + e * w, v).copy() - ps.force(x - e * w, v).copy()) / (2 * e)
+        fv = (ps.force(x, v + e * w).copy() - ps.force(x, v - e * w).copy()) / (2 * e)
+        np.testing.assert_allclose(dfdx(w), fx, atol=1e-5 * (1 + np.abs(fx).max()))
+        np.testing.assert_allclose(dfdv(w), fv, atol=1e-5 * (1 + np.abs(fv).max()))
+    ps = ParticleSystem([[50.0]], [[0.0]], 1.0, [PendulumGravity(980, 200)])
+    dfdx, _ = ps.force_jacobians(ps.x, ps.v)
+    fd = (ps.force(ps.x + 1e-6, ps.v)[0, 0] - ps.force(ps.x - 1e-6, ps.v)[0, 0]) / 2e-6
+    assert dfdx(np.ones((1, 1)))[0, 0] == pytest.approx(fd, rel=1e-6)
+
+
+def test_derivative_evaluation_gathers_v_and_f_over_m_and_pins_hold():
+    ps = make_problem("spring").make_system()
+    y = ps.state()
+    dy = ps.derivative(y)
+    half = y.size // 2
+    np.testing.assert_array_equal(dy[:half], y[half:])             # dx/dt = v
+    assert dy[half:half + 2].tolist() == [0.0, 0.0]                # the pinned anchor: a = 0
+    for name in INTEGRATORS:
+        moved = run(make_problem("spring"), name, 0.01, 50)
+        assert moved.x[0].tolist() == [0.0, 180.0], name
+
+
+@pytest.mark.parametrize("h", [0.0, -0.01, float("nan"), float("inf"), "fast"])
+def test_bad_steps_are_refused(h):
+    ps = oscillator().make_system()
+    with pytest.raises(ValueError, match="time step"):
+        integrate(ps, "rk4", h, 1)
+    with pytest.raises(ValueError, match="time step"):
+        INTEGRATORS["verlet"](ps, h)
+
+
+def test_unknown_integrator_or_problem_is_refused():
+    with pytest.raises(ValueError, match="unknown integrator 'rk5'.*rk4"):
+        get_integrator("rk5")
+    with pytest.raises(ValueError, match="unknown integrator"):
+        integrate(oscillator().make_system(), "leapfrog", 0.01, 1)
+    with pytest.raises(ValueError, match="unknown problem"):
+        make_problem("moon")
+
+
+@pytest.mark.parametrize("setting", [{"hertz": 0}, {"hertz": "nan"}, {"hertz": 5000},
+                                     {"problem": "moon"}, {"rk4": "maybe"}, {"rk5": "off"}])
+def test_scene_refuses_bad_settings(setting):
+    with pytest.raises(ParamError):
+        IntegratorsScene(setting)
+
+
+def test_scene_freezes_what_blew_up_and_stays_finite():
+    scene = IntegratorsScene({"hertz": 3})                 # omega*dt = 3 > 2.83: all explicit go
+    for _ in range(3 * 20):
+        scene.advance()
+    assert scene.is_finite()
+    m = scene.metrics()
+    assert m["omega_dt"] == pytest.approx(3.0)
+    for name in ("euler", "symplectic_euler", "verlet", "midpoint", "rk4"):
+        assert m[f"{name}_blew_up_t"] > 0, name
+    assert m["implicit_euler_blew_up_t"] == -1.0
+    assert m["implicit_euler_energy_ratio"] < 1e-3           # spiralled in
+    assert all(math.isfinite(v) for v in m.values())
+    assert any("blew up at t" in line for line in scene.hud_lines())
+    assert len(list(scene.state_arrays())) == 2              # only implicit Euler's x and v
+
+
+def test_scene_runs_only_the_integrators_switched_on():
+    scene = IntegratorsScene({"rk4": "off", "euler": False, "problem": "orbit"})
+    scene.advance()
+    names = [r.name for r in scene.runs]
+    assert "rk4" not in names and "euler" not in names and "verlet" in names
+    assert not any(key.startswith(("rk4_", "euler_")) for key in scene.metrics())
+    assert set(scene.effect_costs()) == set(names)
+
+
+def test_scene_reports_each_integrator_at_the_default_step():
+    scene = IntegratorsScene({"problem": "pendulum"})
+    for _ in range(60):
+        scene.advance()
+    m = scene.metrics()
+    assert m["rk4_error"] < 1e-4 < m["verlet_error"] < m["euler_error"]
+    assert m["euler_energy_ratio"] > 1 > m["implicit_euler_energy_ratio"]
+    assert m["verlet_energy_ratio"] == pytest.approx(1.0, abs=0.01)
+    assert m["rk4_step_us"] > 0
+
+
+def test_benchmark_quick_run(tmp_path):
+    result = run_bench(Report(out_dir=str(tmp_path), quick=True))
+    json.dumps(result, allow_nan=False)                   # --json must be valid JSON
+    assert set(result["problems"]) == {"spring", "pendulum", "orbit"}
+    assert result["stability"]["implicit_euler"]["measured_text"] == "unconditional"
+    assert result["stability"]["euler"]["measured_text"] == "none"
+    assert abs(result["order"]["rk4"]["spring"] - 4) < 0.3
+    for by_target in result["fastest"].values():
+        assert set(by_target) == {"0.001", "1e-06"}
+    assert (tmp_path / "integrators_work_precision.png").stat().st_size > 10_000
