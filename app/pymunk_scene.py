@@ -132,6 +132,8 @@ class PymunkScene(Scene):
 
     def static_rows(self, ids: np.ndarray) -> np.ndarray:
         """Bool mask of the rows (from body_rows) that are static bodies."""
+        if len(self._static_ids) <= 16:      # a few static bodies: compare with each at once
+            return (ids[:, None] == self._static_ids).any(axis=1)
         return np.isin(ids, self._static_ids)
 
     def sleeping_rows(self, ids: np.ndarray, static: np.ndarray | None = None) -> np.ndarray:

@@ -109,18 +109,34 @@ class FallingBallsScene(PymunkScene):
         self.walls = walls
 
     def restored(self) -> None:
-        """(Re)build the table of ball body ids, in the order of self.balls."""
+        """(Re)build the tables kept beside self.balls: body ids and last known centres."""
         self._ids = np.array([shape.body.id for shape in self.balls], dtype=np.int64)
-        self._sorter = np.argsort(self._ids)
+        self._xy = np.array([tuple(shape.body.position) for shape in self.balls],
+                            dtype=np.float64).reshape(-1, 2)
+        self._tables_changed()
+
+    def _tables_changed(self) -> None:
+        self._sorted = None                       # (sorted ids, ball index of each), lazily
+        self._last = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))
 
     def ball_index(self, ids: np.ndarray) -> np.ndarray:
         """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
-        a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search."""
-        if len(self._ids) == 0:
-            return np.full(len(ids), -1, dtype=np.int64)
-        pos = np.searchsorted(self._ids, ids, sorter=self._sorter).clip(0, len(self._ids) - 1)
-        k = self._sorter[pos]
-        return np.where(self._ids[k] == ids, k, -1)
+        a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search
+        in the sorted ids; and not even that while the batch order stays the same."""
+        last_ids, last_k = self._last
+        if np.array_equal(ids, last_ids):
+            return last_k
+        if self._sorted is None:
+            order = np.argsort(self._ids)
+            self._sorted = (self._ids[order], order)
+        sorted_ids, order = self._sorted
+        if len(sorted_ids) == 0:
+            k = np.full(len(ids), -1, dtype=np.int64)
+        else:
+            at = np.searchsorted(sorted_ids, ids).clip(0, len(sorted_ids) - 1)
+            k = np.where(sorted_ids[at] == ids, order[at], -1)
+        self._last = (ids, k)
+        return k
 
     def set_sleeping(self, on: bool) -> None:
         """Sleeping on: groups at rest for SLEEP_TIME fall asleep. Off: the threshold is infinite,
@@ -147,7 +163,9 @@ class FallingBallsScene(PymunkScene):
         self.space.add(body, shape)
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            self.restored()
+            self._ids = np.append(self._ids, body.id)
+            self._xy = np.vstack((self._xy, pos))
+            self._tables_changed()
         self.counts["spawned"] += 1
         return shape
 
@@ -185,30 +203,31 @@ class FallingBallsScene(PymunkScene):
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
         self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
+        keep = np.ones(len(self._ids), dtype=bool)
+        keep[which] = False
+        self._ids, self._xy = self._ids[keep], self._xy[keep]
+        self._tables_changed()
         self.counts["removed"] += len(gone)
-        self.restored()
 
-    def read_balls(self, fields: pymunk.batch.BodyFields = pymunk.batch.BodyFields.POSITION
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def read_balls(self, fields: pymunk.batch.BodyFields = pymunk.batch.BodyFields.POSITION,
+                   sleeping: bool = True) -> tuple[np.ndarray, np.ndarray, np.ndarray | None]:
         """(index into self.balls (n,), data (n, k), asleep (n,)) of every ball, in batch order,
-        from one batch read."""
+        from one batch read (asleep is None when not asked for)."""
         ids, data = self.body_rows(fields)
-        asleep = self.sleeping_rows(ids)
         k = self.ball_index(ids)
         ball = k >= 0
-        return k[ball], data[ball], asleep[ball]
+        asleep = self.sleeping_rows(ids)[ball] if sleeping else None
+        return k[ball], data[ball], asleep
 
     # ----- stepping -------------------------------------------------------------------------
     def step(self, h: float) -> None:
-        k0, xy0, _ = self.read_balls()
         L0 = self.L_pose()
         super().step(h)
-        k, xy1, _ = self.read_balls()
-        # the same balls, but a body falling asleep or waking moves its row: line up by ball
-        before = np.empty_like(xy0)
-        before[k0] = xy0
-        self.count_tunneled(before[k], xy1, L0, self.L_pose())
-        self.remove_fallen(k, xy1)
+        k, xy, _ = self.read_balls(sleeping=False)
+        # self._xy holds every ball's centre after the previous step (or where it was added)
+        self.count_tunneled(self._xy[k], xy, L0, self.L_pose())
+        self._xy[k] = xy
+        self.remove_fallen(k, xy)
         self.spawn(h)
 
     def L_pose(self) -> tuple[float, float, float]:
@@ -220,6 +239,9 @@ class FallingBallsScene(PymunkScene):
         """Count balls whose centre crossed the L's long arm from above to below in this step
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order."""
+        moved = (xy0 != xy1).any(axis=1)               # sleeping balls did not
+        if L0 == L1:
+            xy0, xy1 = xy0[moved], xy1[moved]
         if len(xy1) == 0:
             return
         p0, p1 = _to_local(xy0, L0), _to_local(xy1, L1)
@@ -262,10 +284,14 @@ class FallingBallsScene(PymunkScene):
         self.draw_L(surface, view)
         _, data, asleep = self.read_balls(_POS_ANGLE)
         D.draw_circles(surface, view, data[:, :2], data[:, 2], self.p["radius"], D.BALL, asleep)
+        self.draw_joints(surface, view)
         self.draw_mouse(surface, view)
 
     def draw_L(self, surface: pygame.Surface, view) -> None:
         D.draw_shapes(surface, view, self.L_shapes, D.STATIC)
+
+    def draw_joints(self, surface: pygame.Surface, view) -> None:
+        """Joints, drawn over the balls (none here)."""
 
     # ----- reporting ------------------------------------------------------------------------
     def asleep_count(self) -> int:

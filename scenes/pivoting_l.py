@@ -128,6 +128,8 @@ class PivotingLScene(FallingBallsScene):
     # ----- drawing and reporting --------------------------------------------------------------
     def draw_L(self, surface: pygame.Surface, view) -> None:
         D.draw_shapes(surface, view, self.L_shapes, D.DYNAMIC)
+
+    def draw_joints(self, surface: pygame.Surface, view) -> None:
         D.draw_slide_joint(surface, view, self.slide)
         D.draw_pin_joint(surface, view, self.pin)     # the pin: anchors and the gap between them
 

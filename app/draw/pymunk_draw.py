@@ -177,8 +177,8 @@ def draw_pin_joint(surface: pygame.Surface, view, joint: pymunk.PinJoint,
     anchors coincide, as for a pin at a rotation centre)."""
     a, b = _anchors(joint)
     pygame.draw.aaline(surface, color, view.pt(a), view.pt(b))
-    _dot(surface, view, a, color)
-    _dot(surface, view, b, color, 2.5)
+    _dot(surface, view, a, color, 6)
+    _dot(surface, view, b, color, 3)
 
 
 def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
@@ -197,8 +197,8 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
     for end in (lo, hi):
         pygame.draw.line(surface, color, view.pt(end - n), view.pt(end + n), 2)
     at_limit = d <= joint.min + 0.5 or d >= joint.max - 0.5
-    _dot(surface, view, a, limit_color if at_limit else color)
-    _dot(surface, view, b, color, 3)
+    _dot(surface, view, a, limit_color if at_limit else color, 6)
+    _dot(surface, view, b, color, 4)
 
 
 def draw_pivot_joint(surface: pygame.Surface, view, joint: pymunk.PivotJoint,
