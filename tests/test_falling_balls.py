@@ -159,3 +159,12 @@ def test_draws_a_pile_with_sleepers_and_a_drag():
     surface = pygame.Surface(scene.world_size)
     scene.draw(surface, View())
     assert surface.get_at((int(x), int(y)))[:3] != scene.background
+
+
+def test_the_pymunk_benchmark_runs_quick(tmp_path):
+    from app.bench import Report
+    from app.bench.pymunk_bench import run as bench
+    report = Report(str(tmp_path), quick=True)
+    result = bench(report)
+    assert result["summary"]["balls"] == 200 and len(report.charts) == 2
+    assert all(row["asleep"] == row["balls"] for row in result["by_count"])
