@@ -14,6 +14,10 @@ symplectic Euler hold their energy until omega*dt passes 2 and then blow up, RK4
 An integrator that blows up (non-finite, or 1000x the problem's size away) is frozen and marked
 "blew up at t = ..."; the others run on.
 
+On the orbit, implicit Euler's numerical damping makes the bodies spiral into each other until a
+close encounter (a singular 1/r^2 force that one linearised step cannot follow) flings them
+apart: stable is not the same as accurate.
+
 Controls: `problem` chooses the system; `hertz` sets dt = 1/hertz (1..1000); each integrator is an
 effect you can switch off (only the ones shown are computed; switching restarts the race);
 R restarts. From the command line: --set problem=orbit --set hertz=8 --set euler=off.
@@ -202,11 +206,13 @@ class IntegratorsScene(Scene):
         x, y = view.pt(rect[:2])
         return pygame.Rect(x, y, round(view.len(rect[2])), round(view.len(rect[3])))
 
-    def _frame(self, surface, view, rect, title: str, size: int) -> pygame.Rect:
+    def _frame(self, surface, view, rect, title: str, size: int, bottom: bool = False) -> pygame.Rect:
+        """A panel with its title at the top (or at the bottom, clear of the shell's overlay)."""
         r = self._screen_rect(view, rect)
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
-        surface.blit(font(size).render(title, True, (200, 200, 210)), (r.x + 6, r.y + 4))
+        label = font(size).render(title, True, (200, 200, 210))
+        surface.blit(label, (r.x + 6, r.bottom - label.get_height() - 4 if bottom else r.y + 4))
         return r
 
     def _text(self, surface, view, pos, text, color, size) -> None:
@@ -214,7 +220,8 @@ class IntegratorsScene(Scene):
 
     # left: the systems
     def _draw_systems(self, surface, view, size) -> None:
-        clip = self._frame(surface, view, SYSTEM_RECT, f"{self.problem.title}  (white: exact)", size)
+        clip = self._frame(surface, view, SYSTEM_RECT, f"{self.problem.title}  (white ring: exact)",
+                           size, bottom=True)
         old_clip = surface.get_clip()
         surface.set_clip(clip)
         x_ref, _ = self.exact()
@@ -223,24 +230,25 @@ class IntegratorsScene(Scene):
             for i, name in enumerate(INTEGRATORS):
                 origin = np.array([40.0 + 80.0 * i, 40.0])
                 run = next((r for r in self.runs if r.name == name), None)
-                self._text(surface, view, origin + (-24, 440), SHORT[name], COLORS[name], size)
+                self._text(surface, view, origin + (-24, 420), SHORT[name], COLORS[name], size)
                 pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)), view.pt(origin + (18, 0)), 3)
                 ghost = origin + self.problem.points(x_ref)[-1]
                 pygame.draw.circle(surface, GHOST, view.pt(ghost), max(2, round(view.len(12))), 1)
                 if run is None:
                     continue
+                if run.blew_up_t is not None:
+                    self._text(surface, view, origin + (-36, 380), "blew up", run.color, size)
+                    self._text(surface, view, origin + (-36, 396), f"t={run.blew_up_t:.2f}s", run.color, size)
+                    continue
                 bob = np.clip(origin + self.problem.points(run.ps.x)[-1], -1e4, 1e4)
                 self._spring(surface, view, origin, bob, run.color)
                 pygame.draw.circle(surface, run.color, view.pt(bob), max(2, round(view.len(10))))
-                if run.blew_up_t is not None:
-                    self._text(surface, view, origin + (-36, 400), f"blew up", run.color, size)
-                    self._text(surface, view, origin + (-36, 416), f"t={run.blew_up_t:.2f}s", run.color, size)
         else:
             origin = np.array([240.0, 170.0] if kind == "pendulum" else [240.0, 270.0])
             if kind == "orbit":
                 ellipse = self.problem.exact_orbit_points()
                 pygame.draw.lines(surface, (90, 90, 100), True, view.pts(origin + ellipse), 1)
-            for run in self.runs:
+            for run in self.live():
                 pts = np.clip(origin + self.problem.points(run.ps.x), -1e4, 1e4)
                 if kind == "pendulum":
                     pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), 1)
@@ -254,7 +262,7 @@ class IntegratorsScene(Scene):
                 radius = 13 if kind == "pendulum" else 8 + 3 * (k == 0)
                 pygame.draw.circle(surface, GHOST, view.pt(p), max(2, round(view.len(radius))), 1)
             pygame.draw.circle(surface, (150, 150, 160), view.pt(origin), max(2, round(view.len(4))))
-            y = 490
+            y = 470
             for run in self.runs:
                 if run.blew_up_t is not None:
                     self._text(surface, view, (10, y), f"{run.integrator.title} blew up at "
@@ -335,8 +343,8 @@ class IntegratorsScene(Scene):
             return
         t = np.array(self.sample_times)
         # log10(E/E0): geometric growth (forward Euler) and decay (implicit Euler) are straight lines
-        values = [np.log10(np.maximum(np.array(r.energy)[-len(t):], 1e-9)) for r in self.runs]
-        data = np.concatenate(values + [np.array([-0.02, 0.02])])
+        values = [np.log10(np.maximum(np.array(r.energy)[-len(t):], 1e-300)) for r in self.runs]
+        data = np.concatenate([v[v > -299] for v in values] + [np.array([-0.02, 0.02])])
         lo, hi = max(float(data.min()), -6.0), min(float(data.max()), 6.0)
         pad = 0.08 * (hi - lo)
         lo, hi = lo - pad, hi + pad
