@@ -10,8 +10,14 @@ Controls:
   LMB       grab the nearest particle and drag it; let go and it stays locked there
   RMB       unlock a locked particle (a pin, or one you dropped)
   U         unlock everything and restore the default pins
-Settings: iterations and substeps change live; try --set shear=off, --set tearing=on,
+Settings: iterations and substeps change live; try --set shear=on, --set tearing=on,
 --set pins=corners, --set wind=on.
+
+Why shear is off by default: the slide's cloth has structural rods only, and in 2D shear rods turn
+the cloth into a rigid truss. Yanked hard (say ten cloth widths in one frame) such a truss can come
+back folded over itself and stay jammed: mirror-image cells satisfy every rod, and the seam between
+flipped and unflipped cells stays strained (a real cloth would unfold in the third dimension).
+Without shear the cloth always falls back to hanging (at worst with a crease). R resets.
 """
 
 from __future__ import annotations
@@ -32,7 +38,8 @@ class ClothScene(Scene):
     LMB: grab a particle, drag it, drop it: it stays locked where you drop it.
     RMB: unlock a locked particle.   U: unlock all and restore the default pins.
     Raise `iterations` or `substeps` and watch the stretch fall and the ms per step rise.
-    Effects: gravity, drag, wind, shear, bending, tearing (each on/off).
+    Effects: gravity, drag, wind, shear, bending, tearing (each on/off). Shear is off by default:
+    in 2D it makes the cloth a rigid truss that, yanked hard, can jam folded over itself.
     """
 
     name = "cloth"
@@ -68,7 +75,7 @@ class ClothScene(Scene):
         Effect("gravity", True, "gravity pulls every particle down"),
         Effect("drag", True, "velocity-proportional damping (Verlet 2 -> 1.99)"),
         Effect("wind", False, "a wind field pushes the cloth"),
-        Effect("shear", True, "diagonal rods: resist shearing"),
+        Effect("shear", False, "diagonal rods: resist shearing (a stiff 2D truss: see the docstring)"),
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),
     )

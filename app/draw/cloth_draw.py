@@ -1,10 +1,15 @@
 """Drawing the Verlet cloth: its structural rods as a strain heat map, locked particles marked.
 
 Colour = how stretched a rod is, |length/rest - 1|, in a few buckets (blue: < 0.2 %, red: > 20 %).
-Speed matters (a 64 x 64 cloth has 8000 rods and must draw in a couple of milliseconds), so no rod
-is drawn on its own: each row (and each column) of rods is cut into *runs* of neighbouring rods
-that fall in the same colour bucket, and every run is ONE `pygame.draw.lines` call. A hanging cloth
-has smooth strain, so a row is one or a few runs; torn rods end a run and are not drawn.
+Speed matters: a 64 x 64 cloth has 8000 rods and must draw in a couple of milliseconds, and one
+`pygame.draw.line` per rod costs about 10 ms. Two ways, the faster one chosen automatically:
+  * runs: each row (and column) of rods is cut into runs of neighbouring rods of one colour, and a
+    run is ONE `pygame.draw.lines` call. Few calls when strain is smooth; but the red-black batch
+    order leaves every other rod of a column a little more stretched (an honest artefact of the
+    solver), and then a column is many short runs;
+  * raster: all rods at once in NumPy, one dot per pixel along each rod (a DDA line), written into
+    the surface's pixel array (pygame.surfarray). Cost grows with the pixels drawn, not the calls.
+Torn rods are not drawn.
 """
 
 from __future__ import annotations
@@ -55,6 +60,45 @@ def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: 
     return calls
 
 
+RUNS_LIMIT = 600        # more colour runs than this: rasterise instead of pygame.draw.lines
+MAX_RASTER_DOTS = 40    # rods longer than this on screen are drawn with pygame.draw.line
+
+
+def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: np.ndarray,
+                width: int) -> bool:
+    """Draw rods a[k] -> b[k] (screen points, shape (n, 2)) in STRAIN_COLORS[buckets[k]] by
+    writing their pixels directly; returns False if the surface has no pixel array to write."""
+    try:
+        pixels = pygame.surfarray.pixels2d(surface)
+    except (ValueError, pygame.error):
+        return False
+    try:
+        palette = np.array([surface.map_rgb(c) for c in STRAIN_COLORS], dtype=pixels.dtype)
+        d = (b - a).astype(np.float32)
+        need = np.abs(d).max(axis=1) + 1                  # dots for a gap-free line (DDA)
+        k = int(min(np.ceil(need.max()), MAX_RASTER_DOTS)) if len(need) else 0
+        too_long = need > k
+        for p, q, c in zip(a[too_long].tolist(), b[too_long].tolist(),
+                           buckets[too_long].tolist()):       # rare: a yanked rod
+            pygame.draw.line(surface, STRAIN_COLORS[c], p, q, width)
+        keep = ~too_long
+        a, d, buckets = a[keep].astype(np.float32), d[keep], buckets[keep]
+        t = np.linspace(0.0, 1.0, max(k, 2), dtype=np.float32)  # k dots along every rod
+        # the loop this replaces: for each rod, for each dot: pixel[round(a + t d)] = colour
+        px = (a[:, 0, None] + 0.5 + d[:, 0, None] * t).astype(np.intp).ravel()
+        py = (a[:, 1, None] + 0.5 + d[:, 1, None] * t).astype(np.intp).ravel()
+        colour = np.repeat(palette[buckets], len(t))
+        clip = surface.get_clip()
+        rows_first = pixels.T                                    # (h, w): writes go row-wise
+        for ox, oy in ([(0, 0)] if width < 2 else [(0, 0), (1, 0), (0, 1)]):
+            x, y = px + ox, py + oy
+            inside = (x >= clip.left) & (x < clip.right) & (y >= clip.top) & (y < clip.bottom)
+            rows_first[y[inside], x[inside]] = colour[inside]
+    finally:
+        del pixels                                               # unlock the surface
+    return True
+
+
 def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
                hover: tuple[int, int] | None = None) -> int:
     """Draw the cloth's structural rods coloured by strain, its locked particles as dots, the
@@ -64,22 +108,27 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     width = 2 if view.len(cloth.spacing) >= 10 else 1
     calls = 0
     horizontal, vertical = cloth.sets["structural"].families
-    rows_pts = pts.tolist()
-    calls += draw_runs(surface, rows_pts, strain_buckets(cloth.stretch(horizontal),
-                                                        horizontal.alive), width)
-    cols_pts = pts.transpose(1, 0, 2).tolist()
-    calls += draw_runs(surface, cols_pts, strain_buckets(cloth.stretch(vertical),
-                                                        vertical.alive).T, width)
+    b_h = strain_buckets(cloth.stretch(horizontal), horizontal.alive)
+    b_v = strain_buckets(cloth.stretch(vertical), vertical.alive)
+    runs = int((b_h[:, 1:] != b_h[:, :-1]).sum() + (b_v[1:] != b_v[:-1]).sum())
+    drawn = False
+    if runs > RUNS_LIMIT:
+        a = np.concatenate([pts[:, :-1].reshape(-1, 2), pts[:-1].reshape(-1, 2)])
+        b = np.concatenate([pts[:, 1:].reshape(-1, 2), pts[1:].reshape(-1, 2)])
+        k = np.concatenate([b_h.ravel(), b_v.ravel()])
+        alive = k >= 0
+        drawn = raster_rods(surface, a[alive], b[alive], k[alive], width)
+    if not drawn:
+        calls += draw_runs(surface, pts.tolist(), b_h, width)
+        calls += draw_runs(surface, pts.transpose(1, 0, 2).tolist(), b_v.T, width)
     r_pin = max(2, int(round(view.len(cloth.spacing) * 0.16)))
-    for r, c in zip(*np.nonzero(cloth.locked)):
-        pygame.draw.circle(surface, PIN_COLOR, rows_pts[r][c], r_pin)
+    for p in pts[cloth.locked].tolist():
+        pygame.draw.circle(surface, PIN_COLOR, p, r_pin)
     ring = max(5, r_pin * 2 + 2)
     if cloth.grabbed is not None:
-        r, c = cloth.grabbed
-        pygame.draw.circle(surface, GRAB_COLOR, rows_pts[r][c], ring, 2)
+        pygame.draw.circle(surface, GRAB_COLOR, pts[cloth.grabbed].tolist(), ring, 2)
     elif hover is not None:
-        r, c = hover
-        pygame.draw.circle(surface, HOVER_COLOR, rows_pts[r][c], ring, 1)
+        pygame.draw.circle(surface, HOVER_COLOR, pts[hover].tolist(), ring, 1)
     return calls
 
 

@@ -1,0 +1,281 @@
+"""The Verlet cloth: physics facts, hard cases, the mouse, effects that are off, bad values.
+
+Small grids (10x10 .. 24x24) keep the whole file fast; nothing here measures time."""
+
+import math
+
+import numpy as np
+import pytest
+
+from app.physics.cloth import Cloth, solve_order
+from app.physics.cloth_naive import NaiveCloth
+from app.scene import InputEvent, ParamError
+from scenes.cloth import ClothScene
+
+
+def cloth_scene(**settings) -> ClothScene:
+    return ClothScene({"rows": 12, "cols": 12, **settings})
+
+
+def run(scene: ClothScene, steps: int) -> ClothScene:
+    for _ in range(steps):
+        scene.advance()
+    return scene
+
+
+def hanging_stretch(steps: int = 120, **settings) -> float:
+    return run(cloth_scene(**settings), steps).metrics()["mean_stretch"]
+
+
+def lmb(scene, kind, pos):
+    scene.handle_event(InputEvent(kind, tuple(map(float, pos)), 1))
+
+
+# ----- the vectorised sweep is the slide's loop ---------------------------------------------------
+def test_batches_never_share_a_particle_and_cover_every_rod():
+    rows, cols = 7, 9
+    for name in ("structural", "shear", "bending"):
+        rods = list(solve_order(rows, cols, (name,)))
+        pairs = {frozenset((a, b)) for a, b, _ in rods}
+        assert len(pairs) == len(rods)
+        expected = {"structural": rows * (cols - 1) + (rows - 1) * cols,
+                    "shear": 2 * (rows - 1) * (cols - 1),
+                    "bending": rows * (cols - 2) + (rows - 2) * cols}[name]
+        assert len(rods) == expected
+    cloth = Cloth(rows, cols, 10.0, effects={"shear", "bending"})
+    for rs in cloth.active_sets:
+        for fam in rs.families:
+            for bt in fam.batches:
+                ids = np.arange(rows * cols).reshape(rows, cols)
+                a, b = ids[bt.a].ravel(), ids[bt.b].ravel()
+                both = np.concatenate([a, b])
+                assert len(np.unique(both)) == len(both), (fam.name, "particles shared in a batch")
+
+
+def test_numpy_cloth_matches_the_per_object_python_cloth():
+    c = Cloth(8, 9, 10.0, (5.0, 7.0), effects={"shear", "gravity", "drag"}, dtype=np.float64)
+    n = NaiveCloth(8, 9, 10.0, (5.0, 7.0), sets=("structural", "shear"))
+    c.iterations = n.iterations = 4
+    for _ in range(30):
+        c.step(1 / 60)
+        n.step(1 / 60)
+    naive = np.array(n.positions()).transpose(2, 0, 1)
+    assert np.abs(naive - c.x).max() < 1e-9
+
+
+# ----- hard cases -----------------------------------------------------------------------------------
+def test_pinned_particles_do_not_move_at_all_over_600_steps():
+    scene = cloth_scene(rows=10, cols=10, iterations=4, wind=True, shear=True)
+    pins = scene.cloth.x[:, 0, :].copy()
+    run(scene, 600)
+    assert scene.metrics()["pinned_drift"] == 0.0
+    assert np.array_equal(scene.cloth.x[:, 0, :], pins)
+    corners = run(cloth_scene(pins="corners", iterations=4, bending=True), 200)
+    assert corners.metrics()["pinned_drift"] == 0.0
+
+
+def test_particles_at_the_same_point_give_no_nan():
+    scene = cloth_scene(shear=True, bending=True)
+    c = scene.cloth
+    c.x[:, 5, 5] = c.x[:, 5, 6]                  # two neighbours at one point
+    c.x_prev[:, 5, 5] = c.x_prev[:, 5, 6]
+    run(scene, 5)
+    assert scene.is_finite()
+    c.x[...] = c.x[:, :1, :1]                    # the whole cloth at one point
+    c.x_prev[...] = c.x
+    run(scene, 5)
+    assert scene.is_finite() and math.isfinite(scene.metrics()["mean_stretch"])
+
+
+def test_one_iteration_for_600_steps_stays_finite():
+    scene = run(cloth_scene(rows=10, cols=10, iterations=1, wind=True), 600)
+    assert scene.is_finite()
+    assert scene.metrics()["pinned_drift"] == 0.0
+
+
+def test_hertz_5_stays_finite():
+    scene = run(cloth_scene(hertz=5, shear=True), 300)
+    assert scene.is_finite()
+
+
+def yank(scene: ClothScene, steps_far: int = 10) -> list[int]:
+    """Grab the bottom-middle particle, move it ten cloth widths away in one frame, hold it there,
+    bring it back, drop it, unlock all. Returns the rod counts seen."""
+    c = scene.cloth
+    home = c.x[:, -1, c.cols // 2].copy()
+    width = (c.cols - 1) * c.spacing
+    far = home + np.array([10 * width, -3 * width])
+    lmb(scene, "mouse_down", home)
+    lmb(scene, "mouse_move", far)
+    counts = []
+    for _ in range(steps_far):
+        scene.advance()
+        counts.append(scene.metrics()["constraints"])
+        assert scene.is_finite()
+        assert np.allclose(c.x[:, -1, c.cols // 2], far)     # never torn loose from the mouse
+    lmb(scene, "mouse_move", home)
+    scene.advance()
+    lmb(scene, "mouse_up", home)
+    scene.handle_event(InputEvent("key_down", key="u"))
+    counts.append(scene.metrics()["constraints"])
+    return counts
+
+
+def test_yanked_ten_widths_away_stays_finite_and_recovers_without_tearing():
+    settings = {"drag_coef": 0.05}
+    scene = run(cloth_scene(**settings), 60)
+    counts = yank(scene)
+    run(scene, 600)
+    assert scene.is_finite()
+    reference = run(cloth_scene(**settings), 60 + 11 + 600).metrics()
+    m = scene.metrics()
+    assert m["torn"] == 0 and len(set(counts)) == 1
+    # back to hanging: the stretch of an undisturbed cloth (a 2D fold may leave a crease)
+    assert m["mean_stretch"] < 2 * reference["mean_stretch"] + 1e-3
+    assert m["max_stretch"] < 0.1
+    assert m["pinned_drift"] == 0.0
+
+
+def test_yanked_ten_widths_away_with_tearing_tears_cleanly():
+    scene = run(cloth_scene(tearing=True, shear=True, drag_coef=0.05), 60)
+    before = scene.metrics()["constraints"]
+    counts = yank(scene)
+    run(scene, 300)
+    counts.append(scene.metrics()["constraints"])
+    assert scene.is_finite()
+    assert all(b <= a for a, b in zip([before] + counts, counts))      # never rises
+    assert scene.metrics()["torn"] > 0
+    total = sum(rs.count for rs in scene.cloth.active_sets)
+    assert scene.metrics()["torn"] == total - scene.metrics()["constraints"]
+    assert scene.metrics()["max_stretch"] < 0.1      # what is left hangs quietly
+
+
+# ----- accuracy vs work -------------------------------------------------------------------------------
+def test_mean_stretch_falls_as_iterations_rise():
+    s = [hanging_stretch(iterations=it, shear=True) for it in (1, 3, 10, 30)]
+    assert s[0] > s[1] > s[2] > s[3]
+
+
+def test_at_equal_sweeps_substeps_beat_iterations():
+    s = [hanging_stretch(substeps=sub, iterations=it, shear=True)
+         for sub, it in ((1, 10), (2, 5), (5, 2), (10, 1))]
+    assert s[0] > s[1] > s[2] > s[3]
+
+
+def test_iterations_and_substeps_change_live():
+    scene = cloth_scene()
+    built = scene.cloth
+    scene.set("iterations", 25)
+    scene.set("substeps", 3)
+    assert scene.cloth is built                        # no rebuild
+    sweeps = built.sets["structural"].sweeps
+    scene.advance()
+    assert built.sets["structural"].sweeps - sweeps == 25 * 3
+
+
+# ----- the mouse --------------------------------------------------------------------------------------
+def test_lmb_grab_drag_release_locks_rmb_unlocks_u_restores_pins():
+    scene = run(cloth_scene(), 30)
+    c = scene.cloth
+    start = c.x[:, 8, 3].copy()
+    lmb(scene, "mouse_down", start + 2.0)               # near it, not exactly on it
+    assert c.grabbed == (8, 3)
+    drop = start + np.array([150.0, 40.0])
+    for k in range(1, 6):
+        lmb(scene, "mouse_move", start + (drop - start) * k / 5)
+        scene.advance()
+    lmb(scene, "mouse_up", drop)
+    assert c.grabbed is None and c.locked[8, 3]
+    run(scene, 60)
+    assert np.allclose(c.x[:, 8, 3], drop, atol=1e-3)   # locked where it was dropped
+    assert scene.metrics()["pinned_drift"] == 0.0
+    scene.handle_event(InputEvent("mouse_down", tuple(drop), 3))
+    assert not c.locked[8, 3]
+    run(scene, 30)
+    assert np.linalg.norm(c.x[:, 8, 3] - drop) > 5      # it falls away once unlocked
+    # unlock one default pin with RMB, then U restores every default pin (and only those)
+    pin = c.x[:, 0, 0].copy()
+    scene.handle_event(InputEvent("mouse_down", tuple(pin), 3))
+    assert not c.locked[0, 0]
+    scene.handle_event(InputEvent("key_down", key="u"))
+    assert c.locked[0].all() and c.locked.sum() == c.cols
+    assert np.allclose(c.x[:, 0, :], c.rest_x[:, 0, :])
+
+
+def test_lmb_far_from_the_cloth_grabs_nothing():
+    scene = cloth_scene()
+    lmb(scene, "mouse_down", (5.0, 700.0))
+    assert scene.cloth.grabbed is None
+
+
+def test_grab_follows_the_mouse_without_nan_however_fast():
+    scene = cloth_scene(shear=True)
+    c = scene.cloth
+    lmb(scene, "mouse_down", c.x[:, 6, 6])
+    rng = np.random.default_rng(1)
+    for _ in range(60):
+        target = rng.uniform(-1e5, 1e5, 2)
+        lmb(scene, "mouse_move", target)
+        scene.advance()
+        assert np.allclose(c.x[:, 6, 6], target.astype(np.float32))
+    assert scene.is_finite()
+
+
+# ----- effects off cost nothing ----------------------------------------------------------------------
+def test_effects_that_are_off_are_not_computed():
+    scene = run(cloth_scene(shear=False, bending=False, wind=False, tearing=False), 5)
+    c = scene.cloth
+    assert [rs.name for rs in c.active_sets] == ["structural"]
+    assert c.sets["shear"].sweeps == 0 and c.sets["bending"].sweeps == 0
+    assert [name for name, _ in c.forces] == ["drag", "gravity"]
+    assert c.spent["wind"] == 0.0 and c.spent["tearing"] == 0.0
+    assert set(scene.effect_costs()) == {"drag", "gravity", "structural"}
+    scene.set("shear", True)                            # switched on live
+    run(scene, 2)
+    assert c.sets["shear"].sweeps == 2 * scene.p["iterations"]
+    assert scene.metrics()["constraints"] == 11 * 12 * 2 + 2 * 11 * 11
+    scene.set("gravity", False)
+    assert [name for name, _ in c.forces] == ["drag"]
+
+
+# ----- bad values ------------------------------------------------------------------------------------
+@pytest.mark.parametrize("key,value", [("iterations", 0), ("iterations", 101), ("rows", float("nan")),
+                                       ("substeps", 51), ("cols", 1), ("pins", "left"),
+                                       ("tear_ratio", 1.0), ("spacing", float("inf")),
+                                       ("shear", "maybe"), ("drag_coef", -0.1)])
+def test_bad_values_are_refused(key, value):
+    with pytest.raises(ParamError):
+        ClothScene({key: value})
+    scene = cloth_scene()
+    with pytest.raises(ParamError):
+        scene.set(key, value)
+
+
+def test_snapshot_restore_and_determinism():
+    a = run(cloth_scene(wind=True, tearing=True), 20)
+    snap = a.snapshot()
+    h = a.state_hash()
+    run(a, 20)
+    a.restore(snap)
+    assert a.state_hash() == h
+    b = run(cloth_scene(wind=True, tearing=True), 20)
+    assert b.state_hash() == h
+
+
+def test_draws_headless_with_torn_rods_and_a_grab():
+    import pygame
+    from app.draw.view import View
+    scene = run(cloth_scene(tearing=True), 10)
+    yank(scene, 3)
+    surface = pygame.Surface(scene.world_size)
+    scene.draw(surface, View.fit(scene.world_size, (0, 0, 480, 360)))
+    assert any(isinstance(line, str) for line in scene.hud_lines())
+
+
+def test_the_benchmark_runs_quickly(tmp_path):
+    from app.bench import Report
+    from app.bench.cloth import run as bench
+    out = bench(Report(out_dir=str(tmp_path), quick=True))
+    assert out["big_ms"] > 0 and out["naive"]["speedup"] > 0 and out["draw"]["draw_ms"] > 0
+    assert all(math.isfinite(g["mean_stretch"]) for g in out["grid"])
+    assert (tmp_path / "cloth.png").exists()
