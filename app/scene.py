@@ -224,7 +224,7 @@ class Scene:
             return changed and self.param(key).rebuild
         changed = (key in self.on) != parsed
         (self.on.add if parsed else self.on.discard)(key)
-        if changed:
+        if changed and getattr(self, "_built", False):   # not while the constructor runs
             self.effect_changed(key, parsed)
         return changed and self.effect(key).rebuild
 
@@ -259,6 +259,7 @@ class Scene:
         self.rng = np.random.default_rng(self.p["seed"])
         self.random = random.Random(self.p["seed"])
         self.build()
+        self._built = True
 
     def reset(self) -> None:
         """Rebuild the world from the current params and effects (the R key)."""
