@@ -135,6 +135,11 @@ def app_main(argv: list[str]) -> int:
                 cls.check_setting(key, value)
             except ParamError as e:
                 raise UsageError(f"--set {key}={value}: {cls.name} {e}") from None
+    for cls in classes:
+        try:
+            cls.resolve({k: v for k, v in overrides.items() if k in cls.setting_names()})
+        except ParamError as e:
+            raise UsageError(f"scene {cls.name}: {e}") from None
 
     events = None
     if args.input:

@@ -155,13 +155,25 @@ def render(scene: Scene, path: str) -> None:
     """Draw the scene's current frame with its own drawing code and save it as a PNG."""
     import pygame
 
-    from app.draw.text import blit_lines
+    from app.draw import hud
+    from app.draw.text import font
     from app.draw.view import View
 
     surface = pygame.Surface(scene.world_size)
     surface.fill(scene.background)
     scene.draw(surface, View())
-    blit_lines(surface, [f"{scene.title}   t = {scene.time:.2f} s"], (10, 8), size=22)
+    # The HUD as the window shows it (without fps, which headless has none of).
+    width = surface.get_width() - 16
+    lines = [hud.Line(scene.title or scene.name, hud.ACCENT_COLOR),
+             f"t = {scene.time:.2f} s  |  dt = 1/{scene.p['hertz']} s"
+             + (f" in {scene.p['substeps']} substeps" if scene.p["substeps"] > 1 else "")]
+    lines += [str(x) for x in scene.hud_lines()]
+    hud.text_box(surface, lines, (8, 8), max_width=min(width, 640))
+    items = [f"{k} {hud.fmt_number(v)}" for k, v in scene.metrics().items()]
+    metric_lines = hud.pack(items, font(hud.HUD_SIZE), width - 16)[:2] if scene.metrics_box else []
+    if metric_lines:
+        hud.text_box(surface, metric_lines, (8, surface.get_height() - 6), max_width=width,
+                     from_bottom=True)
     folder = os.path.dirname(path)
     if folder:
         os.makedirs(folder, exist_ok=True)

@@ -175,6 +175,7 @@ class Scene:
     effects: tuple[Effect, ...] = ()
     world_size: tuple[int, int] = (960, 720)   # the area the scene draws in, world pixels
     background: tuple[int, int, int] = (22, 24, 30)
+    metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
         self.p: dict[str, Any] = {prm.name: prm.default for prm in self.all_params()}
@@ -214,6 +215,23 @@ class Scene:
             return Param(key, True, bool).parse(value)
         raise ParamError(f"scene '{cls.name}' has no parameter or effect '{key}'; accepted: "
                          + ", ".join(cls.setting_names()))
+
+    @classmethod
+    def check_combination(cls, values: Mapping[str, Any]) -> None:
+        """Refuse (ParamError) a combination of valid values that does not fit together, e.g.
+        more balls lifted than a cradle has. The command line calls it before building; the
+        window's panel instead lets the scene clamp and say so in its HUD."""
+
+    @classmethod
+    def resolve(cls, overrides: Mapping[str, Any]) -> dict[str, Any]:
+        """All param values with `overrides` applied and checked (ParamError if not accepted)."""
+        values = {prm.name: prm.default for prm in cls.all_params()}
+        for key, value in overrides.items():
+            parsed = cls.check_setting(key, value)
+            if cls.param(key) is not None:
+                values[key] = parsed
+        cls.check_combination(values)
+        return values
 
     def _assign(self, key: str, value: Any) -> bool:
         """Set a param or effect; return True if the change needs a rebuild."""

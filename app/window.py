@@ -749,7 +749,7 @@ class Window:
         hud.text_box(screen, self.hud_lines(), (area.left + 8, area.top + 8),
                      max_width=min(area.width - 16, int(640 * s)))
         bottom = area.bottom - 6
-        metric_lines = self.metric_lines(area.width - 16)
+        metric_lines = self.metric_lines(area.width - 16) if scene.metrics_box else []
         if metric_lines:
             bottom = hud.text_box(screen, metric_lines, (area.left + 8, area.bottom - 6),
                                   max_width=area.width - 16, from_bottom=True).top

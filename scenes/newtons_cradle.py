@@ -37,7 +37,8 @@ Break it on purpose: gap -0.01 (touching), gap 5, substeps 2, elasticity 0.9 (th
 the swings shrink), damping 0.99 (air drag: space.damping is the fraction of velocity kept per
 second; 1 is none. Negative values would abort pymunk, so the range is 0..1).
 
-Metrics (DESIGN.md): `lifted` (k actually lifted: at most balls-1, a larger value is clamped),
+Metrics (DESIGN.md): `lifted` (k actually lifted: at most balls-1; the command line refuses a
+larger value, the panel clamps it and the HUD says so),
 `balls_out` (balls that swing out past half the release amplitude in the first half-swing after
 the first impact; counted while that window is open, then frozen), `middle_max_drift` (largest
 distance from its rest position, px, of any ball that is neither lifted nor expected out: balls
@@ -62,7 +63,7 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
-from app.scene import Param
+from app.scene import Param, ParamError
 
 RADIUS = 24.0            # ball radius, px
 STRING = 280.0           # string length, anchor to ball centre, px
@@ -107,6 +108,13 @@ class NewtonsCradleScene(PymunkScene):
     world_keys = ("space", "bodies", "strings", "track")
 
     # ----- building -------------------------------------------------------------------------
+    @classmethod
+    def check_combination(cls, values) -> None:
+        # The command line refuses it; the panel's slider clamps it and the HUD says so.
+        if values["lifted"] > values["balls"] - 1:
+            raise ParamError(f"lifted={values['lifted']} does not fit a row of {values['balls']} "
+                             f"balls; accepted: lifted from 1 to balls-1 ({values['balls'] - 1})")
+
     def build_space(self, space: pymunk.Space) -> None:
         space.collision_slop = SLOP
         space.damping = self.p["damping"]

@@ -175,3 +175,10 @@ def test_r_key_in_the_input_resets_the_scene_like_the_window(toy_registry, capsy
     assert main(["--headless", "--scene", "toy", "--steps", "15", "--json"]) == 0
     fresh = json.loads(capsys.readouterr().out)
     assert reset_run["state_hash"] == fresh["state_hash"]
+
+
+def test_values_that_do_not_fit_together_are_refused(capsys):
+    assert main(["--headless", "--scene", "newtons_cradle", "--set", "balls=3",
+                 "--set", "lifted=3"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "lifted" in err and "balls-1" in err

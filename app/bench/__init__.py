@@ -83,6 +83,17 @@ def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1, number
     return statistics.median(times)
 
 
+def machine_note() -> str:
+    """CPU count and load average, printed first: timings made on a busy machine are noisy."""
+    cores = os.cpu_count() or 1
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return f"{cores} cores (load average unknown)"
+    busy = "  (busy: timings will be noisy)" if load > 0.5 else ""
+    return f"{cores} cores, load average {load:.2f} over the last minute{busy}"
+
+
 def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-results",
                    quick: bool = False) -> int:
     """Run one benchmark or all; print tables (or JSON); return an exit code."""
@@ -91,6 +102,7 @@ def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-resu
     names = list(BENCHMARKS) if which == "all" else [which]
     report = Report(out_dir, as_json, quick)
     results: dict[str, Any] = {}
+    report.say(machine_note())
     for name in names:
         module = importlib.import_module(BENCHMARKS[name])
         report.say(f"=== bench {name} ===")

@@ -14,7 +14,8 @@ median microseconds per step, timed over a batch of steps). It then reports
     criterion) beside the theoretical one;
   * which integrator reaches a relative error of 1e-3 and 1e-6 in the least time.
 
-Timings are medians but the machine may be busy with other work: compare them within one run.
+Timings are medians, but another process may load the machine: compare them within one run
+(the report prints the load average when it starts).
 """
 
 from __future__ import annotations
@@ -110,8 +111,7 @@ def _json_number(x: float | None) -> float | None:
 
 def run(report: Report) -> dict[str, Any]:
     quick = report.quick
-    report.say("Work-precision of the six integrators (timings measured while other work ran; "
-               "compare them within this run only).")
+    report.say("Work-precision of the six integrators (compare timings within this run only).")
     results: dict[str, Any] = {"problems": {}, "order": {}, "stability": {}, "fastest": {}}
     charts: list[LineChart] = []
     total = len(PROBLEMS) * len(INTEGRATORS)

@@ -25,7 +25,7 @@ never start spinning and their rotation drops out of the energy. Point masses ar
 
 The step uses plain float arithmetic (the math module): one state of four numbers is far too small
 for arrays to pay off: the same RK4 step on a 4-element NumPy array took ~65 us against ~20 us
-here (measured while other work ran). `positions` returns a NumPy array for drawing and comparing.
+here. `positions` returns a NumPy array for drawing and comparing.
 """
 
 from __future__ import annotations
