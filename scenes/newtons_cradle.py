@@ -67,7 +67,7 @@ from app.scene import Param, ParamError
 
 RADIUS = 24.0            # ball radius, px
 STRING = 280.0           # string length, anchor to ball centre, px
-ANCHOR_Y = 130.0         # height of the anchor bar
+ANCHOR_Y = 230.0         # height of the anchor bar (below the HUD box)
 MASS = 1.0
 SLOP = 0.01              # collision_slop: allowed overlap of resting contacts, px
 
