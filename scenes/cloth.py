@@ -46,9 +46,9 @@ class ClothScene(Scene):
     title = "Verlet cloth"
     category = "Hand-written physics"
     params = (
-        Param("rows", 30, int, 2, 256, help="particles from top to bottom"),
+        Param("rows", 28, int, 2, 256, help="particles from top to bottom"),
         Param("cols", 40, int, 2, 256, help="particles from left to right"),
-        Param("spacing", 18.0, float, 2.0, 60.0,
+        Param("spacing", 16.0, float, 2.0, 60.0,
               help="rest length of a rod in px (shrunk if the cloth would not fit the world)"),
         Param("iterations", 10, int, 1, 100,
               help="relaxation sweeps over all rods per substep", rebuild=False),
@@ -86,7 +86,7 @@ class ClothScene(Scene):
         rows, cols = p["rows"], p["cols"]
         w, h = self.world_size
         spacing = min(p["spacing"], 0.8 * w / (cols - 1), 0.7 * h / (rows - 1))
-        origin = ((w - spacing * (cols - 1)) / 2, 0.2 * h)   # below the HUD
+        origin = ((w - spacing * (cols - 1)) / 2, 0.28 * h)   # below the window's HUD box
         dtype = np.float32 if p["precision"] == "float32" else np.float64
         self.cloth = Cloth(rows, cols, spacing, origin, p["pins"], self.on, dtype)
         self.cloth.world = (float(w), float(h))
@@ -180,15 +180,13 @@ class ClothScene(Scene):
         step_ms = sum(costs.values()) + self._costs.get("verlet", 0.0)
         sets = "+".join(rs.name for rs in c.active_sets)
         it, sub = self.p["iterations"], self.p["substeps"]
-        lines = [
-            f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets})",
+        torn = f", {m['torn']} torn" if m["torn"] else ""
+        return [
+            "LMB: move+lock   RMB: unlock   U: unlock all",
+            f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets}){torn}",
             f"{it} iterations x {sub} substeps = {it * sub} sweeps/step: {step_ms:.2f} ms/step",
             f"stretch: mean {m['mean_stretch'] * 100:.2f}%  max {m['max_stretch'] * 100:.1f}%",
         ]
-        if m["torn"]:
-            lines.append(f"torn rods: {m['torn']}")
-        lines.append("LMB grab + lock   RMB unlock   U unlock all")
-        return lines
 
     # ----- state --------------------------------------------------------------------------------
     def state_arrays(self):
