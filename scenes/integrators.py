@@ -3,9 +3,10 @@
 What it shows: the same problem (a mass on a spring, a pendulum, or a two-body orbit) run side
 by side by forward Euler, symplectic Euler, Verlet, midpoint (RK2), RK4 and implicit Euler, each in
 its own colour, with the exact (or reference) solution as a white ghost. Left: the systems.
-Right, top: the phase portrait (position against velocity; the exact orbit is the white loop).
-Right, bottom: energy over time, E/E0. Bottom left: per integrator the microseconds per step
-(measured while it runs), the relative phase-space error against the exact solution, and E/E0.
+Right: the phase portrait (position against velocity; the exact orbit is the grey loop). Top
+right: energy over time, E/E0 on a log axis. Bottom: per integrator the derivative evaluations
+and microseconds per step (measured while it runs), the relative phase-space error against the
+exact solution, E/E0, and when it blew up. The top left stays empty for the window's HUD.
 
 The lecture idea: explicit methods are cheap per step but only conditionally stable, implicit
 methods cost a linear solve per step and are stable at any step. Turn `hertz` down and watch
@@ -34,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pygame
 
-from app.draw.text import font
+from app.draw.text import TEXT, font
 from app.draw.view import View
 from app.physics.integrators import INTEGRATORS, Integrator
 from app.physics.particles import ParticleSystem
@@ -46,15 +47,49 @@ COLORS = {"euler": (230, 97, 76), "symplectic_euler": (250, 150, 60), "verlet": 
 SHORT = {"euler": "Euler", "symplectic_euler": "sympl.", "verlet": "Verlet",
          "midpoint": "midpt", "rk4": "RK4", "implicit_euler": "impl."}
 GHOST = (235, 235, 235)
+LABEL = (200, 200, 210)
 BLOWUP_SIZE = 1000.0        # a run farther than this many problem scales away has blown up
 SAMPLE_DT = 1.0 / 120.0     # plots keep at most 120 samples per simulated second
 PLOT_SECONDS = 10.0         # the energy plot shows the last 10 s
+TIMING_WINDOW = 61          # us/step is the median of this many recent steps
 
-# Layout in world pixels (960 x 720, y down): x, y, w, h.
-SYSTEM_RECT = (0, 0, 480, 520)
-TABLE_RECT = (0, 525, 480, 195)
-PHASE_RECT = (490, 10, 460, 345)
-ENERGY_RECT = (490, 370, 460, 340)
+# Layout in world pixels (960 x 720, y down): x, y, w, h. The window's HUD box covers about
+# 650 x 195 px at the top left, so that corner is left empty; the bottom strip is our table.
+SYSTEM_RECT = (0, 200, 480, 338)
+PHASE_RECT = (490, 200, 462, 338)
+ENERGY_RECT = (658, 6, 294, 188)
+TABLE_RECT = (0, 544, 960, 176)
+SPRING_DRAW_SCALE = 0.8     # the spring column is drawn at 80 % so the bobs fit the panel
+TABLE_SIZE = 24             # font sizes at zoom 1 (pygame's default font at 24: 16 px glyphs)
+TITLE_SIZE = 20
+SMALL_SIZE = 18
+
+
+class Ring:
+    """The last n samples of k numbers in one preallocated array: the plots read it as an array
+    every frame, where a deque of tuples would cost an element-by-element conversion."""
+
+    def __init__(self, n: int, k: int = 1):
+        self.data = np.zeros((n, k))
+        self.head = 0           # where the next sample goes
+        self.count = 0
+
+    def append(self, sample) -> None:
+        self.data[self.head] = sample
+        self.head = (self.head + 1) % len(self.data)
+        self.count = min(self.count + 1, len(self.data))
+
+    def __len__(self) -> int:
+        return self.count
+
+    def last(self) -> np.ndarray:
+        return self.data[self.head - 1]
+
+    def values(self) -> np.ndarray:
+        """The samples, oldest first, shape (count, k)."""
+        if self.count < len(self.data):
+            return self.data[:self.count]
+        return np.concatenate((self.data[self.head:], self.data[:self.head]))
 
 
 @dataclass
@@ -68,10 +103,10 @@ class Run:
     blew_up_t: float | None = None
     error: float = 0.0
     energy_ratio: float = 1.0
-    step_seconds: deque = field(default_factory=lambda: deque(maxlen=31))
-    energy: deque = field(default_factory=lambda: deque(maxlen=int(PLOT_SECONDS / SAMPLE_DT)))
-    phase: deque = field(default_factory=lambda: deque(maxlen=400))
-    trail: deque = field(default_factory=lambda: deque(maxlen=400))
+    step_seconds: deque = field(default_factory=lambda: deque(maxlen=TIMING_WINDOW))
+    energy: Ring = field(default_factory=lambda: Ring(int(PLOT_SECONDS / SAMPLE_DT)))
+    phase: Ring = field(default_factory=lambda: Ring(400, 2))
+    trail: Ring = field(default_factory=lambda: Ring(400, 2))
 
     @property
     def step_us(self) -> float:
@@ -83,6 +118,7 @@ class IntegratorsScene(Scene):
     name = "integrators"
     title = "Integrator lab: what accuracy costs"
     category = "Particles"
+    metrics_box = False          # the scene draws its own table of the metrics
     params = (
         Param("problem", "spring", str, choices=tuple(PROBLEMS),
               help="the system every integrator runs: mass on a spring, pendulum, two-body orbit"),
@@ -100,11 +136,13 @@ class IntegratorsScene(Scene):
         ps0 = self.problem.make_system()
         self.e0 = self.problem.energy(ps0.x, ps0.v)
         self.t = 0.0                                   # simulated time, advanced per substep
-        self.sample_times: deque = deque(maxlen=int(PLOT_SECONDS / SAMPLE_DT))
-        self.exact_trail: deque = deque(maxlen=400)
+        self.turn = 0                                  # which live run is timed first this step
+        self.sample_times = Ring(int(PLOT_SECONDS / SAMPLE_DT))
+        self.exact_phase = (0.0, 0.0)
         self.last_sample = -math.inf
         self.curve = self.problem.phase_curve()
         self._exact_cache: tuple[float, np.ndarray, np.ndarray] | None = None
+        self._texts: dict = {}                         # rendered labels, reused across frames
         self._sample()
 
     def live(self) -> list[Run]:
@@ -117,7 +155,14 @@ class IntegratorsScene(Scene):
         return self._exact_cache[1], self._exact_cache[2]
 
     def step(self, h: float) -> None:
-        for run in self.live():
+        # Timing: whichever run goes first after the window drew a frame finds the CPU caches
+        # and branch predictors full of drawing code (and may pay for a garbage collection the
+        # drawing set off): timed first every step, forward Euler looked 2-4x slower than it is.
+        # So the order rotates every step and the median over TIMING_WINDOW steps drops those.
+        runs = self.live()
+        k = self.turn % len(runs) if runs else 0
+        self.turn += 1
+        for run in runs[k:] + runs[:k]:                # the runs are independent: order is free
             ps = run.ps
             before = ps.x, ps.v           # integrators make new arrays: these stay the last good state
             t0 = time.perf_counter()
@@ -137,7 +182,7 @@ class IntegratorsScene(Scene):
         self.last_sample = self.t
         self.sample_times.append(self.t)
         x, v = self.exact()
-        self.exact_trail.append(self.problem.phase(x, v))
+        self.exact_phase = self.problem.phase(x, v)
         for run in self.runs:
             if run.blew_up_t is None:
                 run.energy_ratio = self.problem.energy(run.ps.x, run.ps.v) / self.e0
@@ -166,12 +211,13 @@ class IntegratorsScene(Scene):
         return {run.name: run.step_us / 1000.0 for run in self.live()}
 
     def hud_lines(self) -> list[str]:
-        z = self.omega_h
-        lines = [f"{self.problem.title}: omega*dt = {z:.3f}   (limits: Verlet/symplectic 2, "
-                 f"RK4 2.83, Euler/midpoint none, implicit none)"]
-        for run in self.runs:
-            if run.blew_up_t is not None:
-                lines.append(f"{run.integrator.title} blew up at t = {run.blew_up_t:.2f} s")
+        """Two short lines at most: omega*dt against the limits, and the first blow-up (the
+        table has the rest)."""
+        lines = [f"{self.problem.title}: omega*dt = {self.omega_h:.3f}  (limits: 2, RK4 2.83)"]
+        dead = sorted((r for r in self.runs if r.blew_up_t is not None), key=lambda r: r.blew_up_t)
+        if dead:
+            more = f"  (+{len(dead) - 1} more)" if len(dead) > 1 else ""
+            lines.append(f"{SHORT[dead[0].name]} blew up at t = {dead[0].blew_up_t:.2f} s{more}")
         return lines
 
     def state_arrays(self):
@@ -196,55 +242,73 @@ class IntegratorsScene(Scene):
     # ----- drawing -------------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view: View) -> None:
         self.metrics()                                   # refresh errors and energies for the table
-        size = max(11, int(round(15 * view.scale)))
-        self._draw_systems(surface, view, size)
-        self._draw_table(surface, view, size)
-        self._draw_phase(surface, view, size)
-        self._draw_energy(surface, view, size)
+        self._draw_systems(surface, view)
+        self._draw_table(surface, view)
+        self._draw_phase(surface, view)
+        self._draw_energy(surface, view)
+
+    def _size(self, view: View, size: int) -> int:
+        return max(10, int(round(size * view.scale)))
+
+    def _render(self, text: str, color, size: int) -> pygame.Surface:
+        """font(size).render, remembered: most labels are the same every frame."""
+        key = (text, color, size, TEXT.scale)
+        label = self._texts.get(key)
+        if label is None:
+            if len(self._texts) > 1000:                  # numbers change: forget now and then
+                self._texts.clear()
+            label = self._texts[key] = font(size).render(text, True, color)
+        return label
 
     def _screen_rect(self, view: View, rect) -> pygame.Rect:
         x, y = view.pt(rect[:2])
         return pygame.Rect(x, y, round(view.len(rect[2])), round(view.len(rect[3])))
 
-    def _frame(self, surface, view, rect, title: str, size: int, bottom: bool = False) -> pygame.Rect:
-        """A panel with its title at the top (or at the bottom, clear of the shell's overlay)."""
+    def _frame(self, surface, view, rect, title: str, bottom: bool = False) -> pygame.Rect:
+        """A panel with its title at the top (or at the bottom)."""
         r = self._screen_rect(view, rect)
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
-        label = font(size).render(title, True, (200, 200, 210))
+        label = self._render(title, LABEL, self._size(view, TITLE_SIZE))
         surface.blit(label, (r.x + 6, r.bottom - label.get_height() - 4 if bottom else r.y + 4))
         return r
 
-    def _text(self, surface, view, pos, text, color, size) -> None:
-        surface.blit(font(size).render(text, True, color), view.pt(pos))
+    def _text(self, surface, view, pos, text, color, size, right: bool = False) -> None:
+        """Text at a world point (its top-left, or its top-right if `right`)."""
+        label = self._render(text, color, self._size(view, size))
+        x, y = view.pt(pos)
+        surface.blit(label, (x - label.get_width() if right else x, y))
 
     # left: the systems
-    def _draw_systems(self, surface, view, size) -> None:
+    def _draw_systems(self, surface, view) -> None:
         clip = self._frame(surface, view, SYSTEM_RECT, f"{self.problem.title}  (white ring: exact)",
-                           size, bottom=True)
+                           bottom=True)
         old_clip = surface.get_clip()
-        surface.set_clip(clip)
+        surface.set_clip(clip.clip(old_clip))
         x_ref, _ = self.exact()
         kind = self.problem.name
+        left, top = SYSTEM_RECT[0], SYSTEM_RECT[1]
         if kind == "spring":
+            k = SPRING_DRAW_SCALE
             for i, name in enumerate(INTEGRATORS):
-                origin = np.array([40.0 + 80.0 * i, 40.0])
+                origin = np.array([left + 40.0 + 80.0 * i, top + 22.0])
                 run = next((r for r in self.runs if r.name == name), None)
-                self._text(surface, view, origin + (-24, 420), SHORT[name], COLORS[name], size)
+                color = COLORS[name] if run else (110, 110, 110)
+                self._text(surface, view, origin + (-30, 270), SHORT[name], color, TITLE_SIZE)
                 pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)), view.pt(origin + (18, 0)), 3)
-                ghost = origin + self.problem.points(x_ref)[-1]
+                ghost = origin + k * self.problem.points(x_ref)[-1]
                 pygame.draw.circle(surface, GHOST, view.pt(ghost), max(2, round(view.len(12))), 1)
                 if run is None:
                     continue
                 if run.blew_up_t is not None:
-                    self._text(surface, view, origin + (-36, 380), "blew up", run.color, size)
-                    self._text(surface, view, origin + (-36, 396), f"t={run.blew_up_t:.2f}s", run.color, size)
+                    self._text(surface, view, origin + (-36, 60), "blew up", run.color, SMALL_SIZE)
+                    self._text(surface, view, origin + (-36, 78), f"t={run.blew_up_t:.2f}s", run.color, SMALL_SIZE)
                     continue
-                bob = np.clip(origin + self.problem.points(run.ps.x)[-1], -1e4, 1e4)
+                bob = np.clip(origin + k * self.problem.points(run.ps.x)[-1], -1e4, 1e4)
                 self._spring(surface, view, origin, bob, run.color)
                 pygame.draw.circle(surface, run.color, view.pt(bob), max(2, round(view.len(10))))
         else:
-            origin = np.array([240.0, 170.0] if kind == "pendulum" else [240.0, 270.0])
+            origin = np.array([240.0, top + 30.0] if kind == "pendulum" else [270.0, top + 150.0])
             if kind == "orbit":
                 ellipse = self.problem.exact_orbit_points()
                 pygame.draw.lines(surface, (90, 90, 100), True, view.pts(origin + ellipse), 1)
@@ -253,21 +317,15 @@ class IntegratorsScene(Scene):
                 if kind == "pendulum":
                     pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), 1)
                 elif len(run.trail) > 1:
-                    trail = np.clip(origin + np.array(run.trail), -1e4, 1e4)
+                    trail = np.clip(origin + run.trail.values(), -1e4, 1e4)
                     pygame.draw.lines(surface, run.color, False, view.pts(trail), 1)
-                for k, p in enumerate(pts):
-                    radius = 10 if kind == "pendulum" else 6 + 3 * (k == 0)
+                for j, p in enumerate(pts):
+                    radius = 10 if kind == "pendulum" else 6 + 3 * (j == 0)
                     pygame.draw.circle(surface, run.color, view.pt(p), max(2, round(view.len(radius))))
-            for k, p in enumerate(origin + self.problem.points(x_ref)):
-                radius = 13 if kind == "pendulum" else 8 + 3 * (k == 0)
+            for j, p in enumerate(origin + self.problem.points(x_ref)):
+                radius = 13 if kind == "pendulum" else 8 + 3 * (j == 0)
                 pygame.draw.circle(surface, GHOST, view.pt(p), max(2, round(view.len(radius))), 1)
             pygame.draw.circle(surface, (150, 150, 160), view.pt(origin), max(2, round(view.len(4))))
-            y = 470
-            for run in self.runs:
-                if run.blew_up_t is not None:
-                    self._text(surface, view, (10, y), f"{run.integrator.title} blew up at "
-                               f"t={run.blew_up_t:.2f} s", run.color, size)
-                    y -= 18
         surface.set_clip(old_clip)
 
     def _spring(self, surface, view, a, b, color) -> None:
@@ -280,26 +338,34 @@ class IntegratorsScene(Scene):
         pts = a + s[:, None] * d + wiggle[:, None] * normal
         pygame.draw.lines(surface, color, False, view.pts(pts), 1)
 
-    # bottom left: the table
-    def _draw_table(self, surface, view, size) -> None:
-        self._frame(surface, view, TABLE_RECT, "integrator", size)
-        x0, y0 = TABLE_RECT[0] + 8, TABLE_RECT[1] + 26
-        for x, head in ((150, "us/step"), (236, "error"), (320, "E/E0")):
-            self._text(surface, view, (x0 + x, TABLE_RECT[1] + 4), head, (200, 200, 210), size)
+    # bottom: the table
+    def _draw_table(self, surface, view) -> None:
+        r = self._screen_rect(view, TABLE_RECT)
+        pygame.draw.rect(surface, (32, 35, 44), r)
+        pygame.draw.rect(surface, (70, 74, 88), r, 1)
+        x0, y0 = TABLE_RECT[0] + 10, TABLE_RECT[1] + 4
+        # (header, world x, right-aligned?)
+        columns = (("integrator", 30, False), ("f evals", 300, True), ("us/step", 420, True),
+                   ("error", 545, True), ("E/E0", 660, True), ("", 700, False))
+        for head, x, right in columns:
+            self._text(surface, view, (x0 + x, y0), head, LABEL, TABLE_SIZE, right)
         for i, (name, info) in enumerate(INTEGRATORS.items()):
-            y = y0 + 26 * i
+            y = y0 + 26 + 24 * i
             run = next((r for r in self.runs if r.name == name), None)
             color = COLORS[name] if run else (110, 110, 110)
-            pygame.draw.rect(surface, color, (*view.pt((x0, y + 2)), round(view.len(10)), round(view.len(10))))
-            self._text(surface, view, (x0 + 16, y), info.title, color, size)
+            pygame.draw.rect(surface, color, (*view.pt((x0 + 4, y + 3)), round(view.len(14)), round(view.len(14))))
+            self._text(surface, view, (x0 + 30, y), info.title, color, TABLE_SIZE)
+            evals = f"{info.evaluations}" if info.explicit else f"{info.evaluations} + CG"
+            self._text(surface, view, (x0 + 300, y), evals, color, TABLE_SIZE, True)
             if run is None:
-                self._text(surface, view, (x0 + 150, y), "off", color, size)
+                self._text(surface, view, (x0 + 420, y), "off", color, TABLE_SIZE, True)
                 continue
-            self._text(surface, view, (x0 + 150, y), f"{run.step_us:7.1f}", color, size)
-            self._text(surface, view, (x0 + 230, y), f"{run.error:9.2e}", color, size)
-            self._text(surface, view, (x0 + 320, y), f"{run.energy_ratio:.4g}", color, size)
+            cells = (f"{run.step_us:.1f}", f"{run.error:.2e}", f"{run.energy_ratio:.4g}")
+            for (_, x, _), text in zip(columns[2:5], cells):
+                self._text(surface, view, (x0 + x, y), text, color, TABLE_SIZE, True)
             if run.blew_up_t is not None:
-                self._text(surface, view, (x0 + 395, y), f"blew up", color, size)
+                self._text(surface, view, (x0 + 700, y), f"blew up at t = {run.blew_up_t:.2f} s",
+                           color, TABLE_SIZE)
 
     # right: the two plots
     def _plot_map(self, rect, xlo, xhi, ylo, yhi):
@@ -312,38 +378,40 @@ class IntegratorsScene(Scene):
             return np.clip(pts, -1e4, 1e4)
         return to_world
 
-    def _draw_phase(self, surface, view, size) -> None:
+    def _draw_phase(self, surface, view) -> None:
         qlab, plab = self.problem.phase_labels
-        clip = self._frame(surface, view, PHASE_RECT, f"phase portrait: {plab} against {qlab}", size)
+        clip = self._frame(surface, view, PHASE_RECT, f"phase portrait: {plab} against {qlab}")
         c = self.curve
         qlo, qhi = c[:, 0].min(), c[:, 0].max()
         plo, phi = c[:, 1].min(), c[:, 1].max()
         qpad, ppad = 0.35 * (qhi - qlo), 0.35 * (phi - plo)
         to_world = self._plot_map(PHASE_RECT, qlo - qpad, qhi + qpad, plo - ppad, phi + ppad)
         old_clip = surface.get_clip()
-        surface.set_clip(clip.inflate(-2, -24).move(0, 10))
+        surface.set_clip(clip.inflate(-2, -24).move(0, 10).clip(old_clip))
         pygame.draw.lines(surface, (150, 150, 155), True, view.pts(to_world(c[:, 0], c[:, 1])), 1)
         for run in self.runs:
             if len(run.phase) > 1:
-                pts = np.array(run.phase)
+                pts = run.phase.values()
                 pygame.draw.lines(surface, run.color, False, view.pts(to_world(pts[:, 0], pts[:, 1])), 2)
-            if run.phase:
-                q, p = run.phase[-1]
-                pygame.draw.circle(surface, run.color, view.pt(to_world(np.array(q), np.array(p))),
-                                   max(2, round(view.len(5))))
-        if self.exact_trail:
-            q, p = self.exact_trail[-1]
-            pygame.draw.circle(surface, GHOST, view.pt(to_world(np.array(q), np.array(p))),
-                               max(2, round(view.len(7))), 1)
+            if len(run.phase):
+                q, p = run.phase.last()
+                pygame.draw.circle(surface, run.color, view.pt(to_world(q, p)), max(2, round(view.len(5))))
+        q, p = self.exact_phase
+        pygame.draw.circle(surface, GHOST, view.pt(to_world(q, p)), max(2, round(view.len(7))), 1)
         surface.set_clip(old_clip)
 
-    def _draw_energy(self, surface, view, size) -> None:
-        clip = self._frame(surface, view, ENERGY_RECT, "energy E/E0 over time (log scale, last 10 s)", size)
+    def _draw_energy(self, surface, view) -> None:
+        clip = self._frame(surface, view, ENERGY_RECT, "energy E/E0 (log scale, last 10 s)")
         if len(self.sample_times) < 2:
             return
-        t = np.array(self.sample_times)
+        t = self.sample_times.values()[:, 0]
+        # one point per screen pixel of plot width is all a line can show: thin the samples out,
+        # newest kept (the slice replaces a loop picking every stride-th sample)
+        stride = max(1, len(t) // max(1, int(view.len(ENERGY_RECT[2] - 50))))
+        keep = slice(len(t) - 1 - stride * ((len(t) - 1) // stride), None, stride)
+        t = t[keep]
         # log10(E/E0): geometric growth (forward Euler) and decay (implicit Euler) are straight lines
-        values = [np.log10(np.maximum(np.array(r.energy)[-len(t):], 1e-300)) for r in self.runs]
+        values = [np.log10(np.maximum(r.energy.values()[keep, 0], 1e-300)) for r in self.runs]
         data = np.concatenate([v[v > -299] for v in values] + [np.array([-0.02, 0.02])])
         lo, hi = max(float(data.min()), -6.0), min(float(data.max()), 6.0)
         pad = 0.08 * (hi - lo)
@@ -351,7 +419,7 @@ class IntegratorsScene(Scene):
         tlo, thi = max(t[-1] - PLOT_SECONDS, 0.0), max(t[-1], PLOT_SECONDS)
         to_world = self._plot_map(ENERGY_RECT, tlo, thi, lo, hi)
         old_clip = surface.get_clip()
-        surface.set_clip(clip.inflate(-2, -24).move(0, 10))
+        surface.set_clip(clip.inflate(-2, -24).move(0, 10).clip(old_clip))
         one = to_world(np.array([tlo, thi]), np.array([0.0, 0.0]))
         pygame.draw.line(surface, (120, 120, 125), view.pt(one[0]), view.pt(one[1]), 1)
         for run, e in zip(self.runs, values):
@@ -362,7 +430,7 @@ class IntegratorsScene(Scene):
         surface.set_clip(old_clip)
         for value in (lo, 0.0, hi):
             p = to_world(np.array(tlo), np.array(value))
-            self._text(surface, view, (ENERGY_RECT[0] + 2, float(p[1]) - 6), f"{10 ** value:.3g}",
-                       (170, 170, 180), size - 2)
-        self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 80, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
-                   f"t = {self.t:.1f} s", (170, 170, 180), size - 2)
+            self._text(surface, view, (ENERGY_RECT[0] + 36, float(p[1]) - 6), f"{10 ** value:.3g}",
+                       (170, 170, 180), SMALL_SIZE - 2, right=True)
+        self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 6, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
+                   f"t = {self.t:.1f} s", (170, 170, 180), SMALL_SIZE - 2, right=True)

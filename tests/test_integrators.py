@@ -16,7 +16,7 @@ from app.physics.particles import ParticleSystem
 from app.physics.problems import (convergence_order, make_problem, oscillator, run,
                                   stability_limit)
 from app.scene import ParamError
-from scenes.integrators import IntegratorsScene
+from scenes.integrators import IntegratorsScene, Ring
 
 FIRST_STEP = {1: 0.02, 2: 0.05, 4: 0.2}     # omega*h of the coarsest run, per order
 
@@ -166,6 +166,7 @@ def test_scene_freezes_what_blew_up_and_stays_finite():
     assert m["implicit_euler_energy_ratio"] < 1e-3           # spiralled in
     assert all(math.isfinite(v) for v in m.values())
     assert any("blew up at t" in line for line in scene.hud_lines())
+    assert len(scene.hud_lines()) <= 2                       # the HUD box must not cover the world
     assert len(list(scene.state_arrays())) == 2              # only implicit Euler's x and v
 
 
@@ -199,3 +200,12 @@ def test_benchmark_quick_run(tmp_path):
     for by_target in result["fastest"].values():
         assert set(by_target) == {"0.001", "1e-06"}
     assert (tmp_path / "integrators_work_precision.png").stat().st_size > 10_000
+
+
+def test_ring_keeps_the_last_samples_oldest_first():
+    ring = Ring(3, 2)
+    for k in range(5):
+        ring.append((k, -k))
+    assert len(ring) == 3
+    assert ring.values()[:, 0].tolist() == [2, 3, 4]
+    assert ring.last().tolist() == [4, -4]
