@@ -182,6 +182,7 @@ class Scene:
         self.on: set[str] = {e.name for e in self.effects if e.default}
         for key, value in (overrides or {}).items():
             self._assign(key, value)
+        self.check_combination(self.p)
         self.time = 0.0      # simulated seconds since build
         self.steps = 0       # fixed steps since build
         self.build_world()
@@ -219,8 +220,8 @@ class Scene:
     @classmethod
     def check_combination(cls, values: Mapping[str, Any]) -> None:
         """Refuse (ParamError) a combination of valid values that does not fit together, e.g.
-        more balls lifted than a cradle has. The command line calls it before building; the
-        window's panel instead lets the scene clamp and say so in its HUD."""
+        more balls lifted than a cradle has, or a cloth so big that one step would take
+        seconds. Called before building (constructor, command line) and by set() (the panel)."""
 
     @classmethod
     def resolve(cls, overrides: Mapping[str, Any]) -> dict[str, Any]:
@@ -249,7 +250,9 @@ class Scene:
     def set(self, key: str, value: Any) -> None:
         """Change a param or effect while running (the panel, tests). A bad value raises
         ParamError and leaves everything as it was; a change that needs it rebuilds the scene."""
-        self.check_setting(key, value)
+        parsed = self.check_setting(key, value)
+        if self.param(key) is not None:
+            self.check_combination({**self.p, key: parsed})
         if self._assign(key, value):
             self.reset()
 

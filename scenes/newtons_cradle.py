@@ -37,8 +37,7 @@ Break it on purpose: gap -0.01 (touching), gap 5, substeps 2, elasticity 0.9 (th
 the swings shrink), damping 0.99 (air drag: space.damping is the fraction of velocity kept per
 second; 1 is none. Negative values would abort pymunk, so the range is 0..1).
 
-Metrics (DESIGN.md): `lifted` (k actually lifted: at most balls-1; the command line refuses a
-larger value, the panel clamps it and the HUD says so),
+Metrics (DESIGN.md): `lifted` (k lifted: at most balls-1, a larger value is refused),
 `balls_out` (balls that swing out past half the release amplitude in the first half-swing after
 the first impact; counted while that window is open, then frozen), `middle_max_drift` (largest
 distance from its rest position, px, of any ball that is neither lifted nor expected out: balls
@@ -110,7 +109,7 @@ class NewtonsCradleScene(PymunkScene):
     # ----- building -------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:
-        # The command line refuses it; the panel's slider clamps it and the HUD says so.
+        # Refused on the command line and in the panel (lower `lifted` before `balls`).
         if values["lifted"] > values["balls"] - 1:
             raise ParamError(f"lifted={values['lifted']} does not fit a row of {values['balls']} "
                              f"balls; accepted: lifted from 1 to balls-1 ({values['balls'] - 1})")
@@ -276,9 +275,6 @@ class NewtonsCradleScene(PymunkScene):
         m = self.metrics()
         k, out = int(m["lifted"]), int(m["balls_out"])
         lines = []
-        if self.p["lifted"] > self.p["balls"] - 1:
-            lines.append(f"lifted {self.p['lifted']} -> {k}: a row of {self.p['balls']} "
-                         f"can lift at most {self.p['balls'] - 1}")
         t = self.track
         if k == 0:
             lines.append("nothing lifted: drag a ball out and let go")

@@ -70,10 +70,13 @@ def test_damping_and_inelastic_balls_lose_energy():
     assert run(5.0, elasticity=0.9)[0].metrics()["energy_ratio"] < 0.8
 
 
-def test_lifted_is_clamped_to_balls_minus_one():
-    scene = NewtonsCradleScene({"balls": 3, "lifted": 8})
-    assert scene.metrics()["lifted"] == 2
-    assert any("at most 2" in line for line in scene.hud_lines())
+def test_lifted_must_be_less_than_balls_and_a_refused_change_keeps_the_scene():
+    with pytest.raises(ParamError, match="balls-1"):
+        NewtonsCradleScene({"balls": 3, "lifted": 8})
+    scene = NewtonsCradleScene({"balls": 3, "lifted": 2})
+    with pytest.raises(ParamError, match="balls-1"):
+        scene.set("balls", 2)          # the panel: lower `lifted` first
+    assert scene.p["balls"] == 3 and len(scene.bodies) == 3
 
 
 def test_dragging_a_ball_out_and_letting_go_rearms_the_measurement():
