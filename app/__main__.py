@@ -49,8 +49,10 @@ def _positive_int(text: str) -> int:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not an integer; accepted: steps >= 1")
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: steps >= 1")
+    from app.headless import MAX_STEPS
+    if not 1 <= value <= MAX_STEPS:
+        raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: steps from 1 to "
+                                         f"{MAX_STEPS:,}")
     return value
 
 
@@ -135,11 +137,24 @@ def app_main(argv: list[str]) -> int:
                 cls.check_setting(key, value)
             except ParamError as e:
                 raise UsageError(f"--set {key}={value}: {cls.name} {e}") from None
+    from app.headless import MAX_STEPS, check_output_path
     for cls in classes:
         try:
-            cls.resolve({k: v for k, v in overrides.items() if k in cls.setting_names()})
+            values = cls.resolve({k: v for k, v in overrides.items() if k in cls.setting_names()})
         except ParamError as e:
             raise UsageError(f"scene {cls.name}: {e}") from None
+        if args.headless and args.seconds is not None and args.seconds * values["hertz"] > MAX_STEPS:
+            raise UsageError(f"--seconds {args.seconds:g} at {values['hertz']} Hz is more than "
+                             f"{MAX_STEPS:,} steps; accepted: at most "
+                             f"{MAX_STEPS / values['hertz']:,.0f} seconds for {cls.name}")
+    if args.screenshot:
+        problem = check_output_path(args.screenshot, "--screenshot")
+        if problem:
+            raise UsageError(problem)
+    if args.record:
+        problem = check_output_path(args.record, "--record")
+        if problem:
+            raise UsageError(problem)
 
     events = None
     if args.input:
@@ -178,6 +193,10 @@ def bench_main(argv: list[str]) -> int:
     args = p.parse_args(argv)
     if args.which not in choices:
         raise UsageError(f"unknown benchmark {args.which!r}; accepted: {', '.join(choices)}")
+    from app.headless import check_output_path
+    problem = check_output_path(os.path.join(args.out, "chart.png"), "--out folder")
+    if problem or (os.path.exists(args.out) and not os.path.isdir(args.out)):
+        raise UsageError(problem or f"--out '{args.out}' is a file; accepted: a folder")
     return run_benchmarks(args.which, args.json, args.out, args.quick)
 
 

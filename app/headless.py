@@ -13,14 +13,18 @@ import math
 import os
 import statistics
 import sys
+import tempfile
 import time
 from dataclasses import dataclass, field
 from typing import Any
 
-from app.scene import InputEvent, Scene
+import numpy as np
+
+from app.scene import EVENT_SLACK, InputEvent, Scene
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
+MAX_STEPS = 10_000_000          # a headless run longer than this is a typo, not an experiment
 
 
 class InputFileError(ValueError):
@@ -53,7 +57,8 @@ def parse_events(data: Any, source: str = "input") -> list[InputEvent]:
                 raise InputFileError(f"{where}: 'pos' must be [x, y], two finite numbers, "
                                      f"got {pos!r}")
             button = item.get("button", 0 if kind == "mouse_move" else None)
-            if kind != "mouse_move" and button not in (1, 2, 3):
+            allowed = (0, 1, 2, 3) if kind == "mouse_move" else (1, 2, 3)
+            if isinstance(button, bool) or button not in allowed:
                 raise InputFileError(f"{where}: 'button' must be 1 (left), 2 or 3 (right), "
                                      f"got {button!r}")
             events.append(InputEvent(kind, (float(pos[0]), float(pos[1])), int(button or 0),
@@ -133,21 +138,25 @@ def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) 
     """Advance `scene` by `steps` fixed steps, delivering each event before the first step that
     starts at or after its time. Stops early if the state goes non-finite."""
     pending = list(events or [])
+    nxt = 0                                   # index of the next event to deliver
     result = RunResult(scene, 0, 0.0)
+    times = np.empty(steps)                   # wall seconds of every step (for the median)
     start = time.perf_counter()
     for k in range(steps):
-        now = k * scene.dt + 1e-9
-        while pending and pending[0].t <= now:
-            deliver(scene, pending.pop(0))
-            result.events += 1
+        now = k * scene.dt + EVENT_SLACK
+        while nxt < len(pending) and pending[nxt].t <= now:
+            deliver(scene, pending[nxt])
+            nxt += 1
         t0 = time.perf_counter()
         scene.advance()
-        result.step_seconds.append(time.perf_counter() - t0)
+        times[k] = time.perf_counter() - t0
         result.steps += 1
         if not scene.is_finite():
             result.finite = False
             break
     result.wall_seconds = time.perf_counter() - start
+    result.events = nxt
+    result.step_seconds = times[:result.steps].tolist()
     return result
 
 
@@ -180,6 +189,26 @@ def render(scene: Scene, path: str) -> None:
     pygame.image.save(surface, path)
 
 
+def steps_for(seconds: float | None, dt: float) -> int:
+    """Fixed steps in `seconds` of simulated time (DEFAULT_SECONDS if None), at least one."""
+    return max(1, round((seconds or DEFAULT_SECONDS) / dt))
+
+
+def check_output_path(path: str, what: str) -> str | None:
+    """None if a file can be written at `path`, else a one-line reason (checked before a run, so
+    a long run is not lost to a typo in the output path)."""
+    if os.path.isdir(path):
+        return f"{what} '{path}' is a folder; give a file name such as {path.rstrip('/')}/out.png"
+    folder = os.path.dirname(os.path.abspath(path))
+    try:                                        # the honest test: make the folder, write a file
+        os.makedirs(folder, exist_ok=True)
+        with tempfile.TemporaryFile(dir=folder):
+            pass
+    except OSError as e:
+        return f"{what} '{path}': cannot write in '{folder}' ({e.strerror or e})"
+    return None
+
+
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
                  as_json: bool) -> int:
@@ -190,7 +219,7 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     for cls in scene_classes:
         mine = {k: v for k, v in overrides.items() if k in cls.setting_names()}
         scene = cls(mine)
-        n = steps if steps is not None else max(1, round((seconds or DEFAULT_SECONDS) / scene.dt))
+        n = steps if steps is not None else steps_for(seconds, scene.dt)
         result = run_scene(scene, n, events)
         summary = result.summary()
         if screenshot:
@@ -198,8 +227,13 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
             if len(scene_classes) > 1:
                 root, ext = os.path.splitext(screenshot)
                 path = f"{root}-{scene.name}{ext or '.png'}"
-            render(scene, path)
-            summary["screenshot"] = path
+            try:
+                render(scene, path)
+                summary["screenshot"] = path
+            except (OSError, pygame_error()) as e:
+                print(f"{scene.name}: could not save the screenshot '{path}': {e}", file=sys.stderr)
+                summary["screenshot"] = None
+                code = code or 2
         if as_json:
             print(json.dumps(summary, allow_nan=False), flush=True)
         else:
@@ -212,6 +246,11 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     return code
 
 
+def pygame_error() -> type:
+    import pygame
+    return pygame.error
+
+
 def describe(summary: dict[str, Any]) -> str:
     """A readable few lines for a run without --json."""
     metrics = ", ".join(f"{k}={_short(v)}" for k, v in summary["metrics"].items())
@@ -219,7 +258,7 @@ def describe(summary: dict[str, Any]) -> str:
              f"in {summary['wall_seconds']:.3g} s, {summary['step_ms']:.3g} ms/step, "
              f"finite={summary['finite']}, hash {summary['state_hash']}",
              f"  metrics: {metrics}"]
-    if "screenshot" in summary:
+    if summary.get("screenshot"):
         lines.append(f"  screenshot: {summary['screenshot']}")
     return "\n".join(lines)
 

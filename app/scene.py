@@ -140,6 +140,11 @@ COMMON_PARAMS: tuple[Param, ...] = (
 )
 
 
+# An event is due at step k when t <= k * dt + EVENT_SLACK: times written by hand or rounded in a
+# file still land on the step they name (1 microsecond is far below any dt the lab accepts).
+EVENT_SLACK = 1e-6
+
+
 @dataclass
 class InputEvent:
     """A mouse or key event in the format of `--input` files and `--record`.
@@ -155,7 +160,7 @@ class InputEvent:
     t: float = 0.0
 
     def to_json(self) -> dict:
-        d: dict[str, Any] = {"t": round(self.t, 6), "type": self.kind}
+        d: dict[str, Any] = {"t": round(self.t, 9), "type": self.kind}
         if self.kind.startswith("mouse"):
             d["pos"] = [round(float(self.pos[0]), 2), round(float(self.pos[1]), 2)]
             if self.kind != "mouse_move":
@@ -353,5 +358,5 @@ def docstring_help(scene_cls: type[Scene]) -> str:
     return inspect.cleandoc(scene_cls.__doc__ or scene_cls.title)
 
 
-__all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "COMMON_PARAMS",
+__all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "EVENT_SLACK", "COMMON_PARAMS",
            "hash_arrays", "docstring_help"]

@@ -47,7 +47,7 @@ from app.draw import hud
 from app.draw.text import TEXT, font
 from app.draw.view import View
 from app.loop import FixedStepClock
-from app.scene import InputEvent, ParamError, Scene, docstring_help
+from app.scene import EVENT_SLACK, InputEvent, ParamError, Scene, docstring_help
 
 ROOT = Path(__file__).resolve().parent.parent
 THEME_PATH = ROOT / "assets" / "theme.json"
@@ -56,6 +56,8 @@ PANEL_WIDTH = 320
 LARGE_TEXT_SCALE = 1.6
 FPS_CAP = 60
 SNAPSHOT_EVERY = 30               # steps between last-good snapshots
+STEP_BUDGET_SECONDS = 0.1         # physics time per frame after which the frame's other steps
+                                  # are dropped (the window stays responsive; time runs slower)
 MESSAGE_SECONDS = 4.0
 MAX_METRIC_LINES = 2              # lines of metrics at the bottom of the world
 NO_DISPLAY = "no display for the window: {}; use --headless, or run under xvfb-run"
@@ -328,6 +330,7 @@ class Window:
         self.frame_times: deque[float] = deque()
         self.step_times: deque[tuple[float, float]] = deque()   # (wall, ms per advance)
         self.last_step_ms = float("nan")
+        self.last_drop = -1e9                 # wall time of the last frame that dropped steps
         self.recorded: list[dict] = []        # events delivered to the scene, --input format
         self.session_steps = 0                # steps since the scene was opened (not reset by R)
         self._dragging: set[int] = set()      # mouse buttons pressed in the world area
@@ -627,8 +630,14 @@ class Window:
         if self.panel is not None:
             self.panel.refresh()
         self._deliver_replay()
+        before = self.clock.dropped_steps
         n = self.clock.steps_for_frame(frame_seconds, scene.dt)
-        for _ in range(n):
+        frame_start = time.perf_counter()
+        for i in range(n):
+            if i and time.perf_counter() - frame_start > STEP_BUDGET_SECONDS:
+                self.clock.dropped_steps += n - i    # the rest would freeze the window
+                n = i
+                break
             self._deliver_replay()
             t0 = time.perf_counter()
             scene.advance()
@@ -640,6 +649,8 @@ class Window:
                 self._last_good = (scene.snapshot(), scene.time, scene.steps)
         while self.step_times and self.step_times[0][0] < self.wall - 1.0:
             self.step_times.popleft()
+        if self.clock.dropped_steps > before:
+            self.last_drop = self.wall
         if n and not scene.is_finite():
             self._roll_back()
         return n
@@ -667,7 +678,7 @@ class Window:
         if self.scene is None or type(self.scene) is not self._replay_scene:
             return
         while (self._replay_index < len(self._replay)
-               and self._replay[self._replay_index].t <= self.session_time + 1e-9):
+               and self._replay[self._replay_index].t <= self.session_time + EVENT_SLACK):
             ev = self._replay[self._replay_index]
             self._replay_index += 1
             if ev.kind == "key_down" and ev.key == "r":       # as app.headless.deliver does
@@ -706,6 +717,9 @@ class Window:
             state += "  |  PAUSED (space resumes, . steps)"
         slow = self.clock.paused or self.clock.slow_motion != 1.0
         lines.append(L(state, hud.WARN_COLOR if slow else hud.TEXT_COLOR))
+        if self.wall - self.last_drop < 1.0:
+            lines.append(L("slower than real time: the steps do not fit in a frame (fewer "
+                           "iterations, substeps or hertz catch up)", hud.WARN_COLOR))
         lines += [str(x) for x in scene.hud_lines()]
         costs = scene.effect_costs()
         if costs:

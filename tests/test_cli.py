@@ -91,6 +91,11 @@ BAD = [
     (["--headless", "--scene", "toy", "--record", "x.json"], "--record"),
     (["--bogus"], "unrecognized"),
     (["bench", "nope"], "unknown benchmark"),
+    (["bench", "cloth", "--out", "/proc/no-such-folder"], "cannot write"),
+    (["--headless", "--scene", "toy", "--seconds", "1e308"], "at most"),
+    (["--headless", "--scene", "toy", "--steps", "99999999999"], "steps"),
+    (["--headless", "--scene", "toy", "--screenshot", "/proc/no-such-folder/x.png"],
+     "cannot write"),
 ]
 
 
@@ -113,6 +118,9 @@ BAD_INPUT_FILES = [
     ('[{"t": 0, "type": "mouse_down", "button": 7, "pos": [1, 2]}]', "'button'"),
     ('[{"t": 0, "type": "key_down"}]', "'key'"),
     ('[3]', "object"),
+    ('[{"t": 0, "type": "mouse_move", "pos": [1, 2], "button": "x"}]', "'button'"),
+    ('[{"t": 0, "type": "mouse_down", "pos": [1, 2], "button": true}]', "'button'"),
+    ('[{"t": 0, "type": "mouse_down", "pos": [NaN, 2], "button": 1}]', "'pos'"),
 ]
 
 
@@ -182,3 +190,9 @@ def test_values_that_do_not_fit_together_are_refused(capsys):
                  "--set", "lifted=3"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "lifted" in err and "balls-1" in err
+
+
+def test_screenshot_path_that_is_a_folder_is_refused_before_the_run(toy_registry, capsys, tmp_path):
+    assert main(["--headless", "--scene", "toy", "--steps", "3", "--screenshot", str(tmp_path)]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "folder" in err

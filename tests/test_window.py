@@ -365,3 +365,48 @@ def test_typing_a_value_and_enter_sets_it(window):
         window.handle_pygame_event(ev)
     assert window.scene.p["g"] == 42.0
     assert not window.panel.is_typing()
+
+
+@pytest.mark.parametrize("frames", [[1 / 60] * 40, [0.013, 0.021, 1 / 60, 0.03, 0.011] * 8])
+def test_a_demo_recorded_frame_by_frame_on_the_cloth_replays_to_the_same_state(tmp_path, frames):
+    """The --record -> --input promise on a real scene, with ordinary 1/60 s and uneven frames
+    (times like 0.016667 s must land on the step they were recorded at)."""
+    from app.headless import load_events, run_scene
+    from scenes.cloth import ClothScene
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1000, 700))      # zoom below 1: window px != world px
+    w = Window(screen, [ClothScene], screenshot_dir=tmp_path)
+    assert w.open_scene(ClothScene, {"rows": "12", "cols": "12"})
+    cloth = w.scene.cloth
+    grab = w.view.pt(cloth.x[:, 5, 6])
+    script = {3: (pygame.MOUSEMOTION, grab), 5: (pygame.MOUSEBUTTONDOWN, grab)}
+    for i in range(6, 20):
+        script[i] = (pygame.MOUSEMOTION, (grab[0] + 9 * (i - 5), grab[1] + 6 * (i - 5)))
+    script[21] = (pygame.MOUSEBUTTONUP, script[19][1])
+    for i, frame in enumerate(frames):
+        if i in script:
+            mouse(w, *script[i])
+        if i == 30:
+            key(w, pygame.K_u)
+        w.update(frame)
+    assert w.scene.cloth.locked.sum() == 12                 # dropped, then U: default pins
+    out = tmp_path / "demo.json"
+    w.write_recording(out)
+    replay = run_scene(ClothScene({"rows": 12, "cols": 12}), w.session_steps, load_events(str(out)))
+    assert replay.scene.state_hash() == w.scene.state_hash()
+
+
+def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_so(window, monkeypatch):
+    import time as _time
+    slow_step = Tiny.step
+
+    def step(self, h):
+        _time.sleep(0.03)
+        slow_step(self, h)
+
+    monkeypatch.setattr(Tiny, "step", step)
+    n = window.update(8 / 60)                # asks for 8 steps of 30 ms: the budget is 100 ms
+    assert 1 <= n <= 5
+    assert window.clock.dropped_steps == 8 - n
+    assert any("slower than real time" in str(getattr(x, "text", x)) for x in window.hud_lines())
