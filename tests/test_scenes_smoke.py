@@ -23,6 +23,10 @@ CONTRACT_METRICS = {
     "pivoting_l": {"angle_deg", "slide_distance", "slide_min", "slide_max", "pin_error"},
     "newtons_cradle": {"lifted", "balls_out", "middle_max_drift", "energy_ratio"},
     "double_pendulum": {"energy_drift", "reference_divergence", "divergence_time"},
+    # per integrator (each an effect): error, step_us, energy_ratio
+    "integrators": {f"{name}_{m}" for name in ("euler", "symplectic_euler", "verlet", "midpoint",
+                                               "rk4", "implicit_euler")
+                    for m in ("error", "step_us", "energy_ratio")},
 }
 
 ids = [s.name for s in SCENES]
