@@ -181,6 +181,7 @@ class Scene:
     world_size: tuple[int, int] = (960, 720)   # the area the scene draws in, world pixels
     background: tuple[int, int, int] = (22, 24, 30)
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
+    aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
         self.p: dict[str, Any] = {prm.name: prm.default for prm in self.all_params()}
@@ -201,15 +202,23 @@ class Scene:
 
     @classmethod
     def param(cls, name: str) -> Param | None:
+        name = cls.canonical(name)
         return next((p for p in cls.all_params() if p.name == name), None)
 
     @classmethod
     def effect(cls, name: str) -> Effect | None:
+        name = cls.canonical(name)
         return next((e for e in cls.effects if e.name == name), None)
 
     @classmethod
     def setting_names(cls) -> list[str]:
-        return [p.name for p in cls.all_params()] + [e.name for e in cls.effects]
+        """Every name `--set` accepts: params, effects, then aliases."""
+        return [p.name for p in cls.all_params()] + [e.name for e in cls.effects] + list(cls.aliases)
+
+    @classmethod
+    def canonical(cls, name: str) -> str:
+        """The param or effect an alias stands for (the name itself if it is no alias)."""
+        return cls.aliases.get(name, name)
 
     @classmethod
     def check_setting(cls, key: str, value: Any) -> Any:
@@ -235,13 +244,14 @@ class Scene:
         for key, value in overrides.items():
             parsed = cls.check_setting(key, value)
             if cls.param(key) is not None:
-                values[key] = parsed
+                values[cls.canonical(key)] = parsed
         cls.check_combination(values)
         return values
 
     def _assign(self, key: str, value: Any) -> bool:
         """Set a param or effect; return True if the change needs a rebuild."""
         parsed = self.check_setting(key, value)
+        key = self.canonical(key)
         if self.param(key) is not None:
             changed = self.p[key] != parsed
             self.p[key] = parsed
@@ -257,7 +267,7 @@ class Scene:
         ParamError and leaves everything as it was; a change that needs it rebuilds the scene."""
         parsed = self.check_setting(key, value)
         if self.param(key) is not None:
-            self.check_combination({**self.p, key: parsed})
+            self.check_combination({**self.p, self.canonical(key): parsed})
         if self._assign(key, value):
             self.reset()
 

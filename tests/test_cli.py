@@ -196,3 +196,11 @@ def test_screenshot_path_that_is_a_folder_is_refused_before_the_run(toy_registry
     assert main(["--headless", "--scene", "toy", "--steps", "3", "--screenshot", str(tmp_path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "folder" in err
+
+
+def test_an_alias_sets_the_same_setting(toy_registry, monkeypatch, capsys):
+    monkeypatch.setattr(Toy, "aliases", {"pull": "gravity", "strength": "g"})
+    assert main(["--headless", "--scene", "toy", "--steps", "2", "--json", "--set", "pull=off",
+                 "--set", "strength=5"]) == 0
+    s = json.loads(capsys.readouterr().out)
+    assert s["effects"] == [] and s["params"]["g"] == 5.0 and "strength" not in s["params"]
