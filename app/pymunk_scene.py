@@ -32,29 +32,36 @@ import numpy as np
 import pymunk
 import pymunk.batch
 
-from app.scene import InputEvent, Param, Scene
+from app.scene import Effect, InputEvent, Param, Scene
 
 # The fields read for the state hash and the finiteness check, all at once.
 _STATE_FIELDS = (pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
                  | pymunk.batch.BodyFields.VELOCITY | pymunk.batch.BodyFields.ANGULAR_VELOCITY)
 
+# The same names as the cloth's: the number is the param `g`, the on/off switch the effect `gravity`
+# (so `--scene all --set g=...` means one thing everywhere).
 PYMUNK_PARAMS: tuple[Param, ...] = (
-    Param("gravity", 900.0, float, 0.0, 5000.0, help="gravity, px/s^2 (downwards)", rebuild=False),
+    Param("g", 900.0, float, 0.0, 5000.0, help="gravity, px/s^2 (downwards)", rebuild=False),
     Param("iterations", 10, int, 1, 200, help="pymunk solver iterations per step", rebuild=False),
+)
+PYMUNK_EFFECTS: tuple[Effect, ...] = (
+    Effect("gravity", True, "gravity pulls every body down (off: space.gravity is (0, 0))"),
 )
 
 
 class PymunkScene(Scene):
-    """Base of the pymunk scenes. Subclasses add their own params to PYMUNK_PARAMS."""
+    """Base of the pymunk scenes. Subclasses add their own params to PYMUNK_PARAMS and their own
+    effects to PYMUNK_EFFECTS."""
 
     params = PYMUNK_PARAMS
+    effects = PYMUNK_EFFECTS
     world_keys: tuple[str, ...] = ("space",)   # attributes that hold world state (for snapshots)
     drag_force: float = 50000.0                 # bound on the mouse joint's force, N (px units)
 
     def build(self) -> None:
         self.space = pymunk.Space()
         self.space.iterations = self.p["iterations"]
-        self.space.gravity = (0.0, self.p["gravity"])
+        self.space.gravity = (0.0, self.gravity())
         self.mouse_body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         self.mouse_joint: pymunk.PivotJoint | None = None
         self._buffer = pymunk.batch.Buffer()
@@ -69,10 +76,31 @@ class PymunkScene(Scene):
 
     def step(self, h: float) -> None:
         self.space.iterations = self.p["iterations"]
-        if self.space.gravity.y != self.p["gravity"]:
-            # only on a change: setting gravity wakes every sleeping body (Chipmunk)
-            self.space.gravity = (0.0, self.p["gravity"])
+        self.sync_gravity()
         self.space.step(h)
+
+    # ----- gravity ----------------------------------------------------------------------------
+    def gravity(self) -> float:
+        """The downward acceleration in use, px/s^2: the param g, or 0 with the effect off."""
+        return self.p["g"] if "gravity" in self.on else 0.0
+
+    def sync_gravity(self) -> None:
+        """Give the space the gravity in use, if it changed (g or the effect, from the panel, or a
+        restored snapshot), and tell the scene (gravity_changed)."""
+        g = self.gravity()
+        if self.space.gravity.y != g:
+            # only on a change: setting gravity wakes every sleeping body (Chipmunk)
+            self.space.gravity = (0.0, g)
+            self.gravity_changed()
+
+    def gravity_changed(self) -> None:
+        """Called when the gravity in use changed: re-baseline anything measured against the old
+        one (an energy at release: its potential part depends on g)."""
+
+    def set(self, key: str, value: Any) -> None:
+        super().set(key, value)
+        if key in ("g", "gravity") and hasattr(self, "space"):
+            self.sync_gravity()      # now, so metrics read before the next step are right
 
     # ----- mouse --------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:

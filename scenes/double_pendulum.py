@@ -7,7 +7,8 @@ What it shows.
     per-step errors (a first-order integrator with an iterative joint solver) grow exponentially.
     The ghost (orange) is the reference, app/physics/double_pendulum_ode.py: Lagrange's equations
     of two point masses on massless rods, integrated with RK4 at `ref_substeps` steps per physics
-    step. Both start identical; after a few seconds they part. The moment the tips are more than
+    step, and never at steps longer than 1 ms (at hertz 1 that is 1000 steps per physics step, so
+    a coarse engine step does not make the reference coarse too). Both start identical; after a few seconds they part. The moment the tips are more than
     10 px apart is marked on screen (a cross where it happened) and reported as `divergence_time`.
     Released low (angles of ~10 degrees) the motion is regular and the two stay together for good.
   * Energy: a pendulum without friction keeps its energy. An engine that loses or gains energy
@@ -21,17 +22,25 @@ What it shows.
     no joint force turns a bob; its spin stays zero and drops out of the energy.
 
 Effects: `reference` (the ghost; off = not integrated at all), `trail` (a fading trail of the
-tip, and of the ghost's tip).
+tip, and of the ghost's tip), `gravity` (off: legal but odd, the pendulum spins at constant energy;
+the number is the param `g`).
+
+If the reference itself blows up (RK4 is only conditionally stable; with 1 ms steps that takes
+extreme settings, e.g. mass1 0.05, mass2 20, g 5000), the ghost is frozen and hidden, the HUD
+says "reference blew up at t = ...", and the engine's run goes on: the ghost's failure is not the
+engine's, so it never makes the scene's state non-finite. Drag a bob to restart the ghost.
 
 Metrics (DESIGN.md): `energy_drift` ((E - E0) / E0 now, E measured from the lowest configuration),
 `reference_divergence` (px between the pymunk tip and the ghost's tip now; -1 with the reference
-off), `divergence_time` (simulated seconds from release until the tips first part by more than
-10 px; -1 while they have not, and with the reference off). Also `energy_drift_max` (largest
-|drift| seen) and `pin_error` (largest rod length error now, px).
+off or blown up), `divergence_time` (simulated seconds from release until the tips first part by
+more than 10 px; -1 while they have not, and with the reference off). Also `energy_drift_max`
+(largest |drift| seen), `pin_error` (largest rod length error now, px) and `reference_blowup_t`
+(simulated time t at which the reference blew up; -1 while it has not).
 
 Mouse: drag a bob with the left button. When you let go, the ghost restarts from the dragged
 state (positions and velocities), the energy baseline is the energy at that moment, and the
-divergence clock starts again from zero: a new release.
+divergence clock starts again from zero: a new release. Changing g (or gravity) while it runs
+re-baselines the energy (the potential energy depends on g; the ghost switches g with the engine).
 """
 
 from __future__ import annotations
@@ -45,7 +54,7 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.physics.double_pendulum_ode import DoublePendulumODE
-from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
+from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param
 
 PIVOT = (480.0, 350.0)
@@ -66,8 +75,8 @@ PENDULUM_PARAMS: tuple[Param, ...] = (
     Param("mass2", 1.0, float, 0.05, 20.0, help="lower bob mass"),
     Param("error_bias", 0.0, float, 0.0, 1.0, help="pin joints: fraction of the length error left "
           "after 1 s (pymunk's default 0.0018; 0 = fix it all each step)", rebuild=False),
-    Param("ref_substeps", 10, int, 1, 200, help="RK4 steps of the reference per physics step",
-          rebuild=False),
+    Param("ref_substeps", 10, int, 1, 200, help="RK4 steps of the reference per physics step "
+          "(more if a step would exceed 1 ms)", rebuild=False),
     Param("trail_seconds", 3.0, float, 0.1, 30.0, help="length of the tip's trail, seconds"),
 )
 
@@ -92,8 +101,9 @@ class DoublePendulumScene(PymunkScene):
     title = "Double pendulum vs. its equations"
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + PENDULUM_PARAMS
-    effects = (Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
-               Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
+    effects = PYMUNK_EFFECTS + (
+        Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
+        Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
     world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
 
     # ----- building -------------------------------------------------------------------------
@@ -114,12 +124,13 @@ class DoublePendulumScene(PymunkScene):
         self.joints = [pymunk.PinJoint(space.static_body, self.bobs[0], PIVOT, (0, 0)),
                        pymunk.PinJoint(self.bobs[0], self.bobs[1], (0, 0), (0, 0))]
         space.add(*self.joints)
-        self.ode = DoublePendulumODE(l1, l2, p["mass1"], p["mass2"], p["gravity"], (t1, t2, 0, 0))
+        self.ode = DoublePendulumODE(l1, l2, p["mass1"], p["mass2"], self.gravity(),
+                                     (t1, t2, 0, 0))
         n = max(2, round(p["trail_seconds"] * p["hertz"]))
         self.trail = Trail(n)
         self.ghost_trail = Trail(n)
         self.track = {"energy0": 0.0, "start": 0.0, "divergence_time": -1.0, "mark": None,
-                      "energy_drift_max": 0.0}
+                      "energy_drift_max": 0.0, "ref_blowup": -1.0}
         self.new_release()
 
     def new_release(self) -> None:
@@ -127,9 +138,9 @@ class DoublePendulumScene(PymunkScene):
         the baseline, the divergence clock restarts, the trails are cleared."""
         b1, b2 = self.bobs
         self.ode.set_from_cartesian(PIVOT, b1.position, b1.velocity, b2.position, b2.velocity)
-        self.ode.g = self.p["gravity"]
+        self.ode.g = self.gravity()
         self.track.update(energy0=self.energy(), start=self.time, divergence_time=-1.0,
-                          mark=None, energy_drift_max=0.0)
+                          mark=None, energy_drift_max=0.0, ref_blowup=-1.0)
         self.trail.clear()
         self.ghost_trail.clear()
 
@@ -147,9 +158,11 @@ class DoublePendulumScene(PymunkScene):
         drift = self.energy_drift()
         t["energy_drift_max"] = max(t["energy_drift_max"], abs(drift))
         tip = self.bobs[1].position
-        if "reference" in self.on:
-            self.ode.g = self.p["gravity"]
-            self.ode.advance(self.dt, self.p["ref_substeps"])
+        if self.ghost_alive():
+            self.ode.g = self.gravity()
+            if not self.ode.advance(self.dt, self.p["ref_substeps"]):
+                t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
+                return
             ghost_tip = self.ode.positions(PIVOT)[1]
             if t["divergence_time"] < 0 and math.dist(tip, ghost_tip) > PART_PX:
                 t["divergence_time"] = self.time - t["start"]
@@ -158,6 +171,14 @@ class DoublePendulumScene(PymunkScene):
                 self.ghost_trail.add(ghost_tip)
         if "trail" in self.on:
             self.trail.add(tip)
+
+    def ghost_alive(self) -> bool:
+        """The reference is on and has not blown up since the release."""
+        return "reference" in self.on and self.track["ref_blowup"] < 0
+
+    def gravity_changed(self) -> None:
+        """g (or the gravity effect) changed: the energy now, with the new g, is the baseline."""
+        self.track["energy0"] = self.energy()
 
     def effect_changed(self, name: str, on: bool) -> None:
         if name == "reference" and on:         # the ghost restarts from the engine's state
@@ -177,12 +198,13 @@ class DoublePendulumScene(PymunkScene):
     def energy(self) -> float:
         """Kinetic (incl. spin) + potential energy of the bobs, zero when both hang straight down
         at rest (y is down, so a bob's height above its lowest point is lowest_y - y)."""
-        g, l1, l2 = self.p["gravity"], self.p["length1"], self.p["length2"]
+        g, l1, l2 = self.gravity(), self.p["length1"], self.p["length2"]
         lowest = (PIVOT[1] + l1, PIVOT[1] + l1 + l2)
         e = 0.0
         for body, y0 in zip(self.bobs, lowest):
-            e += (0.5 * body.mass * body.velocity.length_squared
-                  + 0.5 * body.moment * body.angular_velocity ** 2
+            (vx, vy), w = body.velocity, body.angular_velocity
+            # x * x, not x ** 2: a float ** overflows with an exception, * gives inf
+            e += (0.5 * body.mass * (vx * vx + vy * vy) + 0.5 * body.moment * w * w
                   + body.mass * g * (y0 - body.position.y))
         return e
 
@@ -196,8 +218,9 @@ class DoublePendulumScene(PymunkScene):
                    abs(math.dist(b1.position, b2.position) - self.p["length2"]))
 
     def divergence(self) -> float:
-        """Distance between the engine's tip and the ghost's tip now, px (-1: no reference)."""
-        if "reference" not in self.on:
+        """Distance between the engine's tip and the ghost's tip now, px (-1: no reference, or
+        it blew up)."""
+        if not self.ghost_alive():
             return -1.0
         return math.dist(self.bobs[1].position, self.ode.positions(PIVOT)[1])
 
@@ -214,7 +237,8 @@ class DoublePendulumScene(PymunkScene):
                 "reference_divergence": self.divergence(),
                 "divergence_time": self.track["divergence_time"] if on else -1.0,
                 "energy_drift_max": self.track["energy_drift_max"],
-                "pin_error": self.pin_error()}
+                "pin_error": self.pin_error(),
+                "reference_blowup_t": self.track["ref_blowup"] if on else -1.0}
 
     def hud_lines(self) -> list[str]:
         m = self.metrics()
@@ -224,6 +248,11 @@ class DoublePendulumScene(PymunkScene):
             lines.append("held by the mouse: the ghost restarts when you let go")
         elif "reference" not in self.on:
             lines.append("reference off (the ghost is not integrated)")
+        elif self.track["ref_blowup"] >= 0:
+            n = self.ode.steps_for(self.dt, self.p["ref_substeps"])
+            lines.append(f"reference blew up at t = {self.track['ref_blowup']:.2f} s "
+                         f"(RK4 steps of {1000 * self.dt / n:.2f} ms)")
+            lines.append("ghost hidden, the engine runs on; drag a bob to restart it")
         elif m["divergence_time"] >= 0:
             lines.append(f"parted from the exact solution after {m['divergence_time']:.2f} s "
                          f"(now {m['reference_divergence']:.0f} px apart)")
@@ -235,10 +264,10 @@ class DoublePendulumScene(PymunkScene):
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
         if "trail" in self.on:
-            if "reference" in self.on:
+            if self.ghost_alive():
                 self.ghost_trail.draw(surface, view, GHOST_COLOR)
             self.trail.draw(surface, view, TRAIL_COLOR)
-        if "reference" in self.on and self.mouse_joint is None:
+        if self.ghost_alive() and self.mouse_joint is None:
             g1, g2 = self.ode.positions(PIVOT)
             pygame.draw.aalines(surface, GHOST_COLOR, False, [view.pt(PIVOT), view.pt(g1),
                                                               view.pt(g2)])

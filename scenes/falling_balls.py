@@ -13,15 +13,16 @@ The lecture idea (pymunk tutorial, "add_ball" and "add_static_L"):
     Turn on `container` to catch every ball in a box and watch the settled pile fall asleep.
   * tunneling: a ball whose centre goes from above the L's long segment to below it between two
     steps (inside its x-extent) has passed THROUGH it; the `tunneled` metric counts them. Raise
-    gravity, lower hertz or shrink the radius to look for it.
+    g, lower hertz or shrink the radius to look for it.
 
 Pymunk's tutorial uses y up (balls start at y=550); this lab uses y DOWN with gravity (0, +g), so
-the layout is mirrored: the balls come in at the top and fall down onto the L, which is the
-tutorial's L scaled by 1.5 to fill the 960x720 world.
+the layout is mirrored: the balls fall down onto the L, which is the tutorial's L scaled by 1.5 to
+fill the 960x720 world. New balls appear at SPAWN_Y (marked by a faint line), below the window's
+HUD box over the top left of the world, so the class sees every ball from its start.
 
 Controls: drag a ball (or anything that moves) with the left mouse button; a left click on empty
 space drops a ball there. Parameters: spawn_rate, radius, max_balls, friction, container,
-gravity, iterations; effect: sleeping.
+g, iterations; effects: sleeping, gravity (off: the balls float where they appear).
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ import pymunk
 import pymunk.batch
 
 from app.draw import pymunk_draw as D
-from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
+from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param
 
 S = 1.5                      # the tutorial's lengths scaled to this world
@@ -44,7 +45,10 @@ L_LONG = ((-150 * S, 0.0), (255 * S, 0.0))      # the long arm, in the L body's 
 L_LIP = ((-150 * S, 0.0), (-150 * S, -50 * S))  # the short arm, pointing UP (y down)
 L_RADIUS = 5 * S
 SPAWN_X = (-180 * S, 80 * S)  # the tutorial's random.randint(120, 380) relative to the L at 300
+SPAWN_Y = 200.0               # new balls' top edge: just below the window's HUD box (~190 px)
 SLEEP_TIME = 0.5              # seconds at rest before a group of bodies falls asleep
+
+SPAWN_COLOR = (60, 64, 76)
 
 _POS_ANGLE = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
 
@@ -73,7 +77,8 @@ class FallingBallsScene(PymunkScene):
     title = "Falling balls (pymunk)"
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + BALL_PARAMS
-    effects = (Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
+    effects = PYMUNK_EFFECTS + (
+        Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
     world_keys = ("space", "balls", "L_shapes", "L_body", "counts", "_spawn_due")
 
     # ----- building -------------------------------------------------------------------------
@@ -260,7 +265,8 @@ class FallingBallsScene(PymunkScene):
             self.remove_balls(k[out])
 
     def spawn(self, h: float) -> None:
-        """Drop balls at a steady rate at random x above the L (seeded: self.random)."""
+        """Drop balls at a steady rate at random x above the L, top edge at SPAWN_Y (seeded:
+        self.random)."""
         rate = self.p["spawn_rate"]
         if rate <= 0:
             return
@@ -270,7 +276,7 @@ class FallingBallsScene(PymunkScene):
             if len(self.balls) >= self.p["max_balls"]:
                 continue
             x = L_ORIGIN[0] + self.random.uniform(*SPAWN_X)
-            self.add_ball((x, -self.p["radius"]))
+            self.add_ball((x, SPAWN_Y + self.p["radius"]))
 
     # ----- mouse ----------------------------------------------------------------------------
     def on_click(self, pos: tuple[float, float], button: int) -> None:
@@ -279,6 +285,9 @@ class FallingBallsScene(PymunkScene):
 
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
+        if self.p["spawn_rate"] > 0:         # where new balls appear: a faint line
+            x0, x1 = (L_ORIGIN[0] + x for x in SPAWN_X)
+            pygame.draw.line(surface, SPAWN_COLOR, view.pt((x0, SPAWN_Y)), view.pt((x1, SPAWN_Y)))
         for s in getattr(self, "walls", ()):
             D.draw_shape(surface, view, s, D.STATIC)
         self.draw_L(surface, view)

@@ -48,7 +48,9 @@ Also `release_speed` (px/s, the lifted balls just before the first impact) and `
 Controls: drag a ball with the left mouse button (the strings hold it). Letting go re-arms the
 measurement: the balls more than a radius from rest count as lifted and the energy at that moment
 is the new baseline. Parameters: balls, lifted, angle, gap, elasticity, damping, substeps,
-iterations, gravity.
+iterations, g; effect: gravity (off: legal but odd, the released balls fly off in a straight line
+until the strings catch them). Changing g or gravity while it runs re-baselines `energy_ratio`
+(the potential energy depends on g: the old baseline would fake a gain or loss).
 """
 
 from __future__ import annotations
@@ -163,7 +165,7 @@ class NewtonsCradleScene(PymunkScene):
 
     def half_period(self) -> float:
         """Half the small-angle period of one string, pi sqrt(L/g) (inf without gravity)."""
-        g = self.p["gravity"]
+        g = self.gravity()
         return math.pi * math.sqrt(STRING / g) if g > 0 else math.inf
 
     # ----- stepping -------------------------------------------------------------------------
@@ -230,7 +232,11 @@ class NewtonsCradleScene(PymunkScene):
         moment = self.bodies[0].moment
         kinetic = 0.5 * MASS * float((v ** 2).sum()) + 0.5 * moment * float((w ** 2).sum())
         height = self.rest[:, 1] - xy[:, 1]               # y is down: up is rest_y - y
-        return kinetic + MASS * self.p["gravity"] * float(height.sum())
+        return kinetic + MASS * self.gravity() * float(height.sum())
+
+    def gravity_changed(self) -> None:
+        """g (or the gravity effect) changed: the energy now, with the new g, is the baseline."""
+        self.track["energy0"] = self.energy()
 
     # ----- mouse ----------------------------------------------------------------------------
     def release(self) -> None:

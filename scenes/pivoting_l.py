@@ -28,7 +28,7 @@ Layout as in falling_balls: y down, the tutorial's lengths scaled by 1.5 (so the
 
 Controls: drag the L or a ball with the left mouse button; a left click on empty space drops a
 ball there. Parameters: spawn_rate, radius, max_balls, friction, slide_max, L_mass, pivot,
-gravity, iterations, substeps (2 here); effect: sleeping.
+g, iterations, substeps (2 here); effects: sleeping, gravity.
 """
 
 from __future__ import annotations

@@ -118,3 +118,58 @@ def test_two_runs_hash_the_same():
 def test_bad_values_are_refused(key, value):
     with pytest.raises(ParamError):
         DoublePendulumScene({key: value})
+
+
+def test_a_coarse_step_does_not_make_the_reference_coarse():
+    # hertz 1 with one RK4 step per physics step would be a 1 s RK4 step: it is bounded to 1 ms.
+    assert DoublePendulumODE.steps_for(1.0, 1) == 1000
+    assert DoublePendulumODE.steps_for(1 / 120, 10) == 10          # the default: unchanged
+    # Once a traceback (math.sin(inf) in the reference): now both stay finite and nothing raises.
+    scene = run(DoublePendulumScene({"hertz": 1, "substeps": 1, "mass1": 0.05, "mass2": 20,
+                                     "g": 5000, "error_bias": 1}), 8.0)
+    assert scene.is_finite() and scene.metrics()["reference_blowup_t"] == -1.0
+    scene = run(DoublePendulumScene({"hertz": 1, "ref_substeps": 1}), 5.0)
+    assert scene.is_finite() and scene.metrics()["reference_blowup_t"] == -1.0
+
+
+def test_a_reference_that_blows_up_is_frozen_hidden_and_reported():
+    scene = run(DoublePendulumScene(), 0.5)
+    scene.ode.state = (1.0, 2.0, 1e200, 1e200)     # a ghost about to overflow (w * w = inf)
+    frozen = scene.ode.state
+    scene.advance()                                # must not raise
+    m = scene.metrics()
+    assert m["reference_blowup_t"] == pytest.approx(scene.time)
+    assert m["reference_divergence"] == -1.0
+    assert scene.ode.state == frozen               # the last finite state, not integrated on
+    assert scene.is_finite()                       # the ghost's failure is not the engine's
+    assert any("reference blew up at t = " in line for line in scene.hud_lines())
+    before = scene.state_hash()
+    run(scene, 0.5)                                # the engine runs on
+    assert scene.state_hash() != before and scene.is_finite() and scene.ode.state == frozen
+    b2 = scene.bobs[1].position                    # a drag and let go restarts the ghost
+    scene.handle_event(InputEvent("mouse_down", tuple(b2), 1))
+    scene.handle_event(InputEvent("mouse_up", tuple(b2), 1))
+    assert scene.metrics()["reference_blowup_t"] == -1.0
+    assert scene.metrics()["reference_divergence"] < 0.05
+
+
+def test_an_overflowing_reference_returns_false_and_keeps_its_state():
+    ode = DoublePendulumODE(160, 160, 1.0, 1.0, 900.0, (1.0, 2.0, 1e200, 1e200))
+    assert ode.advance(0.01, 10) is False and ode.state == (1.0, 2.0, 1e200, 1e200)
+    ode = DoublePendulumODE(160, 160, 1.0, 1.0, 900.0, (1.0, 2.0, 0.0, 0.0))
+    assert ode.advance(0.01, 10) is True
+
+
+def test_changing_g_or_gravity_rebaselines_the_energy():
+    scene = run(DoublePendulumScene(), 1.0)
+    scene.set("g", 450.0)
+    assert abs(scene.metrics()["energy_drift"]) < 1e-9     # at once, before the next step
+    run(scene, 1.0)
+    assert scene.ode.g == 450.0 and scene.space.gravity == (0.0, 450.0)
+    assert abs(scene.metrics()["energy_drift"]) < 0.01
+    scene.set("gravity", False)                             # the effect: off = no gravity
+    assert scene.space.gravity == (0.0, 0.0)
+    assert abs(scene.metrics()["energy_drift"]) < 1e-9
+    run(scene, 1.0)
+    assert scene.ode.g == 0.0 and abs(scene.metrics()["energy_drift"]) < 0.01
+    assert scene.metrics()["energy_drift_max"] < 0.01

@@ -117,3 +117,17 @@ def test_bad_values_are_refused(key, value):
     scene = NewtonsCradleScene()
     with pytest.raises(ParamError):
         scene.set(key, value)
+
+
+def test_changing_g_or_gravity_rebaselines_the_energy():
+    scene, _ = run(0.3)
+    scene.set("g", 1800.0)
+    assert scene.space.gravity == (0.0, 1800.0)
+    assert scene.metrics()["energy_ratio"] == pytest.approx(1.0, abs=1e-9)
+    for _ in range(60):
+        scene.advance()
+    assert scene.metrics()["energy_ratio"] == pytest.approx(1.0, abs=0.01)
+    scene.set("gravity", False)             # legal but odd: the balls fly on, no potential
+    assert scene.space.gravity == (0.0, 0.0)
+    assert scene.metrics()["energy_ratio"] == pytest.approx(1.0, abs=1e-9)
+    assert scene.half_period() == float("inf")

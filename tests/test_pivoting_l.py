@@ -61,7 +61,7 @@ def test_two_runs_hash_the_same():
     assert run(3.0).state_hash() == run(3.0).state_hash()
 
 
-@pytest.mark.parametrize("key, value", [("iterations", 0), ("gravity", float("nan")),
+@pytest.mark.parametrize("key, value", [("iterations", 0), ("g", float("nan")), ("gravity", "maybe"),
                                         ("radius", -1), ("slide_max", -5), ("L_mass", 0),
                                         ("pivot", "glue"), ("container", True)])
 def test_bad_values_are_refused(key, value):

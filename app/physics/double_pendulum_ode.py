@@ -23,6 +23,12 @@ Why point masses match pymunk's bobs: pymunk's bobs are discs with a moment of i
 pin joints hold them at their centres of mass, so no joint force has a lever arm on a bob, the bobs
 never start spinning and their rotation drops out of the energy. Point masses are the exact model.
 
+The step is bounded: `advance(dt, n)` takes at least ceil(dt / MAX_STEP) RK4 steps (MAX_STEP =
+1 ms), whatever n asks for, so a coarse physics step (hertz 1) does not make the reference coarse
+too. RK4 is only conditionally stable: at h ~ 1/omega it blows up, and a reference that blows up
+is no reference. If it still goes non-finite (extreme masses and g), `advance` keeps the last
+finite state, returns False and never raises; the scene freezes the ghost and says so.
+
 The step uses plain float arithmetic (the math module): one state of four numbers is far too small
 for arrays to pay off: the same RK4 step on a 4-element NumPy array took ~65 us against ~20 us
 here. `positions` returns a NumPy array for drawing and comparing.
@@ -36,6 +42,8 @@ from dataclasses import dataclass
 import numpy as np
 
 State = tuple[float, float, float, float]    # theta1, theta2, omega1, omega2 (rad, rad/s)
+
+MAX_STEP = 1e-3    # seconds: the longest RK4 step advance() takes (see the module docstring)
 
 
 @dataclass
@@ -78,11 +86,29 @@ class DoublePendulumODE:
                            for a, b1, b2, b3, b4 in zip(y, k1, k2, k3, k4))
         self.time += h
 
-    def advance(self, dt: float, n: int) -> None:
-        """Advance dt seconds in n RK4 steps of dt/n."""
-        h = dt / n
-        for _ in range(n):
-            self.rk4_step(h)
+    @staticmethod
+    def steps_for(dt: float, n: int) -> int:
+        """RK4 steps used for dt when n are asked for: n, or more if dt/n exceeds MAX_STEP."""
+        return max(n, math.ceil(dt / MAX_STEP))
+
+    def advance(self, dt: float, n: int) -> bool:
+        """Advance dt seconds in steps_for(dt, n) RK4 steps of equal length. Returns True, or
+        False if the integration went non-finite: then the state (and time) are left as they
+        were before the call, the last finite state."""
+        y0, t0 = self.state, self.time
+        if not all(map(math.isfinite, y0)):
+            return False
+        m = self.steps_for(dt, n)
+        h = dt / m
+        try:
+            for _ in range(m):
+                self.rk4_step(h)
+        except (ValueError, OverflowError):   # math.sin(inf), float ** overflow
+            self.state = (math.nan,) * 4
+        if all(map(math.isfinite, self.state)):
+            return True
+        self.state, self.time = y0, t0
+        return False
 
     # ----- reading and setting the state ----------------------------------------------------
     def positions(self, pivot: tuple[float, float]) -> np.ndarray:
