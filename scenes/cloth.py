@@ -7,7 +7,8 @@ coloured by how much each rod is stretched (a heat map of |length/rest - 1|), so
 HUD's ms per step). Physics: app/physics/cloth.py; drawing: app/draw/cloth_draw.py.
 
 Controls:
-  LMB       grab the nearest particle and drag it; let go and it stays locked there
+  LMB       grab the nearest particle and drag it; let go and it stays locked there (it follows
+            the mouse at most 1e5 px beyond the world's edges, so no drag can tear it to inf)
   RMB       unlock a locked particle (a pin, or one you dropped)
   U         unlock everything and restore the default pins
 Settings: iterations and substeps change live; try --set shear=on, --set tearing=on,
@@ -26,10 +27,23 @@ import time
 
 import numpy as np
 
-from app.physics.cloth import FORCE_NAMES, PIN_CHOICES, SET_NAMES, WIND_FIELDS, Cloth
-from app.scene import Effect, InputEvent, Param, Scene
+from app.physics.cloth import FORCE_NAMES, PIN_CHOICES, SET_NAMES, WIND_FIELDS, Cloth, sweep_size
+from app.scene import Effect, InputEvent, Param, ParamError, Scene
 
 UNLOCK_KEY = "u"
+# Work per step, in rod updates: iterations x substeps x (rods + BATCH_COST x batches), counting
+# all three rod sets (shear and bending can be switched on live, without a check). Measured on the
+# 2-core lab machine while other work ran: ~13 ns per rod update (a 256x256 sweep), ~19 us per
+# batch call (NumPy's per-call overhead, which dominates small cloths: 1500 rod updates' worth).
+# WORK_BUDGET = 4e7 rod updates keeps a step near 0.5 s (worst accepted cases: 0.4-0.6 s).
+WORK_BUDGET = 4e7
+BATCH_COST = 1500
+
+
+def _sci(x: float) -> str:
+    """2.0e9, not 2.0e+09."""
+    mantissa, exponent = f"{x:.1e}".split("e")
+    return f"{mantissa.removesuffix('.0')}e{int(exponent)}"
 
 
 class ClothScene(Scene):
@@ -57,7 +71,8 @@ class ClothScene(Scene):
         Param("g", 980.0, float, 0.0, 5000.0, help="gravity in px/s^2 (downwards)",
               rebuild=False),
         Param("drag_coef", 0.01, float, 0.0, 0.5,
-              help="fraction of velocity lost per substep (0.01: Verlet's 2 becomes 1.99)",
+              help="fraction of velocity lost per 1/60 s, whatever the substeps "
+                   "(0.01: Verlet's 2 becomes 1.99 at 60 Hz)",
               rebuild=False),
         Param("wind_strength", 600.0, float, 0.0, 5000.0, help="wind acceleration in px/s^2",
               rebuild=False),
@@ -81,6 +96,26 @@ class ClothScene(Scene):
     )
 
     # ----- world --------------------------------------------------------------------------------
+    @classmethod
+    def step_work(cls, values) -> float:
+        """Rod updates one step costs at most (all three rod sets on), see WORK_BUDGET."""
+        rods, batches = sweep_size(values["rows"], values["cols"], SET_NAMES)
+        return values["iterations"] * values["substeps"] * (rods + BATCH_COST * batches)
+
+    @classmethod
+    def check_combination(cls, values) -> None:
+        # Every param is in range alone, but 256x256 x 100 iterations x 50 substeps would take
+        # half a minute per step: refuse what a step cannot do in about 0.5 s.
+        work = cls.step_work(values)
+        if work > WORK_BUDGET:
+            r, c, it, sub = (values[k] for k in ("rows", "cols", "iterations", "substeps"))
+            per_sweep = work / (it * sub)
+            raise ParamError(
+                f"rows x cols x iterations x substeps too large: a {r}x{c} cloth with {it} "
+                f"iterations x {sub} substeps needs ~{_sci(work)} rod updates per step (all rod "
+                f"sets); accepted: at most {_sci(WORK_BUDGET)} (about 0.5 s), here iterations x "
+                f"substeps <= {int(WORK_BUDGET // per_sweep)}")
+
     def build(self) -> None:
         p = self.p
         rows, cols = p["rows"], p["cols"]
@@ -118,7 +153,7 @@ class ClothScene(Scene):
     def handle_event(self, event: InputEvent) -> None:
         c = self.cloth
         if event.kind.startswith("mouse"):
-            self.mouse = (float(event.pos[0]), float(event.pos[1]))
+            self.mouse = c.clamp(event.pos)     # any finite double: kept within 1e5 px of the world
         if event.kind == "mouse_down" and event.button == 1:
             cell = c.nearest(event.pos, self.grab_radius)
             if cell is not None:

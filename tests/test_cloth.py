@@ -3,9 +3,13 @@
 Small grids (10x10 .. 24x24) keep the whole file fast; nothing here measures time."""
 
 import math
+import warnings
 
 import numpy as np
+import pygame
 import pytest
+
+from app.draw.view import View
 
 from app.physics.cloth import Cloth, solve_order
 from app.physics.cloth_naive import NaiveCloth
@@ -162,6 +166,23 @@ def test_at_equal_sweeps_substeps_beat_iterations():
     assert s[0] > s[1] > s[2] > s[3]
 
 
+def test_drag_takes_the_same_share_of_velocity_per_second_whatever_the_substeps():
+    """drag = velocity lost per 1/60 s: a free cloth (no pins, no gravity) sliding at 300 px/s
+    keeps (1 - drag)^60 of its speed after one second at 1, 10 or 50 substeps (substeps must buy
+    accuracy, not honey)."""
+    kept = []
+    for sub in (1, 10, 50):
+        scene = cloth_scene(rows=6, cols=6, pins="none", gravity=False, drag_coef=0.01,
+                            substeps=sub, iterations=1, precision="float64")
+        c, h = scene.cloth, scene.dt / sub
+        c.x_prev[...] = c.x - np.array([300.0, -120.0])[:, None, None] * h
+        run(scene, scene.p["hertz"])                              # one simulated second
+        v = (c.x - c.x_prev) / h
+        assert np.allclose(v, v[:, :1, :1])                       # still a rigid slide
+        kept.append(np.hypot(*v[:, 0, 0]) / np.hypot(300.0, 120.0))
+    assert kept == pytest.approx([0.99 ** 60] * 3, rel=0.02), kept
+
+
 def test_iterations_and_substeps_change_live():
     scene = cloth_scene()
     built = scene.cloth
@@ -221,6 +242,29 @@ def test_grab_follows_the_mouse_without_nan_however_fast():
     assert scene.is_finite()
 
 
+@pytest.mark.parametrize("far", [1e39, -1e300, 1e20])
+def test_a_mouse_at_any_finite_double_never_tears_the_cloth_to_inf_or_nan(far):
+    """Finite doubles beyond float32 (1e39) or whose squares overflow (1e20, -1e300): the grab is
+    followed at most REACH px beyond the world, metrics stay finite, and nothing warns."""
+    from app.physics.cloth import REACH
+    scene = cloth_scene(shear=True, wind=True)
+    c = scene.cloth
+    with np.errstate(all="raise"), warnings.catch_warnings():
+        warnings.simplefilter("error")                 # an overflow warning fails the test
+        lmb(scene, "mouse_down", c.x[:, -1, 6])
+        lmb(scene, "mouse_move", (far, far))
+        run(scene, 20)
+        assert scene.is_finite()
+        assert np.all(np.abs(c.x[:, -1, 6]) <= max(scene.world_size) + REACH)
+        lmb(scene, "mouse_up", (far, -far))            # dropped out there: locked, clamped
+        run(scene, 20)
+        m = scene.metrics()
+        lmb(scene, "mouse_down", (far, far))           # hover/grab search far away: harmless
+        scene.draw(pygame.Surface((96, 72)), View.fit(scene.world_size, (0, 0, 96, 72)))
+    assert scene.is_finite() and c.locked[-1, 6]
+    assert all(math.isfinite(v) for v in m.values()), m
+
+
 # ----- effects off cost nothing ----------------------------------------------------------------------
 def test_effects_that_are_off_are_not_computed():
     scene = run(cloth_scene(shear=False, bending=False, wind=False, tearing=False), 5)
@@ -251,6 +295,23 @@ def test_bad_values_are_refused(key, value):
         scene.set(key, value)
 
 
+def test_a_step_that_would_take_seconds_is_refused_and_nothing_changes():
+    with pytest.raises(ParamError, match=r"256x256 cloth with 100 iterations x 50 substeps.*"
+                                         r"accepted: at most 4e7"):
+        ClothScene({"rows": 256, "cols": 256, "iterations": 100, "substeps": 50})
+    with pytest.raises(ParamError, match="too large"):        # tiny, but 5000 sweeps of 16 calls
+        ClothScene({"rows": 28, "cols": 28, "iterations": 100, "substeps": 50})
+    scene = cloth_scene(rows=128, cols=128, iterations=100)   # fine alone...
+    with pytest.raises(ParamError, match="here iterations x substeps <= "):
+        scene.set("substeps", 10)                             # ...not with 10 substeps
+    assert scene.p["substeps"] == 1 and scene.p["rows"] == 128
+    # what the app, the benchmark and these tests use stays accepted
+    for ok in ({}, {"rows": 128, "cols": 128, "iterations": 20}, {"rows": 64, "cols": 64,
+               "substeps": 10, "iterations": 1}, {"rows": 256, "cols": 256, "iterations": 90},
+               {"rows": 12, "cols": 12, "substeps": 50, "iterations": 10}):
+        ClothScene.check_combination(ClothScene.resolve(ok))
+
+
 def test_snapshot_restore_and_determinism():
     a = run(cloth_scene(wind=True, tearing=True), 20)
     snap = a.snapshot()
@@ -263,8 +324,6 @@ def test_snapshot_restore_and_determinism():
 
 
 def test_draws_headless_with_torn_rods_and_a_grab():
-    import pygame
-    from app.draw.view import View
     scene = run(cloth_scene(tearing=True), 10)
     yank(scene, 3)
     surface = pygame.Surface(scene.world_size)

@@ -160,7 +160,9 @@ def _legend() -> pygame.Surface:
 
 
 def draw_legend(surface: pygame.Surface, view, world_size: tuple[int, int]) -> None:
-    """The strain colour key in the bottom-right corner of the world."""
+    """The strain colour key in the top-right corner of the world: above the pinned row (the
+    cloth hangs from 28 % of the height) and right of the window's HUD box, where the cloth rarely
+    goes; the wind blows it into the bottom-right corner."""
     legend = _legend()
-    x, y = view.pt((world_size[0], world_size[1]))
-    surface.blit(legend, (x - legend.get_width() - 6, y - legend.get_height() - 6))
+    x, y = view.pt((world_size[0], 0))
+    surface.blit(legend, (x - legend.get_width() - 6, y + 6))

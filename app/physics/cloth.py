@@ -8,6 +8,10 @@ The lecture's cloth (Jakobsen, "Advanced Character Physics", GDC 2001) in three 
        x' = x + (x - x_prev) * (1 - drag) + a * h^2          (drag 0.01 is "2 becomes 1.99")
 
    then x_prev takes x's place. With two arrays that is a pointer swap, as the slide says.
+   `drag` is the fraction of velocity lost per 1/60 s (the slide's step at 60 fps). A substep of
+   h seconds applies the same loss per second, (1 - drag) ** (h * 60): otherwise the damping would
+   grow with hertz x substeps (at drag 0.01, 50 substeps at 60 Hz would keep 8e-14 of the velocity
+   per second instead of 0.55, and more substeps would buy honey, not accuracy).
 2. **Rods, not springs.** Each pair of neighbours is a distance constraint |x_b - x_a| = rest.
    One constraint is satisfied by moving both ends along their difference, each by its share of
    the error, w_a / (w_a + w_b) with w = 1/mass (w = 0: pinned, it never moves).
@@ -49,6 +53,7 @@ SET_NAMES = ("structural", "shear", "bending")  # rod sets, in the order a sweep
 FORCE_NAMES = ("drag", "gravity", "wind")       # force effects, in the order they apply
 PIN_CHOICES = ("top", "corners", "none")
 WIND_FIELDS = ("gust", "lecture")
+REACH = 1e5        # the mouse is followed at most this far (px) beyond the world's edges
 
 Slices = tuple[slice, slice]
 
@@ -126,17 +131,33 @@ def _family(name: str, dr: int, dc: int, rows: int, cols: int, rest: float,
     return fam
 
 
+# rod families of each set: (name, dr, dc, rest length in spacings)
+FAMILIES = {"structural": [("horizontal", 0, 1, 1.0), ("vertical", 1, 0, 1.0)],
+            "shear": [("diagonal", 1, 1, math.sqrt(2.0)), ("antidiagonal", 1, -1, math.sqrt(2.0))],
+            "bending": [("horizontal skip-one", 0, 2, 2.0), ("vertical skip-one", 2, 0, 2.0)]}
+
+
 def rod_sets(rows: int, cols: int, spacing: float, dtype: type = np.float32) -> dict[str, RodSet]:
     """The three rod sets of a grid cloth with the given spacing."""
-    s, d = spacing, spacing * math.sqrt(2.0)
-    spec = {"structural": [("horizontal", 0, 1, s), ("vertical", 1, 0, s)],
-            "shear": [("diagonal", 1, 1, d), ("antidiagonal", 1, -1, d)],
-            "bending": [("horizontal skip-one", 0, 2, 2 * s), ("vertical skip-one", 2, 0, 2 * s)]}
     sets = {}
-    for name, fams in spec.items():
-        built = [_family(fname, dr, dc, rows, cols, rest, dtype) for fname, dr, dc, rest in fams]
+    for name, fams in FAMILIES.items():
+        built = [_family(fname, dr, dc, rows, cols, rest * spacing, dtype)
+                 for fname, dr, dc, rest in fams]
         sets[name] = RodSet(name, [f for f in built if f is not None])
     return sets
+
+
+def sweep_size(rows: int, cols: int, set_names: tuple[str, ...] = SET_NAMES) -> tuple[int, int]:
+    """(rods, batches) of one sweep over the named sets, without building anything: what one
+    sweep costs is about rods x (a few ns) + batches x (a NumPy call overhead of ~10 us)."""
+    rods = batches = 0
+    for name in set_names:
+        for _, dr, dc, _ in FAMILIES[name]:
+            n_rows, n_cols = rows - dr, cols - abs(dc)
+            if n_rows > 0 and n_cols > 0:
+                rods += n_rows * n_cols
+                batches += min(2 * dc, n_cols) if dr == 0 else min(2 * dr, n_rows)
+    return rods, batches
 
 
 def solve_order(rows: int, cols: int, set_names: tuple[str, ...]
@@ -185,7 +206,8 @@ class Cloth:
     """A rows x cols grid of particles joined by rods; see the module docstring.
 
     Settings read on every step (change them freely between steps): iterations, gravity (px/s^2,
-    downwards), drag (0..1, the fraction of velocity lost per substep), wind_strength (px/s^2),
+    downwards), drag (0..1, the fraction of velocity lost per 1/60 s, whatever the substep),
+    wind_strength (px/s^2),
     wind_field, tear_ratio. The effects that are on are chosen with set_effects()."""
 
     def __init__(self, rows: int, cols: int, spacing: float, origin: tuple[float, float] = (0, 0),
@@ -299,9 +321,20 @@ class Cloth:
         at = np.array([self.rest_x[:, r, c] for r, c in cells]).T if cells else None
         self.lock_cells(cells, at)
 
+    def clamp(self, pos: tuple[float, float]) -> tuple[float, float]:
+        """pos moved into the box REACH px around the world (NaN counts as 0).
+
+        The mouse may report any finite double (1e39, -1e300); a grabbed particle follows it only
+        this far, so positions stay far inside float32's range and rod lengths squared (up to
+        ~1e11) cannot overflow: the cloth is stretched, never torn to inf or NaN."""
+        (w, h), r = self.world, REACH
+        x, y = (float(v) if v == v else 0.0 for v in pos[:2])
+        return (min(max(x, -r), w + r), min(max(y, -r), h + r))
+
     def nearest(self, pos: tuple[float, float], radius: float,
                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
         """The particle nearest to pos within radius (among `mask` if given), or None."""
+        pos = self.clamp(pos)
         d2 = (self.x[0] - pos[0]) ** 2 + (self.x[1] - pos[1]) ** 2
         if mask is not None:
             d2 = np.where(mask, d2, np.inf)
@@ -314,13 +347,14 @@ class Cloth:
         self.release()
         r, c = cell
         self.grabbed = cell
-        self.grab_target = (float(pos[0]), float(pos[1]))
+        self.grab_target = self.clamp(pos)
         self.locked[r, c] = False
         self.w[r, c] = 0
         self.update_weights()
 
     def move_grab(self, pos: tuple[float, float]) -> None:
-        self.grab_target = (float(pos[0]), float(pos[1]))
+        """Move the grab target to pos (kept within REACH px of the world: see clamp)."""
+        self.grab_target = self.clamp(pos)
 
     def release(self, pos: tuple[float, float] | None = None) -> None:
         """Drop the grabbed particle: it stays locked where it was dropped (the seed's 'move+lock')."""
@@ -328,7 +362,7 @@ class Cloth:
             return
         r, c = self.grabbed
         self.grabbed = None
-        at = None if pos is None else np.array([[pos[0]], [pos[1]]], self.dtype)
+        at = None if pos is None else np.array([[v] for v in self.clamp(pos)], self.dtype)
         self.lock_cells([(r, c)], at)
 
     def _follow_mouse(self) -> None:
@@ -338,7 +372,7 @@ class Cloth:
 
     # ----- forces (each adds its a*h^2 to v = x - x_prev; only the active ones run) -------------
     def _drag(self, v: np.ndarray, h: float) -> None:
-        v *= 1.0 - self.drag                             # (x - x_prev)(1 - drag): "2 -> 1.99"
+        v *= (1.0 - self.drag) ** (h * 60.0)            # "2 -> 1.99" per 1/60 s, for any h
 
     def _gravity(self, v: np.ndarray, h: float) -> None:
         v[1] += self.gravity * h * h                     # a h^2, a = (0, +g): y points down

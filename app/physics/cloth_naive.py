@@ -60,7 +60,7 @@ class NaiveCloth:
             self.satisfy_constraints()
 
     def verlet(self, h: float) -> None:
-        keep = 1.0 - self.drag
+        keep = (1.0 - self.drag) ** (h * 60.0)      # drag = velocity lost per 1/60 s
         ay = self.gravity * h * h
         for row in self.grid:
             for p in row:
