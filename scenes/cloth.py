@@ -176,7 +176,7 @@ class ClothScene(Scene):
         if self.mouse is not None and self.cloth.grabbed is None:
             hover = self.cloth.nearest(self.mouse, self.grab_radius)
         draw_cloth(surface, view, self.cloth, hover)
-        draw_legend(surface, view, self.world_size)
+        self.legend_rect = draw_legend(surface, view, self.world_size)
 
     # ----- reports ------------------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:

@@ -159,10 +159,10 @@ def _legend() -> pygame.Surface:
     return _legend_cache[key]
 
 
-def draw_legend(surface: pygame.Surface, view, world_size: tuple[int, int]) -> None:
+def draw_legend(surface: pygame.Surface, view, world_size: tuple[int, int]) -> pygame.Rect:
     """The strain colour key in the top-right corner of the world: above the pinned row (the
     cloth hangs from 28 % of the height) and right of the window's HUD box, where the cloth rarely
-    goes; the wind blows it into the bottom-right corner."""
+    goes; the wind blows it into the bottom-right corner. Returns the screen rectangle."""
     legend = _legend()
     x, y = view.pt((world_size[0], 0))
-    surface.blit(legend, (x - legend.get_width() - 6, y + 6))
+    return surface.blit(legend, (x - legend.get_width() - 6, y + 6))
