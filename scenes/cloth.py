@@ -59,6 +59,7 @@ class ClothScene(Scene):
     name = "cloth"
     title = "Verlet cloth"
     category = "Hand-written physics"
+    aliases = {"bend": "bending", "tear": "tearing"}   # the names the lecture and issue use
     params = (
         Param("rows", 28, int, 2, 256, help="particles from top to bottom"),
         Param("cols", 40, int, 2, 256, help="particles from left to right"),

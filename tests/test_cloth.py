@@ -349,3 +349,10 @@ def test_the_benchmark_runs_quickly(tmp_path):
     assert out["big_ms"] > 0 and out["naive"]["speedup"] > 0 and out["draw"]["draw_ms"] > 0
     assert all(math.isfinite(g["mean_stretch"]) for g in out["grid"])
     assert (tmp_path / "cloth.png").exists()
+
+
+def test_bend_and_tear_are_accepted_names_for_bending_and_tearing():
+    scene = ClothScene({"rows": 6, "cols": 6, "bend": "on", "tear": True})
+    assert {"bending", "tearing"} <= scene.on
+    scene.set("bend", "off")
+    assert "bending" not in scene.on
