@@ -99,8 +99,8 @@ class PymunkScene(Scene):
 
     def set(self, key: str, value: Any) -> None:
         super().set(key, value)
-        if key in ("g", "gravity") and hasattr(self, "space"):
-            self.sync_gravity()      # now, so metrics read before the next step are right
+        self.sync_gravity()      # if g or gravity changed: now, so metrics read before the next
+                                 # step are right
 
     # ----- mouse --------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:

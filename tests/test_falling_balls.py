@@ -195,3 +195,14 @@ def test_gravity_off_leaves_the_balls_where_they_appear():
     scene.advance()        # Chipmunk moves with the old velocity first: one step to pick it up
     scene.advance()
     assert scene.space.gravity == (0.0, 100.0) and ball.body.position.y > 300.0
+
+
+def test_a_combination_that_would_take_seconds_per_step_is_refused():
+    # 5000 balls x 50 substeps x 200 iterations: ~11 s per step measured on a settled pile.
+    with pytest.raises(ParamError, match="max_balls x substeps x"):
+        FallingBallsScene({"max_balls": 5000, "substeps": 50, "iterations": 200})
+    FallingBallsScene({"max_balls": 5000, "substeps": 2, "iterations": 200})   # ~0.4 s: accepted
+    scene = FallingBallsScene({"max_balls": 5000, "iterations": 200})
+    with pytest.raises(ParamError, match="budget"):
+        scene.set("substeps", 50)                      # the panel: refused, nothing changed
+    assert scene.p["substeps"] == 1

@@ -74,3 +74,8 @@ def test_draws_the_L_and_its_joints():
     surface = pygame.Surface(scene.world_size)
     scene.draw(surface, View())
     assert surface.get_at((int(L_ORIGIN[0]), int(L_ORIGIN[1])))[:3] != scene.background
+
+
+def test_a_combination_that_would_take_seconds_per_step_is_refused():
+    with pytest.raises(ParamError, match="max_balls x substeps x"):
+        PivotingLScene({"max_balls": 5000, "substeps": 50})
