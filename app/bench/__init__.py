@@ -90,7 +90,7 @@ def machine_note() -> str:
         load = os.getloadavg()[0]
     except (AttributeError, OSError):
         return f"{cores} cores (load average unknown)"
-    busy = "  (busy: timings will be noisy)" if load > 0.5 else ""
+    busy = "  (busy: timings will be noisy)" if load > 0.75 * cores else ""
     return f"{cores} cores, load average {load:.2f} over the last minute{busy}"
 
 
