@@ -781,8 +781,11 @@ class Window:
         if self.manager is not None:
             self.manager.draw_ui(screen)
         if self.show_help:       # over the whole window: the room needs the space for big text
+            settings = [(prm.name, prm.help) for prm in scene.all_params()]
+            settings += [(eff.name, f"effect, {'on' if eff.name in scene.on else 'off'}: {eff.help}")
+                         for eff in scene.effects]
             hud.help_overlay(screen, screen.get_rect(), scene.title or scene.name,
-                             docstring_help(type(scene)))
+                             docstring_help(type(scene)), settings)
         self._save_pending()
 
     # --- screenshots and recording -----------------------------------------------------------

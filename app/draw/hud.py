@@ -170,8 +170,10 @@ def reflow(doc: str) -> str:
     return "\n".join(out)
 
 
-def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: str) -> None:
-    """The help overlay: the scene's docstring and the common keys, over `area`."""
+def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: str,
+                 settings: list[tuple[str, str]] | None = None) -> None:
+    """The help overlay: the scene's docstring, the common keys and, beside them, the scene's
+    settings (name and one-line help of every param and effect), over `area`."""
     shade = pygame.Surface(area.size, pygame.SRCALPHA)
     shade.fill((5, 6, 9, 235))
     surface.blit(shade, area.topleft)
@@ -191,6 +193,10 @@ def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: st
         surface.blit(f.render(t, True, TEXT_COLOR), (x, y))
         y += f.get_linesize()
     y += f.get_linesize() // 2
+    if settings:      # to the right of the common keys
+        left = x + key_w + max(f.size(w)[0] for _, r in key_rows for w in r) + 40
+        _settings_column(surface, settings,
+                         pygame.Rect(left, y, area.right - 24 - left, area.bottom - 10 - y))
     surface.blit(f.render("Common keys", True, ACCENT_COLOR), (x, y))
     y += f.get_linesize()
     for k, rows in key_rows:
@@ -198,6 +204,26 @@ def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: st
         for what in rows:
             surface.blit(f.render(what, True, TEXT_COLOR), (x + key_w, y))
             y += f.get_linesize()
+
+
+def _settings_column(surface: pygame.Surface, settings: list[tuple[str, str]],
+                     rect: pygame.Rect) -> None:
+    """'Settings': one line per param or effect (name in yellow, its help), as many as fit."""
+    if rect.width < 200:
+        return
+    f_head, f = font(HELP_SIZE), font(int(HELP_SIZE * 0.8))
+    surface.blit(f_head.render("Settings (panel, or --set NAME=VALUE)", True, ACCENT_COLOR),
+                 rect.topleft)
+    y = rect.top + f_head.get_linesize()
+    for name, what in settings:
+        if y + f.get_linesize() > rect.bottom:
+            surface.blit(f.render("...", True, DIM_COLOR), (rect.left, y - 4))
+            break
+        label = f.render(name, True, WARN_COLOR)
+        surface.blit(label, (rect.left, y))
+        rest = _one_line(what, f, rect.width - label.get_width() - 12)
+        surface.blit(f.render(rest, True, TEXT_COLOR), (rect.left + label.get_width() + 12, y))
+        y += f.get_linesize()
 
 
 def _one_line(text: str, f: pygame.font.Font, width: int) -> str:
