@@ -146,15 +146,13 @@ def app_main(argv: list[str]) -> int:
         if args.headless and args.seconds is not None and args.seconds * values["hertz"] > MAX_STEPS:
             raise UsageError(f"--seconds {args.seconds:g} at {values['hertz']} Hz is more than "
                              f"{MAX_STEPS:,} steps; accepted: at most "
-                             f"{MAX_STEPS / values['hertz']:,.0f} seconds for {cls.name}")
-    if args.screenshot:
-        problem = check_output_path(args.screenshot, "--screenshot")
-        if problem:
-            raise UsageError(problem)
-    if args.record:
-        problem = check_output_path(args.record, "--record")
-        if problem:
-            raise UsageError(problem)
+                             f"{MAX_STEPS // values['hertz']:,} seconds for {cls.name}")
+        names = [k for k in overrides if k in cls.setting_names()]
+        for key in names:
+            twins = [k for k in names if cls.canonical(k) == cls.canonical(key)]
+            if len(twins) > 1:
+                raise UsageError(f"--set {' and '.join(twins)} name the same setting of "
+                                 f"{cls.name}; give it once")
 
     events = None
     if args.input:
@@ -163,6 +161,12 @@ def app_main(argv: list[str]) -> int:
             events = load_events(args.input)
         except InputFileError as e:
             raise UsageError(str(e)) from None
+
+    for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record")):
+        if path is not None and not (what == "--record" and args.headless):
+            problem = check_output_path(path, what)      # last: it may create the folder
+            if problem:
+                raise UsageError(problem)
 
     if args.headless:
         if args.record:

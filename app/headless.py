@@ -24,7 +24,7 @@ from app.scene import EVENT_SLACK, InputEvent, Scene
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
-MAX_STEPS = 10_000_000          # a headless run longer than this is a typo, not an experiment
+MAX_STEPS = 1_000_000           # a headless run longer than this is a typo, not an experiment
 
 
 class InputFileError(ValueError):
@@ -197,6 +197,10 @@ def steps_for(seconds: float | None, dt: float) -> int:
 def check_output_path(path: str, what: str) -> str | None:
     """None if a file can be written at `path`, else a one-line reason (checked before a run, so
     a long run is not lost to a typo in the output path)."""
+    if not path.strip():
+        return f"{what} needs a file name"
+    if what == "--screenshot" and not path.lower().endswith(".png"):
+        return f"{what} '{path}': accepted: a file name ending in .png"
     if os.path.isdir(path):
         return f"{what} '{path}' is a folder; give a file name such as {path.rstrip('/')}/out.png"
     folder = os.path.dirname(os.path.abspath(path))
@@ -226,7 +230,7 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
             path = screenshot
             if len(scene_classes) > 1:
                 root, ext = os.path.splitext(screenshot)
-                path = f"{root}-{scene.name}{ext or '.png'}"
+                path = f"{root}-{scene.name}{ext}"
             try:
                 render(scene, path)
                 summary["screenshot"] = path

@@ -45,7 +45,8 @@ PYMUNK_PARAMS: tuple[Param, ...] = (
     Param("iterations", 10, int, 1, 200, help="pymunk solver iterations per step", rebuild=False),
 )
 PYMUNK_EFFECTS: tuple[Effect, ...] = (
-    Effect("gravity", True, "gravity pulls every body down (off: space.gravity is (0, 0))"),
+    Effect("gravity", True, "gravity pulls every body down (off: space.gravity is (0, 0))",
+           amount="g"),
 )
 
 

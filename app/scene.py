@@ -128,6 +128,7 @@ class Effect:
     default: bool = True
     help: str = ""
     rebuild: bool = False
+    amount: str = ""      # the param that sets how strong it is, if any (named in errors)
 
 
 # Every scene has these; a scene may re-declare one (same name) to change its default or range.
@@ -226,8 +227,15 @@ class Scene:
         prm = cls.param(key)
         if prm is not None:
             return prm.parse(value)
-        if cls.effect(key) is not None:
-            return Param(key, True, bool).parse(value)
+        eff = cls.effect(key)
+        if eff is not None:
+            try:
+                return Param(eff.name, True, bool).parse(value)
+            except ParamError as e:
+                if not eff.amount:
+                    raise
+                raise ParamError(f"{e} ('{eff.name}' is an effect; its strength is the "
+                                 f"parameter '{eff.amount}')") from None
         raise ParamError(f"scene '{cls.name}' has no parameter or effect '{key}'; accepted: "
                          + ", ".join(cls.setting_names()))
 

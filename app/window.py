@@ -306,7 +306,7 @@ class Window:
 
     def __init__(self, screen: pygame.Surface, scenes: Sequence[type[Scene]] | None = None,
                  large_text: bool = False, events: list[InputEvent] | None = None,
-                 screenshot_dir: str | Path = "screenshots"):
+                 screenshot_dir: str | Path = "screenshots", recording: bool = False):
         if scenes is None:
             from scenes import SCENES
             scenes = SCENES
@@ -333,6 +333,10 @@ class Window:
         self.last_drop = -1e9                 # wall time of the last frame that dropped steps
         self.recorded: list[dict] = []        # events delivered to the scene, --input format
         self.session_steps = 0                # steps since the scene was opened (not reset by R)
+        self.session_clock = 0.0
+        self.recording = recording            # --record: warn that panel changes are not events
+        self.recorded_changes: list[str] = []
+        self.opened_with: dict[str, str] = {}
         self._dragging: set[int] = set()      # mouse buttons pressed in the world area
         self._replay = sorted(events or [], key=lambda e: e.t)
         self._replay_index = 0
@@ -364,6 +368,10 @@ class Window:
         self._dragging.clear()
         self.recorded = []
         self.session_steps = 0
+        self.session_clock = 0.0                  # simulated seconds since opened (sum of dt)
+        self.recorded_changes: list[str] = []     # panel changes while recording (not events)
+        self.opened_with = {k: str(v) for k, v in (overrides or {}).items()}
+        self.last_drop = -1e9
         self._replay_index = 0
         self._after_rebuild()
         self._layout()
@@ -437,6 +445,10 @@ class Window:
         after = scene.p.get(name) if scene.param(name) is not None else (name in scene.on)
         if after != before and decl is not None and decl.rebuild:
             self._after_rebuild()
+        if after != before and self.recording:
+            self.recorded_changes.append(f"{name}={after}")
+            self.flash(f"recording: {name}={after} is a panel change, not an event; the "
+                       "replay runs with the settings the scene was opened with", hud.WARN_COLOR)
         if self.panel:
             self.panel.refresh()
         return True
@@ -532,7 +544,7 @@ class Window:
         """Simulated seconds since the scene was opened, counted as the headless runner counts
         them (steps x dt), so a recording replays with --input at the same steps. Equal to
         scene.time until the first R."""
-        return self.session_steps * self.scene.dt if self.scene is not None else 0.0
+        return self.session_clock if self.scene is not None else 0.0
 
     def deliver(self, event: InputEvent) -> None:
         """Hand an event to the scene now (before the next step) and record it."""
@@ -643,6 +655,7 @@ class Window:
             scene.advance()
             ms = (time.perf_counter() - t0) * 1000.0
             self.session_steps += 1
+            self.session_clock += scene.dt
             self.step_times.append((self.wall, ms))
             self.last_step_ms = ms
             if scene.steps % SNAPSHOT_EVERY == 0 and scene.is_finite():
@@ -817,6 +830,14 @@ class Window:
         path.parent.mkdir(parents=True, exist_ok=True)
         pygame.image.save(self.screen, str(path))
 
+    def replay_command(self, path: str | Path) -> str:
+        """The headless command that replays the recording written to `path`."""
+        if self.scene is None:
+            return ""
+        sets = "".join(f" --set {k}={v}" for k, v in self.opened_with.items())
+        return (f"python -m app --headless --scene {self.scene.name}{sets} --input {path} "
+                f"--steps {max(self.session_steps, 1)}")
+
     def write_recording(self, path: str | Path) -> int:
         """Write the events delivered to the scene since it was opened, and the R resets, in the
         --input format (one event per line); return how many. Panel changes are not events: a
@@ -899,7 +920,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.display.set_caption("Physics lab")
     pygame.key.set_repeat()
     from scenes import SCENES, get_scene
-    window = Window(screen, SCENES, large_text=large_text, events=events)
+    window = Window(screen, SCENES, large_text=large_text, events=events,
+                    recording=record is not None)
     scene_cls = get_scene(scene_name) if scene_name else None
     if scene_cls is not None:
         window.open_scene(scene_cls, overrides)
@@ -926,6 +948,11 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
         pass
     finally:
         if record:
-            window.write_recording(record)
+            n = window.write_recording(record)
+            if window.scene is not None:
+                changed = (f" (panel changes not in it: {', '.join(window.recorded_changes)})"
+                           if window.recorded_changes else "")
+                print(f"recorded {n} events of {window.scene.name} over {window.session_steps} "
+                      f"steps{changed}; replay: {window.replay_command(record)}")
         pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
     return 0

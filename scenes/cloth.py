@@ -88,9 +88,9 @@ class ClothScene(Scene):
               help="float type of the positions (float32: about twice as fast)"),
     )
     effects = (
-        Effect("gravity", True, "gravity pulls every particle down"),
-        Effect("drag", True, "velocity-proportional damping (Verlet 2 -> 1.99)"),
-        Effect("wind", False, "a wind field pushes the cloth"),
+        Effect("gravity", True, "gravity pulls every particle down", amount="g"),
+        Effect("drag", True, "velocity-proportional damping (Verlet 2 -> 1.99)", amount="drag_coef"),
+        Effect("wind", False, "a wind field pushes the cloth", amount="wind_strength"),
         Effect("shear", False, "diagonal rods: resist shearing (a stiff 2D truss: see the docstring)"),
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),

@@ -25,8 +25,9 @@ Effects: `reference` (the ghost; off = not integrated at all), `trail` (a fading
 tip, and of the ghost's tip), `gravity` (off: legal but odd, the pendulum spins at constant energy;
 the number is the param `g`).
 
-If the reference itself blows up (RK4 is only conditionally stable; with 1 ms steps that takes
-extreme settings, e.g. mass1 0.05, mass2 20, g 5000), the ghost is frozen and hidden, the HUD
+If the reference itself blows up (RK4 is only conditionally stable; with its steps kept at 1 ms
+or less, no setting within the ranges was seen to do it: this guards the unexpected), the ghost
+is frozen and hidden, the HUD
 says "reference blew up at t = ...", and the engine's run goes on: the ghost's failure is not the
 engine's, so it never makes the scene's state non-finite. Drag a bob to restart the ghost.
 

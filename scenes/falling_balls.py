@@ -17,8 +17,8 @@ The lecture idea (pymunk tutorial, "add_ball" and "add_static_L"):
 
 Pymunk's tutorial uses y up (balls start at y=550); this lab uses y DOWN with gravity (0, +g), so
 the layout is mirrored: the balls fall down onto the L, which is the tutorial's L scaled by 1.5 to
-fill the 960x720 world. New balls appear at SPAWN_Y (marked by a faint line), below the window's
-HUD box over the top left of the world, so the class sees every ball from its start.
+fill the 960x720 world. New balls fall in from just above the top of the world, as in the
+tutorial (from higher up they land faster, which is what makes tunneling show).
 
 Controls: drag a ball (or anything that moves) with the left mouse button; a left click on empty
 space drops a ball there. Parameters: spawn_rate, radius, max_balls, friction, container,
@@ -45,14 +45,13 @@ L_LONG = ((-150 * S, 0.0), (255 * S, 0.0))      # the long arm, in the L body's 
 L_LIP = ((-150 * S, 0.0), (-150 * S, -50 * S))  # the short arm, pointing UP (y down)
 L_RADIUS = 5 * S
 SPAWN_X = (-180 * S, 80 * S)  # the tutorial's random.randint(120, 380) relative to the L at 300
-SPAWN_Y = 200.0               # new balls' top edge: just below the window's HUD box (~190 px)
+SPAWN_Y = 0.0                 # new balls' bottom edge: they fall in from above the world
 SLEEP_TIME = 0.5              # seconds at rest before a group of bodies falls asleep
 # A step's cost grows as balls x substeps x (iterations + 20): a settled pile of 5000 balls took
 # ~0.2 us per unit (measured while other work ran: 30 ms at iterations 10, 215 ms at 200, one
 # substep; 11 s at 200 x 50). Combinations over this budget (~0.5 s per step) are refused.
 STEP_BUDGET = 2_500_000
 
-SPAWN_COLOR = (60, 64, 76)
 
 _POS_ANGLE = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
 
@@ -280,7 +279,7 @@ class FallingBallsScene(PymunkScene):
             self.remove_balls(k[out])
 
     def spawn(self, h: float) -> None:
-        """Drop balls at a steady rate at random x above the L, top edge at SPAWN_Y (seeded:
+        """Drop balls at a steady rate at random x above the L, from above the world (seeded:
         self.random)."""
         rate = self.p["spawn_rate"]
         if rate <= 0:
@@ -291,7 +290,7 @@ class FallingBallsScene(PymunkScene):
             if len(self.balls) >= self.p["max_balls"]:
                 continue
             x = L_ORIGIN[0] + self.random.uniform(*SPAWN_X)
-            self.add_ball((x, SPAWN_Y + self.p["radius"]))
+            self.add_ball((x, SPAWN_Y - self.p["radius"]))
 
     # ----- mouse ----------------------------------------------------------------------------
     def on_click(self, pos: tuple[float, float], button: int) -> None:
@@ -300,9 +299,6 @@ class FallingBallsScene(PymunkScene):
 
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
-        if self.p["spawn_rate"] > 0:         # where new balls appear: a faint line
-            x0, x1 = (L_ORIGIN[0] + x for x in SPAWN_X)
-            pygame.draw.line(surface, SPAWN_COLOR, view.pt((x0, SPAWN_Y)), view.pt((x1, SPAWN_Y)))
         for s in getattr(self, "walls", ()):
             D.draw_shape(surface, view, s, D.STATIC)
         self.draw_L(surface, view)

@@ -29,6 +29,7 @@ def run_cli(*args, env_extra=None):
 @pytest.fixture
 def toy_registry(monkeypatch):
     monkeypatch.setattr(scenes, "SCENES", [Toy, Blowup])
+    monkeypatch.setattr(Toy, "aliases", {"strength": "g"})
 
 
 def test_list_names_every_registered_scene():
@@ -96,6 +97,10 @@ BAD = [
     (["--headless", "--scene", "toy", "--steps", "99999999999"], "steps"),
     (["--headless", "--scene", "toy", "--screenshot", "/proc/no-such-folder/x.png"],
      "cannot write"),
+    (["--headless", "--scene", "toy", "--screenshot", "shot.txt"], ".png"),
+    (["--headless", "--scene", "toy", "--screenshot", ""], "file name"),
+    (["--headless", "--scene", "toy", "--set", "gravity=900"], "strength"),
+    (["--headless", "--scene", "toy", "--set", "g=1", "--set", "strength=2"], "same setting"),
 ]
 
 
@@ -193,7 +198,9 @@ def test_values_that_do_not_fit_together_are_refused(capsys):
 
 
 def test_screenshot_path_that_is_a_folder_is_refused_before_the_run(toy_registry, capsys, tmp_path):
-    assert main(["--headless", "--scene", "toy", "--steps", "3", "--screenshot", str(tmp_path)]) == 2
+    folder = tmp_path / "looks_like.png"
+    folder.mkdir()
+    assert main(["--headless", "--scene", "toy", "--steps", "3", "--screenshot", str(folder)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "folder" in err
 

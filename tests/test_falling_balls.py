@@ -170,17 +170,16 @@ def test_the_pymunk_benchmark_runs_quick(tmp_path):
     assert all(row["asleep"] == row["balls"] for row in result["by_count"])
 
 
-def test_new_balls_appear_below_the_window_hud_box():
-    # The window's HUD box covers the top left of the world down to y ~ 190: a ball that starts
-    # under it is hidden from the class. Every ball starts (top edge) at SPAWN_Y or lower.
+def test_new_balls_fall_in_from_above_the_world():
     scene = FallingBallsScene({"spawn_rate": 10, "seed": 3})
-    tops, seen = [], set()
+    bottoms, seen = [], set()
     for _ in range(180):
         scene.advance()
-        tops += [s.body.position.y - s.radius for s in scene.balls if s not in seen]
+        bottoms += [s.body.position.y + s.radius for s in scene.balls if s not in seen]
         seen.update(scene.balls)
-    assert len(tops) == scene.metrics()["balls_spawned"] >= 25
-    assert SPAWN_Y >= 195 and min(tops) >= SPAWN_Y
+    assert len(bottoms) == scene.metrics()["balls_spawned"] >= 25
+    # (one step of fall after appearing with the bottom edge at SPAWN_Y, the top of the world)
+    assert SPAWN_Y == 0.0 and max(bottoms) < SPAWN_Y + 5
 
 
 def test_gravity_off_leaves_the_balls_where_they_appear():

@@ -410,3 +410,24 @@ def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_so(window
     assert 1 <= n <= 5
     assert window.clock.dropped_steps == 8 - n
     assert any("slower than real time" in str(getattr(x, "text", x)) for x in window.hud_lines())
+
+
+def test_a_panel_change_while_recording_keeps_time_running_forward_and_warns(tmp_path):
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    w = Window(screen, [Tiny], screenshot_dir=tmp_path, recording=True)
+    w.open_scene(Tiny, {"count": "2"})
+    for i in range(30):
+        if i == 10:
+            assert w.apply_setting("hertz", 120)
+        if i % 5 == 0:
+            key(w, pygame.K_u)
+        w.update(1 / 60)
+    times = [e["t"] for e in w.recorded]
+    assert times == sorted(times) and len(times) == 12
+    assert w.recorded_changes == ["hertz=120"]
+    assert any("not an event" in m[1] for m in w.messages)
+    assert w.replay_command("demo.json") == (
+        f"python -m app --headless --scene tiny --set count=2 --input demo.json "
+        f"--steps {w.session_steps}")

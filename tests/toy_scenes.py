@@ -14,7 +14,7 @@ class Toy(Scene):
     params = (Param("g", 900.0, float, 0.0, 5000.0, help="gravity, px/s^2"),
               Param("size", 3, int, 1, 10, help="a rebuild param"),
               Param("shape", "ball", str, choices=("ball", "box"), help="a choice"))
-    effects = (Effect("gravity", True, "pull downwards"),)
+    effects = (Effect("gravity", True, "pull downwards", amount="g"),)
 
     def build(self):
         self.x = np.array([100.0, 100.0])

@@ -209,11 +209,14 @@ def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: st
 def _settings_column(surface: pygame.Surface, settings: list[tuple[str, str]],
                      rect: pygame.Rect) -> None:
     """'Settings': one line per param or effect (name in yellow, its help), as many as fit."""
-    if rect.width < 200:
-        return
     f_head, f = font(HELP_SIZE), font(int(HELP_SIZE * 0.8))
-    surface.blit(f_head.render("Settings (panel, or --set NAME=VALUE)", True, ACCENT_COLOR),
-                 rect.topleft)
+    head = "Settings (panel, or --set NAME=VALUE)"
+    if f_head.size(head)[0] > rect.width:
+        head = "Settings"
+    widest = max(f.size(name)[0] for name, _ in settings)
+    if rect.width < max(f_head.size(head)[0], widest + f.size("help text here")[0]):
+        return            # no room beside the keys (large text, small window): the panel has them
+    surface.blit(f_head.render(head, True, ACCENT_COLOR), rect.topleft)
     y = rect.top + f_head.get_linesize()
     for name, what in settings:
         if y + f.get_linesize() > rect.bottom:
