@@ -133,10 +133,15 @@ class PymunkScene(Scene):
         return True
 
     def release(self) -> None:
+        """Let go of the body held by the mouse, if any (then the dropped() hook runs)."""
         if self.mouse_joint is not None:
             if self.mouse_joint in self.space.constraints:
                 self.space.remove(self.mouse_joint)
             self.mouse_joint = None
+            self.dropped()
+
+    def dropped(self) -> None:
+        """A dragged body was let go (e.g. re-arm a measurement from the state the hand left)."""
 
     def on_click(self, pos: tuple[float, float], button: int) -> None:
         """A click that grabbed nothing (e.g. drop a ball there)."""

@@ -189,11 +189,8 @@ class DoublePendulumScene(PymunkScene):
             self.ghost_trail.clear()
 
     # ----- mouse ----------------------------------------------------------------------------
-    def release(self) -> None:
-        held = self.mouse_joint is not None
-        super().release()
-        if held:
-            self.new_release()
+    def dropped(self) -> None:
+        self.new_release()
 
     # ----- measuring ------------------------------------------------------------------------
     def energy(self) -> float:

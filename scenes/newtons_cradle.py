@@ -239,13 +239,7 @@ class NewtonsCradleScene(PymunkScene):
         self.track["energy0"] = self.energy()
 
     # ----- mouse ----------------------------------------------------------------------------
-    def release(self) -> None:
-        held = self.mouse_joint is not None
-        super().release()
-        if held:
-            self.rearm_after_drag()
-
-    def rearm_after_drag(self) -> None:
+    def dropped(self) -> None:
         """After a drag: the balls more than a radius from rest at one end of the row are the new
         lifted group (the larger run if both ends are out); none if every ball is out."""
         out = np.abs(self.displacements()) > RADIUS
