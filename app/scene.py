@@ -25,7 +25,7 @@ from __future__ import annotations
 import hashlib
 import math
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Iterable, Mapping
 
 import numpy as np
@@ -144,6 +144,13 @@ COMMON_PARAMS: tuple[Param, ...] = (
 # An event is due at step k when t <= k * dt + EVENT_SLACK: times written by hand or rounded in a
 # file still land on the step they name (1 microsecond is far below any dt the lab accepts).
 EVENT_SLACK = 1e-6
+
+
+def common(name: str, **changes: Any) -> Param:
+    """A common param (hertz, substeps, seed) with some fields changed, for a scene that needs,
+    say, another default: `params = (common("substeps", default=30), ...)`."""
+    prm = next(p for p in COMMON_PARAMS if p.name == name)
+    return replace(prm, **changes)
 
 
 @dataclass
@@ -377,4 +384,5 @@ def docstring_help(scene_cls: type[Scene]) -> str:
 
 
 __all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "EVENT_SLACK", "COMMON_PARAMS",
+           "common",
            "hash_arrays", "docstring_help"]
