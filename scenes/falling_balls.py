@@ -28,8 +28,6 @@ g, iterations; effects: sleeping, gravity (off: the balls float where they appea
 from __future__ import annotations
 
 import math
-from typing import Any, Iterable
-
 import numpy as np
 import pygame
 import pymunk
@@ -82,7 +80,7 @@ class FallingBallsScene(PymunkScene):
     params = PYMUNK_PARAMS + BALL_PARAMS
     effects = PYMUNK_EFFECTS + (
         Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
-    world_keys = ("space", "balls", "L_shapes", "L_body", "counts", "_spawn_due")
+    world_keys = ("space", "balls", "L_shapes", "L_body", "walls", "counts", "_spawn_due")
 
     # ----- building -------------------------------------------------------------------------
     @classmethod
@@ -100,6 +98,7 @@ class FallingBallsScene(PymunkScene):
         self.counts = {"spawned": 0, "removed": 0, "tunneled": 0}
         self._spawn_due = 0.0             # simulated seconds until the next ball
         self.balls: list[pymunk.Circle] = []
+        self.walls: list[pymunk.Segment] = []      # the container's, when it is on
         self.L_body, self.L_shapes = self.add_L(space)
         if self.p.get("container", False):
             self.add_container(space)
@@ -299,7 +298,7 @@ class FallingBallsScene(PymunkScene):
 
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
-        for s in getattr(self, "walls", ()):
+        for s in self.walls:
             D.draw_shape(surface, view, s, D.STATIC)
         self.draw_L(surface, view)
         _, data, asleep = self.read_balls(_POS_ANGLE)

@@ -205,3 +205,14 @@ def test_a_combination_that_would_take_seconds_per_step_is_refused():
     with pytest.raises(ParamError, match="budget"):
         scene.set("substeps", 50)                      # the panel: refused, nothing changed
     assert scene.p["substeps"] == 1
+
+
+def test_the_container_walls_follow_the_param_and_a_rollback():
+    scene = FallingBallsScene({"spawn_rate": 0, "container": True})
+    assert len(scene.walls) == 3 and all(w in scene.space.shapes for w in scene.walls)
+    snap = scene.snapshot()
+    scene.set("container", False)
+    assert scene.walls == []                  # no old walls left to draw
+    scene.set("container", True)
+    scene.restore(snap)                       # the restored walls are the restored space's own
+    assert len(scene.walls) == 3 and all(w in scene.space.shapes for w in scene.walls)
