@@ -134,11 +134,18 @@ class PymunkScene(Scene):
 
     def release(self) -> None:
         """Let go of the body held by the mouse, if any (then the dropped() hook runs)."""
-        if self.mouse_joint is not None:
-            if self.mouse_joint in self.space.constraints:
-                self.space.remove(self.mouse_joint)
-            self.mouse_joint = None
+        if self._detach_mouse():
             self.dropped()
+
+    def _detach_mouse(self) -> bool:
+        """Take the mouse joint out of the space without telling the scene (a rollback throws
+        the held state away: it is no release to measure from). True if a body was held."""
+        if self.mouse_joint is None:
+            return False
+        if self.mouse_joint in self.space.constraints:
+            self.space.remove(self.mouse_joint)
+        self.mouse_joint = None
+        return True
 
     def dropped(self) -> None:
         """A dragged body was let go (e.g. re-arm a measurement from the state the hand left)."""
@@ -215,7 +222,7 @@ class PymunkScene(Scene):
         if snap is None:
             self.reset()
             return
-        self.release()
+        self._detach_mouse()
         for key, value in copy.deepcopy(snap).items():
             setattr(self, key, value)
         self.refresh_static_ids()      # the copies are new bodies with new ids

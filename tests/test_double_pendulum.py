@@ -173,3 +173,25 @@ def test_changing_g_or_gravity_rebaselines_the_energy():
     run(scene, 1.0)
     assert scene.ode.g == 0.0 and abs(scene.metrics()["energy_drift"]) < 0.01
     assert scene.metrics()["energy_drift_max"] < 0.01
+
+
+def test_a_rollback_while_a_bob_is_held_with_a_huge_state_does_not_raise():
+    scene = DoublePendulumScene({})
+    snap = scene.snapshot()
+    before = scene.state_hash()
+    bob = scene.bobs[1]
+    scene.handle_event(InputEvent("mouse_down", tuple(bob.position), 1))
+    assert scene.mouse_joint is not None
+    bob.position = (1e200, 1e200)            # a blown-up state, about to be thrown away
+    bob.velocity = (1e300, -1e300)
+    scene.restore(snap)                      # no new release from the state thrown away
+    assert scene.mouse_joint is None and scene.state_hash() == before and scene.is_finite()
+    scene.handle_event(InputEvent("mouse_up", tuple(scene.bobs[1].position), 1))
+    scene.advance()
+    assert scene.is_finite()
+
+
+def test_set_from_cartesian_with_huge_numbers_gives_no_exception():
+    ode = DoublePendulumODE(100, 100, 1, 1, 900)
+    ode.set_from_cartesian((0, 0), (1e200, 1e200), (1e300, 0), (3e200, 1e200), (0, 1e300))
+    assert len(ode.state) == 4

@@ -139,7 +139,8 @@ class DoublePendulumODE:
         # theta is measured from +y (down) towards +x: theta = atan2(x, y).
         t1 = math.atan2(r1[0], r1[1])
         t2 = math.atan2(r2[0], r2[1])
-        # d(theta)/dt for theta = atan2(x, y) is (y vx - x vy) / (x^2 + y^2).
-        w1 = (r1[1] * v1[0] - r1[0] * v1[1]) / (r1[0] ** 2 + r1[1] ** 2)
-        w2 = (r2[1] * u2[0] - r2[0] * u2[1]) / (r2[0] ** 2 + r2[1] ** 2)
+        # d(theta)/dt for theta = atan2(x, y) is (y vx - x vy) / (x^2 + y^2); x * x, not x ** 2:
+        # a float ** overflows with an exception (a huge state after a blow-up), * gives inf.
+        w1 = (r1[1] * v1[0] - r1[0] * v1[1]) / (r1[0] * r1[0] + r1[1] * r1[1])
+        w2 = (r2[1] * u2[0] - r2[0] * u2[1]) / (r2[0] * r2[0] + r2[1] * r2[1])
         self.state = (t1, t2, w1, w2)
