@@ -130,8 +130,6 @@ class DoublePendulumScene(PymunkScene):
         n = max(2, round(p["trail_seconds"] * p["hertz"]))
         self.trail = Trail(n)
         self.ghost_trail = Trail(n)
-        self.track = {"energy0": 0.0, "start": 0.0, "divergence_time": -1.0, "mark": None,
-                      "energy_drift_max": 0.0, "ref_blowup": -1.0}
         self.new_release()
 
     def new_release(self) -> None:
@@ -140,8 +138,8 @@ class DoublePendulumScene(PymunkScene):
         b1, b2 = self.bobs
         self.ode.set_from_cartesian(PIVOT, b1.position, b1.velocity, b2.position, b2.velocity)
         self.ode.g = self.gravity()
-        self.track.update(energy0=self.energy(), start=self.time, divergence_time=-1.0,
-                          mark=None, energy_drift_max=0.0, ref_blowup=-1.0)
+        self.track = {"energy0": self.energy(), "start": self.time, "divergence_time": -1.0,
+                      "mark": None, "energy_drift_max": 0.0, "ref_blowup": -1.0}
         self.trail.clear()
         self.ghost_trail.clear()
 
@@ -160,7 +158,6 @@ class DoublePendulumScene(PymunkScene):
         t["energy_drift_max"] = max(t["energy_drift_max"], abs(drift))
         tip = self.bobs[1].position
         if self.ghost_alive():
-            self.ode.g = self.gravity()
             if not self.ode.advance(self.dt, self.p["ref_substeps"]):
                 t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
                 return
@@ -178,7 +175,9 @@ class DoublePendulumScene(PymunkScene):
         return "reference" in self.on and self.track["ref_blowup"] < 0
 
     def gravity_changed(self) -> None:
-        """g (or the gravity effect) changed: the energy now, with the new g, is the baseline."""
+        """g (or the gravity effect) changed: the ghost switches g with the engine, and the energy
+        now, with the new g, is the baseline."""
+        self.ode.g = self.gravity()
         self.track["energy0"] = self.energy()
 
     def effect_changed(self, name: str, on: bool) -> None:
