@@ -54,6 +54,7 @@ import pygame
 import pymunk
 
 from app.draw import pymunk_draw as D
+from app.draw.ring import Ring
 from app.physics.double_pendulum_ode import DoublePendulumODE
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param
@@ -128,8 +129,8 @@ class DoublePendulumScene(PymunkScene):
         self.ode = DoublePendulumODE(l1, l2, p["mass1"], p["mass2"], self.gravity(),
                                      (t1, t2, 0, 0))
         n = max(2, round(p["trail_seconds"] * p["hertz"]))
-        self.trail = Trail(n)
-        self.ghost_trail = Trail(n)
+        self.trail = Ring(n, 2)            # the tip's last positions, one per physics step
+        self.ghost_trail = Ring(n, 2)
         self.new_release()
 
     def new_release(self) -> None:
@@ -166,9 +167,9 @@ class DoublePendulumScene(PymunkScene):
                 t["divergence_time"] = self.time - t["start"]
                 t["mark"] = (float(tip[0]), float(tip[1]))
             if "trail" in self.on:
-                self.ghost_trail.add(ghost_tip)
+                self.ghost_trail.append(ghost_tip)
         if "trail" in self.on:
-            self.trail.add(tip)
+            self.trail.append(tip)
 
     def ghost_alive(self) -> bool:
         """The reference is on and has not blown up since the release."""
@@ -262,8 +263,8 @@ class DoublePendulumScene(PymunkScene):
     def draw(self, surface: pygame.Surface, view) -> None:
         if "trail" in self.on:
             if self.ghost_alive():
-                self.ghost_trail.draw(surface, view, GHOST_COLOR)
-            self.trail.draw(surface, view, TRAIL_COLOR)
+                draw_trail(surface, view, self.ghost_trail, GHOST_COLOR)
+            draw_trail(surface, view, self.trail, TRAIL_COLOR)
         if self.ghost_alive() and self.mouse_joint is None:
             g1, g2 = self.ode.positions(PIVOT)
             pygame.draw.aalines(surface, GHOST_COLOR, False, [view.pt(PIVOT), view.pt(g1),
@@ -288,39 +289,16 @@ class DoublePendulumScene(PymunkScene):
         self.draw_mouse(surface, view)
 
 
-class Trail:
-    """The last n positions of a point, in a ring buffer (one row per physics step)."""
-
-    def __init__(self, n: int):
-        self.xy = np.zeros((n, 2))
-        self.count = 0          # positions stored so far (at most n)
-        self.head = 0           # where the next one goes
-
-    def clear(self) -> None:
-        self.count = 0
-        self.head = 0
-
-    def add(self, p) -> None:
-        self.xy[self.head] = (p[0], p[1])
-        self.head = (self.head + 1) % len(self.xy)
-        self.count = min(self.count + 1, len(self.xy))
-
-    def points(self) -> np.ndarray:
-        """The stored positions, oldest first."""
-        if self.count < len(self.xy):
-            return self.xy[:self.count]
-        return np.roll(self.xy, -self.head, axis=0)     # the ring unrolled: oldest .. newest
-
-    def draw(self, surface: pygame.Surface, view, color, pieces: int = 12) -> None:
-        """The trail in `pieces` stretches, the older the darker (a fade without per-pixel
-        alpha)."""
-        pts = view.pts(self.points())
-        if len(pts) < 2:
-            return
-        edges = np.linspace(0, len(pts) - 1, pieces + 1).astype(int)
-        for i in range(pieces):
-            a, b = edges[i], edges[i + 1]
-            if b - a < 1:
-                continue
-            fade = 0.15 + 0.85 * (i + 1) / pieces
-            pygame.draw.aalines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist())
+def draw_trail(surface: pygame.Surface, view, trail: Ring, color, pieces: int = 12) -> None:
+    """A trail (positions oldest first) in `pieces` stretches, the older the darker (a fade
+    without per-pixel alpha)."""
+    pts = view.pts(trail.values())
+    if len(pts) < 2:
+        return
+    edges = np.linspace(0, len(pts) - 1, pieces + 1).astype(int)
+    for i in range(pieces):
+        a, b = edges[i], edges[i + 1]
+        if b - a < 1:
+            continue
+        fade = 0.15 + 0.85 * (i + 1) / pieces
+        pygame.draw.aalines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist())

@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pygame
 
+from app.draw.ring import Ring
 from app.draw.text import TEXT, font
 from app.draw.view import View
 from app.physics.integrators import INTEGRATORS, Integrator
@@ -63,33 +64,6 @@ SPRING_DRAW_SCALE = 0.8     # the spring column is drawn at 80 % so the bobs fit
 TABLE_SIZE = 24             # font sizes at zoom 1 (pygame's default font at 24: 16 px glyphs)
 TITLE_SIZE = 20
 SMALL_SIZE = 18
-
-
-class Ring:
-    """The last n samples of k numbers in one preallocated array: the plots read it as an array
-    every frame, where a deque of tuples would cost an element-by-element conversion."""
-
-    def __init__(self, n: int, k: int = 1):
-        self.data = np.zeros((n, k))
-        self.head = 0           # where the next sample goes
-        self.count = 0
-
-    def append(self, sample) -> None:
-        self.data[self.head] = sample
-        self.head = (self.head + 1) % len(self.data)
-        self.count = min(self.count + 1, len(self.data))
-
-    def __len__(self) -> int:
-        return self.count
-
-    def last(self) -> np.ndarray:
-        return self.data[self.head - 1]
-
-    def values(self) -> np.ndarray:
-        """The samples, oldest first, shape (count, k)."""
-        if self.count < len(self.data):
-            return self.data[:self.count]
-        return np.concatenate((self.data[self.head:], self.data[:self.head]))
 
 
 @dataclass

@@ -10,13 +10,14 @@ import pytest
 
 from app.bench import Report
 from app.bench.integrators import run as run_bench
+from app.draw.ring import Ring
 from app.physics.forces import Attraction, Drag, Gravity, PendulumGravity, Springs
 from app.physics.integrators import INTEGRATORS, get_integrator, integrate
 from app.physics.particles import ParticleSystem
 from app.physics.problems import (convergence_order, make_problem, oscillator, run,
                                   stability_limit)
 from app.scene import ParamError
-from scenes.integrators import IntegratorsScene, Ring
+from scenes.integrators import IntegratorsScene
 
 FIRST_STEP = {1: 0.02, 2: 0.05, 4: 0.2}     # omega*h of the coarsest run, per order
 
@@ -209,3 +210,5 @@ def test_ring_keeps_the_last_samples_oldest_first():
     assert len(ring) == 3
     assert ring.values()[:, 0].tolist() == [2, 3, 4]
     assert ring.last().tolist() == [4, -4]
+    ring.clear()
+    assert len(ring) == 0 and ring.values().shape == (0, 2)
