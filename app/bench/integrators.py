@@ -29,7 +29,7 @@ import numpy as np
 from app.bench import Report, median_time
 from app.draw.plot import LineChart, save_grid
 from app.physics.integrators import INTEGRATORS
-from app.physics.problems import PROBLEMS, make_problem, stability_limit
+from app.physics.problems import PROBLEMS, error_at, fitted_order, make_problem, stability_limit
 from scenes.integrators import COLORS
 
 TARGETS = (1e-3, 1e-6)
@@ -57,13 +57,10 @@ def sweep(problem, name: str, quick: bool) -> list[dict[str, float]]:
     for k in range(halvings + 1):
         steps = math.ceil(problem.omega * T / (top / 2 ** k))
         h = T / steps
-        ps, step = problem.make_system(), INTEGRATORS[name].step
-        for _ in range(steps):
-            step(ps, h)
-        error = problem.error(ps, T) if ps.is_finite() else math.inf
+        error, evals = error_at(problem, name, T, steps)
         us = _time_per_step(problem, name, h, quick) * 1e6
-        points.append({"omega_dt": problem.omega * h, "steps": steps,
-                       "evals": ps.evals + ps.jac_products, "us_per_step": us, "error": error})
+        points.append({"omega_dt": problem.omega * h, "steps": steps, "evals": evals,
+                       "us_per_step": us, "error": error})
     # A step costs the same at every h for these small systems: one median over all the batch
     # medians is the least noisy figure on a busy machine.
     us = float(np.median([p["us_per_step"] for p in points]))
@@ -73,14 +70,9 @@ def sweep(problem, name: str, quick: bool) -> list[dict[str, float]]:
 
 
 def measured_order(points: list[dict[str, float]]) -> float | None:
-    """Slope of log(error) against log(h) over the (up to) 4 smallest steps whose error lies
-    between round-off (1e-11) and 0.1 (the asymptotic range)."""
-    good = [p for p in points if 1e-11 < p["error"] < 0.1][-4:]
-    if len(good) < 2:
-        return None
-    h = np.log([p["omega_dt"] for p in good])
-    e = np.log([p["error"] for p in good])
-    return float(np.polyfit(h, e, 1)[0])
+    """The order over the sweep's asymptotic range (problems.fitted_order)."""
+    return fitted_order([p["omega_dt"] for p in points], [p["error"] for p in points],
+                        asymptotic=True)
 
 
 def time_to_reach(points: list[dict[str, float]], target: float, order: float

@@ -266,9 +266,23 @@ def run(problem: Problem, integrator: str, h: float, steps: int) -> ParticleSyst
 
 
 def error_at(problem: Problem, integrator: str, T: float, steps: int) -> tuple[float, int]:
-    """(relative error at time T, derivative evaluations + Jacobian products) for `steps` steps."""
+    """(relative error at time T, derivative evaluations + Jacobian products) for `steps` steps;
+    the error is inf if the run went non-finite."""
     ps = run(problem, integrator, T / steps, steps)
-    return problem.error(ps, T), ps.evals + ps.jac_products
+    error = problem.error(ps, T) if ps.is_finite() else math.inf
+    return error, ps.evals + ps.jac_products
+
+
+def fitted_order(hs: list[float], errors: list[float], asymptotic: bool = False) -> float | None:
+    """Slope of log(error) against log(h) by least squares (error ~ C h^order). asymptotic: fit
+    only the (up to) 4 smallest steps whose error lies between round-off (1e-11) and 0.1, where
+    the leading term dominates; None if fewer than 2 such points (hs from largest to smallest)."""
+    if asymptotic:
+        good = [(h, e) for h, e in zip(hs, errors) if 1e-11 < e < 0.1][-4:]
+        if len(good) < 2:
+            return None
+        hs, errors = [h for h, _ in good], [e for _, e in good]
+    return float(np.polyfit(np.log(hs), np.log(errors), 1)[0])
 
 
 def convergence_order(problem: Problem, integrator: str, steps: list[int],
@@ -277,8 +291,7 @@ def convergence_order(problem: Problem, integrator: str, steps: list[int],
     `steps` steps each to time T; returns (order, errors)."""
     T = problem.horizon if T is None else T
     errors = [error_at(problem, integrator, T, n)[0] for n in steps]
-    slope = np.polyfit(np.log(T / np.asarray(steps, dtype=float)), np.log(errors), 1)[0]
-    return float(slope), errors
+    return fitted_order([T / n for n in steps], errors), errors
 
 
 def energy_growth(integrator: str, omega_h: float, steps: int = 2000) -> float:
