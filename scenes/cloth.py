@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 from app.physics.cloth import FORCE_NAMES, PIN_CHOICES, SET_NAMES, WIND_FIELDS, Cloth, sweep_size
-from app.scene import Effect, InputEvent, Param, ParamError, Scene
+from app.scene import Effect, InputEvent, Param, ParamError, Scene, common
 
 UNLOCK_KEY = "u"
 # Work per step, in rod updates: iterations x substeps x (rods + BATCH_COST x batches), counting
@@ -67,8 +67,7 @@ class ClothScene(Scene):
               help="rest length of a rod in px (shrunk if the cloth would not fit the world)"),
         Param("iterations", 10, int, 1, 100,
               help="relaxation sweeps over all rods per substep", rebuild=False),
-        Param("substeps", 1, int, 1, 50,
-              help="sub-steps inside each step (each of dt/substeps)", rebuild=False),
+        common("substeps"),            # here, not at the end: next to iterations in the panel
         Param("g", 980.0, float, 0.0, 5000.0, help="gravity in px/s^2 (downwards)",
               rebuild=False),
         Param("drag_coef", 0.01, float, 0.0, 0.5,

@@ -57,17 +57,15 @@ from app.draw import pymunk_draw as D
 from app.draw.ring import Ring
 from app.physics.double_pendulum_ode import DoublePendulumODE
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
-from app.scene import Effect, Param
+from app.scene import Effect, Param, common
 
 PIVOT = (480.0, 350.0)
 BOB_RADIUS = 14.0
 PART_PX = 10.0           # tips further apart than this: the engine and the reference have parted
 
 PENDULUM_PARAMS: tuple[Param, ...] = (
-    Param("hertz", 120, int, 1, 1000, help="physics steps per simulated second (dt = 1/hertz)",
-          rebuild=False),
-    Param("substeps", 10, int, 1, 50, help="sub-steps per step (pin joints are stiffer with more)",
-          rebuild=False),
+    common("hertz", default=120),
+    common("substeps", default=10, help="sub-steps per step (pin joints are stiffer with more)"),
     Param("angle1", 120.0, float, -180.0, 180.0, help="release angle of the upper rod, degrees "
           "from straight down"),
     Param("angle2", 150.0, float, -180.0, 180.0, help="release angle of the lower rod, degrees"),

@@ -64,7 +64,7 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
-from app.scene import Param, ParamError
+from app.scene import Param, ParamError, common
 
 RADIUS = 24.0            # ball radius, px
 STRING = 280.0           # string length, anchor to ball centre, px
@@ -73,10 +73,8 @@ MASS = 1.0
 SLOP = 0.01              # collision_slop: allowed overlap of resting contacts, px
 
 CRADLE_PARAMS: tuple[Param, ...] = (
-    Param("hertz", 120, int, 1, 1000, help="physics steps per simulated second (dt = 1/hertz)",
-          rebuild=False),
-    Param("substeps", 30, int, 1, 50, help="sub-steps per step: a cradle needs small steps",
-          rebuild=False),
+    common("hertz", default=120),
+    common("substeps", default=30, help="sub-steps per step: a cradle needs small steps"),
     Param("balls", 5, int, 2, 9, help="number of balls in the row"),
     Param("lifted", 1, int, 1, 8, help="balls lifted and released (at most balls-1)"),
     Param("angle", 30.0, float, 1.0, 60.0, help="lift angle of the released balls, degrees"),

@@ -34,13 +34,14 @@ g, iterations, substeps (2 here); effects: sleeping, gravity.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pygame
 import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
-from app.scene import COMMON_PARAMS, Param
+from app.scene import Param, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 
@@ -55,12 +56,10 @@ PIVOT_PARAMS: tuple[Param, ...] = (
 )
 # Two substeps by default: the slide joint then overshoots its max by about 1 px instead of 3 to 4
 # when a loaded L slams into it, and the pin holds within 1 px (see the module docstring).
-_SUBSTEPS = next(p for p in COMMON_PARAMS if p.name == "substeps")
-SUBSTEPS_2 = Param("substeps", 2, int, _SUBSTEPS.lo, _SUBSTEPS.hi, help=_SUBSTEPS.help,
-                   rebuild=False)
+SUBSTEPS_2 = common("substeps", default=2)
 _SPAWN = next(p for p in BALL_PARAMS if p.name == "spawn_rate")
-SPAWN_2 = Param("spawn_rate", 2.0, float, _SPAWN.lo, _SPAWN.hi, help=_SPAWN.help
-                + " (the tutorial: one every 25 ticks at 50 fps)", rebuild=False)
+SPAWN_2 = replace(_SPAWN, default=2.0,
+                  help=_SPAWN.help + " (the tutorial: one every 25 ticks at 50 fps)")
 
 
 class PivotingLScene(FallingBallsScene):
