@@ -199,9 +199,7 @@ class PymunkScene(Scene):
         """Position, angle, velocity and angular velocity of every body in the space (dynamic,
         kinematic, static and sleeping; static rows do not change), one row each
         (x, y, angle, vx, vy, w), read from pymunk in one batch call."""
-        self._buffer.clear()
-        pymunk.batch.get_space_bodies(self.space, _STATE_FIELDS, self._buffer)
-        return np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(-1, 6).copy()
+        return self.body_rows(_STATE_FIELDS)[1]
 
     def state_arrays(self) -> Iterable[np.ndarray]:
         return (self.body_state(),)

@@ -222,9 +222,7 @@ class DoublePendulumScene(PymunkScene):
 
     # ----- state ----------------------------------------------------------------------------
     def state_arrays(self) -> Iterable[np.ndarray]:
-        bobs = np.array([(*b.position, b.angle, *b.velocity, b.angular_velocity)
-                         for b in self.bobs])
-        return (bobs, np.array(self.ode.state))
+        return (self.body_state(), np.array(self.ode.state))
 
     # ----- reporting ------------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:

@@ -249,8 +249,7 @@ class NewtonsCradleScene(PymunkScene):
 
     # ----- state ----------------------------------------------------------------------------
     def state_arrays(self) -> Iterable[np.ndarray]:
-        xy, v = self.xv()
-        return (xy, v)
+        return (self.body_state(),)      # positions, angles, velocities and spins, in one read
 
     # ----- reporting ------------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:

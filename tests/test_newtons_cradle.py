@@ -131,3 +131,13 @@ def test_changing_g_or_gravity_rebaselines_the_energy():
     assert scene.space.gravity == (0.0, 0.0)
     assert scene.metrics()["energy_ratio"] == pytest.approx(1.0, abs=1e-9)
     assert scene.half_period() == float("inf")
+
+
+def test_the_state_hash_sees_spin_and_angle_too():
+    scene = NewtonsCradleScene({})
+    before = scene.state_hash()
+    scene.bodies[2].angular_velocity = 1.0
+    spun = scene.state_hash()
+    scene.bodies[2].angular_velocity = 0.0
+    scene.bodies[2].angle = 0.5
+    assert len({before, spun, scene.state_hash()}) == 3
