@@ -19,7 +19,9 @@ import os
 import sys
 from typing import NoReturn
 
-EXIT_OK, EXIT_NONFINITE, EXIT_USAGE = 0, 1, 2
+from app.headless import (EXIT_OK, EXIT_USAGE, MAX_STEPS, InputFileError, check_output_path,
+                          load_events, run_headless)
+
 
 
 class UsageError(Exception):
@@ -49,7 +51,6 @@ def _positive_int(text: str) -> int:
         value = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is not an integer; accepted: steps >= 1")
-    from app.headless import MAX_STEPS
     if not 1 <= value <= MAX_STEPS:
         raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: steps from 1 to "
                                          f"{MAX_STEPS:,}")
@@ -77,12 +78,20 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def use_dummy_video() -> None:
+    """Headless runs and benchmarks draw off-screen: no window, no sound."""
+    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+
+
 def parse_sets(pairs: list[str]) -> dict[str, str]:
     out: dict[str, str] = {}
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
             raise UsageError(f"--set {pair!r}: expected KEY=VALUE, e.g. --set substeps=4")
+        if key.strip() in out:
+            raise UsageError(f"--set {key.strip()} is given twice; give it once")
         out[key.strip()] = value.strip()
     return out
 
@@ -125,55 +134,41 @@ def app_main(argv: list[str]) -> int:
     overrides = parse_sets(args.set)
     if overrides and not classes:
         raise UsageError("--set needs --scene NAME (parameters belong to a scene)")
-    for key, value in overrides.items():
-        owners = [c for c in classes if key in c.setting_names()]
-        if not owners:
-            names = sorted({n for c in classes for n in c.setting_names()})
-            where = f"scene '{classes[0].name}'" if len(classes) == 1 else "any scene"
-            raise UsageError(f"--set {key}: {where} has no parameter or effect '{key}'; "
-                             f"accepted: {', '.join(names)}")
-        for cls in owners:
-            try:
-                cls.check_setting(key, value)
-            except ParamError as e:
-                raise UsageError(f"--set {key}={value}: {cls.name} {e}") from None
-    from app.headless import MAX_STEPS, check_output_path
+    unknown = [k for k in overrides if not any(k in c.setting_names() for c in classes)]
+    if unknown:
+        names = sorted({n for c in classes for n in c.setting_names()})
+        where = f"scene '{classes[0].name}'" if len(classes) == 1 else "any scene"
+        raise UsageError(f"--set {unknown[0]}: {where} has no parameter or effect "
+                         f"'{unknown[0]}'; accepted: {', '.join(names)}")
     for cls in classes:
         try:
-            values = cls.resolve({k: v for k, v in overrides.items() if k in cls.setting_names()})
+            values, _ = cls.resolve(cls.own_settings(overrides))   # what the run will build
         except ParamError as e:
-            raise UsageError(f"scene {cls.name}: {e}") from None
+            raise UsageError(f"--set: {cls.name} {e}") from None
         if args.headless and args.seconds is not None and args.seconds * values["hertz"] > MAX_STEPS:
             raise UsageError(f"--seconds {args.seconds:g} at {values['hertz']} Hz is more than "
                              f"{MAX_STEPS:,} steps; accepted: at most "
                              f"{MAX_STEPS // values['hertz']:,} seconds for {cls.name}")
-        names = [k for k in overrides if k in cls.setting_names()]
-        for key in names:
-            twins = [k for k in names if cls.canonical(k) == cls.canonical(key)]
-            if len(twins) > 1:
-                raise UsageError(f"--set {' and '.join(twins)} name the same setting of "
-                                 f"{cls.name}; give it once")
+    if args.headless and args.record:
+        raise UsageError("--record records what you do in the window; it needs no --headless")
 
     events = None
     if args.input:
-        from app.headless import InputFileError, load_events
         try:
             events = load_events(args.input)
         except InputFileError as e:
             raise UsageError(str(e)) from None
 
     for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record")):
-        if path is not None and not (what == "--record" and args.headless):
+        if path is not None:
             problem = check_output_path(path, what)      # last: it may create the folder
             if problem:
                 raise UsageError(problem)
 
     if args.headless:
-        if args.record:
-            raise UsageError("--record records what you do in the window; it needs no --headless")
         if not classes:
             raise UsageError(f"--headless needs --scene NAME or --scene all; accepted: {accepted}")
-        from app.headless import run_headless
+        use_dummy_video()
         return run_headless(classes, overrides, args.steps, args.seconds, events,
                             args.screenshot, args.json)
 
@@ -197,10 +192,12 @@ def bench_main(argv: list[str]) -> int:
     args = p.parse_args(argv)
     if args.which not in choices:
         raise UsageError(f"unknown benchmark {args.which!r}; accepted: {', '.join(choices)}")
-    from app.headless import check_output_path
+    if os.path.exists(args.out) and not os.path.isdir(args.out):
+        raise UsageError(f"--out '{args.out}' is a file; accepted: a folder")
     problem = check_output_path(os.path.join(args.out, "chart.png"), "--out folder")
-    if problem or (os.path.exists(args.out) and not os.path.isdir(args.out)):
-        raise UsageError(problem or f"--out '{args.out}' is a file; accepted: a folder")
+    if problem:
+        raise UsageError(problem)
+    use_dummy_video()
     return run_benchmarks(args.which, args.json, args.out, args.quick)
 
 

@@ -20,10 +20,11 @@ from typing import Any
 
 import numpy as np
 
-from app.scene import EVENT_SLACK, InputEvent, Scene
+from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
+EXIT_OK, EXIT_NONFINITE, EXIT_USAGE = 0, 1, 2       # the command line's exit codes (DESIGN.md)
 MAX_STEPS = 1_000_000           # a headless run longer than this is a typo, not an experiment
 
 
@@ -84,13 +85,17 @@ def load_events(path: str) -> list[InputEvent]:
     return parse_events(data, f"--input file '{path}'")
 
 
-def deliver(scene: Scene, event: InputEvent) -> None:
-    """Give one event to the scene, as the window does: R resets, everything else goes to the
-    scene's handle_event."""
-    if event.kind == "key_down" and event.key == "r":
-        scene.reset()
-    elif not (event.kind == "key_up" and event.key == "r"):
-        scene.handle_event(event)
+def deliver(scene: Scene, event: InputEvent) -> bool:
+    """Give one replayed event to the scene as the window gives a live one: R resets the scene,
+    the other shell keys (pause, help, ...) never reach it, everything else goes to its
+    handle_event. Returns True if the scene was reset."""
+    if event.kind.startswith("key") and event.key in SHELL_KEYS:
+        if event.kind == "key_down" and event.key == "r":
+            scene.reset()
+            return True
+        return False
+    scene.handle_event(event)
+    return False
 
 
 @dataclass
@@ -112,7 +117,7 @@ class RunResult:
             "wall_seconds": round(self.wall_seconds, 6),
             "step_ms": round(statistics.median(self.step_seconds) * 1000, 6)
             if self.step_seconds else 0.0,
-            "params": clean(s.settings()),
+            "params": clean(s.p),
             "effects": sorted(s.on),
             "metrics": clean(s.metrics()),
             "state_hash": s.state_hash(),
@@ -161,32 +166,22 @@ def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) 
 
 
 def render(scene: Scene, path: str) -> None:
-    """Draw the scene's current frame with its own drawing code and save it as a PNG."""
+    """Draw the scene's current frame, with its own drawing code and the window's HUD (less
+    fps, which a headless run has none of), and save it as a PNG. Raises OSError if it cannot."""
     import pygame
 
-    from app.draw import hud
-    from app.draw.text import font
+    from app.draw import hud, save_png
     from app.draw.view import View
 
     surface = pygame.Surface(scene.world_size)
     surface.fill(scene.background)
     scene.draw(surface, View())
-    # The HUD as the window shows it (without fps, which headless has none of).
-    width = surface.get_width() - 16
-    lines = [hud.Line(scene.title or scene.name, hud.ACCENT_COLOR),
-             f"t = {scene.time:.2f} s  |  dt = 1/{scene.p['hertz']} s"
-             + (f" in {scene.p['substeps']} substeps" if scene.p["substeps"] > 1 else "")]
-    lines += [str(x) for x in scene.hud_lines()]
-    hud.text_box(surface, lines, (8, 8), max_width=min(width, 640))
-    items = [f"{k} {hud.fmt_number(v)}" for k, v in scene.metrics().items()]
-    metric_lines = hud.pack(items, font(hud.HUD_SIZE), width - 16)[:2] if scene.metrics_box else []
-    if metric_lines:
-        hud.text_box(surface, metric_lines, (8, surface.get_height() - 6), max_width=width,
-                     from_bottom=True)
-    folder = os.path.dirname(path)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    pygame.image.save(surface, path)
+    status = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"]
+    hud.draw_scene_hud(surface, surface.get_rect(), scene, status)
+    try:
+        save_png(surface, path)
+    except pygame.error as e:
+        raise OSError(str(e)) from None
 
 
 def steps_for(seconds: float | None, dt: float) -> int:
@@ -217,12 +212,9 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
                  as_json: bool) -> int:
     """Run each scene in turn; print one JSON object per scene (or a readable summary)."""
-    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
-    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
-    code = 0
+    nonfinite = unsaved = False
     for cls in scene_classes:
-        mine = {k: v for k, v in overrides.items() if k in cls.setting_names()}
-        scene = cls(mine)
+        scene = cls(cls.own_settings(overrides))
         n = steps if steps is not None else steps_for(seconds, scene.dt)
         result = run_scene(scene, n, events)
         summary = result.summary()
@@ -234,10 +226,10 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
             try:
                 render(scene, path)
                 summary["screenshot"] = path
-            except (OSError, pygame_error()) as e:
+            except OSError as e:
                 print(f"{scene.name}: could not save the screenshot '{path}': {e}", file=sys.stderr)
                 summary["screenshot"] = None
-                code = code or 2
+                unsaved = True
         if as_json:
             print(json.dumps(summary, allow_nan=False), flush=True)
         else:
@@ -246,18 +238,15 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
             print(f"{scene.name}: the simulation went non-finite (NaN or inf) at step "
                   f"{result.steps} (t = {result.steps * scene.dt:.3f} s); try a smaller dt "
                   f"(raise hertz) or more substeps", file=sys.stderr)
-            code = 1
-    return code
-
-
-def pygame_error() -> type:
-    import pygame
-    return pygame.error
+            nonfinite = True
+    # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
+    return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
 
 def describe(summary: dict[str, Any]) -> str:
     """A readable few lines for a run without --json."""
-    metrics = ", ".join(f"{k}={_short(v)}" for k, v in summary["metrics"].items())
+    from app.draw.hud import fmt_number
+    metrics = ", ".join(f"{k}={fmt_number(v)}" for k, v in summary["metrics"].items())
     lines = [f"{summary['scene']}: {summary['steps']} steps, {summary['sim_seconds']:.3g} s simulated "
              f"in {summary['wall_seconds']:.3g} s, {summary['step_ms']:.3g} ms/step, "
              f"finite={summary['finite']}, hash {summary['state_hash']}",
@@ -266,6 +255,3 @@ def describe(summary: dict[str, Any]) -> str:
         lines.append(f"  screenshot: {summary['screenshot']}")
     return "\n".join(lines)
 
-
-def _short(v: Any) -> str:
-    return f"{v:.4g}" if isinstance(v, float) else str(v)

@@ -141,6 +141,11 @@ COMMON_PARAMS: tuple[Param, ...] = (
 )
 
 
+# The shell's keys, as pygame names them: they pause, step, reset, help, ... in the window, and
+# never reach a scene (live or replayed). The digits pick a scene in the menu.
+SHELL_KEYS = frozenset({"space", ".", "[.]", "-", "[-]", "=", "+", "[+]", "r", "h", "f1", "f2",
+                        "f12", "escape", "tab", "page up", "page down", *"0123456789"})
+
 # An event is due at step k when t <= k * dt + EVENT_SLACK: times written by hand or rounded in a
 # file still land on the step they name (1 microsecond is far below any dt the lab accepts).
 EVENT_SLACK = 1e-6
@@ -192,11 +197,7 @@ class Scene:
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
-        self.p: dict[str, Any] = {prm.name: prm.default for prm in self.all_params()}
-        self.on: set[str] = {e.name for e in self.effects if e.default}
-        for key, value in (overrides or {}).items():
-            self._assign(key, value)
-        self.check_combination(self.p)
+        self.p, self.on = self.resolve(overrides or {})
         self.time = 0.0      # simulated seconds since build
         self.steps = 0       # fixed steps since build
         self.build_world()
@@ -253,42 +254,57 @@ class Scene:
         seconds. Called before building (constructor, command line) and by set() (the panel)."""
 
     @classmethod
-    def resolve(cls, overrides: Mapping[str, Any]) -> dict[str, Any]:
-        """All param values with `overrides` applied and checked (ParamError if not accepted)."""
-        values = {prm.name: prm.default for prm in cls.all_params()}
-        for key, value in overrides.items():
-            parsed = cls.check_setting(key, value)
-            if cls.param(key) is not None:
-                values[cls.canonical(key)] = parsed
-        cls.check_combination(values)
-        return values
+    def own_settings(cls, overrides: Mapping[str, Any]) -> dict[str, Any]:
+        """The part of `overrides` that names this scene's params, effects or aliases (a
+        `--set` given to `--scene all` applies where it means something)."""
+        return {k: v for k, v in overrides.items() if k in cls.setting_names()}
 
-    def _assign(self, key: str, value: Any) -> bool:
-        """Set a param or effect; return True if the change needs a rebuild."""
+    @classmethod
+    def resolve(cls, overrides: Mapping[str, Any]) -> tuple[dict[str, Any], set[str]]:
+        """Param values and the set of effects on, with `overrides` applied and checked: the one
+        validation behind the constructor, the command line and the panel. Raises ParamError
+        for a value not accepted, a name given twice (once by an alias) or values that do not
+        fit together."""
+        values = {prm.name: prm.default for prm in cls.all_params()}
+        on = {e.name for e in cls.effects if e.default}
+        seen: dict[str, str] = {}
+        for key, value in overrides.items():
+            name = cls.canonical(key)
+            if name in seen:
+                raise ParamError(f"'{seen[name]}' and '{key}' name the same setting of "
+                                 f"{cls.name}; give it once")
+            seen[name] = key
+            parsed = cls.check_setting(key, value)
+            if cls.param(name) is not None:
+                values[name] = parsed
+            else:
+                (on.add if parsed else on.discard)(name)
+        cls.check_combination(values)
+        return values, on
+
+    def settings(self) -> dict[str, Any]:
+        """Every param's value and every effect's on/off state, by name."""
+        return {**self.p, **{e.name: e.name in self.on for e in self.effects}}
+
+    def set(self, key: str, value: Any) -> bool:
+        """Change a param or effect while running (the panel, tests). A bad value raises
+        ParamError and leaves everything as it was; a change that needs it rebuilds the scene.
+        Returns True if the scene was rebuilt."""
         parsed = self.check_setting(key, value)
         key = self.canonical(key)
         if self.param(key) is not None:
-            changed = self.p[key] != parsed
-            self.p[key] = parsed
-            return changed and self.param(key).rebuild
-        changed = (key in self.on) != parsed
-        (self.on.add if parsed else self.on.discard)(key)
-        if changed and getattr(self, "_built", False):   # not while the constructor runs
-            self.effect_changed(key, parsed)
-        return changed and self.effect(key).rebuild
-
-    def set(self, key: str, value: Any) -> None:
-        """Change a param or effect while running (the panel, tests). A bad value raises
-        ParamError and leaves everything as it was; a change that needs it rebuilds the scene."""
-        parsed = self.check_setting(key, value)
-        if self.param(key) is not None:
-            self.check_combination({**self.p, self.canonical(key): parsed})
-        if self._assign(key, value):
+            self.check_combination({**self.p, key: parsed})
+            changed, self.p[key] = self.p[key] != parsed, parsed
+            rebuild = changed and self.param(key).rebuild
+        else:
+            changed = (key in self.on) != parsed
+            (self.on.add if parsed else self.on.discard)(key)
+            if changed:
+                self.effect_changed(key, parsed)
+            rebuild = changed and self.effect(key).rebuild
+        if rebuild:
             self.reset()
-
-    def settings(self) -> dict[str, Any]:
-        """All resolved parameter values and the effects' on/off state."""
-        return dict(self.p)
+        return rebuild
 
     # ----- time -----------------------------------------------------------------------------
     @property
@@ -310,7 +326,6 @@ class Scene:
         self.rng = np.random.default_rng(self.p["seed"])
         self.random = random.Random(self.p["seed"])
         self.build()
-        self._built = True
 
     def reset(self) -> None:
         """Rebuild the world from the current params and effects (the R key)."""
@@ -378,11 +393,12 @@ def hash_arrays(*arrays: np.ndarray) -> str:
 
 
 def docstring_help(scene_cls: type[Scene]) -> str:
-    """The scene's docstring, dedented, for the help overlay and --list --verbose."""
+    """The scene's docstring, dedented, for the help overlay."""
     import inspect
     return inspect.cleandoc(scene_cls.__doc__ or scene_cls.title)
 
 
-__all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "EVENT_SLACK", "COMMON_PARAMS",
+__all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
+           "COMMON_PARAMS",
            "common",
            "hash_arrays", "docstring_help"]

@@ -30,24 +30,26 @@ The `Window` class does the work and never owns the main loop, so tests drive it
 
 from __future__ import annotations
 
-import copy
 import json
 import math
+import os
 import statistics
 import sys
 import time
 import traceback
 from collections import deque
+from dataclasses import replace
 from pathlib import Path
 from typing import Any, Sequence
 
 import pygame
 
-from app.draw import hud
+from app.draw import hud, save_png
 from app.draw.text import TEXT, font
 from app.draw.view import View
 from app.loop import FixedStepClock
-from app.scene import EVENT_SLACK, InputEvent, ParamError, Scene, docstring_help
+from app.headless import deliver
+from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, ParamError, Scene, docstring_help
 
 ROOT = Path(__file__).resolve().parent.parent
 THEME_PATH = ROOT / "assets" / "theme.json"
@@ -59,7 +61,6 @@ SNAPSHOT_EVERY = 30               # steps between last-good snapshots
 STEP_BUDGET_SECONDS = 0.1         # physics time per frame after which the frame's other steps
                                   # are dropped (the window stays responsive; time runs slower)
 MESSAGE_SECONDS = 4.0
-MAX_METRIC_LINES = 2              # lines of metrics at the bottom of the world
 NO_DISPLAY = "no display for the window: {}; use --headless, or run under xvfb-run"
 
 NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf) at t={bad:.3f} s: rolled back to "
@@ -84,10 +85,9 @@ class _NumberControl:
 
     STEPS = 1000
 
-    def __init__(self, prm, slider, entry):
+    def __init__(self, prm, slider):
         self.prm = prm
         self.slider = slider
-        self.entry = entry
         lo, hi = float(prm.lo), float(prm.hi)
         self.log = lo > 0 and hi / lo >= 100
 
@@ -183,7 +183,7 @@ class ParamPanel:
             self.entries[prm.name] = entry
             self._by_element[entry] = ("entry", prm.name)
             if slider is not None:
-                ctl = _NumberControl(prm, slider, entry)
+                ctl = _NumberControl(prm, slider)
                 slider.set_current_value(ctl.pos_of(value))
                 self.numbers[prm.name] = ctl
                 self._by_element[slider] = ("slider", prm.name)
@@ -270,13 +270,6 @@ class ParamPanel:
         self.refresh()
         return True
 
-    def submit_text(self, name: str, text: str) -> bool:
-        """Type `text` into the box of `name` and press Enter (what the tests do)."""
-        entry = self.entries[name]
-        entry.set_text(text)
-        ev = pygame.event.Event(self.gui.UI_TEXT_ENTRY_FINISHED, {"text": text, "ui_element": entry})
-        return self.handle(ev)
-
 
 # ----------------------------------------------------------------------------------------------
 # the window
@@ -287,8 +280,7 @@ _THEMES: dict[float, dict] = {}
 def theme(scale: float) -> dict:
     """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
     if scale not in _THEMES:
-        data = json.loads(THEME_PATH.read_text())
-        data = copy.deepcopy(data)
+        data = json.loads(THEME_PATH.read_text())      # a fresh dict for every scale
         for block in data.values():
             f = block.get("font") if isinstance(block, dict) else None
             if isinstance(f, dict) and "size" in f:
@@ -369,10 +361,9 @@ class Window:
         self.recorded = []
         self.session_steps = 0
         self.session_clock = 0.0                  # simulated seconds since opened (sum of dt)
-        self.recorded_changes: list[str] = []     # panel changes while recording (not events)
+        self.recorded_changes = []                # panel changes while recording (not events)
         self.opened_with = {k: str(v) for k, v in (overrides or {}).items()}
         self.last_drop = -1e9
-        self._replay_index = 0
         self._after_rebuild()
         self._layout()
         if pygame.display.get_init():
@@ -424,10 +415,9 @@ class Window:
         scene = self.scene
         if scene is None:
             return False
-        decl = scene.param(name) or scene.effect(name)
-        before = scene.p.get(name) if scene.param(name) is not None else (name in scene.on)
+        before = scene.settings().get(scene.canonical(name))
         try:
-            scene.set(name, value)
+            rebuilt = scene.set(name, value)
         except ParamError as e:
             self.flash(str(e), hud.ERROR_COLOR)
             if self.panel:
@@ -442,8 +432,8 @@ class Window:
                 scene.reset()
             self._after_rebuild()
             return False
-        after = scene.p.get(name) if scene.param(name) is not None else (name in scene.on)
-        if after != before and decl is not None and decl.rebuild:
+        after = scene.settings().get(scene.canonical(name))
+        if rebuilt:
             self._after_rebuild()
         if after != before and self.recording:
             self.recorded_changes.append(f"{name}={after}")
@@ -555,39 +545,40 @@ class Window:
         self.recorded.append(event.to_json())
 
     def _shell_key(self, key: int) -> bool:
-        """The common keys of every scene; return True if `key` was one of them."""
-        mods = pygame.key.get_mods() if pygame.display.get_init() else 0
-        if key == pygame.K_SPACE:
-            self.toggle_pause()
-        elif key in (pygame.K_PERIOD, pygame.K_KP_PERIOD):
-            self.clock.single_step()
-        elif key in (pygame.K_MINUS, pygame.K_KP_MINUS):
-            self.clock.slower()
-        elif key in (pygame.K_EQUALS, pygame.K_PLUS, pygame.K_KP_PLUS):
-            self.clock.faster()
-        elif key == pygame.K_r and not (mods & (pygame.KMOD_CTRL | pygame.KMOD_ALT)):
-            self.reset_scene()
-        elif key in (pygame.K_h, pygame.K_F1):
-            self.show_help = not self.show_help
-        elif key == pygame.K_F2:
-            self.set_large_text(not self.large_text)
-        elif key == pygame.K_F12:
-            self.request_screenshot()
-        elif key == pygame.K_ESCAPE:
-            if self.show_help:
-                self.show_help = False
-            else:
-                self.open_menu()
-        elif key == pygame.K_TAB:
-            self.panel_visible = not self.panel_visible
-            self._layout()
-        elif key == pygame.K_PAGEUP:
-            self.switch_scene(-1)
-        elif key == pygame.K_PAGEDOWN:
-            self.switch_scene(+1)
-        else:
+        """The common keys of every scene (SHELL_KEYS); return True if `key` was one of them."""
+        actions = {
+            "space": self.toggle_pause,
+            ".": self.clock.single_step, "[.]": self.clock.single_step,
+            "-": self.clock.slower, "[-]": self.clock.slower,
+            "=": self.clock.faster, "+": self.clock.faster, "[+]": self.clock.faster,
+            "r": self.reset_scene,
+            "h": self.toggle_help, "f1": self.toggle_help,
+            "f2": lambda: self.set_large_text(not self.large_text),
+            "f12": self.request_screenshot,
+            "escape": self.escape,
+            "tab": self.toggle_panel,
+            "page up": lambda: self.switch_scene(-1),
+            "page down": lambda: self.switch_scene(+1),
+        }
+        action = actions.get(pygame.key.name(key))
+        if action is None:
             return False
+        action()
         return True
+
+    def toggle_help(self) -> None:
+        self.show_help = not self.show_help
+
+    def escape(self) -> None:
+        """Esc: close the help, else back to the menu."""
+        if self.show_help:
+            self.show_help = False
+        else:
+            self.open_menu()
+
+    def toggle_panel(self) -> None:
+        self.panel_visible = not self.panel_visible
+        self._layout()
 
     def toggle_pause(self) -> None:
         self.clock.toggle_pause()
@@ -694,12 +685,8 @@ class Window:
                and self._replay[self._replay_index].t <= self.session_time + EVENT_SLACK):
             ev = self._replay[self._replay_index]
             self._replay_index += 1
-            if ev.kind == "key_down" and ev.key == "r":       # as app.headless.deliver does
-                self.scene.reset()
+            if deliver(self.scene, replace(ev, t=self.session_time)):   # the headless rules
                 self._after_rebuild()
-            elif not (ev.kind == "key_up" and ev.key == "r"):
-                self.scene.handle_event(InputEvent(ev.kind, tuple(ev.pos), ev.button, ev.key,
-                                                   self.session_time))
 
     # --- what the HUD reads ----------------------------------------------------------------
     @property
@@ -716,15 +703,12 @@ class Window:
             return self.last_step_ms
         return statistics.median(ms for _, ms in self.step_times)
 
-    def hud_lines(self) -> list:
-        scene = self.scene
-        L = hud.Line
-        lines: list = [L(scene.title or scene.name, hud.ACCENT_COLOR)]
+    def status_lines(self) -> list:
+        """The shell's lines of the HUD box: fps and step cost, time and speed, warnings."""
+        L, scene = hud.Line, self.scene
         ms = self.step_ms
         ms_text = "-" if math.isnan(ms) else f"{ms:.2f}"
-        sub = scene.p["substeps"]
-        lines.append(f"{self.fps:.0f} fps  |  physics {ms_text} ms/step  |  dt = 1/{scene.p['hertz']} s"
-                     + (f" in {sub} substeps" if sub > 1 else ""))
+        lines: list = [f"{self.fps:.0f} fps  |  physics {ms_text} ms/step  |  {hud.dt_text(scene)}"]
         state = f"t = {scene.time:.2f} s  |  speed x{_slow_text(self.clock.slow_motion)}"
         if self.clock.paused:
             state += "  |  PAUSED (space resumes, . steps)"
@@ -733,28 +717,16 @@ class Window:
         if self.wall - self.last_drop < 1.0:
             lines.append(L("slower than real time: the steps do not fit in a frame (fewer "
                            "iterations, substeps or hertz catch up)", hud.WARN_COLOR))
-        lines += [str(x) for x in scene.hud_lines()]
-        costs = scene.effect_costs()
-        if costs:
-            lines.append("cost: " + ", ".join(f"{k} {v:.2f} ms" for k, v in costs.items()))
-        for _, text, color in self.messages:
-            if color != hud.ERROR_COLOR:
-                lines.append(L(text, color))
         return lines
 
-    def metric_lines(self, width: int) -> list[str]:
-        """The scene's metrics() for the box at the bottom of the world area, packed into lines
-        of at most `width` pixels."""
-        items = [f"{k} {hud.fmt_number(v)}" for k, v in self.scene.metrics().items()]
-        f = font(hud.HUD_SIZE)
-        lines = hud.pack(items, f, width - 16)
-        if len(lines) > MAX_METRIC_LINES:       # keep the world visible; --json has them all
-            shown = hud.pack(items, f, width - 16 - f.size("  |  +99 more (--json)")[0])
-            shown = shown[:MAX_METRIC_LINES]
-            more = len(items) - sum(line.count("  |  ") + 1 for line in shown)
-            shown[-1] += f"  |  +{more} more (--json)"
-            lines = shown
-        return lines
+    def notes(self) -> list:
+        """Passing messages shown at the end of the HUD box (errors get a banner instead)."""
+        return [hud.Line(text, color) for _, text, color in self.messages
+                if color != hud.ERROR_COLOR]
+
+    def hud_lines(self) -> list:
+        """Everything in the HUD box, as drawn."""
+        return hud.scene_lines(self.scene, self.status_lines(), self.notes())
 
     # --- drawing ---------------------------------------------------------------------------
     def render(self) -> None:
@@ -773,13 +745,7 @@ class Window:
         scene.draw(screen, self.view)
         screen.set_clip(None)
         s = TEXT.scale
-        hud.text_box(screen, self.hud_lines(), (area.left + 8, area.top + 8),
-                     max_width=min(area.width - 16, int(640 * s)))
-        bottom = area.bottom - 6
-        metric_lines = self.metric_lines(area.width - 16) if scene.metrics_box else []
-        if metric_lines:
-            bottom = hud.text_box(screen, metric_lines, (area.left + 8, area.bottom - 6),
-                                  max_width=area.width - 16, from_bottom=True).top
+        bottom = hud.draw_scene_hud(screen, area, scene, self.status_lines(), self.notes())
         if self.nonfinite_banner:
             hud.banner(screen, self.nonfinite_banner, area, hud.WARN_COLOR,
                        y=area.centery - int(60 * s))
@@ -826,9 +792,7 @@ class Window:
         self.flash(f"screenshot saved: {path}", (140, 230, 140))
 
     def save_screenshot(self, path: str | Path) -> None:
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        pygame.image.save(self.screen, str(path))
+        save_png(self.screen, path)
 
     def replay_command(self, path: str | Path) -> str:
         """The headless command that replays the recording written to `path`."""
@@ -847,19 +811,9 @@ class Window:
         return len(self.recorded)
 
 
-_RESERVED = None
-
-
 def _is_reserved(key: int) -> bool:
-    """Shell keys (and digits) never reach a scene, not even their key_up."""
-    global _RESERVED
-    if _RESERVED is None:
-        _RESERVED = {pygame.K_SPACE, pygame.K_PERIOD, pygame.K_MINUS, pygame.K_EQUALS,
-                     pygame.K_PLUS, pygame.K_r, pygame.K_h, pygame.K_F1, pygame.K_F2,
-                     pygame.K_F12, pygame.K_ESCAPE, pygame.K_TAB, pygame.K_PAGEUP,
-                     pygame.K_PAGEDOWN, pygame.K_KP_PERIOD, pygame.K_KP_MINUS, pygame.K_KP_PLUS}
-        _RESERVED |= set(range(pygame.K_0, pygame.K_9 + 1))
-    return key in _RESERVED
+    """Shell keys (and the menu's digits) never reach a scene, not even their key_up."""
+    return pygame.key.name(key) in SHELL_KEYS
 
 
 def _slow_text(factor: float) -> str:
@@ -873,7 +827,6 @@ class _quiet_stderr:
     """Silence file descriptor 2 (C libraries' messages) inside a `with` block."""
 
     def __enter__(self):
-        import os
         sys.stderr.flush()
         self.saved = os.dup(2)
         devnull = os.open(os.devnull, os.O_WRONLY)
@@ -881,7 +834,6 @@ class _quiet_stderr:
         os.close(devnull)
 
     def __exit__(self, *exc):
-        import os
         os.dup2(self.saved, 2)
         os.close(self.saved)
         return False
@@ -889,7 +841,6 @@ class _quiet_stderr:
 
 def _open_display(size: tuple[int, int]) -> pygame.Surface:
     """Open the window; raise pygame.error if there is no usable display."""
-    import os
     if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY")
                                                  or os.environ.get("WAYLAND_DISPLAY")):
         with _quiet_stderr():     # SDL's own probing prints "XDG_RUNTIME_DIR is invalid" lines

@@ -16,7 +16,7 @@ from tests.toy_scenes import Blowup, Toy
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 JSON_KEYS = {"scene", "steps", "sim_seconds", "wall_seconds", "step_ms", "params", "effects",
-             "metrics", "state_hash", "finite"}
+             "metrics", "state_hash", "finite", "events"}
 
 
 def run_cli(*args, env_extra=None):
@@ -57,6 +57,17 @@ def test_bad_scene_through_a_real_subprocess_is_one_line_and_exit_2():
     assert r.returncode == 2
     assert r.stderr.count("\n") == 1 and "nope" in r.stderr and "accepted" in r.stderr
     assert "Traceback" not in r.stderr
+
+
+def test_window_on_a_machine_without_a_display_is_exit_2():
+    # what a CI machine or an ssh session has: no DISPLAY, no Wayland, no SDL driver chosen
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")}
+    r = subprocess.run([sys.executable, "-m", "app", "--scene", scenes.SCENES[0].name,
+                        "--seconds", "1"], cwd=ROOT, env=env, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 2, r.stderr
+    assert r.stderr.count("\n") == 1 and "display" in r.stderr
 
 
 def test_window_without_a_display_is_exit_2():

@@ -309,7 +309,7 @@ def test_a_step_that_would_take_seconds_is_refused_and_nothing_changes():
     for ok in ({}, {"rows": 128, "cols": 128, "iterations": 20}, {"rows": 64, "cols": 64,
                "substeps": 10, "iterations": 1}, {"rows": 256, "cols": 256, "iterations": 90},
                {"rows": 12, "cols": 12, "substeps": 50, "iterations": 10}):
-        ClothScene.check_combination(ClothScene.resolve(ok))
+        ClothScene.resolve(ok)     # raises ParamError if refused
 
 
 def test_snapshot_restore_and_determinism():

@@ -70,7 +70,17 @@ def test_any_input_document_gives_sorted_valid_events_or_a_one_line_refusal(data
 def test_the_clock_never_exceeds_its_cap_and_never_loses_track(frames, hertz, cap):
     dt = 1.0 / hertz
     clock = FixedStepClock(max_steps_per_frame=cap)
+    run = capped = 0
     for f in frames:
+        dropped_before = clock.dropped_steps
         n = clock.steps_for_frame(f, dt)
+        run += n
+        capped += clock.dropped_steps > dropped_before
         assert 0 <= n <= cap
         assert -1e-9 <= clock.accumulator < dt + 1e-9
+    # Real time is simulated or still waiting in the accumulator, except what the cap dropped:
+    # at most the dropped whole steps plus the fraction of a step of each capped frame.
+    lost = sum(frames) - (run * dt + clock.accumulator)
+    assert -1e-6 <= lost <= (clock.dropped_steps + capped) * dt + 1e-6
+    if capped == 0:
+        assert abs(lost) <= 1e-6

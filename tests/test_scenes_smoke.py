@@ -12,8 +12,9 @@ import pygame
 import pytest
 
 from app.draw.view import View
-from app.headless import run_scene
+from app.headless import load_events, run_scene
 from app.scene import InputEvent, ParamError, Scene
+from app.window import Window
 from scenes import SCENES
 
 CONTRACT_METRICS = {
@@ -69,7 +70,7 @@ def test_declared_defaults_are_valid(cls):
 
 
 @pytest.mark.parametrize("cls", SCENES, ids=ids)
-def test_scene_builds_steps_draws_and_reports(cls, capsys):
+def test_scene_builds_steps_draws_and_reports(cls, capfd):
     scene = cls()
     one_second(scene)
     assert scene.is_finite()
@@ -85,25 +86,39 @@ def test_scene_builds_steps_draws_and_reports(cls, capsys):
     assert all(isinstance(line, str) for line in scene.hud_lines())
     assert all(math.isfinite(v) for v in scene.effect_costs().values())
     assert len(scene.state_hash()) == 16
-    out, err = capsys.readouterr()
+    out, err = capfd.readouterr()       # also what C code (Chipmunk, SDL) writes
     assert out == "" and err == "", "a scene must not print"
 
 
 @pytest.mark.parametrize("cls", SCENES, ids=ids)
-def test_two_runs_hash_the_same_and_input_replay_equals_live_events(cls):
-    steps = round(0.6 / cls().dt)
-    replayed = run_scene(cls(), steps, drag_events(cls))
-    assert replayed.finite
-    # The same events handed over live, step by step, as the window does between frames.
-    live = cls()
+def test_live_events_in_the_window_replay_headless_to_the_same_state(cls, tmp_path):
+    """The same drag done live in the window (pygame events in screen pixels, at a zoom below
+    1, with uneven frames), recorded, and replayed headless from the file: one state."""
+    pygame.display.init()
+    pygame.font.init()
+    window = Window(pygame.display.set_mode((1000, 700)), [cls], screenshot_dir=tmp_path)
+    assert window.open_scene(cls)
     pending = drag_events(cls)
-    for k in range(steps):
-        while pending and pending[0].t <= k * live.dt + 1e-9:
-            live.handle_event(pending.pop(0))
-        live.advance()
-    assert replayed.scene.state_hash() == live.state_hash()
-    again = run_scene(cls(), steps, drag_events(cls))
-    assert again.scene.state_hash() == replayed.scene.state_hash()
+    frames = [0.013, 0.021, 1 / 60, 0.03, 0.011] * 8
+    for frame in frames:
+        while pending and pending[0].t <= window.session_time + 1e-9:
+            e = pending.pop(0)
+            screen = window.view.pt(e.pos)
+            if e.kind == "mouse_move":
+                ev = pygame.event.Event(pygame.MOUSEMOTION, pos=screen, rel=(0, 0),
+                                        buttons=(0, 0, 0))
+            else:
+                kind = pygame.MOUSEBUTTONDOWN if e.kind == "mouse_down" else pygame.MOUSEBUTTONUP
+                ev = pygame.event.Event(kind, pos=screen, button=e.button)
+            window.handle_pygame_event(ev)
+        window.update(frame)
+    assert not pending and window.scene.is_finite()
+    out = tmp_path / "demo.json"
+    assert window.write_recording(out) == len(drag_events(cls))
+    replay = run_scene(cls(), window.session_steps, load_events(str(out)))
+    assert replay.scene.state_hash() == window.scene.state_hash()
+    again = run_scene(cls(), window.session_steps, load_events(str(out)))
+    assert again.scene.state_hash() == replay.scene.state_hash()
 
 
 @pytest.mark.parametrize("cls", SCENES, ids=ids)
@@ -112,12 +127,12 @@ def test_snapshot_restore_and_reset(cls):
     for _ in range(10):
         scene.advance()
     snap = scene.snapshot()
+    assert snap is not None, "every scene can be rolled back (the window's non-finite guard)"
     before = scene.state_hash()
     for _ in range(10):
         scene.advance()
-    if snap is not None:
-        scene.restore(snap)
-        assert scene.state_hash() == before
+    scene.restore(snap)
+    assert scene.state_hash() == before
     scene.reset()
     assert scene.time == 0.0 and scene.steps == 0
     assert scene.state_hash() == cls().state_hash()

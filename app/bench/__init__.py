@@ -65,9 +65,8 @@ class Report:
 
 
 def _cell(v: Any) -> str:
-    if isinstance(v, float):
-        return f"{v:.4g}"
-    return str(v)
+    from app.draw.hud import fmt_number
+    return fmt_number(v) if isinstance(v, float) else str(v)
 
 
 def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1, number: int = 1) -> float:
@@ -97,8 +96,6 @@ def machine_note() -> str:
 def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-results",
                    quick: bool = False) -> int:
     """Run one benchmark or all; print tables (or JSON); return an exit code."""
-    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
-    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
     names = list(BENCHMARKS) if which == "all" else [which]
     report = Report(out_dir, as_json, quick)
     results: dict[str, Any] = {}

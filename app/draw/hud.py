@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import pygame
 
-from app.draw.text import font
+from app.draw.text import TEXT, font
 
 HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 px lines
 HELP_SIZE = 28
@@ -119,7 +119,7 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
 
 
 def banner(surface: pygame.Surface, text: str, area: pygame.Rect, color=WARN_COLOR,
-           size: int = 28, y: int | None = None, bottom: int | None = None) -> pygame.Rect:
+           size: int = HUD_SIZE, y: int | None = None, bottom: int | None = None) -> pygame.Rect:
     """A wrapped message centred horizontally in `area`: its top at `y` if given, else ending
     20 px above `bottom` (default: the bottom of `area`). Return its rectangle."""
     f = font(size)
@@ -152,6 +152,54 @@ COMMON_KEYS = [
     ("PageUp / PageDown", "previous / next scene"),
     ("Esc", "back to the menu (quit from the menu)"),
 ]
+
+
+MAX_METRIC_LINES = 2     # lines of metrics at the bottom of the world (--json has them all)
+
+
+def dt_text(scene) -> str:
+    """'dt = 1/60 s in 4 substeps': the step the scene runs at."""
+    sub = scene.p["substeps"]
+    return f"dt = 1/{scene.p['hertz']} s" + (f" in {sub} substeps" if sub > 1 else "")
+
+
+def scene_lines(scene, status: list, notes: list = ()) -> list:
+    """The HUD box of a scene: its title, the shell's `status` lines (fps, time, pause...), the
+    scene's own hud_lines(), the cost of each effect where the scene measures it, and passing
+    `notes`. The window and headless screenshots draw the same box."""
+    lines: list = [Line(scene.title or scene.name, ACCENT_COLOR), *status]
+    lines += [str(x) for x in scene.hud_lines()]
+    costs = scene.effect_costs()
+    if costs:
+        lines.append("cost: " + ", ".join(f"{k} {v:.2f} ms" for k, v in costs.items()))
+    return lines + list(notes)
+
+
+def metric_lines(metrics: dict, width: int) -> list[str]:
+    """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels; what does not fit
+    is counted as "+N more (--json)"."""
+    items = [f"{k} {fmt_number(v)}" for k, v in metrics.items()]
+    f = font(HUD_SIZE)
+    lines = pack(items, f, width - 16)
+    if len(lines) > MAX_METRIC_LINES:
+        lines = pack(items, f, width - 16 - f.size("  |  +99 more (--json)")[0])[:MAX_METRIC_LINES]
+        more = len(items) - sum(line.count("  |  ") + 1 for line in lines)
+        lines[-1] += f"  |  +{more} more (--json)"
+    return lines
+
+
+def draw_scene_hud(surface: pygame.Surface, area: pygame.Rect, scene, status: list,
+                   notes: list = ()) -> int:
+    """Draw the HUD box at the top left of `area` and the metrics strip along its bottom (if the
+    scene wants one); return the y above the strip (for banners stacked on it)."""
+    hud_width = min(area.width - 16, int(640 * TEXT.scale))
+    text_box(surface, scene_lines(scene, status, notes), (area.left + 8, area.top + 8),
+             max_width=hud_width)
+    lines = metric_lines(scene.metrics(), area.width - 16) if scene.metrics_box else []
+    if not lines:
+        return area.bottom - 6
+    return text_box(surface, lines, (area.left + 8, area.bottom - 6), max_width=area.width - 16,
+                    from_bottom=True).top
 
 
 def reflow(doc: str) -> str:

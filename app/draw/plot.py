@@ -1,5 +1,5 @@
 """Charts drawn with pygame (no plotting library needed): line charts with linear or log axes,
-used by the benchmarks to write PNG reports and by scenes for small live plots.
+used by the benchmarks to write PNG reports.
 
     chart = LineChart("ms per step vs iterations", "iterations", "ms", logy=True)
     chart.add("64x64", xs, ys)
@@ -9,11 +9,11 @@ used by the benchmarks to write PNG reports and by scenes for small live plots.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 
 import pygame
 
+from app.draw import save_png
 from app.draw.text import font
 
 PALETTE = [(230, 97, 76), (86, 180, 233), (240, 200, 70), (120, 200, 120), (200, 130, 230),
@@ -124,13 +124,6 @@ def save_grid(charts: list[LineChart], path: str, cols: int = 2,
         c.draw(surface, pygame.Rect((i % cols) * cell[0], (i // cols) * cell[1], *cell).inflate(-8, -8))
     save_png(surface, path)
     return path
-
-
-def save_png(surface: pygame.Surface, path: str) -> None:
-    folder = os.path.dirname(path)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    pygame.image.save(surface, path)
 
 
 def _ticks(lo: float, hi: float, log: bool) -> list[float]:
