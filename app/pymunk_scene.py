@@ -32,6 +32,7 @@ import numpy as np
 import pymunk
 import pymunk.batch
 
+from app.draw.pymunk_draw import draw_pivot_joint
 from app.scene import Effect, InputEvent, Param, Scene
 
 # The fields read for the state hash and the finiteness check, all at once.
@@ -191,7 +192,6 @@ class PymunkScene(Scene):
     def draw_mouse(self, surface, view) -> None:
         """Draw the mouse's drag joint while a body is held (call it at the end of draw)."""
         if self.mouse_joint is not None:
-            from app.draw.pymunk_draw import draw_pivot_joint
             draw_pivot_joint(surface, view, self.mouse_joint)
 
     # ----- state --------------------------------------------------------------------------

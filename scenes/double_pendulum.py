@@ -54,6 +54,7 @@ import pygame
 import pymunk
 
 from app.draw import pymunk_draw as D
+from app.draw.hud import Line, text_box
 from app.draw.ring import Ring
 from app.physics.double_pendulum_ode import DoublePendulumODE
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
@@ -268,10 +269,8 @@ class DoublePendulumScene(PymunkScene):
             for g in (g1, g2):
                 pygame.draw.circle(surface, GHOST_COLOR, view.pt(g), max(2.0, view.len(BOB_RADIUS)),
                                    2)
-        b1, b2 = self.bobs
-        pygame.draw.aalines(surface, ROD_COLOR, False, [view.pt(PIVOT), view.pt(b1.position),
-                                                        view.pt(b2.position)])
-        pygame.draw.circle(surface, ROD_COLOR, view.pt(PIVOT), max(2.0, view.len(4)))
+        for joint in self.joints:                 # the rods (the bobs hide the dots on them)
+            D.draw_pin_joint(surface, view, joint, ROD_COLOR, dot=4)
         for body in self.bobs:
             D.draw_circle(surface, view, body.position, body.angle, BOB_RADIUS, BOB_COLOR)
         mark = self.track["mark"]
@@ -279,9 +278,8 @@ class DoublePendulumScene(PymunkScene):
             c, r = view.pt(mark), max(4.0, view.len(9))
             pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), 3)
             pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), 3)
-            from app.draw.text import blit_lines
-            blit_lines(surface, [f"parted at {self.track['divergence_time']:.2f} s"],
-                       (int(c[0] + r + 4), int(c[1] - r)), 18, MARK_COLOR)
+            text_box(surface, [Line(f"parted at {self.track['divergence_time']:.2f} s", MARK_COLOR)],
+                     (int(c[0] + r), int(c[1] - r) - 8), 18)
         self.draw_mouse(surface, view)
 
 

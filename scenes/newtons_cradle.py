@@ -296,10 +296,7 @@ class NewtonsCradleScene(PymunkScene):
                              view.pt((rx, ry + RADIUS + 14)), 2)
         lifted = set(self.groups()[0].tolist())
         for i, (body, string) in enumerate(zip(self.bodies, self.strings)):
-            pygame.draw.aaline(surface, STRING_COLOR, view.pt(string.anchor_a),
-                               view.pt(body.position))
-            pygame.draw.circle(surface, STRING_COLOR, view.pt(string.anchor_a),
-                               max(2.0, view.len(3)))
+            D.draw_pin_joint(surface, view, string, STRING_COLOR, dot=3)   # (the ball hides b's dot)
             color = LIFTED_COLOR if i in lifted else BALL_COLOR
             D.draw_circle(surface, view, body.position, body.angle, RADIUS, color)
         self.draw_mouse(surface, view)

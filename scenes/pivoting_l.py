@@ -108,8 +108,8 @@ class PivotingLScene(FallingBallsScene):
     @staticmethod
     def anchor_distance(joint: pymunk.Constraint) -> float:
         """Distance between a joint's two anchors in the world, px."""
-        return (joint.a.local_to_world(joint.anchor_a)
-                - joint.b.local_to_world(joint.anchor_b)).length
+        a, b = D.anchors(joint)
+        return (a - b).length
 
     def slide_distance(self) -> float:
         return self.anchor_distance(self.slide)

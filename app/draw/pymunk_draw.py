@@ -16,7 +16,7 @@ Every function takes the target surface and the `View` (app/draw/view.py) that m
     draw_circles(surface, view, xy, angles, radius, BALL)           # many balls at once
     draw_circles(surface, view, xy, angles, radius, BALL, asleep)   # sleeping ones dimmer
     draw_shape(surface, view, shape, color)                          # one segment, poly or circle
-    draw_constraint(surface, view, joint)                            # pin, slide, pivot, other
+    draw_pin_joint(surface, view, joint)                             # a rod and its anchors
 """
 
 from __future__ import annotations
@@ -161,8 +161,9 @@ def draw_shapes(surface: pygame.Surface, view, shapes: Iterable[pymunk.Shape], c
 
 
 # ----- joints -----------------------------------------------------------------------------------
-def _anchors(joint: pymunk.Constraint) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
-    """The joint's two anchor points in world coordinates."""
+def anchors(joint: pymunk.Constraint) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
+    """The joint's two anchor points in world coordinates (their distance is what a pin or
+    slide joint holds)."""
     return joint.a.local_to_world(joint.anchor_a), joint.b.local_to_world(joint.anchor_b)
 
 
@@ -172,12 +173,12 @@ def _dot(surface: pygame.Surface, view, p, color: Color, r: float = 4) -> None:
 
 
 def draw_pin_joint(surface: pygame.Surface, view, joint: pymunk.PinJoint,
-                   color: Color = PIN) -> None:
+                   color: Color = PIN, dot: float = 6) -> None:
     """The pin joint's rod between its two anchors, with a dot on each anchor (one dot when the
-    anchors coincide, as for a pin at a rotation centre)."""
-    a, b = _anchors(joint)
+    anchors coincide, as for a pin at a rotation centre); `dot`: radius of anchor a's dot."""
+    a, b = anchors(joint)
     pygame.draw.aaline(surface, color, view.pt(a), view.pt(b))
-    _dot(surface, view, a, color, 6)
+    _dot(surface, view, a, color, dot)
     _dot(surface, view, b, color, 3)
 
 
@@ -186,7 +187,7 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
     """The slide joint: a thin line between the anchors, and from anchor b a thick band along
     that line from distance `min` to distance `max`: the range the joint allows. The anchor dot
     on body a turns red when the joint sits at a limit."""
-    a, b = _anchors(joint)
+    a, b = anchors(joint)
     d = (a - b).length
     u = (a - b) / d if d > 1e-9 else pymunk.Vec2d(1, 0)
     lo, hi = b + u * joint.min, b + u * joint.max
@@ -204,31 +205,13 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
 def draw_pivot_joint(surface: pygame.Surface, view, joint: pymunk.PivotJoint,
                      color: Color = MOUSE) -> None:
     """A pivot joint: both anchors (they drift apart while the mouse pulls hard)."""
-    a, b = _anchors(joint)
+    a, b = anchors(joint)
     pygame.draw.aaline(surface, color, view.pt(a), view.pt(b))
     _dot(surface, view, a, color, 3)
     _dot(surface, view, b, color, 3)
 
 
-def draw_constraint(surface: pygame.Surface, view, joint: pymunk.Constraint) -> None:
-    """Draw any joint: pin, slide and pivot joints in their own way, others as an anchor line."""
-    if isinstance(joint, pymunk.SlideJoint):
-        draw_slide_joint(surface, view, joint)
-    elif isinstance(joint, pymunk.PinJoint):
-        draw_pin_joint(surface, view, joint)
-    elif isinstance(joint, pymunk.PivotJoint):
-        draw_pivot_joint(surface, view, joint)
-    elif hasattr(joint, "anchor_a") and hasattr(joint, "anchor_b"):
-        a, b = _anchors(joint)
-        pygame.draw.aaline(surface, PIN, view.pt(a), view.pt(b))
-
-
-def draw_constraints(surface: pygame.Surface, view, joints: Iterable[pymunk.Constraint]) -> None:
-    for joint in joints:
-        draw_constraint(surface, view, joint)
-
-
 __all__ = ["draw_circles", "draw_circle", "draw_segment", "draw_poly", "draw_shape",
-           "draw_shapes", "draw_pin_joint", "draw_slide_joint", "draw_pivot_joint",
-           "draw_constraint", "draw_constraints", "dim", "BALL", "STATIC", "DYNAMIC", "PIN",
-           "SLIDE", "SLIDE_LIMIT", "MOUSE", "TICK", "ANGLE_STEPS"]
+           "draw_shapes", "draw_pin_joint", "draw_slide_joint", "draw_pivot_joint", "anchors",
+           "dim", "BALL", "STATIC", "DYNAMIC", "PIN", "SLIDE", "SLIDE_LIMIT", "MOUSE", "TICK",
+           "ANGLE_STEPS"]
