@@ -129,6 +129,7 @@ class ClothScene(Scene):
         self.mouse: tuple[float, float] | None = None
         self._costs: dict[str, float] = {}
         self._cost_mark = (0, dict(self.cloth.spent))
+        self._stretch: tuple[np.ndarray, np.ndarray] | None = None   # see stretches()
         self._sync()
 
     def _sync(self) -> None:
@@ -148,10 +149,21 @@ class ClothScene(Scene):
     def step(self, h: float) -> None:
         self._sync()
         self.cloth.step(h)
+        self._stretch = None
+
+    def stretches(self) -> tuple[np.ndarray, np.ndarray]:
+        """|length / rest - 1| of the horizontal and the vertical structural rods (torn ones
+        included), for the metrics, the HUD and the drawing: computed at most once per change of
+        the positions (a step, a mouse event or a restore forgets it)."""
+        if self._stretch is None:
+            horizontal, vertical = self.cloth.sets["structural"].families
+            self._stretch = (self.cloth.stretch(horizontal), self.cloth.stretch(vertical))
+        return self._stretch
 
     # ----- the mouse ----------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
         c = self.cloth
+        self._stretch = None                    # a grab, drop or unlock may move particles
         if event.kind.startswith("mouse"):
             self.mouse = c.clamp(event.pos)     # any finite double: kept within 1e5 px of the world
         if event.kind == "mouse_down" and event.button == 1:
@@ -175,13 +187,14 @@ class ClothScene(Scene):
         hover = None
         if self.mouse is not None and self.cloth.grabbed is None:
             hover = self.cloth.nearest(self.mouse, self.grab_radius)
-        draw_cloth(surface, view, self.cloth, hover)
+        draw_cloth(surface, view, self.cloth, hover, self.stretches())
         self.legend_rect = draw_legend(surface, view, self.world_size)
 
     # ----- reports ------------------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:
         c = self.cloth
-        s = c.structural_stretch()
+        s = np.concatenate([st[f.alive > 0] for st, f in
+                            zip(self.stretches(), c.sets["structural"].families)])
         return {
             "particles": c.rows * c.cols,
             "constraints": c.constraint_count(),
@@ -235,3 +248,4 @@ class ClothScene(Scene):
             self.reset()
         else:
             self.cloth.restore(snap)
+            self._stretch = None

@@ -356,3 +356,19 @@ def test_bend_and_tear_are_accepted_names_for_bending_and_tearing():
     assert {"bending", "tearing"} <= scene.on
     scene.set("bend", "off")
     assert "bending" not in scene.on
+
+
+def test_the_stretch_is_reused_until_the_cloth_moves():
+    scene = ClothScene({})
+    for _ in range(10):
+        scene.advance()
+    first = scene.stretches()
+    assert scene.stretches() is first                      # metrics, HUD and drawing share it
+    x, y = (float(v) for v in scene.cloth.x[:, 10, 10])
+    scene.handle_event(InputEvent("mouse_down", (x, y), 1))
+    scene.handle_event(InputEvent("mouse_up", (x + 80, y + 60), 1))   # dropped (and locked) there
+    c = scene.cloth
+    fresh = np.concatenate([c.stretch(f)[f.alive > 0] for f in c.sets["structural"].families])
+    assert scene.metrics()["max_stretch"] == float(fresh.max()) > float(first[0].max())
+    scene.advance()
+    assert scene.stretches() is not first

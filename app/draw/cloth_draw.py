@@ -35,20 +35,19 @@ def strain_buckets(stretch: np.ndarray, alive: np.ndarray) -> np.ndarray:
     return b
 
 
-def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: int) -> int:
+def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: int) -> None:
     """Draw rods given as polylines: lines[i] holds the screen points of line i, buckets[i, j] the
     colour of its rod j (between points j and j+1). One draw call per run of equal colour,
-    hottest runs last (on top). Returns the number of draw calls."""
+    hottest runs last (on top)."""
     n_lines, n_rods = buckets.shape
     if n_rods == 0:
-        return 0
+        return
     starts_run = np.ones(buckets.shape, bool)
     starts_run[:, 1:] = buckets[:, 1:] != buckets[:, :-1]   # a run starts where the colour changes
     starts = np.flatnonzero(starts_run)                      # ...or at the start of a line
     ends = np.append(starts[1:], buckets.size)
     colours = buckets.ravel()[starts]
     order = np.argsort(colours, kind="stable")
-    calls = 0
     draw_lines = pygame.draw.lines
     for s, e, b in zip(starts[order].tolist(), ends[order].tolist(), colours[order].tolist()):
         if b < 0:
@@ -56,8 +55,6 @@ def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: 
         line, j0 = divmod(s, n_rods)
         j1 = e - line * n_rods                               # rods j0..j1-1 -> points j0..j1
         draw_lines(surface, STRAIN_COLORS[b], False, lines[line][j0:j1 + 1], width)
-        calls += 1
-    return calls
 
 
 RUNS_LIMIT = 600        # more colour runs than this: rasterise instead of pygame.draw.lines
@@ -100,16 +97,19 @@ def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: 
 
 
 def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
-               hover: tuple[int, int] | None = None) -> int:
+               hover: tuple[int, int] | None = None,
+               stretch: tuple[np.ndarray, np.ndarray] | None = None) -> None:
     """Draw the cloth's structural rods coloured by strain, its locked particles as dots, the
     grabbed particle as a ring (and `hover`, the particle the mouse would grab, as a thin ring).
-    Returns the number of line draw calls (for the benchmark)."""
+    `stretch`: the horizontal and vertical structural rods' |length/rest - 1| if already known
+    (computed here otherwise)."""
     pts = view.pts(np.moveaxis(cloth.x, 0, -1))              # (rows, cols, 2) screen points
     width = 2 if view.len(cloth.spacing) >= 10 else 1
-    calls = 0
     horizontal, vertical = cloth.sets["structural"].families
-    b_h = strain_buckets(cloth.stretch(horizontal), horizontal.alive)
-    b_v = strain_buckets(cloth.stretch(vertical), vertical.alive)
+    if stretch is None:
+        stretch = cloth.stretch(horizontal), cloth.stretch(vertical)
+    b_h = strain_buckets(stretch[0], horizontal.alive)
+    b_v = strain_buckets(stretch[1], vertical.alive)
     runs = int((b_h[:, 1:] != b_h[:, :-1]).sum() + (b_v[1:] != b_v[:-1]).sum())
     drawn = False
     if runs > RUNS_LIMIT:
@@ -119,8 +119,8 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         alive = k >= 0
         drawn = raster_rods(surface, a[alive], b[alive], k[alive], width)
     if not drawn:
-        calls += draw_runs(surface, pts.tolist(), b_h, width)
-        calls += draw_runs(surface, pts.transpose(1, 0, 2).tolist(), b_v.T, width)
+        draw_runs(surface, pts.tolist(), b_h, width)
+        draw_runs(surface, pts.transpose(1, 0, 2).tolist(), b_v.T, width)
     r_pin = max(2, int(round(view.len(cloth.spacing) * 0.16)))
     for p in pts[cloth.locked].tolist():
         pygame.draw.circle(surface, PIN_COLOR, p, r_pin)
@@ -129,7 +129,6 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         pygame.draw.circle(surface, GRAB_COLOR, pts[cloth.grabbed].tolist(), ring, 2)
     elif hover is not None:
         pygame.draw.circle(surface, HOVER_COLOR, pts[hover].tolist(), ring, 1)
-    return calls
 
 
 _legend_cache: dict[float, pygame.Surface] = {}

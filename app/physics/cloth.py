@@ -453,11 +453,6 @@ class Cloth:
         """|length / rest - 1| of every rod of a family (torn rods included)."""
         return np.abs(rod_lengths(self.x, family) / family.rest - 1.0)
 
-    def structural_stretch(self) -> np.ndarray:
-        """|length / rest - 1| of every intact structural rod, as one flat array."""
-        parts = [self.stretch(f)[f.alive > 0] for f in self.sets["structural"].families]
-        return np.concatenate(parts) if parts else np.zeros(0)
-
     def constraint_count(self) -> int:
         """Intact rods in the active sets (what a sweep solves)."""
         return sum(int(np.count_nonzero(f.alive)) for rs in self.active_sets for f in rs.families)
