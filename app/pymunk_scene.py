@@ -178,11 +178,11 @@ class PymunkScene(Scene):
             return (ids[:, None] == self._static_ids).any(axis=1)
         return np.isin(ids, self._static_ids)
 
-    def sleeping_rows(self, ids: np.ndarray, static: np.ndarray | None = None) -> np.ndarray:
+    def sleeping_rows(self, ids: np.ndarray) -> np.ndarray:
         """Bool mask of the rows (from body_rows) that are sleeping bodies: the rows after the
         last static one, by the batch's order awake | static | sleeping (tested against
         Body.is_sleeping in tests/test_falling_balls.py)."""
-        static = self.static_rows(ids) if static is None else static
+        static = self.static_rows(ids)
         asleep = np.zeros(len(ids), dtype=bool)
         last = np.flatnonzero(static)
         if len(last):

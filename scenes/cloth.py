@@ -23,8 +23,6 @@ Without shear the cloth always falls back to hanging (at worst with a crease). R
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
 
 from app.physics.cloth import FORCE_NAMES, PIN_CHOICES, SET_NAMES, WIND_FIELDS, Cloth, sweep_size

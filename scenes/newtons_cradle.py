@@ -118,7 +118,7 @@ class NewtonsCradleScene(PymunkScene):
         space.collision_slop = SLOP
         space.damping = self.p["damping"]
         n = self.p["balls"]
-        k = min(self.p["lifted"], n - 1)
+        k = self.p["lifted"]                   # at most n - 1 (check_combination)
         pitch = 2 * RADIUS + self.p["gap"]
         w = self.world_size[0]
         self.anchors = np.array([(w / 2 + (i - (n - 1) / 2) * pitch, ANCHOR_Y) for i in range(n)])
@@ -241,11 +241,10 @@ class NewtonsCradleScene(PymunkScene):
         """After a drag: the balls more than a radius from rest at one end of the row are the new
         lifted group (the larger run if both ends are out); none if every ball is out."""
         out = np.abs(self.displacements()) > RADIUS
-        n = len(out)
-        left = n if out.all() else int(np.argmin(out))           # run of displaced balls
-        right = n if out.all() else int(np.argmin(out[::-1]))
-        k = max(left, right) if max(left, right) < n else 0
-        self.arm(k, side=+1 if left >= right else -1)
+        # the run of displaced balls at each end: argmin finds the first ball at rest (0 if
+        # there is none, so every ball out gives k = 0)
+        left, right = int(np.argmin(out)), int(np.argmin(out[::-1]))
+        self.arm(max(left, right), side=+1 if left >= right else -1)
 
     # ----- state ----------------------------------------------------------------------------
     def state_arrays(self) -> Iterable[np.ndarray]:

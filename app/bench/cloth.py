@@ -15,9 +15,7 @@ of an oscillation). Bigger grids fill the same world area: same cloth, finer res
 
 from __future__ import annotations
 
-import math
 import statistics
-import time
 
 import pygame
 
@@ -31,7 +29,7 @@ BASE = {"shear": True, "bending": False, "wind": False, "tearing": False, "pins"
         "drag_coef": 0.05}          # strong drag: the cloth settles within the hang
 
 
-def hung(n: int, iterations: int, substeps: int = 1, hang: int = 120, avg: int = 20,
+def hung(n: int, iterations: int, substeps: int = 1, *, hang: int, avg: int,
          **extra) -> tuple[ClothScene, float, float]:
     """An n x n cloth after `hang` steps; returns it with its mean and max stretch averaged over
     the last `avg` steps."""

@@ -238,7 +238,6 @@ class Cloth:
         self.anchor = self.x.copy()             # where each locked particle was locked
         self.grabbed: tuple[int, int] | None = None
         self.grab_target = (0.0, 0.0)
-        self.pins = pins
         self.default_pins = self._pin_cells(pins)
 
         self.sets = rod_sets(rows, cols, spacing, dtype)

@@ -56,7 +56,6 @@ class DoublePendulumODE:
     m2: float
     g: float
     state: State = (0.0, 0.0, 0.0, 0.0)
-    time: float = 0.0
 
     # ----- the equations of motion --------------------------------------------------------
     def derivative(self, y: State) -> State:
@@ -84,7 +83,6 @@ class DoublePendulumODE:
         k4 = f(tuple(a + h * b for a, b in zip(y, k3)))
         self.state = tuple(a + h / 6.0 * (b1 + 2 * b2 + 2 * b3 + b4)
                            for a, b1, b2, b3, b4 in zip(y, k1, k2, k3, k4))
-        self.time += h
 
     @staticmethod
     def steps_for(dt: float, n: int) -> int:
@@ -93,9 +91,9 @@ class DoublePendulumODE:
 
     def advance(self, dt: float, n: int) -> bool:
         """Advance dt seconds in steps_for(dt, n) RK4 steps of equal length. Returns True, or
-        False if the integration went non-finite: then the state (and time) are left as they
-        were before the call, the last finite state."""
-        y0, t0 = self.state, self.time
+        False if the integration went non-finite: then the state is left as it was before the
+        call, the last finite state."""
+        y0 = self.state
         if not all(map(math.isfinite, y0)):
             return False
         m = self.steps_for(dt, n)
@@ -107,7 +105,7 @@ class DoublePendulumODE:
             self.state = (math.nan,) * 4
         if all(map(math.isfinite, self.state)):
             return True
-        self.state, self.time = y0, t0
+        self.state = y0
         return False
 
     # ----- reading and setting the state ----------------------------------------------------

@@ -75,10 +75,6 @@ class ParticleSystem:
     def n(self) -> int:
         return self.x.shape[0]
 
-    @property
-    def dim(self) -> int:
-        return self.x.shape[1]
-
     # ----- the solver interface ---------------------------------------------------------------
     def state(self) -> np.ndarray:
         """The phase-space point y = [x, v] as one flat vector (a copy)."""
@@ -143,11 +139,6 @@ class ParticleSystem:
     # ----- bookkeeping --------------------------------------------------------------------------
     def is_finite(self) -> bool:
         return bool(np.isfinite(self.x).all() and np.isfinite(self.v).all())
-
-    def kinetic_energy(self, v: np.ndarray | None = None) -> float:
-        """Sum of m |v|^2 / 2 over the free particles."""
-        v = self.v if v is None else v
-        return 0.5 * float(np.sum(self.mass[:, None] * self.free * v * v))
 
     def copy_state(self) -> dict:
         """A cheap copy of everything that evolves (for snapshot/restore)."""

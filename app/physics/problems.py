@@ -42,7 +42,6 @@ class Problem:
     title = ""
     omega = 1.0        # characteristic angular frequency (1/s): the HUD's omega*dt uses it
     scale = 1.0        # characteristic length (px): errors are relative to it
-    period = 1.0       # seconds
     horizon = 1.0      # the benchmark's end time T (s)
     phase_labels = ("x", "v")
 
@@ -90,7 +89,6 @@ class MassOnSpring(Problem):
         self.sag = mass * gravity / self.k                   # how far gravity pulls the bob down
         self.length_eq = hang + self.sag                     # the bob's rest position below the ceiling
         self.amplitude = self.scale = amplitude
-        self.period = 2 * math.pi / omega
         self.horizon = 2.0
 
     def make_system(self) -> ParticleSystem:
@@ -135,7 +133,6 @@ class Pendulum(Problem):
         self.length, self.g, self.angle, self.mass = length, gravity, angle, mass
         self.omega = math.sqrt(gravity / length)
         self.scale = length * angle                          # the arc amplitude
-        self.period = 2 * math.pi / self.omega               # small-angle period
         self.horizon = 2.0                                   # not a whole period (see error())
         self.reference_step = reference_step
         self._ref = (0.0, angle, 0.0)                        # (t, theta, theta') of the reference
@@ -189,7 +186,7 @@ class TwoBodyOrbit(Problem):
 
     def __init__(self, semi_major: float = 150.0, eccentricity: float = 0.5, period: float = 2.0,
                  masses: tuple[float, float] = (3.0, 1.0)):
-        self.a, self.e, self.period = semi_major, eccentricity, period
+        self.a, self.e = semi_major, eccentricity
         self.m = np.array(masses, dtype=float)
         self.omega = 2 * math.pi / period                    # mean motion n
         self.gm = self.omega ** 2 * semi_major ** 3          # Kepler's third law: n^2 a^3 = G M
