@@ -19,8 +19,9 @@ cpSpaceEachBody walks the awake bodies, then the static ones, then the sleeping 
 adds one shapeless static "marker" body to every space, so that order always has a static part.
 
 pymunk (Chipmunk2D) aborts the whole process on some bad values (iterations=0, negative damping) and
-silently accepts others (a NaN time step). Every number that reaches pymunk here comes from a
-declared Param, whose range keeps such values out.
+silently accepts others (a NaN time step). Every setting that reaches pymunk here comes from a
+declared Param, whose range keeps such values out; mouse positions come from events, which the
+shell checks finite (an --input file's positions on reading; the window's are screen pixels).
 """
 
 from __future__ import annotations

@@ -10,8 +10,9 @@ exact solution, E/E0, and when it blew up. The top left stays empty for the wind
 
 The lecture idea: explicit methods are cheap per step but only conditionally stable, implicit
 methods cost a linear solve per step and are stable at any step. Turn `hertz` down and watch
-omega*dt in the HUD: forward Euler spirals out at every dt, implicit Euler spirals in, Verlet and
-symplectic Euler hold their energy until omega*dt passes 2 and then blow up, RK4 holds until 2.83.
+omega*h in the HUD (h = dt/substeps, the step each integrator takes): forward Euler spirals out
+at every h, implicit Euler spirals in, Verlet and symplectic Euler hold their energy until omega*h
+passes 2 and then blow up, RK4 holds until 2.83.
 An integrator that blows up (non-finite, or 1000x the problem's size away) is frozen and marked
 "blew up at t = ..."; the others run on.
 
@@ -97,7 +98,7 @@ class IntegratorsScene(Scene):
         Param("problem", "spring", str, choices=tuple(PROBLEMS),
               help="the system every integrator runs: mass on a spring, pendulum, two-body orbit"),
         Param("hertz", 60, int, 1, 1000, rebuild=False,
-              help="steps per simulated second (dt = 1/hertz); the HUD shows omega*dt"),
+              help="steps per simulated second (dt = 1/hertz); the HUD shows omega*h"),
     )
     effects = tuple(Effect(name, True, f"{info.title}: {info.note}", rebuild=True)
                     for name, info in INTEGRATORS.items())
@@ -169,12 +170,16 @@ class IntegratorsScene(Scene):
     def omega_h(self) -> float:
         return self.problem.omega * self.dt / self.p["substeps"]
 
+    def _refresh(self) -> None:
+        """Bring every live run's error and E/E0 up to now (for the metrics and the table)."""
+        for run in self.live():
+            run.error = self.problem.error(run.ps, self.t)
+            run.energy_ratio = self.problem.energy(run.ps.x, run.ps.v) / self.e0
+
     def metrics(self) -> dict[str, float]:
+        self._refresh()
         m: dict[str, float] = {"omega_dt": self.omega_h}
         for run in self.runs:
-            if run.blew_up_t is None:
-                run.error = self.problem.error(run.ps, self.t)
-                run.energy_ratio = self.problem.energy(run.ps.x, run.ps.v) / self.e0
             m[f"{run.name}_error"] = float(run.error)
             m[f"{run.name}_step_us"] = float(run.step_us)
             m[f"{run.name}_energy_ratio"] = float(run.energy_ratio)
@@ -185,9 +190,10 @@ class IntegratorsScene(Scene):
         return {run.name: run.step_us / 1000.0 for run in self.live()}
 
     def hud_lines(self) -> list[str]:
-        """Two short lines at most: omega*dt against the limits, and the first blow-up (the
+        """Two short lines at most: omega*h against the limits, and the first blow-up (the
         table has the rest)."""
-        lines = [f"{self.problem.title}: omega*dt = {self.omega_h:.3f}  (limits: 2, RK4 2.83)"]
+        lines = [f"{self.problem.title}: omega*h = {self.omega_h:.3f}, h = dt/substeps  "
+                 f"(limits: 2, RK4 2.83)"]
         dead = sorted((r for r in self.runs if r.blew_up_t is not None), key=lambda r: r.blew_up_t)
         if dead:
             more = f"  (+{len(dead) - 1} more)" if len(dead) > 1 else ""
@@ -215,14 +221,14 @@ class IntegratorsScene(Scene):
 
     # ----- drawing -------------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view: View) -> None:
-        self.metrics()                                   # refresh errors and energies for the table
+        self._refresh()
         self._draw_systems(surface, view)
         self._draw_table(surface, view)
         self._draw_phase(surface, view)
         self._draw_energy(surface, view)
 
     def _size(self, view: View, size: int) -> int:
-        return max(10, int(round(size * view.scale)))
+        return max(10, int(round(view.len(size))))
 
     def _render(self, text: str, color, size: int) -> pygame.Surface:
         """font(size).render, remembered: most labels are the same every frame."""

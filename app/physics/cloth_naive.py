@@ -2,8 +2,10 @@
 rod, and nested loops. It is the benchmark's baseline ("what does vectorising buy?"), not used by
 the app.
 
-It does exactly the arithmetic of app.physics.cloth (same Verlet step, same rods, same weights,
-rods solved in the same order), only one particle and one rod at a time, in float64. Keep it as
+It runs the same algorithm as app.physics.cloth in the same order (same Verlet step, same rods,
+same weights, rods solved in the same order), only one particle and one rod at a time, in
+float64: the results agree to rounding, not bit for bit (the vectorised code groups some
+operations differently). Keep it as
 plain as the slide:
 
     for p in particles:            # verlet()
