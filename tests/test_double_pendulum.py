@@ -55,6 +55,7 @@ def test_reference_keeps_energy_and_matches_the_small_angle_normal_modes():
     ode.advance(period, 2000)
     assert ode.state[0] == pytest.approx(eps, rel=1e-4)
     assert ode.state[1] == pytest.approx(math.sqrt(2) * eps, rel=1e-4)
+    assert ode.energy() == pytest.approx(e0, rel=1e-8)
     # A chaotic release keeps its energy to ~1e-9 with the reference's tiny step.
     ode = DoublePendulumODE(l, l, 1.0, 2.0, g, (2.0, 2.5, 0.0, 0.0))
     e0 = ode.energy()
