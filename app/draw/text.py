@@ -23,15 +23,3 @@ def font(size: int) -> pygame.font.Font:
         _cache[size] = pygame.font.Font(None, size)
     return _cache[size]
 
-
-def blit_lines(surface: pygame.Surface, lines: list[str], pos: tuple[int, int], size: int = 20,
-               color=(235, 235, 235), shadow=(0, 0, 0), spacing: int = 2) -> int:
-    """Draw lines of text from `pos` downwards with a 1-px shadow; return the y below the last."""
-    f = font(size)
-    x, y = pos
-    for line in lines:
-        if shadow is not None:
-            surface.blit(f.render(line, True, shadow), (x + 1, y + 1))
-        surface.blit(f.render(line, True, color), (x, y))
-        y += f.get_linesize() + spacing
-    return y
