@@ -100,8 +100,7 @@ class PymunkScene(Scene):
         """Called when the gravity in use changed: re-baseline anything measured against the old
         one (an energy at release: its potential part depends on g)."""
 
-    def set(self, key: str, value: Any) -> None:
-        super().set(key, value)
+    def settings_changed(self, names: set[str]) -> None:
         self.sync_gravity()      # if g or gravity changed: now, so metrics read before the next
                                  # step are right
 

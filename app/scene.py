@@ -18,10 +18,23 @@ The shell (window, headless runner, tests, benchmarks) drives every scene the sa
 
 Every hook has a do-nothing default, so a scene overrides only what it uses.
 Coordinates: world units are pixels at zoom 1, y grows downwards, gravity is (0, +g).
+
+The order in which the shell calls the hooks:
+
+    __init__(overrides)  -> resolve() (validate) -> build()        also on R / reset(): build()
+    every fixed step:    advance() = substeps x step(dt/substeps), then after_step() once
+    between steps:       handle_event(event)       (mouse and key events, world coordinates)
+                         set(name, value)          (the panel) -> build() if the setting needs a
+                                                   rebuild, else settings_changed({name})
+    every frame:         draw(surface, view), metrics(), hud_lines(), effect_costs()
+    layout:              content_bounds()          (what draw() covers, world coordinates)
+    non-finite guard:    is_finite(); snapshot() every so often; restore(snap) on a blow-up
+    determinism tests:   state_hash()
 """
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import math
 import random
@@ -33,6 +46,13 @@ import numpy as np
 
 class ParamError(ValueError):
     """A parameter value (or name) that the scene does not accept; the message is one line."""
+
+
+class SceneError(RuntimeError):
+    """A failure the scene reports to the person at the keyboard instead of crashing: e.g. a
+    student's exercise code raised. The window pauses and shows the message (the scene stays
+    open); a headless run prints it on stderr and exits 1. The message may span lines (a
+    student's traceback: their file and line)."""
 
 
 TRUE_WORDS = ("on", "true", "yes", "1")
@@ -158,6 +178,16 @@ def common(name: str, **changes: Any) -> Param:
     return replace(prm, **changes)
 
 
+@dataclass(frozen=True)
+class Try:
+    """A one-click experiment from a scene's help text ("try this" card in the panel): a label,
+    the settings it applies (names as `--set` takes them), and one line on what to watch for."""
+
+    label: str
+    settings: Mapping[str, Any]
+    watch: str
+
+
 @dataclass
 class InputEvent:
     """A mouse or key event in the format of `--input` files and `--record`.
@@ -195,6 +225,8 @@ class Scene:
     background: tuple[int, int, int] = (22, 24, 30)
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
+    tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
+    snapshot_skip: tuple[str, ...] = ()   # attributes the default snapshot leaves out (caches)
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
         self.p, self.on = self.resolve(overrides or {})
@@ -299,11 +331,11 @@ class Scene:
         else:
             changed = (key in self.on) != parsed
             (self.on.add if parsed else self.on.discard)(key)
-            if changed:
-                self.effect_changed(key, parsed)
             rebuild = changed and self.effect(key).rebuild
         if rebuild:
             self.reset()
+        elif changed:
+            self.settings_changed({key})
         return rebuild
 
     # ----- time -----------------------------------------------------------------------------
@@ -312,13 +344,14 @@ class Scene:
         return 1.0 / self.p["hertz"]
 
     def advance(self) -> None:
-        """One fixed step of dt: `substeps` calls of step(dt / substeps)."""
+        """One fixed step of dt: `substeps` calls of step(dt / substeps), then after_step()."""
         n = self.p["substeps"]
         h = self.dt / n
         for _ in range(n):
             self.step(h)
         self.time += self.dt
         self.steps += 1
+        self.after_step()
 
     def build_world(self) -> None:
         self.time = 0.0
@@ -338,14 +371,23 @@ class Scene:
     def step(self, h: float) -> None:
         """Advance the world by h seconds (one substep)."""
 
+    def after_step(self) -> None:
+        """Once per fixed step, after its substeps (observe, compare with a reference, count)."""
+
+    def settings_changed(self, names: set[str]) -> None:
+        """Called after set() changed these params or effects without a rebuild (self.p and
+        self.on already hold the new values)."""
+
     def draw(self, surface, view) -> None:
         """Draw the world on a pygame surface through `view` (app.draw.view.View)."""
 
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The world rectangle (x, y, w, h) that draw() covers; the layout keeps the HUD, the
+        metrics strip and the panel off it. Default: the whole world_size."""
+        return (0.0, 0.0, float(self.world_size[0]), float(self.world_size[1]))
+
     def handle_event(self, event: InputEvent) -> None:
         """React to a mouse or key event (positions already in world coordinates)."""
-
-    def effect_changed(self, name: str, on: bool) -> None:
-        """Called when an effect is switched while running (after self.on changed)."""
 
     def metrics(self) -> dict[str, float]:
         """Scene-specific numbers (names are part of the contract in DESIGN.md)."""
@@ -373,13 +415,17 @@ class Scene:
 
     def snapshot(self) -> Any:
         """A copy of the state, for rolling back after the simulation goes non-finite.
-        None means 'rebuild instead'."""
-        return None
+        The default deep-copies every attribute but the settings (self.p, self.on: a rollback
+        keeps what the panel shows) and those named in `snapshot_skip`; None means 'rebuild'."""
+        skip = {"p", "on", *self.snapshot_skip}
+        return copy.deepcopy({k: v for k, v in vars(self).items() if k not in skip})
 
     def restore(self, snap: Any) -> None:
-        """Go back to a state returned by snapshot()."""
+        """Go back to a state returned by snapshot() (a copy of it, so it can be restored again)."""
         if snap is None:
             self.reset()
+            return
+        vars(self).update(copy.deepcopy(snap))
 
 
 def hash_arrays(*arrays: np.ndarray) -> str:
@@ -398,7 +444,7 @@ def docstring_help(scene_cls: type[Scene]) -> str:
     return inspect.cleandoc(scene_cls.__doc__ or scene_cls.title)
 
 
-__all__ = ["Scene", "Param", "Effect", "ParamError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
+__all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
            "COMMON_PARAMS",
            "common",
            "hash_arrays", "docstring_help"]

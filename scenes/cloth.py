@@ -140,9 +140,8 @@ class ClothScene(Scene):
         c.wind_field = p["wind_field"]
         c.tear_ratio = p["tear_ratio"]
 
-    def effect_changed(self, name: str, on: bool) -> None:
-        if hasattr(self, "cloth"):
-            self.cloth.set_effects(self.on)
+    def settings_changed(self, names: set[str]) -> None:
+        self.cloth.set_effects(self.on)
 
     def step(self, h: float) -> None:
         self._sync()

@@ -149,8 +149,7 @@ class DoublePendulumScene(PymunkScene):
             joint.error_bias = self.p["error_bias"]
         super().step(h)
 
-    def advance(self) -> None:
-        super().advance()                      # pymunk: substeps x step(h)
+    def after_step(self) -> None:
         if self.mouse_joint is not None:       # held by the mouse: nothing to compare yet
             return
         t = self.track
@@ -180,10 +179,11 @@ class DoublePendulumScene(PymunkScene):
         self.ode.g = self.gravity()
         self.track["energy0"] = self.energy()
 
-    def effect_changed(self, name: str, on: bool) -> None:
-        if name == "reference" and on:         # the ghost restarts from the engine's state
+    def settings_changed(self, names: set[str]) -> None:
+        super().settings_changed(names)
+        if "reference" in names and "reference" in self.on:   # the ghost restarts from the engine
             self.new_release()
-        if name == "trail" and not on:
+        if "trail" in names and "trail" not in self.on:
             self.trail.clear()
             self.ghost_trail.clear()
 

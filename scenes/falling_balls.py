@@ -165,10 +165,10 @@ class FallingBallsScene(PymunkScene):
                 if body.body_type == pymunk.Body.DYNAMIC and body.is_sleeping:
                     body.activate()
 
-    def effect_changed(self, name: str, on: bool) -> None:
-        # (also called for overrides given to __init__, before build: then build does it)
-        if name == "sleeping" and hasattr(self, "space"):
-            self.set_sleeping(on)
+    def settings_changed(self, names: set[str]) -> None:
+        super().settings_changed(names)
+        if "sleeping" in names:
+            self.set_sleeping("sleeping" in self.on)
 
     # ----- balls ----------------------------------------------------------------------------
     def add_ball(self, pos: tuple[float, float], index: bool = True) -> pymunk.Circle:

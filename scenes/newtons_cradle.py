@@ -171,8 +171,7 @@ class NewtonsCradleScene(PymunkScene):
         self.space.damping = self.p["damping"]
         super().step(h)
 
-    def advance(self) -> None:
-        super().advance()
+    def after_step(self) -> None:
         self.observe()
 
     def xv(self) -> tuple[np.ndarray, np.ndarray]:
