@@ -28,9 +28,9 @@ def test_a_minute_of_landing_balls_keeps_the_slide_in_range_and_the_pin_together
         lowest, highest = min(lowest, d), max(highest, d)
     m = scene.metrics()
     assert 120 <= m["balls_spawned"] <= 121 and m["balls_removed"] > 60
-    assert m["slide_min"] <= lowest and m["slide_max"] >= highest   # it also sees substeps
-    assert scene.slide.min - 0.5 <= m["slide_min"] and m["slide_max"] <= scene.slide.max + 2.0
-    assert m["slide_max"] > scene.slide.max - 2.0             # it did tip all the way
+    assert m["slide_seen_min"] <= lowest and m["slide_seen_max"] >= highest   # it also sees substeps
+    assert scene.slide.min - 0.5 <= m["slide_seen_min"] and m["slide_seen_max"] <= scene.slide.max + 2.0
+    assert m["slide_seen_max"] > scene.slide.max - 2.0             # it did tip all the way
     assert m["pin_error"] < 1.0
     assert m["tunneled"] == 0
 

@@ -48,12 +48,13 @@ from typing import Callable, Iterator
 
 import numpy as np
 
+from app.physics.bounds import REACH, clamp_point
+
 EPS = 1e-9                                      # shortest length we divide by (no 0/0)
 SET_NAMES = ("structural", "shear", "bending")  # rod sets, in the order a sweep solves them
 FORCE_NAMES = ("drag", "gravity", "wind")       # force effects, in the order they apply
 PIN_CHOICES = ("top", "corners", "none")
 WIND_FIELDS = ("gust", "lecture")
-REACH = 1e5        # the mouse is followed at most this far (px) beyond the world's edges
 
 Slices = tuple[slice, slice]
 
@@ -326,9 +327,7 @@ class Cloth:
         The mouse may report any finite double (1e39, -1e300); a grabbed particle follows it only
         this far, so positions stay far inside float32's range and rod lengths squared (up to
         ~1e11) cannot overflow: the cloth is stretched, never torn to inf or NaN."""
-        (w, h), r = self.world, REACH
-        x, y = (float(v) if v == v else 0.0 for v in pos[:2])
-        return (min(max(x, -r), w + r), min(max(y, -r), h + r))
+        return clamp_point(pos, self.world, REACH)
 
     def nearest(self, pos: tuple[float, float], radius: float,
                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
