@@ -46,7 +46,8 @@ Metrics (DESIGN.md): `lifted` (k lifted: at most balls-1, a larger value is refu
 `balls_out` (balls that swing out past half the release amplitude in the first half-swing after
 the first impact; counted while that window is open, then frozen), `middle_max_drift` (largest
 distance from its rest position, px, of any ball that is neither lifted nor expected out: balls
-k .. N-k-1; 0 when there are none), `energy_ratio` (kinetic + potential energy now / at release).
+k .. N-k-1; 0 when there are none), `energy_ratio` (kinetic + potential energy now / at release;
+null when there was no energy at release, e.g. released with gravity off).
 Also `release_speed` (px/s, the lifted balls just before the first impact) and `out_speed_ratio`
 (the slowest of the k far balls' top speed after the impact / release speed).
 
@@ -171,7 +172,7 @@ class NewtonsCradleScene(PymunkScene):
             "side": side,
             "amplitude": float(dx.mean()) if k else 0.0,   # how far out they were let go, px
             "energy0": self.energy(),
-            "impact_time": -1.0,          # simulated time of the first impact, -1 before it
+            "impact_time": None,          # simulated time of the first impact (None before)
             "release_speed": 0.0,
             "last_speed": 0.0,            # mean speed of the lifted balls at the previous step
             "reach": np.zeros(self.p["balls"]),       # furthest swing onwards since impact
@@ -222,7 +223,7 @@ class NewtonsCradleScene(PymunkScene):
         if len(middle):
             t["middle_max_drift"] = max(t["middle_max_drift"],
                                         float(np.abs(onwards[middle]).max()))
-        if t["impact_time"] < 0 and len(lifted):
+        if t["impact_time"] is None and len(lifted):
             # The impact: the lifted group is at the bottom (its leading ball within half a
             # radius of rest) and a ball outside it has picked up speed.
             lead = lifted[-1] if t["side"] > 0 else lifted[0]
@@ -281,7 +282,8 @@ class NewtonsCradleScene(PymunkScene):
             "lifted": k,
             "balls_out": t["balls_out"],
             "middle_max_drift": t["middle_max_drift"],
-            "energy_ratio": self.energy() / e0 if e0 > 0 else 1.0,
+            # no energy at release (gravity off, nothing moving): no ratio exists (null, "-")
+            "energy_ratio": self.energy() / e0 if e0 > 0 else None,
             "release_speed": t["release_speed"],
             "out_speed_ratio": ratio,
         }
@@ -296,7 +298,7 @@ class NewtonsCradleScene(PymunkScene):
             return lines
         if k == 0:
             lines.append("nothing lifted: drag a ball out and let go")
-        elif t["impact_time"] < 0:
+        elif t["impact_time"] is None:
             lines.append(f"{k} lifted, released: waiting for the impact")
         elif t["window_open"]:
             left = t["impact_time"] + 0.9 * self.half_period() - self.time
@@ -308,7 +310,8 @@ class NewtonsCradleScene(PymunkScene):
             lines.append(f"out speed {100 * m['out_speed_ratio']:.1f}% of "
                          f"{m['release_speed']:.0f} px/s; middle drift "
                          f"{m['middle_max_drift']:.2f} px")
-        lines.append(f"energy left: {100 * m['energy_ratio']:.2f}%")
+        ratio = m["energy_ratio"]
+        lines.append("energy left: -" if ratio is None else f"energy left: {100 * ratio:.2f}%")
         return lines
 
     # ----- drawing --------------------------------------------------------------------------

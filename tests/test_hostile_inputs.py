@@ -145,3 +145,16 @@ def test_drawing_never_raises_or_warns_on_an_extreme_state(cls):
         warnings.simplefilter("error")                  # a RuntimeWarning fails the test
         scene.draw(surface, View())
         scene.draw(surface, View.fit(cls.world_size, (0, 0, 400, 300)))
+
+
+def test_scene_all_goes_on_after_an_extreme_drag_in_every_scene(tmp_path):
+    events = [{"t": 0, "type": "mouse_down", "button": 1, "pos": [400, 440]},
+              {"t": 0.01, "type": "mouse_move", "pos": [1.797e308, 1e300]}]
+    path = tmp_path / "drag.json"
+    path.write_text(json.dumps(events))
+    r = run_cli("--headless", "--scene", "all", "--steps", "5", "--json", "--input", str(path),
+                "--screenshot", str(tmp_path / "x.png"))
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    summaries = [json.loads(line) for line in r.stdout.splitlines()]
+    assert [s["scene"] for s in summaries] == [cls.name for cls in SCENES]
+    assert all(s["finite"] and os.path.exists(s["screenshot"]) for s in summaries)

@@ -173,7 +173,7 @@ def test_without_gravity_nothing_moves_and_a_ball_switched_off_mid_swing_circles
 def test_the_verdict_waits_for_the_swing_and_for_the_hand():
     scene = NewtonsCradleScene({"lifted": 2})
     seen_waiting = False
-    while scene.track["impact_time"] < 0 or scene.track["window_open"]:
+    while scene.track["impact_time"] is None or scene.track["window_open"]:
         scene.advance()
         line = scene.hud_lines()[0]
         if scene.track["window_open"]:               # far balls on their way out: no count yet

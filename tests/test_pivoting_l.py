@@ -79,3 +79,27 @@ def test_draws_the_L_and_its_joints():
 def test_a_combination_that_would_take_seconds_per_step_is_refused():
     with pytest.raises(ParamError, match="max_balls x substeps x"):
         PivotingLScene({"max_balls": 5000, "substeps": 50})
+
+
+def test_one_substep_pin_error_and_the_slide_overshoot_are_what_the_docstring_says():
+    # docstring: pin error about 0.7 to 1.2 px with one substep; the slide joint overshoots its
+    # max by about 1 to 3 px with two (seed 0: 1.2 px), so slide_seen_max > the param slide_max.
+    one = PivotingLScene({"substeps": 1})
+    two = PivotingLScene()
+    for _ in range(30 * 60):
+        one.advance()
+        two.advance()
+    assert 0.5 < one.metrics()["pin_error"] < 1.5
+    overshoot = two.metrics()["slide_seen_max"] - two.p["slide_max"]
+    assert 0.5 < overshoot < 3.5
+
+
+def test_a_step_too_coarse_for_the_balls_to_land_is_flagged_not_shown_as_a_result():
+    # hertz 1: the balls fall through the L; angle 0 and slide 0 are no result, and the HUD says so
+    scene = PivotingLScene({"hertz": 1})
+    for _ in range(20):
+        scene.advance()
+    m = scene.metrics()
+    assert m["tunneled"] > 10 and m["angle_deg"] == 0.0
+    assert any(line.startswith("TUNNELED through the L") and "raise hertz or substeps" in line
+               for line in scene.hud_lines())
