@@ -15,8 +15,8 @@ What it shows.
   * Energy: a pendulum without friction keeps its energy. An engine that loses or gains energy
     shows it in the HUD (`energy_drift`, relative to the energy at release). When the drift passes
     5% either way the HUD says "the engine blew up" (or "bled its energy", for a loss) and
-    `engine_blowup_t` records when: that is a numerical failure of the engine, not chaos, and the
-    parting that follows proves nothing about chaos.
+    `engine_blowup_t` records when (seconds after the release): that is a numerical failure of
+    the engine, not chaos, and the parting that follows proves nothing about chaos.
   * error_bias: pymunk's pin joint is "soft" by default: it corrects only part of the length error
     each step (error_bias = fraction of the error left after one second, 0.0018 by default). Which
     setting wins depends on the masses. At moderate mass ratios (the default 1 : 1) the lazy
@@ -260,8 +260,8 @@ class DoublePendulumScene(PymunkScene):
                  f"(worst |drift| {100 * m['energy_drift_max']:.3f}%)"]
         if m["engine_blowup_t"] is not None:
             what = "blew up" if m["energy_drift"] > 0 else "bled its energy"
-            lines.append(f"the engine {what} {m['engine_blowup_t']:.2f} s after release (energy "
-                         f"drift past {100 * BLOWUP_DRIFT:.0f}%): a numerical failure, not chaos")
+            lines.append(f"the engine {what} at {m['engine_blowup_t']:.2f} s (drift past "
+                         f"{100 * BLOWUP_DRIFT:.0f}%): numerics, not chaos")
         if self.mouse_joint is not None:
             lines.append("held by the mouse: the ghost restarts when you let go")
         elif "reference" not in self.on:
@@ -271,9 +271,7 @@ class DoublePendulumScene(PymunkScene):
                          f"adaptive step could not follow)")
             lines.append("ghost hidden, the engine runs on; drag a bob to restart it")
         elif m["divergence_time"] is not None:
-            what = ("parted from the exact solution" if m["engine_blowup_t"] is None
-                    else "parted from the exact solution (after the engine blew up)")
-            lines.append(f"{what} after {m['divergence_time']:.2f} s "
+            lines.append(f"parted from the exact solution after {m['divergence_time']:.2f} s "
                          f"(now {m['reference_divergence']:.0f} px apart)")
         else:
             lines.append(f"still with the exact solution: {m['reference_divergence']:.2f} px "

@@ -206,9 +206,8 @@ class IntegratorsScene(Scene):
         """Two short lines at most: omega*h against the limits, and the first blow-up (the
         table has the rest)."""
         limits = ("spring's limits: 2, RK4 2.83" if self.problem.name == "spring" else
-                  "the spring's limits 2 and 2.83 do not hold here")
-        lines = [f"{self.problem.title}: omega*h = {self.omega_h:.3f}, h = dt/substeps  "
-                 f"({limits})"]
+                  "the spring's limits do not apply")
+        lines = [f"omega*h = {self.omega_h:.3f} (h = dt/substeps); {limits}"]
         dead = sorted((r for r in self.runs if r.blew_up_t is not None), key=lambda r: r.blew_up_t)
         if dead:
             more = f"  (+{len(dead) - 1} more)" if len(dead) > 1 else ""
