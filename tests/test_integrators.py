@@ -263,3 +263,18 @@ def test_the_spring_limits_are_labelled_as_the_spring_s_and_rk4_fails_early_on_t
         orbit.advance()
     assert orbit.metrics()["omega_dt"] == pytest.approx(0.785, abs=1e-3)
     assert orbit.metrics()["rk4_blew_up_t"] is not None            # measured: at t = 6.5 s
+
+
+def test_verlet_local_error_is_fourth_order_its_global_error_second():
+    # The slides: Verlet "like 4th order Runge-Kutta, is 4th order accurate". True of ONE step
+    # from exact positions (local error O(h^4)); after a fixed time the T/h steps add up to O(h^2)
+    # (test_measured_order_matches_theory measures 2).
+    problem = oscillator()
+    hs, errors = [0.1, 0.05, 0.025], []
+    for h in hs:
+        ps = problem.make_system()
+        ps.x_prev, ps.h_prev = problem.exact(-h)[0], h       # exact memory of the step before
+        INTEGRATORS["verlet"].step(ps, h)
+        errors.append(float(np.abs(ps.x - problem.exact(h)[0]).max()))
+    local = np.polyfit(np.log(hs), np.log(errors), 1)[0]
+    assert local == pytest.approx(4.0, abs=0.1)
