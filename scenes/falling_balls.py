@@ -47,6 +47,10 @@ L_RADIUS = 5 * S
 SPAWN_X = (-180 * S, 80 * S)  # the tutorial's random.randint(120, 380) relative to the L at 300
 SPAWN_Y = 0.0                 # new balls' bottom edge: they fall in from above the world
 SLEEP_TIME = 0.5              # seconds at rest before a group of bodies falls asleep
+# A body slower than this counts as resting. Chipmunk's own guess is |gravity| x dt, which at
+# hertz 1 (dt/substeps = 0.5 s) is 450 px/s: balls fell asleep in mid-air. Fixed at its guess for
+# 60 Hz and g 900, so sleeping means the same at every step size.
+IDLE_SPEED = 15.0
 # A step's cost grows as balls x substeps x (iterations + 20): a settled pile of 5000 balls took
 # ~0.2 us per unit (measured while other work ran: 30 ms at iterations 10, 215 ms at 200, one
 # substep; 11 s at 200 x 50). Combinations over this budget (~0.5 s per step) are refused.
@@ -159,9 +163,11 @@ class FallingBallsScene(PymunkScene):
         return k
 
     def set_sleeping(self, on: bool) -> None:
-        """Sleeping on: groups at rest for SLEEP_TIME fall asleep. Off: the threshold is infinite,
+        """Sleeping on: groups at rest for SLEEP_TIME (and 4 substeps) fall asleep. Off: the
+        threshold is infinite,
         so Chipmunk never counts idle time for sleeping, and sleepers are woken."""
         self.space.sleep_time_threshold = SLEEP_TIME if on else math.inf
+        self.space.idle_speed_threshold = IDLE_SPEED
         if not on:
             for body in self.space.bodies:
                 if body.body_type == pymunk.Body.DYNAMIC and body.is_sleeping:
@@ -242,6 +248,10 @@ class FallingBallsScene(PymunkScene):
     # ----- stepping -------------------------------------------------------------------------
     def step(self, h: float) -> None:
         L0 = self.L_pose()
+        if "sleeping" in self.on:
+            # at rest for SLEEP_TIME, and for at least 4 substeps: at hertz 1 one substep is as
+            # long as SLEEP_TIME, and a ball spawned at rest fell asleep in mid-air
+            self.space.sleep_time_threshold = max(SLEEP_TIME, 4 * h)
         super().step(h)
         k, xy, _ = self.read_balls(sleeping=False)
         # self._xy holds every ball's centre after the previous step (or where it was added)
@@ -338,8 +348,8 @@ class FallingBallsScene(PymunkScene):
                  f"asleep: {self.asleep_count()} of {len(self.balls)}"
                  + ("" if "sleeping" in self.on else " (sleeping off)")]
         if c["tunneled"]:
-            lines.append(f"TUNNELED through the L: {c['tunneled']} of {c['spawned']} balls "
-                         f"(a step too coarse for them to land: raise hertz or substeps)")
+            lines.append(f"TUNNELED through the L: {c['tunneled']} of {c['spawned']} "
+                         f"(step too coarse?)")
         return lines
 
 

@@ -29,8 +29,9 @@ Metrics: angle_deg (the L's angle), slide_distance (between the slide joint's an
 slide_seen_min / slide_seen_max (the smallest and largest seen over the run; not `slide_max`,
 which is the joint's limit, a parameter), pin_error (largest distance between the pin's anchors
 seen: a perfect pin keeps it 0), and falling_balls' counts; `tunneled` matters here: at a coarse
-step (hertz 1) the balls fall through the L without touching it, the L never tips, and the HUD
-says so rather than showing an L at rest as if it were the result.
+step (hertz 1) most balls fall through the L without touching it, the L never tips, and the HUD
+says so rather than showing an L at rest as if it were the result; the few that hit it open the
+pin by a hundred px and more within a substep, and the HUD flags a pin error beyond 5 px too.
 
 Layout as in falling_balls: y down, the tutorial's lengths scaled by 1.5 (so the slide's max is
 25 * 1.5 = 37.5 px by default).
@@ -55,6 +56,7 @@ from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS,
     FallingBallsScene
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
+PIN_LOOSE = 5.0                  # px: a pin error beyond this is flagged in the HUD
 
 PIVOT_PARAMS: tuple[Param, ...] = (
     Param("slide_max", 25 * S, float, 0.0, 150.0,
@@ -152,6 +154,9 @@ class PivotingLScene(FallingBallsScene):
         return m
 
     def hud_lines(self) -> list[str]:
+        pin = self.record["pin_error"]
+        # a pin that opened by more than a few px is no result to read angles from: say why
+        loose = ": PIN LET GO (step too coarse)" if pin > PIN_LOOSE else ""
         return [f"L angle {math.degrees(self.L_body.angle):6.1f} deg   slide "
                 f"{self.slide_distance():5.1f} px (range {self.slide.min:g}..{self.slide.max:g})",
-                f"largest pin error {self.record['pin_error']:.3f} px"] + super().hud_lines()
+                f"largest pin error {pin:.3f} px{loose}"] + super().hud_lines()

@@ -101,5 +101,8 @@ def test_a_step_too_coarse_for_the_balls_to_land_is_flagged_not_shown_as_a_resul
         scene.advance()
     m = scene.metrics()
     assert m["tunneled"] > 10 and m["angle_deg"] == 0.0
-    assert any(line.startswith("TUNNELED through the L") and "raise hertz or substeps" in line
+    assert any(line.startswith("TUNNELED through the L") and "step too coarse" in line
                for line in scene.hud_lines())
+    assert m["pin_error"] > 100                  # the few that hit it opened the pin: flagged too
+    assert any("PIN LET GO" in line for line in scene.hud_lines())
+    assert "PIN LET GO" not in PivotingLScene().hud_lines()[1]      # not at the defaults
