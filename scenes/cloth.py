@@ -255,7 +255,11 @@ class ClothScene(Scene):
         it, sub = self.p["iterations"], self.p["substeps"]
         torn = f", {m['torn']} torn" if m["torn"] else ""
         shares = sorted(self.time_shares().items(), key=lambda kv: -kv[1])
-        split = ", ".join(f"{k} {100 * v:.0f}%" for k, v in shares) or "-"
+        # the three largest parts, the others summed (one line on the projector)
+        parts = [f"{k} {100 * v:.0f}%" for k, v in shares[:3]]
+        if len(shares) > 3:
+            parts.append(f"rest {100 * sum(v for _, v in shares[3:]):.0f}%")
+        split = ", ".join(parts) or "-"
         return [
             "LMB: move+lock  |  RMB: unlock  |  U: unlock all",
             f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets}){torn}",
