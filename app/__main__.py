@@ -58,8 +58,10 @@ def _positive_int(text: str) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    p = _Parser(prog="python -m app", description="A classroom lab for physics in computer "
-                "animation and games. Without options: a window with the scene menu.")
+    # allow_abbrev=False: --scen is not --scene (a stable command line; README, "Command line")
+    p = _Parser(prog="python -m app", allow_abbrev=False, description="A classroom lab for "
+                "physics in computer animation and games. Without options: a window with the "
+                "scene menu.")
     p.add_argument("--scene", help="scene to open (see --list); 'all' with --headless")
     p.add_argument("--list", action="store_true", help="list the scenes: name, title")
     p.add_argument("--headless", action="store_true", help="run without a window")
@@ -137,9 +139,10 @@ def app_main(argv: list[str]) -> int:
     unknown = [k for k in overrides if not any(k in c.setting_names() for c in classes)]
     if unknown:
         names = sorted({n for c in classes for n in c.setting_names()})
-        where = f"scene '{classes[0].name}'" if len(classes) == 1 else "any scene"
-        raise UsageError(f"--set {unknown[0]}: {where} has no parameter or effect "
-                         f"'{unknown[0]}'; accepted: {', '.join(names)}")
+        where = f"scene '{classes[0].name}' has" if len(classes) == 1 else "no scene has"
+        what = "no parameter or effect" if len(classes) == 1 else "a parameter or effect"
+        raise UsageError(f"--set {unknown[0]}: {where} {what} '{unknown[0]}'; accepted: "
+                         f"{', '.join(names)}")
     for cls in classes:
         try:
             values, _ = cls.resolve(cls.own_settings(overrides))   # what the run will build
@@ -153,7 +156,7 @@ def app_main(argv: list[str]) -> int:
         raise UsageError("--record records what you do in the window; it needs no --headless")
 
     events = None
-    if args.input:
+    if args.input is not None:        # '' too: an empty name is refused, not ignored
         try:
             events = load_events(args.input)
         except InputFileError as e:
@@ -183,7 +186,8 @@ def app_main(argv: list[str]) -> int:
 def bench_main(argv: list[str]) -> int:
     from app.bench import BENCHMARKS, run_benchmarks
     choices = list(BENCHMARKS) + ["all"]
-    p = _Parser(prog="python -m app bench", description="benchmark tables and PNG charts")
+    p = _Parser(prog="python -m app bench", allow_abbrev=False,
+                description="benchmark tables and PNG charts")
     p.add_argument("which", nargs="?", default="all",
                    help=f"what to measure; accepted: {', '.join(choices)}")
     p.add_argument("--json", action="store_true", help="print the numbers as JSON on stdout")

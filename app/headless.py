@@ -32,56 +32,103 @@ class InputFileError(ValueError):
     """An --input file that cannot be read or does not follow the format (one-line message)."""
 
 
+def _json_kind(value: Any) -> str:
+    """What a decoded JSON value is, in JSON's words (messages never name Python types)."""
+    if value is None:
+        return "null"
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return "a number"
+    if isinstance(value, str):
+        return "a string"
+    return "a list" if isinstance(value, list) else "an object"
+
+
+def _shown(value: Any) -> str:
+    """A short JSON rendering of a value for a message (cut to 40 characters)."""
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10 ** 20:
+        return f"a {len(str(abs(value)))}-digit integer"
+    try:
+        text = json.dumps(value)
+    except (TypeError, ValueError, RecursionError):
+        text = _json_kind(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _finite_number(value: Any) -> float | None:
+    """value as a float if it is a JSON number (not true/false) that a float can hold (a
+    400-digit integer cannot: float() and math.isfinite would raise OverflowError)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    if isinstance(value, int) and value.bit_length() > 1023:
+        return None
+    number = float(value)
+    return number if math.isfinite(number) else None
+
+
 def parse_events(data: Any, source: str = "input") -> list[InputEvent]:
     """Validate a decoded --input document (a list of event objects); return the events sorted
-    by time. Raises InputFileError naming the first problem."""
+    by time. Raises InputFileError naming the first problem (in JSON's words: a missing field is
+    'missing', a wrong one is shown as written)."""
     if not isinstance(data, list):
-        raise InputFileError(f"{source}: expected a JSON list of events, got {type(data).__name__}")
+        raise InputFileError(f"{source}: expected a JSON list of events, got {_json_kind(data)}")
     events = []
     for i, item in enumerate(data):
         where = f"{source}: event {i}"
         if not isinstance(item, dict):
             raise InputFileError(f"{where}: expected an object like "
-                                 '{"t": 0.5, "type": "mouse_down", "button": 1, "pos": [x, y]}')
-        t = item.get("t")
-        if isinstance(t, bool) or not isinstance(t, (int, float)) or not math.isfinite(t) or t < 0:
-            raise InputFileError(f"{where}: 't' must be a finite number of seconds >= 0, got {t!r}")
+                                 '{"t": 0.5, "type": "mouse_down", "button": 1, "pos": [x, y]}, '
+                                 f"got {_json_kind(item)}")
+
+        def bad(field: str, wanted: str) -> InputFileError:
+            got = "it is missing" if field not in item else f"got {_shown(item[field])}"
+            return InputFileError(f"{where}: '{field}' must be {wanted}; {got}")
+
+        t = _finite_number(item.get("t"))
+        if t is None or t < 0:
+            raise bad("t", "a finite number of seconds >= 0")
         kind = item.get("type")
         if kind not in EVENT_TYPES:
-            raise InputFileError(f"{where}: 'type' must be one of {', '.join(EVENT_TYPES)}, "
-                                 f"got {kind!r}")
+            raise bad("type", f"one of {', '.join(EVENT_TYPES)}")
         if kind.startswith("mouse"):
             pos = item.get("pos")
-            if (not isinstance(pos, list) or len(pos) != 2
-                    or any(isinstance(v, bool) or not isinstance(v, (int, float))
-                           or not math.isfinite(v) for v in pos)):
-                raise InputFileError(f"{where}: 'pos' must be [x, y], two finite numbers, "
-                                     f"got {pos!r}")
+            xy = [_finite_number(v) for v in pos] if isinstance(pos, list) and len(pos) == 2 else []
+            if len(xy) != 2 or None in xy:
+                raise bad("pos", "[x, y], two finite numbers")
             button = item.get("button", 0 if kind == "mouse_move" else None)
             allowed = (0, 1, 2, 3) if kind == "mouse_move" else (1, 2, 3)
             if isinstance(button, bool) or button not in allowed:
-                raise InputFileError(f"{where}: 'button' must be 1 (left), 2 or 3 (right), "
-                                     f"got {button!r}")
-            events.append(InputEvent(kind, (float(pos[0]), float(pos[1])), int(button or 0),
-                                     t=float(t)))
+                raise bad("button", "1 (left), 2 or 3 (right)")
+            events.append(InputEvent(kind, (xy[0], xy[1]), int(button or 0), t=t))
         else:
             key = item.get("key")
             if not isinstance(key, str) or not key:
-                raise InputFileError(f"{where}: 'key' must be a key name such as \"r\", got {key!r}")
-            events.append(InputEvent(kind, key=key, t=float(t)))
+                raise bad("key", 'a key name such as "r"')
+            events.append(InputEvent(kind, key=key, t=t))
     events.sort(key=lambda e: e.t)   # stable: simultaneous events keep their order
     return events
 
 
 def load_events(path: str) -> list[InputEvent]:
     """Read and validate an --input file."""
+    if not path.strip():
+        raise InputFileError("--input needs a file name (a JSON list of events)")
     try:
         with open(path, encoding="utf-8") as f:
             data = json.load(f)
     except OSError as e:
         raise InputFileError(f"cannot read --input file '{path}': {e.strerror or e}") from None
-    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+    except RecursionError:
+        raise InputFileError(f"--input file '{path}' nests lists or objects too deeply; accepted: "
+                             "a flat list of event objects") from None
+    except UnicodeDecodeError as e:
+        raise InputFileError(f"--input file '{path}' is not UTF-8 text ({e.reason})") from None
+    except json.JSONDecodeError as e:
         raise InputFileError(f"--input file '{path}' is not valid JSON: {e}") from None
+    except ValueError:           # e.g. an integer of more than 4300 digits (Python's own limit)
+        raise InputFileError(f"--input file '{path}' holds a number too long to read (over 4300 "
+                             "digits); accepted: numbers of at most 300 digits") from None
     return parse_events(data, f"--input file '{path}'")
 
 

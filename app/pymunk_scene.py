@@ -21,12 +21,15 @@ adds one shapeless static "marker" body to every space, so that order always has
 pymunk (Chipmunk2D) aborts the whole process on some bad values (iterations=0, negative damping) and
 silently accepts others (a NaN time step). Every setting that reaches pymunk here comes from a
 declared Param, whose range keeps such values out; mouse positions come from events, which the
-shell checks finite (an --input file's positions on reading; the window's are screen pixels).
+shell checks finite (an --input file's positions on reading; the window's are screen pixels),
+and which handle_event pulls within REACH (1e5 px) of the world as the cloth does
+(app/physics/bounds.py): a body dragged towards (1.797e308, 0) once drove the space to NaN.
 """
 
 from __future__ import annotations
 
 import copy
+from dataclasses import replace
 from typing import Any, Iterable
 
 import numpy as np
@@ -34,6 +37,7 @@ import pymunk
 import pymunk.batch
 
 from app.draw.pymunk_draw import draw_pivot_joint
+from app.physics.bounds import clamp_point
 from app.scene import Effect, InputEvent, Param, Scene
 
 # The fields read for the state hash and the finiteness check, all at once.
@@ -106,6 +110,8 @@ class PymunkScene(Scene):
 
     # ----- mouse --------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
+        if event.kind.startswith("mouse"):
+            event = replace(event, pos=clamp_point(event.pos, self.world_size))
         if event.kind == "mouse_move":
             self.mouse_body.position = event.pos
         elif event.kind == "mouse_down" and event.button == 1:

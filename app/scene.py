@@ -106,6 +106,10 @@ class Param:
             return word
         if isinstance(value, (bool, np.bool_)):
             raise ParamError(f"{bad}: not a number; accepted: {self.accepted()}")
+        if isinstance(value, str) and not _plain_number(value):
+            word = "an integer" if self.kind is int else "a number"
+            raise ParamError(f"{bad}: not {word} in plain ASCII digits (no '_' separators); "
+                             f"accepted: {self.accepted()}")
         if self.kind is int:
             number = _parse_int(value)
             if number is None:
@@ -120,6 +124,14 @@ class Param:
         if (self.lo is not None and number < self.lo) or (self.hi is not None and number > self.hi):
             raise ParamError(f"{bad}: out of range; accepted: {self.accepted()}")
         return number
+
+
+def _plain_number(text: str) -> bool:
+    """Python's int() and float() also read '1_0' and other scripts' digits ('١٠' is 10); a
+    command line that means one thing everywhere accepts ASCII digits, sign, point and exponent
+    only (and the words inf and nan, which the range check then refuses by name)."""
+    t = text.strip()
+    return t.isascii() and "_" not in t
 
 
 def _parse_int(value: Any) -> int | None:
@@ -271,11 +283,11 @@ class Scene:
         if eff is not None:
             try:
                 return Param(eff.name, True, bool).parse(value)
-            except ParamError as e:
-                if not eff.amount:
-                    raise
-                raise ParamError(f"{e} ('{eff.name}' is an effect; its strength is the "
-                                 f"parameter '{eff.amount}')") from None
+            except ParamError:
+                strength = f" (its strength is the parameter '{eff.amount}')" if eff.amount else ""
+                raise ParamError(f"effect '{eff.name}' got {value!r}: an effect is on or off; "
+                                 f"accepted values are on, off, true, false, yes, no, 1, 0"
+                                 f"{strength}") from None
         raise ParamError(f"scene '{cls.name}' has no parameter or effect '{key}'; accepted: "
                          + ", ".join(cls.setting_names()))
 

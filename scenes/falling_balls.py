@@ -15,13 +15,15 @@ The lecture idea (pymunk tutorial, "add_ball" and "add_static_L"):
     steps (inside its x-extent) has passed THROUGH it; the `tunneled` metric counts them. Raise
     g, lower hertz or shrink the radius to look for it.
 
-Pymunk's tutorial uses y up (balls start at y=550); this lab uses y DOWN with gravity (0, +g), so
-the layout is mirrored: the balls fall down onto the L, which is the tutorial's L scaled by 1.5 to
-fill the 960x720 world. New balls fall in from just above the top of the world, as in the
+Like pymunk's current tutorial (gravity (0, 900), pygame's y down; its older edition was y up
+with balls starting at y=550), this lab uses y DOWN with gravity (0, +g): the balls fall down onto
+the L, which is the tutorial's L scaled by 1.5 to fill the 960x720 world. New balls fall in from just above the top of the world, as in the
 tutorial (from higher up they land faster, which is what makes tunneling show).
 
 Controls: drag a ball (or anything that moves) with the left mouse button; a left click on empty
-space drops a ball there. Parameters: spawn_rate, radius, max_balls, friction, container,
+space drops a ball there (not while max_balls are alive: clicks obey the same cap as the spawner,
+so no amount of clicking can push a step past its budget). A ball that leaves the world on any
+side (below, to either side, or more than a world's height above it) is removed. Parameters: spawn_rate, radius, max_balls, friction, container,
 g, iterations; effects: sleeping, gravity (off: the balls float where they appear).
 """
 
@@ -45,6 +47,10 @@ L_RADIUS = 5 * S
 SPAWN_X = (-180 * S, 80 * S)  # the tutorial's random.randint(120, 380) relative to the L at 300
 SPAWN_Y = 0.0                 # new balls' bottom edge: they fall in from above the world
 SLEEP_TIME = 0.5              # seconds at rest before a group of bodies falls asleep
+# A body slower than this counts as resting. Chipmunk's own guess is |gravity| x dt, which at
+# hertz 1 (dt/substeps = 0.5 s) is 450 px/s: balls fell asleep in mid-air. Fixed at its guess for
+# 60 Hz and g 900, so sleeping means the same at every step size.
+IDLE_SPEED = 15.0
 # A step's cost grows as balls x substeps x (iterations + 20): a settled pile of 5000 balls took
 # ~0.2 us per unit (measured while other work ran: 30 ms at iterations 10, 215 ms at 200, one
 # substep; 11 s at 200 x 50). Combinations over this budget (~0.5 s per step) are refused.
@@ -157,9 +163,11 @@ class FallingBallsScene(PymunkScene):
         return k
 
     def set_sleeping(self, on: bool) -> None:
-        """Sleeping on: groups at rest for SLEEP_TIME fall asleep. Off: the threshold is infinite,
+        """Sleeping on: groups at rest for SLEEP_TIME (and 4 substeps) fall asleep. Off: the
+        threshold is infinite,
         so Chipmunk never counts idle time for sleeping, and sleepers are woken."""
         self.space.sleep_time_threshold = SLEEP_TIME if on else math.inf
+        self.space.idle_speed_threshold = IDLE_SPEED
         if not on:
             for body in self.space.bodies:
                 if body.body_type == pymunk.Body.DYNAMIC and body.is_sleeping:
@@ -240,6 +248,10 @@ class FallingBallsScene(PymunkScene):
     # ----- stepping -------------------------------------------------------------------------
     def step(self, h: float) -> None:
         L0 = self.L_pose()
+        if "sleeping" in self.on:
+            # at rest for SLEEP_TIME, and for at least 4 substeps: at hertz 1 one substep is as
+            # long as SLEEP_TIME, and a ball spawned at rest fell asleep in mid-air
+            self.space.sleep_time_threshold = max(SLEEP_TIME, 4 * h)
         super().step(h)
         k, xy, _ = self.read_balls(sleeping=False)
         # self._xy holds every ball's centre after the previous step (or where it was added)
@@ -269,11 +281,14 @@ class FallingBallsScene(PymunkScene):
         self.counts["tunneled"] += int(np.count_nonzero(crossed & inside))
 
     def remove_fallen(self, k: np.ndarray, xy: np.ndarray) -> None:
-        """Remove the balls (indices k, centres xy) whose centre left the world: below it or
-        far to a side."""
+        """Remove the balls (indices k, centres xy) whose centre left the world: below it, far
+        to a side, or more than a world's height above it (new balls fall in from just above,
+        so "above" needs the margin). A non-finite centre counts as out."""
         w, h = self.world_size
         r = self.p["radius"]
-        out = (xy[:, 1] > h + 2 * r) | (xy[:, 0] < -2 * r) | (xy[:, 0] > w + 2 * r)
+        x, y = xy[:, 0], xy[:, 1]
+        inside = (y <= h + 2 * r) & (y >= -h) & (x >= -2 * r) & (x <= w + 2 * r)   # NaN: False
+        out = ~inside
         if out.any():
             self.remove_balls(k[out])
 
@@ -293,7 +308,10 @@ class FallingBallsScene(PymunkScene):
 
     # ----- mouse ----------------------------------------------------------------------------
     def on_click(self, pos: tuple[float, float], button: int) -> None:
-        if button == 1 and not self.space.point_query(pos, self.p["radius"], pymunk.ShapeFilter()):
+        """A left click on empty space drops a ball there, unless max_balls are alive (the
+        spawner's cap, which check_combination's step budget counts on)."""
+        if (button == 1 and len(self.balls) < self.p["max_balls"]
+                and not self.space.point_query(pos, self.p["radius"], pymunk.ShapeFilter())):
             self.add_ball(pos)
 
     # ----- drawing --------------------------------------------------------------------------
@@ -330,7 +348,8 @@ class FallingBallsScene(PymunkScene):
                  f"asleep: {self.asleep_count()} of {len(self.balls)}"
                  + ("" if "sleeping" in self.on else " (sleeping off)")]
         if c["tunneled"]:
-            lines.append(f"TUNNELED through the L: {c['tunneled']}")
+            lines.append(f"TUNNELED through the L: {c['tunneled']} of {c['spawned']} "
+                         f"(step too coarse?)")
         return lines
 
 

@@ -30,9 +30,14 @@ simulation:
     With h = 1/3600 s, over ten seconds the middle balls stay under a pixel (0.4 px for 1 in,
     0.8 px for 2 in) and the resting end balls within 1.6 px; at substeps 5 the middle balls of
     2-in-2-out wobble by 4.5 px and at substeps 2 by almost 10 px;
-  * the strings are PinJoints to fixed anchors with their error fully corrected every step
-    (error_bias 0), so a string does not stretch and slowly bleed energy; collision_slop is small
-    (0.01 px) so resting contacts are not allowed to overlap.
+  * the "strings" are rigid rods: PinJoints to fixed anchors, which hold the distance in both
+    directions (a string could go slack; these push as well as pull), with their error fully
+    corrected every step (error_bias 0), so a rod does not stretch and slowly bleed energy;
+    collision_slop is small (0.01 px) so resting contacts are not allowed to overlap.
+  * a step must be short against the swing: omega*h = sqrt(g/L)/(hertz x substeps) above
+    MAX_OMEGA_H (0.2) is refused. At g 900 that is hertz x substeps of at least 9; coarser than
+    that the pin joints cannot hold the rods (at 1 x 1 they stretched by 250 px and the
+    "energy ratio" read -4.5, which is no ratio of energies at all).
 Break it on purpose: gap -0.01 (touching), gap 5, substeps 2, elasticity 0.9 (the energy drains and
 the swings shrink), damping 0.99 (air drag: space.damping is the fraction of velocity kept per
 second; 1 is none. Negative values would abort pymunk, so the range is 0..1).
@@ -41,16 +46,23 @@ Metrics (DESIGN.md): `lifted` (k lifted: at most balls-1, a larger value is refu
 `balls_out` (balls that swing out past half the release amplitude in the first half-swing after
 the first impact; counted while that window is open, then frozen), `middle_max_drift` (largest
 distance from its rest position, px, of any ball that is neither lifted nor expected out: balls
-k .. N-k-1; 0 when there are none), `energy_ratio` (kinetic + potential energy now / at release).
+k .. N-k-1; 0 when there are none), `energy_ratio` (kinetic + potential energy now / at release;
+null when there was no energy at release, e.g. released with gravity off).
 Also `release_speed` (px/s, the lifted balls just before the first impact) and `out_speed_ratio`
 (the slowest of the k far balls' top speed after the impact / release speed).
 
 Controls: drag a ball with the left mouse button (the strings hold it). Letting go re-arms the
 measurement: the balls more than a radius from rest count as lifted and the energy at that moment
 is the new baseline. Parameters: balls, lifted, angle, gap, elasticity, damping, substeps,
-iterations, g; effect: gravity (off: legal but odd, the released balls fly off in a straight line
-until the strings catch them). Changing g or gravity while it runs re-baselines `energy_ratio`
-(the potential energy depends on g: the old baseline would fake a gain or loss).
+iterations, g; effect: gravity (off: legal but odd. Released without gravity nothing moves: the
+lifted balls start at rest and no force acts. Switched off mid-swing, each moving ball keeps its
+distance to its anchor, the rod pulling it round a circle at constant speed). Changing g or
+gravity while it runs re-baselines `energy_ratio` (the potential energy depends on g: the old
+baseline would fake a gain or loss).
+
+The verdict ("k in, k out") waits: while a ball is held with the mouse there is none (the hand is
+doing the work), and after the first impact it comes when the half-swing that decides it is over,
+not while the far balls are still on their way out.
 """
 
 from __future__ import annotations
@@ -71,6 +83,7 @@ STRING = 280.0           # string length, anchor to ball centre, px
 ANCHOR_Y = 230.0         # height of the anchor bar (below the HUD box)
 MASS = 1.0
 SLOP = 0.01              # collision_slop: allowed overlap of resting contacts, px
+MAX_OMEGA_H = 0.2        # sqrt(g/L) x h above this is refused: the rods cannot hold (docstring)
 
 CRADLE_PARAMS: tuple[Param, ...] = (
     common("hertz", default=120),
@@ -113,6 +126,14 @@ class NewtonsCradleScene(PymunkScene):
         if values["lifted"] > values["balls"] - 1:
             raise ParamError(f"lifted={values['lifted']} does not fit a row of {values['balls']} "
                              f"balls; accepted: lifted from 1 to balls-1 ({values['balls'] - 1})")
+        # (the step is checked with g even if the gravity effect is off: it may come back on)
+        per_second = values["hertz"] * values["substeps"]
+        omega = math.sqrt(values["g"] / STRING)
+        if omega / per_second > MAX_OMEGA_H:
+            need = math.ceil(omega / MAX_OMEGA_H)
+            raise ParamError(f"hertz x substeps = {per_second} is too coarse for a cradle at g "
+                             f"{values['g']:g}: the rods stretch and the energy means nothing; "
+                             f"accepted: hertz x substeps >= {need}")
 
     def build_space(self, space: pymunk.Space) -> None:
         space.collision_slop = SLOP
@@ -151,7 +172,7 @@ class NewtonsCradleScene(PymunkScene):
             "side": side,
             "amplitude": float(dx.mean()) if k else 0.0,   # how far out they were let go, px
             "energy0": self.energy(),
-            "impact_time": -1.0,          # simulated time of the first impact, -1 before it
+            "impact_time": None,          # simulated time of the first impact (None before)
             "release_speed": 0.0,
             "last_speed": 0.0,            # mean speed of the lifted balls at the previous step
             "reach": np.zeros(self.p["balls"]),       # furthest swing onwards since impact
@@ -202,7 +223,7 @@ class NewtonsCradleScene(PymunkScene):
         if len(middle):
             t["middle_max_drift"] = max(t["middle_max_drift"],
                                         float(np.abs(onwards[middle]).max()))
-        if t["impact_time"] < 0 and len(lifted):
+        if t["impact_time"] is None and len(lifted):
             # The impact: the lifted group is at the bottom (its leading ball within half a
             # radius of rest) and a ball outside it has picked up speed.
             lead = lifted[-1] if t["side"] > 0 else lifted[0]
@@ -261,7 +282,8 @@ class NewtonsCradleScene(PymunkScene):
             "lifted": k,
             "balls_out": t["balls_out"],
             "middle_max_drift": t["middle_max_drift"],
-            "energy_ratio": self.energy() / e0 if e0 > 0 else 1.0,
+            # no energy at release (gravity off, nothing moving): no ratio exists (null, "-")
+            "energy_ratio": self.energy() / e0 if e0 > 0 else None,
             "release_speed": t["release_speed"],
             "out_speed_ratio": ratio,
         }
@@ -271,18 +293,25 @@ class NewtonsCradleScene(PymunkScene):
         k, out = int(m["lifted"]), int(m["balls_out"])
         lines = []
         t = self.track
+        if self.mouse_joint is not None:
+            lines.append("held by the mouse: no verdict while your hand moves the balls")
+            return lines
         if k == 0:
             lines.append("nothing lifted: drag a ball out and let go")
-        elif t["impact_time"] < 0:
+        elif t["impact_time"] is None:
             lines.append(f"{k} lifted, released: waiting for the impact")
+        elif t["window_open"]:
+            left = t["impact_time"] + 0.9 * self.half_period() - self.time
+            lines.append(f"{k} in: the far end is swinging out; the verdict in {left:.1f} s")
         else:
             good = out == k and m["middle_max_drift"] < 2.0 and m["out_speed_ratio"] >= 0.97
             verdict = "like a real cradle" if good else "NOT like a real cradle"
-            lines.append(f"{k} in, {out} out{' (so far)' if t['window_open'] else ''}: {verdict}")
+            lines.append(f"{k} in, {out} out: {verdict}")
             lines.append(f"out speed {100 * m['out_speed_ratio']:.1f}% of "
                          f"{m['release_speed']:.0f} px/s; middle drift "
                          f"{m['middle_max_drift']:.2f} px")
-        lines.append(f"energy left: {100 * m['energy_ratio']:.2f}%")
+        ratio = m["energy_ratio"]
+        lines.append("energy left: -" if ratio is None else f"energy left: {100 * ratio:.2f}%")
         return lines
 
     # ----- drawing --------------------------------------------------------------------------

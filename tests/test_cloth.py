@@ -372,3 +372,33 @@ def test_the_stretch_is_reused_until_the_cloth_moves():
     assert scene.metrics()["max_stretch"] == float(fresh.max()) > float(first[0].max())
     scene.advance()
     assert scene.stretches() is not first
+
+
+def test_switching_shear_on_mid_run_does_not_tear_the_cloth_by_itself():
+    # Once: wind + tearing at 3 iterations, shear switched on: hundreds of rods tore at once
+    # (1107 in this very run), while the same cloth with shear from the start tore none.
+    scene = cloth_scene(iterations=3, wind=True, tearing=True, wind_field="lecture",
+                        rows=28, cols=40, spacing=16.0)
+    run(scene, 240)
+    assert scene.metrics()["torn"] == 0
+    scene.set("shear", True)
+    assert all(f.rest_now is not None for f in scene.cloth.sets["shear"].families)   # easing in
+    run(scene, 300)
+    assert scene.metrics()["torn"] == 0
+    c = scene.cloth
+    assert all(f.rest_now is None for f in c.sets["shear"].families)   # eased in after 1 s
+    # tearing itself still works: a low tear ratio breaks rods
+    scene.set("tear_ratio", 1.05)
+    run(scene, 30)
+    assert scene.metrics()["torn"] > 0
+
+
+def test_the_step_is_timed_from_outside_and_the_hud_splits_it_in_shares():
+    scene = run(cloth_scene(wind=True), 5)
+    spent = scene.cloth.spent
+    assert {"verlet", "drag", "gravity", "wind", "structural"} <= set(spent)
+    shares = scene.time_shares()
+    assert sum(shares.values()) == pytest.approx(1.0)
+    line = next(l for l in scene.hud_lines() if l.startswith("physics time: "))
+    assert "ms" not in line                          # one ms/step figure: the window's
+    assert "  |  " in scene.hud_lines()[0]           # "LMB: move+lock  |  RMB: unlock  |  ..."

@@ -141,3 +141,46 @@ def test_the_state_hash_sees_spin_and_angle_too():
     scene.bodies[2].angular_velocity = 0.0
     scene.bodies[2].angle = 0.5
     assert len({before, spun, scene.state_hash()}) == 3
+
+
+def test_a_step_too_coarse_for_the_rods_is_refused_with_the_reason():
+    # Once: hertz 1 x substeps 1 stretched the rods by 250 px and reported energy_ratio -2.48.
+    with pytest.raises(ParamError, match="hertz x substeps = 1 is too coarse.*accepted: hertz x substeps >= 9"):
+        NewtonsCradleScene({"hertz": 1, "substeps": 1})
+    NewtonsCradleScene({"hertz": 9, "substeps": 1})               # the coarsest accepted at g 900
+    scene = NewtonsCradleScene()
+    scene.set("substeps", 1)                                       # 120 x 1: fine
+    with pytest.raises(ParamError):                                # the panel is refused too
+        scene.set("hertz", 1)
+    assert scene.p["hertz"] == 120                                 # the refused value left no trace
+
+
+def test_without_gravity_nothing_moves_and_a_ball_switched_off_mid_swing_circles_at_constant_speed():
+    still, dx = run(1.0, gravity=False)
+    assert np.abs(dx - dx[0]).max() < 1e-6           # released without gravity: nothing moves
+    scene = NewtonsCradleScene()
+    for _ in range(36):                              # 0.3 s: on its way down, before the impact
+        scene.advance()
+    scene.set("gravity", False)
+    ball, anchor = scene.bodies[0], scene.anchors[0]
+    speed0 = ball.velocity.length
+    for _ in range(36):
+        scene.advance()
+        assert ball.velocity.length == pytest.approx(speed0, rel=1e-3)
+        assert (ball.position - tuple(anchor)).length == pytest.approx(280.0, abs=0.05)
+
+
+def test_the_verdict_waits_for_the_swing_and_for_the_hand():
+    scene = NewtonsCradleScene({"lifted": 2})
+    seen_waiting = False
+    while scene.track["impact_time"] is None or scene.track["window_open"]:
+        scene.advance()
+        line = scene.hud_lines()[0]
+        if scene.track["window_open"]:               # far balls on their way out: no count yet
+            assert " out" not in line.replace("swinging out", "") and "verdict in" in line
+            seen_waiting = True
+    assert seen_waiting and scene.hud_lines()[0] == "2 in, 2 out: like a real cradle"
+    ball = scene.bodies[2]
+    scene.handle_event(InputEvent("mouse_down", tuple(ball.position), 1))
+    assert scene.mouse_joint is not None
+    assert scene.hud_lines() == ["held by the mouse: no verdict while your hand moves the balls"]

@@ -28,9 +28,9 @@ def test_a_minute_of_landing_balls_keeps_the_slide_in_range_and_the_pin_together
         lowest, highest = min(lowest, d), max(highest, d)
     m = scene.metrics()
     assert 120 <= m["balls_spawned"] <= 121 and m["balls_removed"] > 60
-    assert m["slide_min"] <= lowest and m["slide_max"] >= highest   # it also sees substeps
-    assert scene.slide.min - 0.5 <= m["slide_min"] and m["slide_max"] <= scene.slide.max + 2.0
-    assert m["slide_max"] > scene.slide.max - 2.0             # it did tip all the way
+    assert m["slide_seen_min"] <= lowest and m["slide_seen_max"] >= highest   # it also sees substeps
+    assert scene.slide.min - 0.5 <= m["slide_seen_min"] and m["slide_seen_max"] <= scene.slide.max + 2.0
+    assert m["slide_seen_max"] > scene.slide.max - 2.0             # it did tip all the way
     assert m["pin_error"] < 1.0
     assert m["tunneled"] == 0
 
@@ -79,3 +79,30 @@ def test_draws_the_L_and_its_joints():
 def test_a_combination_that_would_take_seconds_per_step_is_refused():
     with pytest.raises(ParamError, match="max_balls x substeps x"):
         PivotingLScene({"max_balls": 5000, "substeps": 50})
+
+
+def test_one_substep_pin_error_and_the_slide_overshoot_are_what_the_docstring_says():
+    # docstring: pin error about 0.7 to 1.2 px with one substep; the slide joint overshoots its
+    # max by about 1 to 3 px with two (seed 0: 1.2 px), so slide_seen_max > the param slide_max.
+    one = PivotingLScene({"substeps": 1})
+    two = PivotingLScene()
+    for _ in range(30 * 60):
+        one.advance()
+        two.advance()
+    assert 0.5 < one.metrics()["pin_error"] < 1.5
+    overshoot = two.metrics()["slide_seen_max"] - two.p["slide_max"]
+    assert 0.5 < overshoot < 3.5
+
+
+def test_a_step_too_coarse_for_the_balls_to_land_is_flagged_not_shown_as_a_result():
+    # hertz 1: the balls fall through the L; angle 0 and slide 0 are no result, and the HUD says so
+    scene = PivotingLScene({"hertz": 1})
+    for _ in range(20):
+        scene.advance()
+    m = scene.metrics()
+    assert m["tunneled"] > 10 and m["angle_deg"] == 0.0
+    assert any(line.startswith("TUNNELED through the L") and "step too coarse" in line
+               for line in scene.hud_lines())
+    assert m["pin_error"] > 100                  # the few that hit it opened the pin: flagged too
+    assert any("PIN LET GO" in line for line in scene.hud_lines())
+    assert "PIN LET GO" not in PivotingLScene().hud_lines()[1]      # not at the defaults

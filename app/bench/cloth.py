@@ -1,6 +1,7 @@
 """`python -m app bench cloth`: what accuracy costs in time, and what vectorising buys.
 
-Every cloth here is the ClothScene the app runs (structural + shear rods, top row pinned, gravity
+Every cloth here is the cloth scene the app runs, built through the registry (scenes.get_scene,
+so the bench imports no scene module: the scene stays the one source of its settings) (structural + shear rods, top row pinned, gravity
 and drag, no wind), in a well-defined state: it hangs for 150 steps under gravity from rest (20
 with --quick), and its stretch (|length/rest - 1| of the structural rods) is averaged over the
 last 30 of them (5). Drag is 0.05 (velocity lost per 1/60 s, whatever the substeps) so the cloth
@@ -23,17 +24,18 @@ from app.bench import Report, median_time
 from app.draw.plot import LineChart, save_grid
 from app.draw.view import View
 from app.physics.cloth_naive import NaiveCloth
-from scenes.cloth import ClothScene
+from app.scene import Scene
 
 BASE = {"shear": True, "bending": False, "wind": False, "tearing": False, "pins": "top",
         "drag_coef": 0.05}          # strong drag: the cloth settles within the hang
 
 
 def hung(n: int, iterations: int, substeps: int = 1, *, hang: int, avg: int,
-         **extra) -> tuple[ClothScene, float, float]:
+         **extra) -> tuple[Scene, float, float]:
     """An n x n cloth after `hang` steps; returns it with its mean and max stretch averaged over
     the last `avg` steps."""
-    scene = ClothScene({**BASE, "rows": n, "cols": n, "iterations": iterations,
+    from scenes import get_scene            # the registry: the scene the app runs
+    scene = get_scene("cloth")({**BASE, "rows": n, "cols": n, "iterations": iterations,
                         "substeps": substeps, **extra})
     means, maxes = [], []
     for k in range(hang):
@@ -45,7 +47,7 @@ def hung(n: int, iterations: int, substeps: int = 1, *, hang: int, avg: int,
     return scene, statistics.fmean(means), statistics.fmean(maxes)
 
 
-def step_ms(scene: ClothScene, repeats: int, number: int) -> float:
+def step_ms(scene: Scene, repeats: int, number: int) -> float:
     return median_time(scene.advance, repeats=repeats, warmup=1, number=number) * 1000.0
 
 

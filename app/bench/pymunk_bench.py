@@ -19,21 +19,28 @@ import pymunk.pygame_util
 from app.bench import Report, median_time
 from app.draw.plot import LineChart
 from app.draw.view import View
-from scenes.falling_balls import FallingBallsScene
+from app.scene import Scene
+
+
+def falling_balls() -> type[Scene]:
+    """The falling-balls scene class, from the registry (the bench imports no scene module)."""
+    from scenes import get_scene
+    return get_scene("falling_balls")
+
 
 RADIUS = 6.0
 
 
-def pile(n: int, sleeping: bool) -> FallingBallsScene:
+def pile(n: int, sleeping: bool) -> Scene:
     """A falling_balls scene with n balls packed into its container (no new balls coming)."""
-    scene = FallingBallsScene({"container": True, "spawn_rate": 0, "radius": RADIUS,
+    scene = falling_balls()({"container": True, "spawn_rate": 0, "radius": RADIUS,
                                "max_balls": max(n, 1), "sleeping": sleeping})
     added = scene.add_balls(n)
     assert added == n, f"only {added} of {n} balls fit"
     return scene
 
 
-def settle(scene: FallingBallsScene, max_steps: int) -> int:
+def settle(scene: Scene, max_steps: int) -> int:
     """Step until every ball sleeps (or max_steps); return the steps taken."""
     for i in range(max_steps):
         scene.advance()
@@ -47,7 +54,7 @@ def run(report: Report) -> dict:
     repeats = 3 if quick else 15
     counts = [100, 200] if quick else [250, 500, 1000, 2000]
     big = counts[-1]
-    surface = pygame.Surface(FallingBallsScene.world_size)
+    surface = pygame.Surface(falling_balls().world_size)
     view = View()
     options = pymunk.pygame_util.DrawOptions(surface)
     results: dict = {"radius": RADIUS, "by_count": []}

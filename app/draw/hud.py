@@ -27,7 +27,10 @@ ACCENT_COLOR = (120, 190, 255)
 
 
 def fmt_number(x) -> str:
-    """A compact form of a metric: integers as they are, floats with 4 significant digits."""
+    """A compact form of a metric: integers as they are, floats with 4 significant digits, "-"
+    for a value that does not exist yet (None; null in JSON)."""
+    if x is None:
+        return "-"
     if isinstance(x, bool):
         return "yes" if x else "no"
     if isinstance(x, int):

@@ -88,8 +88,11 @@ def draw_circles(surface: pygame.Surface, view, xy: np.ndarray, angles: np.ndarr
     if angles is None:
         steps = np.zeros(n, dtype=np.int64)
     else:
-        # the angle as a whole number of ticks, 0..ANGLE_STEPS-1 (for each: round(a / step) % N)
-        steps = np.rint(np.asarray(angles) * (ANGLE_STEPS / (2 * math.pi))).astype(np.int64)
+        # the angle as a whole number of ticks, 0..ANGLE_STEPS-1 (for each: round(a / step) % N);
+        # a non-finite angle (a blown-up body) is drawn at tick 0, not cast to garbage
+        with np.errstate(invalid="ignore"):
+            turns = np.nan_to_num(np.remainder(np.asarray(angles, dtype=float), 2 * math.pi))
+        steps = np.rint(turns * (ANGLE_STEPS / (2 * math.pi))).astype(np.int64)
         steps %= ANGLE_STEPS
     awake = [_circle_sprite(r2, color, k) for k in range(ANGLE_STEPS)]
     if asleep is None or not asleep.any():
@@ -127,7 +130,7 @@ def draw_circle(surface: pygame.Surface, view, center, angle: float, radius: flo
     r = view.len(radius)
     pygame.draw.circle(surface, color, c, max(r, 1))
     pygame.draw.aacircle(surface, color, c, max(r, 1))
-    if r >= 3:
+    if r >= 3 and math.isfinite(angle):
         tip = view.pt((center[0] + radius * math.cos(angle), center[1] + radius * math.sin(angle)))
         pygame.draw.line(surface, TICK, c, tip, 2 if r > 12 else 1)
 

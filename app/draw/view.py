@@ -4,11 +4,25 @@ World coordinates are pixels at zoom 1 with y pointing down (pymunk's pygame con
 (0, +g)). The window fits a scene's `world_size` into the space it has by a uniform scale and an
 offset; headless drawing uses the identity. Scene code never scales or offsets by hand: it calls
 `view.pt`, `view.pts` and `view.len`.
+
+Drawing never raises on a state, however wild: a blown-up simulation may hand over 1e300 or NaN,
+and pygame refuses such coordinates (or a float NaN cannot become an int). So `pt` and `pts`
+pull every screen coordinate into +-SCREEN_LIMIT px and send NaN to -SCREEN_LIMIT (off screen, to
+the top left): what cannot be drawn is drawn out of sight, and the run's summary still comes out.
 """
 
 from __future__ import annotations
 
 import numpy as np
+
+SCREEN_LIMIT = 1e6     # px: screen coordinates are clamped to +-this (far off any screen)
+
+
+def _safe(v: float) -> float:
+    """v clamped to +-SCREEN_LIMIT; NaN -> -SCREEN_LIMIT (comparisons with NaN are False)."""
+    if -SCREEN_LIMIT <= v <= SCREEN_LIMIT:
+        return v
+    return SCREEN_LIMIT if v > SCREEN_LIMIT else -SCREEN_LIMIT
 
 
 class View:
@@ -26,13 +40,18 @@ class View:
         return cls(s, (x + (w - world_size[0] * s) / 2, y + (h - world_size[1] * s) / 2))
 
     def pt(self, p) -> tuple[int, int]:
-        """One world point -> integer screen point."""
-        return (int(round(p[0] * self.scale + self.offset[0])),
-                int(round(p[1] * self.scale + self.offset[1])))
+        """One world point -> integer screen point (clamped: see the module docstring)."""
+        # (a float product overflows to inf, no exception: _safe clamps it)
+        return (int(round(_safe(float(p[0]) * self.scale + self.offset[0]))),
+                int(round(_safe(float(p[1]) * self.scale + self.offset[1]))))
 
     def pts(self, a: np.ndarray) -> np.ndarray:
-        """World points, shape (..., 2) -> screen points as float array of the same shape."""
-        return np.asarray(a, dtype=float) * self.scale + np.asarray(self.offset)
+        """World points, shape (..., 2) -> screen points as float array of the same shape
+        (clamped to +-SCREEN_LIMIT, NaN to -SCREEN_LIMIT)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            s = np.asarray(a, dtype=float) * self.scale + np.asarray(self.offset)
+        s = np.nan_to_num(s, nan=-SCREEN_LIMIT, posinf=SCREEN_LIMIT, neginf=-SCREEN_LIMIT)
+        return np.clip(s, -SCREEN_LIMIT, SCREEN_LIMIT, out=s)
 
     def len(self, d: float) -> float:
         """A world length -> screen length."""

@@ -19,8 +19,11 @@ The lecture's cloth (Jakobsen, "Advanced Character Physics", GDC 2001) in three 
    again: `iterations` sweeps per substep. More sweeps -> less stretch, at a price in time.
 
 Rods come in three sets, like the mass-spring cloth's springs: structural (grid neighbours,
-always on), shear (the diagonals) and bending (skip one particle). Forces: gravity, drag, wind.
-Tearing: a rod stretched beyond `tear_ratio` times its rest length breaks.
+always on), shear (the diagonals) and bending (skip one particle). Forces: gravity, drag, wind
+(the table FORCES). Tearing: a rod stretched beyond `tear_ratio` times its rest length breaks. A
+set switched on mid-run eases its rods in from their current lengths (set_effects), so switching
+an effect on never tears the cloth by itself. What each part of a step costs is measured around
+the formulas by a Stopwatch (app/physics/timing.py), not inside them.
 
 How NumPy makes it fast (the slide loops over particle objects in Python):
   * the state is grid-shaped: x has shape (2, rows, cols); x[0] holds every particle's x, x[1]
@@ -42,18 +45,29 @@ resolution of a position; use float64 there.)
 from __future__ import annotations
 
 import math
-import time
 from dataclasses import dataclass, field
 from typing import Callable, Iterator
 
 import numpy as np
 
+from app.physics.bounds import REACH, clamp_point
+from app.physics.timing import Stopwatch
+
 EPS = 1e-9                                      # shortest length we divide by (no 0/0)
 SET_NAMES = ("structural", "shear", "bending")  # rod sets, in the order a sweep solves them
-FORCE_NAMES = ("drag", "gravity", "wind")       # force effects, in the order they apply
+FORCE_NAMES = ("drag", "gravity", "wind")       # force effects, in the order they apply (FORCES)
+
+# The defaults of the settings a Cloth reads every step; the cloth scene's parameters start from
+# these (one source). GRAVITY: 980 px/s^2 is 9.8 m/s^2 at 100 px per metre; the pymunk scenes use
+# 900, the pymunk tutorial's gravity (0, 900): the same earth, two conventions of scale.
+ITERATIONS = 10
+GRAVITY = 980.0
+DRAG = 0.01            # fraction of velocity lost per 1/60 s: the slide's "2 becomes 1.99"
+WIND_STRENGTH = 600.0  # px/s^2
+TEAR_RATIO = 2.5       # a rod breaks beyond this times its rest length
+EASE_TIME = 1.0        # s: a rod set switched on mid-run reaches its rest lengths (set_effects)
 PIN_CHOICES = ("top", "corners", "none")
 WIND_FIELDS = ("gust", "lecture")
-REACH = 1e5        # the mouse is followed at most this far (px) beyond the world's edges
 
 Slices = tuple[slice, slice]
 
@@ -71,6 +85,7 @@ class Batch:
     d: np.ndarray = None       # work buffers (no allocation inside the sweep)
     t: np.ndarray = None
     length: np.ndarray = None
+    cells: Slices = None       # where this batch's rods sit in the family's grid
 
     @property
     def xa(self) -> tuple[slice, slice, slice]:
@@ -92,6 +107,12 @@ class Family:
     b: Slices
     alive: np.ndarray          # shape of the family grid, 1.0 intact / 0.0 torn
     batches: list[Batch] = field(default_factory=list)
+    rest_now: np.ndarray | None = None   # per-rod rest lengths while easing in (see set_effects)
+
+    def rest_of(self, cells: Slices) -> float | np.ndarray:
+        """The rest length the solver uses now for the batch at `cells`: `rest`, or while the
+        family eases in, the per-rod values."""
+        return self.rest if self.rest_now is None else self.rest_now[cells]
 
 
 @dataclass
@@ -127,7 +148,7 @@ def _family(name: str, dr: int, dc: int, rows: int, cols: int, rest: float,
         sa[axis] = slice(a[axis].start + k, a[axis].stop, m)
         sb[axis] = slice(b[axis].start + k, b[axis].stop, m)
         sf[axis] = slice(k, n, m)
-        fam.batches.append(Batch(tuple(sa), tuple(sb), fam.alive[tuple(sf)]))
+        fam.batches.append(Batch(tuple(sa), tuple(sb), fam.alive[tuple(sf)], cells=tuple(sf)))
     return fam
 
 
@@ -218,12 +239,12 @@ class Cloth:
         if pins not in PIN_CHOICES:
             raise ValueError(f"pins must be one of {PIN_CHOICES}")
         self.rows, self.cols, self.spacing, self.dtype = rows, cols, float(spacing), dtype
-        self.iterations = 10
-        self.gravity = 980.0
-        self.drag = 0.01
-        self.wind_strength = 300.0
+        self.iterations = ITERATIONS
+        self.gravity = GRAVITY
+        self.drag = DRAG
+        self.wind_strength = WIND_STRENGTH
         self.wind_field = "gust"
-        self.tear_ratio = 3.0
+        self.tear_ratio = TEAR_RATIO
         self.t = 0.0
         self.world = (960.0, 720.0)             # the wind field is scaled to this area
 
@@ -250,8 +271,11 @@ class Cloth:
                     bt.length = np.empty(shape, dtype)
                     bt.ka = np.empty(shape, dtype)
                     bt.kb = np.empty(shape, dtype)
-        self.spent: dict[str, float] = {n: 0.0 for n in ("verlet",) + FORCE_NAMES + SET_NAMES
-                                        + ("tearing",)}
+        self.timed = Stopwatch()                # what each part of the step costs (wall s)
+        self.spent = self.timed.spent
+        self.active_sets: list[RodSet] = []
+        self.tearing = False
+        self.ease_end = -math.inf                # rods switched on mid-run ease in until then
         self.lock_cells(self.default_pins)
         self.set_effects(set(effects))
 
@@ -265,16 +289,47 @@ class Cloth:
 
     def set_effects(self, on: set[str]) -> None:
         """Choose what the step computes: only the rod sets and forces named in `on` (structural
-        rods are always solved). What is off is not in these lists, so it costs nothing."""
+        rods are always solved). What is off is not in these lists, so it costs nothing.
+
+        Switching a rod set on never tears the cloth by itself. Rods that came on at their full
+        rest length on a deformed cloth (shear on a cloth the wind has sheared, folded cells
+        with diagonals near 0) would yank its particles in the next sweeps, hard enough to tear
+        their neighbours (769 rods at once, once). So a set switched on mid-run starts with each
+        rod's rest length at its current length, and these ease linearly to the true rest
+        length over EASE_TIME simulated seconds (ease_rest_lengths): the cloth is pulled back
+        into shape, not snapped. At build every rod is at rest anyway."""
+        before = {rs.name for rs in self.active_sets}
         self.on = set(on)
         self.active_sets = [self.sets[n] for n in SET_NAMES
                             if n == "structural" or n in self.on]
-        self.forces: list[tuple[str, Callable[[np.ndarray, float], None]]] = [
-            (n, getattr(self, "_" + n)) for n in FORCE_NAMES if n in self.on]
+        self.forces: list[tuple[str, Force]] = [(n, FORCES[n]) for n in FORCE_NAMES
+                                                if n in self.on]
         self.tearing = "tearing" in self.on
-        # the sweep's plan: every batch of every active set, with its rest length
-        self._plan = [(rs, [(bt, fam.rest) for fam in rs.families for bt in fam.batches])
-                      for rs in self.active_sets]
+        if before:                                      # mid-run (not at build)
+            for rs in self.active_sets:
+                if rs.name not in before:
+                    for fam in rs.families:
+                        fam.rest_now = rod_lengths(self.x, fam).astype(self.dtype)
+                    self.ease_end = self.t + EASE_TIME
+        self._make_plan()
+
+    def _make_plan(self) -> None:
+        """The sweep's plan: every batch of every active set, with its rest length(s)."""
+        self._plan = [(rs, [(bt, fam.rest_of(bt.cells)) for fam in rs.families
+                            for bt in fam.batches]) for rs in self.active_sets]
+
+    def ease_rest_lengths(self, h: float) -> None:
+        """Move the easing rods' rest lengths a step h closer to their true rest length, linearly,
+        arriving at ease_end; then drop the per-rod values (the plain scalar rest again)."""
+        frac = min(1.0, h / (self.ease_end - self.t)) if self.ease_end > self.t else 1.0
+        easing = [f for rs in self.sets.values() for f in rs.families if f.rest_now is not None]
+        for fam in easing:
+            fam.rest_now += (fam.rest - fam.rest_now) * frac
+            if frac >= 1.0:
+                fam.rest_now = None
+        if frac >= 1.0:
+            self.ease_end = -math.inf
+            self._make_plan()
 
     def update_weights(self) -> None:
         """Recompute every batch's correction shares from w and alive (after pins, grabs or tears).
@@ -326,9 +381,7 @@ class Cloth:
         The mouse may report any finite double (1e39, -1e300); a grabbed particle follows it only
         this far, so positions stay far inside float32's range and rod lengths squared (up to
         ~1e11) cannot overflow: the cloth is stretched, never torn to inf or NaN."""
-        (w, h), r = self.world, REACH
-        x, y = (float(v) if v == v else 0.0 for v in pos[:2])
-        return (min(max(x, -r), w + r), min(max(y, -r), h + r))
+        return clamp_point(pos, self.world, REACH)
 
     def nearest(self, pos: tuple[float, float], radius: float,
                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
@@ -369,69 +422,40 @@ class Cloth:
         self.x[:, r, c] = self.grab_target
         self.x_prev[:, r, c] = self.grab_target
 
-    # ----- forces (each adds its a*h^2 to v = x - x_prev; only the active ones run) -------------
-    def _drag(self, v: np.ndarray, h: float) -> None:
-        v *= (1.0 - self.drag) ** (h * 60.0)            # "2 -> 1.99" per 1/60 s, for any h
-
-    def _gravity(self, v: np.ndarray, h: float) -> None:
-        v[1] += self.gravity * h * h                     # a h^2, a = (0, +g): y points down
-
-    def _wind(self, v: np.ndarray, h: float) -> None:
-        u = self.x[0] / self.world[0]                    # position in world widths/heights
-        y = self.x[1] / self.world[1]
-        t, s = self.t, self.wind_strength * h * h
-        if self.wind_field == "lecture":
-            # the slide's F = (sin(x*y*t), cos(z*t)) for a cloth in the plane z = 1
-            np.clip(u, -10, 10, out=u)
-            np.clip(y, -10, 10, out=y)
-            v[0] += s * np.sin(u * y * t)
-            v[1] += s * math.cos(t)
-        else:
-            # gusts: a breeze to the right whose strength travels across the cloth in waves
-            v[0] += s * (0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * y + t))
-            v[1] += (0.3 * s) * np.sin(4.0 * u - 2.3 * t)
-
     # ----- the step -----------------------------------------------------------------------------
     def step(self, h: float) -> None:
-        """One substep of h seconds: Verlet, the mouse, tearing, then `iterations` sweeps."""
-        clock = time.perf_counter
-        spent = self.spent
-        t0 = clock()
-        in_forces = 0.0
+        """One substep of h seconds: the Verlet step x' = x + (x - x_prev) + a h^2 (each force
+        adds its a h^2 to v = x - x_prev, drag scales v), the mouse, tearing, then `iterations`
+        sweeps. `timed` only measures what each part costs, around the formulas."""
+        timed = self.timed
         v = np.subtract(self.x, self.x_prev, out=self.v)     # x - x_prev = velocity * h
         for name, force in self.forces:
-            t1 = clock()
-            force(v, h)
-            dt = clock() - t1
-            spent[name] += dt
-            in_forces += dt
-        v *= self.free                                       # pinned and grabbed: no motion
-        np.add(self.x, v, out=self.x_prev)                   # x' = x + (x - x_prev)(..) + a h^2
-        self.x, self.x_prev = self.x_prev, self.x            # swap: the old x becomes x_prev
-        if self.grabbed is not None:
-            self._follow_mouse()
-        spent["verlet"] += clock() - t0 - in_forces
+            with timed(name):
+                force(self, v, h)
+        with timed("verlet"):
+            v *= self.free                                   # pinned and grabbed: no motion
+            np.add(self.x, v, out=self.x_prev)               # x' = x + (x - x_prev)(..) + a h^2
+            self.x, self.x_prev = self.x_prev, self.x        # swap: the old x becomes x_prev
+            if self.grabbed is not None:
+                self._follow_mouse()
         if self.tearing:
-            t1 = clock()
-            self.tear()
-            spent["tearing"] += clock() - t1
+            with timed("tearing"):
+                self.tear()
         self.relax(self.iterations)
+        if self.ease_end > -math.inf:
+            self.ease_rest_lengths(h)
         self.t += h
 
     def relax(self, iterations: int) -> None:
         """`iterations` Gauss-Seidel sweeps over every active rod set, batch after batch."""
-        clock = time.perf_counter
-        x = self.x
-        spent = [0.0] * len(self._plan)
+        x, timed = self.x, self.timed
         for _ in range(iterations):
-            for k, (rs, batches) in enumerate(self._plan):
-                t0 = clock()
-                for bt, rest in batches:
-                    solve_batch(x, bt, rest)
-                spent[k] += clock() - t0
-        for k, (rs, _) in enumerate(self._plan):
+            for rs, batches in self._plan:
+                with timed(rs.name):
+                    for bt, rest in batches:
+                        solve_batch(x, bt, rest)
+        for rs, _ in self._plan:
             rs.sweeps += iterations
-            self.spent[rs.name] += spent[k]
 
     def tear(self) -> int:
         """Break every rod of the active sets stretched beyond tear_ratio x rest; return how many
@@ -439,7 +463,10 @@ class Cloth:
         broke = 0
         for rs in self.active_sets:
             for fam in rs.families:
-                too_long = (rod_lengths(self.x, fam) > self.tear_ratio * fam.rest) & (fam.alive > 0)
+                # an easing rod may start far shorter than its rest (a folded cell's diagonal):
+                # it tears only beyond tear_ratio x the longer of the two
+                rest = fam.rest if fam.rest_now is None else np.maximum(fam.rest_now, fam.rest)
+                too_long = (rod_lengths(self.x, fam) > self.tear_ratio * rest) & (fam.alive > 0)
                 n = int(np.count_nonzero(too_long))
                 if n:
                     fam.alive[too_long] = 0
@@ -476,6 +503,9 @@ class Cloth:
         return {"x": self.x.copy(), "x_prev": self.x_prev.copy(), "w": self.w.copy(),
                 "locked": self.locked.copy(), "anchor": self.anchor.copy(), "t": self.t,
                 "grabbed": self.grabbed, "grab_target": self.grab_target,
+                "ease_end": self.ease_end,
+                "rest_now": [None if f.rest_now is None else f.rest_now.copy()
+                             for rs in self.sets.values() for f in rs.families],
                 "alive": [f.alive.copy() for rs in self.sets.values() for f in rs.families]}
 
     def restore(self, snap: dict) -> None:
@@ -487,6 +517,41 @@ class Cloth:
         self.t = snap["t"]
         self.grabbed, self.grab_target = snap["grabbed"], snap["grab_target"]
         fams = [f for rs in self.sets.values() for f in rs.families]
-        for f, a in zip(fams, snap["alive"]):
+        self.ease_end = snap["ease_end"]
+        for f, a, rest_now in zip(fams, snap["alive"], snap["rest_now"]):
             f.alive[...] = a
+            f.rest_now = None if rest_now is None else rest_now.copy()
+        self._make_plan()
         self.update_weights()
+
+
+# ----- forces: each adds its a*h^2 to v = x - x_prev (drag scales v); only the active ones run ----
+Force = Callable[[Cloth, np.ndarray, float], None]
+
+
+def drag(c: Cloth, v: np.ndarray, h: float) -> None:
+    v *= (1.0 - c.drag) ** (h * 60.0)                   # "2 -> 1.99" per 1/60 s, for any h
+
+
+def gravity(c: Cloth, v: np.ndarray, h: float) -> None:
+    v[1] += c.gravity * h * h                           # a h^2, a = (0, +g): y points down
+
+
+def wind(c: Cloth, v: np.ndarray, h: float) -> None:
+    u = c.x[0] / c.world[0]                             # position in world widths/heights
+    y = c.x[1] / c.world[1]
+    t, s = c.t, c.wind_strength * h * h
+    if c.wind_field == "lecture":
+        # the slide's F = (sin(x*y*t), cos(z*t)) for a cloth in the plane z = 1
+        np.clip(u, -10, 10, out=u)
+        np.clip(y, -10, 10, out=y)
+        v[0] += s * np.sin(u * y * t)
+        v[1] += s * math.cos(t)
+    else:
+        # gusts: a breeze to the right whose strength travels across the cloth in waves
+        v[0] += s * (0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * y + t))
+        v[1] += (0.3 * s) * np.sin(4.0 * u - 2.3 * t)
+
+
+# The force effects by name, in FORCE_NAMES order: the explicit table set_effects picks from.
+FORCES: dict[str, Force] = {"drag": drag, "gravity": gravity, "wind": wind}

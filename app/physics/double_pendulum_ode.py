@@ -14,24 +14,33 @@ d = theta1 - theta2 and D = 2 m1 + m2 - m2 cos(2 d):
     alpha2 = 2 sin d (omega1^2 l1 (m1 + m2) + g (m1 + m2) cos theta1
                       + omega2^2 l2 m2 cos d) / (l2 D)
 
-These are integrated with classical Runge-Kutta (RK4) at a step much smaller than anything the
-eye can see, so for the lecture the result is "the exact solution". The motion is chaotic for high
-releases: two runs that differ by a hair part ways after a few seconds, which is what the scene
-shows by running the same pendulum in pymunk beside this one.
+These are integrated with classical Runge-Kutta (RK4, app/physics/integrators.py's rk4_tuple) at
+a step chosen so that the result is "the exact solution" for the lecture at every setting the
+scene allows. The motion is chaotic for high releases: two runs that differ by a hair part ways
+after a few seconds, which is what the scene shows by running the same pendulum in pymunk beside
+this one.
 
 Why point masses match pymunk's bobs: pymunk's bobs are discs with a moment of inertia, but both
 pin joints hold them at their centres of mass, so no joint force has a lever arm on a bob, the bobs
 never start spinning and their rotation drops out of the energy. Point masses are the exact model.
 
-The step is bounded: `advance(dt, n)` takes at least ceil(dt / MAX_STEP) RK4 steps (MAX_STEP =
-1 ms), whatever n asks for, so a coarse physics step (hertz 1) does not make the reference coarse
-too. RK4 is only conditionally stable: at h ~ 1/omega it blows up, and a reference that blows up
-is no reference. If it still goes non-finite (extreme masses and g), `advance` keeps the last
-finite state, returns False and never raises; the scene freezes the ghost and says so.
+The step adapts to the motion (`advance`). A fixed step cannot serve every setting: with a light
+upper bob under a heavy lower one (mass1 0.05, mass2 20) the denominator D = 2 m1 + m2 - m2 cos 2d
+drops to 2 m1 whenever the rods line up, the accelerations jump a hundredfold, and at a fixed 0.1 ms
+step RK4 lost 82% of the energy in 5 s. So every step is checked against the one thing the exact
+solution keeps: its energy. A step whose energy change exceeds its share of the budget
+(ENERGY_RATE: a relative 1e-8 per simulated second, so 60 s cost at most 6e-7) is redone at a
+smaller step; while the error is well under the budget the step grows again (never past MAX_STEP,
+1 ms, so the path is also smooth). RK4's energy error per step scales as h^5, so the new step is
+h (budget / error)^(1/5) with a safety factor. `energy_drift()` reports the relative drift since
+the last set_state (`reference_energy_drift` in the scene's metrics). RK4 is only conditionally
+stable (on a linear oscillator it blows up past omega*h = 2.8); the energy check shrinks the step
+long before that. If the step would have to fall below MIN_STEP, or one call needs more than
+MAX_WORK steps, the reference cannot follow: `advance` keeps the last good state and returns False,
+and the scene says so (it never raises).
 
-The step uses plain float arithmetic (the math module): one state of four numbers is far too small
-for arrays to pay off: the same RK4 step on a 4-element NumPy array took ~65 us against ~20 us
-here. `positions` returns a NumPy array for drawing and comparing.
+The step uses plain float arithmetic (the math module; see rk4_tuple for why); `positions` returns
+a NumPy array for drawing and comparing.
 """
 
 from __future__ import annotations
@@ -41,9 +50,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from app.physics.integrators import rk4_tuple
+
 State = tuple[float, float, float, float]    # theta1, theta2, omega1, omega2 (rad, rad/s)
 
-MAX_STEP = 1e-3    # seconds: the longest RK4 step advance() takes (see the module docstring)
+MAX_STEP = 1e-3       # seconds: the longest RK4 step advance() takes (see the module docstring)
+MIN_STEP = 1e-8       # seconds: a step this short that still misses the budget means "cannot follow"
+ENERGY_RATE = 1e-8    # allowed relative energy error per simulated second (60 s: 6e-7 at most)
+ROUNDOFF = 1e-14      # energy changes below this x the terms' size are rounding, not the step's
+MAX_WORK = 200_000    # RK4 steps one advance() may take (about a second of work)
 
 
 @dataclass
@@ -56,6 +71,12 @@ class DoublePendulumODE:
     m2: float
     g: float
     state: State = (0.0, 0.0, 0.0, 0.0)
+    h: float = MAX_STEP           # the step advance() tries next (it adapts)
+    energy0: float = 0.0          # the energy at set_state (for energy_drift)
+    steps_taken: int = 0          # RK4 steps accepted or tried since construction (work done)
+
+    def __post_init__(self) -> None:
+        self.set_state(self.state)
 
     # ----- the equations of motion --------------------------------------------------------
     def derivative(self, y: State) -> State:
@@ -72,41 +93,61 @@ class DoublePendulumODE:
         return (w1, w2, a1, a2)
 
     def rk4_step(self, h: float) -> None:
-        """One classical Runge-Kutta step of h seconds:
-        y += h/6 (k1 + 2 k2 + 2 k3 + k4), k1 = f(y), k2 = f(y + h/2 k1), k3 = f(y + h/2 k2),
-        k4 = f(y + h k3)."""
-        y = self.state
-        f = self.derivative
-        k1 = f(y)
-        k2 = f(tuple(a + 0.5 * h * b for a, b in zip(y, k1)))
-        k3 = f(tuple(a + 0.5 * h * b for a, b in zip(y, k2)))
-        k4 = f(tuple(a + h * b for a, b in zip(y, k3)))
-        self.state = tuple(a + h / 6.0 * (b1 + 2 * b2 + 2 * b3 + b4)
-                           for a, b1, b2, b3, b4 in zip(y, k1, k2, k3, k4))
+        """One classical Runge-Kutta step of h seconds (integrators.rk4_tuple)."""
+        self.state = rk4_tuple(self.derivative, self.state, h)
 
-    @staticmethod
-    def steps_for(dt: float, n: int) -> int:
-        """RK4 steps used for dt when n are asked for: n, or more if dt/n exceeds MAX_STEP."""
-        return max(n, math.ceil(dt / MAX_STEP))
+    def energy_scale(self) -> float:
+        """What the relative energy error is measured against: the energy at set_state, or, if
+        that is about zero (released at rest at the bottom), the energy of lifting both bobs
+        by their rod lengths."""
+        lift = (self.m1 + self.m2) * abs(self.g) * (self.l1 + self.l2)
+        return max(abs(self.energy0), 1e-6 * lift, 1e-12)
 
-    def advance(self, dt: float, n: int) -> bool:
-        """Advance dt seconds in steps_for(dt, n) RK4 steps of equal length. Returns True, or
-        False if the integration went non-finite: then the state is left as it was before the
-        call, the last finite state."""
+    def energy_drift(self) -> float:
+        """(E - E0) / scale since the last set_state: the reference's own error."""
+        return (self.energy() - self.energy0) / self.energy_scale()
+
+    def advance(self, dt: float) -> bool:
+        """Advance dt seconds in RK4 steps whose size adapts (see the module docstring). Returns
+        True, or False if the reference cannot follow (non-finite, a step below MIN_STEP, more
+        than MAX_WORK steps): then the state is left as it was before the call."""
         y0 = self.state
         if not all(map(math.isfinite, y0)):
             return False
-        m = self.steps_for(dt, n)
-        h = dt / m
+        scale = self.energy_scale()
+        t, work, e = 0.0, 0, self.energy()
+        blur = ROUNDOFF / scale                         # rounding of the energy, per unit size
         try:
-            for _ in range(m):
+            while t < dt:
+                h = min(self.h, dt - t)                 # the last step ends exactly at dt
+                y = self.state
                 self.rk4_step(h)
-        except (ValueError, OverflowError):   # math.sin(inf), float ** overflow
-            self.state = (math.nan,) * 4
-        if all(map(math.isfinite, self.state)):
-            return True
-        self.state = y0
-        return False
+                e_new, size = self.energy_terms()
+                err, allowed = abs(e_new - e) / scale, max(ENERGY_RATE * h, blur * size)
+                work += 1
+                if not math.isfinite(err) or work > MAX_WORK:
+                    raise OverflowError
+                # the step that would just meet the budget (error ~ h^5), with a safety factor
+                fit = 0.9 * (allowed / err) ** 0.2 if err > 0 else 2.0
+                if err <= allowed or h < MIN_STEP:      # accepted (a sliver at the end of dt
+                                                        # has no error worth the name)
+                    t, e = t + h, e_new
+                    if h == self.h:                     # (a step clipped to dt says little)
+                        self.h = min(MAX_STEP, h * min(2.0, fit))
+                else:                                   # rejected: redo it shorter
+                    self.state = y
+                    self.h = h * max(0.1, fit)
+                    if self.h < MIN_STEP:
+                        raise OverflowError
+        except (ValueError, OverflowError, ZeroDivisionError):   # math.sin(inf), overflow
+            self.state = y0
+            return False
+        self.steps_taken += work
+        # angles back into [-pi, pi]: a spinning rod's angle would grow without bound and lose
+        # the digits the energy check needs (the positions do not change)
+        t1, t2, w1, w2 = self.state
+        self.state = (math.remainder(t1, math.tau), math.remainder(t2, math.tau), w1, w2)
+        return True
 
     # ----- reading and setting the state ----------------------------------------------------
     def positions(self, pivot: tuple[float, float]) -> np.ndarray:
@@ -118,14 +159,20 @@ class DoublePendulumODE:
 
     def energy(self) -> float:
         """Kinetic plus potential energy, zero when both bobs hang straight down at rest."""
+        return self.energy_terms()[0]
+
+    def energy_terms(self) -> tuple[float, float]:
+        """(energy, size): size is the sum of the terms' magnitudes. When the bobs swing fast
+        in opposite senses the kinetic terms nearly cancel, and rounding blurs the energy by
+        about 1e-16 x size, not 1e-16 x energy: advance() allows for that."""
         t1, t2, w1, w2 = self.state
         l1, l2, m1, m2, g = self.l1, self.l2, self.m1, self.m2, self.g
-        kinetic = (0.5 * (m1 + m2) * (l1 * w1) ** 2 + 0.5 * m2 * (l2 * w2) ** 2
-                   + m2 * l1 * l2 * w1 * w2 * math.cos(t1 - t2))
-        # Heights above the lowest configuration (y down, so "up" is -y).
-        potential = (m1 * g * l1 * (1 - math.cos(t1))
-                     + m2 * g * (l1 * (1 - math.cos(t1)) + l2 * (1 - math.cos(t2))))
-        return kinetic + potential
+        # x * x, not x ** 2: a float ** overflows with an exception, * gives inf
+        terms = (0.5 * (m1 + m2) * (l1 * w1) * (l1 * w1), 0.5 * m2 * (l2 * w2) * (l2 * w2),
+                 m2 * l1 * l2 * w1 * w2 * math.cos(t1 - t2),
+                 # heights above the lowest configuration (y down, so "up" is -y)
+                 (m1 + m2) * g * l1 * (1 - math.cos(t1)), m2 * g * l2 * (1 - math.cos(t2)))
+        return sum(terms), sum(map(abs, terms))
 
     def set_from_cartesian(self, pivot: tuple[float, float], p1, v1, p2, v2) -> None:
         """Set the state from bob positions and velocities (e.g. pymunk's after a mouse drag):
@@ -141,4 +188,13 @@ class DoublePendulumODE:
         # a float ** overflows with an exception (a huge state after a blow-up), * gives inf.
         w1 = (r1[1] * v1[0] - r1[0] * v1[1]) / (r1[0] * r1[0] + r1[1] * r1[1])
         w2 = (r2[1] * u2[0] - r2[0] * u2[1]) / (r2[0] * r2[0] + r2[1] * r2[1])
-        self.state = (t1, t2, w1, w2)
+        self.set_state((t1, t2, w1, w2))
+
+    def set_state(self, state: State) -> None:
+        """Start from this state: it is the baseline of energy_drift()."""
+        self.state = tuple(state)
+        try:
+            self.energy0 = self.energy()
+        except (ValueError, OverflowError):
+            self.energy0 = math.nan
+        self.h = MAX_STEP

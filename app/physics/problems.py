@@ -30,7 +30,7 @@ from typing import Callable
 import numpy as np
 
 from app.physics.forces import Attraction, Gravity, PendulumGravity, Springs
-from app.physics.integrators import check_step, get_integrator
+from app.physics.integrators import check_step, get_integrator, rk4_tuple
 from app.physics.particles import ParticleSystem
 
 
@@ -150,13 +150,12 @@ class Pendulum(Problem):
         n = math.ceil((t - t0) / self.reference_step - 1e-9)
         if n > 0:
             h, c = (t - t0) / n, self.g / self.length
-            for _ in range(n):                               # scalar RK4 (a pure-Python loop is
-                k1t, k1o = om, -c * math.sin(th)             # the fastest way for one number)
-                k2t, k2o = om + h / 2 * k1o, -c * math.sin(th + h / 2 * k1t)
-                k3t, k3o = om + h / 2 * k2o, -c * math.sin(th + h / 2 * k2t)
-                k4t, k4o = om + h * k3o, -c * math.sin(th + h * k3t)
-                th += h / 6 * (k1t + 2 * k2t + 2 * k3t + k4t)
-                om += h / 6 * (k1o + 2 * k2o + 2 * k3o + k4o)
+            def f(y: tuple[float, ...]) -> tuple[float, float]:   # (theta, theta')'
+                return (y[1], -c * math.sin(y[0]))
+            y = (th, om)
+            for _ in range(n):
+                y = rk4_tuple(f, y, h)
+            th, om = y
             self._ref = (t, th, om)
         return np.array([[self.length * th]]), np.array([[self.length * om]])
 
