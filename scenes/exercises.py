@@ -36,7 +36,7 @@ import pymunk
 from app.draw import pymunk_draw as D
 from app.draw.hud import Line, text_box
 from app.exercises import get_exercise
-from app.exercises.grade import load_module, starter_path, student_traceback
+from app.exercises.grade import load_module, shown, starter_path, student_traceback
 from app.pymunk_scene import PymunkScene
 from app.scene import Param, Scene, SceneError, common
 from scenes.double_pendulum import DoublePendulumScene
@@ -71,9 +71,8 @@ class StudentCode:
             self.fail(e)
 
     def fail(self, e: BaseException) -> SceneError:
-        path = self.student_path if self.student is None else getattr(self.student, "__file__",
-                                                                       None)
-        self.error = f"{self.student_path}: {student_traceback(e, path)}"
+        message = student_traceback(e, self.student_path)
+        self.error = message if 'File "' in message else f"{self.student_path}: {message}"
         return SceneError(self.error)
 
     def advance(self) -> None:
@@ -613,8 +612,8 @@ def exercise_scene(spec: str, student: Any = None) -> type[Scene] | None:
     base = SCENES.get(name)
     if base is None:
         return None
-    file = spec if spec.endswith(".py") else str(starter_path(name))
+    file = spec if spec.endswith(".py") else shown(starter_path(name))
     if student is not None:
-        file = getattr(student, "__file__", "the lab's reference")
+        file = shown(student.__file__) if hasattr(student, "__file__") else "the lab's reference"
     return type(base.__name__, (base,), {"name": PREFIX + spec, "student_path": file,
                                          "student": student, "__doc__": base.__doc__})

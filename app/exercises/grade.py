@@ -24,6 +24,7 @@ from types import ModuleType, SimpleNamespace
 from typing import Any
 
 from app.exercises.base import BadAnswer, Check, Exercise
+from app.scene import SceneError
 
 CHECK_TIMEOUT = 10.0        # seconds a check may run before it counts as an endless loop
 REPO = Path(__file__).resolve().parents[2]
@@ -72,6 +73,12 @@ def starter_path(name: str) -> Path:
     return STARTERS / f"{name}.py"
 
 
+def shown(path: str | os.PathLike) -> str:
+    """A path as a student would type it: relative to the current folder when inside it."""
+    rel = os.path.relpath(path)
+    return rel if not rel.startswith("..") else os.path.abspath(path)
+
+
 def load_module(path: str) -> ModuleType:
     """Import the file at `path` as a fresh module (never cached: each child imports it anew)."""
     name = "student_" + Path(path).stem
@@ -86,7 +93,9 @@ def load_module(path: str) -> ModuleType:
 
 def student_traceback(exc: BaseException, path: str | None) -> str:
     """The exception as the student should read it: only the frames in their file, then the
-    error line (a SyntaxError says its own file, line and caret)."""
+    error line (a SyntaxError says its own file, line and caret). A BadAnswer is its message."""
+    if isinstance(exc, BadAnswer):
+        return str(exc)
     lines = []
     if path is not None:
         mine = os.path.realpath(path)
@@ -124,6 +133,10 @@ def _run_check(exercise: Exercise, check: Check | None, path: str | None) -> Che
     except NotImplementedError as e:
         return CheckReport(name, False, "not written yet", "a working answer",
                            error=student_traceback(e, path))
+    except SceneError as e:         # the exercise's scene ran the student's code (pymunk ones)
+        unwritten = "NotImplementedError" in str(e)
+        return CheckReport(name, False, "not written yet" if unwritten else "an exception",
+                           "a working answer" if unwritten else "no exception", error=str(e))
     except BaseException as e:      # noqa: BLE001 - anything the student's code does is a fail
         return CheckReport(name, False, "an exception", "no exception",
                            error=student_traceback(e, path))
@@ -183,4 +196,4 @@ def grade(exercise: Exercise, path: str | None, timeout: float = CHECK_TIMEOUT) 
 
 
 __all__ = ["grade", "Report", "CheckReport", "load_module", "student_traceback", "starter_path",
-           "CHECK_TIMEOUT", "STARTERS"]
+           "CHECK_TIMEOUT", "STARTERS", "shown"]
