@@ -603,17 +603,18 @@ SCENES: dict[str, type[Scene]] = {cls.exercise: cls for cls in (
     CradleExercise, DoublePendulumExercise, PivotingLExercise)}
 
 
-def exercise_scene(spec: str, student: Any = None) -> type[Scene] | None:
+def exercise_scene(spec: str, student: Any = None, path: str | None = None
+                   ) -> type[Scene] | None:
     """The scene class for `exercise:SPEC` (SPEC: an exercise's name, or a path to a .py file
-    whose name is one), bound to that file, or to `student` (a module, or the reference's
-    namespace: the grader) if given; None if SPEC names no exercise."""
-    path = Path(spec)
-    name = path.stem if spec.endswith(".py") else spec
+    whose name is one), bound to that file, to the file `path` if given, or to `student` (a
+    module, or the reference's namespace: the grader) if given; None if SPEC names no
+    exercise."""
+    name = Path(spec).stem if spec.endswith(".py") else spec
     base = SCENES.get(name)
     if base is None:
         return None
-    file = spec if spec.endswith(".py") else shown(starter_path(name))
+    file = path or (spec if spec.endswith(".py") else shown(starter_path(name)))
     if student is not None:
-        file = shown(student.__file__) if hasattr(student, "__file__") else "the lab's reference"
+        file = getattr(student, "__file__", "the lab's reference")
     return type(base.__name__, (base,), {"name": PREFIX + spec, "student_path": file,
                                          "student": student, "__doc__": base.__doc__})

@@ -18,6 +18,7 @@ import multiprocessing
 import os
 import sys
 import traceback
+import warnings
 from dataclasses import asdict, dataclass
 from pathlib import Path
 from types import ModuleType, SimpleNamespace
@@ -127,7 +128,8 @@ def _run_check(exercise: Exercise, check: Check | None, path: str | None) -> Che
         if check is None:
             return CheckReport(name, True, "it imports", "no error at import")
         r = check.run(module)
-        return CheckReport(name, r.passed, r.measured, r.bound, "" if r.passed else r.hint)
+        return CheckReport(name, bool(r.passed), str(r.measured), str(r.bound),
+                           "" if r.passed else r.hint)
     except BadAnswer as e:
         return CheckReport(name, False, "unusable answer", "see the message", error=str(e))
     except NotImplementedError as e:
@@ -145,6 +147,9 @@ def _run_check(exercise: Exercise, check: Check | None, path: str | None) -> Che
 def _child(conn, exercise: Exercise, check: Check | None, path: str | None) -> None:
     os.dup2(2, 1)                   # the student's prints go to stderr (keeps --json clean)
     sys.stdout = sys.stderr
+    # a wrong answer overflows or divides by zero on purpose-built cases: the check reports
+    # the result (NaN, a huge error); NumPy's warnings would only bury the report
+    warnings.simplefilter("ignore", RuntimeWarning)
     try:
         conn.send(_run_check(exercise, check, path))
     finally:
