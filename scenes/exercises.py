@@ -9,8 +9,8 @@ Every exercise of app/exercises has one (`python -m app exercise list`):
   verlet            springs under gravity stepped by your verlet_step (drag: the `drag` param)
   constraints       a hanging cloth: your satisfy_rods on the left, the lab's on the right
   spring            a rope of damped springs: your spring_forces, symplectic Euler steps
-  rk4               pendulums: your RK4 (left) and midpoint (right); turn `hertz` down to 1 or 2
-                    (omega*h = 2.1 or 1.1) to watch the midpoint drift and RK4's accuracy
+  rk4               pendulums: your RK4 (left) and midpoint (right); turn `hertz` down to 2
+                    (omega*h = 1.06) and the midpoint pendulum gains energy, RK4 loses a little
   solver_interface  a hanging chain (gravity, drag, springs) stepped by RK4 on your derivative
   newtons_cradle    the cradle scene built by your build_cradle, the lab's cradle as a ghost
   double_pendulum   the double pendulum scene built by your build_double_pendulum, beside the
@@ -47,6 +47,7 @@ PREFIX = "exercise:"
 MINE = (86, 180, 233)        # the student's system
 GHOST = (230, 159, 0)        # the lab's reference
 LINK = (220, 220, 230)
+FIXED = (150, 150, 160)     # anchors and pivots
 ERROR = (240, 110, 90)
 
 
@@ -59,6 +60,7 @@ class StudentCode:
     student_path = ""              # the file to import
     student: Any = None            # a module given directly (the grader), instead of the file
     error: str | None = None
+    ghost_note = "orange: the lab's"   # what the HUD says the reference looks like
 
     def build(self) -> None:
         self.error = None
@@ -89,8 +91,8 @@ class StudentCode:
 
     def hud_lines(self) -> list[str]:
         if self.error:
-            return ["your code raised (fix it, save, press R):"] + self.error.splitlines()[-2:]
-        return [f"yours: {self.student_path}; orange: the lab's"] + super().hud_lines()
+            return ["your code raised (below): fix it, save, press R"]
+        return [f"yours: {self.student_path}; {self.ghost_note}"] + super().hud_lines()
 
     def draw(self, surface, view) -> None:
         if self.error:
@@ -139,19 +141,29 @@ class ParticleExercise(Scene):
         return float(np.abs(self.mine.x - self.lab.x).max())
 
     def draw(self, surface, view) -> None:
-        for sim, color, ghost in ((self.lab, GHOST, True), (self.mine, MINE, False)):
-            pts = view.pts(sim.points())
+        """Links and fixed points (grey), your particles (filled), the lab's as orange rings a
+        little larger, on top: where yours is right, each blue disc sits inside its ring."""
+        for sim, color in ((self.lab, GHOST), (self.mine, LINK)):
+            pts = view.pts(np.concatenate([sim.points(), sim.fixed]))
             for i, j in sim.links:
-                pygame.draw.aaline(surface, GHOST if ghost else LINK, pts[i], pts[j])
-            r = max(2.0, view.len(sim.radius))
-            for p in pts:
-                pygame.draw.circle(surface, color, p, r, 2 if ghost else 0)
+                pygame.draw.aaline(surface, color, pts[i], pts[j])
+        for p in view.pts(self.mine.fixed):
+            pygame.draw.circle(surface, FIXED, p, max(2.0, view.len(4)))
+        r = max(2.0, view.len(self.mine.radius))
+        for p in view.pts(self.mine.points()):
+            pygame.draw.circle(surface, MINE, p, r)
+        for p in view.pts(self.lab.points()):
+            if self.lab.ring:
+                pygame.draw.circle(surface, GHOST, p, r + max(2.0, view.len(3)), 2)
+            else:                       # drawn beside yours, not around it: dots
+                pygame.draw.circle(surface, GHOST, p, r)
 
 
 class _Springs:
     """Bobs on springs to fixed anchors, under gravity, stepped by impl.verlet_step."""
 
     radius = 9.0
+    ring = True                 # the lab's copy is drawn as rings around yours
 
     def __init__(self, impl, drag: float):
         self.impl, self.drag = impl, drag
@@ -161,6 +173,7 @@ class _Springs:
         self.x = self.anchor + (60.0, 0.0)
         self.x_prev = self.x.copy()
         self.h = 0.0
+        self.fixed = self.anchor
         self.links = [(n + i, i) for i in range(n)]
 
     def accel(self) -> np.ndarray:
@@ -178,7 +191,7 @@ class _Springs:
         return float((0.5 * v * v + 0.5 * self.omega2 * d * d - np.array([0.0, 900.0]) * d).sum())
 
     def points(self) -> np.ndarray:
-        return np.concatenate([self.x, self.anchor])
+        return self.x
 
 
 class VerletExercise(StudentCode, ParticleExercise):
@@ -217,7 +230,8 @@ class VerletExercise(StudentCode, ParticleExercise):
 class _Cloth:
     """A hanging cloth, top row pinned: the lab's Verlet step, then impl.satisfy_rods."""
 
-    radius = 2.5
+    radius = 2.0
+    ring = False                # the lab's cloth hangs beside yours
 
     def __init__(self, impl, origin: tuple[float, float], iterations: int, rows: int = 12,
                  spacing: float = 24.0):
@@ -237,6 +251,7 @@ class _Cloth:
         self.w[:rows] = 0.0
         self.acc = np.where(self.w[:, None] > 0, np.array([0.0, 900.0]), 0.0)
         self.wind_t = 0.0
+        self.fixed = np.empty((0, 2))
 
     def step(self, h: float) -> None:
         self.wind_t += h       # a gentle sideways gust, so the cloth moves
@@ -297,6 +312,7 @@ class _Rope:
     impl.spring_forces + gravity."""
 
     radius = 6.0
+    ring = True
 
     def __init__(self, impl, kd: float, n: int = 12, spacing: float = 30.0):
         self.impl, self.kd = impl, kd
@@ -309,6 +325,7 @@ class _Rope:
         self.free = np.ones((n, 1))
         self.free[0] = 0.0
         self.f = np.zeros_like(self.x)
+        self.fixed = np.empty((0, 2))
 
     def step(self, h: float) -> None:
         self.f = np.asarray(self.impl.spring_forces(self.x, self.v, self.a, self.b, 2000.0,
@@ -358,13 +375,13 @@ class _Pendulum:
     """A pendulum theta'' = -(g/L) sin theta stepped by impl's rk4_step or midpoint_step."""
 
     radius = 12.0
+    ring = True
     LENGTH = 200.0
 
     def __init__(self, step, pivot: tuple[float, float], angle: float):
         self.stepper, self.pivot = step, np.array(pivot)
         self.y = np.array([math.radians(angle), 0.0])
         self.t = 0.0
-        self.links = [(0, 1)]
         self.x = self.points()
 
     @staticmethod
@@ -380,20 +397,22 @@ class _Pendulum:
         return 0.5 * self.y[1] ** 2 + 900.0 / self.LENGTH * (1 - math.cos(self.y[0]))
 
     def points(self) -> np.ndarray:
+        """The bob, shape (1, 2)."""
         th = self.y[0]
-        return np.array([self.pivot, self.pivot + self.LENGTH * np.array([math.sin(th),
-                                                                          math.cos(th)])])
+        return (self.pivot + self.LENGTH * np.array([math.sin(th), math.cos(th)]))[None, :]
 
 
 class _Pair:
     """Two pendulums stepped together: RK4 and midpoint."""
 
     radius = 12.0
+    ring = True
 
     def __init__(self, impl, angle: float):
         self.parts = [_Pendulum(impl.rk4_step, (250.0, 300.0), angle),
                       _Pendulum(impl.midpoint_step, (700.0, 300.0), angle)]
-        self.links = [(0, 1), (2, 3)]
+        self.fixed = np.array([p.pivot for p in self.parts])
+        self.links = [(0, 2), (1, 3)]         # bob to pivot
 
     def step(self, h: float) -> None:
         for p in self.parts:
@@ -410,7 +429,9 @@ class _Pair:
 class Rk4Exercise(StudentCode, ParticleExercise):
     """Exercise `rk4`: a pendulum released at `angle`, stepped by YOUR rk4_step (left) and YOUR
     midpoint_step (right), each over the lab's (orange). Lower `hertz` to make the steps long:
-    at hertz 2 (omega*h = 1.06) the midpoint pendulum gains energy visibly, RK4 hardly.
+    at hertz 2 (omega*h = 1.06) from 120 degrees, after 6 s the midpoint pendulum has 2.2 times
+    its energy and RK4 92% of it (explicit midpoint gains energy at every step size, RK4 loses a
+    little below its limit of 2.83).
 
     HUD: each one's angle error against the lab's same method, and its energy / the start's.
     """
@@ -446,6 +467,7 @@ class _Chain:
     stepped by the lab's RK4 on impl.derivative."""
 
     radius = 8.0
+    ring = True
 
     def __init__(self, impl, n: int = 6):
         from app.exercises.solver_interface import drag, gravity, springs
@@ -462,7 +484,8 @@ class _Chain:
             f[0] -= 4000.0 * (x[0] - self.anchor)
         self.forces = [gravity(self.masses), drag(0.2),
                        springs(np.arange(n - 1), np.arange(1, n), 800.0, rest), hold]
-        self.links = list(zip(range(n - 1), range(1, n)))
+        self.fixed = self.anchor[None, :]
+        self.links = list(zip(range(n - 1), range(1, n))) + [(n, 0)]
 
     def step(self, h: float) -> None:
         def f(t, y):
@@ -549,11 +572,11 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
         self.ghost.step(h)
 
     def draw(self, surface, view) -> None:
-        if not self.error:
+        super().draw(surface, view)
+        if not self.error:             # rings just outside the balls: yours sit inside them
             for body in self.ghost_bodies:
                 pygame.draw.circle(surface, GHOST, view.pt(body.position),
-                                   max(2.0, view.len(RADIUS)), 2)
-        super().draw(surface, view)
+                                   max(2.0, view.len(RADIUS + 3)), 2)
 
 
 class DoublePendulumExercise(StudentCode, DoublePendulumScene):
@@ -566,6 +589,7 @@ class DoublePendulumExercise(StudentCode, DoublePendulumScene):
     exercise = "double_pendulum"
     title = "Exercise: double pendulum"
     category = "Exercises"
+    ghost_note = "orange: the equations of motion (the lab's RK4)"
     params = tuple(p for p in DoublePendulumScene.params if p.name != "error_bias")
 
     def add_bobs(self, space, lengths, angles) -> tuple[pymunk.Body, pymunk.Body]:
@@ -588,6 +612,7 @@ class PivotingLExercise(StudentCode, PivotingLScene):
     exercise = "pivoting_l"
     title = "Exercise: pivoting L"
     category = "Exercises"
+    ghost_note = "graded on the pin error and the slide range below"
     params = tuple(p for p in PivotingLScene.params
                    if p.name not in ("L_mass", "pivot", "slide_max"))   # yours decides these
 

@@ -249,3 +249,14 @@ def test_headless_goes_on_after_a_scene_error(capsys):
     first, second = (json.loads(x) for x in lines)
     assert first["error"] and second["scene"] == "toy" and second["error"] is None
     assert second["steps"] == 3
+
+
+def test_rk4_scene_docstring_numbers_at_hertz_2():
+    # "at hertz 2 from 120 degrees, after 6 s the midpoint pendulum has 2.2 times its energy and
+    # RK4 92% of it"
+    scene = exercise_scene("rk4", student=get_exercise("rk4").reference())({"hertz": 2})
+    for _ in range(12):
+        scene.advance()
+    m = scene.metrics()
+    assert round(m["midpoint_energy_ratio"], 1) == 2.2
+    assert round(m["rk4_energy_ratio"], 2) == 0.92
