@@ -91,7 +91,8 @@ class StudentCode:
 
     def hud_lines(self) -> list[str]:
         if self.error:
-            return ["your code raised (below): fix it, save, press R"]
+            return [f"your code raised {self.error.splitlines()[-1].split(':')[0]} (below): "
+                    "fix it, save, press R"]
         return [f"yours: {self.student_path}; {self.ghost_note}"] + super().hud_lines()
 
     def draw(self, surface, view) -> None:
