@@ -38,7 +38,7 @@ from app.draw.hud import Line, text_box
 from app.exercises import get_exercise
 from app.exercises.grade import load_module, shown, starter_path, student_traceback
 from app.pymunk_scene import PymunkScene
-from app.scene import Param, Scene, SceneError, common
+from app.scene import Effect, Param, Scene, SceneError, common
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.newtons_cradle import RADIUS, SLOP, NewtonsCradleScene
 from scenes.pivoting_l import PivotingLScene
@@ -167,8 +167,8 @@ class _Springs:
     ring = True                 # the lab's copy is drawn as rings around yours
 
     def __init__(self, impl, drag: float):
-        self.impl, self.drag = impl, drag
-        n = 8
+        self.verlet_step, self.drag = impl.verlet_step, drag   # the function: snapshots copy
+        n = 8                                                   # sims, and a module cannot be
         self.anchor = np.stack([120 + 100.0 * np.arange(n), np.full(n, 260.0)], axis=1)
         self.omega2 = (2 * math.pi * (0.5 + 0.2 * np.arange(n)))[:, None] ** 2
         self.x = self.anchor + (60.0, 0.0)
@@ -182,8 +182,7 @@ class _Springs:
 
     def step(self, h: float) -> None:
         self.h = h
-        self.x, self.x_prev = self.impl.verlet_step(self.x, self.x_prev, self.accel(), h,
-                                                    self.drag)
+        self.x, self.x_prev = self.verlet_step(self.x, self.x_prev, self.accel(), h, self.drag)
         self.x, self.x_prev = np.asarray(self.x, float), np.asarray(self.x_prev, float)
 
     def energy(self) -> float:
@@ -237,7 +236,7 @@ class _Cloth:
     def __init__(self, impl, origin: tuple[float, float], iterations: int, rows: int = 12,
                  spacing: float = 24.0):
         from app.physics.jakobsen import verlet_step
-        self.verlet, self.impl, self.iterations = verlet_step, impl, iterations
+        self.verlet, self.satisfy_rods, self.iterations = verlet_step, impl.satisfy_rods, iterations
         r, c = np.mgrid[0:rows, 0:rows]
         idx = r * rows + c
         self.a = np.concatenate([idx[:, :-1].ravel(), idx[:-1, :].ravel()])
@@ -258,7 +257,7 @@ class _Cloth:
         self.wind_t += h       # a gentle sideways gust, so the cloth moves
         acc = self.acc + self.w[:, None] * np.array([300.0 * math.sin(1.3 * self.wind_t), 0.0])
         self.x, self.x_prev = self.verlet(self.x, self.x_prev, acc, h, 0.01)
-        out = self.impl.satisfy_rods(self.x.copy(), self.a, self.b, self.rest, self.w,
+        out = self.satisfy_rods(self.x.copy(), self.a, self.b, self.rest, self.w,
                                      self.iterations)
         self.x = np.asarray(out, dtype=float).reshape(self.x.shape)
 
@@ -316,7 +315,7 @@ class _Rope:
     ring = True
 
     def __init__(self, impl, kd: float, n: int = 12, spacing: float = 30.0):
-        self.impl, self.kd = impl, kd
+        self.spring_forces, self.kd = impl.spring_forces, kd
         self.x = np.stack([300 + spacing * np.arange(n), np.full(n, 240.0)], axis=1)
         self.v = np.zeros_like(self.x)
         self.a = np.concatenate([np.arange(n - 1), np.arange(n - 2)])
@@ -329,7 +328,7 @@ class _Rope:
         self.fixed = np.empty((0, 2))
 
     def step(self, h: float) -> None:
-        self.f = np.asarray(self.impl.spring_forces(self.x, self.v, self.a, self.b, 2000.0,
+        self.f = np.asarray(self.spring_forces(self.x, self.v, self.a, self.b, 2000.0,
                                                     self.kd, self.rest), dtype=float)
         self.v = (self.v + h * (self.f + np.array([0.0, 900.0]))) * self.free
         self.x = self.x + h * self.v
@@ -473,7 +472,7 @@ class _Chain:
     def __init__(self, impl, n: int = 6):
         from app.exercises.solver_interface import drag, gravity, springs
         from app.physics.integrators import rk4_step
-        self.impl, self.rk4 = impl, rk4_step
+        self.derivative, self.rk4 = impl.derivative, rk4_step
         self.n = n
         self.masses = np.linspace(1.0, 2.0, n)
         x = np.stack([480 + 40.0 * np.arange(n), np.full(n, 230.0)], axis=1)
@@ -490,7 +489,7 @@ class _Chain:
 
     def step(self, h: float) -> None:
         def f(t, y):
-            return np.asarray(self.impl.derivative(y.copy(), self.masses, self.forces), float)
+            return np.asarray(self.derivative(y.copy(), self.masses, self.forces), float)
         self.y = np.asarray(self.rk4(f, 0.0, self.y, h), dtype=float).reshape(self.y.shape)
 
     @property
@@ -543,7 +542,8 @@ def _joint(space: pymunk.Space, body: pymunk.Body, kinds: tuple[type, ...], what
 
 class CradleExercise(StudentCode, NewtonsCradleScene):
     """Exercise `newtons_cradle`: the cradle scene, its balls and strings built by YOUR
-    build_cradle; the lab's cradle swings behind it as orange rings. The HUD gives the scene's
+    build_cradle; the lab's cradle swings behind it as orange rings (effect `reference`). The
+    HUD gives the scene's
     verdict (k in, k out; middle drift; energy left), the grader's numbers.
 
     Mouse: drag a ball. Parameters: balls, lifted, damping, substeps, iterations, g.
@@ -554,11 +554,17 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
     category = "Exercises"
     params = tuple(p for p in NewtonsCradleScene.params
                    if p.name not in ("gap", "angle", "elasticity"))   # yours decides these
+    effects = NewtonsCradleScene.effects + (
+        Effect("reference", True, "the lab's cradle, built by the lab's build_cradle, as orange "
+               "rings", rebuild=True),)
     world_keys = NewtonsCradleScene.world_keys + ("ghost", "ghost_bodies")
 
     def add_balls(self, space: pymunk.Space) -> list[pymunk.Body]:
         n, k = self.p["balls"], self.p["lifted"]
         bodies = _bodies(self.impl.build_cradle(space, n, RADIUS, k), n, "build_cradle")
+        self.ghost, self.ghost_bodies = None, []
+        if "reference" not in self.on:          # off: not built, not stepped
+            return bodies
         self.ghost = pymunk.Space()
         self.ghost.collision_slop = SLOP
         self.ghost.iterations = self.p["iterations"]
@@ -568,6 +574,8 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
 
     def step(self, h: float) -> None:
         super().step(h)
+        if self.ghost is None:
+            return
         self.ghost.damping = self.space.damping
         self.ghost.gravity = self.space.gravity
         self.ghost.step(h)

@@ -16,6 +16,8 @@ from types import SimpleNamespace
 from app.exercises.base import Check, Exercise, Result, fmt
 from app.exercises.pymunk_checks import run_scene
 
+GRADED = {"reference": "off"}       # the grader reads the scene's verdict; no ghost needed
+
 SPACING_HINT = ("balls that touch (or overlap) at rest are solved as one lump: leave a hair of "
                 "space between them (gap ~0.02 px: pitch = 2 * radius + gap), elasticity "
                 "0.9999999 (the slide's hint), friction 0, strings with error_bias 0.")
@@ -28,7 +30,7 @@ def reference() -> SimpleNamespace:
 
 def k_out(k: int):
     def check(m) -> Result:
-        out = run_scene("newtons_cradle", m, 2.8, {"lifted": k}).metrics()["balls_out"]
+        out = run_scene("newtons_cradle", m, 2.8, {**GRADED, "lifted": k}).metrics()["balls_out"]
         hint = SPACING_HINT
         if out == 0:
             hint = "no ball swings out: is the elasticity near 1? " + SPACING_HINT
@@ -37,13 +39,14 @@ def k_out(k: int):
 
 
 def middle_still(m) -> Result:
-    drift = run_scene("newtons_cradle", m, 10.0, {"lifted": 2}).metrics()["middle_max_drift"]
+    scene = run_scene("newtons_cradle", m, 10.0, {**GRADED, "lifted": 2})
+    drift = scene.metrics()["middle_max_drift"]
     return Result(drift < 2.0, f"middle balls moved up to {fmt(drift)} px in 10 s", "< 2 px",
                   SPACING_HINT)
 
 
 def energy_kept(m) -> Result:
-    ratio = run_scene("newtons_cradle", m, 10.0, {"lifted": 1}).metrics()["energy_ratio"]
+    ratio = run_scene("newtons_cradle", m, 10.0, {**GRADED, "lifted": 1}).metrics()["energy_ratio"]
     return Result(ratio > 0.95, f"{100 * ratio:.2f}% of the energy left after 10 s", "> 95%",
                   "every impact keeps e^2 of the approach energy: elasticity 0.9999999 on "
                   "every ball (pymunk multiplies the two shapes' values), friction 0, and "
