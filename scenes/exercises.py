@@ -33,7 +33,6 @@ import numpy as np
 import pygame
 import pymunk
 
-from app.draw import pymunk_draw as D
 from app.draw.hud import Line, text_box
 from app.exercises import get_exercise
 from app.exercises.grade import load_module, shown, starter_path, student_traceback
@@ -121,6 +120,7 @@ class ParticleExercise(Scene):
 
     category = "Exercises"
     snapshot_skip = ("impl", "reference")
+    live: tuple[str, ...] = ()      # params both copies read every step (attributes of theirs)
 
     def build(self) -> None:
         # the student's copy first: if their code raises while building, no step has run
@@ -128,11 +128,28 @@ class ParticleExercise(Scene):
         self.lab = self.make(self.reference)
 
     def make(self, impl):
+        """The system, its step calling impl's functions."""
         raise NotImplementedError
 
     def step(self, h: float) -> None:
-        self.mine.step(h)
-        self.lab.step(h)
+        for sim in (self.mine, self.lab):
+            for name in self.live:
+                setattr(sim, name, self.p[name])
+            sim.step(h)
+
+    def measure(self) -> dict[str, float]:
+        """The grader's live numbers (the metrics)."""
+        return {"apart_px": self.apart()}
+
+    def live_line(self, m: dict[str, float]) -> str:
+        """The HUD line that reads them."""
+        return f"yours vs the lab's: {m['apart_px']:.3g} px apart"
+
+    def metrics(self) -> dict[str, float]:
+        return self.measure()
+
+    def hud_lines(self) -> list[str]:
+        return [self.live_line(self.metrics())]
 
     def state_arrays(self) -> Iterable[np.ndarray]:
         return (self.mine.x, self.lab.x)
@@ -207,24 +224,19 @@ class VerletExercise(StudentCode, ParticleExercise):
     params = (Param("drag", 0.0, float, 0.0, 0.2, help="the slide's 2 -> 1.99 is drag 0.01 "
                     "(fraction of the last step's travel lost per step)"),)
 
+    live = ("drag",)
+
     def make(self, impl):
         return _Springs(impl, self.p["drag"])
 
-    def step(self, h: float) -> None:
-        self.mine.drag = self.lab.drag = self.p["drag"]
-        super().step(h)
-
-    def metrics(self) -> dict[str, float]:
-        if self.error:
-            return {}
+    def measure(self) -> dict[str, float]:
         lab = self.lab.energy()
         return {"apart_px": self.apart(),
                 "energy_vs_lab": self.mine.energy() / lab if lab else 1.0}
 
-    def hud_lines(self) -> list[str]:
-        m = self.metrics()
-        return StudentCode.hud_lines(self) + ([] if self.error else [
-            f"yours vs the lab's: {m['apart_px']:.3g} px apart; energy x {m['energy_vs_lab']:.4f}"])
+    def live_line(self, m: dict[str, float]) -> str:
+        return (f"yours vs the lab's: {m['apart_px']:.3g} px apart; energy x "
+                f"{m['energy_vs_lab']:.4f}")
 
 
 class _Cloth:
@@ -286,25 +298,19 @@ class ConstraintsExercise(StudentCode, ParticleExercise):
     params = (Param("iterations", 10, int, 1, 50, help="relaxation sweeps per step",
                     rebuild=False),)
 
+    live = ("iterations",)
+
     def make(self, impl):
         mine = impl is self.impl
         return _Cloth(impl, (90.0 if mine else 560.0, 230.0), self.p["iterations"])
 
-    def step(self, h: float) -> None:
-        self.mine.iterations = self.lab.iterations = self.p["iterations"]
-        super().step(h)
-
-    def metrics(self) -> dict[str, float]:
-        if self.error:
-            return {}
+    def measure(self) -> dict[str, float]:
         return {"mean_stretch": self.mine.stretch(), "mean_stretch_lab": self.lab.stretch(),
                 "pinned_drift": self.mine.pinned_drift()}
 
-    def hud_lines(self) -> list[str]:
-        m = self.metrics()
-        return StudentCode.hud_lines(self) + ([] if self.error else [
-            f"mean stretch: yours {100 * m['mean_stretch']:.3f}%, the lab's "
-            f"{100 * m['mean_stretch_lab']:.3f}%; pinned moved {m['pinned_drift']:.3g} px"])
+    def live_line(self, m: dict[str, float]) -> str:
+        return (f"mean stretch: yours {100 * m['mean_stretch']:.3f}%, the lab's "
+                f"{100 * m['mean_stretch_lab']:.3f}%; pinned moved {m['pinned_drift']:.3g} px")
 
 
 class _Rope:
@@ -350,25 +356,19 @@ class SpringExercise(StudentCode, ParticleExercise):
     params = (common("substeps", default=8), Param("kd", 2.0, float, 0.0, 20.0,
               help="spring damping kd", rebuild=False))
 
+    live = ("kd",)
+
     def make(self, impl):
         return _Rope(impl, self.p["kd"])
 
-    def step(self, h: float) -> None:
-        self.mine.kd = self.lab.kd = self.p["kd"]
-        super().step(h)
-
-    def metrics(self) -> dict[str, float]:
-        if self.error:
-            return {}
+    def measure(self) -> dict[str, float]:
         f = self.mine.f
         return {"apart_px": self.apart(),
                 "force_sum": float(np.linalg.norm(f.sum(0)) / max(np.abs(f).max(), 1e-300))}
 
-    def hud_lines(self) -> list[str]:
-        m = self.metrics()
-        return StudentCode.hud_lines(self) + ([] if self.error else [
-            f"yours vs the lab's: {m['apart_px']:.3g} px apart; |sum of your forces| = "
-            f"{m['force_sum']:.2g} of the largest"])
+    def live_line(self, m: dict[str, float]) -> str:
+        return (f"yours vs the lab's: {m['apart_px']:.3g} px apart; |sum of your forces| = "
+                f"{m['force_sum']:.2g} of the largest")
 
 
 class _Pendulum:
@@ -444,22 +444,18 @@ class Rk4Exercise(StudentCode, ParticleExercise):
     def make(self, impl):
         return _Pair(impl, self.p["angle"])
 
-    def metrics(self) -> dict[str, float]:
-        if self.error:
-            return {}
+    def measure(self) -> dict[str, float]:
         out = {}
+        e0 = 900.0 / _Pendulum.LENGTH * (1 - math.cos(math.radians(self.p["angle"])))
         for name, mine, lab in zip(("rk4", "midpoint"), self.mine.parts, self.lab.parts):
-            e0 = 900.0 / _Pendulum.LENGTH * (1 - math.cos(math.radians(self.p["angle"])))
             out[f"{name}_apart_rad"] = abs(float(mine.y[0] - lab.y[0]))
             out[f"{name}_energy_ratio"] = mine.energy() / e0
         return out
 
-    def hud_lines(self) -> list[str]:
-        m = self.metrics()
-        return StudentCode.hud_lines(self) + ([] if self.error else [
-            f"RK4: {m['rk4_apart_rad']:.2g} rad from the lab's, energy x "
-            f"{m['rk4_energy_ratio']:.4f}; midpoint: {m['midpoint_apart_rad']:.2g} rad, energy x "
-            f"{m['midpoint_energy_ratio']:.4f}"])
+    def live_line(self, m: dict[str, float]) -> str:
+        return (f"RK4: {m['rk4_apart_rad']:.2g} rad from the lab's, energy x "
+                f"{m['rk4_energy_ratio']:.4f}; midpoint: {m['midpoint_apart_rad']:.2g} rad, "
+                f"energy x {m['midpoint_energy_ratio']:.4f}")
 
 
 class _Chain:
@@ -515,13 +511,6 @@ class SolverInterfaceExercise(StudentCode, ParticleExercise):
 
     def make(self, impl):
         return _Chain(impl)
-
-    def metrics(self) -> dict[str, float]:
-        return {} if self.error else {"apart_px": self.apart()}
-
-    def hud_lines(self) -> list[str]:
-        return StudentCode.hud_lines(self) + ([] if self.error else [
-            f"yours vs the lab's: {self.apart():.3g} px apart"])
 
 
 # ----- the pymunk exercises: the lab's scenes, built by the student's function ------------------

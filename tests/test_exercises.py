@@ -265,3 +265,11 @@ def test_rk4_scene_docstring_numbers_at_hertz_2():
     m = scene.metrics()
     assert round(m["midpoint_energy_ratio"], 1) == 2.2
     assert round(m["rk4_energy_ratio"], 2) == 0.92
+
+
+def test_a_process_that_dies_is_a_failed_check_not_a_crash():
+    # pymunk aborts the whole process on some values; os._exit stands in for it here
+    report = grade(get_exercise("verlet"), str(ANSWERS / "verlet_exits.py"))
+    assert len(report.checks) == 5
+    for c in report.checks:
+        assert not c.passed and "exit code 3" in c.measured

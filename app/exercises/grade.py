@@ -21,7 +21,7 @@ import traceback
 import warnings
 from dataclasses import asdict, dataclass
 from pathlib import Path
-from types import ModuleType, SimpleNamespace
+from types import ModuleType
 from typing import Any
 
 from app.exercises.base import BadAnswer, Check, Exercise

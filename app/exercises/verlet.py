@@ -20,7 +20,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Result, array_of, fmt, order, within
+from app.exercises.base import (BadAnswer, Check, Exercise, Result, array_of, fmt, order,
+                                within)
 
 G = np.array([0.0, 900.0])            # px/s^2, y down
 OMEGA = 2 * math.pi                   # the test spring: one period per second
@@ -35,7 +36,6 @@ def step(m, x, x_prev, a, h, drag):
     """Call the student's verlet_step and check the shape of what comes back."""
     out = m.verlet_step(x, x_prev, a, h, drag)
     if not isinstance(out, tuple) or len(out) != 2:
-        from app.exercises.base import BadAnswer
         raise BadAnswer(f"verlet_step returned {type(out).__name__}; expected a pair "
                         "(x_new, x)")
     return (array_of(out[0], x.shape, "verlet_step's x_new"),

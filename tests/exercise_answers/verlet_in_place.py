@@ -2,6 +2,5 @@
 
 
 def verlet_step(x, x_prev, a, h, drag):
-    old = x.copy()
     x += (1 - drag) * (x - x_prev) + a * h * h
     return x, x
