@@ -221,7 +221,8 @@ def test_each_exercise_scene_runs_the_reference_beside_the_lab(name):
 
 
 def test_a_scene_whose_build_failed_raises_scene_error_on_the_first_step():
-    scene = exercise_scene("verlet", path=str(ANSWERS / "verlet_syntax_error.py"))({})                       # the constructor does not raise
+    path = str(ANSWERS / "verlet_syntax_error.py")
+    scene = exercise_scene("verlet", path=path)({})        # the constructor does not raise
     assert scene.metrics() == {} and "SyntaxError" in " ".join(scene.hud_lines())
     scene.draw(pygame.Surface(scene.world_size), __import__("app.draw.view",
                                                            fromlist=["View"]).View())

@@ -17,6 +17,9 @@ from typing import Any, Callable
 import numpy as np
 
 
+Student = Any    # the module being graded (or the reference's namespace): its functions by name
+
+
 class BadAnswer(Exception):
     """The student's function returned something the check cannot use (the message says what)."""
 

@@ -16,7 +16,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Result, array_of, fmt
+from app.exercises.base import Check, Exercise, Result, Student, array_of, fmt
 
 
 def reference() -> SimpleNamespace:
@@ -24,7 +24,7 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(satisfy_rods=satisfy_rods)
 
 
-def relax(m, x, a, b, rest, w, iterations) -> np.ndarray:
+def relax(m: Student, x, a, b, rest, w, iterations) -> np.ndarray:
     out = m.satisfy_rods(x.copy(), a, b, rest, w, iterations)
     return array_of(out, x.shape, "satisfy_rods")
 
@@ -33,7 +33,7 @@ WEIGHT_HINT = ("move each end by its share w_a / (w_a + w_b) of the correction (
                "it never moves). Did you split it 50/50?")
 
 
-def pinned(m) -> Result:
+def pinned(m: Student) -> Result:
     rng = np.random.default_rng(2)
     n = 8
     x = np.stack([np.arange(n) * 15.0, np.zeros(n)], axis=1) + rng.normal(0, 4, (n, 2))
@@ -45,14 +45,14 @@ def pinned(m) -> Result:
     return Result(moved == 0.0, f"pinned particles moved {fmt(moved)} px", "0 px", WEIGHT_HINT)
 
 
-def _one_rod(m) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _one_rod(m: Student) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     x = np.array([[0.0, 0.0], [30.0, 40.0]])            # length 50
     w = np.array([1.0, 3.0])
     out = relax(m, x, np.array([0]), np.array([1]), np.array([20.0]), w, 1)
     return x, w, out
 
 
-def one_rod(m) -> Result:
+def one_rod(m: Student) -> Result:
     _, _, out = _one_rod(m)
     err = abs(float(np.linalg.norm(out[1] - out[0])) - 20.0)
     return Result(err < 1e-9, f"|length - rest| = {fmt(err)} px after one pass",
@@ -62,7 +62,7 @@ def one_rod(m) -> Result:
                   "shares, which add up to 1.")
 
 
-def shares(m) -> Result:
+def shares(m: Student) -> Result:
     x, w, out = _one_rod(m)
     mass = 1.0 / w
     before = (mass[:, None] * x).sum(0) / mass.sum()
@@ -72,7 +72,7 @@ def shares(m) -> Result:
                   "the heavier end (smaller w) moves less: " + WEIGHT_HINT)
 
 
-def hanging_stretch(m, iterations: int, rows: int = 6, spacing: float = 20.0) -> float:
+def hanging_stretch(m: Student, iterations: int, rows: int = 6, spacing: float = 20.0) -> float:
     """Mean |length / rest - 1| of a hanging cloth after 0.5 s (the lab's Verlet, your rods)."""
     from app.physics.jakobsen import verlet_step
     r, c = np.mgrid[0:rows, 0:rows]
@@ -91,7 +91,7 @@ def hanging_stretch(m, iterations: int, rows: int = 6, spacing: float = 20.0) ->
     return float(np.abs(np.linalg.norm(x[b] - x[a], axis=1) / rest - 1).mean())
 
 
-def stretch_falls(m) -> Result:
+def stretch_falls(m: Student) -> Result:
     s = [hanging_stretch(m, k) for k in (1, 5, 25)]
     ok = bool(np.all(np.isfinite(s)) and s[0] > s[1] > s[2])
     return Result(ok, f"mean stretch {', '.join(map(fmt, s))} at 1, 5, 25 iterations",
@@ -100,7 +100,7 @@ def stretch_falls(m) -> Result:
                   "place, sweep `iterations` times).")
 
 
-def coincident(m) -> Result:
+def coincident(m: Student) -> Result:
     x = np.array([[5.0, 5.0], [5.0, 5.0], [25.0, 5.0]])
     out = relax(m, x, np.array([0, 1]), np.array([1, 2]), np.array([10.0, 10.0]),
                 np.ones(3), 3)

@@ -17,7 +17,7 @@ from types import SimpleNamespace
 
 import pymunk
 
-from app.exercises.base import BadAnswer, Check, Exercise, Result, fmt
+from app.exercises.base import BadAnswer, Check, Exercise, Result, Student, fmt
 from app.exercises.pymunk_checks import run_scene
 
 SOFT_HINT = ("pymunk's joints are soft by default: they correct only part of the length error "
@@ -29,14 +29,15 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(build_double_pendulum=build_double_pendulum)
 
 
-def built(m) -> Result:
+def built(m: Student) -> Result:
     space = pymunk.Space()
     anchor, lengths, masses, angles = (480.0, 350.0), (160.0, 120.0), (1.0, 2.0), (0.5, -1.0)
     pair = m.build_double_pendulum(space, anchor, lengths, masses, angles)
     if (not isinstance(pair, (tuple, list)) or len(pair) != 2
             or not all(isinstance(b, pymunk.Body) for b in pair)):
         raise BadAnswer(f"build_double_pendulum returned {pair!r}; expected (body1, body2)")
-    p1 = (anchor[0] + lengths[0] * math.sin(angles[0]), anchor[1] + lengths[0] * math.cos(angles[0]))
+    p1 = (anchor[0] + lengths[0] * math.sin(angles[0]),
+          anchor[1] + lengths[0] * math.cos(angles[0]))
     p2 = (p1[0] + lengths[1] * math.sin(angles[1]), p1[1] + lengths[1] * math.cos(angles[1]))
     err = max(math.dist(pair[0].position, p1), math.dist(pair[1].position, p2))
     mass_err = max(abs(pair[0].mass - masses[0]), abs(pair[1].mass - masses[1]))
@@ -47,7 +48,7 @@ def built(m) -> Result:
                   "(sin t1, cos t1), p2 = p1 + l2 (sin t2, cos t2); Body(mass, moment).")
 
 
-def agrees(m) -> Result:
+def agrees(m: Student) -> Result:
     worst = [0.0]
 
     def watch(scene):
@@ -58,14 +59,14 @@ def agrees(m) -> Result:
                   "centres; the bobs must not collide with each other. " + SOFT_HINT)
 
 
-def energy_kept(m) -> Result:
+def energy_kept(m: Student) -> Result:
     drift = run_scene("double_pendulum", m, 20.0, {"reference": "off", "trail": "off"}
                       ).metrics()["energy_drift_max"]
     return Result(drift < 0.01, f"largest energy drift {100 * drift:.3f}% in 20 s", "< 1%",
                   SOFT_HINT)
 
 
-def joints_hold(m) -> Result:
+def joints_hold(m: Student) -> Result:
     err = run_scene("double_pendulum", m, 5.0, {"reference": "off", "trail": "off"}
                     ).metrics()["pin_error"]
     return Result(err < 1.0, f"rod length error {fmt(err)} px after 5 s", "< 1 px", SOFT_HINT)

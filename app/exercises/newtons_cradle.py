@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
-from app.exercises.base import Check, Exercise, Result, fmt
+from app.exercises.base import Check, Exercise, Result, Student, fmt
 from app.exercises.pymunk_checks import run_scene
 
 GRADED = {"reference": "off"}       # the grader reads the scene's verdict; no ghost needed
@@ -29,7 +29,7 @@ def reference() -> SimpleNamespace:
 
 
 def k_out(k: int):
-    def check(m) -> Result:
+    def check(m: Student) -> Result:
         out = run_scene("newtons_cradle", m, 2.8, {**GRADED, "lifted": k}).metrics()["balls_out"]
         hint = SPACING_HINT
         if out == 0:
@@ -38,14 +38,14 @@ def k_out(k: int):
     return check
 
 
-def middle_still(m) -> Result:
+def middle_still(m: Student) -> Result:
     scene = run_scene("newtons_cradle", m, 10.0, {**GRADED, "lifted": 2})
     drift = scene.metrics()["middle_max_drift"]
     return Result(drift < 2.0, f"middle balls moved up to {fmt(drift)} px in 10 s", "< 2 px",
                   SPACING_HINT)
 
 
-def energy_kept(m) -> Result:
+def energy_kept(m: Student) -> Result:
     ratio = run_scene("newtons_cradle", m, 10.0, {**GRADED, "lifted": 1}).metrics()["energy_ratio"]
     return Result(ratio > 0.95, f"{100 * ratio:.2f}% of the energy left after 10 s", "> 95%",
                   "every impact keeps e^2 of the approach energy: elasticity 0.9999999 on "

@@ -18,7 +18,7 @@ from types import SimpleNamespace
 
 import pymunk
 
-from app.exercises.base import BadAnswer, Check, Exercise, Result, fmt
+from app.exercises.base import BadAnswer, Check, Exercise, Result, Student, fmt
 from app.exercises.pymunk_checks import run_scene
 
 RUN = 10.0
@@ -34,7 +34,7 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(add_L=add_L)
 
 
-def the_L(m) -> Result:
+def the_L(m: Student) -> Result:
     from scenes.falling_balls import L_ORIGIN
     from scenes.pivoting_l import SLIDE_ANCHOR
     space = pymunk.Space()
@@ -73,7 +73,7 @@ def the_L(m) -> Result:
                   "to the space.")
 
 
-def _run(m) -> tuple[float, float, float, float]:
+def _run(m: Student) -> tuple[float, float, float, float]:
     turn = [0.0]
 
     def watch(scene):
@@ -83,7 +83,7 @@ def _run(m) -> tuple[float, float, float, float]:
     return turn[0], mt["pin_error"], mt["slide_max"], scene.slide.max
 
 
-def turns(m) -> Result:
+def turns(m: Student) -> Result:
     turned, pin_error, _, _ = _run(m)
     ok = turned > 2.0 and pin_error < 1.0
     return Result(ok, f"turned {turned:.1f} deg, pin error up to {fmt(pin_error)} px",
@@ -93,7 +93,7 @@ def turns(m) -> Result:
                   "at the L's position.")
 
 
-def stops(m) -> Result:
+def stops(m: Student) -> Result:
     _, _, seen, limit = _run(m)
     ok = limit - 1.0 <= seen <= limit + 2.0
     return Result(ok, f"slide distance up to {seen:.2f} px (max {limit:g})",

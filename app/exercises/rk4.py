@@ -1,4 +1,5 @@
-"""Grader of exercises/rk4.py: classical Runge-Kutta and the midpoint method for any dy/dt = f(t, y).
+"""Grader of exercises/rk4.py: classical Runge-Kutta and the midpoint method for any ODE
+dy/dt = f(t, y).
 
 Reference: app.physics.integrators.rk4_step and midpoint_step. Checks:
   RK4 order, spring       x'' = -x over 2.5 s in 16, 32, 64 steps: measured order 4 +- 0.2
@@ -19,7 +20,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Result, array_of, fmt, order, within
+from app.exercises.base import Check, Exercise, Result, Student, array_of, fmt, order, within
 
 
 def reference() -> SimpleNamespace:
@@ -42,7 +43,7 @@ def integrate(step, f, y0, t_end: float, n: int) -> np.ndarray:
     return y
 
 
-def measured_order(m, fname: str, f, target: float) -> Result:
+def measured_order(m: Student, fname: str, f, target: float) -> Result:
     step = getattr(m, fname)
     t_end, y0 = 2.5, np.array([1.0, 0.0])
     exact = (np.array([math.cos(t_end), -math.sin(t_end)]) if f is spring
@@ -63,7 +64,7 @@ def measured_order(m, fname: str, f, target: float) -> Result:
                   f"{target:g} +- 0.2", hint)
 
 
-def stage_times(m, fname: str, power: int) -> Result:
+def stage_times(m: Student, fname: str, power: int) -> Result:
     step = getattr(m, fname)
     y = integrate(step, lambda t, y: np.array([t ** power]), np.array([0.0]), 1.0, 4)
     err = abs(float(y[0]) - 1.0 / (power + 1))
@@ -82,7 +83,7 @@ def growth(step, z: float, n: int = 400) -> float:
     return float(np.hypot(*y))
 
 
-def stability_limit(m) -> Result:
+def stability_limit(m: Student) -> Result:
     lo, hi = 0.5, 4.0
     if growth(m.rk4_step, lo) > 2:
         lo = hi = 0.0                           # unstable even at small steps

@@ -16,7 +16,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Result, array_of, fmt
+from app.exercises.base import Check, Exercise, Result, Student, array_of, fmt
 
 N = 4
 MASSES = np.array([1.0, 2.0, 0.5, 1.5])
@@ -74,7 +74,7 @@ def state(seed: int = 5) -> np.ndarray:
     return np.concatenate([rng.uniform(0, 100, 2 * N), rng.normal(0, 30, 2 * N)])
 
 
-def deriv(m, y, masses, forces) -> np.ndarray:
+def deriv(m: Student, y, masses, forces) -> np.ndarray:
     return array_of(m.derivative(y.copy(), masses.copy(), forces), y.shape, "derivative")
 
 
@@ -82,7 +82,7 @@ LAYOUT = ("gather [v, f/m] flattened like the state: all positions' derivatives 
           "velocities x1, y1, x2, y2, ...) first, then all accelerations.")
 
 
-def matches(m) -> Result:
+def matches(m: Student) -> Result:
     y = state()
     ref = reference().derivative(y, MASSES, forces_for(MASSES))
     d = deriv(m, y, MASSES, forces_for(MASSES))
@@ -91,14 +91,14 @@ def matches(m) -> Result:
                   "< 1e-12 (relative)", "clear f, call every force(x, v, f), then " + LAYOUT)
 
 
-def velocity_first(m) -> Result:
+def velocity_first(m: Student) -> Result:
     y = state()
     d = deriv(m, y, MASSES, forces_for(MASSES))
     err = float(np.abs(d[:2 * N] - y[2 * N:]).max())
     return Result(err == 0.0, f"|dx/dt - v| = {fmt(err)}", "0", LAYOUT)
 
 
-def clears(m) -> Result:
+def clears(m: Student) -> Result:
     y = state()
     first = deriv(m, y, MASSES, forces_for(MASSES))
     second = deriv(m, y, MASSES, forces_for(MASSES))
@@ -108,7 +108,7 @@ def clears(m) -> Result:
                   "call: forces left from the last call were added again.")
 
 
-def divides_by_mass(m) -> Result:
+def divides_by_mass(m: Student) -> Result:
     y = state()
     only_springs = forces_for(MASSES)[2:]
     light = deriv(m, y, MASSES, only_springs)[2 * N:]
@@ -118,7 +118,7 @@ def divides_by_mass(m) -> Result:
                   "double", "0.5", "the gather returns f / m (Newton's second law), not f.")
 
 
-def state_kept(m) -> Result:
+def state_kept(m: Student) -> Result:
     y = state()
     y0 = y.copy()
     m.derivative(y, MASSES.copy(), forces_for(MASSES))

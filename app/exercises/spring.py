@@ -15,7 +15,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Result, array_of, fmt
+from app.exercises.base import Check, Exercise, Result, Student, array_of, fmt
 
 A = np.array([0, 1, 2, 3, 0, 1, 4, 2])
 B = np.array([1, 2, 3, 4, 2, 3, 0, 4])
@@ -31,7 +31,7 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(spring_forces=spring_forces)
 
 
-def forces(m, x, v, a, b, ks, kd, rest) -> np.ndarray:
+def forces(m: Student, x, v, a, b, ks, kd, rest) -> np.ndarray:
     return array_of(m.spring_forces(x.copy(), v.copy(), a, b, ks, kd, rest), x.shape,
                     "spring_forces")
 
@@ -48,7 +48,7 @@ def rel_error(f: np.ndarray, ref: np.ndarray) -> float:
     return float(np.abs(f - ref).max() / np.abs(ref).max())
 
 
-def _compare(m, ks: float, kd: float, hint: str) -> Result:
+def _compare(m: Student, ks: float, kd: float, hint: str) -> Result:
     x, v, rest = system()
     ref = reference().spring_forces(x, v, A, B, ks, kd, rest)
     f = forces(m, x, v, A, B, ks, kd, rest)
@@ -67,18 +67,18 @@ def _compare(m, ks: float, kd: float, hint: str) -> Result:
                   "< 1e-09 (relative)", hint)
 
 
-def hooke(m) -> Result:
+def hooke(m: Student) -> Result:
     return _compare(m, 50.0, 0.0, "f_a = -ks (|l| - rest) l/|l| with l = x_a - x_b: the "
                     "direction is the UNIT vector l/|l| (without it the force grows with the "
                     "length twice), and f_b = -f_a.")
 
 
-def damping(m) -> Result:
+def damping(m: Student) -> Result:
     return _compare(m, 0.0, 2.0, "the damping term is kd (v_a - v_b) . l/|l|: the relative "
                     "velocity projected on the spring, times l/|l| (not kd (v_a - v_b)).")
 
 
-def third_law(m) -> Result:
+def third_law(m: Student) -> Result:
     x, v, rest = system(4)
     f = forces(m, x, v, A, B, 50.0, 2.0, rest)
     total = float(np.linalg.norm(f.sum(0)) / max(np.abs(f).max(), 1e-300))
@@ -86,7 +86,7 @@ def third_law(m) -> Result:
                   "< 1e-12 (zero)", "each spring adds f_a to particle a and -f_a to particle b.")
 
 
-def damping_removes(m) -> Result:
+def damping_removes(m: Student) -> Result:
     x = np.array([[0.0, 0.0], [80.0, 0.0]])
     v = np.zeros_like(x)
     a, b, rest, ks, kd = np.array([0]), np.array([1]), np.array([50.0]), 50.0, 1.0

@@ -20,8 +20,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import (BadAnswer, Check, Exercise, Result, array_of, fmt, order,
-                                within)
+from app.exercises.base import (BadAnswer, Check, Exercise, Result, Student, array_of, fmt,
+                                order, within)
 
 G = np.array([0.0, 900.0])            # px/s^2, y down
 OMEGA = 2 * math.pi                   # the test spring: one period per second
@@ -32,7 +32,7 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(verlet_step=verlet_step)
 
 
-def step(m, x, x_prev, a, h, drag):
+def step(m: Student, x, x_prev, a, h, drag):
     """Call the student's verlet_step and check the shape of what comes back."""
     out = m.verlet_step(x, x_prev, a, h, drag)
     if not isinstance(out, tuple) or len(out) != 2:
@@ -42,7 +42,7 @@ def step(m, x, x_prev, a, h, drag):
             array_of(out[1], x.shape, "verlet_step's second value (the new x_prev)"))
 
 
-def run_spring(m, h: float, seconds: float, drag: float = 0.0, amplitude: float = 100.0
+def run_spring(m: Student, h: float, seconds: float, drag: float = 0.0, amplitude: float = 100.0
                ) -> tuple[np.ndarray, np.ndarray]:
     """The spring x'' = -omega^2 x from x = amplitude at rest, started exactly (x_prev = x(-h)).
     Returns positions x_k (k = 0..N) and the energy per unit mass at steps 1..N-1 (velocity
@@ -61,7 +61,7 @@ def run_spring(m, h: float, seconds: float, drag: float = 0.0, amplitude: float 
     return xs, energy
 
 
-def free_fall(m) -> Result:
+def free_fall(m: Student) -> Result:
     h, n = 1 / 60, 60
     x0 = np.array([[100.0, 100.0], [300.0, 50.0], [500.0, 400.0]])
     v0 = np.array([[0.0, 0.0], [120.0, -300.0], [-50.0, -600.0]])
@@ -85,7 +85,7 @@ def free_fall(m) -> Result:
                   "< 1e-06 px (exact but for rounding)", hint)
 
 
-def spring_order(m) -> Result:
+def spring_order(m: Student) -> Result:
     errors = []
     for n in (40, 80, 160):         # end at 1.25 periods: the phase error shows fully there
         xs, _ = run_spring(m, 1.25 / n, 1.25)
@@ -101,7 +101,7 @@ def spring_order(m) -> Result:
                   "2 +- 0.2", hint)
 
 
-def energy_kept(m) -> Result:
+def energy_kept(m: Student) -> Result:
     _, e = run_spring(m, 1 / 60, 20.0)
     ratio = float(e[-60:].mean() / e[:60].mean())
     hint = ("with drag 0 the energy must not drift: x' = x + (x - x_prev) + a h^2 exactly "
@@ -112,7 +112,7 @@ def energy_kept(m) -> Result:
                   "1 +- 0.01", hint)
 
 
-def drag_loses(m) -> Result:
+def drag_loses(m: Student) -> Result:
     _, e = run_spring(m, 1 / 60, 2.0, drag=0.01)
     ratio = float(e[-60:].mean() / e[:60].mean())
     expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
@@ -122,7 +122,7 @@ def drag_loses(m) -> Result:
                   "(x - x_prev) + a h^2 (the slide's 2 -> 1.99). Did you ignore drag?")
 
 
-def inputs_kept(m) -> Result:
+def inputs_kept(m: Student) -> Result:
     rng = np.random.default_rng(1)
     x, x_prev, a = rng.normal(size=(3, 4, 2)) * 10
     x0, a0 = x.copy(), a.copy()
