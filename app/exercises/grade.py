@@ -8,6 +8,8 @@ Every check (and the import before them) runs in a child process forked from the
   * a check that runs longer than the time limit (an endless loop) is killed and failed;
   * a child that dies (pymunk aborts the process on some values) is a failed check, not a crash.
 Forking costs a few milliseconds per check: NumPy and pymunk are already loaded in the parent.
+(Windows cannot fork: there the checks run in the grader's process, which still catches every
+exception but cannot stop an endless loop.)
 The student's prints go to stderr, so `--json` output stays clean.
 """
 
@@ -28,6 +30,7 @@ from app.exercises.base import BadAnswer, Check, Exercise
 from app.scene import SceneError
 
 CHECK_TIMEOUT = 10.0        # seconds a check may run before it counts as an endless loop
+CAN_FORK = "fork" in multiprocessing.get_all_start_methods()
 REPO = Path(__file__).resolve().parents[2]
 STARTERS = REPO / "exercises"
 
@@ -158,8 +161,12 @@ def _child(conn, exercise: Exercise, check: Check | None, path: str | None) -> N
 
 def run_isolated(exercise: Exercise, check: Check | None, path: str | None,
                  timeout: float) -> CheckReport:
-    """Run one check in a forked child; kill it after `timeout` seconds."""
+    """Run one check in a forked child; kill it after `timeout` seconds. Where the system cannot
+    fork (Windows), the check runs in this process: exceptions are still caught, but an endless
+    loop cannot be stopped there."""
     name = check.name if check else "imports"
+    if not CAN_FORK:
+        return _run_check(exercise, check, path)
     ctx = multiprocessing.get_context("fork")
     receive, send = ctx.Pipe(duplex=False)
     proc = ctx.Process(target=_child, args=(send, exercise, check, path), daemon=True)
