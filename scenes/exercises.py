@@ -35,6 +35,7 @@ import pymunk
 
 from app.draw.hud import Line, text_box
 from app.exercises import get_exercise
+from app.exercises.base import BadAnswer, array_of
 from app.exercises.grade import load_module, shown, starter_path, student_traceback
 from app.pymunk_scene import PymunkScene
 from app.scene import Effect, Param, Scene, SceneError, common
@@ -199,8 +200,11 @@ class _Springs:
 
     def step(self, h: float) -> None:
         self.h = h
-        self.x, self.x_prev = self.verlet_step(self.x, self.x_prev, self.accel(), h, self.drag)
-        self.x, self.x_prev = np.asarray(self.x, float), np.asarray(self.x_prev, float)
+        out = self.verlet_step(self.x, self.x_prev, self.accel(), h, self.drag)
+        if not isinstance(out, tuple) or len(out) != 2:
+            raise BadAnswer(f"verlet_step returned {type(out).__name__}; expected (x_new, x)")
+        self.x = array_of(out[0], self.anchor.shape, "verlet_step")
+        self.x_prev = array_of(out[1], self.anchor.shape, "verlet_step")
 
     def energy(self) -> float:
         v = (self.x - self.x_prev) / self.h if self.h else np.zeros_like(self.x)
@@ -271,7 +275,7 @@ class _Cloth:
         self.x, self.x_prev = self.verlet(self.x, self.x_prev, acc, h, 0.01)
         out = self.satisfy_rods(self.x.copy(), self.a, self.b, self.rest, self.w,
                                      self.iterations)
-        self.x = np.asarray(out, dtype=float).reshape(self.x.shape)
+        self.x = array_of(out, self.x.shape, "satisfy_rods")
 
     def stretch(self) -> float:
         return float(np.abs(np.linalg.norm(self.x[self.b] - self.x[self.a], axis=1)
@@ -334,8 +338,8 @@ class _Rope:
         self.fixed = np.empty((0, 2))
 
     def step(self, h: float) -> None:
-        self.f = np.asarray(self.spring_forces(self.x, self.v, self.a, self.b, 2000.0,
-                                                    self.kd, self.rest), dtype=float)
+        self.f = array_of(self.spring_forces(self.x, self.v, self.a, self.b, 2000.0, self.kd,
+                                             self.rest), self.x.shape, "spring_forces")
         self.v = (self.v + h * (self.f + np.array([0.0, 900.0]))) * self.free
         self.x = self.x + h * self.v
 
@@ -389,7 +393,7 @@ class _Pendulum:
         return np.array([y[1], -900.0 / _Pendulum.LENGTH * math.sin(y[0])])
 
     def step(self, h: float) -> None:
-        self.y = np.asarray(self.stepper(self.f, self.t, self.y, h), dtype=float).reshape(2)
+        self.y = array_of(self.stepper(self.f, self.t, self.y, h), (2,), self.stepper.__name__)
         self.t += h
         self.x = self.points()
 
@@ -485,8 +489,9 @@ class _Chain:
 
     def step(self, h: float) -> None:
         def f(t, y):
-            return np.asarray(self.derivative(y.copy(), self.masses, self.forces), float)
-        self.y = np.asarray(self.rk4(f, 0.0, self.y, h), dtype=float).reshape(self.y.shape)
+            return array_of(self.derivative(y.copy(), self.masses, self.forces), y.shape,
+                            "derivative")
+        self.y = self.rk4(f, 0.0, self.y, h)
 
     @property
     def x(self) -> np.ndarray:
