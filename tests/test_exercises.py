@@ -283,3 +283,19 @@ def test_without_fork_the_checks_run_in_process_and_still_catch_exceptions(monke
     report = checks_of(grade(get_exercise("verlet"), path))
     assert "ValueError: drag is not supported yet" in report.pop("drag loses energy").error
     assert all(c.passed for c in report.values())
+
+
+def test_rod_batches_share_no_particle_and_cover_every_rod_once():
+    from app.physics.jakobsen import rod_batches
+    rows = 12
+    r, c = np.mgrid[0:rows, 0:rows]
+    idx = r * rows + c
+    a = np.concatenate([idx[:, :-1].ravel(), idx[:-1, :].ravel(), idx[:-1, :-1].ravel()])
+    b = np.concatenate([idx[:, 1:].ravel(), idx[1:, :].ravel(), idx[1:, 1:].ravel()])
+    batches = rod_batches(a, b, rows * rows)
+    every = np.sort(np.concatenate(batches))
+    assert np.array_equal(every, np.arange(len(a)))
+    for k in batches:
+        ends = np.concatenate([a[k], b[k]])
+        assert len(np.unique(ends)) == len(ends)          # no particle twice in a batch
+    assert len(batches) < 20        # a handful of batches, not one per rod (385 rods here)
