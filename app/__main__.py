@@ -7,6 +7,7 @@
                   [--input EVENTS.json] [--screenshot OUT.png] [--json]
     python -m app --headless --scene all   every scene in turn
     python -m app bench [cloth|integrators|pymunk|all] [--json] [--out DIR] [--quick]
+    python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
 
 Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.
 """
@@ -103,6 +104,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if argv and argv[0] == "bench":
             return bench_main(argv[1:])
+        if argv and argv[0] == "exercise":
+            return exercise_main(argv[1:])
         return app_main(argv)
     except UsageError as e:
         print(f"python -m app: error: {e}", file=sys.stderr)
@@ -119,7 +122,7 @@ def app_main(argv: list[str]) -> int:
             print(f"{cls.name:18} {cls.title}")
         return EXIT_OK
 
-    accepted = ", ".join(scene_names())
+    accepted = ", ".join(scene_names()) + ", exercise:NAME"
     if args.scene is None:
         classes = []
     elif args.scene == "all":
@@ -203,6 +206,59 @@ def bench_main(argv: list[str]) -> int:
         raise UsageError(problem)
     use_dummy_video()
     return run_benchmarks(args.which, args.json, args.out, args.quick)
+
+
+def exercise_main(argv: list[str]) -> int:
+    """`exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`."""
+    from app.exercises import cli, exercise_names, get_exercise
+    from app.exercises.grade import CHECK_TIMEOUT, shown, starter_path
+    names = exercise_names()
+    p = _Parser(prog="python -m app exercise", description="student exercises: list them, "
+                "grade an answer, copy the starters")
+    sub = p.add_subparsers(dest="command", metavar="list|check|copy")
+    sub.add_parser("list", help="name, title and slide of every exercise")
+    c = sub.add_parser("check", help="grade an answer (headless)")
+    c.add_argument("name", help=f"accepted: {', '.join(names)}, all")
+    c.add_argument("--path", help="the file to grade (default exercises/NAME.py); with 'all': "
+                   "a folder holding NAME.py files")
+    c.add_argument("--reference", action="store_true", help="grade the lab's own answer")
+    c.add_argument("--json", action="store_true", help="one JSON object per exercise")
+    c.add_argument("--timeout", type=_positive_float, default=CHECK_TIMEOUT,
+                   help=f"seconds a check may run (default {CHECK_TIMEOUT:g})")
+    k = sub.add_parser("copy", help="copy the starters into a folder of your own")
+    k.add_argument("folder")
+    args = p.parse_args(argv)
+    if args.command is None:
+        raise UsageError("exercise needs a command; accepted: list, check NAME|all, copy DIR")
+    if args.command == "list":
+        return cli.list_exercises()
+    if args.command == "copy":
+        if os.path.exists(args.folder) and not os.path.isdir(args.folder):
+            raise UsageError(f"copy: '{args.folder}' is a file; accepted: a folder")
+        taken = cli.existing_copies(args.folder)
+        if taken:
+            raise UsageError(f"copy: '{taken[0]}' exists; nothing copied (your work is never "
+                             "overwritten): pick another folder or move it away")
+        return cli.copy(args.folder)
+    if args.name != "all" and get_exercise(args.name) is None:
+        raise UsageError(f"unknown exercise {args.name!r}; accepted: {', '.join(names)}, all")
+    if args.reference and args.path:
+        raise UsageError("--reference grades the lab's own answer; it takes no --path")
+    chosen = [get_exercise(n) for n in (names if args.name == "all" else [args.name])]
+    if args.reference:
+        paths: list[str | None] = [None] * len(chosen)
+    elif args.name == "all":
+        folder = args.path
+        if folder is not None and not os.path.isdir(folder):
+            raise UsageError(f"--path '{folder}': with 'all' it names a folder of NAME.py files")
+        paths = [shown(os.path.join(folder, f"{e.name}.py")) if folder else
+                 shown(starter_path(e.name)) for e in chosen]
+    else:
+        paths = [args.path or shown(starter_path(args.name))]
+        if not os.path.isfile(paths[0]):
+            raise UsageError(f"--path '{paths[0]}': no such file; accepted: a .py file, e.g. "
+                             f"exercises/{args.name}.py")
+    return cli.check(chosen, paths, args.json, args.timeout)
 
 
 if __name__ == "__main__":

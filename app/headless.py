@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene
+from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -153,6 +153,7 @@ class RunResult:
     step_seconds: list[float] = field(default_factory=list)
     finite: bool = True
     events: int = 0
+    error: str | None = None        # a SceneError's message (e.g. a student's exception)
 
     def summary(self) -> dict[str, Any]:
         """The JSON summary object of DESIGN.md."""
@@ -170,6 +171,7 @@ class RunResult:
             "state_hash": s.state_hash(),
             "finite": self.finite,
             "events": self.events,
+            "error": self.error,
         }
 
 
@@ -200,7 +202,11 @@ def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) 
             deliver(scene, pending[nxt])
             nxt += 1
         t0 = time.perf_counter()
-        scene.advance()
+        try:
+            scene.advance()
+        except SceneError as e:               # reported, and `--scene all` goes on
+            result.error = str(e)
+            break
         times[k] = time.perf_counter() - t0
         result.steps += 1
         if not scene.is_finite():
@@ -286,6 +292,10 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                   f"{result.steps} (t = {result.steps * scene.dt:.3f} s); try a smaller dt "
                   f"(raise hertz) or more substeps", file=sys.stderr)
             nonfinite = True
+        if result.error is not None:
+            print(f"{scene.name}: stopped at step {result.steps + 1}:\n{result.error}",
+                  file=sys.stderr)
+            nonfinite = True        # exit 1, like a run that went non-finite
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
@@ -300,5 +310,7 @@ def describe(summary: dict[str, Any]) -> str:
              f"  metrics: {metrics}"]
     if summary.get("screenshot"):
         lines.append(f"  screenshot: {summary['screenshot']}")
+    if summary.get("error"):
+        lines.append(f"  error: {summary['error'].splitlines()[-1]} (details on stderr)")
     return "\n".join(lines)
 

@@ -99,6 +99,31 @@ TRAIL_COLOR = (86, 180, 233)
 MARK_COLOR = (230, 97, 76)
 
 
+def build_double_pendulum(space: pymunk.Space, anchor: tuple[float, float],
+                          lengths: tuple[float, float], masses: tuple[float, float],
+                          angles: tuple[float, float]) -> tuple[pymunk.Body, pymunk.Body]:
+    """The lecture's exercise (and the reference answer of exercises/double_pendulum.py): two
+    bobs on PinJoint rods from `anchor`, at `angles` (radians from straight down, y down), the
+    joints correcting their whole length error every step (error_bias 0). Returns the bobs."""
+    (l1, l2), (t1, t2) = lengths, angles
+    p1 = (anchor[0] + l1 * math.sin(t1), anchor[1] + l1 * math.cos(t1))
+    p2 = (p1[0] + l2 * math.sin(t2), p1[1] + l2 * math.cos(t2))
+    bobs = []
+    for mass, pos in zip(masses, (p1, p2)):
+        body = pymunk.Body(mass, pymunk.moment_for_circle(mass, 0, BOB_RADIUS))
+        body.position = pos
+        shape = pymunk.Circle(body, BOB_RADIUS)       # for grabbing; bobs never collide
+        shape.filter = pymunk.ShapeFilter(group=1)
+        space.add(body, shape)
+        bobs.append(body)
+    joints = [pymunk.PinJoint(space.static_body, bobs[0], anchor, (0, 0)),
+              pymunk.PinJoint(bobs[0], bobs[1], (0, 0), (0, 0))]
+    for joint in joints:
+        joint.error_bias = 0.0
+    space.add(*joints)
+    return bobs[0], bobs[1]
+
+
 class DoublePendulumScene(PymunkScene):
     """Double pendulum: pymunk's bobs on pin joints beside an orange ghost integrated from the
     equations of motion with RK4 at a step that keeps its energy exact. Released high, the motion is chaotic and the two
@@ -123,25 +148,21 @@ class DoublePendulumScene(PymunkScene):
         p = self.p
         t1, t2 = math.radians(p["angle1"]), math.radians(p["angle2"])
         l1, l2 = p["length1"], p["length2"]
-        p1 = (PIVOT[0] + l1 * math.sin(t1), PIVOT[1] + l1 * math.cos(t1))
-        p2 = (p1[0] + l2 * math.sin(t2), p1[1] + l2 * math.cos(t2))
-        self.bobs: list[pymunk.Body] = []
-        for mass, pos in ((p["mass1"], p1), (p["mass2"], p2)):
-            body = pymunk.Body(mass, pymunk.moment_for_circle(mass, 0, BOB_RADIUS))
-            body.position = pos
-            shape = pymunk.Circle(body, BOB_RADIUS)       # for grabbing; bobs never collide
-            shape.filter = pymunk.ShapeFilter(group=1)
-            space.add(body, shape)
-            self.bobs.append(body)
-        self.joints = [pymunk.PinJoint(space.static_body, self.bobs[0], PIVOT, (0, 0)),
-                       pymunk.PinJoint(self.bobs[0], self.bobs[1], (0, 0), (0, 0))]
-        space.add(*self.joints)
+        self.bobs: list[pymunk.Body] = list(self.add_bobs(space, (l1, l2), (t1, t2)))
+        self.joints: list[pymunk.Constraint] = list(space.constraints)   # the two rods
         self.ode = DoublePendulumODE(l1, l2, p["mass1"], p["mass2"], self.gravity(),
                                      (t1, t2, 0, 0))
         n = max(2, round(p["trail_seconds"] * p["hertz"]))
         self.trail = Ring(n, 2)            # the tip's last positions, one per physics step
         self.ghost_trail = Ring(n, 2)
         self.new_release()
+
+    def add_bobs(self, space: pymunk.Space, lengths: tuple[float, float],
+                 angles: tuple[float, float]) -> tuple[pymunk.Body, pymunk.Body]:
+        """The two bobs on their rods (the exercise scene replaces this with the student's
+        build_double_pendulum)."""
+        return build_double_pendulum(space, PIVOT, lengths, (self.p["mass1"], self.p["mass2"]),
+                                     angles)
 
     def new_release(self) -> None:
         """Start comparing from the engine's state now: the ghost takes it over, the energy now is

@@ -104,6 +104,42 @@ STRING_COLOR = (200, 200, 210)
 REST_COLOR = (90, 95, 110)
 
 
+def build_cradle(space: pymunk.Space, balls: int, radius: float, lifted: int, *,
+                 gap: float = 0.02, angle: float = 30.0, elasticity: float = 0.9999999,
+                 centre_x: float = 480.0) -> list[pymunk.Body]:
+    """The classwork (and the reference answer of exercises/newtons_cradle.py): `balls` balls
+    hanging on STRING-long strings from anchors on the bar at ANCHOR_Y, `gap` px apart at rest,
+    centred on centre_x; the first `lifted` are pulled out to the left by `angle` degrees.
+    Returns the bodies in order along the row."""
+    pitch = 2 * radius + gap
+    lift = math.radians(angle)
+    bodies = []
+    for i in range(balls):
+        ax, ay = centre_x + (i - (balls - 1) / 2) * pitch, ANCHOR_Y
+        body = pymunk.Body(MASS, pymunk.moment_for_circle(MASS, 0, radius))
+        th = -lift if i < lifted else 0.0       # the first k balls are pulled out to the left
+        body.position = (ax + STRING * math.sin(th), ay + STRING * math.cos(th))
+        ball = pymunk.Circle(body, radius)
+        ball.elasticity = elasticity
+        ball.friction = 0.0
+        string = pymunk.PinJoint(space.static_body, body, (ax, ay), (0, 0))
+        string.error_bias = 0.0                # correct the whole length error every step
+        space.add(body, ball, string)
+        bodies.append(body)
+    return bodies
+
+
+def string_of(space: pymunk.Space, body: pymunk.Body) -> tuple[pymunk.PinJoint, tuple]:
+    """The PinJoint that hangs `body` from a static body, and its anchor point in the world."""
+    for joint in space.constraints:
+        if isinstance(joint, pymunk.PinJoint) and body in (joint.a, joint.b):
+            other, anchor = (joint.b, joint.anchor_b) if joint.a is body else (joint.a,
+                                                                              joint.anchor_a)
+            if other.body_type == pymunk.Body.STATIC:
+                return joint, tuple(other.local_to_world(anchor))
+    raise ValueError("a ball hangs on no string (a PinJoint to a static body)")
+
+
 class NewtonsCradleScene(PymunkScene):
     """Newton's cradle: lift k balls, release, and k balls swing out at the other end while the
     middle ones stay still, if the impulse solver sees one two-ball collision at a time. The HUD
@@ -138,28 +174,19 @@ class NewtonsCradleScene(PymunkScene):
     def build_space(self, space: pymunk.Space) -> None:
         space.collision_slop = SLOP
         space.damping = self.p["damping"]
-        n = self.p["balls"]
-        k = self.p["lifted"]                   # at most n - 1 (check_combination)
-        pitch = 2 * RADIUS + self.p["gap"]
-        w = self.world_size[0]
-        self.anchors = np.array([(w / 2 + (i - (n - 1) / 2) * pitch, ANCHOR_Y) for i in range(n)])
-        self.rest = self.anchors + (0.0, STRING)
-        self.bodies: list[pymunk.Body] = []
-        self.strings: list[pymunk.PinJoint] = []
-        lift = math.radians(self.p["angle"])
-        for i, (ax, ay) in enumerate(self.anchors):
-            body = pymunk.Body(MASS, pymunk.moment_for_circle(MASS, 0, RADIUS))
-            th = -lift if i < k else 0.0       # the first k balls are pulled out to the left
-            body.position = (ax + STRING * math.sin(th), ay + STRING * math.cos(th))
-            ball = pymunk.Circle(body, RADIUS)
-            ball.elasticity = self.p["elasticity"]
-            ball.friction = 0.0
-            string = pymunk.PinJoint(space.static_body, body, (ax, ay), (0, 0))
-            string.error_bias = 0.0            # correct the whole length error every step
-            space.add(body, ball, string)
-            self.bodies.append(body)
-            self.strings.append(string)
-        self.arm(k)
+        self.bodies: list[pymunk.Body] = self.add_balls(space)
+        strings = [string_of(space, b) for b in self.bodies]
+        self.strings: list[pymunk.PinJoint] = [joint for joint, _ in strings]
+        self.anchors = np.array([anchor for _, anchor in strings])
+        self.rest = self.anchors + np.array([(0.0, s.distance) for s in self.strings])
+        self.arm(self.p["lifted"])
+
+    def add_balls(self, space: pymunk.Space) -> list[pymunk.Body]:
+        """The balls on their strings, in order along the row (the exercise scene replaces this
+        with the student's build_cradle)."""
+        return build_cradle(space, self.p["balls"], RADIUS, self.p["lifted"], gap=self.p["gap"],
+                            angle=self.p["angle"], elasticity=self.p["elasticity"],
+                            centre_x=self.world_size[0] / 2)
 
     def arm(self, k: int, side: int = +1) -> None:
         """Start a measurement: k balls count as lifted, at the left end (side +1, they swing in

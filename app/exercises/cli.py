@@ -1,0 +1,59 @@
+"""`python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`.
+
+The command line's parser (app/__main__.py) checks the usage; these functions do the work and
+return the exit code: 0 every check passed, 1 a check failed.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+
+from app.exercises import EXERCISES, Exercise
+from app.exercises.grade import CHECK_TIMEOUT, Report, grade, shown, starter_path
+
+
+def list_exercises() -> int:
+    for e in EXERCISES:
+        print(f"{e.name:18} {e.title}\n{'':18} slide: {e.slide}")
+    return 0
+
+
+def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
+          timeout: float = CHECK_TIMEOUT) -> int:
+    """Grade each exercise on its file (None: the lab's reference); print the reports (and a
+    summary table for more than one)."""
+    reports: list[Report] = []
+    for exercise, path in zip(exercises, paths):
+        report = grade(exercise, path, timeout)
+        reports.append(report)
+        if as_json:
+            print(json.dumps(report.to_json()), flush=True)
+        else:
+            print(report.text() + "\n", flush=True)
+    if len(reports) > 1 and not as_json:
+        print(f"{'exercise':18} {'checks':>7}  result")
+        for r in reports:
+            n = sum(c.passed for c in r.checks)
+            print(f"{r.exercise:18} {n:>3}/{len(r.checks):<3}  {'pass' if r.passed else 'FAIL'}")
+    return 0 if all(r.passed for r in reports) else 1
+
+
+def existing_copies(folder: str) -> list[str]:
+    return [os.path.join(folder, f"{e.name}.py") for e in EXERCISES
+            if os.path.exists(os.path.join(folder, f"{e.name}.py"))]
+
+
+def copy(folder: str) -> int:
+    """Copy every starter into `folder` (the caller has checked that none exists there yet)."""
+    os.makedirs(folder, exist_ok=True)
+    for e in EXERCISES:
+        shutil.copyfile(starter_path(e.name), os.path.join(folder, f"{e.name}.py"))
+    where = shown(folder)
+    print(f"copied {len(EXERCISES)} exercises to {where}/: "
+          + ", ".join(f"{e.name}.py" for e in EXERCISES))
+    print(f"grade one:   python -m app exercise check verlet --path {where}/verlet.py")
+    print(f"grade all:   python -m app exercise check all --path {where}")
+    print(f"run it live: python -m app --scene exercise:{where}/verlet.py")
+    return 0

@@ -1,0 +1,301 @@
+"""Student exercises: every grader passes the lab's own answer, fails the untouched starter on
+every check (cleanly, with the NotImplementedError message), and fails each typical wrong answer
+in tests/exercise_answers/ on the check that names its mistake. The grader survives syntax
+errors, missing packages, exceptions and endless loops; the command line and the exercise scenes
+report them without crashing."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pygame
+import pytest
+
+from app.__main__ import main
+from app.exercises import EXERCISES, get_exercise
+from app.exercises.grade import grade, starter_path
+from app.headless import run_headless
+from app.scene import SceneError
+from scenes.exercises import SCENES as EXERCISE_SCENES
+from scenes.exercises import exercise_scene
+from tests.toy_scenes import Toy
+
+ANSWERS = Path(__file__).parent / "exercise_answers"
+NAMES = [e.name for e in EXERCISES]
+
+# wrong answer -> (exercise, the check that names its mistake)
+WRONG = {
+    "verlet_euler": ("verlet", "free fall"),
+    "verlet_a_h": ("verlet", "order 2 on a spring"),
+    "verlet_in_place": ("verlet", "inputs kept"),
+    "verlet_no_drag": ("verlet", "drag loses energy"),
+    "constraints_equal_shares": ("constraints", "shares by inverse mass"),
+    "constraints_no_length": ("constraints", "one rod, one pass"),
+    "constraints_no_guard": ("constraints", "coincident particles"),
+    "spring_no_unit": ("spring", "Hooke part"),
+    "spring_unprojected_damping": ("spring", "damping part"),
+    "spring_fancy_index": ("spring", "Hooke part"),
+    "spring_damping_sign": ("spring", "damping removes energy"),
+    "rk4_equal_weights": ("rk4", "RK4 order, spring"),
+    "rk4_full_step_midpoint": ("rk4", "midpoint order, spring"),
+    "rk4_no_stage_times": ("rk4", "RK4 stage times"),
+    "solver_no_clear": ("solver_interface", "clears forces"),
+    "solver_no_mass": ("solver_interface", "a = f / m"),
+    "solver_swapped": ("solver_interface", "dx/dt = v"),
+    "cradle_half_elastic": ("newtons_cradle", "energy kept"),
+    "cradle_pressed": ("newtons_cradle", "1 in, 1 out"),
+    "pendulum_soft_joints": ("double_pendulum", "energy kept"),
+    "pendulum_y_up": ("double_pendulum", "built as asked"),
+    "l_slide_too_long": ("pivoting_l", "stops at the slide max"),
+    "l_off_centre": ("pivoting_l", "the L"),
+}
+
+
+def checks_of(report) -> dict:
+    return {c.name: c for c in report.checks}
+
+
+# ----- the three ways -----------------------------------------------------------------------------
+@pytest.mark.parametrize("name", NAMES)
+def test_the_reference_passes_every_check(name):
+    report = grade(get_exercise(name), None)
+    assert report.passed, report.text()
+    assert len(report.checks) == len(get_exercise(name).checks) >= 3
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_the_untouched_starter_fails_every_check_cleanly(name):
+    path = str(starter_path(name))
+    report = grade(get_exercise(name), path)
+    assert [c.name for c in report.checks] == [c.name for c in get_exercise(name).checks]
+    for c in report.checks:
+        assert not c.passed
+        assert c.measured == "not written yet", report.text()
+        assert "NotImplementedError: write me" in c.error
+        assert f'File "{path}", line ' in c.error        # their file and line, nothing else
+        assert "app/exercises" not in c.error
+
+
+@pytest.mark.parametrize("answer", sorted(WRONG))
+def test_a_typical_wrong_answer_fails_the_check_that_names_it(answer):
+    name, mistake = WRONG[answer]
+    report = grade(get_exercise(name), str(ANSWERS / f"{answer}.py"), only=(mistake,))
+    failed = checks_of(report)[mistake]
+    assert not failed.passed, report.text()
+    assert failed.hint and failed.measured and failed.bound
+
+
+def test_every_exercise_has_two_wrong_answers_and_a_starter_that_names_its_functions():
+    for e in EXERCISES:
+        assert sum(1 for ex, _ in WRONG.values() if ex == e.name) >= 2, e.name
+        text = starter_path(e.name).read_text()
+        assert text.startswith('"""Exercise `' + e.name + '`')
+        for f in e.functions:
+            assert f"def {f}(" in text
+        assert e.name in EXERCISE_SCENES
+
+
+# ----- robustness ---------------------------------------------------------------------------------
+def test_a_syntax_error_is_a_failed_check_with_the_file_and_line():
+    path = str(ANSWERS / "verlet_syntax_error.py")
+    report = grade(get_exercise("verlet"), path)
+    first, rest = report.checks[0], report.checks[1:]
+    assert first.name == "imports" and not first.passed
+    assert "SyntaxError" in first.error and "verlet_syntax_error.py" in first.error
+    assert "line 4" in first.error
+    assert rest and all(not c.passed and "not run" in c.error for c in rest)
+
+
+def test_a_missing_package_is_a_failed_check_with_the_file_and_line():
+    path = str(ANSWERS / "verlet_missing_package.py")
+    first = grade(get_exercise("verlet"), path).checks[0]
+    assert not first.passed
+    assert "ModuleNotFoundError" in first.error and "numpy_but_faster_xyz" in first.error
+    assert f'File "{path}", line 2' in first.error
+
+
+def test_an_exception_in_one_check_fails_that_check_and_the_others_still_run():
+    path = str(ANSWERS / "verlet_raises_with_drag.py")
+    report = checks_of(grade(get_exercise("verlet"), path))
+    failed = report.pop("drag loses energy")
+    assert f'File "{path}", line 7, in verlet_step' in failed.error
+    assert "ValueError: drag is not supported yet" in failed.error
+    assert all(c.passed for c in report.values())
+
+
+def test_an_endless_loop_is_stopped_and_the_grader_goes_on():
+    report = grade(get_exercise("verlet"), str(ANSWERS / "verlet_endless.py"), timeout=0.2)
+    assert len(report.checks) == 5
+    for c in report.checks:
+        assert not c.passed and "stopped after 0.2 s" in c.error
+
+
+# ----- the command line ---------------------------------------------------------------------------
+def test_exercise_list_names_every_exercise_and_its_slide(capsys):
+    assert main(["exercise", "list"]) == 0
+    out = capsys.readouterr().out
+    for e in EXERCISES:
+        assert e.name in out and e.title in out
+    assert out.count("slide:") == len(EXERCISES)
+
+
+def test_check_exit_codes_and_json(capsys):
+    assert main(["exercise", "check", "spring", "--reference", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["passed"] and report["exercise"] == "spring"
+    assert {"name", "passed", "measured", "bound", "hint", "error"} <= set(report["checks"][0])
+    assert main(["exercise", "check", "spring"]) == 1          # the untouched starter
+    out = capsys.readouterr().out
+    assert "FAIL" in out and "NotImplementedError: write me" in out
+
+
+@pytest.mark.parametrize("argv", [
+    ["exercise"], ["exercise", "frob"], ["exercise", "check", "nope"],
+    ["exercise", "check", "verlet", "--path", "no/such/file.py"],
+    ["exercise", "check", "verlet", "--reference", "--path", "x.py"],
+    ["exercise", "check", "all", "--path", "README.md"],
+    ["exercise", "check", "verlet", "--timeout", "0"],
+    ["--headless", "--scene", "exercise:nope"],
+])
+def test_bad_usage_exits_2_with_one_line(argv, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("python -m app: error:"), err
+
+
+def test_copy_then_check_with_path(tmp_path, capsys):
+    folder = tmp_path / "mywork"
+    assert main(["exercise", "copy", str(folder)]) == 0
+    out = capsys.readouterr().out
+    assert f"--path {folder}/verlet.py" in out or "--path" in out
+    for e in EXERCISES:
+        assert (folder / f"{e.name}.py").read_text() == starter_path(e.name).read_text()
+    # a student's edits are never overwritten
+    shutil.copyfile(ANSWERS / "verlet_no_drag.py", folder / "verlet.py")
+    assert main(["exercise", "copy", str(folder)]) == 2
+    assert "exists" in capsys.readouterr().err
+    assert (folder / "verlet.py").read_text() == (ANSWERS / "verlet_no_drag.py").read_text()
+    # grading the copy: the wrong answer fails only its drag check
+    assert main(["exercise", "check", "verlet", "--path", str(folder / "verlet.py"), "--json"]) == 1
+    report = json.loads(capsys.readouterr().out)
+    assert [c["name"] for c in report["checks"] if not c["passed"]] == ["drag loses energy"]
+
+
+def test_check_all_prints_a_summary_table(tmp_path, capsys):
+    folder = tmp_path / "w"
+    folder.mkdir()
+    shutil.copyfile(ANSWERS / "verlet_syntax_error.py", folder / "verlet.py")
+    assert main(["exercise", "check", "all", "--path", str(folder), "--timeout", "5"]) == 1
+    out = capsys.readouterr().out
+    table = out[out.index("exercise "):].splitlines()
+    assert len(table) == 1 + len(EXERCISES)
+    assert table[1].split()[:2] == ["verlet", "0/6"]        # imports + 5 checks, all failed
+    assert all(line.split()[-1] == "FAIL" for line in table[1:])   # missing files fail too
+
+
+# ----- the exercise scenes ------------------------------------------------------------------------
+@pytest.mark.parametrize("name", NAMES)
+def test_each_exercise_scene_runs_the_reference_beside_the_lab(name):
+    cls = exercise_scene(name, student=get_exercise(name).reference())
+    scene = cls({})
+    snap, start = scene.snapshot(), scene.state_hash()    # the window's rollback copies it
+    for _ in range(20):
+        scene.advance()
+    scene.restore(snap)
+    assert scene.state_hash() == start
+    for _ in range(20):
+        scene.advance()
+    assert scene.error is None and scene.is_finite()
+    metrics = scene.metrics()
+    assert metrics and all(v is None or np.isfinite(v) for v in metrics.values())  # None: not yet
+    for key in ("apart_px", "rk4_apart_rad", "midpoint_apart_rad"):
+        if key in metrics:                  # the student's copy IS the lab's here
+            assert metrics[key] == 0.0
+    surface = pygame.Surface(scene.world_size)
+    scene.draw(surface, __import__("app.draw.view", fromlist=["View"]).View())
+    assert scene.hud_lines()
+
+
+def test_a_scene_whose_build_failed_raises_scene_error_on_the_first_step():
+    path = str(ANSWERS / "verlet_syntax_error.py")
+    scene = exercise_scene("verlet", path=path)({})        # the constructor does not raise
+    assert scene.metrics() == {} and "SyntaxError" in " ".join(scene.hud_lines())
+    scene.draw(pygame.Surface(scene.world_size), __import__("app.draw.view",
+                                                           fromlist=["View"]).View())
+    with pytest.raises(SceneError, match="SyntaxError"):
+        scene.advance()
+
+
+def test_a_student_exception_in_a_step_is_a_scene_error_with_their_line():
+    path = str(ANSWERS / "verlet_raises_with_drag.py")
+    scene = exercise_scene("verlet", path=path)({"drag": 0.01})
+    with pytest.raises(SceneError) as info:
+        scene.advance()
+    assert f'File "{path}", line 7' in str(info.value)
+    assert "ValueError: drag is not supported yet" in str(info.value)
+
+
+def test_headless_starter_scene_exits_1_with_the_message(capsys):
+    assert main(["--headless", "--scene", "exercise:verlet", "--steps", "5", "--json"]) == 1
+    captured = capsys.readouterr()
+    summary = json.loads(captured.out)
+    assert summary["steps"] == 0 and "NotImplementedError: write me" in summary["error"]
+    assert 'File "exercises/verlet.py", line' in captured.err or "verlet.py" in captured.err
+    assert "NotImplementedError: write me" in captured.err
+
+
+def test_headless_goes_on_after_a_scene_error(capsys):
+    starter = exercise_scene("verlet")
+    assert run_headless([starter, Toy], {}, 3, None, None, None, True) == 1
+    lines = capsys.readouterr().out.splitlines()
+    first, second = (json.loads(x) for x in lines)
+    assert first["error"] and second["scene"] == "toy" and second["error"] is None
+    assert second["steps"] == 3
+
+
+def test_rk4_scene_docstring_numbers_at_hertz_2():
+    # "at hertz 2 from 120 degrees, after 6 s the midpoint pendulum has 2.2 times its energy and
+    # RK4 92% of it"
+    scene = exercise_scene("rk4", student=get_exercise("rk4").reference())({"hertz": 2})
+    for _ in range(12):
+        scene.advance()
+    m = scene.metrics()
+    assert round(m["midpoint_energy_ratio"], 1) == 2.2
+    assert round(m["rk4_energy_ratio"], 2) == 0.92
+
+
+def test_a_process_that_dies_is_a_failed_check_not_a_crash():
+    # pymunk aborts the whole process on some values; os._exit stands in for it here
+    report = grade(get_exercise("verlet"), str(ANSWERS / "verlet_exits.py"))
+    assert len(report.checks) == 5
+    for c in report.checks:
+        assert not c.passed and "exit code 3" in c.measured
+
+
+def test_without_fork_the_checks_run_in_process_and_still_catch_exceptions(monkeypatch):
+    import app.exercises.grade as grading
+    monkeypatch.setattr(grading, "CAN_FORK", False)
+    path = str(ANSWERS / "verlet_raises_with_drag.py")
+    report = checks_of(grade(get_exercise("verlet"), path))
+    assert "ValueError: drag is not supported yet" in report.pop("drag loses energy").error
+    assert all(c.passed for c in report.values())
+
+
+def test_rod_batches_share_no_particle_and_cover_every_rod_once():
+    from app.physics.jakobsen import rod_batches
+    rows = 12
+    r, c = np.mgrid[0:rows, 0:rows]
+    idx = r * rows + c
+    a = np.concatenate([idx[:, :-1].ravel(), idx[:-1, :].ravel(), idx[:-1, :-1].ravel()])
+    b = np.concatenate([idx[:, 1:].ravel(), idx[1:, :].ravel(), idx[1:, 1:].ravel()])
+    batches = rod_batches(a, b, rows * rows)
+    every = np.sort(np.concatenate(batches))
+    assert np.array_equal(every, np.arange(len(a)))
+    for k in batches:
+        ends = np.concatenate([a[k], b[k]])
+        assert len(np.unique(ends)) == len(ends)          # no particle twice in a batch
+    assert len(batches) < 20        # a handful of batches, not one per rod (385 rods here)
