@@ -10,10 +10,12 @@ opposite, so they never change the total momentum; with drag on, the dance settl
 stirs it up again. Physics: app/physics/particle_dance.py and app/physics/neighbours.py.
 
 The cost: the forces need every pair closer than R. `neighbour_method=all_pairs` tests all
-n (n - 1) / 2 pairs (O(n^2)); `grid` sorts the particles into cells R wide and tests only the
-particles of neighbouring cells (O(n) when they are spread out). The HUD shows the pair tests
-and the ms per step of the method in use: raise `particles` and switch the method live to see
-the cost grow like n^2 for one and like n for the other.
+n (n - 1) / 2 pairs, O(n^2); `grid` sorts the particles into cells at least R wide and tests only
+pairs from the same or neighbouring cells: 4.5 cells' worth per particle, O(n) at a fixed density.
+This box is fixed, so more particles means denser and the grid's tests grow like n^2 too, but
+from about 1/50 of all pairs at R = 40 (4.5 of 432 cells), after a fixed cost per particle for
+the sorting that makes all pairs the cheaper one below about 100-200 particles. The HUD shows the
+pair tests and the ms per step of the method in use: raise `particles` and switch the method live.
 
 Controls:
   LMB (held)  pull the particles near the cursor towards it (follow it around)
@@ -80,7 +82,7 @@ class ParticleDanceScene(Scene):
         Try("3000 particles, all pairs", {"particles": 3000, "neighbour_method": "all_pairs"},
             "the HUD's pair tests: 4.5 million per step, and the ms per step that costs"),
         Try("3000 particles, grid", {"particles": 3000, "neighbour_method": "grid"},
-            "the same forces from about 1/40 of the pair tests: compare the ms per step"),
+            "the same forces from about 1/50 of the pair tests: compare the ms per step"),
         Try("like your own kind", {"rules": "like_own", "species": 4},
             "each colour gathers into its own clusters; the RMB breaks them up, they re-form"),
         Try("no drag", {"drag_coef": 0.0},

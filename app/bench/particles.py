@@ -3,13 +3,15 @@
 The particle dance (app/physics/particle_dance.py) at its scene's default rule (3 species, random
 rule matrix from seed 0, cut-off 40 px, k_att 300, k_rep 1000 px/s^2, drag 1/s, walls) in the
 scene's 960 x 720 box, for n = 100 .. 5000 particles. For each n one state is made (n particles
-spread at random, then 30 steps with the grid, 5 with --quick, so the first clusters have formed)
+spread at random, then 120 steps (2 s) with the grid, 5 with --quick, so clusters have formed)
 and both neighbour methods step copies of that same state:
 
-1. ms per step (the median over repeated steps; search + forces + drag + walls) and the pair
-   tests per step of each method: all pairs makes n (n - 1) / 2 tests, the grid about
-   n x (particles in 4.5 cells); the chart puts ms per step against n on log axes, where cost
-   ~ n^2 is a line of slope 2 and cost ~ n a line of slope 1;
+1. ms per step (the median over repeated steps, the two methods taking turns; search + forces +
+   drag + walls) and the pair tests per step of each method: all pairs makes n (n - 1) / 2
+   tests, the grid about n x (the particles in 4.5 cells). The box is fixed, so the density
+   grows with n and both counts grow like n^2 (the grid's from ~1/50 of all pairs); on the
+   chart's log axes that is slope 2. The grid's time starts flatter (slope ~1: its cost per
+   particle, sorting and bookkeeping, dominates at small n) and bends towards slope 2;
 2. the n where the grid starts to win: interpolated (log-log) between the two sweep sizes where
    the ratio all_pairs / grid crosses 1;
 3. a frame of the scene at 2000 particles with the grid: one step plus drawing every particle
@@ -20,6 +22,9 @@ from __future__ import annotations
 
 import copy
 import math
+import statistics
+import time
+from typing import Callable
 
 import numpy as np
 import pygame
@@ -52,6 +57,21 @@ def make_dance(n: int, method: str, settle: int) -> ParticleDance:
     return dance
 
 
+def alternating(fns: dict[str, Callable[[], None]], repeats: int, number: int) -> dict[str, float]:
+    """Median ms of `number` calls of each fn, the fns taking turns repeat by repeat (one warm-up
+    call each first)."""
+    times: dict[str, list[float]] = {name: [] for name in fns}
+    for fn in fns.values():
+        fn()
+    for _ in range(repeats):
+        for name, fn in fns.items():
+            t0 = time.perf_counter()
+            for _ in range(number):
+                fn()
+            times[name].append((time.perf_counter() - t0) / number * 1000.0)
+    return {name: statistics.median(t) for name, t in times.items()}
+
+
 def crossover(ns: list[int], all_ms: list[float], grid_ms: list[float]) -> float | None:
     """The n from which the grid is faster for every larger size in the sweep: where
     log(all / grid) crosses 0, interpolated linearly in log n; None if the grid never wins
@@ -72,25 +92,29 @@ def crossover(ns: list[int], all_ms: list[float], grid_ms: list[float]) -> float
 def run(report: Report) -> dict:
     quick = report.quick
     sizes = QUICK_SIZES if quick else SIZES
-    settle = 5 if quick else 30
+    settle = 5 if quick else 120
     out: dict = {"box": list(BOX), "cutoff": 40.0, "species": SPECIES, "settle_steps": settle}
 
-    # 1. ms per step and pair tests, n x method, on the same state
+    # 1. ms per step and pair tests, n x method, on the same state; the two methods' repeats
+    # alternate, so a burst of load from another process hits both alike
     scaling, rows = [], []
     for n in sizes:
+        report.progress(f"n = {n}, both methods")
         base = make_dance(n, "grid", settle)
+        dances = {}
         for method in NEIGHBOUR_METHODS:
-            report.progress(f"n = {n}, {method}")
-            dance = copy.deepcopy(base)
-            dance.pair_force.method = method
-            # at least ~0.1 s of stepping per repeat for small n, one step for the slowest
-            number = 1 if (method == "all_pairs" and n >= 2000) or quick else max(1, 2000 // n)
-            repeats = 3 if quick or n >= 3000 else 7
-            ms = median_time(lambda: dance.step(H), repeats=repeats, number=number) * 1000.0
+            dances[method] = copy.deepcopy(base)
+            dances[method].pair_force.method = method
+        # small n: a batch of steps per timing (at least ~2000 particle-steps), big n: one step
+        number = 1 if quick else max(1, 2000 // n)
+        repeats = 3 if quick else (5 if n >= 3000 else 9)
+        ms = alternating({m: (lambda d=d: d.step(H)) for m, d in dances.items()},
+                         repeats, number)
+        for method, dance in dances.items():
             tests = dance.pair_force.tests
-            scaling.append({"n": n, "method": method, "step_ms": ms, "pair_tests": tests,
-                            "pairs": dance.pair_force.pairs})
-            rows.append([n, method, ms, tests, dance.pair_force.pairs])
+            scaling.append({"n": n, "method": method, "step_ms": ms[method],
+                            "pair_tests": tests, "pairs": dance.pair_force.pairs})
+            rows.append([n, method, ms[method], tests, dance.pair_force.pairs])
     report.table("ms per step and pair tests per step (960 x 720 box, cut-off 40 px, 1 substep)",
                  ["n", "method", "ms/step", "pair tests", "pairs < R"], rows)
     out["scaling"] = scaling
