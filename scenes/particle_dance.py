@@ -86,7 +86,8 @@ class ParticleDanceScene(Scene):
         Try("like your own kind", {"rules": "like_own", "species": 4},
             "each colour gathers into its own clusters; the RMB breaks them up, they re-form"),
         Try("no drag", {"drag_coef": 0.0},
-            "nothing takes energy out: the dance never settles, the kinetic energy stays up"),
+            "nothing takes energy out: the dance never settles (and the step's energy error "
+            "at the rule's kinks slowly heats it)"),
     )
 
     # ----- settings ---------------------------------------------------------------------------

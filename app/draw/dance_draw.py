@@ -1,8 +1,9 @@
 """Drawing the particle dance: thousands of dots coloured by species, and the rule's colour key.
 
-Speed: one `pygame.draw.circle` per particle costs about 1 us plus Python's call overhead, so
-2000 dots took ~3 ms; here each species' dot is drawn once into a small sprite and all the dots of
-a species go to the screen in one `Surface.fblits` call (~0.5 ms for 2000).
+Speed: each species' dot is drawn once into a small sprite and all the dots of a species go to
+the screen in one `Surface.fblits` call. For 2000 dots of radius 4 on the lab's 2-core machine
+(busy; the best of 7 runs) that took 0.51 ms against 0.68 ms for one `pygame.draw.circle` per
+particle: either way well inside a 60 fps frame, the step is what costs.
 """
 
 from __future__ import annotations

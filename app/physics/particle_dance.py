@@ -29,6 +29,13 @@ the dance settles into clusters; the mouse stirs it up again.
 Integration: symplectic Euler (app/physics/integrators.py), v' = v + h f/m, x' = x + h v', every
 mass 1 (so forces are accelerations, px/s^2). Walls: after the step, a particle that left the box
 is reflected back into it and its velocity component flipped (a constraint, not a force).
+
+Energy: the rule has kinks (F's slope jumps at b, at the tent's peak and at R; its direction flips
+when two particles pass through each other), and there symplectic Euler's energy error does not
+average out: without drag the total energy (kinetic + the pair potentials U, `potential`) drifts,
+less the smaller the step (tests/test_particle_dance.py compares 60 Hz with 240 Hz). The
+lecture's advice holds: "at least a small amount of drag ... if only to enhance numerical
+stability".
 """
 
 from __future__ import annotations
@@ -49,8 +56,8 @@ RULES = ("random", "like_own", "opposites")
 
 def rule_matrix(rules: str, species: int, rng: np.random.Generator) -> np.ndarray:
     """The symmetric matrix A (species x species): A[s, t] > 0 s and t attract, < 0 repel.
-    random: uniform in [-1, 1] from the seed, to one decimal (as the colour key shows it); like_own: +1 own species, -0.5 the others;
-    opposites: -0.5 own species, +1 the others."""
+    random: uniform in [-1, 1] from the seed, to one decimal (as the colour key shows it);
+    like_own: +1 own species, -0.5 the others; opposites: -0.5 own species, +1 the others."""
     if rules == "random":
         a = rng.uniform(-1.0, 1.0, (species, species))
         return np.round(np.triu(a) + np.triu(a, 1).T, 1)        # mirror the upper triangle
