@@ -66,7 +66,7 @@ class ParticleDanceScene(Scene):
         Param("repulsion", 1000.0, float, 0.0, 5000.0, rebuild=False,
               help="k_rep: the core's push at distance 0, px/s^2"),
         Param("drag_coef", 1.0, float, 0.0, 20.0, rebuild=False,
-              help="k_d in f = -k_d v, 1/s (mass 1): velocity lost per second"),
+              help="k_d in f = -k_d v, 1/s (every mass 1): how fast the velocity decays"),
         Param("mouse_strength", 3000.0, float, 0.0, 20000.0, rebuild=False,
               help="the mouse's strongest pull or push, px/s^2 (half-way to its radius)"),
         Param("mouse_radius", 150.0, float, 20.0, 400.0, rebuild=False,
