@@ -58,13 +58,13 @@ def make_dance(n: int, method: str, settle: int) -> ParticleDance:
 
 
 def alternating(fns: dict[str, Callable[[], None]], repeats: int, number: int) -> dict[str, float]:
-    """Median ms of `number` calls of each fn, the fns taking turns repeat by repeat (one warm-up
-    call each first)."""
+    """Median ms of `number` calls of each fn, the fns taking turns repeat by repeat. Each timed
+    batch follows one untimed call of the same fn: right after the other method's step (all
+    pairs churns through megabytes) the first grid step ran up to 3x slower than the next."""
     times: dict[str, list[float]] = {name: [] for name in fns}
-    for fn in fns.values():
-        fn()
     for _ in range(repeats):
         for name, fn in fns.items():
+            fn()
             t0 = time.perf_counter()
             for _ in range(number):
                 fn()

@@ -105,10 +105,12 @@ def grid_pairs(x: np.ndarray, cutoff: float, box: tuple[float, float]
         pieces.append(_runs(k, start[other], np.where(inside, count[other], 0)))
     qi = np.concatenate([p[0] for p in pieces])
     qj = np.concatenate([p[1] for p in pieces])
-    i, j = order[qi], order[qj]
-    d = x[j] - x[i]
-    close = np.einsum("ij,ij->i", d, d) < cutoff * cutoff     # row-wise |d|^2
-    return i[close], j[close], len(qi)
+    # coordinates in cell order (neighbours sit close in memory), one 1-D array each: taking
+    # from 1-D arrays is about twice as fast as gathering rows of the (n, 2) array
+    xs, ys = x[order, 0], x[order, 1]
+    dx, dy = xs.take(qj) - xs.take(qi), ys.take(qj) - ys.take(qi)
+    close = dx * dx + dy * dy < cutoff * cutoff
+    return order[qi[close]], order[qj[close]], len(qi)
 
 
 def find_pairs(method: str, x: np.ndarray, cutoff: float, box: tuple[float, float]

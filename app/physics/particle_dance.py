@@ -112,10 +112,12 @@ class PairForce:
 
     def pair_forces(self, x: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:
         """f_i of each pair (i, j) (f_j = -f_i), shape (pairs, 2)."""
-        d = x[j] - x[i]
-        r = np.sqrt(np.einsum("ij,ij->i", d, d))                 # row-wise |d|
-        F = self.rule.magnitude(r, self.rule.matrix[self.species[i], self.species[j]])
-        return (F / np.maximum(r, 1e-12))[:, None] * d         # r = 0: d = 0, no force, no NaN
+        x0, x1 = x[:, 0], x[:, 1]
+        dx, dy = x0.take(j) - x0.take(i), x1.take(j) - x1.take(i)   # d = x_j - x_i, per axis
+        r = np.sqrt(dx * dx + dy * dy)
+        F = self.rule.magnitude(r, self.rule.matrix[self.species.take(i), self.species.take(j)])
+        scale = F / np.maximum(r, 1e-12)                        # r = 0: d = 0, no force, no NaN
+        return np.column_stack((scale * dx, scale * dy))
 
     def accumulate(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray, f: np.ndarray) -> None:
         t0 = time.perf_counter()
