@@ -6,7 +6,7 @@
     python -m app --headless --scene NAME [--seconds S | --steps N] [--set KEY=VALUE]...
                   [--input EVENTS.json] [--screenshot OUT.png] [--json]
     python -m app --headless --scene all   every scene in turn
-    python -m app bench [cloth|integrators|pymunk|all] [--json] [--out DIR] [--quick]
+    python -m app bench [cloth|integrators|pymunk|mass_spring|particles|all] [--json] [--out DIR] [--quick]
     python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
 
 Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.

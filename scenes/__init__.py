@@ -12,6 +12,7 @@ from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
 from scenes.integrators import IntegratorsScene
 from scenes.newtons_cradle import NewtonsCradleScene
+from scenes.particle_dance import ParticleDanceScene
 from scenes.pivoting_l import PivotingLScene
 
 SCENES: list[type[Scene]] = [
@@ -21,6 +22,7 @@ SCENES: list[type[Scene]] = [
     NewtonsCradleScene,
     DoublePendulumScene,
     IntegratorsScene,
+    ParticleDanceScene,
 ]
 
 

@@ -1,0 +1,252 @@
+"""Particle dance: species that like or dislike each other, and what finding the pairs costs.
+
+What it shows: a few hundred particles (up to 5000) of 1-6 species in a box. Any two closer than
+the cut-off R attract or repel each other by a soft rule (the lecture's third family of forces,
+spatial interaction; drag is a unary force; the cloth has the n-ary springs): a repulsive core
+inside 0.3 R keeps them apart, and beyond it a species pair's entry of the rule matrix (the
+table in the colour key: + attract, - repel) pulls them together or pushes them apart. Watch
+like-minded species gather into clusters and shun the others. The pair forces are equal and
+opposite, so they never change the total momentum; with drag on, the dance settles, the mouse
+stirs it up again. Physics: app/physics/particle_dance.py and app/physics/neighbours.py.
+
+The cost: the forces need every pair closer than R. `neighbour_method=all_pairs` tests all
+n (n - 1) / 2 pairs, O(n^2); `grid` sorts the particles into cells at least R wide and tests only
+pairs from the same or neighbouring cells: 4.5 cells' worth per particle, O(n) at a fixed density.
+This box is fixed, so more particles means denser and the grid's tests grow like n^2 too, but
+from about 1/50 of all pairs at R = 40 (4.5 of 432 cells), after a fixed cost per particle for
+the sorting that makes all pairs the cheaper one below about 100-200 particles. The HUD shows the
+pair tests and the ms per step of the method in use: raise `particles` and switch the method live.
+
+Controls:
+  LMB (held)  pull the particles near the cursor towards it (follow it around)
+  RMB (held)  push them away
+Settings: particles, species, rules (random / like_own / opposites), neighbour_method, cutoff,
+attraction, repulsion, drag_coef; effects: interaction, drag, walls.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from app.physics.neighbours import NEIGHBOUR_METHODS, all_pair_tests, expected_grid_tests
+from app.physics.particle_dance import (CORE, EFFECTS, RULES, MouseForce, PairRule,
+                                        ParticleDance, rule_matrix)
+from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try
+
+DOT_RADIUS = 3.5            # world px
+MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
+MOUSE_REACH = 1e4           # the cursor counts at most this far outside the world
+
+# Step budget, in estimated seconds per fixed step (the cloth and the pymunk scenes refuse
+# about 0.5 s too). Measured on the 2-core lab machine, idle to busy with other work: all_pairs
+# 4-16 ns per pair test (n = 5000: 12.5 M tests, 50-200 ms), the grid 25-120 ns per candidate
+# pair (sorting, gathering; n = 5000 spread out: 250 k candidates, 7-30 ms).
+STEP_BUDGET_S = 0.5
+SECONDS_PER_TEST = {"all_pairs": 1e-8, "grid": 5e-8}
+
+
+class ParticleDanceScene(Scene):
+    __doc__ = __doc__
+    name = "particle_dance"
+    title = "Particle dance: spatial forces, all pairs vs grid"
+    category = "Particle systems"
+    params = (
+        Param("particles", 600, int, 2, 5000, help="number of particles"),
+        Param("species", 3, int, 1, MAX_SPECIES, help="number of species (colours)"),
+        Param("rules", "random", str, choices=RULES, rebuild=False,
+              help="who likes whom: random (from the seed), like_own (clusters), opposites"),
+        Param("neighbour_method", "grid", str, choices=NEIGHBOUR_METHODS, rebuild=False,
+              help="how the pairs within the cut-off are found: test all pairs, or a cell grid"),
+        Param("cutoff", 40.0, float, 10.0, 80.0, rebuild=False,
+              help="interaction range R in px (repulsive core: the inner 30 %)"),
+        Param("attraction", 300.0, float, 0.0, 2000.0, rebuild=False,
+              help="k_att: the rule matrix's +-1 is this many px/s^2 at the tent's peak"),
+        Param("repulsion", 1000.0, float, 0.0, 5000.0, rebuild=False,
+              help="k_rep: the core's push at distance 0, px/s^2"),
+        Param("drag_coef", 1.0, float, 0.0, 20.0, rebuild=False,
+              help="k_d in f = -k_d v, 1/s (every mass 1): how fast the velocity decays"),
+        Param("mouse_strength", 3000.0, float, 0.0, 20000.0, rebuild=False,
+              help="the mouse's strongest pull or push, px/s^2 (half-way to its radius)"),
+        Param("mouse_radius", 150.0, float, 20.0, 400.0, rebuild=False,
+              help="the mouse reaches particles this close, px"),
+    )
+    effects = (
+        Effect("interaction", True, "the pair forces (spatial interaction): off = no pair search",
+               amount="attraction"),
+        Effect("drag", True, "viscous drag f = -k_d v (unary)", amount="drag_coef"),
+        Effect("walls", True, "the box reflects particles (off: they drift out of view)"),
+    )
+    tries = (
+        Try("3000 particles, all pairs", {"particles": 3000, "neighbour_method": "all_pairs"},
+            "the HUD's pair tests: 4.5 million per step, and the ms per step that costs"),
+        Try("3000 particles, grid", {"particles": 3000, "neighbour_method": "grid"},
+            "the same forces from about 1/50 of the pair tests: compare the ms per step"),
+        Try("like your own kind", {"rules": "like_own", "species": 4},
+            "each colour gathers into its own clusters; the RMB breaks them up, they re-form"),
+        Try("no drag", {"drag_coef": 0.0},
+            "nothing takes energy out: the dance never settles (and the step's energy error "
+            "at the rule's kinks slowly heats it)"),
+    )
+
+    # ----- settings ---------------------------------------------------------------------------
+    @classmethod
+    def step_seconds(cls, values) -> float:
+        """Estimated seconds of pair search per fixed step (uniformly spread particles)."""
+        n, method = values["particles"], values["neighbour_method"]
+        world = (float(cls.world_size[0]), float(cls.world_size[1]))
+        tests = (all_pair_tests(n) if method == "all_pairs"
+                 else expected_grid_tests(n, values["cutoff"], world))
+        return values["substeps"] * tests * SECONDS_PER_TEST[method]
+
+    @classmethod
+    def omega(cls, values) -> float:
+        """The fastest oscillation the pair forces can drive, 1/s: two particles joined by the
+        stiffest spring the rule acts like (the core's slope k_rep / b or the tent's
+        2 k_att / (R - b)) swing at sqrt(2 k) (reduced mass 1/2); a crowd pushes harder, so k is
+        scaled by 1 + CORE^2 c, c the neighbours within R if spread evenly (those in the core)."""
+        R = values["cutoff"]
+        b = CORE * R
+        k = max(values["repulsion"] / b, 2.0 * values["attraction"] / (R - b))
+        w, h = cls.world_size
+        crowd = (values["particles"] - 1) * math.pi * R * R / (w * h)
+        return math.sqrt(2.0 * k * (1.0 + CORE * CORE * crowd))
+
+    @classmethod
+    def check_combination(cls, values) -> None:
+        h = 1.0 / (values["hertz"] * values["substeps"])
+        # explicit drag multiplies v by (1 - k_d h): past 1 it reverses the velocity, past 2 it grows
+        if values["drag_coef"] * h > 1.0:
+            raise ParamError(
+                f"drag_coef x h too large: {values['drag_coef']:g}/s x h = "
+                f"{values['drag_coef'] * h:.3g} (h = 1/(hertz x substeps)); accepted: at most 1 "
+                f"(an explicit step would reverse the velocity), here hertz x substeps >= "
+                f"{math.ceil(values['drag_coef'])}")
+        # symplectic Euler keeps an oscillation bounded for omega h < 2; past about 1 the kinks
+        # of the rule (at b, mid-way, at R) already heat the dance up step by step
+        omega = cls.omega(values)
+        if omega * h > 1.0:
+            raise ParamError(
+                f"step too large for the forces: omega h = {omega * h:.3g} (omega = "
+                f"{omega:.3g}/s from repulsion, attraction, cutoff and particles; h = 1/(hertz x "
+                f"substeps)); accepted: at most 1, here hertz x substeps >= {math.ceil(omega)}")
+        cost = cls.step_seconds(values)
+        if cost > STEP_BUDGET_S:
+            raise ParamError(
+                f"particles x substeps too large for {values['neighbour_method']}: "
+                f"{values['particles']} particles x {values['substeps']} substeps would take "
+                f"~{cost:.1f} s per step; accepted: about {STEP_BUDGET_S:g} s per step "
+                f"(use fewer particles or substeps, or neighbour_method=grid)")
+
+    # ----- world ------------------------------------------------------------------------------
+    def _rule(self) -> PairRule:
+        p = self.p
+        matrix = rule_matrix(p["rules"], p["species"], np.random.default_rng([p["seed"], 1]))
+        return PairRule(matrix, p["cutoff"], p["attraction"], p["repulsion"])
+
+    def build(self) -> None:
+        p = self.p
+        self.dance = ParticleDance(p["particles"], p["species"], self.world_size, self._rule(),
+                                   self.rng, self.on, p["drag_coef"], p["neighbour_method"])
+        self.mouse_pos: tuple[float, float] | None = None
+        self.mouse_button = 0
+        self._costs: dict[str, float] = {}
+        self._cost_mark = (0, dict(self.dance.spent), 0.0)
+
+    def settings_changed(self, names: set[str]) -> None:
+        d, p = self.dance, self.p
+        d.pair_force.rule = self._rule()
+        d.pair_force.method = p["neighbour_method"]
+        d.drag.kd = p["drag_coef"]
+        if self.mouse_button:
+            self._press(self.mouse_button)
+        d.set_effects(self.on)
+        if "neighbour_method" in names:
+            self._costs.clear()                     # the old method's cost is not this one's
+
+    def step(self, h: float) -> None:
+        self.dance.step(h)
+
+    # ----- the mouse --------------------------------------------------------------------------
+    def _press(self, button: int) -> None:
+        sign = 1.0 if button == 1 else -1.0
+        self.mouse_button = button
+        self.dance.set_mouse(MouseForce(self.mouse_pos, sign * self.p["mouse_strength"],
+                                        self.p["mouse_radius"]))
+
+    def handle_event(self, event: InputEvent) -> None:
+        if not event.kind.startswith("mouse"):
+            return
+        x, y = (float(c) if math.isfinite(c) else 0.0 for c in event.pos[:2])
+        w, h = self.world_size
+        self.mouse_pos = (min(max(x, -MOUSE_REACH), w + MOUSE_REACH),
+                          min(max(y, -MOUSE_REACH), h + MOUSE_REACH))
+        if event.kind == "mouse_down" and event.button in (1, 3):
+            self._press(event.button)
+        elif event.kind == "mouse_up" and event.button == self.mouse_button:
+            self.mouse_button = 0
+            self.dance.set_mouse(None)
+        elif event.kind == "mouse_move" and self.dance.mouse is not None:
+            self.dance.mouse.point = np.asarray(self.mouse_pos, dtype=float)
+
+    # ----- reports ----------------------------------------------------------------------------
+    def metrics(self) -> dict[str, float | str]:
+        d = self.dance
+        return {
+            "particles": d.ps.n,
+            "pair_tests": d.pair_force.tests,
+            "neighbour_method": self.p["neighbour_method"],
+            "kinetic_energy": d.kinetic_energy(),
+            "pairs_interacting": d.pair_force.pairs,
+        }
+
+    def _update_costs(self) -> None:
+        """ms per fixed step of each effect (and of the pair search), averaged since the last
+        call, lightly smoothed."""
+        steps0, spent0, search0 = self._cost_mark
+        if self.steps <= steps0:
+            return
+        d = self.dance
+        n = self.steps - steps0
+        now = {k: (d.spent[k] - spent0.get(k, 0.0)) * 1000.0 / n for k in d.spent}
+        now["search"] = (d.pair_force.search_seconds - search0) * 1000.0 / n
+        for k, v in now.items():
+            self._costs[k] = v if k not in self._costs else 0.7 * self._costs[k] + 0.3 * v
+        self._cost_mark = (self.steps, dict(d.spent), d.pair_force.search_seconds)
+
+    def effect_costs(self) -> dict[str, float]:
+        self._update_costs()
+        shown = [k for k in EFFECTS if k in self.on]
+        if self.dance.mouse is not None:
+            shown.append("mouse")
+        return {k: self._costs.get(k, 0.0) for k in shown}
+
+    def hud_lines(self) -> list[str]:
+        self._update_costs()
+        d, p = self.dance, self.p
+        n = d.ps.n
+        lines = ["LMB: pull   RMB: push   (hold and move)"]
+        if "interaction" not in self.on:
+            return lines + [f"{n} particles, interaction off: no pairs to find"]
+        method = p["neighbour_method"]
+        search = self._costs.get("search", 0.0)
+        total = self._costs.get("interaction", 0.0)
+        every = "" if method == "all_pairs" else f" (all pairs: {all_pair_tests(n):,})"
+        lines.append(f"{method}: {d.pair_force.tests:,} pair tests/step{every}")
+        lines.append(f"find pairs {search:.2f} + forces {max(total - search, 0.0):.2f} = "
+                     f"{total:.2f} ms/step, {d.pair_force.pairs:,} pairs < R")
+        return lines
+
+    # ----- state ------------------------------------------------------------------------------
+    def state_arrays(self):
+        return (self.dance.ps.x, self.dance.ps.v)
+
+    # ----- drawing ------------------------------------------------------------------------------
+    def draw(self, surface, view) -> None:
+        from app.draw.dance_draw import draw_legend, draw_mouse, draw_particles
+        d = self.dance
+        draw_particles(surface, view, d.ps.x, d.species, self.p["species"], DOT_RADIUS)
+        if d.mouse is not None:
+            draw_mouse(surface, view, d.mouse.point, d.mouse.radius, d.mouse.strength >= 0)
+        self.legend_rect = draw_legend(surface, view, self.world_size, d.pair_force.rule.matrix)
