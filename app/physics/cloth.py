@@ -321,25 +321,13 @@ class Cloth:
         self.lock_cells(cells, at)
 
     def clamp(self, pos: tuple[float, float]) -> tuple[float, float]:
-        """pos moved into the box REACH px around the world (NaN counts as 0).
-
-        The mouse may report any finite double (1e39, -1e300); a grabbed particle follows it only
-        this far, so positions stay far inside float32's range and rod lengths squared (up to
-        ~1e11) cannot overflow: the cloth is stretched, never torn to inf or NaN."""
-        (w, h), r = self.world, REACH
-        x, y = (float(v) if v == v else 0.0 for v in pos[:2])
-        return (min(max(x, -r), w + r), min(max(y, -r), h + r))
+        """pos kept within REACH px of the world (see clamp_to_world)."""
+        return clamp_to_world(pos, self.world)
 
     def nearest(self, pos: tuple[float, float], radius: float,
                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
         """The particle nearest to pos within radius (among `mask` if given), or None."""
-        pos = self.clamp(pos)
-        d2 = (self.x[0] - pos[0]) ** 2 + (self.x[1] - pos[1]) ** 2
-        if mask is not None:
-            d2 = np.where(mask, d2, np.inf)
-        k = int(np.argmin(d2))
-        r, c = divmod(k, self.cols)
-        return (r, c) if d2[r, c] <= radius * radius else None
+        return nearest_cell(self.x, self.clamp(pos), radius, mask)
 
     def grab(self, cell: tuple[int, int], pos: tuple[float, float]) -> None:
         """Start dragging a particle: it follows grab_target and nothing else moves it."""
@@ -377,19 +365,10 @@ class Cloth:
         v[1] += self.gravity * h * h                     # a h^2, a = (0, +g): y points down
 
     def _wind(self, v: np.ndarray, h: float) -> None:
-        u = self.x[0] / self.world[0]                    # position in world widths/heights
-        y = self.x[1] / self.world[1]
-        t, s = self.t, self.wind_strength * h * h
-        if self.wind_field == "lecture":
-            # the slide's F = (sin(x*y*t), cos(z*t)) for a cloth in the plane z = 1
-            np.clip(u, -10, 10, out=u)
-            np.clip(y, -10, 10, out=y)
-            v[0] += s * np.sin(u * y * t)
-            v[1] += s * math.cos(t)
-        else:
-            # gusts: a breeze to the right whose strength travels across the cloth in waves
-            v[0] += s * (0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * y + t))
-            v[1] += (0.3 * s) * np.sin(4.0 * u - 2.3 * t)
+        ax, ay = wind_field(self.wind_field, self.x[0], self.x[1], self.t, self.world)
+        s = self.wind_strength * h * h
+        v[0] += s * ax
+        v[1] += s * ay
 
     # ----- the step -----------------------------------------------------------------------------
     def step(self, h: float) -> None:
@@ -490,3 +469,43 @@ class Cloth:
         for f, a in zip(fams, snap["alive"]):
             f.alive[...] = a
         self.update_weights()
+
+
+# ----- what the Verlet cloth and the mass-spring cloth share ------------------------------------
+def wind_field(field: str, x: np.ndarray, y: np.ndarray, t: float,
+               world: tuple[float, float]) -> tuple[np.ndarray, np.ndarray | float]:
+    """The wind's acceleration per unit strength at positions (x, y) and time t: (ax, ay).
+
+    lecture: the slide's F = (sin(x*y*t), cos(z*t)) with x, y in world widths/heights for a cloth
+    in the plane z = 1 (so cos(z t) = cos(t); the slide's third component is out of the plane);
+    gust: a breeze to the right whose strength travels across the cloth in waves."""
+    u = x / world[0]                                 # position in world widths/heights
+    w = y / world[1]
+    if field == "lecture":
+        np.clip(u, -10, 10, out=u)                   # sin(u w t) of a far-flung particle: no overflow
+        np.clip(w, -10, 10, out=w)
+        return np.sin(u * w * t), math.cos(t)
+    return ((0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * w + t)),
+            0.3 * np.sin(4.0 * u - 2.3 * t))
+
+
+def clamp_to_world(pos: tuple[float, float], world: tuple[float, float]) -> tuple[float, float]:
+    """pos moved into the box REACH px around the world (NaN counts as 0).
+
+    The mouse may report any finite double (1e39, -1e300); a grabbed particle follows it only
+    this far, so positions stay far inside float32's range and rod lengths squared (up to
+    ~1e11) cannot overflow: the cloth is stretched, never torn to inf or NaN."""
+    (w, h), r = world, REACH
+    x, y = (float(v) if v == v else 0.0 for v in pos[:2])
+    return (min(max(x, -r), w + r), min(max(y, -r), h + r))
+
+
+def nearest_cell(x: np.ndarray, pos: tuple[float, float], radius: float,
+                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
+    """The (row, col) of the particle nearest to pos within radius (among `mask` if given), or
+    None; x has shape (2, rows, cols)."""
+    d2 = (x[0] - pos[0]) ** 2 + (x[1] - pos[1]) ** 2
+    if mask is not None:
+        d2 = np.where(mask, d2, np.inf)
+    r, c = np.unravel_index(int(np.argmin(d2)), d2.shape)
+    return (int(r), int(c)) if d2[r, c] <= radius * radius else None
