@@ -92,9 +92,9 @@ class Material:
     mass: float            # vertex mass, kg
     tension: float         # stiffness when stretched
     compression: float     # stiffness when compressed
-    shear: float
-    bending: float
-    damping: float         # tension = compression = shear damping in every preset
+    shear_stiffness: float
+    bending_stiffness: float
+    spring_damping: float  # tension = compression = shear damping in every preset
     air_damping: float
 
 
@@ -120,10 +120,10 @@ def spring_constants(values: dict, spacing: float) -> dict[str, float]:
     return {
         "k_tension": K_UNIT * values["tension"] / spacing,
         "k_compression": K_UNIT * values["compression"] / spacing,
-        "k_shear": K_UNIT * values["shear"] / spacing,
-        "k_bending": K_UNIT * values["bending"] / (20.0 * spacing),
-        "kd": values["damping"] / TAU,
-        "kd_bending": BENDING_DAMPING * TAU * K_UNIT * values["bending"] / (20.0 * spacing),
+        "k_shear": K_UNIT * values["shear_stiffness"] / spacing,
+        "k_bending": K_UNIT * values["bending_stiffness"] / (20.0 * spacing),
+        "kd": values["spring_damping"] / TAU,
+        "kd_bending": BENDING_DAMPING * TAU * K_UNIT * values["bending_stiffness"] / (20.0 * spacing),
         "air": 0.01 * values["air_damping"] / TAU,
         "density": values["mass"] / REF_CELL ** 2,
     }
@@ -446,22 +446,62 @@ def symplectic_limit(omega: float, c: float) -> float:
     return (math.sqrt(c * c + 4.0 * omega * omega) - c) / (omega * omega)
 
 
+class _Mode:
+    """The force of one normal mode, per unit mass: f = -m (omega^2 x + c v)."""
+
+    def __init__(self, omega: float, c: float):
+        self.k, self.c = omega * omega, c
+
+    def accumulate(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray, f: np.ndarray) -> None:
+        f -= ps.mass[:, None] * (self.k * x + self.c * v)
+
+    def jacobian(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray):
+        return None, None
+
+
+def amplification(name: str, omega: float, c: float, h: float) -> float:
+    """The spectral radius of one step of integrator `name` on x'' = -omega^2 x - c x': the
+    step is linear in the state (x, v) (Verlet: (x, v, x_prev)), so stepping each unit state
+    once gives its matrix. Radius > 1: the mode grows, the method is unstable at this h."""
+    verlet = name == "verlet"
+    columns = []
+    for unit in np.eye(3 if verlet else 2):
+        ps = ParticleSystem([[unit[0]]], [[unit[1]]], 1.0, [_Mode(omega, c)])
+        if verlet:
+            ps.x_prev, ps.h_prev = np.array([[unit[2]]]), h
+        INTEGRATORS[name].step(ps, h)
+        columns.append([ps.x[0, 0], ps.v[0, 0]] + ([ps.x_prev[0, 0]] if verlet else []))
+    return float(np.abs(np.linalg.eigvals(np.array(columns).T)).max())
+
+
 def predicted_limit(name: str, omega: float, c: float) -> float | None:
-    """The step limit theory predicts for an explicit integrator on the top mode: symplectic
-    Euler with its damping c (see symplectic_limit); Verlet 2/omega and RK4 2.83/omega
-    (undamped); None for forward Euler and midpoint (undamped, they gain energy at any h)."""
-    if name == "symplectic_euler":
-        return symplectic_limit(omega, c)
-    limit = INTEGRATORS[name].stability_limit
-    if not INTEGRATORS[name].explicit or limit == 0.0 or omega <= 0.0:
+    """The largest step at which integrator `name` keeps the top mode (x'' = -omega^2 x - c x')
+    bounded, by bisection on its amplification: undamped, 2/omega for symplectic Euler and
+    Verlet, 2.83/omega for RK4, none (None: unstable already at omega h = 1e-3) for forward Euler and midpoint; damping lowers the
+    first ones (see symplectic_limit) and gives the last two a small stable range. inf for
+    implicit Euler and for a cloth with no stiffness."""
+    if not INTEGRATORS[name].explicit or omega <= 0.0:
+        return math.inf
+
+    def stable(h: float) -> bool:
+        return amplification(name, omega, c, h) <= 1.0 + 1e-15      # rounding of eigvals
+    lo, hi = 1e-3 / omega, 4.0 / omega        # below omega h = 1e-3 growth drowns in rounding
+    if not stable(lo):
         return None
-    return limit / omega
+    while stable(hi):
+        lo, hi = hi, 2.0 * hi
+        if hi > 1e4 / omega:
+            return math.inf
+    for _ in range(50):                        # bisection on log h: ~1e-14 relative
+        mid = math.sqrt(lo * hi)
+        lo, hi = (mid, hi) if stable(mid) else (lo, mid)
+    return lo
 
 
 # ----- the cloth ---------------------------------------------------------------------------------
 SET_NAMES = ("structural", "shear", "bending")
 FORCE_EFFECTS = ("gravity", "air", "wind", "damping", "shear", "bending")
-PINS = ("top", "corners", "none")
+PINS = ("corner", "corners", "top", "none")     # top-left corner, both top corners, ...
 MAX_COORD = 1e6        # px: beyond this a particle has blown up (is_finite says so before inf)
 MAX_SPEED = 1e8        # px/s
 
@@ -492,7 +532,7 @@ class MassSpringCloth:
         self.anchor = self.rest_x.reshape(rows, cols, 2).copy()
         self.grabbed: tuple[int, int] | None = None
         self.grab_target = (0.0, 0.0)
-        self.default_pins = {"top": [(0, c) for c in range(cols)],
+        self.default_pins = {"top": [(0, c) for c in range(cols)], "corner": [(0, 0)],
                              "corners": [(0, 0), (0, cols - 1)], "none": []}[pins]
         self.t = 0.0
         self.spent: dict[str, float] = {}
@@ -624,7 +664,8 @@ class MassSpringCloth:
         return sum(int(f.alive.size) for s in self.active_sets for f in self.sets[s].families)
 
     def energy(self) -> float:
-        """Kinetic + elastic (active springs) + gravitational energy (y down: -m g y)."""
+        """Kinetic + elastic (active springs) + gravitational energy, 0 at rest in the start
+        pose (y down: a particle that fell by d lost m g d)."""
         ps = self.ps
         free = ps.free[:, 0]
         e = 0.5 * float(np.sum(free * ps.mass * np.sum(ps.v * ps.v, axis=1)))
@@ -632,7 +673,7 @@ class MassSpringCloth:
             if isinstance(force.force, SpringSet):
                 e += force.force.energy(ps.x)
         if "gravity" in self.on:
-            e -= self.g * float(np.sum(free * ps.mass * ps.x[:, 1]))
+            e -= self.g * float(np.sum(free * ps.mass * (ps.x[:, 1] - self.rest_x[:, 1])))
         return e
 
     def kinetic_energy(self) -> float:
@@ -669,4 +710,4 @@ class MassSpringCloth:
 __all__ = ["MATERIALS", "Material", "material_settings", "spring_constants", "SpringSet",
            "SpringDamping", "Wind", "Timed", "MassSpringSystem", "implicit_euler", "STEPPERS",
            "top_mode", "symplectic_limit", "predicted_limit", "MassSpringCloth", "block_product",
-           "CG_TOLERANCE", "K_UNIT", "TAU", "PINS", "FORCE_EFFECTS"]
+           "CG_TOLERANCE", "K_UNIT", "TAU", "PX_PER_M", "PINS", "FORCE_EFFECTS"]
