@@ -415,8 +415,9 @@ STEPPERS: dict[str, Callable[[ParticleSystem, float], None]] = {
 def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | None = None
              ) -> tuple[float, float, np.ndarray]:
     """(omega_max, c, w): the highest angular frequency of the free particles, by power iteration
-    on M^-1 K (K = -df/dx, definite blocks), with the damping rate c = (w.Dw)/(w.Mw) of that mode
-    (D = -df/dv: spring damping and air) and the mode shape w (a warm start for next time)."""
+    on M^-1 K (K = -df/dx, definite blocks); a damping rate c, the larger of that mode's
+    (w.Dw)/(w.Mw) and the highest of M^-1 D (D = -df/dv: spring damping and air), so that
+    (omega_max, c) is the worst case of both; and the mode shape w (a warm start)."""
     K = ps.stiffness_product(ps.x)             # w -> K w, K = -df/dx (positive semi-definite)
     _, damp = ps.blocks(ps.x)
     m, free = ps.mass[None, :], ps.free.T       # component-major (2, n), as block_product
@@ -432,8 +433,18 @@ def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | Non
         lam = float(np.vdot(w, Kw))             # Rayleigh quotient (w.Kw)/(w.Mw), w.Mw = 1
         w = Kw / m
     w /= math.sqrt(float(np.vdot(w, m * w))) or 1.0
-    c = (float(np.vdot(w, block_product(damp, w, ps.rows, ps.cols) * free))
-         + ps.air_drag() * float(np.vdot(w, w)))
+
+    def D(u: np.ndarray) -> np.ndarray:         # D = -df/dv: spring damping and air
+        return (block_product(damp, u, ps.rows, ps.cols) + ps.air_drag() * u) * free
+    # the damping rate: that mode's, or the fastest-damped mode's if higher (a power iteration
+    # on M^-1 D); stiffness and damping need not share their modes, so take the worse
+    c = float(np.vdot(w, D(w)))
+    u = w.copy()
+    for _ in range(iterations):
+        u /= math.sqrt(float(np.vdot(u, m * u))) or 1.0
+        Du = D(u)
+        c = max(c, float(np.vdot(u, Du)))
+        u = Du / m
     return math.sqrt(max(lam, 0.0)), c, w
 
 
