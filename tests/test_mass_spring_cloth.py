@@ -215,6 +215,21 @@ def test_every_material_with_every_integrator_inside_its_limit_runs_10_s(materia
         assert c.is_sane(), (material, name)
 
 
+def test_leather_holds_its_shape_where_silk_sags_and_rubber_stretches_most():
+    """The scene docstring's numbers: top-edge sag after 1.5 s on the default cloth."""
+    sag, stretch = {}, {}
+    for material in ("silk", "leather", "rubber"):
+        s = MassSpringClothScene({"material": material})
+        c = s.cloth
+        y0 = c.ps.x[c.cols // 2, 1]                   # the middle of the top row
+        for _ in range(90):
+            s.advance()
+        sag[material] = c.ps.x[c.cols // 2, 1] - y0
+        stretch[material] = s.metrics()["max_stretch"]
+    assert sag["leather"] < 0.7 * sag["silk"]
+    assert sag["rubber"] > 1.3 * sag["silk"] and stretch["rubber"] > 3 * stretch["silk"]
+
+
 def test_effects_that_are_off_do_no_work():
     s = MassSpringClothScene({"rows": 5, "cols": 5, "shear": False, "bending": False,
                               "wind": False, "damping": False, "air": False})
