@@ -308,7 +308,7 @@ class MassSpringClothScene(Scene):
             lines += [f"omega_max {om:.0f}/s: explicit methods are stable below h = 2/omega_max "
                       f"= {2e3 / om:.3f} ms",
                       f"  (undamped; RK4 2.83/omega_max = {2.83e3 / om:.3f} ms; forward Euler, "
-                      f"midpoint: no h)" + (f"; damped: {limit * 1e3:.3f} ms"
+                      f"midpoint: no h)" + (f"; damped, symplectic Euler: {limit * 1e3:.3f} ms"
                                             if self.mode_damping > 0 else "")]
         where = f"you are at h = {h * 1e3:.3f} ms"
         pred = self.limit(name)
@@ -322,7 +322,7 @@ class MassSpringClothScene(Scene):
                       + (": it will blow up" if h > pred else ": stable"))
         lines.append(where)
         lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} "
-                     f"(no damping, air, wind, mouse: all the integrator's)")
+                     f"(without damping, air, wind, mouse: all of it the integrator's)")
         lines.append(f"stretch: mean {m['mean_stretch'] * 100:.2f}%  "
                      f"max {m['max_stretch'] * 100:.1f}%")
         return lines

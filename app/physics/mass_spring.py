@@ -387,8 +387,9 @@ class MassSpringSystem(ParticleSystem):
 
 # CG stops at |r| <= CG_TOLERANCE |b|. Chosen from the error it leaves (the tolerance table of
 # `python -m app bench mass_spring`): on a 32x32 cloth at h = 1/60 s, 1e-2 leaves the positions
-# of one step within ~1e-4 px of a 1e-10 solve (denim, leather, silk), far below a pixel and
-# below the O(h^2) error of linearising once per step, for 40-65 iterations instead of ~165.
+# of one step within 1e-4 px of a 1e-10 solve (denim 3e-5, silk 7e-5, leather 3e-9 px), far
+# below a pixel and below the O(h^2) error of linearising once per step, in ~35-95 iterations;
+# every tenfold tightening costs another 15-25 iterations for an error nobody can see.
 CG_TOLERANCE = 1e-2
 
 
