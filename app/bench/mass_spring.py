@@ -1,13 +1,13 @@
 """`python -m app bench mass_spring`: Baraff & Witkin's large steps, measured.
 
-Every cloth here is app/physics/mass_spring.MassSpringCloth: an n x n grid (n = 32; 10 with
+Every cloth here is app/physics/mass_spring.MassSpringCloth: an n x n grid (n = 32; 8 with
 --quick) of 16 px cells, its top row pinned, gravity, air resistance, spring damping and all
 three spring sets on, a material's Blender preset with every stiffness (tension, compression,
 shear, bending) multiplied by 1, 10 or 100, the particles nudged by 0.01 px (a seed for the
 highest mode, which a perfectly symmetric start would not excite).
 
 1. The large-steps table: for each material and stiffness scale, the largest stable h of each
-   explicit integrator, found by bisection (stable: during 150 steps (60 with --quick) every
+   explicit integrator, found by bisection (stable: during 150 steps (40 with --quick) every
    particle stays finite, slower than 2e4 px/s and within 5000 px of its start), beside the limit
    predicted from omega_max and the top mode's damping (mass_spring.predicted_limit: 2/omega_max
    for symplectic Euler undamped, 2.83/omega_max for RK4), and the wall time to simulate one
@@ -100,11 +100,11 @@ def _num(x: float | None) -> float | None:
 
 def run(report: Report) -> dict[str, Any]:
     quick = report.quick
-    n = 10 if quick else 32
+    n = 8 if quick else 32
     materials = ["leather"] if quick else list(MATERIALS)
     scales = (1, 100) if quick else SCALES
-    steps, bisections = (60, 3) if quick else (150, 7)
-    number, repeats = (3, 2) if quick else (10, 5)
+    steps, bisections = (40, 3) if quick else (150, 7)
+    number, repeats = (2, 2) if quick else (10, 5)
     report.say(f"Large steps: {n}x{n} cloth, top row pinned, all springs, damping and air on; "
                f"stable = {steps} steps without blowing up; ms/s = median step ms x steps per s.")
     rows, table = [], []
