@@ -189,6 +189,10 @@ class MassSpringClothScene(Scene):
         self._estimate_mode(iterations=60)
 
     def _estimate_mode(self, iterations: int) -> None:
+        """omega_max and the damping rate from the current state (kept as they were while the
+        state is blown up; a fresh start after a rollback)."""
+        if not self.cloth.is_sane():
+            return
         self.omega_max, self.mode_damping, self._mode = top_mode(self.cloth.ps, iterations,
                                                                  self._mode)
         self._limits: dict[str, float | None] = {}
@@ -346,3 +350,5 @@ class MassSpringClothScene(Scene):
         self.cloth.restore_state(snap)
         self._stretch = None
         self._energy.clear()
+        self._mode = None
+        self._estimate_mode(iterations=60)
