@@ -24,8 +24,8 @@ about half the sag of silk, cotton or denim (some 33 px against 55-61 px), and r
 stiffness 15) sags most, stretches up to ~60 % as it drops and bounces; silk has no spring damping
 at all (try it in the wind).
 Settings: material sets the sliders below it (mass, tension, compression, shear_stiffness,
-bending_stiffness, spring_damping, air_damping: Blender's names and units); moving one of them afterwards makes the material
-`custom`. Integrator and every slider change live.
+bending_stiffness, spring_damping, air_damping: Blender's names and units); moving one of them
+afterwards makes the material `custom`. Integrator and every slider change live.
 """
 
 from __future__ import annotations

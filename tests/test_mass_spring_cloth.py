@@ -117,7 +117,8 @@ def test_one_implicit_step_matches_a_dense_solve_of_the_same_system():
         e[j] = eps
         K[:, j] = (sum_force(undamped, ps, x0.ravel() + e, v0.ravel())
                    - sum_force(undamped, ps, x0.ravel() - e, v0.ravel())) / (2 * eps)
-        D[:, j] = (force(x0.ravel(), v0.ravel() + e) - force(x0.ravel(), v0.ravel() - e)) / (2 * eps)
+        D[:, j] = (force(x0.ravel(), v0.ravel() + e)
+                   - force(x0.ravel(), v0.ravel() - e)) / (2 * eps)
     M = np.diag(np.repeat(ps.mass, 2))
     free = np.repeat(ps.free[:, 0], 2).astype(bool)
     A = M - h * D - h * h * K

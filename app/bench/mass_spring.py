@@ -208,8 +208,8 @@ def _verdicts(rows: list[dict], materials: list[str], scales) -> dict[str, Any]:
         f"{cheapest['h'] * 1e3:.3g} ms) {cheapest['ms_per_sim_second']:.4g} ms: implicit is "
         f"{ratio:.3g}x cheaper ({'meets' if ratio >= 10 else 'misses'} the 10x target)",
         "symplectic Euler: measured limit vs predicted, worst deviation "
-        + ("-" if worst is None else f"{worst * 100:.1f}% ({'within' if worst <= 0.1 else 'outside'}"
-                                     f" the 10% target)"),
+        + ("-" if worst is None else
+           f"{worst * 100:.1f}% ({'within' if worst <= 0.1 else 'outside'} the 10% target)"),
     ]
     return {"stiffest": stiffest, "implicit_vs_cheapest_explicit": ratio,
             "cheapest_explicit": cheapest["integrator"], "symplectic_worst_deviation": worst,

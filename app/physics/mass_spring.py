@@ -77,10 +77,10 @@ from app.physics.particles import AddProduct, ParticleSystem
 G_LAB = 900.0                        # px/s^2, the lab's gravity (README: ~9.8 m/s^2 at ~92 px/m)
 BLENDER_G = 9.81 * 0.001             # Blender's cloth solver scales gravity by 0.001
 PX_PER_M = 256.0                     # one Blender metre
-REF_CELL = 16.0                      # px: one Blender spring (1/16 m), the cell whose mass is `mass`
+REF_CELL = 16.0                      # px: a Blender spring (1/16 m); a cell of it weighs `mass`
 TAU = math.sqrt(PX_PER_M * BLENDER_G / G_LAB)      # seconds per Blender time unit (0.0528)
 K_UNIT = PX_PER_M / TAU ** 2         # Blender stiffness -> kg px/s^2 per unit strain (9.17e4)
-BENDING_DAMPING = 0.5                # Blender's default bending_damping (c_b = 0.5 TAU k_b here)
+BENDING_DAMPING = 0.5    # Blender's default bending_damping (DNA_cloth_defaults.h): c = .5 TAU k
 EPS = 1e-9                           # shortest length we divide by
 
 
@@ -116,13 +116,14 @@ def material_settings(name: str) -> dict[str, float]:
 def spring_constants(values: dict, spacing: float) -> dict[str, float]:
     """Lab-unit constants from Blender-unit settings (dict with MATERIAL_KEYS) at this spacing:
     stiffness in kg/s^2, damping in kg/s, density in kg/px^2."""
+    k_bending = K_UNIT * values["bending_stiffness"] / (20.0 * spacing)
     return {
         "k_tension": K_UNIT * values["tension"] / spacing,
         "k_compression": K_UNIT * values["compression"] / spacing,
         "k_shear": K_UNIT * values["shear_stiffness"] / spacing,
-        "k_bending": K_UNIT * values["bending_stiffness"] / (20.0 * spacing),
+        "k_bending": k_bending,
         "kd": values["spring_damping"] / TAU,
-        "kd_bending": BENDING_DAMPING * TAU * K_UNIT * values["bending_stiffness"] / (20.0 * spacing),
+        "kd_bending": BENDING_DAMPING * TAU * k_bending,
         "air": 0.01 * values["air_damping"] / TAU,
         "density": values["mass"] / REF_CELL ** 2,
     }
@@ -130,7 +131,7 @@ def spring_constants(values: dict, spacing: float) -> dict[str, float]:
 
 # ----- spring families on the grid ---------------------------------------------------------------
 def _geometry(X: np.ndarray, fam: Family) -> tuple[np.ndarray, np.ndarray]:
-    """|l| (shape (m_r, m_c, 1)) and l/|l| (m_r, m_c, 2) of every spring of a family, l = x_a - x_b."""
+    """|l| (m_r, m_c, 1) and l/|l| (m_r, m_c, 2) of every spring of a family, l = x_a - x_b."""
     l = X[fam.a] - X[fam.b]
     length = np.sqrt(np.sum(l * l, axis=-1, keepdims=True))
     return length, l / np.maximum(length, EPS)
@@ -342,7 +343,7 @@ class MassSpringSystem(ParticleSystem):
         self.cg_residual = 0.0                    # |r| / |b| after the last implicit step
 
     def blocks(self, x: np.ndarray) -> tuple[Blocks, Blocks]:
-        """The stiffness blocks (-df/dx) and damping blocks (-df/dv) of every force that has them."""
+        """The stiffness blocks (-df/dx) and damping blocks (-df/dv) of forces that have them."""
         stiff = [b for force in self.forces for b in force.stiffness_blocks(x)]
         damp = [b for force in self.forces for b in force.damping_blocks(x)]
         return stiff, damp
@@ -365,7 +366,8 @@ class MassSpringSystem(ParticleSystem):
         for scale, blocks in ((h * h, stiff), (h, damp)):
             for fam, B in blocks:
                 key = id(fam)
-                combined[key] = (fam, combined[key][1] + scale * B if key in combined else scale * B)
+                B = combined[key][1] + scale * B if key in combined else scale * B
+                combined[key] = (fam, B)
         system = list(combined.values())
         M = (self.mass + h * self.air_drag())[None, :]            # f = -k v: -h df/dv = h k I
         rows, cols = self.rows, self.cols
@@ -451,7 +453,7 @@ def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | Non
 def symplectic_limit(omega: float, c: float) -> float:
     """Largest h at which symplectic Euler keeps x'' = -omega^2 x - c x' bounded: the step
     matrix has trace 2 - hc - h^2 omega^2 and determinant 1 - hc, stable while
-    h^2 omega^2 + 2 c h <= 4, i.e. h <= (sqrt(c^2 + 4 omega^2) - c) / omega^2 (= 2/omega at c = 0)."""
+    h^2 omega^2 + 2 c h <= 4, i.e. h <= (sqrt(c^2 + 4 omega^2) - c) / omega^2 (2/omega at c = 0)."""
     if omega <= 0.0:
         return math.inf
     return (math.sqrt(c * c + 4.0 * omega * omega) - c) / (omega * omega)
@@ -488,7 +490,8 @@ def amplification(name: str, omega: float, c: float, h: float) -> float:
 def predicted_limit(name: str, omega: float, c: float) -> float | None:
     """The largest step at which integrator `name` keeps the top mode (x'' = -omega^2 x - c x')
     bounded, by bisection on its amplification: undamped, 2/omega for symplectic Euler and
-    Verlet, 2.83/omega for RK4, none (None: unstable already at omega h = 1e-3) for forward Euler and midpoint; damping lowers the
+    Verlet, 2.83/omega for RK4, none (None: unstable already at omega h = 1e-3) for forward Euler
+    and midpoint; damping lowers the
     first ones (see symplectic_limit) and gives the last two a small stable range. inf for
     implicit Euler and for a cloth with no stiffness."""
     if not INTEGRATORS[name].explicit or omega <= 0.0:
@@ -588,7 +591,7 @@ class MassSpringCloth:
         self.ps.forces = [Timed(name, force, self.spent, self.calls) for name, force in forces]
         self.active_sets = sets
 
-    # ----- pins and the mouse (a grabbed particle is a moving pin) ---------------------------------
+    # ----- pins and the mouse (a grabbed particle is a moving pin) -----------------------------
     def _update_pins(self) -> None:
         pinned = self.locked.copy()
         if self.grabbed is not None:
