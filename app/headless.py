@@ -288,7 +288,8 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
         else:
             print(describe(summary), flush=True)
         if not result.finite:
-            print(f"{scene.name}: the simulation went non-finite (NaN or inf) at step "
+            print(f"{scene.name}: the simulation went non-finite (NaN or inf, or past the scene's "
+                  f"blow-up bounds) at step "
                   f"{result.steps} (t = {result.steps * scene.dt:.3f} s); try a smaller dt "
                   f"(raise hertz) or more substeps", file=sys.stderr)
             nonfinite = True

@@ -63,7 +63,8 @@ STEP_BUDGET_SECONDS = 0.1         # physics time per frame after which the frame
 MESSAGE_SECONDS = 4.0
 NO_DISPLAY = "no display for the window: {}; use --headless, or run under xvfb-run"
 
-NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf) at t={bad:.3f} s: rolled back to "
+NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf, or past the scene's blow-up bounds) "
+                  "at t={bad:.3f} s: rolled back to "
                   "t={good:.3f} s and paused. Try a smaller dt (raise hertz) or more substeps.")
 
 

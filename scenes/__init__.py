@@ -11,12 +11,14 @@ from scenes.cloth import ClothScene
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
 from scenes.integrators import IntegratorsScene
+from scenes.mass_spring_cloth import MassSpringClothScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.particle_dance import ParticleDanceScene
 from scenes.pivoting_l import PivotingLScene
 
 SCENES: list[type[Scene]] = [
     ClothScene,
+    MassSpringClothScene,
     FallingBallsScene,
     PivotingLScene,
     NewtonsCradleScene,

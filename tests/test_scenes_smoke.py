@@ -26,6 +26,9 @@ CONTRACT_METRICS = {
     "newtons_cradle": {"lifted", "balls_out", "middle_max_drift", "energy_ratio"},
     "double_pendulum": {"energy_drift", "reference_divergence", "divergence_time"},
     # per integrator (each an effect): error, step_us, energy_ratio
+    "mass_spring_cloth": {"particles", "springs", "integrator", "omega_max", "explicit_limit_h",
+                          "max_stretch", "mean_stretch", "energy", "cg_iterations",
+                          "pinned_drift"},
     "integrators": {f"{name}_{m}" for name in ("euler", "symplectic_euler", "verlet", "midpoint",
                                                "rk4", "implicit_euler")
                     for m in ("error", "step_us", "energy_ratio")},

@@ -1,4 +1,4 @@
-"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|particles|all] [--json] [--out DIR] [--quick]`.
+"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|mass_spring|particles|all] [--json] [--out DIR] [--quick]`.
 
 Speed is measured here, never asserted in tests. Every figure is a median over repeated runs, and
 every comparison is a ratio against a baseline run in the same process, so the numbers mean the
@@ -23,6 +23,7 @@ BENCHMARKS = {           # name -> module (imported only when run)
     "cloth": "app.bench.cloth",
     "integrators": "app.bench.integrators",
     "pymunk": "app.bench.pymunk_bench",
+    "mass_spring": "app.bench.mass_spring",
     "particles": "app.bench.particles",
 }
 

@@ -386,13 +386,7 @@ class Cloth:
     def nearest(self, pos: tuple[float, float], radius: float,
                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
         """The particle nearest to pos within radius (among `mask` if given), or None."""
-        pos = self.clamp(pos)
-        d2 = (self.x[0] - pos[0]) ** 2 + (self.x[1] - pos[1]) ** 2
-        if mask is not None:
-            d2 = np.where(mask, d2, np.inf)
-        k = int(np.argmin(d2))
-        r, c = divmod(k, self.cols)
-        return (r, c) if d2[r, c] <= radius * radius else None
+        return nearest_cell(self.x, self.clamp(pos), radius, mask)
 
     def grab(self, cell: tuple[int, int], pos: tuple[float, float]) -> None:
         """Start dragging a particle: it follows grab_target and nothing else moves it."""
@@ -538,20 +532,40 @@ def gravity(c: Cloth, v: np.ndarray, h: float) -> None:
 
 
 def wind(c: Cloth, v: np.ndarray, h: float) -> None:
-    u = c.x[0] / c.world[0]                             # position in world widths/heights
-    y = c.x[1] / c.world[1]
-    t, s = c.t, c.wind_strength * h * h
-    if c.wind_field == "lecture":
-        # the slide's F = (sin(x*y*t), cos(z*t)) for a cloth in the plane z = 1
-        np.clip(u, -10, 10, out=u)
-        np.clip(y, -10, 10, out=y)
-        v[0] += s * np.sin(u * y * t)
-        v[1] += s * math.cos(t)
-    else:
-        # gusts: a breeze to the right whose strength travels across the cloth in waves
-        v[0] += s * (0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * y + t))
-        v[1] += (0.3 * s) * np.sin(4.0 * u - 2.3 * t)
+    ax, ay = wind_field(c.wind_field, c.x[0], c.x[1], c.t, c.world)
+    s = c.wind_strength * h * h
+    v[0] += s * ax
+    v[1] += s * ay
 
 
 # The force effects by name, in FORCE_NAMES order: the explicit table set_effects picks from.
 FORCES: dict[str, Force] = {"drag": drag, "gravity": gravity, "wind": wind}
+
+
+# ----- what the Verlet cloth and the mass-spring cloth share ------------------------------------
+def wind_field(field: str, x: np.ndarray, y: np.ndarray, t: float,
+               world: tuple[float, float]) -> tuple[np.ndarray, np.ndarray | float]:
+    """The wind's acceleration per unit strength at positions (x, y) and time t: (ax, ay).
+
+    lecture: the slide's F = (sin(x*y*t), cos(z*t)) with x, y in world widths/heights for a cloth
+    in the plane z = 1 (so cos(z t) = cos(t); the slide's third component is out of the plane);
+    gust: a breeze to the right whose strength travels across the cloth in waves."""
+    u = x / world[0]                                 # position in world widths/heights
+    w = y / world[1]
+    if field == "lecture":
+        np.clip(u, -10, 10, out=u)                   # sin(u w t) of a far-flung particle: no overflow
+        np.clip(w, -10, 10, out=w)
+        return np.sin(u * w * t), math.cos(t)
+    return ((0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * w + t)),
+            0.3 * np.sin(4.0 * u - 2.3 * t))
+
+
+def nearest_cell(x: np.ndarray, pos: tuple[float, float], radius: float,
+                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
+    """The (row, col) of the particle nearest to pos within radius (among `mask` if given), or
+    None; x has shape (2, rows, cols)."""
+    d2 = (x[0] - pos[0]) ** 2 + (x[1] - pos[1]) ** 2
+    if mask is not None:
+        d2 = np.where(mask, d2, np.inf)
+    r, c = np.unravel_index(int(np.argmin(d2)), d2.shape)
+    return (int(r), int(c)) if d2[r, c] <= radius * radius else None

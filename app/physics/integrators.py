@@ -149,26 +149,41 @@ def conjugate_gradient(A: Callable[[np.ndarray], np.ndarray], b: np.ndarray, fre
     after `max_iterations` (default: the number of unknowns, enough in exact arithmetic), or when
     A is not positive definite along the search direction (an attracting, indefinite Jacobian at
     a very large step): then the best iterate so far is returned."""
+    x, iterations, _ = preconditioned_cg(A, b, free, None, tolerance, max_iterations)
+    return x, iterations
+
+
+def preconditioned_cg(A: Callable[[np.ndarray], np.ndarray], b: np.ndarray, free: np.ndarray,
+                      inv_diagonal: np.ndarray | None = None, tolerance: float = 1e-12,
+                      max_iterations: int | None = None) -> tuple[np.ndarray, int, float]:
+    """Conjugate gradients on the free rows with a diagonal (Jacobi) preconditioner: each
+    residual is divided by A's diagonal (`inv_diagonal` = 1/diag(A), same shape as b; None: no
+    preconditioning), which evens out heavy and light, stiff and soft rows. Returns (x,
+    iterations, |r| / |b|). Stopping rules as in conjugate_gradient."""
     x = np.zeros_like(b)
     r = b * free
-    p = r.copy()
-    rr = float(np.vdot(r, r))
-    stop = tolerance * tolerance * rr
-    limit = max_iterations or int(free.sum()) * b.shape[1] + 1
+    z = r if inv_diagonal is None else inv_diagonal * r
+    p = z.copy()
+    rz = float(np.vdot(r, z))
+    b_norm = math.sqrt(float(np.vdot(r, r)))
+    r_norm = b_norm
+    limit = max_iterations or int(np.broadcast_to(free, b.shape).sum()) + 1   # the unknowns
     iterations = 0
-    while iterations < limit and rr > stop and rr > 0.0:
+    while iterations < limit and r_norm > tolerance * b_norm and rz > 0.0:
         Ap = A(p) * free
         pAp = float(np.vdot(p, Ap))
         if pAp <= 0.0:
             break
-        alpha = rr / pAp
+        alpha = rz / pAp
         x += alpha * p
         r -= alpha * Ap
-        rr_new = float(np.vdot(r, r))
-        p = r + (rr_new / rr) * p
-        rr = rr_new
+        z = r if inv_diagonal is None else inv_diagonal * r
+        rz_new = float(np.vdot(r, z))
+        p = z + (rz_new / rz) * p
+        rz = rz_new
+        r_norm = math.sqrt(float(np.vdot(r, r)))
         iterations += 1
-    return x, iterations
+    return x, iterations, (r_norm / b_norm if b_norm > 0 else 0.0)
 
 
 # ----- the registry -------------------------------------------------------------------------------
@@ -243,5 +258,5 @@ def integrate(ps: ParticleSystem, name: str, h: float, steps: int) -> ParticleSy
 
 __all__ = ["euler", "symplectic_euler", "verlet", "midpoint", "rk4", "rk4_tuple", "implicit_euler",
            "midpoint_step", "rk4_step",
-           "conjugate_gradient", "Integrator", "INTEGRATORS", "get_integrator", "integrate",
+           "conjugate_gradient", "preconditioned_cg", "Integrator", "INTEGRATORS", "get_integrator", "integrate",
            "check_step"]

@@ -1,0 +1,327 @@
+"""The mass-spring cloth: its forces and Jacobians, Baraff-Witkin's implicit step, the explicit
+limit it predicts, its materials, its effects and its command line."""
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from app.physics.integrators import INTEGRATORS
+from app.physics.mass_spring import (MATERIALS, MassSpringCloth, SpringDamping, SpringSet,
+                                     implicit_euler, material_settings, predicted_limit,
+                                     spring_constants, symplectic_limit, top_mode)
+from app.scene import ParamError
+from scenes.mass_spring_cloth import MassSpringClothScene
+
+ROOT = __file__.rsplit("/tests/", 1)[0]
+
+
+def small_cloth(rows=4, cols=5, material="denim", pins="top", on=None, spacing=16.0):
+    c = MassSpringCloth(rows, cols, spacing, (50.0, 50.0), pins)
+    c.material = material_settings(material)
+    if on is not None:
+        c.on = set(on)
+    c.configure()
+    return c
+
+
+def springs_and_damping(c):
+    """The raw force objects of a cloth (unwrapped from their stopwatches)."""
+    return [f.force for f in c.ps.forces if isinstance(f.force, (SpringSet, SpringDamping))]
+
+
+def test_material_values_map_blender_units_as_the_docstring_says():
+    k = spring_constants(material_settings("leather"), 16.0)
+    assert k["k_tension"] == pytest.approx(9.174e4 * 80 / 16, rel=1e-3)
+    assert k["density"] == pytest.approx(0.4 / 256)
+    # a particle's weight strains a spring as much as in Blender: m g / (k r) = 0.00981 m / S
+    m, g, r = 0.4, 900.0, 16.0
+    assert m * g / (k["k_tension"] * r) == pytest.approx(0.00981 * m / 80, rel=1e-9)
+
+
+@pytest.mark.parametrize("branch", ["tension", "compression"])
+def test_force_and_both_jacobians_match_finite_differences(branch):
+    rng = np.random.default_rng(3)
+    c = small_cloth(3, 4, on={"damping", "shear", "bending"})
+    c.material["compression"] = 7.0             # tension and compression stiffness differ
+    c.configure()
+    ps = c.ps
+    scale = 1.04 if branch == "tension" else 0.96   # every spring stretched / every one shorter
+    x = c.rest_x * scale + rng.normal(0, 0.05, c.rest_x.shape)
+    v = rng.normal(0, 20.0, x.shape)
+    length = [np.linalg.norm(x.reshape(3, 4, 2)[f.a] - x.reshape(3, 4, 2)[f.b], axis=-1) / f.rest
+              for s in ("structural", "shear", "bending") for f in c.sets[s].families]
+    assert all(((l > 1) if branch == "tension" else (l < 1)).all() for l in length)
+    ps.inv_mass[:] = 1.0 / ps.mass                  # no pins: every row is checked
+    forces = springs_and_damping(c)
+
+    def f_at(xx, vv):
+        f = np.zeros_like(xx)
+        for force in forces:
+            force.accumulate(ps, xx, vv, f)
+        return f
+
+    w = rng.normal(size=x.shape)
+    eps = 1e-6
+    fd_x = (f_at(x + eps * w, v) - f_at(x - eps * w, v)) / (2 * eps)
+    fd_v = (f_at(x, v + eps * w) - f_at(x, v - eps * w)) / (2 * eps)
+    jx, jv = np.zeros_like(x), np.zeros_like(x)
+    for force in forces:
+        dx, dv = force.jacobian(ps, x, v)
+        for add, out in ((dx, jx), (dv, jv)):
+            if add is not None:
+                add(w, out)
+    assert np.abs(jx - fd_x).max() / np.abs(fd_x).max() < 1e-5
+    assert np.abs(jv - fd_v).max() / np.abs(fd_v).max() < 1e-5
+    # and the force itself is the slide's formula, spring by spring
+    fam = c.sets["structural"].families[0]
+    X, V = x.reshape(3, 4, 2), v.reshape(3, 4, 2)
+    l = X[fam.a][0, 0] - X[fam.b][0, 0]
+    tau = math.sqrt(256 * 0.00981 / 900)              # the docstring's Blender time unit
+    ks = 256 / tau ** 2 * (40 if branch == "tension" else 7) / 16
+    kd = 25 / tau
+    u = l / np.linalg.norm(l)
+    fa = -(ks * (np.linalg.norm(l) - 16) + kd * (V[fam.a][0, 0] - V[fam.b][0, 0]) @ u) * u
+    one = SpringSet("one", [fam], 3, 4, *(c.constants["k_tension"], c.constants["k_compression"]))
+    only = np.zeros_like(x)
+    one.accumulate(ps, x, v, only)
+    SpringDamping([(fam, c.constants["kd"])], 3, 4).accumulate(ps, x, v, only)
+    assert np.allclose(only.reshape(3, 4, 2)[0, 0], fa, rtol=1e-9)
+
+
+def test_one_implicit_step_matches_a_dense_solve_of_the_same_system():
+    rng = np.random.default_rng(5)
+    c = small_cloth(4, 4, pins="corners", on={"gravity", "air", "damping", "shear", "bending"})
+    ps = c.ps
+    ps.x = c.rest_x * 1.03 + rng.normal(0, 0.05, c.rest_x.shape)   # all springs stretched
+    ps.v = rng.normal(0, 30.0, ps.x.shape) * ps.free
+    x0, v0, h, n = ps.x.copy(), ps.v.copy(), 1 / 60, ps.x.size
+    f0 = ps.force(x0, v0).ravel().copy()
+    forces = [f.force for f in ps.forces]
+
+    def force(xx, vv):
+        f = np.zeros((16, 2))
+        for fo in forces:
+            fo.accumulate(ps, xx.reshape(16, 2), vv.reshape(16, 2), f)
+        return f.ravel()
+    # dense Jacobians by central differences of the forces (exact: every spring is stretched);
+    # the damping force's x-derivative is left out, as Baraff & Witkin (and the solver) do
+    eps = 1e-6
+    K, D = np.zeros((n, n)), np.zeros((n, n))
+    undamped = [fo for fo in forces if not isinstance(fo, SpringDamping)]
+    for j in range(n):
+        e = np.zeros(n)
+        e[j] = eps
+        K[:, j] = (sum_force(undamped, ps, x0.ravel() + e, v0.ravel())
+                   - sum_force(undamped, ps, x0.ravel() - e, v0.ravel())) / (2 * eps)
+        D[:, j] = (force(x0.ravel(), v0.ravel() + e)
+                   - force(x0.ravel(), v0.ravel() - e)) / (2 * eps)
+    M = np.diag(np.repeat(ps.mass, 2))
+    free = np.repeat(ps.free[:, 0], 2).astype(bool)
+    A = M - h * D - h * h * K
+    b = h * (f0 + h * K @ v0.ravel())
+    dv = np.zeros(n)
+    dv[free] = np.linalg.solve(A[np.ix_(free, free)], b[free])
+    ps.cg_tolerance = 1e-12
+    implicit_euler(ps, h)
+    assert np.allclose(ps.v.ravel(), v0.ravel() + dv, rtol=1e-7, atol=1e-7)
+    assert np.allclose(ps.x.ravel(), x0.ravel() + h * (v0.ravel() + dv), rtol=1e-9, atol=1e-9)
+
+
+def sum_force(forces, ps, x, v):
+    f = np.zeros((ps.n, 2))
+    for fo in forces:
+        fo.accumulate(ps, x.reshape(-1, 2), v.reshape(-1, 2), f)
+    return f.ravel()
+
+
+def test_a_damped_hanging_cloth_settles_and_its_forces_balance():
+    c = small_cloth(6, 6, material="denim", pins="top")
+    c.ps.cg_tolerance = 1e-8
+    for _ in range(180):                         # 3 s at 60 Hz
+        c.step(1 / 60, "implicit_euler")
+    assert c.kinetic_energy() < 1e-6 * float(c.ps.mass.sum()) * 900 * 16   # << m g spacing
+    f = c.ps.force(c.ps.x, np.zeros_like(c.ps.v)) * c.ps.free
+    weight = c.ps.mass[:, None] * 900
+    assert np.abs(f).max() < 1e-4 * weight.max()
+    assert c.pinned_drift() == 0.0
+
+
+def conservative_scene(hertz: int):
+    """A silk cloth with no damping, air or gravity, particles nudged: only springs act."""
+    s = MassSpringClothScene({"material": "silk", "rows": 6, "cols": 6, "gravity": False,
+                              "air": False, "damping": False, "pins": "corners",
+                              "integrator": "symplectic_euler", "hertz": hertz})
+    ps = s.cloth.ps
+    ps.x = ps.x + np.random.default_rng(2).normal(0, 0.3, ps.x.shape) * ps.free
+    s._estimate_mode(iterations=200)
+    return s
+
+
+def test_symplectic_euler_is_bounded_below_the_predicted_limit_and_blows_up_above_it():
+    probe = conservative_scene(60)
+    limit = probe.explicit_limit()
+    assert limit == pytest.approx(2.0 / probe.omega_max)          # no damping: 2/omega_max
+    assert predicted_limit("symplectic_euler", probe.omega_max, 0.0) == pytest.approx(limit)
+    below = conservative_scene(math.ceil(1 / (0.8 * limit)))
+    e0 = below.cloth.energy()
+    energies = []
+    for _ in range(1500):
+        below.advance()
+        energies.append(below.cloth.energy())
+    assert below.is_finite()
+    # symplectic Euler's energy swings (by 1/(1 - (omega h / 2)^2) at omega h = 1.6) but does
+    # not grow: the second half of the run reaches no higher than the first
+    assert max(energies) < 5 * e0
+    assert max(energies[750:]) < 1.05 * max(energies[:750])
+    above = conservative_scene(math.floor(1 / (1.2 * limit)))
+    for _ in range(1500):
+        above.advance()
+        if not above.is_finite():
+            break
+    assert not above.is_finite(), "1.2x past the predicted limit, symplectic Euler must blow up"
+
+
+def test_the_predicted_limits_match_the_theory_of_each_integrator():
+    for omega, c in ((1000.0, 0.0), (1000.0, 300.0)):
+        assert predicted_limit("symplectic_euler", omega, c) == pytest.approx(
+            symplectic_limit(omega, c), rel=1e-9)
+    assert predicted_limit("verlet", 1000.0, 0.0) == pytest.approx(2e-3, rel=1e-9)
+    assert predicted_limit("rk4", 1000.0, 0.0) == pytest.approx(2 * math.sqrt(2) / 1000, rel=1e-9)
+    assert predicted_limit("euler", 1000.0, 0.0) is None
+    assert predicted_limit("midpoint", 1000.0, 0.0) is None
+    assert predicted_limit("euler", 1000.0, 300.0) == pytest.approx(300 / (1000 ** 2), rel=1e-6)
+    assert predicted_limit("implicit_euler", 1000.0, 0.0) == math.inf
+
+
+@pytest.mark.parametrize("material", list(MATERIALS))
+def test_every_material_with_every_integrator_inside_its_limit_runs_10_s(material):
+    # a 3x3 cloth of 600 px cells: omega_max ~ spacing^-1.5 is low, so 10 s take few steps
+    c = small_cloth(3, 3, material=material, pins="top", spacing=600.0)
+    start = c.copy_state()
+    omega, damp, _ = top_mode(c.ps, 200)
+    for name in INTEGRATORS:
+        c.restore_state(start)
+        limit = predicted_limit(name, omega, damp)
+        if limit is None:       # no stable step at all: only for a method that always gains
+            assert name in ("euler", "midpoint") and MATERIALS[material].spring_damping == 0
+            continue            # energy, on silk (air drag alone is too weak to beat that)
+        h = min(0.5 * limit, 1 / 15)
+        steps = math.ceil(10.0 / h)
+        for _ in range(steps):
+            c.step(h, name)
+        assert c.is_sane(), (material, name)
+
+
+def test_leather_holds_its_shape_where_silk_sags_and_rubber_stretches_most():
+    """The scene docstring's comparison: top-edge sag after 1.5 s on the default cloth."""
+    sag, stretch = {}, {}
+    for material in ("silk", "leather", "rubber"):
+        s = MassSpringClothScene({"material": material})
+        c = s.cloth
+        y0 = c.ps.x[c.cols // 2, 1]                   # the middle of the top row
+        for _ in range(90):
+            s.advance()
+        sag[material] = c.ps.x[c.cols // 2, 1] - y0
+        stretch[material] = s.metrics()["max_stretch"]
+    assert sag["leather"] < 0.7 * sag["silk"]
+    assert sag["rubber"] > 1.3 * sag["silk"] and stretch["rubber"] > 3 * stretch["silk"]
+
+
+def test_effects_that_are_off_do_no_work():
+    s = MassSpringClothScene({"rows": 5, "cols": 5, "shear": False, "bending": False,
+                              "wind": False, "damping": False, "air": False})
+    for _ in range(3):
+        s.advance()
+    calls = s.cloth.calls
+    assert calls["structural"] > 0 and calls["gravity"] > 0
+    assert all(calls.get(k, 0) == 0 for k in ("shear", "bending", "wind", "damping", "air"))
+    s.set("shear", True)
+    s.set("wind", True)
+    s.advance()
+    assert calls["shear"] > 0 and calls["wind"] > 0 and calls.get("bending", 0) == 0
+    assert set(s.effect_costs()) == {"gravity", "wind", "shear", "structural", "solve"}
+
+
+def test_a_material_sets_the_sliders_and_a_moved_slider_makes_it_custom():
+    s = MassSpringClothScene({"material": "leather"})
+    assert s.p["bending_stiffness"] == 150 and s.p["tension"] == 80
+    s.set("material", "silk")
+    assert s.p["spring_damping"] == 0 and s.p["mass"] == 0.15
+    assert s.cloth.constants["kd"] == 0
+    s.set("tension", 30)
+    assert s.p["material"] == "custom" and s.cloth.material["tension"] == 30
+    mixed = MassSpringClothScene({"material": "denim", "tension": 55})
+    assert mixed.p["material"] == "custom" and mixed.p["tension"] == 55
+    assert mixed.p["bending_stiffness"] == 10          # the rest from denim
+
+
+def test_an_explicit_blow_up_is_caught_and_implicit_euler_goes_on_at_the_same_step():
+    s = MassSpringClothScene({"material": "leather", "integrator": "symplectic_euler"})
+    snap = s.snapshot()
+    for _ in range(30):
+        s.advance()
+        if not s.is_finite():
+            break
+    assert not s.is_finite()
+    s.restore(snap)
+    s.set("integrator", "implicit_euler")
+    for _ in range(60):
+        s.advance()
+    assert s.is_finite() and s.metrics()["cg_iterations"] > 0
+    assert s.metrics()["pinned_drift"] == 0.0
+
+
+def test_grab_drag_release_locks_and_rmb_unlocks():
+    from app.scene import InputEvent
+    s = MassSpringClothScene({"rows": 6, "cols": 6, "pins": "corners"})
+    c = s.cloth
+    target = tuple(c.ps.x[c.cols * 5 + 3])                      # a bottom particle
+    s.handle_event(InputEvent("mouse_down", target, 1))
+    assert c.grabbed == (5, 3)
+    s.handle_event(InputEvent("mouse_move", (target[0] + 80, target[1] + 40)))
+    for _ in range(5):
+        s.advance()
+    assert np.allclose(c.ps.x[c.cols * 5 + 3], (target[0] + 80, target[1] + 40))
+    s.handle_event(InputEvent("mouse_up", (target[0] + 80, target[1] + 40), 1))
+    assert c.locked[5, 3] and c.grabbed is None
+    for _ in range(10):
+        s.advance()
+    assert s.metrics()["pinned_drift"] == 0.0
+    s.handle_event(InputEvent("mouse_down", (target[0] + 80, target[1] + 40), 3))
+    assert not c.locked[5, 3]
+
+
+@pytest.mark.parametrize("setting", ["tension=-1", "compression=nan", "mass=0",
+                                     "material=wool", "integrator=leapfrog",
+                                     "rows=64", "shear_stiffness=inf"])
+def test_bad_input_is_one_line_and_exit_2(setting, capsys):
+    from app.__main__ import main
+    args = ["--headless", "--scene", "mass_spring_cloth", "--steps", "1", "--set", setting]
+    if setting == "rows=64":
+        args += ["--set", "cols=64", "--set", "substeps=20"]     # over the step budget
+    assert main(args) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
+
+
+def test_check_combination_refuses_a_step_over_budget():
+    with pytest.raises(ParamError, match="too large"):
+        MassSpringClothScene({"rows": 64, "cols": 64, "substeps": 20})
+
+
+def test_bench_mass_spring_quick_runs_and_has_its_json_keys(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "app", "bench", "mass_spring", "--quick", "--json",
+                        "--out", str(tmp_path)], cwd=ROOT, capture_output=True, text=True,
+                       timeout=120)
+    assert r.returncode == 0, r.stderr
+    data = json.loads(r.stdout)
+    assert {"large_steps", "step_ms"} <= set(data)
+    row = data["large_steps"][0]
+    assert {"material", "stiffness_scale", "integrator", "max_stable_h", "predicted_h",
+            "ms_per_sim_second"} <= set(row)
+    assert set(data["step_ms"]) == set(INTEGRATORS)
+    assert list(tmp_path.glob("*.png"))
