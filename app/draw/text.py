@@ -23,3 +23,9 @@ def font(size: int) -> pygame.font.Font:
         _cache[size] = pygame.font.Font(None, size)
     return _cache[size]
 
+
+
+def px(width: float) -> int:
+    """A line width (or marker size) in screen pixels for drawing `width` at text scale 1: lines,
+    trails and legend chips grow with the large-text switch like the text beside them."""
+    return max(1, int(round(width * TEXT.scale)))
