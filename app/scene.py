@@ -227,6 +227,8 @@ class Scene:
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
     tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
+    color_key: tuple[tuple[tuple[int, int, int], str], ...] = ()   # (colour, what it means): the
+                                                                   # HUD shows it as a key
     snapshot_skip: tuple[str, ...] = ()   # attributes the default snapshot leaves out (caches)
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):

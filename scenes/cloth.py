@@ -26,7 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from app.physics.cloth import FORCE_NAMES, PIN_CHOICES, SET_NAMES, WIND_FIELDS, Cloth, sweep_size
-from app.scene import Effect, InputEvent, Param, ParamError, Scene, common
+from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
 
 UNLOCK_KEY = "u"
 # Work per step, in rod updates: iterations x substeps x (rods + BATCH_COST x batches), counting
@@ -92,6 +92,19 @@ class ClothScene(Scene):
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),
     )
+    tries = (
+        Try("Stretchy: 2 iterations", {"iterations": 2, "substeps": 1},
+            "the rods cannot relax in 2 sweeps: the cloth sags, warm colours, the stretch in the "
+            "HUD rises; then try 50"),
+        Try("Stiff: 50 iterations", {"iterations": 50, "substeps": 1},
+            "the stretch falls, the physics ms/step rises about fivefold"),
+        Try("Substeps instead: 2 iterations x 5", {"iterations": 2, "substeps": 5},
+            "10 sweeps per step as at the default 10 iterations, yet much less stretch: small "
+            "steps beat many iterations"),
+        Try("Wind and tearing", {"wind": True, "tearing": True},
+            "the gusts billow the cloth; yank it with the mouse and rods stretched past "
+            "tear_ratio break (torn in the HUD)"),
+    )
 
     # ----- world --------------------------------------------------------------------------------
     @classmethod
@@ -122,6 +135,7 @@ class ClothScene(Scene):
         origin = ((w - spacing * (cols - 1)) / 2, 0.28 * h)   # below the window's HUD box
         dtype = np.float32 if p["precision"] == "float32" else np.float64
         self.cloth = Cloth(rows, cols, spacing, origin, p["pins"], self.on, dtype)
+        self.origin = origin
         self.cloth.world = (float(w), float(h))
         self.grab_radius = max(14.0, 1.2 * spacing)
         self.mouse: tuple[float, float] | None = None
@@ -185,7 +199,15 @@ class ClothScene(Scene):
         if self.mouse is not None and self.cloth.grabbed is None:
             hover = self.cloth.nearest(self.mouse, self.grab_radius)
         draw_cloth(surface, view, self.cloth, hover, self.stretches())
-        self.legend_rect = draw_legend(surface, view, self.world_size)
+        self.legend_rect = draw_legend(surface, view, self.content_bounds())
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The hanging cloth with room to swing and billow, and above its right end the strain
+        key (where the wind-blown cloth does not go)."""
+        c = self.cloth
+        cw, ch = c.spacing * (c.cols - 1), c.spacing * (c.rows - 1)
+        ox, oy = self.origin
+        return (ox - 0.3 * cw, oy - 0.5 * ch, 1.6 * cw, 1.65 * ch)
 
     # ----- reports ------------------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:

@@ -3,10 +3,10 @@
 What it shows: the same problem (a mass on a spring, a pendulum, or a two-body orbit) run side
 by side by forward Euler, symplectic Euler, Verlet, midpoint (RK2), RK4 and implicit Euler, each in
 its own colour, with the exact (or reference) solution as a white ghost. Left: the systems.
-Right: the phase portrait (position against velocity; the exact orbit is the grey loop). Top
-right: energy over time, E/E0 on a log axis. Bottom: per integrator the derivative evaluations
-and microseconds per step (measured while it runs), the relative phase-space error against the
-exact solution, E/E0, and when it blew up. The top left stays empty for the window's HUD.
+Right: the phase portrait (position against velocity; the exact solution is the white loop and
+its white ring). Top right: energy over time, E/E0 on a log axis. Bottom: per integrator the
+derivative evaluations and microseconds per step (measured while it runs), the relative
+phase-space error against the exact solution, E/E0, and when it blew up.
 
 The lecture idea: explicit methods are cheap per step but only conditionally stable, implicit
 methods cost a linear solve per step and are stable at any step. Turn `hertz` down and watch
@@ -37,12 +37,12 @@ import numpy as np
 import pygame
 
 from app.draw.ring import Ring
-from app.draw.text import TEXT, font
+from app.draw.text import TEXT, fit_size, font, px
 from app.draw.view import View
 from app.physics.integrators import INTEGRATORS, Integrator
 from app.physics.particles import ParticleSystem
 from app.physics.problems import PROBLEMS, Problem, make_problem
-from app.scene import Effect, Param, Scene
+from app.scene import Effect, Param, Scene, Try
 
 COLORS = {"euler": (230, 97, 76), "symplectic_euler": (250, 150, 60), "verlet": (240, 200, 70),
           "midpoint": (120, 200, 120), "rk4": (86, 180, 233), "implicit_euler": (200, 130, 230)}
@@ -102,6 +102,15 @@ class IntegratorsScene(Scene):
     )
     effects = tuple(Effect(name, True, f"{info.title}: {info.note}", rebuild=True)
                     for name, info in INTEGRATORS.items())
+    tries = (
+        Try("hertz 4: past Verlet's limit", {"problem": "spring", "hertz": 4},
+            "omega*h = 2.25: Verlet and symplectic Euler blow up (limit 2); RK4 stays bounded "
+            "(limit 2.83), though it damps the energy away"),
+        Try("hertz 3: past RK4's limit too", {"problem": "spring", "hertz": 3},
+            "omega*h = 3: RK4 blows up as well; only implicit Euler stays bounded (it spirals in)"),
+        Try("The orbit at hertz 60", {"problem": "orbit", "hertz": 60},
+            "implicit Euler's damping makes the bodies spiral in: stable is not accurate"),
+    )
 
     # ----- world ---------------------------------------------------------------------------------
     def build(self) -> None:
@@ -245,11 +254,13 @@ class IntegratorsScene(Scene):
         return pygame.Rect(x, y, round(view.len(rect[2])), round(view.len(rect[3])))
 
     def _frame(self, surface, view, rect, title: str, bottom: bool = False) -> pygame.Rect:
-        """A panel with its title at the top (or at the bottom)."""
+        """A panel with its title at the top (or at the bottom), the title's size fitted to the
+        panel's width (large text, small windows)."""
         r = self._screen_rect(view, rect)
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
-        label = self._render(title, LABEL, self._size(view, TITLE_SIZE))
+        label = self._render(title, LABEL, fit_size([title], self._size(view, TITLE_SIZE),
+                                                    r.width - 12))
         surface.blit(label, (r.x + 6, r.bottom - label.get_height() - 4 if bottom else r.y + 4))
         return r
 
@@ -319,33 +330,68 @@ class IntegratorsScene(Scene):
         pygame.draw.lines(surface, color, False, view.pts(pts), 1)
 
     # bottom: the table
+    TABLE_TEMPLATES = ("9999.9", "-8.88e+88", "-8.888e+88")   # widest us/step, error, E/E0
+
     def _draw_table(self, surface, view) -> None:
+        """One row per integrator; the columns are laid out from the measured widths of their
+        text (and of the widest number each can show), and the text shrinks until the table fits
+        its panel, so that no two columns ever run together."""
         r = self._screen_rect(view, TABLE_RECT)
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
-        x0, y0 = TABLE_RECT[0] + 10, TABLE_RECT[1] + 4
-        # (header, world x, right-aligned?)
-        columns = (("integrator", 30, False), ("f evals", 300, True), ("us/step", 420, True),
-                   ("error", 545, True), ("E/E0", 660, True), ("", 700, False))
-        for head, x, right in columns:
-            self._text(surface, view, (x0 + x, y0), head, LABEL, TABLE_SIZE, right)
-        for i, (name, info) in enumerate(INTEGRATORS.items()):
-            y = y0 + 26 + 24 * i
-            run = next((r for r in self.runs if r.name == name), None)
-            color = COLORS[name] if run else (110, 110, 110)
-            pygame.draw.rect(surface, color, (*view.pt((x0 + 4, y + 3)), round(view.len(14)), round(view.len(14))))
-            self._text(surface, view, (x0 + 30, y), info.title, color, TABLE_SIZE)
+        heads = ("integrator", "f evals", "us/step", "error", "E/E0")
+        rows = []                                   # (colour, cells, note)
+        for name, info in INTEGRATORS.items():
+            run = next((r_ for r_ in self.runs if r_.name == name), None)
             evals = f"{info.evaluations}" if info.explicit else f"{info.evaluations} + CG"
-            self._text(surface, view, (x0 + 300, y), evals, color, TABLE_SIZE, True)
             if run is None:
-                self._text(surface, view, (x0 + 420, y), "off", color, TABLE_SIZE, True)
+                rows.append(((110, 110, 110), (info.title, evals, "off", "", ""), ""))
                 continue
-            cells = (f"{run.step_us:.1f}", f"{run.error:.2e}", f"{run.energy_ratio:.4g}")
-            for (_, x, _), text in zip(columns[2:5], cells):
-                self._text(surface, view, (x0 + x, y), text, color, TABLE_SIZE, True)
-            if run.blew_up_t is not None:
-                self._text(surface, view, (x0 + 700, y), f"blew up at t = {run.blew_up_t:.2f} s",
-                           color, TABLE_SIZE)
+            note = f"blew up at t = {run.blew_up_t:.2f} s" if run.blew_up_t is not None else ""
+            rows.append((COLORS[name], (info.title, evals, f"{run.step_us:.1f}",
+                                        f"{run.error:.2e}", f"{run.energy_ratio:.4g}"), note))
+        columns = [[h, *(cells[i] for _, cells, _ in rows)] for i, h in enumerate(heads)]
+        for column, widest in zip(columns[2:], self.TABLE_TEMPLATES):
+            column.append(widest)
+        notes = [note for _, _, note in rows if note] or [""]
+        pad = max(4, r.height // 30)
+
+        def layout(size: int) -> tuple[list[int], int, bool]:
+            f = font(size)
+            gap = f.size("  ")[0]
+            widths = [max(f.size(t)[0] for t in column) for column in columns]
+            chip = f.get_height()
+            need_w = pad + chip + gap + sum(widths) + gap * len(widths) + max(
+                f.size(n)[0] for n in notes)
+            need_h = f.get_linesize() * (len(rows) + 1) + 2 * pad
+            return widths, gap, need_w <= r.width and need_h <= r.height
+
+        size = self._size(view, TABLE_SIZE)
+        widths, gap, fits = layout(size)
+        while not fits and size > 8:                # the smallest text that is still text
+            size = max(8, int(size * 0.9))
+            widths, gap, fits = layout(size)
+        f = font(size)
+        chip = f.get_height()
+        line = f.get_linesize()
+        x = r.x + pad + chip + gap
+        lefts = []
+        for w in widths:
+            lefts.append(x)
+            x += w + gap
+        note_x = x
+        y = r.y + pad
+        for i, head in enumerate(heads):            # numbers right-aligned, names left
+            img = self._render(head, LABEL, size)
+            surface.blit(img, (lefts[i] + (widths[i] - img.get_width() if i else 0), y))
+        for color, cells, note in rows:
+            y += line
+            pygame.draw.rect(surface, color, (r.x + pad, y + chip // 6, chip * 2 // 3, chip * 2 // 3))
+            for i, text in enumerate(cells):
+                img = self._render(text, color, size)
+                surface.blit(img, (lefts[i] + (widths[i] - img.get_width() if i else 0), y))
+            if note:
+                surface.blit(self._render(note, color, size), (note_x, y))
 
     # right: the two plots
     def _plot_map(self, rect, xlo, xhi, ylo, yhi):
@@ -368,7 +414,7 @@ class IntegratorsScene(Scene):
         to_world = self._plot_map(PHASE_RECT, qlo - qpad, qhi + qpad, plo - ppad, phi + ppad)
         old_clip = surface.get_clip()
         surface.set_clip(clip.inflate(-2, -24).move(0, 10).clip(old_clip))
-        pygame.draw.lines(surface, (150, 150, 155), True, view.pts(to_world(c[:, 0], c[:, 1])), 1)
+        pygame.draw.lines(surface, GHOST, True, view.pts(to_world(c[:, 0], c[:, 1])), px(1))
         for run in self.runs:
             if len(run.phase) > 1:
                 pts = run.phase.values()

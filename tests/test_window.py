@@ -15,6 +15,7 @@ import pygame
 import pygame_gui
 import pytest
 
+from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Effect, InputEvent, Param, Scene
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
@@ -659,3 +660,53 @@ def test_help_text_is_wrapped_never_cut():
 def test_fmt_number_shows_a_missing_value_as_a_dash():
     from app.draw.hud import fmt_number
     assert fmt_number(None) == "-"
+
+
+# ----- the layout rule, for every registered scene -------------------------------------------
+from scenes import SCENES  # noqa: E402
+
+
+@pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])
+def test_hud_metrics_and_panel_never_cover_the_content(cls, tmp_path):
+    """At both text sizes and at 1024x640, 1280x800 and 1920x1080, the HUD box, the metrics
+    strip and the panel do not intersect the screen rectangle of the scene's content_bounds()
+    (the layout is computed as render() computes it; the panel is what the world area leaves)."""
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1024, 640)), [cls], screenshot_dir=tmp_path)
+    assert w.open_scene(cls)
+    for _ in range(3):
+        w.update(1 / 60)
+    w.render()
+    sv = w.scene_view
+    try:
+        for scale in (1.0, 1.6):
+            TEXT.scale = scale
+            for size in ((1024, 640), (1280, 800), (1920, 1080)):
+                w.screen = pygame.Surface(size)
+                sv.hud_room = (0, 0)
+                layout = sv.fit()
+                area = layout.area
+                content = layout.content_rect(w.scene.content_bounds())
+                panel = pygame.Rect(area.right, 0, size[0] - area.right, size[1])
+                drawn = hud.box_size(sv.hud_lines(), layout.hud_text,
+                                     max_width=hud.hud_width(area))
+                where = (scale, size)
+                assert panel.width >= 300 and area.width >= 600, where
+                assert drawn[0] <= layout.hud.width and drawn[1] <= layout.hud.height, where
+                assert area.contains(content), (where, content, area)
+                assert content.width > 0.25 * area.width or \
+                    content.height > 0.25 * area.height, where     # fitted, not a stamp
+                for name, rect in (("HUD", layout.hud), ("metrics", layout.strip),
+                                   ("panel", panel)):
+                    assert not rect.colliderect(content), (where, name, rect, content)
+    finally:
+        TEXT.scale = 1.0
+
+
+@pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])
+def test_every_try_card_is_accepted_by_the_scene(cls):
+    assert 2 <= len(cls.tries) <= 4
+    for card in cls.tries:
+        values, on = cls.resolve(card.settings)         # the panel's validation
+        assert card.label and card.watch

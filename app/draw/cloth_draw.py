@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from app.draw.text import TEXT, font
+from app.draw.text import TEXT, font, px
 from app.physics.cloth import Cloth
 
 STRAIN_EDGES = (0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
@@ -104,7 +104,7 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     `stretch`: the horizontal and vertical structural rods' |length/rest - 1| if already known
     (computed here otherwise)."""
     pts = view.pts(np.moveaxis(cloth.x, 0, -1))              # (rows, cols, 2) screen points
-    width = 2 if view.len(cloth.spacing) >= 10 else 1
+    width = px(2) if view.len(cloth.spacing) >= 6 else px(1)     # 2 px: seen from the back row
     horizontal, vertical = cloth.sets["structural"].families
     if stretch is None:
         stretch = cloth.stretch(horizontal), cloth.stretch(vertical)
@@ -138,7 +138,7 @@ def _legend() -> pygame.Surface:
     """The colour key (cached per text scale)."""
     key = TEXT.scale
     if key not in _legend_cache:
-        f = font(15)
+        f = font(24)
         labels = ([f"<{STRAIN_EDGES[0] * 100:g}%"]
                   + [f"{a * 100:g}-{b * 100:g}%" for a, b in zip(STRAIN_EDGES, STRAIN_EDGES[1:])]
                   + [f">{STRAIN_EDGES[-1] * 100:g}%"])
@@ -158,10 +158,11 @@ def _legend() -> pygame.Surface:
     return _legend_cache[key]
 
 
-def draw_legend(surface: pygame.Surface, view, world_size: tuple[int, int]) -> pygame.Rect:
-    """The strain colour key in the top-right corner of the world: above the pinned row (the
-    cloth hangs from 28 % of the height) and right of the window's HUD box, where the cloth rarely
-    goes; the wind blows it into the bottom-right corner. Returns the screen rectangle."""
+def draw_legend(surface: pygame.Surface, view, bounds: tuple[float, float, float, float]
+                ) -> pygame.Rect:
+    """The strain colour key in the top-right corner of the scene's content bounds (x, y, w, h,
+    world): right of the hanging cloth, where it rarely goes (the wind blows it there). Returns
+    the screen rectangle."""
     legend = _legend()
-    x, y = view.pt((world_size[0], 0))
+    x, y = view.pt((bounds[0] + bounds[2], bounds[1]))
     return surface.blit(legend, (x - legend.get_width() - 6, y + 6))

@@ -17,6 +17,8 @@ import pygame
 from app.draw.view import View
 
 MARGIN = 8          # pixels between the content and the HUD, strip and edges
+HUD_SHARE = 0.4     # the HUD may take this much of the height before its text shrinks (never
+                    # below the normal size)
 
 
 @dataclass
@@ -26,6 +28,7 @@ class Layout:
     strip: pygame.Rect    # reserved for the metrics strip (empty when none or hidden)
     free: pygame.Rect     # where the content is fitted
     view: View
+    hud_text: int = 28    # the HUD's text size (as font() takes it)
 
     def content_rect(self, bounds: tuple[float, float, float, float]) -> pygame.Rect:
         """The screen rectangle of a world rectangle (x, y, w, h)."""
@@ -66,11 +69,18 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None,
     """The layout of `scene` in `area` with these HUD lines (None: HUD and metrics hidden); the
     HUD's room is at least `room` (what was reserved before)."""
     from app.draw import hud
+    from app.draw.text import TEXT
     if lines is None:
         return fit(area, scene.content_bounds(), (0, 0), 0)
-    w, h = hud.box_size(lines, max_width=hud.hud_width(area))
-    return fit(area, scene.content_bounds(), (max(room[0], w), max(room[1], h)),
-               hud.strip_height(scene, area))
+    size = hud.HUD_SIZE     # large text in a small window: the HUD gives back some of its growth
+    w, h = hud.box_size(lines, size, max_width=hud.hud_width(area))
+    while h > HUD_SHARE * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+        size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
+        w, h = hud.box_size(lines, int(round(size)), max_width=hud.hud_width(area))
+    layout = fit(area, scene.content_bounds(), (max(room[0], w), max(room[1], h)),
+                 hud.strip_height(scene, area))
+    layout.hud_text = int(round(size))
+    return layout
 
 
 def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | None) -> int:
@@ -86,6 +96,7 @@ def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | Non
         surface.set_clip(None)
     if lines is None:
         return area.bottom - 6
-    hud.text_box(surface, lines, layout.hud.topleft, max_width=hud.hud_width(area))
+    hud.text_box(surface, lines, layout.hud.topleft, layout.hud_text,
+                 max_width=hud.hud_width(area))
     strip = hud.draw_metrics(surface, area, scene)
     return strip.top if strip.height else area.bottom - 6
