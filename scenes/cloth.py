@@ -194,20 +194,24 @@ class ClothScene(Scene):
 
     # ----- drawing ------------------------------------------------------------------------------
     def draw(self, surface, view) -> None:
-        from app.draw.cloth_draw import draw_cloth, draw_legend
+        from app.draw.cloth_draw import draw_cloth
         hover = None
         if self.mouse is not None and self.cloth.grabbed is None:
             hover = self.cloth.nearest(self.mouse, self.grab_radius)
         draw_cloth(surface, view, self.cloth, hover, self.stretches())
-        self.legend_rect = draw_legend(surface, view, self.content_bounds())
+
+    @property
+    def color_key(self) -> tuple:
+        """The strain colours, for the HUD's colour key (the HUD never covers the cloth)."""
+        from app.draw.cloth_draw import strain_key
+        return strain_key()
 
     def content_bounds(self) -> tuple[float, float, float, float]:
-        """The hanging cloth with room to swing and billow, and above its right end the strain
-        key (where the wind-blown cloth does not go)."""
+        """The hanging cloth with room to swing and billow."""
         c = self.cloth
         cw, ch = c.spacing * (c.cols - 1), c.spacing * (c.rows - 1)
         ox, oy = self.origin
-        return (ox - 0.3 * cw, oy - 0.5 * ch, 1.6 * cw, 1.65 * ch)
+        return (ox - 0.3 * cw, oy - 0.1 * ch, 1.6 * cw, 1.35 * ch)
 
     # ----- reports ------------------------------------------------------------------------------
     def metrics(self) -> dict[str, float]:

@@ -542,6 +542,7 @@ def test_a_text_box_clicked_a_second_time_gets_the_keys_and_the_shell_none(windo
         for ev in pygame.event.get():
             window.handle_pygame_event(ev)
         assert not window.scene_view.typing()
+        assert len(window.scene.seen) == seen and not window.recorded   # not even Enter's key_up
 
 
 def test_try_cards_apply_their_settings_and_say_what_to_watch(window):

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from app.draw.text import TEXT, font, px
+from app.draw.text import px
 from app.physics.cloth import Cloth
 
 STRAIN_EDGES = (0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
@@ -131,38 +131,9 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         pygame.draw.circle(surface, HOVER_COLOR, pts[hover].tolist(), ring, 1)
 
 
-_legend_cache: dict[float, pygame.Surface] = {}
-
-
-def _legend() -> pygame.Surface:
-    """The colour key (cached per text scale)."""
-    key = TEXT.scale
-    if key not in _legend_cache:
-        f = font(24)
-        labels = ([f"<{STRAIN_EDGES[0] * 100:g}%"]
-                  + [f"{a * 100:g}-{b * 100:g}%" for a, b in zip(STRAIN_EDGES, STRAIN_EDGES[1:])]
-                  + [f">{STRAIN_EDGES[-1] * 100:g}%"])
-        title = f.render("stretch |l/rest - 1|", True, (220, 220, 220))
-        texts = [f.render(t, True, (220, 220, 220)) for t in labels]
-        chip = f.get_height()
-        w = max(title.get_width(), max(t.get_width() for t in texts) + chip + 6) + 8
-        h = (chip + 2) * (len(texts) + 1) + 8
-        surf = pygame.Surface((w, h), pygame.SRCALPHA)
-        surf.fill((0, 0, 0, 120))
-        surf.blit(title, (4, 4))
-        for i, (t, col) in enumerate(zip(texts, STRAIN_COLORS)):
-            y = 4 + (chip + 2) * (i + 1)
-            pygame.draw.rect(surf, col, (4, y + 2, chip, chip - 4))
-            surf.blit(t, (chip + 10, y))
-        _legend_cache[key] = surf
-    return _legend_cache[key]
-
-
-def draw_legend(surface: pygame.Surface, view, bounds: tuple[float, float, float, float]
-                ) -> pygame.Rect:
-    """The strain colour key in the top-right corner of the scene's content bounds (x, y, w, h,
-    world): right of the hanging cloth, where it rarely goes (the wind blows it there). Returns
-    the screen rectangle."""
-    legend = _legend()
-    x, y = view.pt((bounds[0] + bounds[2], bounds[1]))
-    return surface.blit(legend, (x - legend.get_width() - 6, y + 6))
+def strain_key() -> tuple:
+    """The strain colours as a colour key (colour or None, text): the HUD shows it."""
+    labels = ([f"<{STRAIN_EDGES[0] * 100:g}%"]
+              + [f"{a * 100:g}-{b * 100:g}%" for a, b in zip(STRAIN_EDGES, STRAIN_EDGES[1:])]
+              + [f">{STRAIN_EDGES[-1] * 100:g}%"])
+    return ((None, "stretch |l/rest - 1|:"), *zip(STRAIN_COLORS, labels))

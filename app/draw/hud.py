@@ -87,10 +87,22 @@ class Line:
     text: str
     color: tuple[int, int, int] = TEXT_COLOR
     swatch: tuple[int, int, int] | None = None
+    keys: tuple = ()      # a colour key packed into rows: (colour or None, text) items
 
 
 def _as_line(item) -> Line:
     return item if isinstance(item, Line) else Line(str(item))
+
+
+def _key_width(f: pygame.font.Font, key: tuple) -> int:
+    color, text = key
+    return (_swatch_w(f) if color is not None else 0) + f.size(text + "   ")[0]
+
+
+def _line_width(f: pygame.font.Font, it: Line) -> int:
+    if it.keys:
+        return sum(_key_width(f, k) for k in it.keys)
+    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0)
 
 
 def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int) -> list[Line]:
@@ -99,6 +111,14 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
         return items
     wrapped: list[Line] = []
     for item in items:
+        if item.keys:             # as many key items per row as fit
+            rows: list[list] = [[]]
+            for k in item.keys:
+                if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > max_width - 2 * pad:
+                    rows.append([])
+                rows[-1].append(k)
+            wrapped += [Line("", item.color, keys=tuple(r)) for r in rows]
+            continue
         room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
         for i, t in enumerate(wrap(item.text, f, room)):
             wrapped.append(Line(t, item.color, item.swatch if i == 0 else None))
@@ -116,7 +136,7 @@ def box_size(lines: list, size: int = HUD_SIZE, pad: int = 8,
     items = _box_lines(lines, f, max_width, pad)
     if not items:
         return (0, 0)
-    w = max(f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0) for it in items)
+    w = max(_line_width(f, it) for it in items)
     return (w + 2 * pad, len(items) * f.get_linesize() + 2 * pad)
 
 
@@ -137,6 +157,13 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
     y = pos[1] + pad
     for it in items:
         x = pos[0] + pad
+        for color, text in it.keys:
+            if color is not None:
+                side = f.get_height() * 3 // 4
+                pygame.draw.rect(surface, color, (x, y + (f.get_height() - side) // 2, side, side))
+                x += _swatch_w(f)
+            surface.blit(f.render(text, True, it.color), (x, y))
+            x += f.size(text + "   ")[0]
         if it.swatch:
             side = f.get_height() * 3 // 4
             pygame.draw.rect(surface, it.swatch, (x, y + (f.get_height() - side) // 2, side, side))
@@ -185,7 +212,11 @@ def scene_lines(scene, status: list, notes: list = ()) -> list:
     screenshots draw the same box."""
     lines: list = [Line(scene.title or scene.name, ACCENT_COLOR), *status]
     lines += [x if isinstance(x, Line) else str(x) for x in scene.hud_lines()]
-    lines += [Line(text, DIM_COLOR, swatch=color) for color, text in getattr(scene, "color_key", ())]
+    key = tuple(getattr(scene, "color_key", ()))
+    if len(key) > 3:          # a scale (the cloth's strain): packed into rows
+        lines.append(Line("", DIM_COLOR, keys=key))
+    else:
+        lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
     return lines + list(notes)
 
 

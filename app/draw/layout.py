@@ -17,7 +17,7 @@ import pygame
 from app.draw.view import View
 
 MARGIN = 8          # pixels between the content and the HUD, strip and edges
-HUD_SHARE = 0.4     # the HUD may take this much of the height before its text shrinks (never
+HUD_SHARE = 0.5     # the HUD may take this much of the height before its text shrinks (never
                     # below the normal size)
 
 

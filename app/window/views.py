@@ -141,6 +141,7 @@ class SceneView(ShellView):
         self.overlays = True                # F3 hides HUD and metrics
         self.banner = ""                    # the non-finite rollback's message
         self.dragging: set[int] = set()     # mouse buttons pressed in the world area
+        self.typed_keys: set[int] = set()   # keys pressed while typing into the panel
         self.layout: Layout | None = None
         self.hud_room = (0, 0)              # reserved HUD box; grows, reset by on_layout
         self.settle = SETTLE_FRAMES
@@ -324,7 +325,12 @@ class SceneView(ShellView):
             return
         if ev.type in (pygame.KEYDOWN, pygame.KEYUP, pygame.TEXTINPUT):
             if typing_before or self.typing() or consumed:
+                if ev.type == pygame.KEYDOWN:
+                    self.typed_keys.add(ev.key)
                 return                      # the keys are typing a value into the panel
+            if ev.type == pygame.KEYUP and ev.key in self.typed_keys:
+                self.typed_keys.discard(ev.key)     # the release of a key typed into the
+                return                              # panel (Enter) is not the scene's either
             if ev.type == pygame.KEYDOWN and self.shell_key(ev.key):
                 return
             if ev.type in (pygame.KEYDOWN, pygame.KEYUP) and \
