@@ -98,7 +98,7 @@ class ClothScene(Scene):
             "HUD rises; then try 50"),
         Try("Stiff: 50 iterations", {"iterations": 50, "substeps": 1},
             "the stretch falls, the physics ms/step rises about fivefold"),
-        Try("Substeps instead: 2 iterations x 5", {"iterations": 2, "substeps": 5},
+        Try("2 iterations x 5 subst.", {"iterations": 2, "substeps": 5},
             "10 sweeps per step as at the default 10 iterations, yet much less stretch: small "
             "steps beat many iterations"),
         Try("Wind and tearing", {"wind": True, "tearing": True},

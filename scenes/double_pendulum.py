@@ -110,11 +110,11 @@ class DoublePendulumScene(PymunkScene):
     color_key = (((230, 159, 0), "orange ghost: the exact equations (RK4, tiny step)"),
                  ((86, 180, 233), "blue: pymunk's bobs and the tip's trail"))
     tries = (
-        Try("Released low: they stay together", {"angle1": 20, "angle2": 20},
+        Try("Released low", {"angle1": 20, "angle2": 20},
             "small swings are not chaotic: the ghost and the bobs stay within a few px"),
-        Try("Released high: chaos parts them", {"angle1": 120, "angle2": 150},
+        Try("Released high: chaos", {"angle1": 120, "angle2": 150},
             "after a few seconds the bobs leave the ghost; the X marks where they parted"),
-        Try("pymunk's default error_bias", {"error_bias": 0.0018},
+        Try("pymunk's error_bias", {"error_bias": 0.0018},
             "the pins let the rods stretch a little, so energy drift grows (HUD)"),
         Try("One substep", {"substeps": 1},
             "bigger steps for pymunk: the energy drift in the HUD grows"),

@@ -87,7 +87,7 @@ class FallingBallsScene(PymunkScene):
         Try("Catch 60 balls in a box", {"container": True, "spawn_rate": 20, "max_balls": 60},
             "a pile builds up; resting groups fall asleep one after another (drawn dim, "
             "counted by balls_asleep)"),
-        Try("The same pile, sleeping off", {"container": True, "spawn_rate": 20,
+        Try("Same pile, sleeping off", {"container": True, "spawn_rate": 20,
                                             "max_balls": 60, "sleeping": False},
             "nothing sleeps (balls_asleep stays 0): every ball is simulated every step"),
         Try("Look for tunneling", {"g": 5000, "hertz": 15, "radius": 4},

@@ -103,12 +103,12 @@ class IntegratorsScene(Scene):
     effects = tuple(Effect(name, True, f"{info.title}: {info.note}", rebuild=True)
                     for name, info in INTEGRATORS.items())
     tries = (
-        Try("hertz 4: past Verlet's limit", {"problem": "spring", "hertz": 4},
+        Try("hertz 4: past Verlet", {"problem": "spring", "hertz": 4},
             "omega*h = 2.25: Verlet and symplectic Euler blow up (limit 2); RK4 stays bounded "
             "(limit 2.83), though it damps the energy away"),
-        Try("hertz 3: past RK4's limit too", {"problem": "spring", "hertz": 3},
+        Try("hertz 3: past RK4", {"problem": "spring", "hertz": 3},
             "omega*h = 3: RK4 blows up as well; only implicit Euler stays bounded (it spirals in)"),
-        Try("The orbit at hertz 60", {"problem": "orbit", "hertz": 60},
+        Try("Orbit at hertz 60", {"problem": "orbit", "hertz": 60},
             "implicit Euler's damping makes the bodies spiral in: stable is not accurate"),
     )
 
@@ -264,9 +264,14 @@ class IntegratorsScene(Scene):
         surface.blit(label, (r.x + 6, r.bottom - label.get_height() - 4 if bottom else r.y + 4))
         return r
 
-    def _text(self, surface, view, pos, text, color, size, right: bool = False) -> None:
-        """Text at a world point (its top-left, or its top-right if `right`)."""
-        label = self._render(text, color, self._size(view, size))
+    def _text(self, surface, view, pos, text, color, size, right: bool = False,
+              width: float | None = None, like: tuple[str, ...] = ()) -> None:
+        """Text at a world point (its top-left, or its top-right if `right`); with `width`
+        (world px) the text shrinks until it, and the texts `like` it, fit in that width."""
+        px_size = self._size(view, size)
+        if width is not None:
+            px_size = fit_size([text, *like], px_size, int(view.len(width)))
+        label = self._render(text, color, px_size)
         x, y = view.pt(pos)
         surface.blit(label, (x - label.get_width() if right else x, y))
 
@@ -285,7 +290,8 @@ class IntegratorsScene(Scene):
                 origin = np.array([left + 40.0 + 80.0 * i, top + 22.0])
                 run = next((r for r in self.runs if r.name == name), None)
                 color = COLORS[name] if run else (110, 110, 110)
-                self._text(surface, view, origin + (-30, 270), SHORT[name], color, TITLE_SIZE)
+                self._text(surface, view, origin + (-36, 270), SHORT[name], color, TITLE_SIZE,
+                           width=76, like=tuple(SHORT.values()))
                 pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)), view.pt(origin + (18, 0)), 3)
                 ghost = origin + k * self.problem.points(x_ref)[-1]
                 pygame.draw.circle(surface, GHOST, view.pt(ghost), max(2, round(view.len(12))), 1)
@@ -457,6 +463,6 @@ class IntegratorsScene(Scene):
         for value in (lo, 0.0, hi):
             p = to_world(np.array(tlo), np.array(value))
             self._text(surface, view, (ENERGY_RECT[0] + 36, float(p[1]) - 6), f"{10 ** value:.3g}",
-                       (170, 170, 180), SMALL_SIZE - 2, right=True)
+                       (170, 170, 180), SMALL_SIZE - 2, right=True, width=34, like=("-8.88e+88",))
         self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 6, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
                    f"t = {self.t:.1f} s", (170, 170, 180), SMALL_SIZE - 2, right=True)

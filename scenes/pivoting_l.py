@@ -81,9 +81,9 @@ class PivotingLScene(FallingBallsScene):
                  (D.SLIDE_LIMIT, "red dot: the slide joint sits at a limit"),
                  (D.DYNAMIC, "yellow: the L (a dynamic body)"))
     tries = (
-        Try("PivotJoint instead of the pin", {"pivot": "pivot"},
+        Try("PivotJoint, not the pin", {"pivot": "pivot"},
             "the L turns the same way: a pivot joint is a pin joint of length 0"),
-        Try("Back to the tutorial's PinJoint", {"pivot": "pin"},
+        Try("Back to the PinJoint", {"pivot": "pin"},
             "pin_error in the metrics: how far the pin's two anchors drift apart"),
         Try("No slide range", {"slide_max": 0},
             "slide_max 0 locks the L level: it cannot tip (angle_deg stays near 0)"),

@@ -100,7 +100,13 @@ class ParamPanel:
         self.toggles: dict[str, Any] = {}         # name -> UIButton (bool params and effects)
         self._by_element: dict[Any, tuple[str, str]] = {}
 
-        def label(text: str, width: int = inner_w, obj: str | None = None, x: int = pad):
+        label_font = manager.get_theme().get_font(["label"])
+
+        def label(text: str, width: int = inner_w, obj: str | None = None, x: int = pad,
+                  short: str | None = None):
+            """A label; `short` replaces the text when it would not fit (large text)."""
+            if short is not None and label_font.size(text)[0] > width - 8:
+                text = short
             UILabel(pygame.Rect(x, y, width, row), text, manager, container=self.container,
                     object_id=obj)
 
@@ -152,7 +158,8 @@ class ParamPanel:
                 self._by_element[d] = ("choice", prm.name)
                 y += row + gap
                 continue
-            label(f"{prm.name}   ({hud.fmt_number(prm.lo)} to {hud.fmt_number(prm.hi)})")
+            label(f"{prm.name}   ({hud.fmt_number(prm.lo)} to {hud.fmt_number(prm.hi)})",
+                  short=prm.name)
             y += row
             wide = prm.kind is int and (prm.hi - prm.lo) > 100_000   # e.g. seed: no slider
             entry_w = inner_w if wide else int(inner_w * 0.36)
@@ -174,7 +181,7 @@ class ParamPanel:
             y += row + gap
         if scene.effects:
             y += gap
-            label("Effects (off = not computed)", obj="#section")
+            label("Effects (off = not computed)", obj="#section", short="Effects")
             y += row
             for eff in scene.effects:
                 b = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
