@@ -2,11 +2,11 @@
 
 What it shows: the same problem (a mass on a spring, a pendulum, or a two-body orbit) run side
 by side by forward Euler, symplectic Euler, Verlet, midpoint (RK2), RK4 and implicit Euler, each in
-its own colour, with the exact (or reference) solution as a white ghost. Left: the systems.
-Right: the phase portrait (position against velocity; the exact solution is the white loop and
-its white ring). Top right: energy over time, E/E0 on a log axis. Bottom: per integrator the
-derivative evaluations and microseconds per step (measured while it runs), the relative
-phase-space error against the exact solution, E/E0, and when it blew up.
+its own colour, with the exact (or reference) solution as a white ghost. Top left: the systems.
+Top right: the phase portrait (position against velocity; the exact solution is the white loop
+and its white ring). Bottom left: energy over time, E/E0 on a log axis. Bottom right: per
+integrator the derivative evaluations and microseconds per step (measured while it runs), the
+relative phase-space error against the exact solution, E/E0, and when it blew up.
 
 The lecture idea: explicit methods are cheap per step but only conditionally stable, implicit
 methods cost a linear solve per step and are stable at any step. Turn `hertz` down and watch
@@ -55,12 +55,13 @@ SAMPLE_DT = 1.0 / 120.0     # plots keep at most 120 samples per simulated secon
 PLOT_SECONDS = 10.0         # the energy plot shows the last 10 s
 TIMING_WINDOW = 61          # us/step is the median of this many recent steps
 
-# Layout in world pixels (960 x 720, y down): x, y, w, h. The window's HUD box covers about
-# 650 x 195 px at the top left, so that corner is left empty; the bottom strip is our table.
-SYSTEM_RECT = (0, 200, 480, 338)
-PHASE_RECT = (490, 200, 462, 338)
-ENERGY_RECT = (658, 6, 294, 188)
-TABLE_RECT = (0, 544, 960, 176)
+# Layout in world pixels (y down): x, y, w, h. The panels fill CONTENT, which the window fits
+# into the space its HUD and panel leave free.
+SYSTEM_RECT = (0, 0, 480, 338)
+PHASE_RECT = (490, 0, 470, 338)
+ENERGY_RECT = (0, 346, 380, 200)
+TABLE_RECT = (390, 346, 570, 200)
+CONTENT = (0.0, 0.0, 960.0, 546.0)
 SPRING_DRAW_SCALE = 0.8     # the spring column is drawn at 80 % so the bobs fit the panel
 TABLE_SIZE = 24             # font sizes at zoom 1 (pygame's default font at 24: 16 px glyphs)
 TITLE_SIZE = 20
@@ -229,6 +230,9 @@ class IntegratorsScene(Scene):
         self._exact_cache = None
 
     # ----- drawing -------------------------------------------------------------------------------
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        return CONTENT
+
     def draw(self, surface: pygame.Surface, view: View) -> None:
         self._refresh()
         self._draw_systems(surface, view)
@@ -298,8 +302,10 @@ class IntegratorsScene(Scene):
                 if run is None:
                     continue
                 if run.blew_up_t is not None:
-                    self._text(surface, view, origin + (-36, 60), "blew up", run.color, SMALL_SIZE)
-                    self._text(surface, view, origin + (-36, 78), f"t={run.blew_up_t:.2f}s", run.color, SMALL_SIZE)
+                    self._text(surface, view, origin + (-36, 60), "blew up", run.color, SMALL_SIZE,
+                               width=74, like=("t=88.88s",))
+                    self._text(surface, view, origin + (-36, 78), f"t={run.blew_up_t:.2f}s",
+                               run.color, SMALL_SIZE, width=74, like=("t=88.88s",))
                     continue
                 bob = np.clip(origin + k * self.problem.points(run.ps.x)[-1], -1e4, 1e4)
                 self._spring(surface, view, origin, bob, run.color)
@@ -463,6 +469,6 @@ class IntegratorsScene(Scene):
         for value in (lo, 0.0, hi):
             p = to_world(np.array(tlo), np.array(value))
             self._text(surface, view, (ENERGY_RECT[0] + 36, float(p[1]) - 6), f"{10 ** value:.3g}",
-                       (170, 170, 180), SMALL_SIZE - 2, right=True, width=34, like=("-8.88e+88",))
+                       (170, 170, 180), SMALL_SIZE - 2, right=True, width=36)
         self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 6, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
                    f"t = {self.t:.1f} s", (170, 170, 180), SMALL_SIZE - 2, right=True)

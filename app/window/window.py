@@ -57,6 +57,9 @@ def theme(scale: float) -> dict:
             f = block.get("font") if isinstance(block, dict) else None
             if isinstance(f, dict) and "size" in f:
                 f["size"] = str(int(round(float(f["size"]) * scale)))
+            misc = block.get("misc") if isinstance(block, dict) else None
+            if isinstance(misc, dict) and "list_item_height" in misc:   # the drop-down's rows
+                misc["list_item_height"] = str(int(round(float(misc["list_item_height"]) * scale)))
         _THEMES[scale] = data
     return _THEMES[scale]
 
