@@ -4,8 +4,9 @@ A `SceneRunner` owns what happens between "run n fixed steps" and the scene's ho
 
   * fixed steps, each `scene.advance()` (substeps x step, then after_step), optionally within a
     wall-time budget (the window drops the rest so it stays responsive);
-  * per-step timing of the physics alone (drawing excluded): the median of the recent steps for
-    the HUD (held while paused: no step, no new figure), every step for the headless summary;
+  * per-step timing of the physics alone (drawing excluded): the mean of the recent steps for
+    the HUD (held while paused: no step, no new figure), every step for the headless summary
+    (whose step_ms is their median);
   * input events: an event is delivered before the first step that starts at or after its time
     (t <= session time + EVENT_SLACK), where the session time is the sum of the dt of every step
     run since the runner started (R does not restart it, so a recording stays in order);
@@ -182,9 +183,10 @@ class SceneRunner:
     # --- what the HUD and the summary read ---------------------------------------------------
     @property
     def step_ms(self) -> float | None:
-        """Median wall milliseconds of scene.advance() over the recent steps; None before the
-        first. Unchanged while no step runs (paused)."""
-        return statistics.median(self.recent_ms) if self.recent_ms else None
+        """Mean wall milliseconds of scene.advance() over the last RECENT_STEPS steps (a mean,
+        like the scenes' per-effect costs, so the breakdown adds up to it); None before the
+        first step. Unchanged while no step runs (paused)."""
+        return statistics.fmean(self.recent_ms) if self.recent_ms else None
 
     @property
     def last_ms(self) -> float | None:

@@ -272,7 +272,7 @@ def reflow(doc: str) -> str:
         stripped = line.strip()
         starts_item = stripped[:1] in ("-", "*", "+") or stripped[:2].rstrip(".").isdigit()
         joinable = (out and out[-1].strip() and stripped and not starts_item
-                    and not line.startswith((" ", "\t")) and not out[-1].rstrip().endswith(":"))
+                    and not line.startswith((" ", "\t")))
         if joinable:
             out[-1] = out[-1].rstrip() + " " + stripped
         else:

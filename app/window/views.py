@@ -460,8 +460,9 @@ class SceneView(ShellView):
             bottom = area.bottom - 6
         s = TEXT.scale
         if self.runner.error is not None:
+            top = layout.hud.bottom + 8 if self.overlays else area.top + int(40 * s)
             hud.banner(screen, ERROR_TEXT.format(message=self.runner.error), area,
-                       hud.ERROR_COLOR, y=area.top + int(40 * s))
+                       hud.ERROR_COLOR, y=top)
         elif self.banner:
             hud.banner(screen, self.banner, area, hud.WARN_COLOR, y=area.centery - int(60 * s))
         for _, text, color in reversed(self.window.messages):
