@@ -20,7 +20,7 @@ from app.draw.text import TEXT
 from app.scene import Effect, InputEvent, Param, Scene
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.window import Window, run_window
-from app.window.views import SETTLE_FRAMES
+from app.window.scene_view import SETTLE_FRAMES
 
 
 class Tiny(Scene):
@@ -85,6 +85,18 @@ class Other(Tiny):
     """A second scene, for switching."""
     name = "other"
     title = "Other"
+
+
+def open_window(cls, tmp_path, size=(1024, 640), frames: int = 0, **kwargs) -> Window:
+    """A Window of `size` with `cls` open, after `frames` frames of 1/60 s (each rendered)."""
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode(size), [cls], screenshot_dir=tmp_path, **kwargs)
+    assert w.open_scene(cls)
+    for _ in range(frames):
+        w.update(1 / 60)
+        w.render()
+    return w
 
 
 @pytest.fixture
@@ -578,13 +590,7 @@ class Failing(Tiny):
 
 
 def test_a_scene_error_pauses_the_window_and_shows_the_message(tmp_path):
-    pygame.display.init()
-    pygame.font.init()
-    w = Window(pygame.display.set_mode((1024, 640)), [Failing], screenshot_dir=tmp_path)
-    assert w.open_scene(Failing)
-    for _ in range(20):
-        w.update(1 / 60)
-        w.render()
+    w = open_window(Failing, tmp_path, frames=20)
     sv = w.scene_view
     assert w.scene is not None and sv.clock.paused and w.running
     assert sv.runner.error.startswith("exercise.py line 3")
@@ -617,7 +623,8 @@ def test_the_key_table_makes_the_keys_the_help_and_the_readme():
     from pathlib import Path
     from app.scene import SHELL_KEYS
     from app.window import keys
-    from app.window.views import HelpView, MenuView, SceneView
+    from app.window.scene_view import SceneView
+    from app.window.views import HelpView, MenuView
     readme = (Path(__file__).resolve().parent.parent / "README.md").read_text()
     assert keys.controls_table() in readme
     assert {n for k in keys.KEYS for n in k.names} <= SHELL_KEYS
@@ -672,13 +679,7 @@ def test_hud_metrics_and_panel_never_cover_the_content(cls, tmp_path):
     """At both text sizes and at 1024x640, 1280x800 and 1920x1080, the HUD box, the metrics
     strip and the panel do not intersect the screen rectangle of the scene's content_bounds()
     (the layout is computed as render() computes it; the panel is what the world area leaves)."""
-    pygame.display.init()
-    pygame.font.init()
-    w = Window(pygame.display.set_mode((1024, 640)), [cls], screenshot_dir=tmp_path)
-    assert w.open_scene(cls)
-    for _ in range(3):
-        w.update(1 / 60)
-    w.render()
+    w = open_window(cls, tmp_path, frames=3)
     sv = w.scene_view
     try:
         for scale in (1.0, 1.6):

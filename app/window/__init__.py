@@ -1,8 +1,9 @@
 """The interactive window, as a package (see app/window/window.py for the loop and the layout).
 
     window.py     the pygame loop, the layout of world, HUD, metrics and panel, event routing
-    views.py      what the window shows: the menu, a running scene, the help overlay (one view at
-                  a time, switched like arcade's show_view)
+    views.py      what the window shows, one view at a time (switched like arcade's show_view):
+                  the menu and the help overlay
+    scene_view.py the view of a running scene: its SceneRunner, clock, layout and input routing
     panel.py      the parameter panel (pygame-gui) with the scene's "try this" cards
     recorder.py   --record: the events a scene received and the command that replays them
     keys.py       the ONE table of shell keys (plain data; app.scene reads it)

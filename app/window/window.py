@@ -34,7 +34,8 @@ from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene
 from app.window.recorder import Recorder
-from app.window.views import HelpView, MenuView, SceneView, ShellView
+from app.window.scene_view import SceneView
+from app.window.views import HelpView, MenuView, ShellView
 
 ROOT = Path(__file__).resolve().parents[2]
 THEME_PATH = ROOT / "assets" / "theme.json"
