@@ -234,11 +234,11 @@ def hud_width(area: pygame.Rect) -> int:
     return max(1, min(area.width - 16, int(HUD_WIDTH * TEXT.scale)))
 
 
-def metric_lines(metrics: dict, width: int) -> list[str]:
+def metric_lines(metrics: dict, width: int, size: int = HUD_SIZE) -> list[str]:
     """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels; what does not fit
     is counted as "+N more (--json)"."""
     items = [f"{k} {fmt_number(v)}" for k, v in metrics.items()]
-    f = font(HUD_SIZE)
+    f = font(size)
     lines = pack(items, f, width - 16)
     if len(lines) > MAX_METRIC_LINES:
         lines = pack(items, f, width - 16 - f.size("  |  +99 more (--json)")[0])[:MAX_METRIC_LINES]
@@ -247,21 +247,22 @@ def metric_lines(metrics: dict, width: int) -> list[str]:
     return lines
 
 
-def strip_height(scene, area: pygame.Rect) -> int:
+def strip_height(scene, area: pygame.Rect, size: int = HUD_SIZE) -> int:
     """Height of the metrics strip along the bottom of `area` (0 if the scene has none): the
     room for MAX_METRIC_LINES lines, so the layout does not jump when a value gets longer."""
     if not scene.metrics_box or not scene.metrics():
         return 0
-    return MAX_METRIC_LINES * font(HUD_SIZE).get_linesize() + 16 + 6
+    return MAX_METRIC_LINES * font(size).get_linesize() + 16 + 6
 
 
-def draw_metrics(surface: pygame.Surface, area: pygame.Rect, scene) -> pygame.Rect:
-    """The metrics strip along the bottom of `area`; return its rectangle."""
-    lines = metric_lines(scene.metrics(), area.width - 16) if scene.metrics_box else []
+def draw_metrics(surface: pygame.Surface, area: pygame.Rect, scene,
+                 size: int = HUD_SIZE) -> pygame.Rect:
+    """The metrics strip along the bottom of `area` (text of `size`); return its rectangle."""
+    lines = metric_lines(scene.metrics(), area.width - 16, size) if scene.metrics_box else []
     if not lines:
         return pygame.Rect(area.left, area.bottom, 0, 0)
-    return text_box(surface, lines, (area.left + 8, area.bottom - 6), max_width=area.width - 16,
-                    from_bottom=True)
+    return text_box(surface, lines, (area.left + 8, area.bottom - 6), size,
+                    max_width=area.width - 16, from_bottom=True)
 
 
 def reflow(doc: str) -> str:

@@ -78,7 +78,7 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None,
         size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
         w, h = hud.box_size(lines, int(round(size)), max_width=hud.hud_width(area))
     layout = fit(area, scene.content_bounds(), (max(room[0], w), max(room[1], h)),
-                 hud.strip_height(scene, area))
+                 hud.strip_height(scene, area, int(round(size))))
     layout.hud_text = int(round(size))
     return layout
 
@@ -98,5 +98,5 @@ def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | Non
         return area.bottom - 6
     hud.text_box(surface, lines, layout.hud.topleft, layout.hud_text,
                  max_width=hud.hud_width(area))
-    strip = hud.draw_metrics(surface, area, scene)
+    strip = hud.draw_metrics(surface, area, scene, layout.hud_text)
     return strip.top if strip.height else area.bottom - 6
