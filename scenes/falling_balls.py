@@ -94,6 +94,13 @@ class FallingBallsScene(PymunkScene):
             "fast, small balls and big steps: watch the tunneled count"),
     )
 
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The world, and above and below it the balls on their way in (they appear just above
+        the top) and out (removed 2 radii below the bottom)."""
+        w, h = self.world_size
+        r = 2 * self.p["radius"]
+        return (0.0, SPAWN_Y - r, float(w), h + 2 * r - SPAWN_Y)
+
     # ----- building -------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:

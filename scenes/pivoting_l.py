@@ -93,7 +93,8 @@ class PivotingLScene(FallingBallsScene):
         """The L (and where it can tip to), the balls' way in from the top, the slide joint."""
         left = L_ORIGIN[0] + L_LONG[0][0] - 60
         right = L_ORIGIN[0] + L_LONG[1][0] + 60
-        return (left, 0.0, right - left, float(self.world_size[1]))
+        _, top, _, height = super().content_bounds()
+        return (left, top, right - left, height)
 
     def build_space(self, space: pymunk.Space) -> None:
         super().build_space(space)
