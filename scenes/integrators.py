@@ -318,10 +318,10 @@ class IntegratorsScene(Scene):
             for run in self.live():
                 pts = np.clip(origin + self.problem.points(run.ps.x), -1e4, 1e4)
                 if kind == "pendulum":
-                    pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), 1)
+                    pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), px(2))
                 elif len(run.trail) > 1:
                     trail = np.clip(origin + run.trail.values(), -1e4, 1e4)
-                    pygame.draw.lines(surface, run.color, False, view.pts(trail), 1)
+                    pygame.draw.lines(surface, run.color, False, view.pts(trail), px(2))
                 for j, p in enumerate(pts):
                     radius = 10 if kind == "pendulum" else 6 + 3 * (j == 0)
                     pygame.draw.circle(surface, run.color, view.pt(p), max(2, round(view.len(radius))))

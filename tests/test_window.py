@@ -712,3 +712,21 @@ def test_every_try_card_is_accepted_by_the_scene(cls):
     for card in cls.tries:
         values, on = cls.resolve(card.settings)         # the panel's validation
         assert card.label and card.watch
+
+
+class BrokenAtBuild(Tiny):
+    """A scene whose (student's) code fails while it is built."""
+    name = "broken"
+
+    def build(self):
+        from app.scene import SceneError
+        raise SceneError("exercise.py line 9: NameError: name 'x' is not defined")
+
+
+def test_a_scene_error_while_building_goes_back_to_the_menu_with_the_message(tmp_path, capsys):
+    pygame.display.init()
+    w = Window(pygame.display.set_mode((1024, 640)), [BrokenAtBuild], screenshot_dir=tmp_path)
+    assert not w.open_scene(BrokenAtBuild)
+    assert w.scene is None and "NameError" in w.menu_message and w.running
+    w.render()
+    assert capsys.readouterr().err == ""           # the message, not a traceback

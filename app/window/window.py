@@ -32,7 +32,7 @@ import pygame
 from app.draw import hud, save_png
 from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
-from app.scene import InputEvent, ParamError, Scene
+from app.scene import InputEvent, ParamError, Scene, SceneError
 from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
 from app.window.views import HelpView, MenuView, ShellView
@@ -129,10 +129,10 @@ class Window:
         to) the menu and show the error. Return True if the scene is open."""
         try:
             scene = scene_cls(overrides or {})
-        except ParamError as e:
+        except (ParamError, SceneError) as e:     # refused settings, or a student's code failed
             self._to_menu(f"{scene_cls.name}: {e}")
             return False
-        except Exception as e:     # a broken scene (or a student's code) must not close the window
+        except Exception as e:     # a broken scene must not close the classroom's window
             traceback.print_exc()
             self._to_menu(f"{scene_cls.name} failed to build: {type(e).__name__}: {e}")
             return False
