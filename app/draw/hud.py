@@ -1,8 +1,10 @@
 """Drawing helpers of the window's overlays: the HUD box, banners, the help overlay and the scene menu.
 
-Everything here draws plain text on dark, half-transparent boxes so it stays readable from the back
-of a classroom over any scene. Sizes are at text scale 1; `app.draw.text.TEXT.scale` (the F2
-large-text switch) enlarges them all. No state lives here: the window decides what to show.
+Everything here draws plain text on dark boxes, readable from the back of a classroom; the layout
+(app/draw/layout.py) keeps the HUD and the metrics strip off the scene's content. Sizes are at text
+scale 1; `app.draw.text.TEXT.scale` (the F2 large-text switch) enlarges them all. Text is wrapped,
+never cut with "...": the help overlay scrolls instead. No state lives here: the window decides
+what to show.
 """
 
 from __future__ import annotations
