@@ -12,7 +12,9 @@ While one of the panel's text boxes has the keyboard, no key reaches the shell o
 
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 from typing import Any, Protocol
 
 import pygame
@@ -20,6 +22,26 @@ import pygame
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Scene, Try
+
+
+THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
+_THEMES: dict[float, dict] = {}
+
+
+def theme(scale: float) -> dict:
+    """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
+    if scale not in _THEMES:
+        data = json.loads(THEME_PATH.read_text())      # a fresh dict for every scale
+        for block in data.values():
+            f = block.get("font") if isinstance(block, dict) else None
+            if isinstance(f, dict) and "size" in f:
+                f["size"] = str(int(round(float(f["size"]) * scale)))
+            misc = block.get("misc") if isinstance(block, dict) else None
+            if isinstance(misc, dict) and "list_item_height" in misc:   # the drop-down's rows
+                misc["list_item_height"] = str(int(round(float(misc["list_item_height"]) * scale)))
+        _THEMES[scale] = data
+    return _THEMES[scale]
+
 
 
 class PanelHost(Protocol):

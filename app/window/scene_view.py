@@ -58,7 +58,6 @@ class SceneView(ShellView):
         self.settle = SETTLE_FRAMES
         self.frames: deque[float] = deque()  # wall times of the last second's frames
         self.slow: tuple[float, str] | None = None   # (wall time, why) of the last slow frame
-        self.fps_clock = 0.0
         window.recorder.start(scene.name, self.opened_with)
 
     # --- lifecycle ---------------------------------------------------------------------------
@@ -68,8 +67,7 @@ class SceneView(ShellView):
     def on_layout(self) -> None:
         """(Re)build the pygame-gui manager and the panel for the window's size and text size."""
         import pygame_gui
-        from app.window.panel import ParamPanel
-        from app.window.window import theme
+        from app.window.panel import ParamPanel, theme
         size = self.window.screen.get_size()
         self.manager = pygame_gui.UIManager(size, theme_path=theme(TEXT.scale))
         self.panel = None

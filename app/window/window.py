@@ -19,7 +19,6 @@ render); `run_window` is the loop the command line calls.
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 import time
@@ -37,8 +36,6 @@ from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
 from app.window.views import HelpView, MenuView, ShellView
 
-ROOT = Path(__file__).resolve().parents[2]
-THEME_PATH = ROOT / "assets" / "theme.json"
 DEFAULT_SIZE = (1280, 800)        # world 960x720 at zoom 1 + a 320 px panel
 LARGE_TEXT_SCALE = 1.6
 FPS_CAP = 60
@@ -46,24 +43,6 @@ MESSAGE_SECONDS = 4.0
 NO_DISPLAY = "no display for the window: {}; use --headless, or run under xvfb-run"
 
 __all__ = ["Window", "run_window", "NONFINITE_TEXT", "SNAPSHOT_EVERY", "LARGE_TEXT_SCALE"]
-
-_THEMES: dict[float, dict] = {}
-
-
-def theme(scale: float) -> dict:
-    """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
-    if scale not in _THEMES:
-        data = json.loads(THEME_PATH.read_text())      # a fresh dict for every scale
-        for block in data.values():
-            f = block.get("font") if isinstance(block, dict) else None
-            if isinstance(f, dict) and "size" in f:
-                f["size"] = str(int(round(float(f["size"]) * scale)))
-            misc = block.get("misc") if isinstance(block, dict) else None
-            if isinstance(misc, dict) and "list_item_height" in misc:   # the drop-down's rows
-                misc["list_item_height"] = str(int(round(float(misc["list_item_height"]) * scale)))
-        _THEMES[scale] = data
-    return _THEMES[scale]
-
 
 class Window:
     """The shell around one view at a time (menu, running scene, help).
