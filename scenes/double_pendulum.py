@@ -294,8 +294,8 @@ class DoublePendulumScene(PymunkScene):
         mark = self.track["mark"]
         if mark is not None and "reference" in self.on:
             c, r = view.pt(mark), max(4.0, view.len(9))
-            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), 3)
-            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), 3)
+            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), px(3))
+            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), px(3))
             text_box(surface, [Line(f"parted at {self.track['divergence_time']:.2f} s", MARK_COLOR)],
                      (int(c[0] + r), int(c[1] - r) - 8), 18)
         self.draw_mouse(surface, view)

@@ -43,7 +43,6 @@ def theme(scale: float) -> dict:
     return _THEMES[scale]
 
 
-
 class PanelHost(Protocol):
     """What the panel asks of the running-scene view."""
 
