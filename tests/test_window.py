@@ -730,3 +730,36 @@ def test_a_scene_error_while_building_goes_back_to_the_menu_with_the_message(tmp
     assert w.scene is None and "NameError" in w.menu_message and w.running
     w.render()
     assert capsys.readouterr().err == ""           # the message, not a traceback
+
+
+def test_f3_hides_hud_and_metrics_and_the_content_grows(window):
+    window.update(1 / 60)
+    window.render()
+    before = window.scene_view.layout.content_rect(window.scene.content_bounds())
+    key(window, pygame.K_F3)
+    window.render()
+    layout = window.scene_view.layout
+    assert layout.hud.height == 0 and layout.strip.height == 0
+    after = layout.content_rect(window.scene.content_bounds())
+    assert after.width * after.height > before.width * before.height
+    key(window, pygame.K_F3)
+    window.render()
+    assert window.scene_view.layout.hud.height > 0
+
+
+def test_the_help_scrolls_and_keeps_the_other_shell_keys(window):
+    TEXT.scale = 1.6                        # a long page: it scrolls
+    key(window, pygame.K_h)
+    window.render()
+    help_view = window.current_view
+    assert help_view.page.height > help_view.page_rect.height
+    key(window, pygame.K_DOWN)
+    assert help_view.scroll > 0
+    key(window, pygame.K_END)
+    window.render()
+    assert help_view.scroll == help_view.page.height - help_view.page_rect.height
+    key(window, pygame.K_SPACE)             # waits until the help is closed
+    key(window, pygame.K_r)
+    assert not window.scene_view.clock.paused and window.show_help
+    key(window, pygame.K_ESCAPE)
+    assert not window.show_help and window.scene is not None
