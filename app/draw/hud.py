@@ -370,11 +370,47 @@ def _first_paragraph(cls) -> str:
     return " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
 
 
+def _menu_blocks(scenes: list, order: list[int], f, f_small, text_w: int,
+                 described: bool) -> list[tuple[tuple, int]]:
+    """The menu's blocks in display order, each (what, height): ("category", name) headers and
+    ("scene", number, registry index, title lines, description lines) rows."""
+    blocks: list[tuple[tuple, int]] = []
+    category = None
+    for number, i in enumerate(order, start=1):
+        cat = getattr(scenes[i], "category", "") or "Other"
+        if cat != category:
+            category = cat
+            blocks.append((("category", cat), f_small.get_linesize() + 12))
+        first = _first_paragraph(scenes[i]) if described else ""
+        sub = wrap(first, f_small, text_w) if first else []
+        titles = wrap(scenes[i].title or scenes[i].name, f, text_w)
+        blocks.append((("scene", number, i, titles, sub),
+                       len(titles) * f.get_linesize() + len(sub) * f_small.get_linesize() + 14))
+    return blocks
+
+
+def _flow(blocks: list[tuple[tuple, int]], columns: int, top: int,
+          bottom: int) -> list[tuple[int, int]] | None:
+    """(column, y) of every block flowed into `columns` columns between `top` and `bottom`
+    (a category header never ends a column), or None if they do not fit."""
+    placed: list[tuple[int, int]] = []
+    col, y = 0, top
+    for k, (kind, h) in enumerate(blocks):
+        need = h + (blocks[k + 1][1] if kind[0] == "category" and k + 1 < len(blocks) else 0)
+        if y + need > bottom and y > top:
+            col, y = col + 1, top
+        if col >= columns or y + need > bottom:
+            return None
+        placed.append((col, y))
+        y += h
+    return placed
+
+
 def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str = "",
               message_color=ERROR_COLOR) -> list[MenuEntry]:
     """Draw the scene menu (grouped by category, numbered in display order, descriptions
-    wrapped) and return the clickable entries. When the descriptions do not fit, they are
-    left out (the help overlay of each scene has them)."""
+    wrapped, in as many columns as it takes) and return the clickable entries. When the
+    descriptions do not fit, they are left out (each scene's help overlay has them)."""
     surface.fill((18, 20, 26))
     W, H = surface.get_size()
     f_title, f, f_small = font(TITLE_SIZE), font(MENU_SIZE), font(HUD_SIZE)
@@ -394,42 +430,44 @@ def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str
                               True, WARN_COLOR), (x, y))
     order = menu_order(scenes)
     num_w = f.size("9")[0] + 24
-    text_w = W - 2 * x - num_w
-    descs = {i: wrap(_first_paragraph(scenes[i]), f_small, text_w) if _first_paragraph(scenes[i])
-             else [] for i in order}
-    n_cats = len({getattr(c, "category", "") or "Other" for c in scenes})
-    cat_h = f_small.get_linesize() + 12
-    row = f.get_linesize() + 14
-    full = y + n_cats * cat_h + sum(row + len(d) * f_small.get_linesize() for d in descs.values())
-    compact = full > H - 10
-    category = None
-    for number, i in enumerate(order, start=1):
+    top, bottom = y, H - 10
+    # the first of these that fits: one column with descriptions, two columns with them, then
+    # the same without descriptions (never a description cut short)
+    for columns, described in ((1, True), (2, True), (1, False), (2, False), (3, False)):
+        col_w = (W - 2 * x - 40 * (columns - 1)) // columns
+        blocks = _menu_blocks(scenes, order, f, f_small, col_w - num_w, described)
+        placed = _flow(blocks, columns, top, bottom)
+        if placed is not None:
+            break
+    else:                                   # nothing fits: one column, what fits is shown
+        col_w = W - 2 * x
+        blocks = _menu_blocks(scenes, order, f, f_small, col_w - num_w, False)
+        placed = [(0, top + sum(h for _, h in blocks[:k])) for k in range(len(blocks))]
+    for (kind, h), (col, yy) in zip(blocks, placed):
+        left = x + col * (col_w + 40)
+        if kind[0] == "category":
+            surface.blit(f_small.render(kind[1].upper(), True, DIM_COLOR), (left, yy + 6))
+            continue
+        _, number, i, titles, sub = kind
         cls = scenes[i]
-        cat = getattr(cls, "category", "") or "Other"
-        if cat != category:
-            category = cat
-            y += 0 if number == 1 else 10
-            surface.blit(f_small.render(cat.upper(), True, DIM_COLOR), (x, y))
-            y += f_small.get_linesize() + 2
-        sub = [] if compact else descs[i]
-        row_h = f.get_linesize() + len(sub) * f_small.get_linesize() + 8
-        rect = pygame.Rect(x - 10, y - 4, W - 2 * x + 20, row_h)
+        rect = pygame.Rect(left - 10, yy - 4, col_w + 20, h - 6)
         if i == selected:
             pygame.draw.rect(surface, (40, 60, 90), rect, border_radius=6)
         if number <= 9:
-            surface.blit(f.render(str(number), True, WARN_COLOR), (x, y))
-        title = cls.title or cls.name
-        surface.blit(f.render(title, True, TEXT_COLOR), (x + num_w, y))
-        name_x = x + num_w + f.size(title)[0] + 20
+            surface.blit(f.render(str(number), True, WARN_COLOR), (left, yy))
+        ty = yy
+        for t in titles:
+            surface.blit(f.render(t, True, TEXT_COLOR), (left + num_w, ty))
+            ty += f.get_linesize()
+        name_x = left + num_w + f.size(titles[-1])[0] + 20
         tag = f_small.render(f"--scene {cls.name}", True, DIM_COLOR)
-        if name_x + tag.get_width() <= W - x:
-            surface.blit(tag, (name_x, y + (f.get_linesize() - f_small.get_linesize()) // 2))
-        yy = y + f.get_linesize()
+        if name_x + tag.get_width() <= left + col_w:
+            surface.blit(tag, (name_x, ty - f.get_linesize()
+                               + (f.get_linesize() - f_small.get_linesize()) // 2))
         for t in sub:
-            surface.blit(f_small.render(t, True, DIM_COLOR), (x + num_w, yy))
-            yy += f_small.get_linesize()
+            surface.blit(f_small.render(t, True, DIM_COLOR), (left + num_w, ty))
+            ty += f_small.get_linesize()
         entries.append(MenuEntry(i, rect, number))
-        y += row_h + 6
     if message:
         banner(surface, message, surface.get_rect(), color=message_color, size=HUD_SIZE)
     return entries
