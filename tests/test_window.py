@@ -763,3 +763,17 @@ def test_the_help_scrolls_and_keeps_the_other_shell_keys(window):
     assert not window.scene_view.clock.paused and window.show_help
     key(window, pygame.K_ESCAPE)
     assert not window.show_help and window.scene is not None
+
+
+@pytest.mark.parametrize("scale", [1.0, 1.6])
+def test_every_menu_entry_is_on_screen_in_a_small_window(scale, tmp_path):
+    pygame.display.init()
+    screen = pygame.display.set_mode((1024, 640))
+    w = Window(screen, SCENES, screenshot_dir=tmp_path, large_text=scale > 1)
+    try:
+        w.render()
+        entries = w.current_view.entries
+        assert sorted(e.number for e in entries) == list(range(1, len(SCENES) + 1))
+        assert all(screen.get_rect().contains(e.rect.inflate(-12, 0)) for e in entries)
+    finally:
+        TEXT.scale = 1.0
