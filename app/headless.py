@@ -15,12 +15,10 @@ import statistics
 import sys
 import tempfile
 import time
-from dataclasses import dataclass, field
 from typing import Any
 
-import numpy as np
-
-from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
+from app.runner import SceneRunner, deliver, run_scene   # noqa: F401 (deliver: for importers)
+from app.scene import InputEvent, Scene
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -132,47 +130,26 @@ def load_events(path: str) -> list[InputEvent]:
     return parse_events(data, f"--input file '{path}'")
 
 
-def deliver(scene: Scene, event: InputEvent) -> bool:
-    """Give one replayed event to the scene as the window gives a live one: R resets the scene,
-    the other shell keys (pause, help, ...) never reach it, everything else goes to its
-    handle_event. Returns True if the scene was reset."""
-    if event.kind.startswith("key") and event.key in SHELL_KEYS:
-        if event.kind == "key_down" and event.key == "r":
-            scene.reset()
-            return True
-        return False
-    scene.handle_event(event)
-    return False
-
-
-@dataclass
-class RunResult:
-    scene: Scene
-    steps: int
-    wall_seconds: float
-    step_seconds: list[float] = field(default_factory=list)
-    finite: bool = True
-    events: int = 0
-    error: str | None = None        # a SceneError's message (e.g. a student's exception)
-
-    def summary(self) -> dict[str, Any]:
-        """The JSON summary object of DESIGN.md."""
-        s = self.scene
-        return {
-            "scene": s.name,
-            "steps": self.steps,
-            "sim_seconds": round(self.steps * s.dt, 9),
-            "wall_seconds": round(self.wall_seconds, 6),
-            "step_ms": round(statistics.median(self.step_seconds) * 1000, 6)
-            if self.step_seconds else 0.0,
-            "params": clean(s.p),
-            "effects": sorted(s.on),
-            "metrics": clean(s.metrics()),
-            "state_hash": s.state_hash(),
-            "finite": self.finite,
-            "events": self.events,
-            "error": self.error,
-        }
+def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
+    """The JSON summary object of DESIGN.md for a finished run (plus "error" when the scene
+    raised SceneError)."""
+    s = runner.scene
+    times = runner.all_seconds or []
+    out = {
+        "scene": s.name,
+        "steps": runner.steps,
+        "sim_seconds": round(runner.steps * s.dt, 9),
+        "wall_seconds": round(wall_seconds, 6),
+        "step_ms": round(statistics.median(times) * 1000, 6) if times else 0.0,
+        "params": clean(s.p),
+        "effects": sorted(s.on),
+        "metrics": clean(s.metrics()),
+        "state_hash": s.state_hash(),
+        "finite": runner.finite,
+        "events": runner.next_event,
+        "error": runner.error,          # a SceneError's message (a student's exception), or None
+    }
+    return out
 
 
 def clean(value: Any) -> Any:
@@ -188,49 +165,19 @@ def clean(value: Any) -> Any:
     return value
 
 
-def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) -> RunResult:
-    """Advance `scene` by `steps` fixed steps, delivering each event before the first step that
-    starts at or after its time. Stops early if the state goes non-finite."""
-    pending = list(events or [])
-    nxt = 0                                   # index of the next event to deliver
-    result = RunResult(scene, 0, 0.0)
-    times = np.empty(steps)                   # wall seconds of every step (for the median)
-    start = time.perf_counter()
-    for k in range(steps):
-        now = k * scene.dt + EVENT_SLACK
-        while nxt < len(pending) and pending[nxt].t <= now:
-            deliver(scene, pending[nxt])
-            nxt += 1
-        t0 = time.perf_counter()
-        try:
-            scene.advance()
-        except SceneError as e:               # reported, and `--scene all` goes on
-            result.error = str(e)
-            break
-        times[k] = time.perf_counter() - t0
-        result.steps += 1
-        if not scene.is_finite():
-            result.finite = False
-            break
-    result.wall_seconds = time.perf_counter() - start
-    result.events = nxt
-    result.step_seconds = times[:result.steps].tolist()
-    return result
-
-
 def render(scene: Scene, path: str) -> None:
     """Draw the scene's current frame, with its own drawing code and the window's HUD (less
-    fps, which a headless run has none of), and save it as a PNG. Raises OSError if it cannot."""
+    fps, which a headless run has none of) laid out as the window lays them out (the HUD off the
+    scene's content), and save it as a PNG. Raises OSError if it cannot."""
     import pygame
 
     from app.draw import hud, save_png
-    from app.draw.view import View
+    from app.draw.layout import draw_scene, scene_layout
 
     surface = pygame.Surface(scene.world_size)
-    surface.fill(scene.background)
-    scene.draw(surface, View())
     status = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"]
-    hud.draw_scene_hud(surface, surface.get_rect(), scene, status)
+    lines = hud.scene_lines(scene, status)
+    draw_scene(surface, scene_layout(surface.get_rect(), scene, lines), scene, lines)
     try:
         save_png(surface, path)
     except pygame.error as e:
@@ -269,8 +216,14 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     for cls in scene_classes:
         scene = cls(cls.own_settings(overrides))
         n = steps if steps is not None else steps_for(seconds, scene.dt)
-        result = run_scene(scene, n, events)
-        summary = result.summary()
+        start = time.perf_counter()
+        runner = run_scene(scene, n, events)
+        result = summary(runner, time.perf_counter() - start)
+        late = runner.events_left
+        if late:
+            print(f"{scene.name}: {len(late)} --input event(s) lie after the end of the run "
+                  f"(first at t = {late[0].t:g} s, the run ends at t = {runner.clock:g} s): "
+                  f"not delivered; give more --steps or --seconds", file=sys.stderr)
         if screenshot:
             path = screenshot
             if len(scene_classes) > 1:
@@ -278,25 +231,25 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                 path = f"{root}-{scene.name}{ext}"
             try:
                 render(scene, path)
-                summary["screenshot"] = path
+                result["screenshot"] = path
             except OSError as e:
                 print(f"{scene.name}: could not save the screenshot '{path}': {e}", file=sys.stderr)
-                summary["screenshot"] = None
+                result["screenshot"] = None
                 unsaved = True
         if as_json:
-            print(json.dumps(summary, allow_nan=False), flush=True)
+            print(json.dumps(result, allow_nan=False), flush=True)
         else:
-            print(describe(summary), flush=True)
-        if not result.finite:
+            print(describe(result), flush=True)
+        if runner.error is not None:       # a student's code failed: say where, go on with the
+            print(f"{scene.name}: {runner.error}\n(stopped at step {runner.steps + 1})",
+                  file=sys.stderr)         # next scene, exit 1 (like a run that went non-finite)
+            nonfinite = True
+        elif not runner.finite:
             print(f"{scene.name}: the simulation went non-finite (NaN or inf, or past the scene's "
                   f"blow-up bounds) at step "
-                  f"{result.steps} (t = {result.steps * scene.dt:.3f} s); try a smaller dt "
+                  f"{runner.steps} (t = {runner.steps * scene.dt:.3f} s); try a smaller dt "
                   f"(raise hertz) or more substeps", file=sys.stderr)
             nonfinite = True
-        if result.error is not None:
-            print(f"{scene.name}: stopped at step {result.steps + 1}:\n{result.error}",
-                  file=sys.stderr)
-            nonfinite = True        # exit 1, like a run that went non-finite
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 

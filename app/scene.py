@@ -43,6 +43,8 @@ from typing import Any, Iterable, Mapping
 
 import numpy as np
 
+from app.window.keys import SHELL_KEY_NAMES
+
 
 class ParamError(ValueError):
     """A parameter value (or name) that the scene does not accept; the message is one line."""
@@ -173,10 +175,9 @@ COMMON_PARAMS: tuple[Param, ...] = (
 )
 
 
-# The shell's keys, as pygame names them: they pause, step, reset, help, ... in the window, and
-# never reach a scene (live or replayed). The digits pick a scene in the menu.
-SHELL_KEYS = frozenset({"space", ".", "[.]", "-", "[-]", "=", "+", "[+]", "r", "h", "f1", "f2",
-                        "f12", "escape", "tab", "page up", "page down", *"0123456789"})
+# The shell's keys, as pygame names them (from the one key table, app/window/keys.py): they
+# pause, step, reset, help, ... in the window, and never reach a scene (live or replayed).
+SHELL_KEYS = SHELL_KEY_NAMES
 
 # An event is due at step k when t <= k * dt + EVENT_SLACK: times written by hand or rounded in a
 # file still land on the step they name (1 microsecond is far below any dt the lab accepts).
@@ -238,6 +239,8 @@ class Scene:
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
     tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
+    color_key: tuple[tuple[tuple[int, int, int], str], ...] = ()   # (colour, what it means): the
+                                                                   # HUD shows it as a key
     snapshot_skip: tuple[str, ...] = ()   # attributes the default snapshot leaves out (caches)
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):

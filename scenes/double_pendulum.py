@@ -69,7 +69,8 @@ from app.draw.hud import Line, text_box
 from app.draw.ring import Ring
 from app.physics.double_pendulum_ode import DoublePendulumODE
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
-from app.scene import Effect, Param, common
+from app.draw.text import px
+from app.scene import Effect, Param, Try, common
 
 PIVOT = (480.0, 350.0)
 BOB_RADIUS = 14.0
@@ -142,6 +143,23 @@ class DoublePendulumScene(PymunkScene):
         Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
         Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
     world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
+    color_key = (((230, 159, 0), "orange ghost: the exact equations (RK4, tiny step)"),
+                 ((86, 180, 233), "blue: pymunk's bobs and the tip's trail"))
+    tries = (
+        Try("Released low", {"angle1": 20, "angle2": 20},
+            "small swings are not chaotic: the ghost and the bobs stay within a few px"),
+        Try("Released high: chaos", {"angle1": 120, "angle2": 150},
+            "after a few seconds the bobs leave the ghost; the X marks where they parted"),
+        Try("pymunk's error_bias", {"error_bias": 0.0018},
+            "the pins let the rods stretch a little, so energy drift grows (HUD)"),
+        Try("One substep", {"substeps": 1},
+            "bigger steps for pymunk: the energy drift in the HUD grows"),
+    )
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The square the two rods can reach around the pivot."""
+        r = self.p["length1"] + self.p["length2"] + BOB_RADIUS + 12
+        return (PIVOT[0] - r, PIVOT[1] - r, 2 * r, 2 * r)
 
     # ----- building -------------------------------------------------------------------------
     def build_space(self, space: pymunk.Space) -> None:
@@ -307,8 +325,8 @@ class DoublePendulumScene(PymunkScene):
             draw_trail(surface, view, self.trail, TRAIL_COLOR)
         if self.ghost_alive() and self.mouse_joint is None:
             g1, g2 = self.ode.positions(PIVOT)
-            pygame.draw.aalines(surface, GHOST_COLOR, False, [view.pt(PIVOT), view.pt(g1),
-                                                              view.pt(g2)])
+            pygame.draw.lines(surface, GHOST_COLOR, False, [view.pt(PIVOT), view.pt(g1),
+                                                            view.pt(g2)], px(2))
             for g in (g1, g2):
                 pygame.draw.circle(surface, GHOST_COLOR, view.pt(g), max(2.0, view.len(BOB_RADIUS)),
                                    2)
@@ -319,8 +337,8 @@ class DoublePendulumScene(PymunkScene):
         mark = self.track["mark"]
         if mark is not None and "reference" in self.on:
             c, r = view.pt(mark), max(4.0, view.len(9))
-            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), 3)
-            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), 3)
+            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), px(3))
+            pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), px(3))
             text_box(surface, [Line(f"parted at {self.track['divergence_time']:.2f} s", MARK_COLOR)],
                      (int(c[0] + r), int(c[1] - r) - 8), 18)
         self.draw_mouse(surface, view)
@@ -338,4 +356,4 @@ def draw_trail(surface: pygame.Surface, view, trail: Ring, color, pieces: int = 
         if b - a < 1:
             continue
         fade = 0.15 + 0.85 * (i + 1) / pieces
-        pygame.draw.aalines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist())
+        pygame.draw.lines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist(), px(2))

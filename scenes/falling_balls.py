@@ -37,7 +37,7 @@ import pymunk.batch
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
-from app.scene import Effect, Param, ParamError
+from app.scene import Effect, Param, ParamError, Try
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -87,6 +87,25 @@ class FallingBallsScene(PymunkScene):
     effects = PYMUNK_EFFECTS + (
         Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
     world_keys = ("space", "balls", "L_shapes", "L_body", "walls", "counts", "_spawn_due")
+    color_key = ((D.BALL, "blue: a ball awake (simulated)"),
+                 (D.dim(D.BALL), "dim blue: a ball asleep (skipped by the solver)"))
+    tries = (
+        Try("Catch 60 balls in a box", {"container": True, "spawn_rate": 20, "max_balls": 60},
+            "a pile builds up; resting groups fall asleep one after another (drawn dim, "
+            "counted by balls_asleep)"),
+        Try("Same pile, sleeping off", {"container": True, "spawn_rate": 20,
+                                            "max_balls": 60, "sleeping": False},
+            "nothing sleeps (balls_asleep stays 0): every ball is simulated every step"),
+        Try("Look for tunneling", {"g": 5000, "hertz": 15, "radius": 4},
+            "fast, small balls and big steps: watch the tunneled count"),
+    )
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The world, and above and below it the balls on their way in (they appear just above
+        the top) and out (removed 2 radii below the bottom)."""
+        w, h = self.world_size
+        r = 2 * self.p["radius"]
+        return (0.0, SPAWN_Y - r, float(w), h + 2 * r - SPAWN_Y)
 
     # ----- building -------------------------------------------------------------------------
     @classmethod

@@ -2,12 +2,12 @@
 
 What it shows: the same problem (a mass on a spring, a pendulum, or a two-body orbit) run side
 by side by forward Euler, symplectic Euler, Verlet, midpoint (RK2), RK4 and implicit Euler, each in
-its own colour, with the exact (or reference) solution as a white ghost. Left: the systems.
-Right: the phase portrait (position against velocity; the exact orbit is the grey loop). Top
-right: the energy error over time, |E/E0 - 1| on a log axis (a magnitude: a log axis has no
-room for signs; the table gives E/E0 itself). Bottom: per integrator the derivative evaluations
-and microseconds per step (measured while it runs), the relative phase-space error against the
-exact solution, E/E0, and when it blew up. The top left stays empty for the window's HUD.
+its own colour, with the exact (or reference) solution as a white ghost. Top left: the systems.
+Top right: the phase portrait (position against velocity; the exact solution is the white loop
+and its white ring). Bottom left: the energy error over time, |E/E0 - 1| on a log axis (a
+magnitude: a log axis has no room for signs; the table gives E/E0 itself). Bottom right: per
+integrator the derivative evaluations and microseconds per step (measured while it runs), the
+relative phase-space error against the exact solution, E/E0, and when it blew up.
 
 The lecture idea: explicit methods are cheap per step but only conditionally stable, implicit
 methods cost a linear solve per step and are stable at any step. Turn `hertz` down and watch
@@ -51,12 +51,12 @@ import pygame
 
 from app.draw.palette import INTEGRATOR_COLORS
 from app.draw.ring import Ring
-from app.draw.text import TEXT, font
+from app.draw.text import TEXT, fit_size, font, px
 from app.draw.view import View
 from app.physics.integrators import INTEGRATORS, Integrator
 from app.physics.particles import ParticleSystem
 from app.physics.problems import PROBLEMS, Problem, make_problem
-from app.scene import Effect, Param, Scene
+from app.scene import Effect, Param, Scene, Try
 
 COLORS = INTEGRATOR_COLORS
 SHORT = {"euler": "Euler", "symplectic_euler": "sympl.", "verlet": "Verlet",
@@ -68,12 +68,13 @@ SAMPLE_DT = 1.0 / 120.0     # plots keep at most 120 samples per simulated secon
 PLOT_SECONDS = 10.0         # the energy plot shows the last 10 s
 TIMING_WINDOW = 61          # us/step is the median of this many recent steps
 
-# Layout in world pixels (960 x 720, y down): x, y, w, h. The window's HUD box covers about
-# 650 x 195 px at the top left, so that corner is left empty; the bottom strip is our table.
-SYSTEM_RECT = (0, 200, 480, 338)
-PHASE_RECT = (490, 200, 462, 338)
-ENERGY_RECT = (658, 6, 294, 188)
-TABLE_RECT = (0, 544, 960, 176)
+# Layout in world pixels (y down): x, y, w, h. The panels fill CONTENT, which the window fits
+# into the space its HUD and panel leave free.
+SYSTEM_RECT = (0, 0, 480, 338)
+PHASE_RECT = (490, 0, 470, 338)
+ENERGY_RECT = (0, 346, 380, 200)
+TABLE_RECT = (390, 346, 570, 200)
+CONTENT = (0.0, 0.0, 960.0, 546.0)
 SPRING_DRAW_SCALE = 0.8     # the spring column is drawn at 80 % so the bobs fit the panel
 TABLE_SIZE = 24             # font sizes at zoom 1 (pygame's default font at 24: 16 px glyphs)
 TITLE_SIZE = 20
@@ -105,7 +106,7 @@ class IntegratorsScene(Scene):
     __doc__ = __doc__
     name = "integrators"
     title = "Integrator lab: what accuracy costs"
-    category = "Particles"
+    category = "Particle systems"
     metrics_box = False          # the scene draws its own table of the metrics
     params = (
         Param("problem", "spring", str, choices=tuple(PROBLEMS),
@@ -115,6 +116,15 @@ class IntegratorsScene(Scene):
     )
     effects = tuple(Effect(name, True, f"{info.title}: {info.note}", rebuild=True)
                     for name, info in INTEGRATORS.items())
+    tries = (
+        Try("hertz 4: past Verlet", {"problem": "spring", "hertz": 4},
+            "omega*h = 2.25: Verlet and symplectic Euler blow up (limit 2); RK4 stays bounded "
+            "(limit 2.83), though it damps the energy away"),
+        Try("hertz 3: past RK4", {"problem": "spring", "hertz": 3},
+            "omega*h = 3: RK4 blows up as well; only implicit Euler stays bounded (it spirals in)"),
+        Try("Orbit at hertz 60", {"problem": "orbit", "hertz": 60},
+            "implicit Euler's damping makes the bodies spiral in: stable is not accurate"),
+    )
 
     # ----- world ---------------------------------------------------------------------------------
     def build(self) -> None:
@@ -234,6 +244,9 @@ class IntegratorsScene(Scene):
         self._exact_cache = None
 
     # ----- drawing -------------------------------------------------------------------------------
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        return CONTENT
+
     def draw(self, surface: pygame.Surface, view: View) -> None:
         self._refresh()
         self._draw_systems(surface, view)
@@ -259,17 +272,24 @@ class IntegratorsScene(Scene):
         return pygame.Rect(x, y, round(view.len(rect[2])), round(view.len(rect[3])))
 
     def _frame(self, surface, view, rect, title: str, bottom: bool = False) -> pygame.Rect:
-        """A panel with its title at the top (or at the bottom)."""
+        """A panel with its title at the top (or at the bottom), the title's size fitted to the
+        panel's width (large text, small windows)."""
         r = self._screen_rect(view, rect)
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
-        label = self._render(title, LABEL, self._size(view, TITLE_SIZE))
+        label = self._render(title, LABEL, fit_size([title], self._size(view, TITLE_SIZE),
+                                                    r.width - 12))
         surface.blit(label, (r.x + 6, r.bottom - label.get_height() - 4 if bottom else r.y + 4))
         return r
 
-    def _text(self, surface, view, pos, text, color, size, right: bool = False) -> None:
-        """Text at a world point (its top-left, or its top-right if `right`)."""
-        label = self._render(text, color, self._size(view, size))
+    def _text(self, surface, view, pos, text, color, size, right: bool = False,
+              width: float | None = None, like: tuple[str, ...] = ()) -> None:
+        """Text at a world point (its top-left, or its top-right if `right`); with `width`
+        (world px) the text shrinks until it, and the texts `like` it, fit in that width."""
+        px_size = self._size(view, size)
+        if width is not None:
+            px_size = fit_size([text, *like], px_size, int(view.len(width)))
+        label = self._render(text, color, px_size)
         x, y = view.pt(pos)
         surface.blit(label, (x - label.get_width() if right else x, y))
 
@@ -288,15 +308,18 @@ class IntegratorsScene(Scene):
                 origin = np.array([left + 40.0 + 80.0 * i, top + 22.0])
                 run = next((r for r in self.runs if r.name == name), None)
                 color = COLORS[name] if run else (110, 110, 110)
-                self._text(surface, view, origin + (-30, 270), SHORT[name], color, TITLE_SIZE)
+                self._text(surface, view, origin + (-36, 270), SHORT[name], color, TITLE_SIZE,
+                           width=76, like=tuple(SHORT.values()))
                 pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)), view.pt(origin + (18, 0)), 3)
                 ghost = origin + k * self.problem.points(x_ref)[-1]
                 pygame.draw.circle(surface, GHOST, view.pt(ghost), max(2, round(view.len(12))), 1)
                 if run is None:
                     continue
                 if run.blew_up_t is not None:
-                    self._text(surface, view, origin + (-36, 60), "blew up", run.color, SMALL_SIZE)
-                    self._text(surface, view, origin + (-36, 78), f"t={run.blew_up_t:.2f}s", run.color, SMALL_SIZE)
+                    self._text(surface, view, origin + (-36, 60), "blew up", run.color, SMALL_SIZE,
+                               width=74, like=("t=88.88s",))
+                    self._text(surface, view, origin + (-36, 78), f"t={run.blew_up_t:.2f}s",
+                               run.color, SMALL_SIZE, width=74, like=("t=88.88s",))
                     continue
                 bob = np.clip(origin + k * self.problem.points(run.ps.x)[-1], -1e4, 1e4)
                 self._spring(surface, view, origin, bob, run.color)
@@ -309,10 +332,10 @@ class IntegratorsScene(Scene):
             for run in self.live():
                 pts = np.clip(origin + self.problem.points(run.ps.x), -1e4, 1e4)
                 if kind == "pendulum":
-                    pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), 1)
+                    pygame.draw.line(surface, run.color, view.pt(origin), view.pt(pts[0]), px(2))
                 elif len(run.trail) > 1:
                     trail = np.clip(origin + run.trail.values(), -1e4, 1e4)
-                    pygame.draw.lines(surface, run.color, False, view.pts(trail), 1)
+                    pygame.draw.lines(surface, run.color, False, view.pts(trail), px(2))
                 for j, p in enumerate(pts):
                     radius = 10 if kind == "pendulum" else 6 + 3 * (j == 0)
                     pygame.draw.circle(surface, run.color, view.pt(p), max(2, round(view.len(radius))))
@@ -333,33 +356,68 @@ class IntegratorsScene(Scene):
         pygame.draw.lines(surface, color, False, view.pts(pts), 1)
 
     # bottom: the table
+    TABLE_TEMPLATES = ("9999.9", "-8.88e+88", "-8.888e+88")   # widest us/step, error, E/E0
+
     def _draw_table(self, surface, view) -> None:
+        """One row per integrator; the columns are laid out from the measured widths of their
+        text (and of the widest number each can show), and the text shrinks until the table fits
+        its panel, so that no two columns ever run together."""
         r = self._screen_rect(view, TABLE_RECT)
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
-        x0, y0 = TABLE_RECT[0] + 10, TABLE_RECT[1] + 4
-        # (header, world x, right-aligned?)
-        columns = (("integrator", 30, False), ("f evals", 300, True), ("us/step", 420, True),
-                   ("error", 545, True), ("E/E0", 660, True), ("", 700, False))
-        for head, x, right in columns:
-            self._text(surface, view, (x0 + x, y0), head, LABEL, TABLE_SIZE, right)
-        for i, (name, info) in enumerate(INTEGRATORS.items()):
-            y = y0 + 26 + 24 * i
-            run = next((r for r in self.runs if r.name == name), None)
-            color = COLORS[name] if run else (110, 110, 110)
-            pygame.draw.rect(surface, color, (*view.pt((x0 + 4, y + 3)), round(view.len(14)), round(view.len(14))))
-            self._text(surface, view, (x0 + 30, y), info.title, color, TABLE_SIZE)
+        heads = ("integrator", "f evals", "us/step", "error", "E/E0")
+        rows = []                                   # (colour, cells, note)
+        for name, info in INTEGRATORS.items():
+            run = next((r_ for r_ in self.runs if r_.name == name), None)
             evals = f"{info.evaluations}" if info.explicit else f"{info.evaluations} + CG"
-            self._text(surface, view, (x0 + 300, y), evals, color, TABLE_SIZE, True)
             if run is None:
-                self._text(surface, view, (x0 + 420, y), "off", color, TABLE_SIZE, True)
+                rows.append(((110, 110, 110), (info.title, evals, "off", "", ""), ""))
                 continue
-            cells = (f"{run.step_us:.1f}", f"{run.error:.2e}", f"{run.energy_ratio:.4g}")
-            for (_, x, _), text in zip(columns[2:5], cells):
-                self._text(surface, view, (x0 + x, y), text, color, TABLE_SIZE, True)
-            if run.blew_up_t is not None:
-                self._text(surface, view, (x0 + 700, y), f"blew up at t = {run.blew_up_t:.2f} s",
-                           color, TABLE_SIZE)
+            note = f"blew up at t = {run.blew_up_t:.2f} s" if run.blew_up_t is not None else ""
+            rows.append((COLORS[name], (info.title, evals, f"{run.step_us:.1f}",
+                                        f"{run.error:.2e}", f"{run.energy_ratio:.4g}"), note))
+        columns = [[h, *(cells[i] for _, cells, _ in rows)] for i, h in enumerate(heads)]
+        for column, widest in zip(columns[2:], self.TABLE_TEMPLATES):
+            column.append(widest)
+        notes = [note for _, _, note in rows if note] or [""]
+        pad = max(4, r.height // 30)
+
+        def layout(size: int) -> tuple[list[int], int, bool]:
+            f = font(size)
+            gap = f.size("  ")[0]
+            widths = [max(f.size(t)[0] for t in column) for column in columns]
+            chip = f.get_height()
+            need_w = pad + chip + gap + sum(widths) + gap * len(widths) + max(
+                f.size(n)[0] for n in notes)
+            need_h = f.get_linesize() * (len(rows) + 1) + 2 * pad
+            return widths, gap, need_w <= r.width and need_h <= r.height
+
+        size = self._size(view, TABLE_SIZE)
+        widths, gap, fits = layout(size)
+        while not fits and size > 8:                # the smallest text that is still text
+            size = max(8, int(size * 0.9))
+            widths, gap, fits = layout(size)
+        f = font(size)
+        chip = f.get_height()
+        line = f.get_linesize()
+        x = r.x + pad + chip + gap
+        lefts = []
+        for w in widths:
+            lefts.append(x)
+            x += w + gap
+        note_x = x
+        y = r.y + pad
+        for i, head in enumerate(heads):            # numbers right-aligned, names left
+            img = self._render(head, LABEL, size)
+            surface.blit(img, (lefts[i] + (widths[i] - img.get_width() if i else 0), y))
+        for color, cells, note in rows:
+            y += line
+            pygame.draw.rect(surface, color, (r.x + pad, y + chip // 6, chip * 2 // 3, chip * 2 // 3))
+            for i, text in enumerate(cells):
+                img = self._render(text, color, size)
+                surface.blit(img, (lefts[i] + (widths[i] - img.get_width() if i else 0), y))
+            if note:
+                surface.blit(self._render(note, color, size), (note_x, y))
 
     # right: the two plots
     def _plot_map(self, rect, xlo, xhi, ylo, yhi):
@@ -382,7 +440,7 @@ class IntegratorsScene(Scene):
         to_world = self._plot_map(PHASE_RECT, qlo - qpad, qhi + qpad, plo - ppad, phi + ppad)
         old_clip = surface.get_clip()
         surface.set_clip(clip.inflate(-2, -24).move(0, 10).clip(old_clip))
-        pygame.draw.lines(surface, (150, 150, 155), True, view.pts(to_world(c[:, 0], c[:, 1])), 1)
+        pygame.draw.lines(surface, GHOST, True, view.pts(to_world(c[:, 0], c[:, 1])), px(1))
         for run in self.runs:
             if len(run.phase) > 1:
                 pts = run.phase.values()
@@ -427,6 +485,6 @@ class IntegratorsScene(Scene):
         for value in (lo, 0.0, hi):
             p = to_world(np.array(tlo), np.array(value))
             self._text(surface, view, (ENERGY_RECT[0] + 36, float(p[1]) - 6), f"{10 ** value:.0e}",
-                       (170, 170, 180), SMALL_SIZE - 2, right=True)
+                       (170, 170, 180), SMALL_SIZE - 2, right=True, width=36)
         self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 6, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
                    f"t = {self.t:.1f} s", (170, 170, 180), SMALL_SIZE - 2, right=True)

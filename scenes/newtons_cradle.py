@@ -76,7 +76,8 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
-from app.scene import Param, ParamError, common
+from app.draw.text import px
+from app.scene import Param, ParamError, Try, common
 
 RADIUS = 24.0            # ball radius, px
 STRING = 280.0           # string length, anchor to ball centre, px
@@ -154,6 +155,23 @@ class NewtonsCradleScene(PymunkScene):
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + CRADLE_PARAMS
     world_keys = ("space", "bodies", "strings", "track")
+    color_key = ((LIFTED_COLOR, "yellow: the balls lifted and released"),
+                 (BALL_COLOR, "blue: the balls at rest"))
+    tries = (
+        Try("Two balls in", {"lifted": 2}, "two balls swing in, two swing out at the far end"),
+        Try("Balls pressed together", {"gap": -0.01},
+            "no gap: every contact is solved at once; watch balls_out and the middle balls move"),
+        Try("A 5 px gap", {"gap": 5}, "watch the middle balls move (middle drift) and the "
+            "verdict"),
+        Try("Two substeps", {"substeps": 2}, "bigger steps: watch the middle drift and the "
+            "verdict"),
+    )
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The anchor bar and every place a ball can swing to (up to 60 degrees either way)."""
+        reach = STRING * math.sin(math.radians(60)) + RADIUS + 8
+        left, right = self.anchors[:, 0].min() - reach, self.anchors[:, 0].max() + reach
+        return (left, ANCHOR_Y - 20, right - left, STRING + RADIUS + 40)
 
     # ----- building -------------------------------------------------------------------------
     @classmethod
@@ -347,10 +365,11 @@ class NewtonsCradleScene(PymunkScene):
         D.draw_segment(surface, view, (a, ANCHOR_Y - 6), (b, ANCHOR_Y - 6), 4, D.STATIC)
         for (rx, ry) in self.rest:          # tick marks under the rest positions
             pygame.draw.line(surface, REST_COLOR, view.pt((rx, ry + RADIUS + 4)),
-                             view.pt((rx, ry + RADIUS + 14)), 2)
+                             view.pt((rx, ry + RADIUS + 14)), px(3))
         lifted = set(self.groups()[0].tolist())
         for i, (body, string) in enumerate(zip(self.bodies, self.strings)):
             D.draw_pin_joint(surface, view, string, STRING_COLOR, dot=3)   # (the ball hides b's dot)
+            # (px: the strings and ticks stay readable from the back row)
             color = LIFTED_COLOR if i in lifted else BALL_COLOR
             D.draw_circle(surface, view, body.position, body.angle, RADIUS, color)
         self.draw_mouse(surface, view)

@@ -51,7 +51,7 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
-from app.scene import Param, common
+from app.scene import Param, Try, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 
@@ -88,6 +88,24 @@ class PivotingLScene(FallingBallsScene):
         + tuple(p for p in BALL_PARAMS if p.name not in ("container", "spawn_rate")) \
         + PIVOT_PARAMS + (SUBSTEPS_2,)
     world_keys = FallingBallsScene.world_keys + ("pin", "slide", "record")
+    color_key = ((D.SLIDE, "green band: the slide joint's allowed range (0 to slide_max)"),
+                 (D.SLIDE_LIMIT, "red dot: the slide joint sits at a limit"),
+                 (D.DYNAMIC, "yellow: the L (a dynamic body)"))
+    tries = (
+        Try("PivotJoint, not the pin", {"pivot": "pivot"},
+            "the L turns the same way: a pivot joint is a pin joint of length 0"),
+        Try("Back to the PinJoint", {"pivot": "pin"},
+            "pin_error in the metrics: how far the pin's two anchors drift apart"),
+        Try("No slide range", {"slide_max": 0},
+            "slide_max 0 locks the L level: it cannot tip (angle_deg stays near 0)"),
+    )
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The L (and where it can tip to), the balls' way in from the top, the slide joint."""
+        left = L_ORIGIN[0] + L_LONG[0][0] - 60
+        right = L_ORIGIN[0] + L_LONG[1][0] + 60
+        _, top, _, height = super().content_bounds()
+        return (left, top, right - left, height)
 
     def build_space(self, space: pymunk.Space) -> None:
         super().build_space(space)

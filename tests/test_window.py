@@ -15,9 +15,12 @@ import pygame
 import pygame_gui
 import pytest
 
+from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Effect, InputEvent, Param, Scene
-from app.window import NONFINITE_TEXT, SNAPSHOT_EVERY, Window, run_window
+from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
+from app.window import Window, run_window
+from app.window.scene_view import SETTLE_FRAMES
 
 
 class Tiny(Scene):
@@ -84,6 +87,18 @@ class Other(Tiny):
     title = "Other"
 
 
+def open_window(cls, tmp_path, size=(1024, 640), frames: int = 0, **kwargs) -> Window:
+    """A Window of `size` with `cls` open, after `frames` frames of 1/60 s (each rendered)."""
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode(size), [cls], screenshot_dir=tmp_path, **kwargs)
+    assert w.open_scene(cls)
+    for _ in range(frames):
+        w.update(1 / 60)
+        w.render()
+    return w
+
+
 @pytest.fixture
 def window(tmp_path):
     pygame.display.init()
@@ -125,7 +140,7 @@ def test_space_pauses_and_resumes(window):
     steps = window.scene.steps
     assert steps == 3                      # 0.05 s at 60 Hz
     key(window, pygame.K_SPACE)
-    assert window.clock.paused
+    assert window.scene_view.clock.paused
     window.update(0.5)
     assert window.scene.steps == steps
     key(window, pygame.K_SPACE)
@@ -147,16 +162,16 @@ def test_period_single_steps_exactly_one(window):
 def test_minus_is_slow_motion_not_a_smaller_dt(window):
     dt = window.scene.dt
     key(window, pygame.K_MINUS)
-    assert window.clock.slow_motion == 0.5
+    assert window.scene_view.clock.slow_motion == 0.5
     assert window.scene.dt == dt
     assert window.update(0.1) == 3         # 0.1 s of frames = 0.05 s simulated = 3 steps of dt
     key(window, pygame.K_MINUS)
     key(window, pygame.K_MINUS)
     key(window, pygame.K_MINUS)
-    assert window.clock.slow_motion == 0.125
+    assert window.scene_view.clock.slow_motion == 0.125
     key(window, pygame.K_EQUALS)
-    assert window.clock.slow_motion == 0.25
-    assert "speed x1/4" in " ".join(str(getattr(l, "text", l)) for l in window.hud_lines())
+    assert window.scene_view.clock.slow_motion == 0.25
+    assert "speed x1/4" in " ".join(str(getattr(l, "text", l)) for l in window.scene_view.hud_lines())
 
 
 def test_r_resets(window):
@@ -168,18 +183,18 @@ def test_r_resets(window):
 
 
 def test_f2_toggles_large_text_and_widens_the_panel(window):
-    narrow = window.panel.rect.width
+    narrow = window.scene_view.panel.rect.width
     key(window, pygame.K_F2)
     assert TEXT.scale == pytest.approx(1.6)
-    assert window.panel.rect.width > narrow
+    assert window.scene_view.panel.rect.width > narrow
     window.render()
     key(window, pygame.K_F2)
     assert TEXT.scale == 1.0
-    assert window.panel.rect.width == narrow
+    assert window.scene_view.panel.rect.width == narrow
 
 
 def test_bad_typed_value_is_refused_and_the_old_one_kept(window):
-    panel = window.panel
+    panel = window.scene_view.panel
     for bad in ("abc", "nan", "inf", "99", "2.5", ""):
         type_into(panel, "count", bad)
         assert window.scene.p["count"] == 3
@@ -191,7 +206,7 @@ def test_bad_typed_value_is_refused_and_the_old_one_kept(window):
 
 
 def test_valid_values_change_the_scene(window):
-    panel = window.panel
+    panel = window.scene_view.panel
     window.update(0.1)
     type_into(panel, "g", "250.5")
     assert window.scene.p["g"] == 250.5
@@ -221,34 +236,34 @@ def test_valid_values_change_the_scene(window):
 def test_keys_typed_into_the_panel_do_not_reach_the_shell(window):
     window.update(0.1)
     steps = window.scene.steps
-    window.panel.entries["g"].focus()
+    window.scene_view.panel.entries["g"].focus()
     key(window, pygame.K_r)
     key(window, pygame.K_SPACE)
-    assert window.scene.steps == steps and not window.clock.paused
+    assert window.scene.steps == steps and not window.scene_view.clock.paused
 
 
 def test_non_finite_state_rolls_back_and_pauses(window):
     window.scene.set("blowup", True)
     for _ in range(100):
         window.update(1 / 60)
-        if window.clock.paused:
+        if window.scene_view.clock.paused:
             break
     scene = window.scene
-    assert window.clock.paused
+    assert window.scene_view.clock.paused
     assert scene.is_finite()
     assert scene.steps == SNAPSHOT_EVERY
     assert scene.time == pytest.approx(SNAPSHOT_EVERY / 60)
-    assert window.nonfinite_banner.startswith("The simulation went non-finite")
-    assert window.nonfinite_banner == NONFINITE_TEXT.format(bad=41 / 60, good=30 / 60)
+    banner = window.scene_view.banner
+    assert banner == NONFINITE_TEXT.format(bad=41 / 60, good=30 / 60)
     window.render()
     key(window, pygame.K_SPACE)            # resuming clears the banner
-    assert not window.nonfinite_banner
+    assert not window.scene_view.banner
 
 
 def test_recording_writes_input_json_in_world_coordinates(window, tmp_path):
     # a smaller window: the world is drawn at half size, so screen and world pixels differ
     window.resize(pygame.display.set_mode((800, 600)))
-    view = window.view
+    view = window.scene_view.view
     assert view.scale < 1
     window.update(0.1)
     start = view.pt((100.0, 200.0))
@@ -278,13 +293,13 @@ def test_recording_writes_input_json_in_world_coordinates(window, tmp_path):
 def test_a_recorded_demo_replays_headless_to_the_same_state(window, tmp_path):
     from app.headless import load_events, run_scene
     window.update(0.05)
-    mouse(window, pygame.MOUSEBUTTONDOWN, window.view.pt((400.0, 300.0)), 1)
+    mouse(window, pygame.MOUSEBUTTONDOWN, window.scene_view.view.pt((400.0, 300.0)), 1)
     window.update(0.05)
     key(window, pygame.K_u)
     window.update(0.1)
     key(window, pygame.K_r)                # recorded as a reset
     window.update(0.05)
-    mouse(window, pygame.MOUSEBUTTONDOWN, window.view.pt((50.0, 60.0)), 3)
+    mouse(window, pygame.MOUSEBUTTONDOWN, window.scene_view.view.pt((50.0, 60.0)), 3)
     key(window, pygame.K_u)
     window.update(0.1)
     out = tmp_path / "demo.json"
@@ -313,7 +328,7 @@ def test_f12_writes_a_png(window, tmp_path):
     shots = list((tmp_path / "shots").glob("tiny-*.png"))
     assert len(shots) == 1
     assert pygame.image.load(str(shots[0])).get_size() == (1280, 800)
-    assert any("screenshot saved" in text for _, text, _ in window.messages)
+    assert any(text == f"screenshot saved: {shots[0].resolve()}" for _, text, _ in window.messages)
 
 
 def test_help_menu_and_scene_switching(window):
@@ -330,7 +345,7 @@ def test_help_menu_and_scene_switching(window):
     key(window, pygame.K_1)
     assert type(window.scene) is Tiny
     key(window, pygame.K_TAB)
-    assert window.panel is None and window.world_area().width == 1280
+    assert window.scene_view.panel is None and window.scene_view.world_area().width == 1280
     key(window, pygame.K_ESCAPE)
     key(window, pygame.K_ESCAPE)           # Esc in the menu quits
     assert not window.running
@@ -350,7 +365,8 @@ def test_no_display_returns_2_with_one_line(monkeypatch, capsys):
     assert run_window(None, {}) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1
-    assert err.startswith("no display for the window: x11 not available; use --headless")
+    assert err.startswith("python -m app: error: no display for the window: x11 not available; "
+                          "use --headless")
 
 
 def test_run_window_screenshot_after_seconds_and_record(monkeypatch, tmp_path):
@@ -364,7 +380,7 @@ def test_run_window_screenshot_after_seconds_and_record(monkeypatch, tmp_path):
 
 
 def test_typing_a_value_and_enter_sets_it(window):
-    entry = window.panel.entries["g"]
+    entry = window.scene_view.panel.entries["g"]
     entry.focus()
     entry.set_text("")
     pygame.event.clear()
@@ -373,7 +389,7 @@ def test_typing_a_value_and_enter_sets_it(window):
     for ev in pygame.event.get():          # pygame-gui posts UI_TEXT_ENTRY_FINISHED
         window.handle_pygame_event(ev)
     assert window.scene.p["g"] == 42.0
-    assert not window.panel.is_typing()
+    assert not window.scene_view.panel.is_typing()
 
 
 @pytest.mark.parametrize("frames", [[1 / 60] * 40, [0.013, 0.021, 1 / 60, 0.03, 0.011] * 8])
@@ -388,7 +404,7 @@ def test_a_demo_recorded_frame_by_frame_on_the_cloth_replays_to_the_same_state(t
     w = Window(screen, [ClothScene], screenshot_dir=tmp_path)
     assert w.open_scene(ClothScene, {"rows": "12", "cols": "12"})
     cloth = w.scene.cloth
-    grab = w.view.pt(cloth.x[:, 5, 6])
+    grab = w.scene_view.view.pt(cloth.x[:, 5, 6])
     script = {3: (pygame.MOUSEMOTION, grab), 5: (pygame.MOUSEBUTTONDOWN, grab)}
     for i in range(6, 20):
         script[i] = (pygame.MOUSEMOTION, (grab[0] + 9 * (i - 5), grab[1] + 6 * (i - 5)))
@@ -406,8 +422,11 @@ def test_a_demo_recorded_frame_by_frame_on_the_cloth_replays_to_the_same_state(t
     assert replay.scene.state_hash() == w.scene.state_hash()
 
 
-def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_so(window, monkeypatch):
+def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_why(window, monkeypatch):
     import time as _time
+    for _ in range(SETTLE_FRAMES):           # the first frames after opening do not count
+        window.update(1 / 60)
+    assert not any("slower" in str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
     slow_step = Tiny.step
 
     def step(self, h):
@@ -415,28 +434,347 @@ def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_so(window
         slow_step(self, h)
 
     monkeypatch.setattr(Tiny, "step", step)
+    dropped = window.scene_view.clock.dropped_steps
     n = window.update(8 / 60)                # asks for 8 steps of 30 ms: the budget is 100 ms
     assert 1 <= n <= 5
-    assert window.clock.dropped_steps == 8 - n
-    assert any("slower than real time" in str(getattr(x, "text", x)) for x in window.hud_lines())
+    assert window.scene_view.clock.dropped_steps - dropped == 8 - n
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time: physics takes" in text
 
 
-def test_a_panel_change_while_recording_keeps_time_running_forward_and_warns(tmp_path):
+def test_a_slow_first_frame_after_opening_or_f2_is_not_slower_than_real_time(window):
+    for frame in (0.25, 0.25, 1 / 60):       # the build and the first draw take long
+        window.update(frame)
+    key(window, pygame.K_F2)
+    window.update(0.25)
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time" not in text
+
+
+def test_the_physics_figure_holds_while_paused(window):
+    for _ in range(10):
+        window.update(1 / 60)
+    key(window, pygame.K_SPACE)
+    figure = window.scene_view.status_lines()[1]
+    for _ in range(20):
+        window.update(1 / 60)
+        window.render()
+    assert window.scene_view.status_lines()[1] == figure
+    assert figure.startswith("physics ") and "ms/step" in figure
+
+
+def test_panel_changes_while_recording(tmp_path):
+    """Before the first event a change restarts the recording (the replay gets it as --set);
+    after it the change is named as not replayable."""
     pygame.display.init()
     pygame.font.init()
     screen = pygame.display.set_mode((1280, 800))
-    w = Window(screen, [Tiny], screenshot_dir=tmp_path, recording=True)
+    rec = tmp_path / "demo.json"
+    w = Window(screen, [Tiny], screenshot_dir=tmp_path, record=rec)
     w.open_scene(Tiny, {"count": "2"})
+    for _ in range(5):
+        w.update(1 / 60)
+    assert w.scene_view.apply_setting("g", 300)           # no event yet: restart
+    assert w.session_steps == 0 and w.scene.steps == 0
     for i in range(30):
         if i == 10:
-            assert w.apply_setting("hertz", 120)
+            assert w.scene_view.apply_setting("hertz", 120)
         if i % 5 == 0:
             key(w, pygame.K_u)
         w.update(1 / 60)
     times = [e["t"] for e in w.recorded]
     assert times == sorted(times) and len(times) == 12
-    assert w.recorded_changes == ["hertz=120"]
-    assert any("not an event" in m[1] for m in w.messages)
-    assert w.replay_command("demo.json") == (
-        f"python -m app --headless --scene tiny --set count=2 --input demo.json "
-        f"--steps {w.session_steps}")
+    assert any("cannot repeat" in m[1] for m in w.messages)
+    line = w.recorder.write()
+    assert line.startswith(f"recorded 12 events of tiny over {w.session_steps} steps; replay: "
+                           f"python -m app --headless --scene tiny --set count=2 --set g=300.0 "
+                           f"--input {rec} --steps {w.session_steps}")
+    assert "hertz=120" in line
+    assert any("REC" in str(getattr(x, "text", x)) for x in w.scene_view.hud_lines())
+
+
+def test_a_recording_made_before_any_panel_change_replays_with_its_set_values(tmp_path):
+    from app.headless import load_events, run_scene
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    rec = tmp_path / "demo.json"
+    w = Window(screen, [Tiny], screenshot_dir=tmp_path, record=rec)
+    w.open_scene(Tiny)
+    w.update(0.1)
+    w.scene_view.apply_setting("g", 321.0)
+    w.scene_view.apply_setting("count", 5)
+    for i in range(20):
+        if i in (3, 11):
+            key(w, pygame.K_u)
+        w.update(1 / 60)
+    w.recorder.write()
+    assert w.recorder.session.settings == {"g": "321.0", "count": "5"}
+    replay = run_scene(Tiny({"g": "321.0", "count": "5"}), w.session_steps,
+                       load_events(str(rec)))
+    assert replay.scene.state_hash() == w.scene.state_hash()
+
+
+def test_the_replay_command_is_printed_after_esc_esc(monkeypatch, tmp_path, capsys):
+    import scenes
+    monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    script = [[], [pygame.event.Event(pygame.KEYDOWN, key=pygame.K_u, mod=0, scancode=0,
+                                      unicode="u")],
+              [], [pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE, mod=0, scancode=0,
+                                      unicode="")],
+              [pygame.event.Event(pygame.KEYDOWN, key=pygame.K_ESCAPE, mod=0, scancode=0,
+                                  unicode="")]]
+    monkeypatch.setattr(pygame.event, "get", lambda: script.pop(0) if script else [])
+    rec = tmp_path / "rec.json"
+    assert run_window("tiny", {}, record=str(rec), seconds=5.0) == 0
+    out = capsys.readouterr().out
+    assert "recorded 1 events of tiny" in out and f"--input {rec}" in out
+    assert [e["key"] for e in json.loads(rec.read_text())] == ["u"]
+
+
+def test_a_text_box_clicked_a_second_time_gets_the_keys_and_the_shell_none(window):
+    """Defect 1 of issue 10: after Enter, a second click on the same box must focus it again,
+    and while it has focus no key reaches the shell or the scene."""
+    for _ in range(3):
+        window.update(1 / 60)
+        window.render()
+    entry = window.scene_view.panel.entries["g"]
+    where = entry.get_abs_rect().center
+    for round_ in range(2):
+        mouse(window, pygame.MOUSEBUTTONDOWN, where, 1)
+        mouse(window, pygame.MOUSEBUTTONUP, where, 1)
+        window.update(1 / 60)
+        assert window.scene_view.typing(), f"click {round_ + 1} did not focus the box"
+        steps, seen = window.scene.steps, len(window.scene.seen)
+        for k in (pygame.K_MINUS, pygame.K_r, pygame.K_SPACE, pygame.K_u, pygame.K_h):
+            key(window, k)
+        assert window.scene_view.clock.slow_motion == 1.0 and not window.scene_view.clock.paused
+        assert not window.show_help and window.scene.steps == steps
+        assert len(window.scene.seen) == seen
+        key(window, pygame.K_RETURN)
+        for ev in pygame.event.get():
+            window.handle_pygame_event(ev)
+        assert not window.scene_view.typing()
+        assert len(window.scene.seen) == seen and not window.recorded   # not even Enter's key_up
+
+
+def test_try_cards_apply_their_settings_and_say_what_to_watch(window):
+    from app.scene import Try
+    panel = window.scene_view.panel
+    Tiny.tries = (Try("heavy", {"g": 900, "drag": "on"}, "it falls faster"),
+                  Try("bad", {"count": 99}, "never"))
+    try:
+        window.scene_view.on_layout()
+        panel = window.scene_view.panel
+        cards = {c.label: b for b, c in panel.cards.items()}
+        window.handle_pygame_event(pygame.event.Event(pygame_gui.UI_BUTTON_PRESSED,
+                                                      {"ui_element": cards["heavy"]}))
+        assert window.scene.p["g"] == 900 and "drag" in window.scene.on
+        assert any("it falls faster" in m[1] for m in window.messages)
+        window.handle_pygame_event(pygame.event.Event(pygame_gui.UI_BUTTON_PRESSED,
+                                                      {"ui_element": cards["bad"]}))
+        assert window.scene.p["count"] == 3                       # refused, nothing changed
+        assert any("count" in m[1] for m in window.messages if m[2] == (255, 120, 110))
+    finally:
+        Tiny.tries = ()
+
+
+class Failing(Tiny):
+    """A scene whose (student's) code fails at step 5."""
+    name = "failing"
+
+    def step(self, h):
+        if self.steps >= 5:
+            from app.scene import SceneError
+            raise SceneError("exercise.py line 3: ZeroDivisionError\nin my_step(h)")
+        super().step(h)
+
+
+def test_a_scene_error_pauses_the_window_and_shows_the_message(tmp_path):
+    w = open_window(Failing, tmp_path, frames=20)
+    sv = w.scene_view
+    assert w.scene is not None and sv.clock.paused and w.running
+    assert sv.runner.error.startswith("exercise.py line 3")
+    assert w.scene.steps == 5
+    key(w, pygame.K_r)                                   # R runs it again
+    assert sv.runner.error is None and w.scene.steps == 0
+
+
+def test_headless_reports_a_scene_error_and_goes_on(capsys):
+    from app.headless import run_headless
+    code = run_headless([Failing, Tiny], {}, 20, None, None, None, True)
+    out, err = capsys.readouterr()
+    rows = [json.loads(line) for line in out.splitlines()]
+    assert code == 1
+    assert rows[0]["error"].startswith("exercise.py line 3") and rows[0]["steps"] == 5
+    assert rows[1]["scene"] == "tiny" and rows[1]["error"] is None and rows[1]["steps"] == 20
+    assert "failing: exercise.py line 3" in err
+
+
+def test_headless_warns_about_events_after_the_end(capsys):
+    from app.headless import run_headless
+    events = [InputEvent("key_down", key="u", t=0.05), InputEvent("key_down", key="u", t=9.0)]
+    assert run_headless([Tiny], {}, 30, None, events, None, True) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out)["events"] == 1
+    assert err.count("\n") == 1 and "1 --input event(s) lie after the end of the run" in err
+
+
+def test_the_key_table_makes_the_keys_the_help_and_the_readme():
+    from pathlib import Path
+    from app.scene import SHELL_KEYS
+    from app.window import keys
+    from app.window.scene_view import SceneView
+    from app.window.views import HelpView, MenuView
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    assert keys.controls_table() in readme
+    assert {n for k in keys.KEYS for n in k.names} <= SHELL_KEYS
+    for k in keys.KEYS:                 # every action is a method of a view or of the window
+        assert any(hasattr(c, k.action) for c in (SceneView, MenuView, HelpView, Window)), k
+
+
+def test_the_menu_numbers_scenes_in_the_order_shown(window):
+    class A(Tiny):
+        name, title, category = "a", "A", "First"
+
+    class B(Tiny):
+        name, title, category = "b", "B", "Second"
+
+    class C(Tiny):
+        name, title, category = "c", "C", "First"
+
+    window.scenes = [A, B, C]
+    window.open_menu()
+    window.render()
+    entries = window.current_view.entries
+    assert [(window.scenes[e.index].name, e.number) for e in entries] == [("a", 1), ("c", 2),
+                                                                         ("b", 3)]
+    key(window, pygame.K_2)
+    assert type(window.scene) is C
+
+
+def test_help_text_is_wrapped_never_cut():
+    from app.draw.hud import HelpPage, reflow
+    doc = "First line of a paragraph\ngoes on here.\n\n- a list item\n- another"
+    assert reflow(doc) == "First line of a paragraph goes on here.\n\n- a list item\n- another"
+    TEXT.scale = 1.6
+    try:
+        page = HelpPage(400, "T", doc * 20, [("Space", "pause " * 30)], [("x", "y " * 50)])
+        assert page.height > 640                      # longer than the screen: it scrolls
+        assert all(img.get_width() <= 400 for _, _, img in page.items)
+    finally:
+        TEXT.scale = 1.0
+
+
+def test_fmt_number_shows_a_missing_value_as_a_dash():
+    from app.draw.hud import fmt_number
+    assert fmt_number(None) == "-"
+
+
+# ----- the layout rule, for every registered scene -------------------------------------------
+from scenes import SCENES  # noqa: E402
+
+
+@pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])
+def test_hud_metrics_and_panel_never_cover_the_content(cls, tmp_path):
+    """At both text sizes and at 1024x640, 1280x800 and 1920x1080, the HUD box, the metrics
+    strip and the panel do not intersect the screen rectangle of the scene's content_bounds()
+    (the layout is computed as render() computes it; the panel is what the world area leaves)."""
+    w = open_window(cls, tmp_path, frames=3)
+    sv = w.scene_view
+    try:
+        for scale in (1.0, 1.6):
+            TEXT.scale = scale
+            for size in ((1024, 640), (1280, 800), (1920, 1080)):
+                w.screen = pygame.Surface(size)
+                sv.hud_room = (0, 0)
+                layout = sv.fit()
+                area = layout.area
+                content = layout.content_rect(w.scene.content_bounds())
+                panel = pygame.Rect(area.right, 0, size[0] - area.right, size[1])
+                drawn = hud.box_size(sv.hud_lines(), layout.hud_text,
+                                     max_width=hud.hud_width(area))
+                where = (scale, size)
+                assert panel.width >= 300 and area.width >= 600, where
+                assert drawn[0] <= layout.hud.width and drawn[1] <= layout.hud.height, where
+                assert area.contains(content), (where, content, area)
+                assert content.width > 0.25 * area.width or \
+                    content.height > 0.25 * area.height, where     # fitted, not a stamp
+                for name, rect in (("HUD", layout.hud), ("metrics", layout.strip),
+                                   ("panel", panel)):
+                    assert not rect.colliderect(content), (where, name, rect, content)
+    finally:
+        TEXT.scale = 1.0
+
+
+@pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])
+def test_every_try_card_is_accepted_by_the_scene(cls):
+    assert 2 <= len(cls.tries) <= 4
+    for card in cls.tries:
+        values, on = cls.resolve(card.settings)         # the panel's validation
+        assert card.label and card.watch
+
+
+class BrokenAtBuild(Tiny):
+    """A scene whose (student's) code fails while it is built."""
+    name = "broken"
+
+    def build(self):
+        from app.scene import SceneError
+        raise SceneError("exercise.py line 9: NameError: name 'x' is not defined")
+
+
+def test_a_scene_error_while_building_goes_back_to_the_menu_with_the_message(tmp_path, capsys):
+    pygame.display.init()
+    w = Window(pygame.display.set_mode((1024, 640)), [BrokenAtBuild], screenshot_dir=tmp_path)
+    assert not w.open_scene(BrokenAtBuild)
+    assert w.scene is None and "NameError" in w.menu_message and w.running
+    w.render()
+    assert capsys.readouterr().err == ""           # the message, not a traceback
+
+
+def test_f3_hides_hud_and_metrics_and_the_content_grows(window):
+    window.update(1 / 60)
+    window.render()
+    before = window.scene_view.layout.content_rect(window.scene.content_bounds())
+    key(window, pygame.K_F3)
+    window.render()
+    layout = window.scene_view.layout
+    assert layout.hud.height == 0 and layout.strip.height == 0
+    after = layout.content_rect(window.scene.content_bounds())
+    assert after.width * after.height > before.width * before.height
+    key(window, pygame.K_F3)
+    window.render()
+    assert window.scene_view.layout.hud.height > 0
+
+
+def test_the_help_scrolls_and_keeps_the_other_shell_keys(window):
+    TEXT.scale = 1.6                        # a long page: it scrolls
+    key(window, pygame.K_h)
+    window.render()
+    help_view = window.current_view
+    assert help_view.page.height > help_view.page_rect.height
+    key(window, pygame.K_DOWN)
+    assert help_view.scroll > 0
+    key(window, pygame.K_END)
+    window.render()
+    assert help_view.scroll == help_view.page.height - help_view.page_rect.height
+    key(window, pygame.K_SPACE)             # waits until the help is closed
+    key(window, pygame.K_r)
+    assert not window.scene_view.clock.paused and window.show_help
+    key(window, pygame.K_ESCAPE)
+    assert not window.show_help and window.scene is not None
+
+
+@pytest.mark.parametrize("scale", [1.0, 1.6])
+def test_every_menu_entry_is_on_screen_in_a_small_window(scale, tmp_path):
+    pygame.display.init()
+    screen = pygame.display.set_mode((1024, 640))
+    w = Window(screen, SCENES, screenshot_dir=tmp_path, large_text=scale > 1)
+    try:
+        w.render()
+        entries = w.current_view.entries
+        assert sorted(e.number for e in entries) == list(range(1, len(SCENES) + 1))
+        assert all(screen.get_rect().contains(e.rect.inflate(-12, 0)) for e in entries)
+    finally:
+        TEXT.scale = 1.0

@@ -17,7 +17,7 @@ from __future__ import annotations
 import numpy as np
 import pygame
 
-from app.draw.text import TEXT, font
+from app.draw.text import px
 from app.physics.cloth import Cloth
 
 STRAIN_EDGES = (0.002, 0.005, 0.01, 0.02, 0.05, 0.1, 0.2)
@@ -104,7 +104,7 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     `stretch`: the horizontal and vertical structural rods' |length/rest - 1| if already known
     (computed here otherwise)."""
     pts = view.pts(np.moveaxis(cloth.x, 0, -1))              # (rows, cols, 2) screen points
-    width = 2 if view.len(cloth.spacing) >= 10 else 1
+    width = px(2) if view.len(cloth.spacing) >= 6 else px(1)     # 2 px: seen from the back row
     horizontal, vertical = cloth.sets["structural"].families
     if stretch is None:
         stretch = cloth.stretch(horizontal), cloth.stretch(vertical)
@@ -131,37 +131,9 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         pygame.draw.circle(surface, HOVER_COLOR, pts[hover].tolist(), ring, 1)
 
 
-_legend_cache: dict[float, pygame.Surface] = {}
-
-
-def _legend() -> pygame.Surface:
-    """The colour key (cached per text scale)."""
-    key = TEXT.scale
-    if key not in _legend_cache:
-        f = font(15)
-        labels = ([f"<{STRAIN_EDGES[0] * 100:g}%"]
-                  + [f"{a * 100:g}-{b * 100:g}%" for a, b in zip(STRAIN_EDGES, STRAIN_EDGES[1:])]
-                  + [f">{STRAIN_EDGES[-1] * 100:g}%"])
-        title = f.render("stretch |l/rest - 1|", True, (220, 220, 220))
-        texts = [f.render(t, True, (220, 220, 220)) for t in labels]
-        chip = f.get_height()
-        w = max(title.get_width(), max(t.get_width() for t in texts) + chip + 6) + 8
-        h = (chip + 2) * (len(texts) + 1) + 8
-        surf = pygame.Surface((w, h), pygame.SRCALPHA)
-        surf.fill((0, 0, 0, 120))
-        surf.blit(title, (4, 4))
-        for i, (t, col) in enumerate(zip(texts, STRAIN_COLORS)):
-            y = 4 + (chip + 2) * (i + 1)
-            pygame.draw.rect(surf, col, (4, y + 2, chip, chip - 4))
-            surf.blit(t, (chip + 10, y))
-        _legend_cache[key] = surf
-    return _legend_cache[key]
-
-
-def draw_legend(surface: pygame.Surface, view, world_size: tuple[int, int]) -> pygame.Rect:
-    """The strain colour key in the top-right corner of the world: above the pinned row (the
-    cloth hangs from 28 % of the height) and right of the window's HUD box, where the cloth rarely
-    goes; the wind blows it into the bottom-right corner. Returns the screen rectangle."""
-    legend = _legend()
-    x, y = view.pt((world_size[0], 0))
-    return surface.blit(legend, (x - legend.get_width() - 6, y + 6))
+def strain_key() -> tuple:
+    """The strain colours as a colour key (colour or None, text): the HUD shows it."""
+    labels = ([f"<{STRAIN_EDGES[0] * 100:g}%"]
+              + [f"{a * 100:g}-{b * 100:g}%" for a, b in zip(STRAIN_EDGES, STRAIN_EDGES[1:])]
+              + [f">{STRAIN_EDGES[-1] * 100:g}%"])
+    return ((None, "stretch |l/rest - 1|:"), *zip(STRAIN_COLORS, labels))

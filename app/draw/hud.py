@@ -1,8 +1,10 @@
 """Drawing helpers of the window's overlays: the HUD box, banners, the help overlay and the scene menu.
 
-Everything here draws plain text on dark, half-transparent boxes so it stays readable from the back
-of a classroom over any scene. Sizes are at text scale 1; `app.draw.text.TEXT.scale` (the F2
-large-text switch) enlarges them all. No state lives here: the window decides what to show.
+Everything here draws plain text on dark boxes, readable from the back of a classroom; the layout
+(app/draw/layout.py) keeps the HUD and the metrics strip off the scene's content. Sizes are at text
+scale 1; `app.draw.text.TEXT.scale` (the F2 large-text switch) enlarges them all. Text is wrapped,
+never cut with "...": the help overlay scrolls instead. No state lives here: the window decides
+what to show.
 """
 
 from __future__ import annotations
@@ -82,13 +84,62 @@ def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") 
 
 @dataclass
 class Line:
-    """One line of overlay text and its colour."""
+    """One line of overlay text and its colour; `swatch`: a colour square drawn before it (a
+    colour key: what a colour on screen means)."""
     text: str
     color: tuple[int, int, int] = TEXT_COLOR
+    swatch: tuple[int, int, int] | None = None
+    keys: tuple = ()      # a colour key packed into rows: (colour or None, text) items
 
 
 def _as_line(item) -> Line:
     return item if isinstance(item, Line) else Line(str(item))
+
+
+def _key_width(f: pygame.font.Font, key: tuple) -> int:
+    color, text = key
+    return (_swatch_w(f) if color is not None else 0) + f.size(text + "   ")[0]
+
+
+def _line_width(f: pygame.font.Font, it: Line) -> int:
+    if it.keys:
+        return sum(_key_width(f, k) for k in it.keys)
+    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0)
+
+
+def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int) -> list[Line]:
+    items = [_as_line(x) for x in lines]
+    if max_width is None:
+        return items
+    wrapped: list[Line] = []
+    for item in items:
+        if item.keys:             # as many key items per row as fit
+            rows: list[list] = [[]]
+            for k in item.keys:
+                if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > max_width - 2 * pad:
+                    rows.append([])
+                rows[-1].append(k)
+            wrapped += [Line("", item.color, keys=tuple(r)) for r in rows]
+            continue
+        room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
+        for i, t in enumerate(wrap(item.text, f, room)):
+            wrapped.append(Line(t, item.color, item.swatch if i == 0 else None))
+    return wrapped
+
+
+def _swatch_w(f: pygame.font.Font) -> int:
+    return f.get_height() + f.get_height() // 3
+
+
+def box_size(lines: list, size: int = HUD_SIZE, pad: int = 8,
+             max_width: int | None = None) -> tuple[int, int]:
+    """The (w, h) that text_box would take for these lines (the layout reserves it)."""
+    f = font(size)
+    items = _box_lines(lines, f, max_width, pad)
+    if not items:
+        return (0, 0)
+    w = max(_line_width(f, it) for it in items)
+    return (w + 2 * pad, len(items) * f.get_linesize() + 2 * pad)
 
 
 def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: int = HUD_SIZE,
@@ -96,27 +147,31 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
     """Draw lines on a dark backing box whose top-left is `pos` (bottom-left if `from_bottom`);
     return the box's rectangle. Lines wider than `max_width` are wrapped."""
     f = font(size)
-    items = [_as_line(x) for x in lines]
-    if max_width is not None:
-        wrapped: list[Line] = []
-        for item in items:
-            wrapped += [Line(t, item.color) for t in wrap(item.text, f, max_width - 2 * pad)]
-        items = wrapped
+    items = _box_lines(lines, f, max_width, pad)
     if not items:
         return pygame.Rect(pos, (0, 0))
-    rendered = [(f.render(it.text, True, it.color), f.render(it.text, True, (0, 0, 0)))
-                for it in items]
-    w = max(img.get_width() for img, _ in rendered) + 2 * pad
-    h = len(rendered) * f.get_linesize() + 2 * pad
+    w, h = box_size(items, size, pad)
     box = pygame.Surface((w, h), pygame.SRCALPHA)
     box.fill(BOX_COLOR)
     if from_bottom:
         pos = (pos[0], pos[1] - h)
     surface.blit(box, pos)
     y = pos[1] + pad
-    for img, shadow in rendered:
-        surface.blit(shadow, (pos[0] + pad + 1, y + 1))
-        surface.blit(img, (pos[0] + pad, y))
+    for it in items:
+        x = pos[0] + pad
+        for color, text in it.keys:
+            if color is not None:
+                side = f.get_height() * 3 // 4
+                pygame.draw.rect(surface, color, (x, y + (f.get_height() - side) // 2, side, side))
+                x += _swatch_w(f)
+            surface.blit(f.render(text, True, it.color), (x, y))
+            x += f.size(text + "   ")[0]
+        if it.swatch:
+            side = f.get_height() * 3 // 4
+            pygame.draw.rect(surface, it.swatch, (x, y + (f.get_height() - side) // 2, side, side))
+            x += _swatch_w(f)
+        surface.blit(f.render(it.text, True, (0, 0, 0)), (x + 1, y + 1))
+        surface.blit(f.render(it.text, True, it.color), (x, y))
         y += f.get_linesize()
     return pygame.Rect(pos, (w, h))
 
@@ -143,21 +198,8 @@ def banner(surface: pygame.Surface, text: str, area: pygame.Rect, color=WARN_COL
     return rect
 
 
-COMMON_KEYS = [
-    ("Space", "pause / resume"),
-    (".", "single step (one fixed step of dt)"),
-    ("- / =", "slow motion x1 -> x1/2 -> x1/4 -> x1/8, and back"),
-    ("R", "reset the scene"),
-    ("H or F1", "this help"),
-    ("F2", "large text on / off"),
-    ("F12", "screenshot to screenshots/"),
-    ("Tab", "hide / show the parameter panel"),
-    ("PageUp / PageDown", "previous / next scene"),
-    ("Esc", "back to the menu (quit from the menu)"),
-]
-
-
 MAX_METRIC_LINES = 2     # lines of metrics at the bottom of the world (--json has them all)
+HUD_WIDTH = 640          # widest HUD box at text scale 1
 
 
 def dt_text(scene) -> str:
@@ -168,21 +210,37 @@ def dt_text(scene) -> str:
 
 def scene_lines(scene, status: list, notes: list = ()) -> list:
     """The HUD box of a scene: its title, the shell's `status` lines (fps, time, pause...), the
-    scene's own hud_lines(), the cost of each effect where the scene measures it, and passing
-    `notes`. The window and headless screenshots draw the same box."""
+    scene's own hud_lines(), its colour key, and passing `notes`. The window and headless
+    screenshots draw the same box."""
     lines: list = [Line(scene.title or scene.name, ACCENT_COLOR), *status]
-    lines += [str(x) for x in scene.hud_lines()]
-    costs = scene.effect_costs()
-    if costs:
-        lines.append("cost: " + ", ".join(f"{k} {v:.2f} ms" for k, v in costs.items()))
+    lines += [x if isinstance(x, Line) else str(x) for x in scene.hud_lines()]
+    key = tuple(getattr(scene, "color_key", ()))
+    if len(key) > 3:          # a scale (the cloth's strain): packed into rows
+        lines.append(Line("", DIM_COLOR, keys=key))
+    else:
+        lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
     return lines + list(notes)
 
 
-def metric_lines(metrics: dict, width: int) -> list[str]:
+def physics_line(step_ms: float | None, costs: dict[str, float]) -> str:
+    """'physics 1.59 ms/step (structural 0.80, shear 0.31, ...)': the one physics figure of the
+    HUD (the runner's median of scene.advance()) with the scene's breakdown by effect."""
+    text = f"physics {fmt_number(None) if step_ms is None else f'{step_ms:.2f}'} ms/step"
+    if costs:
+        text += " (" + ", ".join(f"{k} {v:.2f}" for k, v in costs.items()) + ")"
+    return text
+
+
+def hud_width(area: pygame.Rect) -> int:
+    """How wide the HUD box may grow in `area` (it wraps its lines to this)."""
+    return max(1, min(area.width - 16, int(HUD_WIDTH * TEXT.scale)))
+
+
+def metric_lines(metrics: dict, width: int, size: int = HUD_SIZE) -> list[str]:
     """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels; what does not fit
     is counted as "+N more (--json)"."""
     items = [f"{k} {fmt_number(v)}" for k, v in metrics.items()]
-    f = font(HUD_SIZE)
+    f = font(size)
     lines = pack(items, f, width - 16)
     if len(lines) > MAX_METRIC_LINES:
         lines = pack(items, f, width - 16 - f.size("  |  +99 more (--json)")[0])[:MAX_METRIC_LINES]
@@ -191,18 +249,22 @@ def metric_lines(metrics: dict, width: int) -> list[str]:
     return lines
 
 
-def draw_scene_hud(surface: pygame.Surface, area: pygame.Rect, scene, status: list,
-                   notes: list = ()) -> int:
-    """Draw the HUD box at the top left of `area` and the metrics strip along its bottom (if the
-    scene wants one); return the y above the strip (for banners stacked on it)."""
-    hud_width = min(area.width - 16, int(640 * TEXT.scale))
-    text_box(surface, scene_lines(scene, status, notes), (area.left + 8, area.top + 8),
-             max_width=hud_width)
-    lines = metric_lines(scene.metrics(), area.width - 16) if scene.metrics_box else []
+def strip_height(scene, area: pygame.Rect, size: int = HUD_SIZE) -> int:
+    """Height of the metrics strip along the bottom of `area` (0 if the scene has none): the
+    room for MAX_METRIC_LINES lines, so the layout does not jump when a value gets longer."""
+    if not scene.metrics_box or not scene.metrics():
+        return 0
+    return MAX_METRIC_LINES * font(size).get_linesize() + 16 + 6
+
+
+def draw_metrics(surface: pygame.Surface, area: pygame.Rect, scene,
+                 size: int = HUD_SIZE) -> pygame.Rect:
+    """The metrics strip along the bottom of `area` (text of `size`); return its rectangle."""
+    lines = metric_lines(scene.metrics(), area.width - 16, size) if scene.metrics_box else []
     if not lines:
-        return area.bottom - 6
-    return text_box(surface, lines, (area.left + 8, area.bottom - 6), max_width=area.width - 16,
-                    from_bottom=True).top
+        return pygame.Rect(area.left, area.bottom, 0, 0)
+    return text_box(surface, lines, (area.left + 8, area.bottom - 6), size,
+                    max_width=area.width - 16, from_bottom=True)
 
 
 def reflow(doc: str) -> str:
@@ -213,7 +275,7 @@ def reflow(doc: str) -> str:
         stripped = line.strip()
         starts_item = stripped[:1] in ("-", "*", "+") or stripped[:2].rstrip(".").isdigit()
         joinable = (out and out[-1].strip() and stripped and not starts_item
-                    and not line.startswith((" ", "\t")) and not out[-1].rstrip().endswith(":"))
+                    and not line.startswith((" ", "\t")))
         if joinable:
             out[-1] = out[-1].rstrip() + " " + stripped
         else:
@@ -221,128 +283,210 @@ def reflow(doc: str) -> str:
     return "\n".join(out)
 
 
-def help_overlay(surface: pygame.Surface, area: pygame.Rect, title: str, doc: str,
-                 settings: list[tuple[str, str]] | None = None) -> None:
-    """The help overlay: the scene's docstring, the common keys and, beside them, the scene's
-    settings (name and one-line help of every param and effect), over `area`."""
-    shade = pygame.Surface(area.size, pygame.SRCALPHA)
-    shade.fill((5, 6, 9, 235))
-    surface.blit(shade, area.topleft)
-    x, y = area.left + 24, area.top + 18
-    width = area.width - 48
-    f_title, f = font(TITLE_SIZE), font(HELP_SIZE)
-    surface.blit(f_title.render(title, True, ACCENT_COLOR), (x, y))
-    y += f_title.get_linesize() + 6
-    key_w = max(f.size(k)[0] for k, _ in COMMON_KEYS) + 24
-    key_rows = [(k, wrap(what, f, width - key_w)) for k, what in COMMON_KEYS]
-    keys_height = (sum(len(r) for _, r in key_rows) + 2) * f.get_linesize()
-    doc_lines = wrap(reflow(doc), f, width)
-    room = (area.bottom - 10 - keys_height - y) // f.get_linesize()
-    if len(doc_lines) > room:
-        doc_lines = doc_lines[: max(room - 1, 0)] + ["... (F2 turns large text off; more in the scene's module docstring)"]
-    for t in doc_lines:
-        surface.blit(f.render(t, True, TEXT_COLOR), (x, y))
-        y += f.get_linesize()
-    y += f.get_linesize() // 2
-    if settings:      # to the right of the common keys
-        left = x + key_w + max(f.size(w)[0] for _, r in key_rows for w in r) + 40
-        _settings_column(surface, settings,
-                         pygame.Rect(left, y, area.right - 24 - left, area.bottom - 10 - y))
-    surface.blit(f.render("Common keys", True, ACCENT_COLOR), (x, y))
-    y += f.get_linesize()
-    for k, rows in key_rows:
-        surface.blit(f.render(k, True, WARN_COLOR), (x, y))
-        for what in rows:
-            surface.blit(f.render(what, True, TEXT_COLOR), (x + key_w, y))
+class HelpPage:
+    """The help overlay's content laid out for a width: the scene's description (paragraphs
+    reflowed, lists kept), the shell's keys and the scene's settings, all wrapped, nothing cut.
+    Taller than the screen, it scrolls (the help view's arrows and wheel)."""
+
+    def __init__(self, width: int, title: str, doc: str, keys: list[tuple[str, str]],
+                 settings: list[tuple[str, str]]):
+        f_title, f, f_head = font(TITLE_SIZE), font(HELP_SIZE), font(HELP_SIZE)
+        self.items: list[tuple[int, int, pygame.Surface]] = []    # (x, y, rendered text)
+        gap = f.get_linesize() // 2
+        two = width >= int(1100 * TEXT.scale)      # description left, keys and settings right
+        col_w = (width - 40) // 2 if two else width
+        self._put(0, 0, f_title.render(title, True, ACCENT_COLOR))
+        top = f_title.get_linesize() + gap
+        y = self._para(0, top, reflow(doc), f, col_w)
+        x2, y2 = (col_w + 40, top) if two else (0, y + gap)
+        y2 = self._table(x2, y2, "Keys of every scene", keys, f, f_head, col_w)
+        if settings:
+            y2 = self._table(x2, y2 + gap, "Settings (the panel, or --set NAME=VALUE)", settings,
+                             f, f_head, col_w)
+        self.height = max(y, y2)
+
+    def _put(self, x: int, y: int, img: pygame.Surface) -> None:
+        self.items.append((x, y, img))
+
+    def _para(self, x: int, y: int, text: str, f: pygame.font.Font, width: int) -> int:
+        for t in wrap(text, f, width):
+            if t:
+                self._put(x, y, f.render(t, True, TEXT_COLOR))
             y += f.get_linesize()
+        return y
+
+    def _table(self, x: int, y: int, head: str, rows: list[tuple[str, str]], f, f_head,
+               width: int) -> int:
+        for t in wrap(head, f_head, width):
+            self._put(x, y, f_head.render(t, True, ACCENT_COLOR))
+            y += f_head.get_linesize()
+        name_w = min(max(f.size(k)[0] for k, _ in rows) + 16, width // 3)
+        for name, what in rows:
+            names = wrap(name, f, name_w - 8)
+            whats = wrap(what, f, width - name_w)
+            for i, t in enumerate(names):
+                self._put(x, y + i * f.get_linesize(), f.render(t, True, WARN_COLOR))
+            for i, t in enumerate(whats):
+                self._put(x + name_w, y + i * f.get_linesize(), f.render(t, True, TEXT_COLOR))
+            y += max(len(names), len(whats)) * f.get_linesize()
+        return y
+
+    def draw(self, surface: pygame.Surface, rect: pygame.Rect, scroll: int) -> None:
+        """Draw the page in `rect`, scrolled down by `scroll` pixels."""
+        surface.set_clip(rect)
+        for x, y, img in self.items:
+            yy = rect.top + y - scroll
+            if yy + img.get_height() >= rect.top and yy <= rect.bottom:
+                surface.blit(img, (rect.left + x, yy))
+        surface.set_clip(None)
 
 
-def _settings_column(surface: pygame.Surface, settings: list[tuple[str, str]],
-                     rect: pygame.Rect) -> None:
-    """'Settings': one line per param or effect (name in yellow, its help), as many as fit."""
-    f_head, f = font(HELP_SIZE), font(int(HELP_SIZE * 0.8))
-    head = "Settings (panel, or --set NAME=VALUE)"
-    if f_head.size(head)[0] > rect.width:
-        head = "Settings"
-    widest = max(f.size(name)[0] for name, _ in settings)
-    if rect.width < max(f_head.size(head)[0], widest + f.size("help text here")[0]):
-        return            # no room beside the keys (large text, small window): the panel has them
-    surface.blit(f_head.render(head, True, ACCENT_COLOR), rect.topleft)
-    y = rect.top + f_head.get_linesize()
-    for name, what in settings:
-        if y + f.get_linesize() > rect.bottom:
-            surface.blit(f.render("...", True, DIM_COLOR), (rect.left, y - 4))
-            break
-        label = f.render(name, True, WARN_COLOR)
-        surface.blit(label, (rect.left, y))
-        rest = _one_line(what, f, rect.width - label.get_width() - 12)
-        surface.blit(f.render(rest, True, TEXT_COLOR), (rect.left + label.get_width() + 12, y))
-        y += f.get_linesize()
-
-
-def _one_line(text: str, f: pygame.font.Font, width: int) -> str:
-    """`text` cut at a word so that it fits `width` pixels, with "..." if cut."""
-    lines = wrap(text, f, width - f.size(" ...")[0])
-    return lines[0] + (" ..." if len(lines) > 1 else "") if lines else ""
+HELP_BACKGROUND = (12, 14, 19)      # opaque: the room reads the text, not the scene behind it
 
 
 @dataclass
 class MenuEntry:
-    """One scene in the menu: its index in the registry and the rectangle that opens it."""
+    """One scene in the menu: its index in the registry, its number on screen (display order)
+    and the rectangle that opens it."""
     index: int
     rect: pygame.Rect
+    number: int = 0
 
 
-def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str = "",
-              message_color=ERROR_COLOR) -> list[MenuEntry]:
-    """Draw the scene menu (grouped by category, in registry order of first appearance) and
-    return the clickable entries."""
-    surface.fill((18, 20, 26))
-    W, H = surface.get_size()
-    f_title, f, f_small = font(TITLE_SIZE), font(MENU_SIZE), font(HUD_SIZE)
-    x, y = 40, 28
-    surface.blit(f_title.render("Physics for animation and games: choose a scene", True,
-                                ACCENT_COLOR), (x, y))
-    y += f_title.get_linesize() + 4
-    hint = "click a scene or press its number;  PageUp/PageDown, arrows + Enter;  Esc quits"
-    surface.blit(f_small.render(hint, True, DIM_COLOR), (x, y))
-    y += f_small.get_linesize() + 14
-    entries: list[MenuEntry] = []
-    if not scenes:
-        surface.blit(f.render("No scenes registered yet (scenes/__init__.py SCENES is empty).",
-                              True, WARN_COLOR), (x, y))
+def menu_order(scenes: list) -> list[int]:
+    """Registry indices in the order the menu shows them: grouped by category, categories in
+    the order they first appear, scenes in registry order within one. The menu numbers the
+    scenes 1, 2, 3 ... in this order, and the digit keys follow it."""
     categories: list[str] = []
     for cls in scenes:
         cat = getattr(cls, "category", "") or "Other"
         if cat not in categories:
             categories.append(cat)
-    row_full = f.get_linesize() + f_small.get_linesize() + 14
-    needed = len(categories) * (f_small.get_linesize() + 12) + len(scenes) * row_full
-    compact = y + needed > H - 10        # too many for the window: drop the docstring lines
-    for cat in categories:
-        surface.blit(f_small.render(cat.upper(), True, DIM_COLOR), (x, y))
-        y += f_small.get_linesize() + 2
-        for i, cls in enumerate(scenes):
-            if (getattr(cls, "category", "") or "Other") != cat:
-                continue
-            number = f"{i + 1}" if i < 9 else " "
-            title = cls.title or cls.name
-            first = " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
-            row_h = f.get_linesize() + (0 if compact else f_small.get_linesize()) + 8
-            rect = pygame.Rect(x - 10, y - 4, W - 2 * x + 20, row_h)
-            if i == selected:
-                pygame.draw.rect(surface, (40, 60, 90), rect, border_radius=6)
-            surface.blit(f.render(number, True, WARN_COLOR), (x, y))
-            surface.blit(f.render(title, True, TEXT_COLOR), (x + 40, y))
-            name_x = x + 60 + f.size(title)[0]
-            surface.blit(f_small.render(f"--scene {cls.name}", True, DIM_COLOR),
-                         (name_x, y + (f.get_linesize() - f_small.get_linesize()) // 2))
-            if first and not compact:
-                sub = _one_line(first, f_small, W - 2 * x - 40)
-                surface.blit(f_small.render(sub, True, DIM_COLOR), (x + 40, y + f.get_linesize()))
-            entries.append(MenuEntry(i, rect))
-            y += row_h + 6
-        y += 10
+    return [i for cat in categories for i, cls in enumerate(scenes)
+            if (getattr(cls, "category", "") or "Other") == cat]
+
+
+def _first_paragraph(cls) -> str:
+    return " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
+
+
+def _menu_blocks(scenes: list, order: list[int], f, f_small, text_w: int,
+                 described: bool) -> list[tuple[tuple, int]]:
+    """The menu's blocks in display order, each (what, height): ("category", name) headers and
+    ("scene", number, registry index, title lines, description lines) rows."""
+    blocks: list[tuple[tuple, int]] = []
+    category = None
+    for number, i in enumerate(order, start=1):
+        cat = getattr(scenes[i], "category", "") or "Other"
+        if cat != category:
+            category = cat
+            blocks.append((("category", cat), f_small.get_linesize() + 12))
+        first = _first_paragraph(scenes[i]) if described else ""
+        sub = wrap(first, f_small, text_w) if first else []
+        titles = wrap(scenes[i].title or scenes[i].name, f, text_w)
+        blocks.append((("scene", number, i, titles, sub),
+                       len(titles) * f.get_linesize() + len(sub) * f_small.get_linesize() + 14))
+    return blocks
+
+
+def _flow(blocks: list[tuple[tuple, int]], columns: int, top: int,
+          bottom: int) -> list[tuple[int, int]] | None:
+    """(column, y) of every block flowed into `columns` columns between `top` and `bottom`
+    (a category header never ends a column), or None if they do not fit."""
+    placed: list[tuple[int, int]] = []
+    col, y = 0, top
+    for k, (kind, h) in enumerate(blocks):
+        need = h + (blocks[k + 1][1] if kind[0] == "category" and k + 1 < len(blocks) else 0)
+        if y + need > bottom and y > top:
+            col, y = col + 1, top
+        if col >= columns or y + need > bottom:
+            return None
+        placed.append((col, y))
+        y += h
+    return placed
+
+
+MENU_HINT = "click a scene or press its number;  PageUp/PageDown, arrows + Enter;  Esc quits"
+
+
+def _menu_layout(surface: pygame.Surface, scenes: list, f_title, f, f_small) -> tuple:
+    """Where the menu's blocks go with these fonts: (x, column width, number width, blocks,
+    their places, the top of the list, whether it all fits)."""
+    W, H = surface.get_size()
+    x, y = 40, 28
+    y += f_title.get_linesize() * len(wrap("Physics for animation and games: choose a scene",
+                                           f_title, W - 2 * x)) + 4
+    y += f_small.get_linesize() * len(wrap(MENU_HINT, f_small, W - 2 * x)) + 14
+    order = menu_order(scenes)
+    num_w = f.size("9")[0] + 24
+    top, bottom = y, H - 10
+    # the first of these that fits: one column with descriptions, two columns with them, then
+    # the same without descriptions (never a description cut short)
+    for columns, described in ((1, True), (2, True), (1, False), (2, False), (3, False)):
+        col_w = (W - 2 * x - 40 * (columns - 1)) // columns
+        blocks = _menu_blocks(scenes, order, f, f_small, col_w - num_w, described)
+        placed = _flow(blocks, columns, top, bottom)
+        if placed is not None:
+            return x, col_w, num_w, blocks, placed, y, True
+    col_w = W - 2 * x                       # nothing fits: one column, what fits is shown
+    blocks = _menu_blocks(scenes, order, f, f_small, col_w - num_w, False)
+    placed = [(0, top + sum(h for _, h in blocks[:k])) for k in range(len(blocks))]
+    return x, col_w, num_w, blocks, placed, y, False
+
+
+def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str = "",
+              message_color=ERROR_COLOR) -> list[MenuEntry]:
+    """Draw the scene menu (grouped by category, numbered in display order, descriptions
+    wrapped, in as many columns as it takes) and return the clickable entries. When the
+    descriptions do not fit, they are left out (each scene's help overlay has them)."""
+    W, H = surface.get_size()
+    # the first text size at which the menu fits (large text in a small window shrinks it
+    # towards the normal size before anything is cut)
+    for k in (1.0, 0.85, 0.72, 0.62):
+        fonts = font(int(TITLE_SIZE * k)), font(int(MENU_SIZE * k)), font(int(HUD_SIZE * k))
+        laid = _menu_layout(surface, scenes, *fonts)
+        if laid[-1]:
+            break
+    f_title, f, f_small = fonts
+    x, col_w, num_w, blocks, placed, y, _ = laid
+    surface.fill((18, 20, 26))
+    y0 = 28
+    for t in wrap("Physics for animation and games: choose a scene", f_title, W - 2 * x):
+        surface.blit(f_title.render(t, True, ACCENT_COLOR), (x, y0))
+        y0 += f_title.get_linesize()
+    y0 += 4
+    for t in wrap(MENU_HINT, f_small, W - 2 * x):
+        surface.blit(f_small.render(t, True, DIM_COLOR), (x, y0))
+        y0 += f_small.get_linesize()
+    entries: list[MenuEntry] = []
+    if not scenes:
+        surface.blit(f.render("No scenes registered yet (scenes/__init__.py SCENES is empty).",
+                              True, WARN_COLOR), (x, y))
+    for (kind, h), (col, yy) in zip(blocks, placed):
+        left = x + col * (col_w + 40)
+        if kind[0] == "category":
+            surface.blit(f_small.render(kind[1].upper(), True, DIM_COLOR), (left, yy + 6))
+            continue
+        _, number, i, titles, sub = kind
+        cls = scenes[i]
+        rect = pygame.Rect(left - 10, yy - 4, col_w + 20, h - 6)
+        if i == selected:
+            pygame.draw.rect(surface, (40, 60, 90), rect, border_radius=6)
+        if number <= 9:
+            surface.blit(f.render(str(number), True, WARN_COLOR), (left, yy))
+        ty = yy
+        for t in titles:
+            surface.blit(f.render(t, True, TEXT_COLOR), (left + num_w, ty))
+            ty += f.get_linesize()
+        name_x = left + num_w + f.size(titles[-1])[0] + 20
+        tag = f_small.render(f"--scene {cls.name}", True, DIM_COLOR)
+        if name_x + tag.get_width() <= left + col_w:
+            surface.blit(tag, (name_x, ty - f.get_linesize()
+                               + (f.get_linesize() - f_small.get_linesize()) // 2))
+        for t in sub:
+            surface.blit(f_small.render(t, True, DIM_COLOR), (left + num_w, ty))
+            ty += f_small.get_linesize()
+        entries.append(MenuEntry(i, rect, number))
     if message:
         banner(surface, message, surface.get_rect(), color=message_color, size=HUD_SIZE)
     return entries

@@ -28,6 +28,8 @@ import numpy as np
 import pygame
 import pymunk
 
+from app.draw.text import px
+
 Color = tuple[int, int, int]
 
 BALL: Color = (86, 180, 233)
@@ -163,6 +165,19 @@ def draw_shapes(surface: pygame.Surface, view, shapes: Iterable[pymunk.Shape], c
         draw_shape(surface, view, shape, dim(color) if asleep else color)
 
 
+def rod(surface: pygame.Surface, color: Color, pa, pb, width: int) -> None:
+    """A straight line `width` screen pixels thick as a filled quad (pygame's thick lines show
+    a visible step on nearly vertical lines)."""
+    dx, dy = pb[0] - pa[0], pb[1] - pa[1]
+    length = math.hypot(dx, dy)
+    if width <= 1 or length == 0:
+        pygame.draw.aaline(surface, color, pa, pb)
+        return
+    nx, ny = -dy / length * width / 2, dx / length * width / 2
+    pygame.draw.polygon(surface, color, [(pa[0] + nx, pa[1] + ny), (pb[0] + nx, pb[1] + ny),
+                                         (pb[0] - nx, pb[1] - ny), (pa[0] - nx, pa[1] - ny)])
+
+
 # ----- joints -----------------------------------------------------------------------------------
 def anchors(joint: pymunk.Constraint) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
     """The joint's two anchor points in world coordinates (their distance is what a pin or
@@ -180,7 +195,7 @@ def draw_pin_joint(surface: pygame.Surface, view, joint: pymunk.PinJoint,
     """The pin joint's rod between its two anchors, with a dot on each anchor (one dot when the
     anchors coincide, as for a pin at a rotation centre); `dot`: radius of anchor a's dot."""
     a, b = anchors(joint)
-    pygame.draw.aaline(surface, color, view.pt(a), view.pt(b))
+    rod(surface, color, view.pt(a), view.pt(b), px(3))     # 3 px: readable from the back row
     _dot(surface, view, a, color, dot)
     _dot(surface, view, b, color, 3)
 
@@ -194,12 +209,12 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
     d = (a - b).length
     u = (a - b) / d if d > 1e-9 else pymunk.Vec2d(1, 0)
     lo, hi = b + u * joint.min, b + u * joint.max
-    pygame.draw.aaline(surface, color, view.pt(b), view.pt(a))
+    rod(surface, color, view.pt(b), view.pt(a), px(2))
     pygame.draw.line(surface, dim(color, 0.7), view.pt(lo), view.pt(hi),
-                     max(3, int(view.len(6))))
+                     max(px(4), int(view.len(6))))
     n = pymunk.Vec2d(-u.y, u.x) * 8            # the range's end marks, across the line
     for end in (lo, hi):
-        pygame.draw.line(surface, color, view.pt(end - n), view.pt(end + n), 2)
+        pygame.draw.line(surface, color, view.pt(end - n), view.pt(end + n), px(3))
     at_limit = d <= joint.min + 0.5 or d >= joint.max - 0.5
     _dot(surface, view, a, limit_color if at_limit else color, 6)
     _dot(surface, view, b, color, 4)

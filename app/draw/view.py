@@ -39,6 +39,16 @@ class View:
         s = min(w / world_size[0], h / world_size[1])
         return cls(s, (x + (w - world_size[0] * s) / 2, y + (h - world_size[1] * s) / 2))
 
+    @classmethod
+    def fit_bounds(cls, bounds: tuple[float, float, float, float],
+                   rect: tuple[int, int, int, int]) -> "View":
+        """The view that shows the world rectangle `bounds` (x, y, w, h) as large as fits,
+        centred, in the screen rectangle `rect` (zooming in on a small scene)."""
+        bx, by, bw, bh = bounds
+        x, y, w, h = rect
+        s = max(min(w / bw, h / bh), 1e-3)
+        return cls(s, (x + (w - bw * s) / 2 - bx * s, y + (h - bh * s) / 2 - by * s))
+
     def pt(self, p) -> tuple[int, int]:
         """One world point -> integer screen point (clamped: see the module docstring)."""
         # (a float product overflows to inf, no exception: _safe clamps it)

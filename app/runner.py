@@ -1,0 +1,202 @@
+"""One runner for a scene's stepping: the window and `--headless` both advance scenes through it.
+
+A `SceneRunner` owns what happens between "run n fixed steps" and the scene's hooks:
+
+  * fixed steps, each `scene.advance()` (substeps x step, then after_step), optionally within a
+    wall-time budget (the window drops the rest so it stays responsive);
+  * per-step timing of the physics alone (drawing excluded): the mean of the recent steps for
+    the HUD (held while paused: no step, no new figure), every step for the headless summary
+    (whose step_ms is their median);
+  * input events: an event is delivered before the first step that starts at or after its time
+    (t <= session time + EVENT_SLACK), where the session time is the sum of the dt of every step
+    run since the runner started (R does not restart it, so a recording stays in order);
+  * the finite check after every step; in the window, snapshots every SNAPSHOT_EVERY steps and a
+    rollback to the last good one when the state goes NaN/inf;
+  * `SceneError` (a student's exercise code failed): stepping stops and `error` holds the message.
+
+Because live events (the window) and replayed ones (`--input`) go through the same `deliver` and
+the same step loop, a recorded demo replays headless to the same state by construction.
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+from collections import deque
+from dataclasses import dataclass, replace
+from typing import Any, Callable
+
+from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
+
+SNAPSHOT_EVERY = 30          # steps between last-good snapshots (window rollback)
+RECENT_STEPS = 60            # steps in the HUD's median of the physics time
+
+NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf, or past the scene's blow-up bounds) "
+                  "at t={bad:.3f} s: rolled back to "
+                  "t={good:.3f} s and paused. Try a smaller dt (raise hertz) or more substeps.")
+
+
+def deliver(scene: Scene, event: InputEvent) -> bool:
+    """Give one event to the scene, live or replayed, by the same rule: R resets the scene, the
+    other shell keys (pause, help, ...) never reach it, everything else goes to its
+    handle_event. Returns True if the scene was reset."""
+    if event.kind.startswith("key") and event.key in SHELL_KEYS:
+        if event.kind == "key_down" and event.key == "r":
+            scene.reset()
+            return True
+        return False
+    scene.handle_event(event)
+    return False
+
+
+@dataclass
+class Rollback:
+    """What a rollback did: the time the state went bad and the time it went back to."""
+    bad_t: float
+    good_t: float
+
+    def text(self) -> str:
+        return NONFINITE_TEXT.format(bad=self.bad_t, good=self.good_t)
+
+
+class SceneRunner:
+    """Steps one scene; see the module docstring. `keep_all_times` keeps every step's wall
+    seconds (the headless summary's median); `rollback` takes snapshots and rolls back on a
+    non-finite state instead of stopping (the window)."""
+
+    def __init__(self, scene: Scene, events: list[InputEvent] | None = None,
+                 rollback: bool = False, keep_all_times: bool = False):
+        self.scene = scene
+        self.events = sorted(events or [], key=lambda e: e.t)   # stable: ties keep file order
+        self.next_event = 0
+        self.steps = 0                    # steps run since the runner started (R included)
+        self.clock = 0.0                  # simulated seconds since then: sum of every step's dt
+        self.finite = True
+        self.error: str | None = None     # a SceneError's message; stepping stops
+        self.rollback = rollback
+        self.recent_ms: deque[float] = deque(maxlen=RECENT_STEPS)
+        self.all_seconds: list[float] | None = [] if keep_all_times else None
+        self.on_reset: Callable[[], None] | None = None   # told when an event reset the scene
+        self._last_good: tuple[Any, float, int] | None = None
+        self.rebuilt()
+
+    # --- events ----------------------------------------------------------------------------
+    def deliver(self, event: InputEvent) -> bool:
+        """Deliver one event now, stamped with the session time (what a recording writes).
+        Returns True if it reset the scene."""
+        event.t = self.clock
+        try:
+            reset = deliver(self.scene, event)
+        except SceneError as e:
+            self.fail(e)
+            return False
+        if reset:
+            self.rebuilt()
+        return reset
+
+    def deliver_due(self) -> int:
+        """Deliver the replayed events due before the next step; return how many."""
+        n = 0
+        while (self.next_event < len(self.events)
+               and self.events[self.next_event].t <= self.clock + EVENT_SLACK):
+            event = self.events[self.next_event]
+            self.next_event += 1
+            n += 1
+            if self.deliver(replace(event)) and self.on_reset is not None:   # a copy: the file's
+                self.on_reset()                                             # t stays as read
+        return n
+
+    @property
+    def events_left(self) -> list[InputEvent]:
+        """Replayed events not delivered (they lie after the last step run)."""
+        return self.events[self.next_event:]
+
+    # --- stepping --------------------------------------------------------------------------
+    @property
+    def stopped(self) -> bool:
+        """True when stepping cannot go on: the scene raised SceneError, or (without rollback)
+        the state went non-finite."""
+        return self.error is not None or not self.finite
+
+    def run(self, n: int, budget: float | None = None) -> tuple[int, Rollback | None]:
+        """Run up to n fixed steps, each after the events due before it. Stop early when the
+        wall time spent passes `budget` seconds (after at least one step), on a SceneError, or
+        on a non-finite state (rolled back, if the runner does rollbacks). Return the steps run
+        and the rollback done, if any."""
+        start = time.perf_counter()
+        for i in range(n):
+            if self.stopped:
+                return i, None
+            if i and budget is not None and time.perf_counter() - start > budget:
+                return i, None
+            self.deliver_due()
+            if self.stopped:
+                return i, None
+            t0 = time.perf_counter()
+            try:
+                self.scene.advance()
+            except SceneError as e:
+                self.fail(e)
+                return i, None
+            seconds = time.perf_counter() - t0
+            self.recent_ms.append(seconds * 1000.0)
+            if self.all_seconds is not None:
+                self.all_seconds.append(seconds)
+            self.steps += 1
+            self.clock += self.scene.dt
+            if not self.scene.is_finite():
+                if not self.rollback:
+                    self.finite = False
+                    return i + 1, None
+                return i + 1, self.roll_back()
+            if self.rollback and self.scene.steps % SNAPSHOT_EVERY == 0:
+                self._last_good = (self.scene.snapshot(), self.scene.time, self.scene.steps)
+        return n, None
+
+    def fail(self, error: SceneError) -> None:
+        """A SceneError from the scene: keep its message and stop stepping."""
+        self.error = str(error) or type(error).__name__
+
+    def clear_error(self) -> None:
+        self.error = None
+
+    # --- snapshots -------------------------------------------------------------------------
+    def rebuilt(self) -> None:
+        """The scene was (re)built: forget the old world's snapshot and step times."""
+        self.recent_ms.clear()
+        self.finite = True
+        if self.rollback:
+            self._last_good = (self.scene.snapshot(), self.scene.time, self.scene.steps)
+
+    def roll_back(self) -> Rollback:
+        """The state went NaN/inf: go back to the last good snapshot (or rebuild)."""
+        scene = self.scene
+        bad_t = scene.time
+        snap, t, steps = self._last_good if self._last_good else (None, 0.0, 0)
+        scene.restore(snap)
+        if snap is not None:
+            scene.time, scene.steps = t, steps
+        if not scene.is_finite():     # a snapshot that shared arrays with the state: rebuild
+            scene.reset()
+            self.rebuilt()
+        return Rollback(bad_t, scene.time)
+
+    # --- what the HUD and the summary read ---------------------------------------------------
+    @property
+    def step_ms(self) -> float | None:
+        """Mean wall milliseconds of scene.advance() over the last RECENT_STEPS steps (a mean,
+        like the scenes' per-effect costs, so the breakdown adds up to it); None before the
+        first step. Unchanged while no step runs (paused)."""
+        return statistics.fmean(self.recent_ms) if self.recent_ms else None
+
+    @property
+    def last_ms(self) -> float | None:
+        return self.recent_ms[-1] if self.recent_ms else None
+
+
+def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) -> SceneRunner:
+    """Advance `scene` by `steps` fixed steps with the events replayed (headless): stops early
+    if the state goes non-finite or the scene raises SceneError. Returns the runner."""
+    runner = SceneRunner(scene, events, keep_all_times=True)
+    runner.run(steps)
+    return runner

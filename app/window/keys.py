@@ -1,0 +1,76 @@
+"""The shell's keys: ONE table (key, action, help) that everything else is produced from.
+
+The window's key handling looks a pressed key up here and calls the view's method named by
+`action`; the help overlay lists `KEYS`; `app.scene.SHELL_KEYS` (the keys that never reach a scene,
+live or replayed) is the set of their pygame names; and the README's Controls table is
+`controls_table()` (a test checks that the README holds exactly it). Print the table with
+
+    python -m app.window.keys
+
+This module is plain data (no pygame): app.scene imports it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class ShellKey:
+    """names: pygame key names that do it; label: how the help and the README write the key;
+    action: the method of the window's views that does it; help: what it does, in one line."""
+
+    names: tuple[str, ...]
+    label: str
+    action: str
+    help: str
+
+
+DIGITS = tuple("123456789") + tuple(f"[{d}]" for d in "123456789")
+
+KEYS: tuple[ShellKey, ...] = (
+    ShellKey(DIGITS, "1-9, mouse", "pick", "in the menu: open the scene with that number"),
+    ShellKey(("page up",), "PageUp", "previous_scene", "previous scene"),
+    ShellKey(("page down",), "PageDown", "next_scene", "next scene"),
+    ShellKey(("space",), "Space", "toggle_pause", "pause / resume"),
+    ShellKey((".", "[.]"), "`.`", "single_step", "single step: one fixed step of dt (pauses)"),
+    ShellKey(("-", "[-]"), "`-`", "slower",
+             "slow motion x1 -> x1/2 -> x1/4 -> x1/8 (less simulated time per frame; dt never "
+             "changes)"),
+    ShellKey(("=", "+", "[+]"), "`=`", "faster", "back towards x1"),
+    ShellKey(("r",), "R", "reset", "reset the scene (rebuild it from its parameters)"),
+    ShellKey(("h", "f1"), "H or F1", "toggle_help",
+             "help: the scene's description, its controls and settings"),
+    ShellKey(("f2",), "F2", "toggle_large_text",
+             "large text for the back row (projector mode): everything scales"),
+    ShellKey(("f3",), "F3", "toggle_overlays", "hide / show the HUD and metrics (a clean picture)"),
+    ShellKey(("tab",), "Tab", "toggle_panel", "hide / show the parameter panel"),
+    ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
+             "full path)"),
+    ShellKey(("escape",), "Esc", "escape", "close the help; else back to the menu; in the menu: "
+             "quit"),
+)
+
+# every name of every shell key: they never reach a scene, not even their key_up
+SHELL_KEY_NAMES = frozenset(name for k in KEYS for name in k.names) | frozenset("0")
+
+
+def action_for(name: str) -> str | None:
+    """The action of the shell key called `name` (pygame's key name), or None."""
+    return next((k.action for k in KEYS if name in k.names), None)
+
+
+def help_rows() -> list[tuple[str, str]]:
+    """(key, what it does) for the help overlay."""
+    return [(k.label.replace("`", ""), k.help) for k in KEYS]
+
+
+def controls_table() -> str:
+    """The README's Controls table (Markdown), produced from KEYS."""
+    rows = ["| key / mouse | what it does |", "|---|---|"]
+    rows += [f"| {k.label} | {k.help} |" for k in KEYS]
+    return "\n".join(rows)
+
+
+if __name__ == "__main__":
+    print(controls_table())

@@ -1,0 +1,310 @@
+"""The parameter panel: built from the scene's declared params and effects, with its "try this"
+cards (pygame-gui).
+
+Numbers get a slider and a text box (type a value, press Enter), choices a drop-down, bools and
+effects an ON/OFF button; every change goes through the host's apply_setting (Scene.set: the one
+validation), so a refused value keeps the old one and the window says why. A "try this" card
+applies its settings the same way and shows, below the cards, what to watch for.
+
+While one of the panel's text boxes has the keyboard, no key reaches the shell or the scene
+(`is_typing`): typing "-5" must not switch slow motion, "r" must not reset.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any, Protocol
+
+import pygame
+
+from app.draw import hud
+from app.draw.text import TEXT
+from app.scene import Scene, Try
+
+
+THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
+_THEMES: dict[float, dict] = {}
+
+
+def theme(scale: float) -> dict:
+    """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
+    if scale not in _THEMES:
+        data = json.loads(THEME_PATH.read_text())      # a fresh dict for every scale
+        for block in data.values():
+            f = block.get("font") if isinstance(block, dict) else None
+            if isinstance(f, dict) and "size" in f:
+                f["size"] = str(int(round(float(f["size"]) * scale)))
+            misc = block.get("misc") if isinstance(block, dict) else None
+            if isinstance(misc, dict) and "list_item_height" in misc:   # the drop-down's rows
+                misc["list_item_height"] = str(int(round(float(misc["list_item_height"]) * scale)))
+        _THEMES[scale] = data
+    return _THEMES[scale]
+
+
+class PanelHost(Protocol):
+    """What the panel asks of the running-scene view."""
+
+    scene: Scene
+
+    @property
+    def paused(self) -> bool: ...
+    def toggle_pause(self) -> None: ...
+    def reset(self) -> None: ...
+    def toggle_help(self) -> None: ...
+    def apply_setting(self, name: str, value: Any) -> bool: ...
+    def apply_try(self, card: Try) -> bool: ...
+
+
+# ----------------------------------------------------------------------------------------------
+def _value_text(value: Any) -> str:
+    """How a parameter value is written in the panel's text boxes."""
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if isinstance(value, float):
+        return format(value, ".6g")
+    return str(value)
+
+
+class _NumberControl:
+    """Slider + text box for an int or float Param. The slider runs 0..1000 and maps to the
+    value linearly, or logarithmically when the range spans two decades or more."""
+
+    STEPS = 1000
+
+    def __init__(self, prm, slider):
+        self.prm = prm
+        self.slider = slider
+        lo, hi = float(prm.lo), float(prm.hi)
+        self.log = lo > 0 and hi / lo >= 100
+
+    def value_at(self, pos: float) -> float | int:
+        lo, hi = float(self.prm.lo), float(self.prm.hi)
+        u = min(max(pos / self.STEPS, 0.0), 1.0)
+        v = lo * (hi / lo) ** u if self.log else lo + (hi - lo) * u
+        return int(round(v)) if self.prm.kind is int else float(f"{v:.4g}")
+
+    def pos_of(self, value: float) -> int:
+        lo, hi = float(self.prm.lo), float(self.prm.hi)
+        if hi <= lo:
+            return 0
+        if self.log:
+            u = math.log(max(value, lo) / lo) / math.log(hi / lo)
+        else:
+            u = (value - lo) / (hi - lo)
+        return int(round(min(max(u, 0.0), 1.0) * self.STEPS))
+
+
+class ParamPanel:
+    """The right-hand panel built from scene.all_params() and scene.effects (pygame-gui)."""
+
+    def __init__(self, host: PanelHost, manager, rect: pygame.Rect):
+        import pygame_gui
+        from pygame_gui.elements import (UIButton, UIDropDownMenu, UIHorizontalSlider, UILabel,
+                                         UIScrollingContainer, UITextBox, UITextEntryLine)
+        self.gui = pygame_gui
+        self.host = host
+        self.manager = manager
+        self.rect = rect
+        scene = host.scene
+        s = TEXT.scale
+        row = int(round(30 * s))
+        gap = int(round(6 * s))
+        pad = 10
+        self.container = UIScrollingContainer(rect, manager, allow_scroll_x=False)
+        inner_w = rect.width - 2 * pad - 20       # room for the vertical scroll bar
+        y = pad
+        self.numbers: dict[str, _NumberControl] = {}
+        self.entries: dict[str, Any] = {}         # name -> UITextEntryLine (numbers, seed)
+        self.dropdowns: dict[str, Any] = {}
+        self.toggles: dict[str, Any] = {}         # name -> UIButton (bool params and effects)
+        self._by_element: dict[Any, tuple[str, str]] = {}
+
+        label_font = manager.get_theme().get_font(["label"])
+
+        def label(text: str, width: int = inner_w, obj: str | None = None, x: int = pad,
+                  short: str | None = None):
+            """A label; `short` replaces the text when it would not fit (large text)."""
+            if short is not None and label_font.size(text)[0] > width - 8:
+                text = short
+            UILabel(pygame.Rect(x, y, width, row), text, manager, container=self.container,
+                    object_id=obj)
+
+        third = (inner_w - 2 * gap) // 3
+        self.pause_button = UIButton(pygame.Rect(pad, y, third, row), "Pause", manager,
+                                     container=self.container)
+        self.reset_button = UIButton(pygame.Rect(pad + third + gap, y, third, row), "Reset",
+                                     manager, container=self.container)
+        self.help_button = UIButton(pygame.Rect(pad + 2 * (third + gap), y, third, row), "Help",
+                                    manager, container=self.container)
+        y += row + 2 * gap
+        self.cards: dict[Any, Try] = {}
+        self.watch_box = None
+        if scene.tries:
+            label("Try this", obj="#section")
+            y += row
+            for card in scene.tries:
+                b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
+                             container=self.container, object_id="#card",
+                             tool_tip_text=card.watch)
+                self.cards[b] = card
+                y += row + gap
+            lines = 5 if s > 1 else 4          # room for the watch line, wrapped
+            self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, lines * int(row * 0.75)),
+                                       manager, container=self.container, object_id="#watch")
+            self.watch_box.set_text("Click a card: it sets its values (checked like typed ones) "
+                                    "and says here what to watch for.")
+            y += lines * int(row * 0.75) + 2 * gap
+        label("Parameters", obj="#section")
+        y += row
+        for prm in scene.all_params():
+            value = scene.p[prm.name]
+            tip = prm.help or None
+            if prm.kind is bool:
+                label(prm.name, width=inner_w // 2)
+                b = UIButton(pygame.Rect(pad + inner_w // 2, y, inner_w - inner_w // 2, row),
+                             "", manager, container=self.container, tool_tip_text=tip)
+                self.toggles[prm.name] = b
+                self._by_element[b] = ("toggle", prm.name)
+                y += row + gap
+                continue
+            if prm.choices is not None:
+                label(prm.name)
+                y += row
+                d = UIDropDownMenu(list(prm.choices), str(value),
+                                   pygame.Rect(pad, y, inner_w, row), manager,
+                                   container=self.container)
+                self.dropdowns[prm.name] = d
+                self._by_element[d] = ("choice", prm.name)
+                y += row + gap
+                continue
+            label(f"{prm.name}   ({hud.fmt_number(prm.lo)} to {hud.fmt_number(prm.hi)})",
+                  short=prm.name)
+            y += row
+            wide = prm.kind is int and (prm.hi - prm.lo) > 100_000   # e.g. seed: no slider
+            entry_w = inner_w if wide else int(inner_w * 0.36)
+            slider = None
+            if not wide:
+                slider = UIHorizontalSlider(pygame.Rect(pad, y, inner_w - entry_w - gap, row),
+                                            0, (0, _NumberControl.STEPS), manager,
+                                            container=self.container)
+            entry = UITextEntryLine(pygame.Rect(pad + inner_w - entry_w, y, entry_w, row),
+                                    manager, container=self.container)
+            entry.set_text(_value_text(value))
+            self.entries[prm.name] = entry
+            self._by_element[entry] = ("entry", prm.name)
+            if slider is not None:
+                ctl = _NumberControl(prm, slider)
+                slider.set_current_value(ctl.pos_of(value))
+                self.numbers[prm.name] = ctl
+                self._by_element[slider] = ("slider", prm.name)
+            y += row + gap
+        if scene.effects:
+            y += gap
+            label("Effects (off = not computed)", obj="#section", short="Effects")
+            y += row
+            for eff in scene.effects:
+                b = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
+                             container=self.container, tool_tip_text=eff.help or None)
+                self.toggles[eff.name] = b
+                self._by_element[b] = ("toggle", eff.name)
+                y += row + gap
+        self.container.set_scrollable_area_dimensions((rect.width - 20, y + pad))
+        self._toggle_state: dict[str, bool | None] = {}
+        self.refresh()
+
+    # --- reading the scene ---------------------------------------------------------------------
+    def _current(self, name: str) -> Any:
+        scene = self.host.scene
+        return scene.p[name] if scene.param(name) is not None else (name in scene.on)
+
+    def refresh(self) -> None:
+        """Show the scene's current values (after a change, a refused value or a rebuild)."""
+        for name, entry in self.entries.items():
+            if not entry.is_focused:
+                text = _value_text(self._current(name))
+                if entry.get_text() != text:
+                    entry.set_text(text)
+        for name, ctl in self.numbers.items():
+            if not ctl.slider.sliding_button.held:
+                pos = ctl.pos_of(self._current(name))
+                if int(ctl.slider.get_current_value()) != pos:
+                    ctl.slider.set_current_value(pos)
+        for name, b in self.toggles.items():
+            on = bool(self._current(name))
+            if self._toggle_state.get(name) != on:
+                self._toggle_state[name] = on
+                b.set_text(f"{name}: {'ON' if on else 'OFF'}" if self.host.scene.effect(name)
+                           else ("ON" if on else "OFF"))
+                b.change_object_id("#toggle_on" if on else "#toggle_off")
+        paused = self.host.paused
+        want = "Resume" if paused else "Pause"
+        if self.pause_button.text != want:
+            self.pause_button.set_text(want)
+
+    def is_typing(self) -> bool:
+        """True while a text box of the panel has the keyboard."""
+        return any(e.is_focused for e in self.entries.values())
+
+    def show_watch(self, card: Try) -> None:
+        """Below the cards: what the card is about and what to watch for."""
+        if self.watch_box is not None:
+            self.watch_box.set_text(f"{_html(card.label)}: {_html(card.watch)}")
+
+    def release_keyboard(self) -> None:
+        """Take the keyboard from the text box through the manager: unfocusing the element alone
+        leaves the manager believing it is still focused, and then a second click on the same
+        box does not focus it (the keys went to the shell)."""
+        self.manager.set_focus_set(None)
+        for entry in self.entries.values():      # one focused without the manager (a test)
+            if entry.is_focused:
+                entry.unfocus()
+
+    # --- pygame-gui events -------------------------------------------------------------------
+    def handle(self, ev: pygame.event.Event) -> bool:
+        """React to a pygame-gui event of this panel; return True if it was one."""
+        gui = self.gui
+        element = getattr(ev, "ui_element", None)
+        if ev.type == gui.UI_BUTTON_PRESSED:
+            if element is self.pause_button:
+                self.host.toggle_pause()
+                return True
+            if element is self.reset_button:
+                self.host.reset()
+                return True
+            if element is self.help_button:
+                self.host.toggle_help()
+                return True
+        if ev.type == gui.UI_BUTTON_PRESSED and element in self.cards:
+            card = self.cards[element]
+            if self.host.apply_try(card):
+                self.show_watch(card)
+            self.refresh()
+            return True
+        what = self._by_element.get(element)
+        if what is None:
+            return False
+        kind, name = what
+        if kind == "toggle" and ev.type == gui.UI_BUTTON_PRESSED:
+            self.host.apply_setting(name, not bool(self._current(name)))
+        elif kind == "choice" and ev.type == gui.UI_DROP_DOWN_MENU_CHANGED:
+            self.host.apply_setting(name, ev.text)
+        elif kind == "entry" and ev.type == gui.UI_TEXT_ENTRY_FINISHED:
+            self.host.apply_setting(name, ev.text)
+            self.release_keyboard()
+        elif kind == "slider" and ev.type == gui.UI_HORIZONTAL_SLIDER_MOVED:
+            value = self.numbers[name].value_at(ev.value)
+            if value != self._current(name):
+                self.host.apply_setting(name, value)
+        else:
+            return False
+        self.refresh()
+        return True
+
+
+
+
+def _html(text: str) -> str:
+    """Text for a pygame-gui text box (which reads a little HTML)."""
+    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

@@ -1,0 +1,341 @@
+"""The interactive window: the pygame loop, the layout, and the routing of events to the view.
+
+`python -m app` opens the scene menu; `python -m app --scene cloth` opens one scene. A scene runs
+exactly as headless: the same `SceneRunner` (app/runner.py) advances it in fixed steps, delivers
+its mouse and key events and rolls it back if it goes NaN/inf, so a demo recorded here with
+`--record FILE` replays headless step for step. What the window adds is for people in a room:
+the views (menu, running scene, help; app/window/views.py), the parameter panel with its "try
+this" cards (panel.py), the recorder (recorder.py) and the shell keys, all listed in ONE table
+(keys.py) that also produces the help overlay's list and the README's Controls table.
+
+Layout: the world area is the window left of the panel. The HUD box sits at its top left and the
+metrics strip along its bottom; the scene's content (`content_bounds()`) is fitted into what
+they leave free (app/draw/layout.py), so they never cover it, at any text size (F2) and window
+size. F3 hides HUD and metrics for a clean picture.
+
+The `Window` never owns the main loop, so tests drive it directly (handle_pygame_event, update,
+render); `run_window` is the loop the command line calls.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+import traceback
+from pathlib import Path
+from typing import Any, Sequence
+
+import pygame
+
+from app.draw import hud, save_png
+from app.draw.text import TEXT
+from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
+from app.scene import InputEvent, ParamError, Scene, SceneError
+from app.window.recorder import Recorder
+from app.window.scene_view import SceneView
+from app.window.views import HelpView, MenuView, ShellView
+
+DEFAULT_SIZE = (1280, 800)        # world 960x720 at zoom 1 + a 320 px panel
+LARGE_TEXT_SCALE = 1.6
+FPS_CAP = 60
+MESSAGE_SECONDS = 4.0
+NO_DISPLAY = ("python -m app: error: no display for the window: {}; use --headless, or run under "
+              "xvfb-run")
+
+__all__ = ["Window", "run_window", "NONFINITE_TEXT", "SNAPSHOT_EVERY", "LARGE_TEXT_SCALE"]
+
+class Window:
+    """The shell around one view at a time (menu, running scene, help).
+
+    Drive it with handle_pygame_event(ev) for each pygame event, update(frame_seconds) once per
+    frame, render() to draw on `screen`. `running` turns False when the user quits.
+    """
+
+    PANEL_WIDTH = 320
+
+    def __init__(self, screen: pygame.Surface, scenes: Sequence[type[Scene]] | None = None,
+                 large_text: bool = False, events: list[InputEvent] | None = None,
+                 screenshot_dir: str | Path = "screenshots", record: str | Path | None = None):
+        if scenes is None:
+            from scenes import SCENES
+            scenes = SCENES
+        self.screen = screen
+        self.scenes: list[type[Scene]] = list(scenes)
+        self.screenshot_dir = Path(screenshot_dir)
+        self.running = True
+        self.recorder = Recorder(record)
+        self.panel_visible = True
+        self.menu_selected = 0
+        self.messages: list[tuple[float, str, tuple[int, int, int]]] = []   # (until, text, colour)
+        self.wall = 0.0                       # seconds of frames seen (update's clock)
+        self.last_draw_seconds = 0.0          # wall time of the last render()
+        self._replay = list(events or [])
+        self._replay_scene: type[Scene] | None = None
+        self._pending_shot: Path | None = None
+        self.current_view: ShellView = MenuView(self)
+        TEXT.scale = LARGE_TEXT_SCALE if large_text else 1.0
+
+    # --- views ---------------------------------------------------------------------------------
+    def show_view(self, view: ShellView) -> None:
+        """Make `view` the current one (arcade's show_view)."""
+        self.current_view.on_hide()
+        self.current_view = view
+        view.on_show()
+
+    @property
+    def scene_view(self) -> SceneView | None:
+        """The running scene's view (also while its help is shown), or None in the menu."""
+        v = self.current_view
+        return v.under if isinstance(v, HelpView) else v if isinstance(v, SceneView) else None
+
+    @property
+    def scene(self) -> Scene | None:
+        sv = self.scene_view
+        return sv.scene if sv is not None else None
+
+    @property
+    def view(self):
+        """The world <-> screen transform of the running scene (app.draw.view.View)."""
+        sv = self.scene_view
+        return sv.view if sv is not None else None
+
+    @property
+    def show_help(self) -> bool:
+        return isinstance(self.current_view, HelpView)
+
+    def open_scene(self, scene_cls: type[Scene], overrides: dict[str, Any] | None = None) -> bool:
+        """Build scene_cls(overrides) and show it; on a construction error stay in (or go back
+        to) the menu and show the error. Return True if the scene is open."""
+        try:
+            scene = scene_cls(overrides or {})
+        except (ParamError, SceneError) as e:     # refused settings, or a student's code failed
+            self._to_menu(f"{scene_cls.name}: {e}")
+            return False
+        except Exception as e:     # a broken scene must not close the classroom's window
+            traceback.print_exc()
+            self._to_menu(f"{scene_cls.name} failed to build: {type(e).__name__}: {e}")
+            return False
+        if scene_cls in self.scenes:
+            self.menu_selected = self.scenes.index(scene_cls)
+        events = None
+        if self._replay and self._replay_scene in (None, scene_cls):
+            self._replay_scene = scene_cls        # --input events belong to the first scene
+            events, self._replay = self._replay, []
+        opened_with = {k: str(v) for k, v in (overrides or {}).items()}
+        self.show_view(SceneView(self, scene, opened_with, events))
+        if pygame.display.get_init() and pygame.display.get_surface() is not None:
+            pygame.display.set_caption(f"Physics lab: {scene_cls.title or scene_cls.name}")
+        return True
+
+    def open_menu(self) -> None:
+        self._to_menu("")
+
+    def _to_menu(self, message: str) -> None:
+        self.show_view(MenuView(self, message))
+
+    @property
+    def menu_message(self) -> str:
+        return self.current_view.message if isinstance(self.current_view, MenuView) else ""
+
+    def switch_scene(self, delta: int) -> None:
+        """PageUp/PageDown: the previous/next scene in the menu's order."""
+        if not self.scenes:
+            return
+        order = hud.menu_order(self.scenes)
+        cur = type(self.scene) if self.scene is not None else None
+        if cur in self.scenes:
+            i = order.index(self.scenes.index(cur)) + delta
+        else:
+            i = order.index(self.menu_selected) + (0 if delta > 0 else -1) \
+                if self.menu_selected in order else 0
+        self.open_scene(self.scenes[order[i % len(order)]])
+
+    def previous_scene(self) -> None:
+        self.switch_scene(-1)
+
+    def next_scene(self) -> None:
+        self.switch_scene(+1)
+
+    # --- text size, size -----------------------------------------------------------------------
+    @property
+    def large_text(self) -> bool:
+        return TEXT.scale > 1.0
+
+    def toggle_large_text(self) -> None:
+        self.set_large_text(not self.large_text)
+
+    def set_large_text(self, on: bool) -> None:
+        TEXT.scale = LARGE_TEXT_SCALE if on else 1.0
+        self.relayout()
+
+    def relayout(self) -> None:
+        self.current_view.on_layout()
+
+    def resize(self, surface: pygame.Surface | None = None) -> None:
+        self.screen = surface or pygame.display.get_surface() or self.screen
+        self.relayout()
+
+    # --- messages ------------------------------------------------------------------------------
+    def flash(self, text: str, color=hud.WARN_COLOR, seconds: float = MESSAGE_SECONDS) -> None:
+        """Show a message for a few seconds."""
+        self.messages.append((self.wall + seconds, text, color))
+
+    # --- the frame -----------------------------------------------------------------------------
+    def handle_pygame_event(self, ev: pygame.event.Event) -> None:
+        if ev.type == pygame.QUIT:
+            self.running = False
+        elif ev.type == pygame.VIDEORESIZE:
+            self.resize()
+        else:
+            self.current_view.handle_event(ev)
+
+    def update(self, frame_seconds: float) -> int:
+        """Advance the window by one frame of `frame_seconds` wall time; return the number of
+        physics steps run."""
+        self.wall += frame_seconds
+        self.messages = [m for m in self.messages if m[0] > self.wall]
+        return self.current_view.update(frame_seconds)
+
+    def render(self) -> None:
+        t0 = time.perf_counter()
+        self.current_view.draw(self.screen)
+        self.last_draw_seconds = time.perf_counter() - t0
+        self._save_pending()
+
+    # --- screenshots -----------------------------------------------------------------------------
+    def screenshot(self) -> Path:
+        """F12: save the next rendered frame to screenshots/<scene>-<timestamp>.png."""
+        name = self.scene.name if self.scene is not None else "menu"
+        stamp = time.strftime("%Y%m%d-%H%M%S")
+        path = self.screenshot_dir / f"{name}-{stamp}.png"
+        k = 2
+        while path.exists():
+            path = self.screenshot_dir / f"{name}-{stamp}-{k}.png"
+            k += 1
+        self._pending_shot = path
+        return path
+
+    def _save_pending(self) -> None:
+        if self._pending_shot is None:
+            return
+        path, self._pending_shot = self._pending_shot, None
+        try:
+            self.save_screenshot(path)
+        except (pygame.error, OSError) as e:
+            self.flash(f"screenshot failed: {e}", hud.ERROR_COLOR)
+            return
+        self.flash(f"screenshot saved: {path.resolve()}", (140, 230, 140), seconds=6.0)
+
+    def save_screenshot(self, path: str | Path) -> None:
+        save_png(self.screen, path)
+
+    # --- recording (what the tests and run_window read) ------------------------------------------
+    @property
+    def session_steps(self) -> int:
+        sv = self.scene_view
+        return sv.runner.steps if sv is not None else 0
+
+    @property
+    def session_time(self) -> float:
+        """Simulated seconds since the scene was opened (the runner's clock: R included)."""
+        sv = self.scene_view
+        return sv.runner.clock if sv is not None else 0.0
+
+    @property
+    def recorded(self) -> list[dict]:
+        s = self.recorder.session
+        return s.events if s is not None else []
+
+    def write_recording(self, path: str | Path) -> int:
+        """Write the open scene's recorded events to `path` in the --input format; return how
+        many."""
+        saved, self.recorder.path = self.recorder.path, Path(path)
+        try:
+            self.recorder.write()
+        finally:
+            self.recorder.path = saved
+        return len(self.recorded)
+
+
+# ----------------------------------------------------------------------------------------------
+# the main loop (python -m app without --headless)
+# ----------------------------------------------------------------------------------------------
+class _quiet_stderr:
+    """Silence file descriptor 2 (C libraries' messages) inside a `with` block."""
+
+    def __enter__(self):
+        sys.stderr.flush()
+        self.saved = os.dup(2)
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, 2)
+        os.close(devnull)
+
+    def __exit__(self, *exc):
+        os.dup2(self.saved, 2)
+        os.close(self.saved)
+        return False
+
+
+def _open_display(size: tuple[int, int]) -> pygame.Surface:
+    """Open the window; raise pygame.error if there is no usable display."""
+    if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY")
+                                                 or os.environ.get("WAYLAND_DISPLAY")):
+        with _quiet_stderr():     # SDL's own probing prints "XDG_RUNTIME_DIR is invalid" lines
+            pygame.display.init()
+    else:
+        pygame.display.init()
+    driver = pygame.display.get_driver()
+    # SDL quietly falls back to an invisible 'offscreen' window when there is no display; that
+    # is no window for a person, unless someone asked for it (tests, SDL_VIDEODRIVER=dummy).
+    if driver in ("offscreen", "dummy") and os.environ.get("SDL_VIDEODRIVER", "") != driver:
+        raise pygame.error(f"SDL found no display (it fell back to the '{driver}' driver; "
+                           "is DISPLAY set?)")
+    return pygame.display.set_mode(size, pygame.RESIZABLE)
+
+
+def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
+               screenshot: str | None = None, seconds: float | None = None,
+               large_text: bool = False, events: list | None = None) -> int:
+    """Open the window (the menu, or `scene_name` with `overrides`) and run it until the user
+    quits, or for `seconds` of wall time. Return the exit code (2 when there is no display).
+    With `record`, the events are written and the replay command printed on every way out."""
+    try:
+        screen = _open_display(DEFAULT_SIZE)
+    except pygame.error as e:
+        print(NO_DISPLAY.format(str(e).strip() or "unknown SDL error"), file=sys.stderr)
+        pygame.display.quit()
+        return 2
+    pygame.font.init()
+    pygame.display.set_caption("Physics lab")
+    pygame.key.set_repeat()
+    from scenes import SCENES, get_scene
+    window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
+    scene_cls = get_scene(scene_name) if scene_name else None
+    if scene_cls is not None:
+        window.open_scene(scene_cls, overrides)
+    if screenshot and seconds is None:
+        seconds = 2.0
+    fps_clock = pygame.time.Clock()
+    start = time.perf_counter()
+    try:
+        while window.running:
+            frame_seconds = min(fps_clock.tick(FPS_CAP) / 1000.0, 0.25)
+            for ev in pygame.event.get():
+                window.handle_pygame_event(ev)
+            window.update(frame_seconds)
+            window.render()
+            pygame.display.flip()
+            if seconds is not None and time.perf_counter() - start >= seconds:
+                break
+        if screenshot:
+            window.render()
+            window.save_screenshot(screenshot)
+    except KeyboardInterrupt:
+        pass
+    finally:
+        line = window.recorder.write()
+        if line:
+            print(line, flush=True)
+        pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
+    return 0
