@@ -20,7 +20,10 @@ Every exercise of app/exercises has one (`python -m app exercise list`):
 The student's file is imported when the scene is built, so R (reset) picks up an edit: change,
 save, press R. If their code raises, the scene raises app.scene.SceneError with their message,
 file and line: the window pauses and shows it; a headless run prints it and exits 1. A file that
-does not import is reported the same way at the first step.
+does not import is reported the same way at the first step (a sys.exit() in it too).
+The scene runs the student's code in the lab's own process (the grader forks; a window cannot):
+an endless loop freezes the window (Ctrl-C in the terminal stops it) and os._exit, or a value
+that aborts pymunk, closes it. `python -m app exercise check` first is the safe order.
 """
 
 from __future__ import annotations
@@ -51,6 +54,11 @@ FIXED = (150, 150, 160)     # anchors and pivots
 ERROR = (240, 110, 90)
 
 
+# what a student's code may raise into the scene: every exception, and sys.exit() (SystemExit),
+# which would otherwise close the lab; Ctrl-C (KeyboardInterrupt) still stops it
+STUDENT_ERRORS = (Exception, SystemExit)
+
+
 class StudentCode:
     """Mixin for an exercise scene: imports the student's module at build, keeps the lab's
     reference answer at hand, and turns the student's exceptions into SceneError. While it holds
@@ -69,7 +77,7 @@ class StudentCode:
                 self.student_path)
             self.reference = get_exercise(self.exercise).reference()
             super().build()
-        except Exception as e:     # noqa: BLE001 - any failure of the student's code
+        except STUDENT_ERRORS as e:     # any failure of the student's code
             self.fail(e)
 
     def fail(self, e: BaseException) -> SceneError:
@@ -82,7 +90,7 @@ class StudentCode:
             raise SceneError(self.error)
         try:
             super().advance()
-        except Exception as e:     # noqa: BLE001
+        except STUDENT_ERRORS as e:
             raise self.fail(e) from None
 
     # ----- the other hooks, safe while an error is held ----------------------------------------
@@ -556,6 +564,11 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
     def add_balls(self, space: pymunk.Space) -> list[pymunk.Body]:
         n, k = self.p["balls"], self.p["lifted"]
         bodies = _bodies(self.impl.build_cradle(space, n, RADIUS, k), n, "build_cradle")
+        xs = [b.position.x for b in bodies]
+        if any(left >= right for left, right in zip(xs, xs[1:])):
+            # the verdict counts the LAST k balls as the far end: another order miscounts it
+            raise ValueError("build_cradle must return the balls in order along the row, left "
+                             f"to right; their x: {', '.join(f'{x:.1f}' for x in xs)}")
         self.ghost, self.ghost_bodies = None, []
         if "reference" not in self.on:          # off: not built, not stepped
             return bodies
