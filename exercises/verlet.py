@@ -11,6 +11,10 @@ introduced": write the drag as the fraction of that distance lost per step,
 
     x_new = x + (1 - drag) (x - x_prev) + a h^2            (drag = 0.01: 2 -> 1.99)
 
+that is (2 - drag) x - (1 - drag) x_prev + a h^2: the x_prev term changes too. Read literally,
+the slide's "lower 2 to 1.99" (1.99 x - x_prev) is no drag at all: it adds -0.01 x / h^2 to the
+acceleration, a spring pulling every particle towards the point x = 0.
+
 Write `verlet_step`. Arrays have shape (n, 2): one row (x, y) per particle, y pointing down.
 
 Check it:   python -m app exercise check verlet

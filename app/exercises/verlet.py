@@ -37,7 +37,7 @@ def step(m: Student, x, x_prev, a, h, drag):
     out = m.verlet_step(x, x_prev, a, h, drag)
     if not isinstance(out, tuple) or len(out) != 2:
         raise BadAnswer(f"verlet_step returned {type(out).__name__}; expected a pair "
-                        "(x_new, x)")
+                        "(x_new, x)" + (" (no return statement?)" if out is None else ""))
     return (array_of(out[0], x.shape, "verlet_step's x_new"),
             array_of(out[1], x.shape, "verlet_step's second value (the new x_prev)"))
 
@@ -116,10 +116,15 @@ def drag_loses(m: Student) -> Result:
     _, e = run_spring(m, 1 / 60, 2.0, drag=0.01)
     ratio = float(e[-60:].mean() / e[:60].mean())
     expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
+    hint = ("drag takes a fraction of the distance travelled: x' = x + (1 - drag) (x - x_prev) "
+            "+ a h^2, i.e. (2 - drag) x - (1 - drag) x_prev. Lowering only the 2 (1.99 x - x_prev) "
+            "is no drag: it pulls every particle towards x = 0.")
+    if ratio > 1.05:
+        hint = "the energy GROWS: (1 - drag), not (1 + drag). " + hint
+    elif ratio > 0.99:
+        hint = "almost no energy lost: did you ignore drag? " + hint
     return Result(within(ratio, expected, 0.05), f"energy ratio {ratio:.3f} over 1 s at drag 0.01",
-                  f"{expected:.2f} +- 0.05 (x (1 - drag) per step)",
-                  "drag takes a fraction of the distance travelled: x' = x + (1 - drag) "
-                  "(x - x_prev) + a h^2 (the slide's 2 -> 1.99). Did you ignore drag?")
+                  f"{expected:.2f} +- 0.05 (x (1 - drag) per step)", hint)
 
 
 def inputs_kept(m: Student) -> Result:
