@@ -22,8 +22,9 @@ Watch it:   python -m app --scene exercise:verlet        (yours filled, the lab'
 
 What the grader measures: a free fall must follow the parabola exactly (Verlet's central
 difference is exact for a constant acceleration); on a spring the error must fall 4x when h
-halves (second order: the slide says "4th order accurate", which is wrong); with drag 0 a spring
-keeps its energy; with drag 0.01 it loses 1% per step; x and a must not be changed.
+halves (second order. The slide's "4th order accurate" is true of ONE step, whose error is
+O(h^4); over a fixed time the 1/h steps add up to O(h^2)); with drag 0 a spring keeps its energy;
+with drag 0.01 it loses 1% of its energy per step; x and a must not be changed.
 
 Hints:
   * NumPy does the whole array at once: no loop over particles.

@@ -4,8 +4,9 @@ Reference: app.physics.jakobsen.verlet_step. Checks (physics, not code):
   free fall        exact for constant acceleration: Verlet's x' - 2x + x_prev = a h^2 is the
                    central difference, which a parabola satisfies exactly (the error is rounding)
   order            a spring x'' = -omega^2 x over 1.25 s in 40, 80, 160 steps: the error falls
-                   4x per halving, measured order 2 +- 0.2 (the slide's "4th order accurate" is
-                   wrong: Verlet is second order; see tests/test_integrators.py)
+                   4x per halving, measured order 2 +- 0.2 (the slide's "4th order accurate"
+                   counts one step's O(h^4) error; over a fixed time Verlet is second order;
+                   see tests/test_integrators.py)
   energy kept      drag 0, the spring for 20 s at 60 Hz: the energy of the last second within 1% of
                    the first's (it wobbles within the step, but does not drift)
   drag             drag 0.01 per step: the energy falls by 1 - drag per step (0.99^60 = 0.55 in
