@@ -29,6 +29,8 @@ that aborts pymunk, closes it. `python -m app exercise check` first is the safe 
 from __future__ import annotations
 
 import math
+import sys
+from contextlib import redirect_stdout
 from pathlib import Path
 from typing import Any, Iterable
 
@@ -73,10 +75,11 @@ class StudentCode:
     def build(self) -> None:
         self.error = None
         try:
-            self.impl = self.student if self.student is not None else load_module(
-                self.student_path)
-            self.reference = get_exercise(self.exercise).reference()
-            super().build()
+            with redirect_stdout(sys.stderr):   # their prints: stdout carries --json
+                self.impl = self.student if self.student is not None else load_module(
+                    self.student_path)
+                self.reference = get_exercise(self.exercise).reference()
+                super().build()
         except STUDENT_ERRORS as e:     # any failure of the student's code
             self.fail(e)
 
@@ -89,7 +92,8 @@ class StudentCode:
         if self.error is not None:
             raise SceneError(self.error)
         try:
-            super().advance()
+            with redirect_stdout(sys.stderr):
+                super().advance()
         except STUDENT_ERRORS as e:
             raise self.fail(e) from None
 

@@ -174,6 +174,17 @@ def test_sys_exit_in_a_students_code_stops_the_scene_not_the_lab(tmp_path, capsy
     assert summary["steps"] == 0 and "SystemExit: 0" in summary["error"]
 
 
+def test_a_students_prints_go_to_stderr_in_the_scene_too(tmp_path, capsys):
+    answer = tmp_path / "verlet.py"
+    answer.write_text("print('hello at import')\n\n\ndef verlet_step(x, x_prev, a, h, drag):\n"
+                      "    print('step', x[0])\n"
+                      "    return x + (1 - drag) * (x - x_prev) + a * h * h, x\n")
+    assert main(["--headless", "--scene", f"exercise:{answer}", "--steps", "2", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["steps"] == 2          # stdout is the JSON alone
+    assert "hello at import" in captured.err and captured.err.count("step [") == 2
+
+
 def test_a_closed_pipe_ends_the_listing_quietly():
     import subprocess
     import sys
