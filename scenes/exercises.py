@@ -261,8 +261,8 @@ class _Cloth:
     radius = 2.0
     ring = False                # the lab's cloth hangs beside yours
 
-    # 8 x 8 (112 rods): the slide's plain Python loop over the rods, as the starter allows, then
-    # keeps up with 60 Hz at 10 sweeps; at 12 x 12 it took 22 ms a step and the window fell to 8 fps
+    # 8 x 8 (112 rods): the slide's plain Python loop over the rods, as the starter allows, keeps
+    # up with 60 Hz at 10 sweeps; at 12 x 12 it took 22 ms a step and the window fell to 8 fps
     def __init__(self, impl, origin: tuple[float, float], iterations: int, rows: int = 8,
                  spacing: float = 34.0):
         from app.physics.jakobsen import verlet_step

@@ -61,7 +61,9 @@ WRONG = {
     "spring_uses_x": ("spring", "inputs kept", "x was changed"),
     "rk4_in_place": ("rk4", "y kept", "rk4_step changed y; midpoint_step changed y"),
     "rk4_full_h_stages": ("rk4", "RK4 order, spring", "half a step (h/2)"),
-    "cradle_right_to_left": ("newtons_cradle", "1 in, 1 out", "in order along the row, left to right"),
+    "pendulum_not_added": ("double_pendulum", "built as asked", "body1 is not in the space"),
+    "cradle_right_to_left": ("newtons_cradle", "1 in, 1 out",
+                             "in order along the row, left to right"),
 }
 
 

@@ -118,8 +118,8 @@ def drag_loses(m: Student) -> Result:
     ratio = float(e[-60:].mean() / e[:60].mean())
     expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
     hint = ("drag takes a fraction of the distance travelled: x' = x + (1 - drag) (x - x_prev) "
-            "+ a h^2, i.e. (2 - drag) x - (1 - drag) x_prev. Lowering only the 2 (1.99 x - x_prev) "
-            "is no drag: it pulls every particle towards x = 0.")
+            "+ a h^2, i.e. (2 - drag) x - (1 - drag) x_prev. Lowering only the 2 "
+            "(1.99 x - x_prev) is no drag: it pulls every particle towards x = 0.")
     if ratio > 1.05:
         hint = "the energy GROWS: (1 - drag), not (1 + drag). " + hint
     elif ratio > 0.99:
