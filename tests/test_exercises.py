@@ -225,6 +225,7 @@ def test_check_exit_codes_and_json(capsys):
     ["exercise", "check", "all", "--path", "README.md"],
     ["exercise", "check", "verlet", "--timeout", "0"],
     ["--headless", "--scene", "exercise:nope"],
+    ["exercise", "copy", "/proc/no_such_folder"],
 ])
 def test_bad_usage_exits_2_with_one_line(argv, capsys):
     assert main(argv) == 2

@@ -65,9 +65,14 @@ def existing_copies(folder: str) -> list[str]:
 
 def copy(folder: str) -> int:
     """Copy every starter into `folder` (the caller has checked that none exists there yet)."""
-    os.makedirs(folder, exist_ok=True)
-    for e in EXERCISES:
-        shutil.copyfile(starter_path(e.name), os.path.join(folder, f"{e.name}.py"))
+    try:
+        os.makedirs(folder, exist_ok=True)
+        for e in EXERCISES:
+            shutil.copyfile(starter_path(e.name), os.path.join(folder, f"{e.name}.py"))
+    except OSError as e:            # bad usage: one line, exit 2 (the files copied so far stay)
+        print(f"python -m app: error: copy: cannot write to '{folder}' ({e.strerror}); "
+              "accepted: a folder you can write to", file=sys.stderr)
+        return 2
     where = shown(folder)
     print(f"copied {len(EXERCISES)} exercises to {where}/: "
           + ", ".join(f"{e.name}.py" for e in EXERCISES))
