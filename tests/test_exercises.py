@@ -226,6 +226,7 @@ def test_check_exit_codes_and_json(capsys):
     ["exercise", "check", "verlet", "--timeout", "0"],
     ["--headless", "--scene", "exercise:nope"],
     ["exercise", "copy", "/proc/no_such_folder"],
+    ["--headless", "--scene", "exercise:no/such/verlet.py"],
 ])
 def test_bad_usage_exits_2_with_one_line(argv, capsys):
     assert main(argv) == 2
