@@ -70,6 +70,7 @@ class StudentCode:
     student_path = ""              # the file to import
     student: Any = None            # a module given directly (the grader), instead of the file
     error: str | None = None
+    error_kind = ""                # the exception's class name, for the HUD
     ghost_note = "orange: the lab's"   # what the HUD says the reference looks like
 
     def build(self) -> None:
@@ -84,6 +85,7 @@ class StudentCode:
             self.fail(e)
 
     def fail(self, e: BaseException) -> SceneError:
+        self.error_kind = type(e).__name__
         message = student_traceback(e, self.student_path)
         self.error = message if 'File "' in message else f"{self.student_path}: {message}"
         return SceneError(self.error)
@@ -103,8 +105,7 @@ class StudentCode:
 
     def hud_lines(self) -> list[str]:
         if self.error:
-            return [f"your code raised {self.error.splitlines()[-1].split(':')[0]} (below): "
-                    "fix it, save, press R"]
+            return [f"your code raised {self.error_kind} (below): fix it, save, press R"]
         return [f"yours: {self.student_path}; {self.ghost_note}"] + super().hud_lines()
 
     def draw(self, surface, view) -> None:

@@ -297,6 +297,12 @@ def test_a_scene_whose_build_failed_raises_scene_error_on_the_first_step():
         scene.advance()
 
 
+def test_the_hud_names_the_exception_of_a_build_the_lab_refused():
+    scene = exercise_scene("newtons_cradle", path=str(ANSWERS / "cradle_right_to_left.py"))({})
+    assert scene.hud_lines()[0].startswith("your code raised ValueError (below)")
+    assert "left to right" in scene.error
+
+
 def test_a_student_exception_in_a_step_is_a_scene_error_with_their_line():
     path = str(ANSWERS / "verlet_raises_with_drag.py")
     scene = exercise_scene("verlet", path=path)({"drag": 0.01})
