@@ -130,6 +130,11 @@ def app_main(argv: list[str]) -> int:
             raise UsageError("--scene all runs every scene in turn and needs --headless")
         classes = list(SCENES)
     else:
+        student_file = args.scene.removeprefix("exercise:")
+        if student_file != args.scene and student_file.endswith(".py") and not os.path.isfile(
+                student_file):
+            raise UsageError(f"--scene {args.scene}: no such file '{student_file}'; accepted: "
+                             "exercise:NAME, or exercise:PATH/NAME.py of a file that exists")
         cls = get_scene(args.scene)
         if cls is None:
             raise UsageError(f"unknown scene {args.scene!r}; accepted: {accepted}"

@@ -18,7 +18,8 @@ Check it:   python -m app exercise check double_pendulum
 Watch it:   python -m app --scene exercise:double_pendulum   (the orange ghost: the equations of
             motion; try --set angle1=10 --set angle2=10: a small release stays with it)
 
-What the grader measures: the bobs start where asked with their masses; from a small release the
+What the grader measures: the bobs start where asked with their masses, in the space with
+both rods; from a small release the
 tip stays within 1 px of the equations' solution for 2 s; released high, the energy drifts less
 than 1% in 20 s; the rods' lengths hold within 1 px.
 

@@ -18,7 +18,7 @@ Watch it:   python -m app --scene exercise:rk4           (try --set hertz=2)
 What the grader measures: the order of each method on a spring and on a pendulum (the error must
 fall 16x per halved step for RK4: order 4, and 4x for midpoint: order 2, +- 0.2); that f is
 called at the right times (on dy/dt = t^3 RK4 is exact); and RK4's stability limit on the spring,
-omega*h = 2 sqrt 2 = 2.83 (+- 2%).
+omega*h = 2 sqrt 2 = 2.83 (+- 2%); and that neither step changes the y it was given.
 
 Hints:
   * The weights matter: equal weights (k1 + k2 + k3 + k4)/4 give only order 2.

@@ -11,14 +11,14 @@ l / |l|. A particle in several springs feels the sum of them all.
 
 Write `spring_forces`: x, v have shape (n, 2); a, b are integer arrays (m,) of the springs' ends;
 ks, kd are numbers; rest is a float array (m,). Return the total spring force on every particle,
-shape (n, 2).
+shape (n, 2), in a new array: do not change x or v.
 
 Check it:   python -m app exercise check spring
 Watch it:   python -m app --scene exercise:spring        (a rope of springs, the lab's as a ghost)
 
 What the grader measures: your forces against the lab's (app/physics/forces.py, Springs) on
 random systems, the Hooke part and the damping part separately; Newton's third law (all the
-forces add up to zero); a damped spring loses energy.
+forces add up to zero); a damped spring loses energy; x and v are not changed.
 
 Hints:
   * Row-wise dot products: np.sum(p * q, axis=1, keepdims=True).

@@ -11,6 +11,10 @@ introduced": write the drag as the fraction of that distance lost per step,
 
     x_new = x + (1 - drag) (x - x_prev) + a h^2            (drag = 0.01: 2 -> 1.99)
 
+that is (2 - drag) x - (1 - drag) x_prev + a h^2: the x_prev term changes too. Read literally,
+the slide's "lower 2 to 1.99" (1.99 x - x_prev) is no drag at all: it adds -0.01 x / h^2 to the
+acceleration, a spring pulling every particle towards the point x = 0.
+
 Write `verlet_step`. Arrays have shape (n, 2): one row (x, y) per particle, y pointing down.
 
 Check it:   python -m app exercise check verlet
@@ -18,8 +22,9 @@ Watch it:   python -m app --scene exercise:verlet        (yours filled, the lab'
 
 What the grader measures: a free fall must follow the parabola exactly (Verlet's central
 difference is exact for a constant acceleration); on a spring the error must fall 4x when h
-halves (second order: the slide says "4th order accurate", which is wrong); with drag 0 a spring
-keeps its energy; with drag 0.01 it loses 1% per step; x and a must not be changed.
+halves (second order. The slide's "4th order accurate" is true of ONE step, whose error is
+O(h^4); over a fixed time the 1/h steps add up to O(h^2)); with drag 0 a spring keeps its energy;
+with drag 0.01 it loses 1% of its energy per step; x and a must not be changed.
 
 Hints:
   * NumPy does the whole array at once: no loop over particles.

@@ -27,7 +27,8 @@ from tests.toy_scenes import Toy
 ANSWERS = Path(__file__).parent / "exercise_answers"
 NAMES = [e.name for e in EXERCISES]
 
-# wrong answer -> (exercise, the check that names its mistake)
+# wrong answer -> (exercise, the check that names its mistake[, words its measurement, hint or
+# message must say: the pointer at the mistake])
 WRONG = {
     "verlet_euler": ("verlet", "free fall"),
     "verlet_a_h": ("verlet", "order 2 on a spring"),
@@ -52,6 +53,17 @@ WRONG = {
     "pendulum_y_up": ("double_pendulum", "built as asked"),
     "l_slide_too_long": ("pivoting_l", "stops at the slide max"),
     "l_off_centre": ("pivoting_l", "the L"),
+    "verlet_drag_sign": ("verlet", "drag loses energy", "GROWS: (1 - drag), not (1 + drag)"),
+    "verlet_slide_literal": ("verlet", "drag loses energy", "Lowering only the 2"),
+    "constraints_no_share_sum": ("constraints", "one rod, one pass",
+                                 "forget to divide by w_a + w_b"),
+    "spring_sign_flipped": ("spring", "Hooke part", "sign flipped"),
+    "spring_uses_x": ("spring", "inputs kept", "x was changed"),
+    "rk4_in_place": ("rk4", "y kept", "rk4_step changed y; midpoint_step changed y"),
+    "rk4_full_h_stages": ("rk4", "RK4 order, spring", "half a step (h/2)"),
+    "pendulum_not_added": ("double_pendulum", "built as asked", "body1 is not in the space"),
+    "cradle_right_to_left": ("newtons_cradle", "1 in, 1 out",
+                             "in order along the row, left to right"),
 }
 
 
@@ -82,16 +94,18 @@ def test_the_untouched_starter_fails_every_check_cleanly(name):
 
 @pytest.mark.parametrize("answer", sorted(WRONG))
 def test_a_typical_wrong_answer_fails_the_check_that_names_it(answer):
-    name, mistake = WRONG[answer]
+    name, mistake, *words = WRONG[answer]
     report = grade(get_exercise(name), str(ANSWERS / f"{answer}.py"), only=(mistake,))
     failed = checks_of(report)[mistake]
     assert not failed.passed, report.text()
-    assert failed.hint and failed.measured and failed.bound
+    assert (failed.hint or failed.error) and failed.measured and failed.bound
+    for w in words:
+        assert w in " ".join((failed.measured, failed.hint, failed.error)), report.text()
 
 
 def test_every_exercise_has_two_wrong_answers_and_a_starter_that_names_its_functions():
     for e in EXERCISES:
-        assert sum(1 for ex, _ in WRONG.values() if ex == e.name) >= 2, e.name
+        assert sum(1 for ex, *_ in WRONG.values() if ex == e.name) >= 2, e.name
         text = starter_path(e.name).read_text()
         assert text.startswith('"""Exercise `' + e.name + '`')
         for f in e.functions:
@@ -134,6 +148,57 @@ def test_an_endless_loop_is_stopped_and_the_grader_goes_on():
         assert not c.passed and "stopped after 0.2 s" in c.error
 
 
+def test_returning_nothing_is_named_as_such():
+    report = grade(get_exercise("constraints"), str(ANSWERS / "constraints_returns_none.py"),
+                   only=("one rod, one pass",))
+    failed = checks_of(report)["one rod, one pass"]
+    assert not failed.passed and "satisfy_rods returned None" in failed.error
+    assert "no return statement?" in failed.error
+
+
+def test_a_runaway_recursion_shows_its_frame_once_and_a_count():
+    path = str(ANSWERS / "verlet_recursion.py")
+    failed = grade(get_exercise("verlet"), path, only=("free fall",)).checks[-1]
+    assert not failed.passed and "RecursionError" in failed.error
+    assert f'File "{path}", line 5, in verlet_step' in failed.error
+    assert "repeated" in failed.error and len(failed.error.splitlines()) < 8, failed.error
+
+
+def test_sys_exit_in_a_students_code_stops_the_scene_not_the_lab(tmp_path, capsys):
+    path = str(ANSWERS / "verlet_sys_exit.py")
+    scene = exercise_scene("verlet", path=path)({})
+    with pytest.raises(SceneError, match="SystemExit: giving up"):
+        scene.advance()
+    at_import = tmp_path / "verlet.py"
+    at_import.write_text("import sys\nsys.exit(0)\n")
+    assert main(["--headless", "--scene", f"exercise:{at_import}", "--steps", "3", "--json"]) == 1
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["steps"] == 0 and "SystemExit: 0" in summary["error"]
+
+
+def test_a_students_prints_go_to_stderr_in_the_scene_too(tmp_path, capsys):
+    answer = tmp_path / "verlet.py"
+    answer.write_text("print('hello at import')\n\n\ndef verlet_step(x, x_prev, a, h, drag):\n"
+                      "    print('step', x[0])\n"
+                      "    return x + (1 - drag) * (x - x_prev) + a * h * h, x\n")
+    assert main(["--headless", "--scene", f"exercise:{answer}", "--steps", "2", "--json"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["steps"] == 2          # stdout is the JSON alone
+    assert "hello at import" in captured.err and captured.err.count("step [") == 2
+
+
+def test_a_closed_pipe_ends_the_listing_quietly():
+    import subprocess
+    import sys
+    proc = subprocess.Popen([sys.executable, "-m", "app", "exercise", "list"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            cwd=Path(__file__).parents[1])
+    proc.stdout.close()             # `| head -0`: nobody reads
+    err = proc.stderr.read().decode()
+    proc.wait()
+    assert "Traceback" not in err and "BrokenPipeError" not in err, err
+
+
 # ----- the command line ---------------------------------------------------------------------------
 def test_exercise_list_names_every_exercise_and_its_slide(capsys):
     assert main(["exercise", "list"]) == 0
@@ -160,6 +225,8 @@ def test_check_exit_codes_and_json(capsys):
     ["exercise", "check", "all", "--path", "README.md"],
     ["exercise", "check", "verlet", "--timeout", "0"],
     ["--headless", "--scene", "exercise:nope"],
+    ["exercise", "copy", "/proc/no_such_folder"],
+    ["--headless", "--scene", "exercise:no/such/verlet.py"],
 ])
 def test_bad_usage_exits_2_with_one_line(argv, capsys):
     assert main(argv) == 2
@@ -230,6 +297,12 @@ def test_a_scene_whose_build_failed_raises_scene_error_on_the_first_step():
         scene.advance()
 
 
+def test_the_hud_names_the_exception_of_a_build_the_lab_refused():
+    scene = exercise_scene("newtons_cradle", path=str(ANSWERS / "cradle_right_to_left.py"))({})
+    assert scene.hud_lines()[0].startswith("your code raised ValueError (below)")
+    assert "left to right" in scene.error
+
+
 def test_a_student_exception_in_a_step_is_a_scene_error_with_their_line():
     path = str(ANSWERS / "verlet_raises_with_drag.py")
     scene = exercise_scene("verlet", path=path)({"drag": 0.01})
@@ -246,6 +319,16 @@ def test_headless_starter_scene_exits_1_with_the_message(capsys):
     assert summary["steps"] == 0 and "NotImplementedError: write me" in summary["error"]
     assert 'File "exercises/verlet.py", line' in captured.err or "verlet.py" in captured.err
     assert "NotImplementedError: write me" in captured.err
+
+
+@pytest.mark.xfail(raises=SceneError, strict=True,
+                   reason="app/window.py calls scene.advance() without catching SceneError: the "
+                   "untouched starter closes the window with a traceback. The window being "
+                   "rewritten must pause and show the message (issue 9); then drop this mark.")
+def test_the_window_survives_the_untouched_starter(tmp_path):
+    shot = tmp_path / "starter.png"
+    main(["--scene", "exercise:verlet", "--screenshot", str(shot), "--seconds", "0.3"])
+    assert shot.exists()
 
 
 def test_headless_goes_on_after_a_scene_error(capsys):

@@ -57,6 +57,9 @@ def within(value: float, target: float, tol: float) -> bool:
 
 def array_of(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
     """`value` as a float array of `shape`, or BadAnswer naming what came back."""
+    if value is None:       # NumPy would make it a NaN of shape (): say what happened instead
+        raise BadAnswer(f"{what} returned None; expected an array of shape {shape} (no return "
+                        "statement? changing an array in place does not return it)")
     try:
         arr = np.asarray(value, dtype=float)
     except (TypeError, ValueError):

@@ -6,20 +6,38 @@ return the exit code: 0 every check passed, 1 a check failed.
 
 from __future__ import annotations
 
+import functools
 import json
 import os
 import shutil
+import sys
+from typing import Callable
 
 from app.exercises import EXERCISES, Exercise
 from app.exercises.grade import CHECK_TIMEOUT, Report, grade, shown, starter_path
 
 
+def quiet_pipe(command: Callable[..., int]) -> Callable[..., int]:
+    """`... | head` closes the pipe early: stop printing quietly (no traceback), keep the code."""
+    @functools.wraps(command)
+    def run(*args, **kwargs) -> int:
+        try:
+            return command(*args, **kwargs)
+        except BrokenPipeError:
+            # Python would complain again when it flushes stdout at exit
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            return 1
+    return run
+
+
+@quiet_pipe
 def list_exercises() -> int:
     for e in EXERCISES:
         print(f"{e.name:18} {e.title}\n{'':18} slide: {e.slide}")
     return 0
 
 
+@quiet_pipe
 def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
           timeout: float = CHECK_TIMEOUT) -> int:
     """Grade each exercise on its file (None: the lab's reference); print the reports (and a
@@ -47,9 +65,14 @@ def existing_copies(folder: str) -> list[str]:
 
 def copy(folder: str) -> int:
     """Copy every starter into `folder` (the caller has checked that none exists there yet)."""
-    os.makedirs(folder, exist_ok=True)
-    for e in EXERCISES:
-        shutil.copyfile(starter_path(e.name), os.path.join(folder, f"{e.name}.py"))
+    try:
+        os.makedirs(folder, exist_ok=True)
+        for e in EXERCISES:
+            shutil.copyfile(starter_path(e.name), os.path.join(folder, f"{e.name}.py"))
+    except OSError as e:            # bad usage: one line, exit 2 (the files copied so far stay)
+        print(f"python -m app: error: copy: cannot write to '{folder}' ({e.strerror}); "
+              "accepted: a folder you can write to", file=sys.stderr)
+        return 2
     where = shown(folder)
     print(f"copied {len(EXERCISES)} exercises to {where}/: "
           + ", ".join(f"{e.name}.py" for e in EXERCISES))

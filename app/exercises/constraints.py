@@ -53,13 +53,20 @@ def _one_rod(m: Student) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def one_rod(m: Student) -> Result:
-    _, _, out = _one_rod(m)
+    x, _, out = _one_rod(m)
     err = abs(float(np.linalg.norm(out[1] - out[0])) - 20.0)
-    return Result(err < 1e-9, f"|length - rest| = {fmt(err)} px after one pass",
-                  "< 1e-09 px",
-                  "one rod alone is satisfied exactly by one correction: diff = (|delta| - rest) "
-                  "/ |delta| (divide by the length), then the ends move by delta * diff * their "
-                  "shares, which add up to 1.")
+    along = x[1] - x[0]
+    length = float((out[1] - out[0]) @ along / np.linalg.norm(along))   # < 0: ends crossed
+    hint = ("one rod alone is satisfied exactly by one correction: diff = (|delta| - rest) / "
+            "|delta| (divide by the length), then the ends move by delta * diff * their shares "
+            "w_a / (w_a + w_b) and w_b / (w_a + w_b), which add up to 1.")
+    if length > 50.0 + 1e-9:
+        hint = "the rod got LONGER (50 -> " + f"{length:.3g}): a sign is flipped. " + hint
+    elif length < 20.0 - 1e-9:
+        hint = (f"the ends moved too far (50 px -> {length:.3g} along the old rod, rest 20; "
+                "below 0 they crossed): did you forget to divide by w_a + w_b? " + hint)
+    return Result(err < 1e-9, f"|length - rest| = {fmt(err)} px after one pass", "< 1e-09 px",
+                  hint)
 
 
 def shares(m: Student) -> Result:
@@ -94,10 +101,17 @@ def hanging_stretch(m: Student, iterations: int, rows: int = 6, spacing: float =
 def stretch_falls(m: Student) -> Result:
     s = [hanging_stretch(m, k) for k in (1, 5, 25)]
     ok = bool(np.all(np.isfinite(s)) and s[0] > s[1] > s[2])
+    hint = ("each sweep must start from the corrections of the one before (work on x in place, "
+            "sweep `iterations` times).")
+    if not np.all(np.isfinite(s)) or max(s) > 1.0:
+        hint = ("the cloth blows up: the corrections push the ends the wrong way or too far "
+                "(see 'one rod, one pass').")
+    elif min(s) < 1e-12:
+        hint = ("the stretch is already 0, so it cannot fall: does the cloth still hang from "
+                "its pinned top row? Fix the other checks first ('pinned never move', 'one rod, "
+                "one pass').")
     return Result(ok, f"mean stretch {', '.join(map(fmt, s))} at 1, 5, 25 iterations",
-                  "falling as iterations rise",
-                  "each sweep must start from the corrections of the one before (work on x in "
-                  "place, sweep `iterations` times).")
+                  "falling as iterations rise", hint)
 
 
 def coincident(m: Student) -> Result:

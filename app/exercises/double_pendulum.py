@@ -3,7 +3,8 @@
 Reference: scenes.double_pendulum.build_double_pendulum (the scene's builder); the scene's ghost
 is the lab's RK4 solution of Lagrange's equations (app/physics/double_pendulum_ode.py). The
 student's builder builds `python -m app --scene exercise:double_pendulum`. Checks:
-  built as asked   bob positions at the given angles and lengths (1e-6 px), masses as given
+  built as asked   bob positions at the given angles and lengths (1e-6 px), masses as given,
+                   both bodies and both rods (PinJoints) added to the space
   agrees           released low (10 and 10 degrees), the tip stays within 1 px of the ghost for
                    2 s (the largest `reference_divergence` seen)
   energy kept      released high (the scene's 120 and 150 degrees), 20 s: |energy drift| < 1%
@@ -41,11 +42,23 @@ def built(m: Student) -> Result:
     p2 = (p1[0] + lengths[1] * math.sin(angles[1]), p1[1] + lengths[1] * math.cos(angles[1]))
     err = max(math.dist(pair[0].position, p1), math.dist(pair[1].position, p2))
     mass_err = max(abs(pair[0].mass - masses[0]), abs(pair[1].mass - masses[1]))
-    ok = err < 1e-6 and mass_err < 1e-9
-    return Result(ok, f"bobs {fmt(err)} px from where asked, masses off by {fmt(mass_err)}",
-                  "< 1e-06 px, masses exact",
-                  "angles are radians from straight DOWN and y points down: p1 = anchor + l1 "
-                  "(sin t1, cos t1), p2 = p1 + l2 (sin t2, cos t2); Body(mass, moment).")
+    # bodies or joints left out of the space never move: that would pass the energy checks
+    missing = [f"body{k + 1} is not in the space" for k, b in enumerate(pair)
+               if b.space is not space]
+    rods = [{j.a, j.b} for j in space.constraints if isinstance(j, (pymunk.PinJoint,
+                                                                    pymunk.SlideJoint))]
+    if not any(pair[0] in r and any(b.body_type == pymunk.Body.STATIC for b in r) for r in rods):
+        missing.append("no rod (PinJoint) from a static body to body1 in the space")
+    if {pair[0], pair[1]} not in rods:
+        missing.append("no rod (PinJoint) between body1 and body2 in the space")
+    ok = err < 1e-6 and mass_err < 1e-9 and not missing
+    hint = ("angles are radians from straight DOWN and y points down: p1 = anchor + l1 "
+            "(sin t1, cos t1), p2 = p1 + l2 (sin t2, cos t2); Body(mass, moment).")
+    if missing:
+        hint = "space.add(...) every body, shape and joint you make. " + hint
+    return Result(ok, f"bobs {fmt(err)} px from where asked, masses off by {fmt(mass_err)}"
+                  + "".join(f"; {m}" for m in missing),
+                  "< 1e-06 px, masses exact, both bodies and rods in the space", hint)
 
 
 def agrees(m: Student) -> Result:

@@ -100,14 +100,25 @@ def student_traceback(exc: BaseException, path: str | None) -> str:
     error line (a SyntaxError says its own file, line and caret). A BadAnswer is its message."""
     if isinstance(exc, BadAnswer):
         return str(exc)
-    lines = []
+    lines: list[str] = []
     if path is not None:
         mine = os.path.realpath(path)
-        for frame in traceback.extract_tb(exc.__traceback__):
-            if os.path.realpath(frame.filename) == mine:
-                lines.append(f'File "{path}", line {frame.lineno}, in {frame.name}')
-                if frame.line:
-                    lines.append(f"    {frame.line}")
+        frames = [f for f in traceback.extract_tb(exc.__traceback__)
+                  if os.path.realpath(f.filename) == mine]
+        repeats = 0
+        for k, frame in enumerate(frames):
+            # a runaway recursion repeats one frame ~1000 times: show it once, then the count
+            if k and (frame.lineno, frame.name) == (frames[k - 1].lineno, frames[k - 1].name):
+                repeats += 1
+                continue
+            if repeats:
+                lines.append(f"  [the line above repeated {repeats} more times]")
+                repeats = 0
+            lines.append(f'File "{path}", line {frame.lineno}, in {frame.name}')
+            if frame.line:
+                lines.append(f"    {frame.line}")
+        if repeats:
+            lines.append(f"  [the line above repeated {repeats} more times]")
     lines += "".join(traceback.format_exception_only(type(exc), exc)).rstrip().splitlines()
     return "\n".join(lines)
 
@@ -187,7 +198,9 @@ def run_isolated(exercise: Exercise, check: Check | None, path: str | None,
         proc.kill()
         return CheckReport(name, False, f"still running after {timeout:g} s",
                            f"done within {timeout:g} s", error=f"stopped after {timeout:g} s: an "
-                           "endless loop? (a while loop whose condition never changes)")
+                           "endless loop (a while loop whose condition never changes)? Or a "
+                           "step far too slow: a check calls your function hundreds of times, "
+                           "so a sleep or a print of whole arrays in it adds up")
     finally:
         proc.join()
         receive.close()

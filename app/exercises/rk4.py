@@ -11,6 +11,7 @@ Reference: app.physics.integrators.rk4_step and midpoint_step. Checks:
   midpoint stage time     dy/dt = t from 0 to 1 in 4 steps: exact if f is taken at t + h/2
   RK4 stability limit     the largest omega*h at which RK4 keeps the spring bounded:
                           2 sqrt 2 = 2.83 +- 2% (found by bisection on 400-step runs)
+  y kept                  neither step changes the y it was given
 """
 
 from __future__ import annotations
@@ -56,6 +57,9 @@ def measured_order(m: Student, fname: str, f, target: float) -> Result:
                 "k3 = f(t + h/2, y + h/2 k2), k4 = f(t + h, y + h k3).")
         if within(p, 2.0, 0.4):
             hint = "second order: " + hint + " Equal weights (k1 + k2 + k3 + k4)/4 give order 2."
+        elif within(p, 1.0, 0.3):
+            hint = ("first order: the stages' states are off. " + hint + " k2 and k3 go half a "
+                    "step (h/2), k4 a whole one.")
     else:
         hint = "y' = y + h f(t + h/2, y + h/2 f(t, y)): a HALF step to the midpoint."
         if within(p, 1.0, 0.3):
@@ -99,6 +103,18 @@ def stability_limit(m: Student) -> Result:
                   f"{exact:.3f} +- 2%", hint)
 
 
+def y_kept(m: Student) -> Result:
+    problems = []
+    for fname in ("rk4_step", "midpoint_step"):
+        y = np.array([0.3, -0.2])
+        array_of(getattr(m, fname)(pendulum, 0.0, y, 0.1), (2,), fname)
+        if not np.array_equal(y, [0.3, -0.2]):
+            problems.append(f"{fname} changed y")
+    return Result(not problems, "; ".join(problems) or "y untouched", "y unchanged",
+                  "return y + ... (a new array); y += ... changes the caller's y, which a "
+                  "solver may still need (to retry a step, or to measure the error).")
+
+
 EXERCISE = Exercise(
     name="rk4",
     title="Runge-Kutta: RK4 and the midpoint method for any ODE",
@@ -114,5 +130,6 @@ EXERCISE = Exercise(
                   lambda m: measured_order(m, "midpoint_step", spring, 2)),
             Check("midpoint order, pendulum",
                   lambda m: measured_order(m, "midpoint_step", pendulum, 2)),
-            Check("midpoint stage time", lambda m: stage_times(m, "midpoint_step", 1))),
+            Check("midpoint stage time", lambda m: stage_times(m, "midpoint_step", 1)),
+            Check("y kept", y_kept)),
 )

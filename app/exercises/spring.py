@@ -7,6 +7,7 @@ Reference: app.physics.forces.Springs (its accumulate). Checks:
   third law        the forces of all springs add up to zero
   damping removes  two particles on a stretched damped spring, 2 s of small symplectic Euler
                    steps: the energy falls below half of its start
+  inputs kept      x and v are not changed
 """
 
 from __future__ import annotations
@@ -60,7 +61,10 @@ def _compare(m: Student, ks: float, kd: float, hint: str) -> Result:
     lost = np.zeros_like(x)
     lost[A] += fa
     lost[B] -= fa
-    if rel_error(f, lost) < 1e-9:
+    if rel_error(f, -ref) < 1e-9:
+        hint = ("your forces are the lab's with the sign flipped: f_a = -[...] l/|l| with "
+                "l = x_a - x_b (a stretched spring pulls a towards b), f_b = -f_a.")
+    elif rel_error(f, lost) < 1e-9:
         hint = ("a particle in several springs gets only one of them: f[a] += fa keeps the last "
                 "write for a repeated index. Use np.add.at(f, a, fa) (or a loop over springs).")
     return Result(err < 1e-9, f"largest difference {fmt(err)} of the largest force",
@@ -105,6 +109,18 @@ def damping_removes(m: Student) -> Result:
                   "-kd ((v_a - v_b) . u) u on a, with u = (x_a - x_b)/|x_a - x_b| (check signs).")
 
 
+def inputs_kept(m: Student) -> Result:
+    x, v, rest = system(5)
+    x0, v0 = x.copy(), v.copy()
+    m.spring_forces(x, v, A, B, 50.0, 2.0, rest)
+    problems = [f"{name} was changed" for name, now, before in (("x", x, x0), ("v", v, v0))
+                if not np.array_equal(now, before)]
+    return Result(not problems, "; ".join(problems) or "x and v untouched",
+                  "x and v unchanged",
+                  "sum the forces into a new array (f = np.zeros_like(x)): x and v are the "
+                  "particles' state, which the caller goes on stepping.")
+
+
 EXERCISE = Exercise(
     name="spring",
     title="Damped springs: an n-ary force",
@@ -113,5 +129,6 @@ EXERCISE = Exercise(
     functions=("spring_forces",),
     reference=reference,
     checks=(Check("Hooke part", hooke), Check("damping part", damping),
-            Check("third law", third_law), Check("damping removes energy", damping_removes)),
+            Check("third law", third_law), Check("damping removes energy", damping_removes),
+            Check("inputs kept", inputs_kept)),
 )
