@@ -28,6 +28,8 @@ that aborts pymunk, closes it. `python -m app exercise check` first is the safe 
 
 from __future__ import annotations
 
+import copy
+
 import math
 import sys
 from contextlib import redirect_stdout
@@ -140,6 +142,29 @@ class ParticleExercise(Scene):
         # the student's copy first: if their code raises while building, no step has run
         self.mine = self.make(self.impl)
         self.lab = self.make(self.reference)
+        self._bounds = self.rest_bounds()
+
+    def rest_bounds(self, seconds: float = 3.0) -> tuple[float, float, float, float]:
+        """Where the lab's copy goes in its first seconds (run on a copy, at most 2000 steps),
+        with a margin, for the layout: fixed once built, so the picture does not jump."""
+        sim = copy.deepcopy(self.lab)
+        for name in self.live:
+            setattr(sim, name, self.p[name])
+        h = self.dt / self.p["substeps"]
+        n = min(2000, int(seconds / h))
+        pts = [np.reshape(sim.fixed, (-1, 2)), np.reshape(self.mine.points(), (-1, 2))]
+        for _ in range(n):
+            sim.step(h)
+            pts.append(np.reshape(sim.points(), (-1, 2)))
+        pts = np.concatenate(pts)
+        pts = pts[np.isfinite(pts).all(axis=1)]
+        (x0, y0), (x1, y1) = pts.min(axis=0), pts.max(axis=0)
+        pad = max(40.0, 0.12 * max(x1 - x0, y1 - y0))
+        return (float(x0 - pad), float(y0 - pad), float(x1 - x0 + 2 * pad),
+                float(y1 - y0 + 2 * pad))
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        return getattr(self, "_bounds", None) or super().content_bounds()
 
     def make(self, impl):
         """The system, its step calling impl's functions."""
