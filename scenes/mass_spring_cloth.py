@@ -4,10 +4,11 @@ What it shows: the lectures' cloth as particles joined by damped springs (struct
 bending), with Blender's cloth presets (cotton, denim, leather, rubber, silk) and all six
 integrators of the particle system, switchable live. The HUD predicts the explicit methods'
 stability limit from the cloth's highest frequency omega_max (power iteration with the stiffness
-product and the masses) and says where the current step is; past the limit an explicit
-integrator blows up, the shell's guard rolls back and pauses, and implicit Euler (Baraff &
-Witkin's large steps) at the same step keeps going, paying in artificial damping (watch the
-energy with damping, air and wind off). Physics: app/physics/mass_spring.py (its docstring maps
+product and the masses; 2/omega_max undamped, less with spring damping: leather's is a tenth of
+it) and says where the current step is; past the limit the top mode grows (just past it, it may
+only shiver), well past it an explicit integrator blows up, the shell's guard rolls back and
+pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keeps going,
+paying in artificial damping (watch the energy with damping, air and wind off). Physics: app/physics/mass_spring.py (its docstring maps
 Blender's units to pixels and seconds); drawing: app/draw/cloth_draw.py, the Verlet cloth's
 strain heat map and legend, so the two cloths compare directly.
 
@@ -120,11 +121,13 @@ class MassSpringClothScene(Scene):
             "h = 16.7 ms is far past the predicted limit: it blows up, the guard rolls back"),
         Try("leather, symplectic Euler inside its limit",
             {"material": "leather", "integrator": "symplectic_euler", "hertz": 1000,
-             "substeps": 8},
-            "h = 0.125 ms, below the HUD's limit: stable, but 8000 steps per second"),
+             "substeps": 20},
+            "h = 0.05 ms, below the HUD's damped limit (~0.07 ms; leather's strong spring "
+            "damping cuts 2/omega_max's 0.66 ms tenfold): stable, but 20000 steps per second"),
         Try("implicit Euler at 30 Hz", {"material": "denim", "integrator": "implicit_euler",
                                          "hertz": 30},
-            "a step 400x the explicit limit and still stable; watch the CG iterations"),
+            "a step ~90x symplectic Euler's limit (25x 2/omega_max) and still stable; watch the "
+            "CG iterations"),
         Try("silk in the wind", {"material": "silk", "wind": True},
             "no spring damping, almost no bending: the silk flows; compare leather"),
     )
@@ -310,11 +313,11 @@ class MassSpringClothScene(Scene):
             f"({'+'.join(c.active_sets)})",
         ]
         if om > 0:
-            lines += [f"omega_max {om:.0f}/s: explicit methods are stable below h = 2/omega_max "
-                      f"= {2e3 / om:.3f} ms",
-                      f"  (undamped; RK4 2.83/omega_max = {2.83e3 / om:.3f} ms; forward Euler, "
-                      f"midpoint: no h)" + (f"; damped, symplectic Euler: {limit * 1e3:.3f} ms"
-                                            if self.mode_damping > 0 else "")]
+            lines += [f"omega_max {om:.0f}/s: undamped, explicit methods are stable below "
+                      f"h = 2/omega_max = {2e3 / om:.3f} ms",
+                      f"  (RK4 2.83/omega_max = {2.83e3 / om:.3f} ms; forward Euler, midpoint: "
+                      f"no h)" + (f"; this damping lowers symplectic Euler's to "
+                                  f"{limit * 1e3:.3f} ms" if self.mode_damping > 0 else "")]
         where = f"you are at h = {h * 1e3:.3f} ms"
         pred = self.limit(name)
         if not INTEGRATORS[name].explicit:
@@ -324,7 +327,8 @@ class MassSpringClothScene(Scene):
             where += f": {title} is unstable at any h here (too little damping)"
         else:
             where += (f" = {h / pred:.2g}x {title}'s limit ({pred * 1e3:.3f} ms, damped)"
-                      + (": it will blow up" if h > pred else ": stable"))
+                      + (": its top mode grows (a shiver, or a blow-up)" if h > pred
+                         else ": stable"))
         lines.append(where)
         lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} "
                      f"(without damping, air, wind, mouse: all of it the integrator's)")
