@@ -275,7 +275,8 @@ class MassSpringClothScene(Scene):
             "max_stretch": float(s.max()),
             "mean_stretch": float(s.mean()),
             "energy": energy,
-            "cg_iterations": c.ps.cg_iterations if implicit else 0,
+            # implicit only (else 0); None before its first step (no solve yet)
+            "cg_iterations": (c.ps.cg_iterations if self.steps else None) if implicit else 0,
             "pinned_drift": c.pinned_drift(),
         }
 

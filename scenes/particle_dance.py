@@ -191,14 +191,16 @@ class ParticleDanceScene(Scene):
             self.dance.mouse.point = np.asarray(self.mouse_pos, dtype=float)
 
     # ----- reports ----------------------------------------------------------------------------
-    def metrics(self) -> dict[str, float | str]:
+    def metrics(self) -> dict[str, float | str | None]:
         d = self.dance
+        # before the first step no search has run: None; with interaction off, 0 tests is a count
+        searched = self.steps > 0 or "interaction" not in self.on
         return {
             "particles": d.ps.n,
-            "pair_tests": d.pair_force.tests,
+            "pair_tests": d.pair_force.tests if searched else None,
             "neighbour_method": self.p["neighbour_method"],
             "kinetic_energy": d.kinetic_energy(),
-            "pairs_interacting": d.pair_force.pairs,
+            "pairs_interacting": d.pair_force.pairs if searched else None,
         }
 
     def _update_costs(self) -> None:

@@ -354,3 +354,21 @@ def test_the_try_cards_limits_are_what_they_say():
     implicit = MassSpringClothScene(dict(cards["implicit Euler at 30 Hz"].settings))
     assert 60 < implicit.dt / implicit.limit("symplectic_euler") < 130      # "~90x"
     assert 20 < implicit.dt * implicit.omega_max / 2 < 30                  # "25x 2/omega_max"
+
+
+def test_implicit_euler_pays_for_its_stability_in_energy_symplectic_euler_does_not():
+    """The HUD's energy line: with damping, air and wind off the energy (0 at the start pose)
+    should stay 0; implicit Euler's artificial damping takes out most of what the fall releases,
+    symplectic Euler inside its limit keeps it within a few per cent."""
+    def run(integrator, hertz, substeps):
+        s = MassSpringClothScene({"material": "silk", "rows": 6, "cols": 6, "damping": False,
+                                  "air": False, "integrator": integrator, "hertz": hertz,
+                                  "substeps": substeps})
+        assert s.metrics()["cg_iterations"] == (None if integrator == "implicit_euler" else 0)
+        for _ in range(hertz):                                        # 1 s
+            s.advance()
+        c = s.cloth
+        released = 900 * float(np.sum(c.ps.mass * c.ps.free[:, 0] * (c.ps.x[:, 1] - c.rest_x[:, 1])))
+        return c.energy() / released
+    assert run("implicit_euler", 60, 1) < -0.5
+    assert abs(run("symplectic_euler", 1000, 2)) < 0.05
