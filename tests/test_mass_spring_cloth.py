@@ -372,3 +372,15 @@ def test_implicit_euler_pays_for_its_stability_in_energy_symplectic_euler_does_n
         return c.energy() / released
     assert run("implicit_euler", 60, 1) < -0.5
     assert abs(run("symplectic_euler", 1000, 2)) < 0.05
+
+
+def test_the_wind_pushes_on_area_so_silk_flows_where_denim_hangs():
+    """The 'silk in the wind' card: the same wind moves light silk several times further."""
+    drift = {}
+    for material in ("silk", "denim"):
+        s = MassSpringClothScene({"material": material, "wind": True, "rows": 8, "cols": 8})
+        x0 = s.cloth.ps.x[:, 0].copy()
+        for _ in range(60):
+            s.advance()
+        drift[material] = float(np.abs(s.cloth.ps.x[:, 0] - x0).mean())
+    assert drift["silk"] > 3 * drift["denim"]

@@ -18,7 +18,8 @@ split into two force objects, the Hooke part (`SpringSet`) and the damping part 
 so each costs only when its effect is on. As in Blender, a structural spring has two stiffnesses:
 k_s is the *tension* value when the spring is longer than its rest length r, the *compression*
 value when it is shorter. Other forces: gravity f = m g, air resistance f = -k v (forces.Drag) and
-wind (`Wind`, a field of accelerations times each particle's mass).
+wind (`Wind`, a pressure: a force per area, the same on every material, so a light cloth is
+blown further than a heavy one).
 
 **Blender's materials.** MATERIALS holds Blender's own cloth presets, from the files
 scripts/presets/cloth/{Cotton,Denim,Leather,Rubber,Silk}.py of the blender/blender repository
@@ -105,6 +106,9 @@ MATERIALS: dict[str, Material] = {     # scripts/presets/cloth/*.py (blender/ble
     "silk": Material(0.15, 5, 5, 5, 0.05, 0, 1),
 }
 MATERIAL_KEYS = tuple(f.name for f in fields(Material))
+# kg/px^2: the wind's pressure is wind_strength x this per px^2 of cloth, for every material
+# (cotton's density: wind_strength is the acceleration it gives cotton)
+WIND_DENSITY = MATERIALS["cotton"].mass / REF_CELL ** 2
 
 
 def material_settings(name: str) -> dict[str, float]:
@@ -282,20 +286,25 @@ class SpringDamping:
 
 
 class Wind:
-    """Wind: f = m a(x, t) with a from app.physics.cloth.wind_field ("gust" or the slide's
+    """Wind: f = load a(x, t) with a from app.physics.cloth.wind_field ("gust" or the slide's
     "lecture" field F = (sin(x y t), cos(z t)), read in the plane z = 1 of this 2-D lab, so
-    cos(z t) = cos(t)). `clock()` gives t; t is held during a step (an RK4 step sees one wind).
+    cos(z t) = cos(t)). load is each particle's area times a fixed density (WIND_DENSITY): the
+    wind pushes on the cloth's area, not on its mass, so strength is the acceleration it gives
+    a cotton cloth, silk (half cotton's mass) gets twice that and denim 0.3x: silk flows, denim
+    and rubber hardly move. `clock()` gives t; t is held during a step (an RK4 step sees one
+    wind).
     Treated explicitly in the implicit solve (no Jacobian), as Baraff & Witkin treat external
     forces."""
 
     def __init__(self, field: str, strength: float, world: tuple[float, float],
-                 clock: Callable[[], float]):
+                 clock: Callable[[], float], load: np.ndarray):
         self.field, self.strength, self.world, self.clock = field, strength, world, clock
+        self.load = load
 
     def accumulate(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray, f: np.ndarray) -> None:
         ax, ay = wind_field(self.field, x[:, 0], x[:, 1], self.clock(), self.world)
-        f[:, 0] += self.strength * ps.mass * ax
-        f[:, 1] += self.strength * ps.mass * ay
+        f[:, 0] += self.strength * self.load * ax
+        f[:, 1] += self.strength * self.load * ay
 
     def jacobian(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray):
         return None, None
@@ -576,7 +585,7 @@ class MassSpringCloth:
             forces.append(("air", Drag(k["air"])))
         if "wind" in self.on:
             forces.append(("wind", Wind(self.wind_field, self.wind_strength, self.world,
-                                        lambda: self.t)))
+                                        lambda: self.t, self.area * WIND_DENSITY)))
         for name in sets:
             forces.append((name, SpringSet(name, self.sets[name].families, self.rows, self.cols,
                                            *stiffness[name])))
@@ -724,4 +733,4 @@ class MassSpringCloth:
 __all__ = ["MATERIALS", "Material", "material_settings", "spring_constants", "SpringSet",
            "SpringDamping", "Wind", "Timed", "MassSpringSystem", "implicit_euler", "STEPPERS",
            "top_mode", "symplectic_limit", "predicted_limit", "MassSpringCloth", "block_product",
-           "CG_TOLERANCE", "K_UNIT", "TAU", "PX_PER_M", "PINS", "FORCE_EFFECTS"]
+           "CG_TOLERANCE", "WIND_DENSITY", "K_UNIT", "TAU", "PX_PER_M", "PINS", "FORCE_EFFECTS"]
