@@ -136,7 +136,7 @@ class ParticleDanceScene(Scene):
             raise ParamError(
                 f"particles x substeps too large for {values['neighbour_method']}: "
                 f"{values['particles']} particles x {values['substeps']} substeps would take "
-                f"~{cost:.1f} s per step; accepted: about {STEP_BUDGET_S:g} s per step "
+                f"~{cost:.2f} s per step; accepted: at most {STEP_BUDGET_S:g} s per step "
                 f"(use fewer particles or substeps, or neighbour_method=grid)")
 
     # ----- world ------------------------------------------------------------------------------

@@ -40,8 +40,8 @@ Mapping to this lab's units (px, s, kg; g = 900 px/s^2):
     0.00981 m / stiffness), damping k_d = damping / TAU, air k = 0.01 air_damping / TAU;
   * mass: Blender's vertex mass is the mass of one REF_CELL x REF_CELL cell, so the density is
     mass / 256 px^2 and a particle's mass is its area times that.
-In these units a particle's weight strains a spring by 0.00981 x mass / tension: 0.03 % for silk
-and cotton, 0.02 % for denim, 0.005 % for leather, 0.2 % for rubber (heavy and soft).
+In these units a particle's weight strains a spring by 0.00981 x mass / tension: 0.03 % for silk,
+0.02 % for cotton and denim, 0.005 % for leather, 0.2 % for rubber (heavy and soft).
 
 **Fast NumPy.** Positions live in an (n, 2) array, row-major, so x.reshape(rows, cols, 2) is the
 grid without a copy. A *family* of springs joins every (r, c) to (r + dr, c + dc): its first ends
