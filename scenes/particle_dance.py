@@ -137,7 +137,9 @@ class ParticleDanceScene(Scene):
                 f"particles x substeps too large for {values['neighbour_method']}: "
                 f"{values['particles']} particles x {values['substeps']} substeps would take "
                 f"~{cost:.2f} s per step; accepted: at most {STEP_BUDGET_S:g} s per step "
-                f"(use fewer particles or substeps, or neighbour_method=grid)")
+                f"(use fewer particles or substeps"
+                + (", or neighbour_method=grid)" if values["neighbour_method"] == "all_pairs"
+                   else ")"))
 
     # ----- world ------------------------------------------------------------------------------
     def _rule(self) -> PairRule:
