@@ -327,17 +327,18 @@ def test_bench_mass_spring_quick_runs_and_has_its_json_keys(tmp_path):
     assert list(tmp_path.glob("*.png"))
 
 
-@pytest.mark.parametrize("scale", [1, 100])
-def test_the_predicted_symplectic_limit_is_within_10_percent_of_the_measured_one(scale):
-    """The issue's target, with the bench's own test of stability (bench mass_spring): damped,
-    with gravity, every material. A shiver that saturates instead of reaching inf counts as
-    unstable (it did not, and the measured limit came out 12-16 % above the prediction)."""
+@pytest.mark.parametrize("scale", [1, 10, 100])
+def test_the_predicted_symplectic_limit_is_within_5_percent_of_the_measured_one(scale):
+    """The issue's target (10 %), with the bench's own test of stability (bench mass_spring):
+    damped, with gravity, every material. A shiver that saturates instead of reaching inf counts
+    as unstable (it did not, and the measured limit came out 12-16 % above the prediction); the
+    damping rate is top_mode's fixed point (the worst pairing alone was 10 % low at cotton x100)."""
     from app.bench.mass_spring import make_cloth, survives
     for material in MATERIALS:
         omega, damping, _ = top_mode(make_cloth(material, scale, 6).ps, 200)
         h = predicted_limit("symplectic_euler", omega, damping)
         assert survives(material, scale, "symplectic_euler", 0.97 * h, 6, 150), material
-        assert not survives(material, scale, "symplectic_euler", 1.1 * h, 6, 150), material
+        assert not survives(material, scale, "symplectic_euler", 1.05 * h, 6, 150), material
 
 
 def test_the_try_cards_limits_are_what_they_say():

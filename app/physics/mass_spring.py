@@ -423,12 +423,21 @@ STEPPERS: dict[str, Callable[[ParticleSystem, float], None]] = {
 
 
 # ----- stability: the highest frequency and the explicit limit -----------------------------------
+REFINE_ROUNDS = 3       # fixed-point rounds of top_mode's damping rate (converged to 0.1 % in 3)
+
+
 def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | None = None
              ) -> tuple[float, float, np.ndarray]:
     """(omega_max, c, w): the highest angular frequency of the free particles, by power iteration
-    on M^-1 K (K = -df/dx, definite blocks); a damping rate c, the larger of that mode's
-    (w.Dw)/(w.Mw) and the highest of M^-1 D (D = -df/dv: spring damping and air), so that
-    (omega_max, c) is the worst case of both; and the mode shape w (a warm start)."""
+    on M^-1 K (K = -df/dx, definite blocks); a damping rate c; and the mode shape w (a warm
+    start). c is chosen so that one mode x'' = -omega_max^2 x - c x' has the whole cloth's
+    symplectic Euler limit h*: there its step gets the eigenvalue -1, which happens exactly when
+    M^-1 (h^2 K + 2 h D) has the eigenvalue 4 (D = -df/dv: spring damping and air). Found by a
+    fixed point: start from the worst pairing (c the largest of M^-1 D, a lower bound on h*),
+    then a few rounds of h <- the symplectic limit of the top mode of M^-1 (h^2 K + 2 h D) with
+    its own stiffness and damping. (The worst pairing alone was up to 10 % low where the
+    stiffest and the most damped modes differ, e.g. cotton at x100; the fixed point matches the
+    dense eigenvalues of the linearised step within 0.1 %.)"""
     K = ps.stiffness_product(ps.x)             # w -> K w, K = -df/dx (positive semi-definite)
     _, damp = ps.blocks(ps.x)
     m, free = ps.mass[None, :], ps.free.T       # component-major (2, n), as block_product
@@ -447,8 +456,8 @@ def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | Non
 
     def D(u: np.ndarray) -> np.ndarray:         # D = -df/dv: spring damping and air
         return (block_product(damp, u, ps.rows, ps.cols) + ps.air_drag() * u) * free
-    # the damping rate: that mode's, or the fastest-damped mode's if higher (a power iteration
-    # on M^-1 D); stiffness and damping need not share their modes, so take the worse
+    # the worst pairing first: that mode's damping rate, or the fastest-damped mode's if higher
+    # (a power iteration on M^-1 D); stiffness and damping need not share their modes
     c = float(np.vdot(w, D(w)))
     u = w.copy()
     for _ in range(iterations):
@@ -456,7 +465,20 @@ def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | Non
         Du = D(u)
         c = max(c, float(np.vdot(u, Du)))
         u = Du / m
-    return math.sqrt(max(lam, 0.0)), c, w
+    omega = math.sqrt(max(lam, 0.0))
+    if omega == 0.0 or c == 0.0:
+        return omega, c, w
+    h = symplectic_limit(omega, c)
+    u = w.copy()
+    for _ in range(REFINE_ROUNDS):      # the fixed point h <- limit of the top mode at h
+        for _ in range(iterations):
+            u /= math.sqrt(float(np.vdot(u, m * u))) or 1.0
+            u = (h * h * K(u) * free + 2.0 * h * D(u)) / m
+        u /= math.sqrt(float(np.vdot(u, m * u))) or 1.0
+        h = symplectic_limit(math.sqrt(max(float(np.vdot(u, K(u) * free)), 0.0)),
+                             float(np.vdot(u, D(u))))
+    h = min(h, 2.0 / omega)             # damping never raises the limit (rounding aside)
+    return omega, (4.0 - (h * omega) ** 2) / (2.0 * h), w     # symplectic_limit(omega, c) = h
 
 
 def symplectic_limit(omega: float, c: float) -> float:
