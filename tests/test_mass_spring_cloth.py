@@ -385,3 +385,32 @@ def test_the_wind_pushes_on_area_so_silk_flows_where_denim_hangs():
             s.advance()
         drift[material] = float(np.abs(s.cloth.ps.x[:, 0] - x0).mean())
     assert drift["silk"] > 3 * drift["denim"]
+
+
+def test_top_modes_symplectic_limit_is_the_linearised_cloths_own():
+    """The step matrix S of symplectic Euler on the linearised cloth (x'' = -M^-1 (K x + D x')),
+    built densely on a 6x6 cloth: 4096 steps of it (S^4096) shrink every state just below
+    top_mode's limit and blow one up just above it, also where the stiffest and the most damped
+    modes differ (cotton x100: the worst pairing alone put the limit 10 % low, this fails)."""
+    from app.bench.mass_spring import make_cloth
+    from app.physics.mass_spring import block_product
+    for material, scale in (("cotton", 100), ("denim", 10), ("rubber", 1)):
+        c = make_cloth(material, scale, 6)
+        ps = c.ps
+        stiff, damp = ps.blocks(ps.x)
+        n2 = 2 * ps.n
+        E = np.eye(n2).reshape(n2, 2, ps.n)
+        K = np.array([block_product(stiff, e, 6, 6).ravel() for e in E]).T
+        D = np.array([(block_product(damp, e, 6, 6) + ps.air_drag() * e).ravel() for e in E]).T
+        free = np.tile(ps.free[:, 0] > 0, 2)
+        K, D = K[np.ix_(free, free)], D[np.ix_(free, free)]
+        minv = 1.0 / np.tile(ps.mass, 2)[free][:, None]
+        eye = np.eye(len(K))
+
+        def growth(h):          # v' = v - h M^-1 (K x + D v), x' = x + h v'
+            avx, avv = -h * minv * K, eye - h * minv * D
+            step = np.block([[eye + h * avx, h * avv], [avx, avv]])
+            return np.abs(np.linalg.matrix_power(step, 4096)).max()
+        omega, damping, _ = top_mode(ps, 60)
+        h = symplectic_limit(omega, damping)
+        assert growth(0.99 * h) < 1.0 and growth(1.01 * h) > 1e6, (material, scale)

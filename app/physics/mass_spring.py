@@ -423,7 +423,7 @@ STEPPERS: dict[str, Callable[[ParticleSystem, float], None]] = {
 
 
 # ----- stability: the highest frequency and the explicit limit -----------------------------------
-REFINE_ROUNDS = 3       # fixed-point rounds of top_mode's damping rate (converged to 0.1 % in 3)
+REFINE_ROUNDS = 3       # fixed-point rounds of top_mode's damping rate (within 0.5 % after 3)
 
 
 def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | None = None
@@ -437,7 +437,7 @@ def top_mode(ps: MassSpringSystem, iterations: int = 40, start: np.ndarray | Non
     then a few rounds of h <- the symplectic limit of the top mode of M^-1 (h^2 K + 2 h D) with
     its own stiffness and damping. (The worst pairing alone was up to 10 % low where the
     stiffest and the most damped modes differ, e.g. cotton at x100; the fixed point matches the
-    dense eigenvalues of the linearised step within 0.1 %.)"""
+    dense eigenvalues of the linearised step within 0.5 %.)"""
     K = ps.stiffness_product(ps.x)             # w -> K w, K = -df/dx (positive semi-definite)
     _, damp = ps.blocks(ps.x)
     m, free = ps.mass[None, :], ps.free.T       # component-major (2, n), as block_product
