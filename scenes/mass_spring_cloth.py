@@ -4,10 +4,11 @@ What it shows: the lectures' cloth as particles joined by damped springs (struct
 bending), with Blender's cloth presets (cotton, denim, leather, rubber, silk) and all six
 integrators of the particle system, switchable live. The HUD predicts the explicit methods'
 stability limit from the cloth's highest frequency omega_max (power iteration with the stiffness
-product and the masses) and says where the current step is; past the limit an explicit
-integrator blows up, the shell's guard rolls back and pauses, and implicit Euler (Baraff &
-Witkin's large steps) at the same step keeps going, paying in artificial damping (watch the
-energy with damping, air and wind off). Physics: app/physics/mass_spring.py (its docstring maps
+product and the masses; 2/omega_max undamped, less with spring damping: leather's is a tenth of
+it) and says where the current step is; past the limit the top mode grows (just past it, it may
+only shiver), well past it an explicit integrator blows up, the shell's guard rolls back and
+pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keeps going,
+paying in artificial damping (watch the energy with damping, air and wind off). Physics: app/physics/mass_spring.py (its docstring maps
 Blender's units to pixels and seconds); drawing: app/draw/cloth_draw.py, the Verlet cloth's
 strain heat map and legend, so the two cloths compare directly.
 
@@ -22,7 +23,8 @@ materials differ in how they drape, which needs the cells free to shear. Without
 default cloth (implicit Euler, 60 Hz), leather's bending springs (bending 150) hold its top edge to
 about half the sag of silk, cotton or denim (some 33 px against 55-61 px), and rubber (mass 3,
 stiffness 15) sags most, stretches up to ~60 % as it drops and bounces; silk has no spring damping
-at all (try it in the wind).
+at all and is the lightest, and the wind pushes on area, not mass: in the wind silk flows while
+denim and rubber hang.
 Settings: material sets the sliders below it (mass, tension, compression, shear_stiffness,
 bending_stiffness, spring_damping, air_damping: Blender's names and units); moving one of them
 afterwards makes the material `custom`. Integrator and every slider change live.
@@ -43,7 +45,10 @@ from app.physics.mass_spring import (FORCE_EFFECTS, MATERIAL_KEYS, MATERIALS, PI
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
 
 UNLOCK_KEY = "u"
-STEP_BUDGET = 40_000        # particles x substeps per step: 32x32 x 39, 64x64 x 9 (~0.3 s implicit)
+# particles x substeps per step: 32x32 x 39, 64x64 x 9. Measured at 64x64 x 9, implicit Euler:
+# 0.06 s per step (cotton) to 0.4 s (every stiffness 1e5, mass 0.001, shear on); 1.2 s with
+# cg_tolerance 1e-10 on top (CG iterations, not particles, decide the rest)
+STEP_BUDGET = 40_000
 MODE_EVERY = 30             # fixed steps between two estimates of omega_max (warm-started)
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
 JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (mass_spring.py)
@@ -97,7 +102,9 @@ class MassSpringClothScene(Scene):
                    "corners, the whole top row, or nothing"),
         Param("g", 900.0, float, 0.0, 5000.0, help="gravity in px/s^2 (downwards)",
               rebuild=False),
-        Param("wind_strength", 600.0, float, 0.0, 5000.0, help="wind acceleration in px/s^2",
+        Param("wind_strength", 600.0, float, 0.0, 5000.0,
+              help="the wind's push on the cloth's area, as the acceleration it gives cotton in "
+                   "px/s^2 (silk, half as heavy, gets 2x; denim 0.3x)",
               rebuild=False),
         Param("wind_field", "gust", str, choices=("gust", "lecture"),
               help="gust: travelling gusts; lecture: the slide's (sin(x*y*t), cos(z*t)), z = 1",
@@ -120,13 +127,16 @@ class MassSpringClothScene(Scene):
             "h = 16.7 ms is far past the predicted limit: it blows up, the guard rolls back"),
         Try("leather, symplectic Euler inside its limit",
             {"material": "leather", "integrator": "symplectic_euler", "hertz": 1000,
-             "substeps": 8},
-            "h = 0.125 ms, below the HUD's limit: stable, but 8000 steps per second"),
+             "substeps": 20},
+            "h = 0.05 ms, below the HUD's damped limit (~0.07 ms; leather's strong spring "
+            "damping cuts 2/omega_max's 0.66 ms tenfold): stable, but 20000 steps per second"),
         Try("implicit Euler at 30 Hz", {"material": "denim", "integrator": "implicit_euler",
                                          "hertz": 30},
-            "a step 400x the explicit limit and still stable; watch the CG iterations"),
+            "a step ~90x symplectic Euler's limit (25x 2/omega_max) and still stable; watch the "
+            "CG iterations"),
         Try("silk in the wind", {"material": "silk", "wind": True},
-            "no spring damping, almost no bending: the silk flows; compare leather"),
+            "the wind pushes on area, not mass: light silk flows; switch to denim or rubber "
+            "(7x and 20x heavier) and it hardly moves"),
     )
 
     # ----- settings ---------------------------------------------------------------------------
@@ -137,7 +147,7 @@ class MassSpringClothScene(Scene):
             raise ParamError(
                 f"rows x cols x substeps too large: {values['rows']}x{values['cols']} x "
                 f"{values['substeps']} substeps = {work} particle-steps per step; accepted: at "
-                f"most {STEP_BUDGET} (about 0.3 s per step with implicit Euler)")
+                f"most {STEP_BUDGET} (up to ~0.4 s per step with implicit Euler)")
 
     @classmethod
     def resolve(cls, overrides):
@@ -285,7 +295,8 @@ class MassSpringClothScene(Scene):
             "max_stretch": float(s.max()),
             "mean_stretch": float(s.mean()),
             "energy": energy,
-            "cg_iterations": c.ps.cg_iterations if implicit else 0,
+            # implicit only (else 0); None before its first step (no solve yet)
+            "cg_iterations": (c.ps.cg_iterations if self.steps else None) if implicit else 0,
             "pinned_drift": c.pinned_drift(),
         }
 
@@ -322,9 +333,10 @@ class MassSpringClothScene(Scene):
             f"{p['material']}, {title}: {m['particles']} particles, {m['springs']} springs",
         ]
         if om > 0:
-            lines.append(f"explicit methods are stable below h = 2/omega_max = {2e3 / om:.3f} ms "
-                         f"(RK4: 2.83/omega_max = {2.83e3 / om:.3f} ms)"
-                         + (f"; damped, symplectic Euler: {limit * 1e3:.3f} ms"
+            lines.append(f"undamped, explicit methods are stable below h = 2/omega_max = "
+                         f"{2e3 / om:.3f} ms (RK4: 2.83/omega_max = {2.83e3 / om:.3f} ms; forward "
+                         f"Euler, midpoint: no h)"
+                         + (f"; this damping lowers symplectic Euler's to {limit * 1e3:.3f} ms"
                             if self.mode_damping > 0 else ""))
         where = f"you are at h = {h * 1e3:.3f} ms"
         pred = self.limit(name)
@@ -333,9 +345,13 @@ class MassSpringClothScene(Scene):
                       f"residual {c.ps.cg_residual:.1e}")
         elif pred is None:
             where += f": {title} is unstable at any h here (too little damping)"
-        else:
+        elif name == "symplectic_euler":       # the linearised cloth's own limit (top_mode)
             where += (f" = {h / pred:.2g}x {title}'s limit ({pred * 1e3:.3f} ms, damped)"
-                      + (": it will blow up" if h > pred else ": stable"))
+                      + (": its top mode grows (a shiver, or a blow-up)" if h > pred
+                         else ": stable"))
+        else:       # one mode's limit: where damping mixes the modes, off by up to ~30 %
+            where += (f" = {h / pred:.2g}x {title}'s limit estimated on one mode "
+                      f"({pred * 1e3:.3f} ms)")
         lines.append(where)
         lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} | stretch: "
                      f"mean {m['mean_stretch'] * 100:.2f}%, max {m['max_stretch'] * 100:.1f}%")

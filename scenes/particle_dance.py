@@ -13,9 +13,11 @@ The cost: the forces need every pair closer than R. `neighbour_method=all_pairs`
 n (n - 1) / 2 pairs, O(n^2); `grid` sorts the particles into cells at least R wide and tests only
 pairs from the same or neighbouring cells: 4.5 cells' worth per particle, O(n) at a fixed density.
 This box is fixed, so more particles means denser and the grid's tests grow like n^2 too, but
-from about 1/50 of all pairs at R = 40 (4.5 of 432 cells), after a fixed cost per particle for
-the sorting that makes all pairs the cheaper one below about 100-200 particles. The HUD shows the
-pair tests and the ms per step of the method in use: raise `particles` and switch the method live.
+from about 1/50 of all pairs at R = 40 (n x 4.5 cells' worth of the 24 x 18 = 432 against
+n^2/2: 9/432; still 1/50 after 10 s at 2000 particles, ~1/26 while the LMB gathers a crowd),
+after a fixed cost per particle for the sorting that makes all pairs the cheaper one below about
+100-200 particles. The HUD shows the pair tests and the ms per step of the method in use: raise
+`particles` and switch the method live.
 
 Controls:
   LMB (held)  pull the particles near the cursor towards it (follow it around)
@@ -136,8 +138,10 @@ class ParticleDanceScene(Scene):
             raise ParamError(
                 f"particles x substeps too large for {values['neighbour_method']}: "
                 f"{values['particles']} particles x {values['substeps']} substeps would take "
-                f"~{cost:.1f} s per step; accepted: about {STEP_BUDGET_S:g} s per step "
-                f"(use fewer particles or substeps, or neighbour_method=grid)")
+                f"~{cost:.2f} s per step; accepted: at most {STEP_BUDGET_S:g} s per step "
+                f"(use fewer particles or substeps"
+                + (", or neighbour_method=grid)" if values["neighbour_method"] == "all_pairs"
+                   else ")"))
 
     # ----- world ------------------------------------------------------------------------------
     def _rule(self) -> PairRule:
@@ -191,14 +195,16 @@ class ParticleDanceScene(Scene):
             self.dance.mouse.point = np.asarray(self.mouse_pos, dtype=float)
 
     # ----- reports ----------------------------------------------------------------------------
-    def metrics(self) -> dict[str, float | str]:
+    def metrics(self) -> dict[str, float | str | None]:
         d = self.dance
+        # before the first step no search has run: None; with interaction off, 0 tests is a count
+        searched = self.steps > 0 or "interaction" not in self.on
         return {
             "particles": d.ps.n,
-            "pair_tests": d.pair_force.tests,
+            "pair_tests": d.pair_force.tests if searched else None,
             "neighbour_method": self.p["neighbour_method"],
             "kinetic_energy": d.kinetic_energy(),
-            "pairs_interacting": d.pair_force.pairs,
+            "pairs_interacting": d.pair_force.pairs if searched else None,
         }
 
     def _update_costs(self) -> None:

@@ -325,3 +325,92 @@ def test_bench_mass_spring_quick_runs_and_has_its_json_keys(tmp_path):
             "ms_per_sim_second"} <= set(row)
     assert set(data["step_ms"]) == set(INTEGRATORS)
     assert list(tmp_path.glob("*.png"))
+
+
+@pytest.mark.parametrize("scale", [1, 10, 100])
+def test_the_predicted_symplectic_limit_is_within_5_percent_of_the_measured_one(scale):
+    """The issue's target (10 %), with the bench's own test of stability (bench mass_spring):
+    damped, with gravity, every material. A shiver that saturates instead of reaching inf counts
+    as unstable (it did not, and the measured limit came out 12-16 % above the prediction); the
+    damping rate is top_mode's fixed point (the worst pairing alone was 10 % low at cotton x100)."""
+    from app.bench.mass_spring import make_cloth, survives
+    for material in MATERIALS:
+        omega, damping, _ = top_mode(make_cloth(material, scale, 6).ps, 200)
+        h = predicted_limit("symplectic_euler", omega, damping)
+        assert survives(material, scale, "symplectic_euler", 0.97 * h, 6, 150), material
+        assert not survives(material, scale, "symplectic_euler", 1.05 * h, 6, 150), material
+
+
+def test_the_try_cards_limits_are_what_they_say():
+    """'inside its limit' is below the HUD's damped limit and runs; '60 Hz' is past it."""
+    cards = {t.label: t for t in MassSpringClothScene.tries}
+    inside = MassSpringClothScene(dict(cards["leather, symplectic Euler inside its limit"].settings))
+    h = inside.dt / inside.p["substeps"]
+    assert h < 0.8 * inside.limit("symplectic_euler")
+    for _ in range(20):                 # 400 substeps: at 1.7x the limit it blew up in 24
+        inside.advance()
+    assert inside.is_finite() and np.abs(inside.cloth.ps.v).max() < 1000.0
+    past = MassSpringClothScene(dict(cards["leather, symplectic Euler at 60 Hz"].settings))
+    assert past.dt > 100 * past.limit("symplectic_euler")
+    implicit = MassSpringClothScene(dict(cards["implicit Euler at 30 Hz"].settings))
+    assert 60 < implicit.dt / implicit.limit("symplectic_euler") < 130      # "~90x"
+    assert 20 < implicit.dt * implicit.omega_max / 2 < 30                  # "25x 2/omega_max"
+
+
+def test_implicit_euler_pays_for_its_stability_in_energy_symplectic_euler_does_not():
+    """The HUD's energy line: with damping, air and wind off the energy (0 at the start pose)
+    should stay 0; implicit Euler's artificial damping takes out most of what the fall releases,
+    symplectic Euler inside its limit keeps it within a few per cent."""
+    def run(integrator, hertz, substeps):
+        s = MassSpringClothScene({"material": "silk", "rows": 6, "cols": 6, "damping": False,
+                                  "air": False, "integrator": integrator, "hertz": hertz,
+                                  "substeps": substeps})
+        assert s.metrics()["cg_iterations"] == (None if integrator == "implicit_euler" else 0)
+        for _ in range(hertz):                                        # 1 s
+            s.advance()
+        c = s.cloth
+        released = 900 * float(np.sum(c.ps.mass * c.ps.free[:, 0] * (c.ps.x[:, 1] - c.rest_x[:, 1])))
+        return c.energy() / released
+    assert run("implicit_euler", 60, 1) < -0.5
+    assert abs(run("symplectic_euler", 1000, 2)) < 0.05
+
+
+def test_the_wind_pushes_on_area_so_silk_flows_where_denim_hangs():
+    """The 'silk in the wind' card: the same wind moves light silk several times further."""
+    drift = {}
+    for material in ("silk", "denim"):
+        s = MassSpringClothScene({"material": material, "wind": True, "rows": 8, "cols": 8})
+        x0 = s.cloth.ps.x[:, 0].copy()
+        for _ in range(60):
+            s.advance()
+        drift[material] = float(np.abs(s.cloth.ps.x[:, 0] - x0).mean())
+    assert drift["silk"] > 3 * drift["denim"]
+
+
+def test_top_modes_symplectic_limit_is_the_linearised_cloths_own():
+    """The step matrix S of symplectic Euler on the linearised cloth (x'' = -M^-1 (K x + D x')),
+    built densely on a 6x6 cloth: 4096 steps of it (S^4096) shrink every state just below
+    top_mode's limit and blow one up just above it, also where the stiffest and the most damped
+    modes differ (cotton x100: the worst pairing alone put the limit 10 % low, this fails)."""
+    from app.bench.mass_spring import make_cloth
+    from app.physics.mass_spring import block_product
+    for material, scale in (("cotton", 100), ("denim", 10), ("rubber", 1)):
+        c = make_cloth(material, scale, 6)
+        ps = c.ps
+        stiff, damp = ps.blocks(ps.x)
+        n2 = 2 * ps.n
+        E = np.eye(n2).reshape(n2, 2, ps.n)
+        K = np.array([block_product(stiff, e, 6, 6).ravel() for e in E]).T
+        D = np.array([(block_product(damp, e, 6, 6) + ps.air_drag() * e).ravel() for e in E]).T
+        free = np.tile(ps.free[:, 0] > 0, 2)
+        K, D = K[np.ix_(free, free)], D[np.ix_(free, free)]
+        minv = 1.0 / np.tile(ps.mass, 2)[free][:, None]
+        eye = np.eye(len(K))
+
+        def growth(h):          # v' = v - h M^-1 (K x + D v), x' = x + h v'
+            avx, avv = -h * minv * K, eye - h * minv * D
+            step = np.block([[eye + h * avx, h * avv], [avx, avv]])
+            return np.abs(np.linalg.matrix_power(step, 4096)).max()
+        omega, damping, _ = top_mode(ps, 60)
+        h = symplectic_limit(omega, damping)
+        assert growth(0.99 * h) < 1.0 and growth(1.01 * h) > 1e6, (material, scale)

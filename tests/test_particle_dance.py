@@ -277,3 +277,11 @@ def test_bench_particles_quick_has_the_scaling_table(capsys, tmp_path):
     assert "grid_wins_from_n" in out and out["frame"]["draw_ms"] > 0
     assert (tmp_path / "particles.png").exists()
     assert all(math.isfinite(r["step_ms"]) for r in rows)
+
+
+def test_pair_tests_do_not_exist_before_the_first_search():
+    s = scene()
+    assert s.metrics()["pair_tests"] is None and s.metrics()["pairs_interacting"] is None
+    run(s, 1)
+    assert s.metrics()["pair_tests"] > 0
+    assert scene(interaction=False).metrics()["pair_tests"] == 0      # off: no tests, a count
