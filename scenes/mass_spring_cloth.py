@@ -122,19 +122,19 @@ class MassSpringClothScene(Scene):
         Effect("bending", True, "skip-one springs resist folding", amount="bending_stiffness"),
     )
     tries = (
-        Try("leather, symplectic Euler at 60 Hz", {"material": "leather",
-                                                  "integrator": "symplectic_euler"},
-            "h = 16.7 ms is far past the predicted limit: it blows up, the guard rolls back"),
-        Try("leather, symplectic Euler inside its limit",
+        Try("Leather past its limit", {"material": "leather", "integrator": "symplectic_euler"},
+            "symplectic Euler at h = 16.7 ms, far past the predicted limit: it blows up, the "
+            "guard rolls back"),
+        Try("Leather inside its limit",
             {"material": "leather", "integrator": "symplectic_euler", "hertz": 1000,
              "substeps": 20},
             "h = 0.05 ms, below the HUD's damped limit (~0.07 ms; leather's strong spring "
             "damping cuts 2/omega_max's 0.66 ms tenfold): stable, but 20000 steps per second"),
-        Try("implicit Euler at 30 Hz", {"material": "denim", "integrator": "implicit_euler",
+        Try("Implicit Euler at 30 Hz", {"material": "denim", "integrator": "implicit_euler",
                                          "hertz": 30},
             "a step ~90x symplectic Euler's limit (25x 2/omega_max) and still stable; watch the "
             "CG iterations"),
-        Try("silk in the wind", {"material": "silk", "wind": True},
+        Try("Silk in the wind", {"material": "silk", "wind": True},
             "the wind pushes on area, not mass: light silk flows; switch to denim or rubber "
             "(7x and 20x heavier) and it hardly moves"),
     )

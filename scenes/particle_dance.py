@@ -85,9 +85,9 @@ class ParticleDanceScene(Scene):
             "the HUD's pair tests: 4.5 million per step, and the ms per step that costs"),
         Try("3000 particles, grid", {"particles": 3000, "neighbour_method": "grid"},
             "the same forces from about 1/50 of the pair tests: compare the ms per step"),
-        Try("like your own kind", {"rules": "like_own", "species": 4},
+        Try("Like your own kind", {"rules": "like_own", "species": 4},
             "each colour gathers into its own clusters; the RMB breaks them up, they re-form"),
-        Try("no drag", {"drag_coef": 0.0},
+        Try("No drag", {"drag_coef": 0.0},
             "nothing takes energy out: the dance never settles (and the step's energy error "
             "at the rule's kinks slowly heats it)"),
     )
@@ -250,9 +250,14 @@ class ParticleDanceScene(Scene):
 
     # ----- drawing ------------------------------------------------------------------------------
     def draw(self, surface, view) -> None:
-        from app.draw.dance_draw import draw_legend, draw_mouse, draw_particles
+        from app.draw.dance_draw import draw_mouse, draw_particles
         d = self.dance
         draw_particles(surface, view, d.ps.x, d.species, self.p["species"], DOT_RADIUS)
         if d.mouse is not None:
             draw_mouse(surface, view, d.mouse.point, d.mouse.radius, d.mouse.strength >= 0)
-        self.legend_rect = draw_legend(surface, view, self.world_size, d.pair_force.rule.matrix)
+
+    @property
+    def color_key(self) -> tuple:
+        """Who likes whom (the rule matrix), a HUD line per species; none without interaction."""
+        from app.draw.dance_draw import rule_key
+        return rule_key(self.dance.pair_force.rule.matrix) if "interaction" in self.on else ()

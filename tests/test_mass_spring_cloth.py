@@ -344,15 +344,15 @@ def test_the_predicted_symplectic_limit_is_within_5_percent_of_the_measured_one(
 def test_the_try_cards_limits_are_what_they_say():
     """'inside its limit' is below the HUD's damped limit and runs; '60 Hz' is past it."""
     cards = {t.label: t for t in MassSpringClothScene.tries}
-    inside = MassSpringClothScene(dict(cards["leather, symplectic Euler inside its limit"].settings))
+    inside = MassSpringClothScene(dict(cards["Leather inside its limit"].settings))
     h = inside.dt / inside.p["substeps"]
     assert h < 0.8 * inside.limit("symplectic_euler")
     for _ in range(20):                 # 400 substeps: at 1.7x the limit it blew up in 24
         inside.advance()
     assert inside.is_finite() and np.abs(inside.cloth.ps.v).max() < 1000.0
-    past = MassSpringClothScene(dict(cards["leather, symplectic Euler at 60 Hz"].settings))
+    past = MassSpringClothScene(dict(cards["Leather past its limit"].settings))
     assert past.dt > 100 * past.limit("symplectic_euler")
-    implicit = MassSpringClothScene(dict(cards["implicit Euler at 30 Hz"].settings))
+    implicit = MassSpringClothScene(dict(cards["Implicit Euler at 30 Hz"].settings))
     assert 60 < implicit.dt / implicit.limit("symplectic_euler") < 130      # "~90x"
     assert 20 < implicit.dt * implicit.omega_max / 2 < 30                  # "25x 2/omega_max"
 

@@ -10,6 +10,7 @@ import pytest
 
 import app.physics.particle_dance as pd
 from app.__main__ import main
+from app.draw.dance_draw import COLORS
 from app.draw.view import View
 from app.physics.neighbours import all_pairs, grid_pairs, grid_shape
 from app.physics.particle_dance import PairForce, PairRule, reflect_into_box, rule_matrix
@@ -222,10 +223,16 @@ def test_hud_and_legend_draw_and_say_what_the_method_costs():
     s.handle_event(InputEvent("mouse_down", (200.0, 200.0), 3))
     surface = pygame.Surface(s.world_size)
     s.draw(surface, View())
-    assert s.legend_rect.right <= s.world_size[0] and s.legend_rect.height > 6 * 20
+    key = s.color_key                                     # the rule matrix, in the HUD
+    matrix = s.dance.pair_force.rule.matrix
+    assert len(key) == 6 and [c for c, _ in key] == COLORS[:6]
+    for (_, text), row in zip(key, matrix):               # every non-zero entry, with its sign
+        assert sum(f"{a:+.1f}" in text for a in row if a != 0) == np.count_nonzero(row)
     text = "\n".join(s.hud_lines())
     assert "grid:" in text and "pair tests/step" in text and "ms/step" in text
     assert "mouse" in s.effect_costs()
+    s.set("interaction", False)
+    assert s.color_key == ()
 
 
 @pytest.mark.parametrize("key,value", [("neighbour_method", "kd_tree"), ("particles", 1),

@@ -92,3 +92,14 @@ def test_content_bounds_are_a_finite_rectangle_that_meets_the_world():
         W, H = cls.world_size
         assert all(np.isfinite((x, y, w, h))) and w > 0 and h > 0, cls.name
         assert x < W and y < H and x + w > 0 and y + h > 0, cls.name
+
+
+def test_every_try_card_is_valid_and_its_label_fits_a_card():
+    """A card's settings pass the scene's own validation, and its label fits the panel's card
+    button at large text in the smallest window (25 characters: the longest that did, measured
+    at 1024x640 with F2)."""
+    for cls in SCENES:
+        for card in cls.tries:
+            cls.resolve(card.settings)
+            assert 0 < len(card.label) <= 25, (cls.name, card.label)
+            assert card.watch.strip(), (cls.name, card.label)

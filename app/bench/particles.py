@@ -30,7 +30,7 @@ import numpy as np
 import pygame
 
 from app.bench import Report, median_time
-from app.draw.dance_draw import draw_legend, draw_particles
+from app.draw.dance_draw import draw_particles
 from app.draw.plot import LineChart, save_grid
 from app.draw.view import View
 from app.physics.neighbours import NEIGHBOUR_METHODS
@@ -137,12 +137,10 @@ def run(report: Report) -> dict:
     dance = make_dance(n_frame, "grid", settle)
     surface = pygame.Surface((int(BOX[0]), int(BOX[1])))
     view = View()
-    matrix = dance.pair_force.rule.matrix
 
     def draw() -> None:
         surface.fill((22, 24, 30))
         draw_particles(surface, view, dance.ps.x, dance.species, SPECIES, DOT_RADIUS)
-        draw_legend(surface, view, (int(BOX[0]), int(BOX[1])), matrix)
 
     repeats = 3 if quick else 21
     step_ms = median_time(lambda: dance.step(H), repeats=repeats) * 1000.0
