@@ -1,7 +1,9 @@
 """Exercise `pivoting_l`: the pymunk tutorial's add_L with joints ("Joints. Just wait and the L
 will tip over").
 
-The tutorial turns the static L into a moving one:
+The tutorial turns the static L into a moving one (these are the numbers of pymunk's example
+file examples/slide_and_pinjoint.py and of the tutorial's older edition; the current tutorial
+gives each segment a mass instead and lets pymunk compute the body's mass and moment):
 
     rotation_center_body = pymunk.Body(body_type=pymunk.Body.STATIC), at (300, 300)
     rotation_limit_body  = pymunk.Body(body_type=pymunk.Body.STATIC), at (200, 300)

@@ -40,7 +40,7 @@ def test_live_balls_level_off_and_none_pass_through_the_L():
 
 
 def test_ten_minutes_at_60_hz_stay_bounded():
-    # The soak, in the default suite: about 12 s on this 2-core machine.
+    # The soak, in the default suite: about 5 s on this 2-core machine (busy).
     scene = FallingBallsScene({"spawn_rate": 10, "max_balls": 5000})
     peak = [0, 0]
     for i in range(60 * 600):

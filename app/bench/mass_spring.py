@@ -162,7 +162,7 @@ def run(report: Report) -> dict[str, Any]:
     for line in verdicts["lines"]:
         report.say("  " + line)
 
-    # step_ms on the 32x32 denim cloth (10x10 with --quick)
+    # step_ms on the 32x32 denim cloth (8x8 with --quick)
     step_ms: dict[str, float] = {}
     base = make_cloth("denim", 1, n)
     omega, damping, _ = top_mode(base.ps, 200)

@@ -1,0 +1,151 @@
+"""Teaching text checked like code: sentences in docstrings, hints, help and the README that state
+a number the lab can measure, measured here (the newer scenes, the exercises and the README).
+
+Each test names the sentence it checks; the older scenes' sentences are tested beside their
+scenes (issue 11)."""
+
+import math
+import shlex
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.__main__ import main
+from app.exercises import rk4 as rk4_grader
+from app.physics.integrators import midpoint_step
+from app.physics.mass_spring import (G_LAB, MassSpringCloth, REF_CELL, material_settings,
+                                     spring_constants)
+from app.physics.neighbours import all_pair_tests, grid_shape
+from app.physics.particle_dance import MouseForce
+from app.physics.particles import ParticleSystem
+from scenes.particle_dance import ParticleDanceScene
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def spring(t, y):
+    """x'' = -x as y = (x, v)."""
+    return np.array([y[1], -y[0]])
+
+
+@pytest.mark.parametrize("z", [0.1, 0.5, 1.0, 2.0, 2.83])
+def test_the_midpoint_method_gains_energy_at_every_step_by_the_hints_factor(z):
+    """app/exercises/rk4.py's hint for a step unstable at every h: 'the midpoint method and
+    forward Euler ... gain energy at every h; midpoint by 1 + (omega h)^4/4 per step'."""
+    y = np.array([1.0, 0.0])
+    y1 = midpoint_step(spring, 0.0, y, z)
+    assert float(y1 @ y1) / float(y @ y) == pytest.approx(1 + z ** 4 / 4, rel=1e-12)
+
+
+def test_the_rk4_graders_unstable_hint_names_methods_that_are_unstable_on_a_spring():
+    """The same hint: a step unstable at every h is 'as the midpoint method and forward Euler
+    are on a spring'. The grader's own bisection finds no limit for either (and 2.83 for RK4)."""
+
+    class Midpoint:
+        rk4_step = staticmethod(midpoint_step)
+
+    class ForwardEuler:
+        @staticmethod
+        def rk4_step(f, t, y, h):
+            return y + h * f(t, y)
+
+    for wrong in (Midpoint(), ForwardEuler()):
+        result = rk4_grader.stability_limit(wrong)
+        assert result.measured == "omega*h = 0.000"
+        assert "midpoint method and forward Euler" in result.hint
+    assert rk4_grader.stability_limit(rk4_grader.reference()).passed
+
+
+@pytest.mark.parametrize("n", [600, 5000])
+def test_the_grid_tests_about_a_fiftieth_of_all_pairs_at_the_default_cutoff(n):
+    """scenes/particle_dance.py: 'from about 1/50 of all pairs at R = 40 (... 24 x 18 = 432 ...
+    9/432)'; the Try card: 'about 1/50 of the pair tests'."""
+    assert grid_shape(ParticleDanceScene.world_size, 40.0) == (24, 18)
+    s = ParticleDanceScene({"particles": n})
+    s.advance()
+    assert 45 < all_pair_tests(n) / s.metrics()["pair_tests"] < 55
+
+
+def test_the_all_pairs_try_card_counts_4_5_million_tests():
+    """The Try card '3000 particles, all pairs': '4.5 million per step'."""
+    card = next(t for t in ParticleDanceScene.tries if t.label == "3000 particles, all pairs")
+    s = ParticleDanceScene(dict(card.settings))
+    s.advance()
+    assert round(s.metrics()["pair_tests"] / 1e6, 1) == 4.5
+
+
+def test_the_mouse_pulls_hardest_half_way_to_its_radius_with_its_strength():
+    """particle_dance's mouse_strength help: 'the mouse's strongest pull or push, px/s^2
+    (half-way to its radius)'."""
+    rho, strength = 150.0, 3000.0
+    d = np.linspace(0.0, 1.2 * rho, 2401)
+    x = np.column_stack((d, np.zeros_like(d)))
+    f = np.zeros_like(x)
+    MouseForce((0.0, 0.0), strength, rho).accumulate(None, x, np.zeros_like(x), f)
+    magnitude = np.hypot(f[:, 0], f[:, 1])
+    assert magnitude.max() == pytest.approx(strength, rel=1e-9)
+    assert d[magnitude.argmax()] == pytest.approx(rho / 2)
+    assert magnitude[d >= rho].max() == 0.0
+
+
+@pytest.mark.parametrize("material, stated", [("silk", "0.03"), ("cotton", "0.02"),
+                                              ("denim", "0.02"), ("leather", "0.005"),
+                                              ("rubber", "0.2")])
+def test_a_particles_weight_strains_a_spring_by_the_docstrings_percent(material, stated):
+    """app/physics/mass_spring.py: 'a particle's weight strains a spring by 0.00981 x mass /
+    tension: 0.03 % for silk, 0.02 % for cotton and denim, 0.005 % for leather, 0.2 % for
+    rubber'."""
+    k = spring_constants(material_settings(material), REF_CELL)
+    mass = k["density"] * REF_CELL ** 2                     # an interior particle: one cell
+    strain = mass * G_LAB / (k["k_tension"] * REF_CELL)
+    assert f"{strain * 100:.1g}" == stated
+
+
+def test_the_wind_gives_silk_twice_cottons_push_and_denim_a_third():
+    """scenes/mass_spring_cloth.py's wind_strength help: 'the acceleration it gives cotton in
+    px/s^2 (silk, half as heavy, gets 2x; denim 0.3x)'; the Try card: denim and rubber '7x and
+    20x heavier' than silk."""
+    accel = {}
+    for material in ("cotton", "silk", "denim", "rubber"):
+        c = MassSpringCloth(4, 4, 16.0, (50.0, 50.0), "none")
+        c.material = material_settings(material)
+        c.on = {"wind"}
+        c.configure()
+        a = c.ps.accel(c.ps.x, c.ps.v)
+        accel[material] = float(np.abs(a[5]).max())           # an interior particle
+    assert accel["silk"] / accel["cotton"] == pytest.approx(2.0, rel=1e-9)
+    assert round(accel["denim"] / accel["cotton"], 1) == 0.3
+    assert round(accel["silk"] / accel["denim"]) == 7
+    assert round(accel["silk"] / accel["rubber"]) == 20
+
+
+def readme_try_commands() -> list[list[str]]:
+    """The command lines of the README's 'Try, for example' block, as argument lists."""
+    text = (ROOT / "README.md").read_text()
+    block = text.split("Try, for example:", 1)[1].split("## ", 1)[0]
+    commands = []
+    for line in block.splitlines():
+        line = line.strip()
+        if line.startswith("python -m app"):
+            commands.append(shlex.split(line.split("#", 1)[0])[3:])
+    return commands
+
+
+def test_the_readmes_try_commands_run_as_written(tmp_path, capsys):
+    """Every command of the README's 'Try, for example' block runs: window commands headless for
+    two steps (same scene and settings), benchmarks with --quick; the mass-spring cloth's
+    'blows up' does (exit 1, after its first steps)."""
+    commands = readme_try_commands()
+    assert len(commands) >= 7
+    for args in commands:
+        if args[0] == "bench":
+            assert main(args + ["--quick", "--out", str(tmp_path)]) == 0, args
+            continue
+        window = "--headless" not in args
+        run = args + ["--headless", "--steps", "2"] if window else args
+        expected = 0
+        if "mass_spring_cloth" in args and "symplectic_euler" in args:       # "blows up"
+            run, expected = args + ["--headless", "--steps", "20"], 1
+        assert main(run) == expected, (args, capsys.readouterr().err)
+    capsys.readouterr()
