@@ -43,7 +43,7 @@ MOUSE_REACH = 1e4           # the cursor counts at most this far outside the wor
 
 # Step budget, in estimated seconds per fixed step (the cloth and the pymunk scenes refuse
 # about 0.5 s too). Measured on the 2-core lab machine, idle to busy with other work: all_pairs
-# 4-16 ns per pair test (n = 5000: 12.5 M tests, 50-200 ms), the grid 25-120 ns per candidate
+# 3-16 ns per pair test (n = 5000: 12.5 M tests, 40-200 ms), the grid 25-120 ns per candidate
 # pair (sorting, gathering; n = 5000 spread out: 250 k candidates, 7-30 ms).
 STEP_BUDGET_S = 0.5
 SECONDS_PER_TEST = {"all_pairs": 1e-8, "grid": 5e-8}

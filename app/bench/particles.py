@@ -14,7 +14,7 @@ and both neighbour methods step copies of that same state:
    particle, sorting and bookkeeping, dominates at small n) and bends towards slope 2;
 2. the n where the grid starts to win: interpolated (log-log) between the two sweep sizes where
    the ratio all_pairs / grid crosses 1;
-3. a frame of the scene at 2000 particles with the grid: one step plus drawing every particle
+3. a frame of the scene at 2000 particles (300 with --quick) with the grid: one step plus drawing every particle
    (app/draw/dance_draw.py) on a 960 x 720 surface, against 16.7 ms (60 frames per second).
 """
 

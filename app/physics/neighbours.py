@@ -5,14 +5,16 @@ on any or all pairs of particles, depending on their positions") that vanishes b
 only needs the pairs with |x_j - x_i| < R. Two ways to find them, same answer:
 
 * `all_pairs`: test every pair i < j, n (n - 1) / 2 distance tests: O(n^2). Simple, and the
-  cheapest for a few hundred particles.
+  cheapest below about 100-200 particles (`python -m app bench particles` says where).
 * `grid_pairs`: a uniform grid (a cell list) of cells at least R wide. Two particles closer than R
   lie in the same cell or in neighbouring cells, so each particle is only tested against the
   particles of its own cell and of the 8 around it (each pair once: its own cell and 4 of the 8,
   the "half stencil"): about 4.5 cells' worth of particles per particle. At a fixed density that
   is O(n) tests; in a fixed box, where more particles means denser, it is still a fixed fraction
-  of all pairs (4.5 cells out of all of them). The price is sorting the particles by cell every
-  step, a cost per particle that makes all pairs the cheaper method for small n.
+  of all pairs (9 / cells: 4.5 cells' worth per particle against n/2 partners each for all
+  pairs; 9/432, about 1/50, in the particle dance's box at R = 40). The price is sorting the
+  particles by cell every step, a cost per particle that makes all pairs the cheaper method for
+  small n.
 
 Both return the pairs (i, j), i != j, each unordered pair once, with |x_j - x_i| < R, and the
 number of pair tests (distances compared with R) it took. The pairs come in a different order,
