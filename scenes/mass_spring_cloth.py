@@ -344,8 +344,10 @@ class MassSpringClothScene(Scene):
         where = f"you are at h = {h * 1e3:.3f} ms"
         pred = self.limit(name)
         if not INTEGRATORS[name].explicit:
-            where += (f" = {h / limit:.0f}x the limit; CG {c.ps.cg_iterations} iterations, "
-                      f"residual {c.ps.cg_residual:.1e}")
+            where += ((f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else "")
+                      + f"; CG {c.ps.cg_iterations} iterations, residual {c.ps.cg_residual:.1e}")
+        elif om <= 0:                          # every stiffness 0: no top mode, no limit
+            where += ": no stiffness, so no step limit"
         elif pred is None:
             where += f": {title} is unstable at any h here (too little damping)"
         elif name == "symplectic_euler":       # the linearised cloth's own limit (top_mode)

@@ -160,3 +160,16 @@ def test_implicit_euler_at_hertz_1_leaps_in_energy_before_the_damping_wins():
     for _ in range(110):
         s.advance()
     assert s.is_finite() and 5.0 < s.metrics()["energy"] / JOULE < 20.0
+
+
+@pytest.mark.parametrize("integrator", ["symplectic_euler", "implicit_euler"])
+def test_a_cloth_without_stiffness_has_no_step_limit_and_the_hud_says_so(integrator):
+    """The mass-spring HUD with every stiffness 0: no top mode, so no limit (it said '0x the
+    limit (inf ms)')."""
+    s = MassSpringClothScene({"tension": 0, "compression": 0, "bending_stiffness": 0,
+                              "integrator": integrator})
+    s.advance()
+    assert s.metrics()["omega_max"] == 0.0
+    text = " ".join(s.hud_lines())
+    assert "0x" not in text and "inf" not in text
+    assert ("no stiffness, so no step limit" in text) == (integrator == "symplectic_euler")
