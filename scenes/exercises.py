@@ -475,7 +475,9 @@ class Rk4Exercise(StudentCode, ParticleExercise):
     midpoint_step (right), each over the lab's (orange). Lower `hertz` to make the steps long:
     at hertz 2 (omega*h = 1.06) from 120 degrees, after 6 s the midpoint pendulum has 2.2 times
     its energy and RK4 92% of it (explicit midpoint gains energy at every step size, RK4 loses a
-    little below its limit of 2.83).
+    little below its limit of 2.83). The slide (quoting Blender's manual) calls RK4 "energy
+    conservative even if the acceleration is not constant": it is not; on a spring each RK4 step
+    keeps 1 - (omega h)^6/72 + (omega h)^8/576 of the energy (0.983 at omega*h = 1.06).
 
     HUD: each one's angle error against the lab's same method, and its energy / the start's.
     """

@@ -12,7 +12,7 @@ import pytest
 
 from app.__main__ import main
 from app.exercises import rk4 as rk4_grader
-from app.physics.integrators import midpoint_step
+from app.physics.integrators import midpoint_step, rk4_step
 from app.physics.mass_spring import (G_LAB, MassSpringCloth, REF_CELL, material_settings,
                                      spring_constants)
 from app.physics.neighbours import all_pair_tests, grid_shape
@@ -173,3 +173,16 @@ def test_a_cloth_without_stiffness_has_no_step_limit_and_the_hud_says_so(integra
     text = " ".join(s.hud_lines())
     assert "0x" not in text and "inf" not in text
     assert ("no stiffness, so no step limit" in text) == (integrator == "symplectic_euler")
+
+
+@pytest.mark.parametrize("z", [0.5, 1.06, 2.0, 2.8])
+def test_rk4_loses_energy_on_a_spring_at_every_step_unlike_the_slide_says(z):
+    """scenes/exercises.py (exercise rk4): the slide calls RK4 'energy conservative even if the
+    acceleration is not constant'; 'each RK4 step keeps 1 - (omega h)^6/72 + (omega h)^8/576 of
+    the energy (0.983 at omega*h = 1.06)'."""
+    y = np.array([1.0, 0.0])
+    y1 = rk4_step(spring, 0.0, y, z)
+    kept = float(y1 @ y1)
+    assert kept == pytest.approx(1 - z ** 6 / 72 + z ** 8 / 576, rel=1e-12) and kept < 1.0
+    if z == 1.06:
+        assert round(kept, 3) == 0.983

@@ -31,7 +31,7 @@ spring's is stiffness / (20 avg_spring_len) with damping 0.5 x its stiffness (be
 default), the damping value is the spring's damping coefficient, air drag is f = -0.01
 air_damping v, and gravity is 0.001 x 9.81 (Blender's solver does not count time in seconds).
 Mapping to this lab's units (px, s, kg; g = 900 px/s^2):
-  * length: Blender's springs are taken as 1/16 m (a 2 m plane with 32 vertices a side), so one
+  * length: Blender's springs are taken as 1/16 m (a 2 m plane of 32 x 32 cells), so one
     Blender metre = PX_PER_M = 256 px and a Blender spring = REF_CELL = 16 px;
   * time: one Blender time unit = TAU = sqrt(256 px x 0.00981 / 900 px/s^2) = 0.0528 s, the
     choice that turns Blender's gravity into the lab's g;
