@@ -354,7 +354,7 @@ class MassSpringClothScene(Scene):
             where += (f" = {h / pred:.2g}x {title}'s limit ({pred * 1e3:.3f} ms, damped)"
                       + (": its top mode grows (a shiver, or a blow-up)" if h > pred
                          else ": stable"))
-        else:       # one mode's limit: where damping mixes the modes, off by up to ~30 %
+        else:       # one mode's limit: where damping mixes the modes, off by up to ~35 %
             where += (f" = {h / pred:.2g}x {title}'s limit estimated on one mode "
                       f"({pred * 1e3:.3f} ms)")
         lines.append(where)

@@ -17,8 +17,10 @@ highest mode, which a perfectly symmetric start would not excite).
    Implicit Euler runs at h = 1/60 s and 1/30 s (its CG iterations depend on both).
    Symplectic Euler's prediction is the linearised cloth's own limit (top_mode's fixed point);
    the others' apply that one mode's (omega_max, c) to each method, an estimate that is off by up
-   to ~30 % where damping mixes the modes (denim x10). Forward Euler and midpoint on a lightly
-   damped cloth grow so slowly that 150 steps do not show it: their measured h is an upper bound.
+   to ~35 % where damping mixes the modes (denim x10: forward Euler 34 %, midpoint 31 %,
+   RK4 27 % below the estimate). Forward Euler and midpoint on a lightly damped cloth grow so
+   slowly that 150 steps do not show it (silk x1: measured 54x and 2.7x the estimate): their
+   measured h is an upper bound.
 2. step_ms: one step of each integrator on the 32x32 denim cloth (explicit ones at half their
    limit, implicit Euler at 1/60 s).
 3. The CG tolerance: iterations, ms and the largest position error a tolerance leaves after one
