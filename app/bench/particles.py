@@ -10,12 +10,14 @@ and both neighbour methods step copies of that same state:
    drag + walls) and the pair tests per step of each method: all pairs makes n (n - 1) / 2
    tests, the grid about n x (the particles in 4.5 cells). The box is fixed, so the density
    grows with n and both counts grow like n^2 (the grid's from ~1/50 of all pairs); on the
-   chart's log axes that is slope 2. The grid's time starts flatter (slope ~1: its cost per
-   particle, sorting and bookkeeping, dominates at small n) and bends towards slope 2;
+   chart's log axes that is slope 2. The grid's time starts flatter (slope ~0.5 up to a few
+   hundred particles: a fixed cost per step, some 0.07 ms of NumPy calls whatever n is,
+   dominates) and bends towards slope 2 (1.9-2.0 from n = 1000 on);
 2. the n where the grid starts to win: interpolated (log-log) between the two sweep sizes where
    the ratio all_pairs / grid crosses 1;
-3. a frame of the scene at 2000 particles (300 with --quick) with the grid: one step plus drawing every particle
-   (app/draw/dance_draw.py) on a 960 x 720 surface, against 16.7 ms (60 frames per second).
+3. a frame of the scene at 2000 particles (300 with --quick) with the grid: one step plus
+   drawing every particle (app/draw/dance_draw.py) on a 960 x 720 surface, against 16.7 ms (60
+   frames per second).
 """
 
 from __future__ import annotations

@@ -13,7 +13,8 @@ only needs the pairs with |x_j - x_i| < R. Two ways to find them, same answer:
   is O(n) tests; in a fixed box, where more particles means denser, it is still a fixed fraction
   of all pairs (9 / cells: 4.5 cells' worth per particle against n/2 partners each for all
   pairs; 9/432, about 1/50, in the particle dance's box at R = 40). The price is sorting the
-  particles by cell every step, a cost per particle that makes all pairs the cheaper method for
+  particles by cell every step and a fixed cost per search (some 0.07 ms of NumPy calls, whatever
+  n is: measured 72 us at n = 2, 78 us at n = 100) that makes all pairs the cheaper method for
   small n.
 
 Both return the pairs (i, j), i != j, each unordered pair once, with |x_j - x_i| < R, and the
