@@ -33,6 +33,7 @@ import math
 
 import numpy as np
 
+from app.physics.bounds import clamp_point
 from app.physics.neighbours import NEIGHBOUR_METHODS, all_pair_tests, expected_grid_tests
 from app.physics.particle_dance import (CORE, EFFECTS, RULES, MouseForce, PairRule,
                                         ParticleDance, rule_matrix)
@@ -40,7 +41,6 @@ from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try
 
 DOT_RADIUS = 3.5            # world px
 MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
-MOUSE_REACH = 1e4           # the cursor counts at most this far outside the world
 
 # Step budget, in estimated seconds per fixed step (the cloth and the pymunk scenes refuse
 # about 0.5 s too). Measured on the 2-core lab machine, idle to busy with other work: all_pairs
@@ -183,10 +183,7 @@ class ParticleDanceScene(Scene):
     def handle_event(self, event: InputEvent) -> None:
         if not event.kind.startswith("mouse"):
             return
-        x, y = (float(c) if math.isfinite(c) else 0.0 for c in event.pos[:2])
-        w, h = self.world_size
-        self.mouse_pos = (min(max(x, -MOUSE_REACH), w + MOUSE_REACH),
-                          min(max(y, -MOUSE_REACH), h + MOUSE_REACH))
+        self.mouse_pos = clamp_point(event.pos, self.world_size)     # every scene's one rule
         if event.kind == "mouse_down" and event.button in (1, 3):
             self._press(event.button)
         elif event.kind == "mouse_up" and event.button == self.mouse_button:
