@@ -186,3 +186,16 @@ def test_rk4_loses_energy_on_a_spring_at_every_step_unlike_the_slide_says(z):
     assert kept == pytest.approx(1 - z ** 6 / 72 + z ** 8 / 576, rel=1e-12) and kept < 1.0
     if z == 1.06:
         assert round(kept, 3) == 0.983
+
+
+def test_leathers_damped_limit_is_a_tenth_of_two_over_omega_max_as_the_try_card_says():
+    """Try card 'Leather inside its limit': 'h = 0.05 ms, below the HUD's damped limit (~0.07 ms;
+    leather's strong spring damping cuts 2/omega_max's 0.66 ms tenfold)'; the module docstring:
+    'leather's is a tenth of it'."""
+    card = next(t for t in MassSpringClothScene.tries if t.label == "Leather inside its limit")
+    s = MassSpringClothScene(dict(card.settings))
+    s.advance()
+    limit, undamped = s.explicit_limit(), 2.0 / s.omega_max
+    assert round(s.dt / s.p["substeps"] * 1e3, 2) == 0.05
+    assert round(limit * 1e3, 2) == 0.07 and round(undamped * 1e3, 2) == 0.66
+    assert 8 < undamped / limit < 12
