@@ -18,9 +18,10 @@ from app.exercises.pymunk_checks import run_scene
 
 GRADED = {"reference": "off"}       # the grader reads the scene's verdict; no ghost needed
 
-SPACING_HINT = ("balls that touch (or overlap) at rest are solved as one lump: leave a hair of "
-                "space between them (gap ~0.02 px: pitch = 2 * radius + gap), elasticity "
-                "0.9999999 (the slide's hint), friction 0, strings with error_bias 0.")
+SPACING_HINT = ("balls pressed together at rest (overlapping) are solved as one lump, and balls "
+                "that touch exactly pass only by rounding: leave a hair of space between them "
+                "(gap ~0.02 px: pitch = 2 * radius + gap), elasticity 0.9999999 (the slide's "
+                "hint), friction 0, strings with error_bias 0.")
 
 
 def reference() -> SimpleNamespace:
