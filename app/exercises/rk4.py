@@ -63,7 +63,8 @@ def measured_order(m: Student, fname: str, f, target: float) -> Result:
     else:
         hint = "y' = y + h f(t + h/2, y + h/2 f(t, y)): a HALF step to the midpoint."
         if within(p, 1.0, 0.3):
-            hint = "first order: " + hint + " A full step to the 'midpoint' is Euler twice."
+            hint = ("first order: " + hint + " A full step to the 'midpoint' takes the slope at "
+                    "the end of an Euler step: first order, like Euler.")
     return Result(within(p, target, 0.2), f"order {fmt(p)} (errors {', '.join(map(fmt, errors))})",
                   f"{target:g} +- 0.2", hint)
 
