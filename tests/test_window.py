@@ -493,6 +493,27 @@ def test_panel_changes_while_recording(tmp_path):
     assert any("REC" in str(getattr(x, "text", x)) for x in w.scene_view.hud_lines())
 
 
+def test_hovering_over_the_world_on_the_way_to_the_panel_still_lets_a_change_be_recorded(
+        tmp_path):
+    """The pointer crosses the world to reach the panel: those moves change nothing, so a panel
+    change after them still restarts the recording (it was 'not replayable' before)."""
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    w = Window(screen, [Tiny], screenshot_dir=tmp_path, record=tmp_path / "demo.json")
+    w.open_scene(Tiny)
+    for x in (300, 500, 700):
+        mouse(w, pygame.MOUSEMOTION, (x, 300))
+        w.update(1 / 60)
+    assert [e["type"] for e in w.recorded] == ["mouse_move"] * 3
+    assert w.scene_view.apply_setting("g", 300)
+    assert w.recorder.session.settings == {"g": "300.0"} and w.recorded == []
+    key(w, pygame.K_u)                     # a press: from now on a change is not replayable
+    w.update(1 / 60)
+    assert w.scene_view.apply_setting("g", 200)
+    assert w.recorder.session.not_replayed == ["g=200.0"]
+
+
 def test_a_recording_made_before_any_panel_change_replays_with_its_set_values(tmp_path):
     from app.headless import load_events, run_scene
     pygame.display.init()

@@ -181,7 +181,7 @@ class SceneView(ShellView):
 
     def _recorded_change(self, name: str, value: Any) -> None:
         what = self.window.recorder.panel_change(name, value)
-        if what == "restart":     # before the first event: start the recording from here
+        if what == "restart":     # before the first press: start the recording from here
             self.scene.reset()
             self.runner = SceneRunner(self.scene, rollback=True)
             self.runner.on_reset = self._after_rebuild
@@ -190,7 +190,7 @@ class SceneView(ShellView):
                               "from here (given as --set)", hud.WARN_COLOR)
         elif what == "note":
             self.window.flash(f"recording: {name}={value} is a panel change after the first "
-                              "event: the replay cannot repeat it (the exit message names it)",
+                              "press: the replay cannot repeat it (the exit message names it)",
                               hud.WARN_COLOR)
 
     def apply_try(self, card: Try) -> bool:
