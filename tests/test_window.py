@@ -621,6 +621,26 @@ def test_a_scene_error_pauses_the_window_and_shows_the_message(tmp_path):
     assert sv.runner.error is None and w.scene.steps == 0
 
 
+class FailingAndSaysSo(Failing):
+    """Like an exercise scene: draw() shows the error it raised."""
+    name = "failing_says_so"
+    draws_own_error = True
+
+
+@pytest.mark.parametrize("cls, banners", [(Failing, 1), (FailingAndSaysSo, 0)])
+def test_a_scene_error_is_shown_once(tmp_path, monkeypatch, cls, banners):
+    """The window's banner repeats the error only for a scene that does not draw it itself
+    (an exercise's traceback showed twice, the banner over the scene's box)."""
+    shown = []
+    real = hud.banner
+    monkeypatch.setattr(hud, "banner", lambda s, text, *a, **k: shown.append(text) or real(
+        s, text, *a, **k))
+    w = open_window(cls, tmp_path, frames=20)
+    shown.clear()
+    w.render()
+    assert sum("ZeroDivisionError" in t for t in shown) == banners
+
+
 def test_headless_reports_a_scene_error_and_goes_on(capsys):
     from app.headless import run_headless
     code = run_headless([Failing, Tiny], {}, 20, None, None, None, True)

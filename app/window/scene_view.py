@@ -368,7 +368,7 @@ class SceneView(ShellView):
             self.clock.paused = True
             bottom = area.bottom - 6
         s = TEXT.scale
-        if self.runner.error is not None:
+        if self.runner.error is not None and not scene.draws_own_error:
             top = layout.hud.bottom + 8 if self.overlays else area.top + int(40 * s)
             hud.banner(screen, ERROR_TEXT.format(message=self.runner.error), area,
                        hud.ERROR_COLOR, y=top)
