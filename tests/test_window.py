@@ -600,6 +600,32 @@ def test_try_cards_apply_their_settings_and_say_what_to_watch(window):
         Tiny.tries = ()
 
 
+def test_a_card_after_a_blow_up_starts_afresh_runs_and_shows_its_choice(window):
+    """A card clicked after the last one blew up (rolled back, paused) rebuilds and runs, the
+    panel's drop-down shows the card's choice, and only the latest card's line is in the HUD."""
+    from app.scene import Try
+    Tiny.tries = (Try("blow", {"blowup": True}, "it goes NaN"),
+                  Try("calm", {"blowup": False, "method": "verlet"}, "it falls"))
+    try:
+        sv = window.scene_view
+        sv.on_layout()
+        cards = {c.label: b for b, c in sv.panel.cards.items()}
+        press = lambda label: window.handle_pygame_event(pygame.event.Event(
+            pygame_gui.UI_BUTTON_PRESSED, {"ui_element": cards[label]}))
+        press("blow")
+        for _ in range(60):
+            window.update(1 / 60)
+        assert sv.paused and sv.banner                      # rolled back and paused
+        press("calm")
+        assert not sv.paused and not sv.banner and window.scene.steps == 0
+        assert sv.panel.dropdowns["method"].selected_option[0] == "verlet"
+        assert [m[1] for m in window.messages if m[1].startswith("Try: ")] == ["Try: it falls"]
+        window.update(1 / 60)
+        assert window.scene.steps > 0
+    finally:
+        Tiny.tries = ()
+
+
 class Failing(Tiny):
     """A scene whose (student's) code fails at step 5."""
     name = "failing"

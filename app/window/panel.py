@@ -231,6 +231,10 @@ class ParamPanel:
                 pos = ctl.pos_of(self._current(name))
                 if int(ctl.slider.get_current_value()) != pos:
                     ctl.slider.set_current_value(pos)
+        for name, d in self.dropdowns.items():      # a card or a refused value changed it
+            text = str(self._current(name))
+            if d.selected_option[0] != text:
+                _select(d, text)
         for name, b in self.toggles.items():
             on = bool(self._current(name))
             if self._toggle_state.get(name) != on:
@@ -303,6 +307,17 @@ class ParamPanel:
         return True
 
 
+
+
+def _select(dropdown, text: str) -> None:
+    """Show `text` as a drop-down's choice (pygame-gui has no setter: its menu and its closed
+    state each keep the selection; the closed state's button shows it)."""
+    option = (text, text)
+    dropdown.selected_option = option
+    closed = dropdown.menu_states["closed"]
+    closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
+    if dropdown.current_state is closed and closed.selected_option_button is not None:
+        closed.selected_option_button.set_text(text)
 
 
 def _html(text: str) -> str:

@@ -205,6 +205,12 @@ class SceneView(ShellView):
             return False
         ok = all([self.apply_setting(k, v) for k, v in wanted.items()])
         if ok:
+            if self.banner or self.runner.error is not None:
+                self.reset()       # the last try blew up (rolled back, paused): start afresh
+            self.clock.paused = False          # the card says what to watch: show it running
+            # one "Try:" line at a time: stacked ones grew the HUD and shrank the picture
+            self.window.messages = [m for m in self.window.messages
+                                    if not m[1].startswith("Try: ")]
             self.window.flash(f"Try: {card.watch}", hud.ACCENT_COLOR, seconds=12.0)
         return ok
 
