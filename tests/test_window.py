@@ -600,9 +600,10 @@ def test_try_cards_apply_their_settings_and_say_what_to_watch(window):
         Tiny.tries = ()
 
 
-def test_a_card_after_a_blow_up_starts_afresh_runs_and_shows_its_choice(window):
-    """A card clicked after the last one blew up (rolled back, paused) rebuilds and runs, the
-    panel's drop-down shows the card's choice, and only the latest card's line is in the HUD."""
+def test_a_card_starts_afresh_and_runs_and_shows_its_choice(window):
+    """A card restarts the scene and runs it, also after the last one blew up (rolled back,
+    paused), the panel's drop-down shows the card's choice, and only the latest card's line is
+    in the HUD."""
     from app.scene import Try
     Tiny.tries = (Try("blow", {"blowup": True}, "it goes NaN"),
                   Try("calm", {"blowup": False, "method": "verlet"}, "it falls"))
@@ -622,6 +623,25 @@ def test_a_card_after_a_blow_up_starts_afresh_runs_and_shows_its_choice(window):
         assert [m[1] for m in window.messages if m[1].startswith("Try: ")] == ["Try: it falls"]
         window.update(1 / 60)
         assert window.scene.steps > 0
+    finally:
+        Tiny.tries = ()
+
+
+def test_a_card_while_recording_before_any_press_is_a_set_not_an_event(tmp_path):
+    """The card's restart is the recording's restart: no "r" in the file, its values as --set."""
+    from app.scene import Try
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    Tiny.tries = (Try("heavy", {"g": 900}, "it falls faster"),)
+    try:
+        w = Window(screen, [Tiny], screenshot_dir=tmp_path, record=tmp_path / "demo.json")
+        w.open_scene(Tiny)
+        for _ in range(5):
+            w.update(1 / 60)
+        assert w.scene_view.apply_try(Tiny.tries[0])
+        assert w.recorded == [] and w.recorder.session.settings == {"g": "900.0"}
+        assert w.scene.steps == 0 and not w.scene_view.paused
     finally:
         Tiny.tries = ()
 

@@ -195,7 +195,8 @@ class SceneView(ShellView):
 
     def apply_try(self, card: Try) -> bool:
         """A "try this" card: check all its settings together (Scene.resolve, the panel's
-        validation), then apply them one by one; say what to watch for."""
+        validation), apply them one by one, restart the scene and run it; say what to watch
+        for."""
         scene = self.scene
         wanted = {scene.canonical(k): v for k, v in card.settings.items()}
         try:
@@ -205,9 +206,12 @@ class SceneView(ShellView):
             return False
         ok = all([self.apply_setting(k, v) for k, v in wanted.items()])
         if ok:
-            if self.banner or self.runner.error is not None:
-                self.reset()       # the last try blew up (rolled back, paused): start afresh
-            self.clock.paused = False          # the card says what to watch: show it running
+            # an experiment from a fresh start, running: what the card says to watch then holds
+            # whatever ran before (RK4 damped at hertz 4 took long to blow up at 3; a blown-up
+            # try stayed paused under the next; "Released high" mid-run changed nothing)
+            if self.scene.steps:     # not just rebuilt by the settings (or a recording's
+                self.reset()         # restart): a reset, recorded as "r" like the R key
+            self.clock.paused = False
             # one "Try:" line at a time: stacked ones grew the HUD and shrank the picture
             self.window.messages = [m for m in self.window.messages
                                     if not m[1].startswith("Try: ")]
