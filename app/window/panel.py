@@ -153,8 +153,8 @@ class ParamPanel:
             lines = 5 if s > 1 else 4          # room for the watch line, wrapped
             self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, lines * int(row * 0.75)),
                                        manager, container=self.container, object_id="#watch")
-            self.watch_box.set_text("Click a card: it sets its values (checked like typed ones), "
-                                    "restarts the scene and says here what to watch for.")
+            self.watch_box.set_text("Click a card: it restarts the scene with its values and "
+                                    "says here what to watch for.")
             y += lines * int(row * 0.75) + 2 * gap
         label("Parameters", obj="#section")
         y += row
