@@ -905,3 +905,16 @@ def test_every_menu_entry_is_on_screen_in_a_small_window(scale, tmp_path):
         assert all(screen.get_rect().contains(e.rect.inflate(-12, 0)) for e in entries)
     finally:
         TEXT.scale = 1.0
+
+
+def test_the_panel_buttons_fit_their_labels_at_large_text_in_the_smallest_window(tmp_path):
+    w = open_window(Tiny, tmp_path, size=(1024, 640), large_text=True)
+    try:
+        panel = w.scene_view.panel
+        font = panel.manager.get_theme().get_font(["button"])
+        for button, text in ((panel.pause_button, "Resume"), (panel.reset_button, "Reset"),
+                             (panel.help_button, "Help")):
+            assert button.rect.width >= font.size(text)[0] + 8, text
+        assert panel.help_button.rect.right <= panel.rect.right
+    finally:
+        TEXT.scale = 1.0

@@ -28,6 +28,9 @@ THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
 _THEMES: dict[float, dict] = {}
 
 
+BUTTON_LABELS = ("Resume", "Reset", "Help")   # the top row's widest labels (Pause <-> Resume)
+
+
 def theme(scale: float) -> dict:
     """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
     if scale not in _THEMES:
@@ -131,13 +134,16 @@ class ParamPanel:
             UILabel(pygame.Rect(x, y, width, row), text, manager, container=self.container,
                     object_id=obj)
 
-        third = (inner_w - 2 * gap) // 3
-        self.pause_button = UIButton(pygame.Rect(pad, y, third, row), "Pause", manager,
-                                     container=self.container)
-        self.reset_button = UIButton(pygame.Rect(pad + third + gap, y, third, row), "Reset",
-                                     manager, container=self.container)
-        self.help_button = UIButton(pygame.Rect(pad + 2 * (third + gap), y, third, row), "Help",
-                                    manager, container=self.container)
+        # each button as wide as its longest label ("Resume" was cut at large text in a small
+        # window), the spare width shared out equally
+        button_font = manager.get_theme().get_font(["button"])
+        need = [button_font.size(t)[0] + 12 for t in BUTTON_LABELS]
+        spare = inner_w - 2 * gap - sum(need)
+        widths = [max(1, n + spare // 3) for n in need]
+        xs = [pad, pad + widths[0] + gap, pad + widths[0] + widths[1] + 2 * gap]
+        self.pause_button, self.reset_button, self.help_button = (
+            UIButton(pygame.Rect(x, y, w, row), text, manager, container=self.container)
+            for x, w, text in zip(xs, widths, ("Pause", "Reset", "Help")))
         y += row + 2 * gap
         self.cards: dict[Any, Try] = {}
         self.watch_box = None
