@@ -242,6 +242,8 @@ class Scene:
     color_key: tuple[tuple[tuple[int, int, int], str], ...] = ()   # (colour, what it means): the
                                                                    # HUD shows it as a key
     snapshot_skip: tuple[str, ...] = ()   # attributes the default snapshot leaves out (caches)
+    draws_own_error: bool = False   # True: draw() shows a SceneError it raised (the exercises),
+                                    # so the window adds no banner with the same text over it
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
         self.p, self.on = self.resolve(overrides or {})

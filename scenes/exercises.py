@@ -73,6 +73,7 @@ class StudentCode:
     student: Any = None            # a module given directly (the grader), instead of the file
     error: str | None = None
     error_kind = ""                # the exception's class name, for the HUD
+    draws_own_error = True         # draw() shows the traceback (headless screenshots too)
     ghost_note = "orange: the lab's"   # what the HUD says the reference looks like
 
     def build(self) -> None:
@@ -112,8 +113,9 @@ class StudentCode:
 
     def draw(self, surface, view) -> None:
         if self.error:
+            x, y, w, _ = self.content_bounds()     # where the layout keeps free of the HUD
             text_box(surface, [Line(t, ERROR) for t in self.error.splitlines()],
-                     view.pt((40, 260)), max_width=int(view.len(880)))
+                     view.pt((x, y)), max_width=int(view.len(w)))
             return
         super().draw(surface, view)
 

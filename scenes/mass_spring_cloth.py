@@ -351,11 +351,11 @@ class MassSpringClothScene(Scene):
         elif pred is None:
             where += f": {title} is unstable at any h here (too little damping)"
         elif name == "symplectic_euler":       # the linearised cloth's own limit (top_mode)
-            where += (f" = {h / pred:.2g}x {title}'s limit ({pred * 1e3:.3f} ms, damped)"
+            where += (f" = {_times(h / pred)}x {title}'s limit ({pred * 1e3:.3f} ms, damped)"
                       + (": its top mode grows (a shiver, or a blow-up)" if h > pred
                          else ": stable"))
         else:       # one mode's limit: where damping mixes the modes, off by up to ~35 %
-            where += (f" = {h / pred:.2g}x {title}'s limit estimated on one mode "
+            where += (f" = {_times(h / pred)}x {title}'s limit estimated on one mode "
                       f"({pred * 1e3:.3f} ms)")
         lines.append(where)
         lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} | stretch: "
@@ -383,3 +383,8 @@ class MassSpringClothScene(Scene):
         self._energy.clear()
         self._mode = None
         self._estimate_mode(iterations=60)
+
+
+def _times(ratio: float) -> str:
+    """A ratio for the HUD: '0.72', '3.5', '230' (not '2.3e+02')."""
+    return f"{ratio:.2g}" if ratio < 10 else f"{ratio:.0f}"

@@ -23,8 +23,9 @@ def test_energy_drift_under_one_percent_over_a_minute_and_chaos_parts_the_two():
     assert m["energy_drift_max"] < 0.01
     assert abs(m["energy_drift"]) < 0.01
     assert m["pin_error"] < 0.5
-    # Chaos: the engine and the exact solution part (10 px) within the minute, not at once.
-    assert 1.0 < m["divergence_time"] < 60.0
+    # Chaos: the engine and the exact solution part (10 px) not at once, but within the 10 s
+    # the "Released high" Try card tells the class to wait (7.8 s measured)
+    assert 1.0 < m["divergence_time"] < 10.0
     assert m["reference_divergence"] > 10.0
 
 

@@ -463,6 +463,46 @@ def test_the_physics_figure_holds_while_paused(window):
     assert figure.startswith("physics ") and "ms/step" in figure
 
 
+class Costly(Tiny):
+    """Tiny with a measured 'work' effect whose cost jumps from ~0 to 2 ms a step, and the
+    cloth's way of reporting it (mean since the last call, smoothed 0.7 / 0.3)."""
+    name = "costly"
+
+    def build(self):
+        super().build()
+        self.slow, self.work, self._mark, self._cost = False, 0.0, (0, 0.0), None
+
+    def step(self, h):
+        import time
+        t0 = time.perf_counter()
+        while self.slow and time.perf_counter() - t0 < 0.002:
+            pass
+        self.work += time.perf_counter() - t0
+        super().step(h)
+
+    def effect_costs(self):
+        steps0, work0 = self._mark
+        if self.steps > steps0:
+            now = (self.work - work0) * 1000.0 / (self.steps - steps0)
+            self._cost = now if self._cost is None else 0.7 * self._cost + 0.3 * now
+            self._mark = (self.steps, self.work)
+        return {"work": self._cost or 0.0}
+
+
+def test_the_physics_figure_and_its_breakdown_add_up_when_the_cost_jumps(tmp_path):
+    """The HUD's ms/step is taken over the same steps, smoothed the same way, as the scene's
+    breakdown: a part never exceeds the total (the cloth read 'physics 5.41 ms/step' with parts
+    adding up to 8.7 when the runner's 60-step mean lagged behind the scene's smoothing)."""
+    w = open_window(Costly, tmp_path, frames=30)
+    w.scene.slow = True
+    for _ in range(12):
+        w.update(1 / 60)
+        line = w.scene_view.status_lines()[1]          # 'physics T ms/step (work P)'
+        total, part = float(line.split()[1]), float(line.split("work ")[1].rstrip(")"))
+        assert part <= total + 0.01, line
+    assert part > 0.5                                   # the jump is seen
+
+
 def test_panel_changes_while_recording(tmp_path):
     """Before the first event a change restarts the recording (the replay gets it as --set);
     after it the change is named as not replayable."""
@@ -491,6 +531,27 @@ def test_panel_changes_while_recording(tmp_path):
                            f"--input {rec} --steps {w.session_steps}")
     assert "hertz=120" in line
     assert any("REC" in str(getattr(x, "text", x)) for x in w.scene_view.hud_lines())
+
+
+def test_hovering_over_the_world_on_the_way_to_the_panel_still_lets_a_change_be_recorded(
+        tmp_path):
+    """The pointer crosses the world to reach the panel: those moves change nothing, so a panel
+    change after them still restarts the recording (it was 'not replayable' before)."""
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    w = Window(screen, [Tiny], screenshot_dir=tmp_path, record=tmp_path / "demo.json")
+    w.open_scene(Tiny)
+    for x in (300, 500, 700):
+        mouse(w, pygame.MOUSEMOTION, (x, 300))
+        w.update(1 / 60)
+    assert [e["type"] for e in w.recorded] == ["mouse_move"] * 3
+    assert w.scene_view.apply_setting("g", 300)
+    assert w.recorder.session.settings == {"g": "300.0"} and w.recorded == []
+    key(w, pygame.K_u)                     # a press: from now on a change is not replayable
+    w.update(1 / 60)
+    assert w.scene_view.apply_setting("g", 200)
+    assert w.recorder.session.not_replayed == ["g=200.0"]
 
 
 def test_a_recording_made_before_any_panel_change_replays_with_its_set_values(tmp_path):
@@ -579,6 +640,52 @@ def test_try_cards_apply_their_settings_and_say_what_to_watch(window):
         Tiny.tries = ()
 
 
+def test_a_card_starts_afresh_and_runs_and_shows_its_choice(window):
+    """A card restarts the scene and runs it, also after the last one blew up (rolled back,
+    paused), the panel's drop-down shows the card's choice, and only the latest card's line is
+    in the HUD."""
+    from app.scene import Try
+    Tiny.tries = (Try("blow", {"blowup": True}, "it goes NaN"),
+                  Try("calm", {"blowup": False, "method": "verlet"}, "it falls"))
+    try:
+        sv = window.scene_view
+        sv.on_layout()
+        cards = {c.label: b for b, c in sv.panel.cards.items()}
+        press = lambda label: window.handle_pygame_event(pygame.event.Event(
+            pygame_gui.UI_BUTTON_PRESSED, {"ui_element": cards[label]}))
+        press("blow")
+        for _ in range(60):
+            window.update(1 / 60)
+        assert sv.paused and sv.banner                      # rolled back and paused
+        press("calm")
+        assert not sv.paused and not sv.banner and window.scene.steps == 0
+        assert sv.panel.dropdowns["method"].selected_option[0] == "verlet"
+        assert [m[1] for m in window.messages if m[1].startswith("Try: ")] == ["Try: it falls"]
+        window.update(1 / 60)
+        assert window.scene.steps > 0
+    finally:
+        Tiny.tries = ()
+
+
+def test_a_card_while_recording_before_any_press_is_a_set_not_an_event(tmp_path):
+    """The card's restart is the recording's restart: no "r" in the file, its values as --set."""
+    from app.scene import Try
+    pygame.display.init()
+    pygame.font.init()
+    screen = pygame.display.set_mode((1280, 800))
+    Tiny.tries = (Try("heavy", {"g": 900}, "it falls faster"),)
+    try:
+        w = Window(screen, [Tiny], screenshot_dir=tmp_path, record=tmp_path / "demo.json")
+        w.open_scene(Tiny)
+        for _ in range(5):
+            w.update(1 / 60)
+        assert w.scene_view.apply_try(Tiny.tries[0])
+        assert w.recorded == [] and w.recorder.session.settings == {"g": "900.0"}
+        assert w.scene.steps == 0 and not w.scene_view.paused
+    finally:
+        Tiny.tries = ()
+
+
 class Failing(Tiny):
     """A scene whose (student's) code fails at step 5."""
     name = "failing"
@@ -598,6 +705,26 @@ def test_a_scene_error_pauses_the_window_and_shows_the_message(tmp_path):
     assert w.scene.steps == 5
     key(w, pygame.K_r)                                   # R runs it again
     assert sv.runner.error is None and w.scene.steps == 0
+
+
+class FailingAndSaysSo(Failing):
+    """Like an exercise scene: draw() shows the error it raised."""
+    name = "failing_says_so"
+    draws_own_error = True
+
+
+@pytest.mark.parametrize("cls, banners", [(Failing, 1), (FailingAndSaysSo, 0)])
+def test_a_scene_error_is_shown_once(tmp_path, monkeypatch, cls, banners):
+    """The window's banner repeats the error only for a scene that does not draw it itself
+    (an exercise's traceback showed twice, the banner over the scene's box)."""
+    shown = []
+    real = hud.banner
+    monkeypatch.setattr(hud, "banner", lambda s, text, *a, **k: shown.append(text) or real(
+        s, text, *a, **k))
+    w = open_window(cls, tmp_path, frames=20)
+    shown.clear()
+    w.render()
+    assert sum("ZeroDivisionError" in t for t in shown) == banners
 
 
 def test_headless_reports_a_scene_error_and_goes_on(capsys):
@@ -776,5 +903,18 @@ def test_every_menu_entry_is_on_screen_in_a_small_window(scale, tmp_path):
         entries = w.current_view.entries
         assert sorted(e.number for e in entries) == list(range(1, len(SCENES) + 1))
         assert all(screen.get_rect().contains(e.rect.inflate(-12, 0)) for e in entries)
+    finally:
+        TEXT.scale = 1.0
+
+
+def test_the_panel_buttons_fit_their_labels_at_large_text_in_the_smallest_window(tmp_path):
+    w = open_window(Tiny, tmp_path, size=(1024, 640), large_text=True)
+    try:
+        panel = w.scene_view.panel
+        font = panel.manager.get_theme().get_font(["button"])
+        for button, text in ((panel.pause_button, "Resume"), (panel.reset_button, "Reset"),
+                             (panel.help_button, "Help")):
+            assert button.rect.width >= font.size(text)[0] + 8, text
+        assert panel.help_button.rect.right <= panel.rect.right
     finally:
         TEXT.scale = 1.0

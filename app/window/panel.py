@@ -28,6 +28,9 @@ THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
 _THEMES: dict[float, dict] = {}
 
 
+BUTTON_LABELS = ("Resume", "Reset", "Help")   # the top row's widest labels (Pause <-> Resume)
+
+
 def theme(scale: float) -> dict:
     """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
     if scale not in _THEMES:
@@ -131,13 +134,16 @@ class ParamPanel:
             UILabel(pygame.Rect(x, y, width, row), text, manager, container=self.container,
                     object_id=obj)
 
-        third = (inner_w - 2 * gap) // 3
-        self.pause_button = UIButton(pygame.Rect(pad, y, third, row), "Pause", manager,
-                                     container=self.container)
-        self.reset_button = UIButton(pygame.Rect(pad + third + gap, y, third, row), "Reset",
-                                     manager, container=self.container)
-        self.help_button = UIButton(pygame.Rect(pad + 2 * (third + gap), y, third, row), "Help",
-                                    manager, container=self.container)
+        # each button as wide as its longest label ("Resume" was cut at large text in a small
+        # window), the spare width shared out equally
+        button_font = manager.get_theme().get_font(["button"])
+        need = [button_font.size(t)[0] + 12 for t in BUTTON_LABELS]
+        spare = inner_w - 2 * gap - sum(need)
+        widths = [max(1, n + spare // 3) for n in need]
+        xs = [pad, pad + widths[0] + gap, pad + widths[0] + widths[1] + 2 * gap]
+        self.pause_button, self.reset_button, self.help_button = (
+            UIButton(pygame.Rect(x, y, w, row), text, manager, container=self.container)
+            for x, w, text in zip(xs, widths, ("Pause", "Reset", "Help")))
         y += row + 2 * gap
         self.cards: dict[Any, Try] = {}
         self.watch_box = None
@@ -153,8 +159,8 @@ class ParamPanel:
             lines = 5 if s > 1 else 4          # room for the watch line, wrapped
             self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, lines * int(row * 0.75)),
                                        manager, container=self.container, object_id="#watch")
-            self.watch_box.set_text("Click a card: it sets its values (checked like typed ones) "
-                                    "and says here what to watch for.")
+            self.watch_box.set_text("Click a card: it restarts the scene with its values and "
+                                    "says here what to watch for.")
             y += lines * int(row * 0.75) + 2 * gap
         label("Parameters", obj="#section")
         y += row
@@ -231,6 +237,10 @@ class ParamPanel:
                 pos = ctl.pos_of(self._current(name))
                 if int(ctl.slider.get_current_value()) != pos:
                     ctl.slider.set_current_value(pos)
+        for name, d in self.dropdowns.items():      # a card or a refused value changed it
+            text = str(self._current(name))
+            if d.selected_option[0] != text:
+                _select(d, text)
         for name, b in self.toggles.items():
             on = bool(self._current(name))
             if self._toggle_state.get(name) != on:
@@ -303,6 +313,17 @@ class ParamPanel:
         return True
 
 
+
+
+def _select(dropdown, text: str) -> None:
+    """Show `text` as a drop-down's choice (pygame-gui has no setter: its menu and its closed
+    state each keep the selection; the closed state's button shows it)."""
+    option = (text, text)
+    dropdown.selected_option = option
+    closed = dropdown.menu_states["closed"]
+    closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
+    if dropdown.current_state is closed and closed.selected_option_button is not None:
+        closed.selected_option_button.set_text(text)
 
 
 def _html(text: str) -> str:

@@ -4,10 +4,12 @@ Events are written in the `--input` format with positions in world coordinates a
 runner's session time (simulated seconds since the scene was opened, R included), so
 `python -m app --headless --scene NAME --input FILE --steps N` replays the demo step for step.
 
-Panel changes are not events. While recording, a change made before the first recorded event
-restarts the recording: the scene is rebuilt with the new settings and the replay command gives
-them as `--set` (the replay starts from that fresh scene). A change made after the first event
-cannot be replayed: the window says so at once, and the command printed on exit names it.
+Panel changes are not events. While recording, a change made before the first recorded press
+(mouse button or key; the pointer merely passing over the world changes nothing in a scene, and
+it always does on the way to the panel) restarts the recording: the scene is rebuilt with the new
+settings and the replay command gives them as `--set` (the replay starts from that fresh scene). A
+change made after the first press cannot be replayed: the window says so at once, and the command
+printed on exit names it.
 The file holds the last scene opened; it is written on every way out of the window.
 """
 
@@ -62,11 +64,11 @@ class Recorder:
 
     def panel_change(self, name: str, value: Any) -> str:
         """Note a panel change; return what the window should do: "restart" (before the first
-        event: rebuild, record it as --set) or "note" (after it: not replayable)."""
+        press: rebuild, record it as --set) or "note" (after it: not replayable)."""
         s = self.session
         if s is None or not self.active:
             return ""
-        if not s.events:
+        if all(e["type"] == "mouse_move" for e in s.events):   # only hovering so far
             return "restart"      # the caller rebuilds the scene and start()s a new session
         s.not_replayed.append(f"{name}={_text(value)}")
         return "note"
@@ -85,7 +87,7 @@ class Recorder:
         line = (f"recorded {len(events)} events of {s.scene} over {s.steps} steps; replay: "
                 f"{s.command(self.path)}")
         if s.not_replayed:
-            line += (f"\n  (panel changes made after the first event are not in it: "
+            line += (f"\n  (panel changes made after the first press are not in it: "
                      f"{', '.join(s.not_replayed)})")
         return line
 
