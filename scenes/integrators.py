@@ -68,13 +68,15 @@ SAMPLE_DT = 1.0 / 120.0     # plots keep at most 120 samples per simulated secon
 PLOT_SECONDS = 10.0         # the energy plot shows the last 10 s
 TIMING_WINDOW = 61          # us/step is the median of this many recent steps
 
-# Layout in world pixels (y down): x, y, w, h. The panels fill CONTENT, which the window fits
-# into the space its HUD and panel leave free.
+# Layout in world pixels (y down): x, y, w, h. The panels fill the content rectangle, which the
+# window fits into the space its HUD and panel leave free. With large text (F2) the energy chart
+# and the table each take the full width below the two upper panels, so their text can grow.
 SYSTEM_RECT = (0, 0, 480, 338)
 PHASE_RECT = (490, 0, 470, 338)
-ENERGY_RECT = (0, 346, 380, 200)
-TABLE_RECT = (390, 346, 570, 200)
-CONTENT = (0.0, 0.0, 960.0, 546.0)
+LAYOUTS = {   # text size -> (energy chart, table, content)
+    "normal": ((0, 346, 380, 200), (390, 346, 570, 200), (0.0, 0.0, 960.0, 546.0)),
+    "large": ((0, 346, 960, 180), (0, 534, 960, 250), (0.0, 0.0, 960.0, 784.0)),
+}
 SPRING_DRAW_SCALE = 0.8     # the spring column is drawn at 80 % so the bobs fit the panel
 TABLE_SIZE = 24             # font sizes at zoom 1 (pygame's default font at 24: 16 px glyphs)
 TITLE_SIZE = 20
@@ -245,7 +247,12 @@ class IntegratorsScene(Scene):
 
     # ----- drawing -------------------------------------------------------------------------------
     def content_bounds(self) -> tuple[float, float, float, float]:
-        return CONTENT
+        return self.panels()[2]
+
+    @staticmethod
+    def panels() -> tuple:
+        """(energy chart rect, table rect, content rect) for the text size in use."""
+        return LAYOUTS["large" if TEXT.scale > 1 else "normal"]
 
     def draw(self, surface: pygame.Surface, view: View) -> None:
         self._refresh()
@@ -362,7 +369,7 @@ class IntegratorsScene(Scene):
         """One row per integrator; the columns are laid out from the measured widths of their
         text (and of the widest number each can show), and the text shrinks until the table fits
         its panel, so that no two columns ever run together."""
-        r = self._screen_rect(view, TABLE_RECT)
+        r = self._screen_rect(view, self.panels()[1])
         pygame.draw.rect(surface, (32, 35, 44), r)
         pygame.draw.rect(surface, (70, 74, 88), r, 1)
         heads = ("integrator", "f evals", "us/step", "error", "E/E0")
@@ -398,6 +405,7 @@ class IntegratorsScene(Scene):
             size = max(8, int(size * 0.9))
             widths, gap, fits = layout(size)
         f = font(size)
+        self.table_text = f.get_height()            # the text height it settled on (tests read it)
         chip = f.get_height()
         line = f.get_linesize()
         x = r.x + pad + chip + gap
@@ -423,7 +431,8 @@ class IntegratorsScene(Scene):
     def _plot_map(self, rect, xlo, xhi, ylo, yhi):
         """data -> world point inside rect (margins for labels); far-off points are pulled in
         to +-1e4 px so pygame never sees a huge coordinate (the panel clips them anyway)."""
-        x, y, w, h = rect[0] + 40, rect[1] + 26, rect[2] - 50, rect[3] - 46
+        m = TEXT.scale                          # room for the axis labels, as large as they
+        x, y, w, h = rect[0] + 40 * m, rect[1] + 26 * m, rect[2] - 50 * m, rect[3] - 46 * m
 
         def to_world(px: np.ndarray, py: np.ndarray) -> np.ndarray:
             pts = np.stack((x + (px - xlo) / (xhi - xlo) * w, y + h - (py - ylo) / (yhi - ylo) * h), -1)
@@ -453,13 +462,14 @@ class IntegratorsScene(Scene):
         surface.set_clip(old_clip)
 
     def _draw_energy(self, surface, view) -> None:
-        clip = self._frame(surface, view, ENERGY_RECT, "energy error |E/E0 - 1| (log, last 10 s)")
+        box = self.panels()[0]                 # the chart's rectangle for this text size
+        clip = self._frame(surface, view, box, "energy error |E/E0 - 1| (log, last 10 s)")
         if len(self.sample_times) < 2:
             return
         t = self.sample_times.values()[:, 0]
         # one point per screen pixel of plot width is all a line can show: thin the samples out,
         # newest kept (the slice replaces a loop picking every stride-th sample)
-        stride = max(1, len(t) // max(1, int(view.len(ENERGY_RECT[2] - 50))))
+        stride = max(1, len(t) // max(1, int(view.len(box[2] - 50))))
         keep = slice(len(t) - 1 - stride * ((len(t) - 1) // stride), None, stride)
         t = t[keep]
         # log10 |E/E0 - 1|: a magnitude (a log axis has no negative values), floored at 1e-16
@@ -471,7 +481,7 @@ class IntegratorsScene(Scene):
         pad = 0.08 * (hi - lo)
         lo, hi = lo - pad, hi + pad
         tlo, thi = max(t[-1] - PLOT_SECONDS, 0.0), max(t[-1], PLOT_SECONDS)
-        to_world = self._plot_map(ENERGY_RECT, tlo, thi, lo, hi)
+        to_world = self._plot_map(box, tlo, thi, lo, hi)
         old_clip = surface.get_clip()
         surface.set_clip(clip.inflate(-2, -24).move(0, 10).clip(old_clip))
         one = to_world(np.array([tlo, thi]), np.array([0.0, 0.0]))      # error 1 = 100%
@@ -484,7 +494,9 @@ class IntegratorsScene(Scene):
         surface.set_clip(old_clip)
         for value in (lo, 0.0, hi):
             p = to_world(np.array(tlo), np.array(value))
-            self._text(surface, view, (ENERGY_RECT[0] + 36, float(p[1]) - 6), f"{10 ** value:.0e}",
-                       (170, 170, 180), SMALL_SIZE - 2, right=True, width=36)
-        self._text(surface, view, (ENERGY_RECT[0] + ENERGY_RECT[2] - 6, ENERGY_RECT[1] + ENERGY_RECT[3] - 18),
+            self._text(surface, view, (box[0] + 36 * TEXT.scale, float(p[1]) - 6),
+                       f"{10 ** value:.0e}", (170, 170, 180), SMALL_SIZE - 2, right=True,
+                       width=36 * TEXT.scale)
+        self._text(surface, view, (box[0] + box[2] - 6,
+                                   box[1] + box[3] - 18 * TEXT.scale),
                    f"t = {self.t:.1f} s", (170, 170, 180), SMALL_SIZE - 2, right=True)

@@ -918,3 +918,23 @@ def test_the_panel_buttons_fit_their_labels_at_large_text_in_the_smallest_window
         assert panel.help_button.rect.right <= panel.rect.right
     finally:
         TEXT.scale = 1.0
+
+
+def test_large_text_never_shrinks_the_integrator_table_in_a_projector_window(tmp_path):
+    """F2 in a 1920x1080 window: the integrator lab gives its energy chart and table the full
+    width, so the table's glyphs are not smaller than at normal text (they were: 27 -> 26 px,
+    the larger HUD lowered the zoom and the table's box squeezed its text; now 27 -> 28 px.
+    The table is bound by its height: F3, which hides the HUD, is what makes it large)."""
+    from scenes.integrators import IntegratorsScene
+    w = open_window(IntegratorsScene, tmp_path, frames=3)
+    sizes = {}
+    try:
+        for scale in (1.0, 1.6):
+            w.screen = pygame.display.set_mode((1920, 1080))
+            w.set_large_text(scale > 1)
+            w.render()
+            sizes[scale] = w.scene.table_text
+    finally:
+        w.set_large_text(False)
+        TEXT.scale = 1.0
+    assert sizes[1.6] >= sizes[1.0], sizes
