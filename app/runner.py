@@ -11,7 +11,9 @@ A `SceneRunner` owns what happens between "run n fixed steps" and the scene's ho
     (t <= session time + EVENT_SLACK), where the session time is the sum of the dt of every step
     run since the runner started (R does not restart it, so a recording stays in order);
   * the finite check after every step; in the window, snapshots every SNAPSHOT_EVERY steps and a
-    rollback to the last good one when the state goes NaN/inf;
+    rollback when the state goes NaN/inf (or past a scene's blow-up bounds) to the oldest of the
+    last SNAPSHOTS_KEPT snapshots: a blow-up grows for a while before it is caught, and the
+    snapshot just before the catch may already be a wreck (a cloth stretched 300-fold, finite);
   * `SceneError` (a student's exercise code failed): stepping stops and `error` holds the message.
 
 Because live events (the window) and replayed ones (`--input`) go through the same `deliver` and
@@ -29,6 +31,7 @@ from typing import Any, Callable
 from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
 
 SNAPSHOT_EVERY = 30          # steps between last-good snapshots (window rollback)
+SNAPSHOTS_KEPT = 3           # a rollback goes to the oldest: 60 to 90 steps before the blow-up
 RECENT_STEPS = 60            # steps in the HUD's median of the physics time
 
 NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf, or past the scene's blow-up bounds) "
@@ -77,7 +80,7 @@ class SceneRunner:
         self.recent_ms: deque[float] = deque(maxlen=RECENT_STEPS)
         self.all_seconds: list[float] | None = [] if keep_all_times else None
         self.on_reset: Callable[[], None] | None = None   # told when an event reset the scene
-        self._last_good: tuple[Any, float, int] | None = None
+        self._good: deque[tuple[Any, float, int]] = deque(maxlen=SNAPSHOTS_KEPT)
         self.rebuilt()
 
     # --- events ----------------------------------------------------------------------------
@@ -150,7 +153,7 @@ class SceneRunner:
                     return i + 1, None
                 return i + 1, self.roll_back()
             if self.rollback and self.scene.steps % SNAPSHOT_EVERY == 0:
-                self._last_good = (self.scene.snapshot(), self.scene.time, self.scene.steps)
+                self._keep_snapshot()
         return n, None
 
     def fail(self, error: SceneError) -> None:
@@ -165,20 +168,27 @@ class SceneRunner:
         """The scene was (re)built: forget the old world's snapshot and step times."""
         self.recent_ms.clear()
         self.finite = True
+        self._good.clear()
         if self.rollback:
-            self._last_good = (self.scene.snapshot(), self.scene.time, self.scene.steps)
+            self._keep_snapshot()
+
+    def _keep_snapshot(self) -> None:
+        self._good.append((self.scene.snapshot(), self.scene.time, self.scene.steps))
 
     def roll_back(self) -> Rollback:
-        """The state went NaN/inf: go back to the last good snapshot (or rebuild)."""
+        """The state went NaN/inf: go back to the oldest snapshot kept (or rebuild)."""
         scene = self.scene
         bad_t = scene.time
-        snap, t, steps = self._last_good if self._last_good else (None, 0.0, 0)
+        snap, t, steps = self._good[0] if self._good else (None, 0.0, 0)
         scene.restore(snap)
         if snap is not None:
             scene.time, scene.steps = t, steps
         if not scene.is_finite():     # a snapshot that shared arrays with the state: rebuild
             scene.reset()
             self.rebuilt()
+        else:                         # the restored state is the one to come back to next time
+            self._good.clear()
+            self._keep_snapshot()
         return Rollback(bad_t, scene.time)
 
     # --- what the HUD and the summary read ---------------------------------------------------

@@ -251,10 +251,11 @@ def test_non_finite_state_rolls_back_and_pauses(window):
     scene = window.scene
     assert window.scene_view.clock.paused
     assert scene.is_finite()
-    assert scene.steps == SNAPSHOT_EVERY
-    assert scene.time == pytest.approx(SNAPSHOT_EVERY / 60)
+    # snapshots at steps 0 and 30; it blew up at 41 and goes back to the oldest kept (step 0):
+    # the one just before a blow-up may already be a wreck
+    assert scene.steps == 0 and scene.time == 0.0
     banner = window.scene_view.banner
-    assert banner == NONFINITE_TEXT.format(bad=41 / 60, good=30 / 60)
+    assert banner == NONFINITE_TEXT.format(bad=41 / 60, good=0.0)
     window.render()
     key(window, pygame.K_SPACE)            # resuming clears the banner
     assert not window.scene_view.banner
@@ -938,3 +939,22 @@ def test_large_text_never_shrinks_the_integrator_table_in_a_projector_window(tmp
         w.set_large_text(False)
         TEXT.scale = 1.0
     assert sizes[1.6] >= sizes[1.0], sizes
+
+
+def test_rollback_goes_to_the_oldest_of_the_snapshots_kept():
+    """Three snapshots are kept (every 30 steps); a blow-up at step 100 goes back to step 30,
+    and the next one goes back to where that rollback landed."""
+    from app.runner import SNAPSHOTS_KEPT, SceneRunner
+    assert SNAPSHOTS_KEPT == 3
+    scene = Tiny()
+    runner = SceneRunner(scene, rollback=True)
+    runner.rebuilt()
+    for _ in range(99):
+        runner.run(1)
+    scene.set("blowup", True)                 # Tiny goes NaN a few steps after this
+    while runner.run(1)[1] is None:
+        pass
+    assert scene.steps == 30 and scene.is_finite()   # kept: 30, 60, 90 -> the oldest
+    while runner.run(1)[1] is None:
+        pass
+    assert scene.steps == 30

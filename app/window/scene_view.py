@@ -213,6 +213,7 @@ class SceneView(ShellView):
             # try stayed paused under the next; "Released high" mid-run changed nothing)
             if self.scene.steps:     # not just rebuilt by the settings (or a recording's
                 self.reset()         # restart): a reset, recorded as "r" like the R key
+            self.banner = ""         # (a rollback to t = 0 needs no reset, but its banner goes)
             self.clock.paused = False
             # one "Try:" line at a time: stacked ones grew the HUD and shrank the picture
             self.window.messages = [m for m in self.window.messages
