@@ -26,6 +26,8 @@ does not import is reported the same way at the first step.
 from __future__ import annotations
 
 import math
+import sys
+from contextlib import redirect_stdout
 from pathlib import Path
 from typing import Any, Iterable
 
@@ -36,7 +38,8 @@ import pymunk
 from app.draw.hud import Line, text_box
 from app.exercises import get_exercise
 from app.exercises.base import BadAnswer, array_of
-from app.exercises.grade import load_module, shown, starter_path, student_traceback
+from app.exercises.grade import (CHECK_TIMEOUT, load_module, run_isolated, shown, starter_path,
+                                 student_traceback)
 from app.pymunk_scene import PymunkScene
 from app.scene import Effect, Param, Scene, SceneError, common
 from scenes.double_pendulum import DoublePendulumScene
@@ -62,15 +65,29 @@ class StudentCode:
     error: str | None = None
     ghost_note = "orange: the lab's"   # what the HUD says the reference looks like
 
+    @classmethod
+    def import_problem(cls, timeout: float = CHECK_TIMEOUT) -> str | None:
+        """Why the student's file cannot be imported safely, or None: imported first in a child
+        process (as the grader does), a file that calls os._exit, kills its own process or
+        loops forever at import would take the lab down with it. An exception at import is
+        not a problem here: the scene reports it with the student's file and line."""
+        if cls.student is not None:
+            return None
+        report = run_isolated(get_exercise(cls.exercise), None, cls.student_path, timeout)
+        if report.measured.startswith(("the process died", "still running")):
+            return f"{cls.student_path}: importing it, {report.measured}: {report.error}"
+        return None
+
     def build(self) -> None:
         self.error = None
         try:
-            self.impl = self.student if self.student is not None else load_module(
-                self.student_path)
-            self.reference = get_exercise(self.exercise).reference()
-            super().build()
-        except Exception as e:     # noqa: BLE001 - any failure of the student's code
-            self.fail(e)
+            with redirect_stdout(sys.stderr):     # their prints never mix with --json output
+                self.impl = self.student if self.student is not None else load_module(
+                    self.student_path)
+                self.reference = get_exercise(self.exercise).reference()
+                super().build()
+        except BaseException as e:  # noqa: BLE001 - any failure of the student's code, even
+            self.fail(e)            # sys.exit() or a KeyboardInterrupt raised at import
 
     def fail(self, e: BaseException) -> SceneError:
         message = student_traceback(e, self.student_path)
@@ -81,8 +98,9 @@ class StudentCode:
         if self.error is not None:
             raise SceneError(self.error)
         try:
-            super().advance()
-        except Exception as e:     # noqa: BLE001
+            with redirect_stdout(sys.stderr):
+                super().advance()
+        except (Exception, SystemExit) as e:     # noqa: BLE001 - sys.exit() in their step too
             raise self.fail(e) from None
 
     # ----- the other hooks, safe while an error is held ----------------------------------------
