@@ -41,7 +41,7 @@ from app.exercises.base import BadAnswer, array_of
 from app.exercises.grade import (CHECK_TIMEOUT, load_module, run_isolated, shown, starter_path,
                                  student_traceback)
 from app.pymunk_scene import PymunkScene
-from app.scene import Effect, Param, Scene, SceneError, common
+from app.scene import Effect, Param, ParamError, Scene, SceneError, common
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.newtons_cradle import RADIUS, SLOP, NewtonsCradleScene
 from scenes.pivoting_l import PivotingLScene
@@ -321,6 +321,18 @@ class ConstraintsExercise(StudentCode, ParticleExercise):
                     rebuild=False),)
 
     live = ("iterations",)
+    # one sweep in one substep costs ~0.35 ms for the two cloths (the lab's answer, measured
+    # with other work running): 50 x 50 took ~0.9 s a step; refused over ~0.35 s
+    step_budget = 1000
+
+    @classmethod
+    def check_combination(cls, values) -> None:
+        work = values["iterations"] * values["substeps"]
+        if work > cls.step_budget:
+            raise ParamError(f"iterations x substeps = {values['iterations']} x "
+                             f"{values['substeps']} = {work:,} is too large: a step would take "
+                             f"over a third of a second (budget {cls.step_budget:,}); lower "
+                             "iterations or substeps")
 
     def make(self, impl):
         mine = impl is self.impl

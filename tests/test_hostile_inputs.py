@@ -12,6 +12,7 @@ import subprocess
 import sys
 import warnings
 
+import numpy as np
 import pygame
 import pytest
 
@@ -19,6 +20,7 @@ from app.draw.view import View
 from app.scene import InputEvent
 from scenes import SCENES
 from scenes.falling_balls import FallingBallsScene
+from scenes.pivoting_l import PivotingLScene
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -253,3 +255,23 @@ def test_an_exercise_scene_survives_a_student_file_that_exits_at_import(tmp_path
         assert word in r.stderr, r.stderr
     for line in r.stdout.splitlines():        # their print never lands in the JSON output
         assert json.loads(line)["scene"] == f"exercise:{path}"
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene], ids=lambda c: c.name)
+def test_balls_due_in_one_long_step_are_spawned_without_overlap(cls):
+    # once: hertz 1, spawn_rate 200, radius 60, gravity off put 200 balls a step on top of each
+    # other in the spawn row; 800 overlapping balls took 1.4 s a step (the budget counts a
+    # settled pile). A taken place now puts the ball on top.
+    scene = cls({"hertz": 1, "spawn_rate": 200, "radius": 60, "gravity": "off"})
+    for _ in range(2):
+        scene.advance()           # spawning ends the step: the new balls have not moved yet
+    xy = np.array([tuple(b.body.position) for b in scene.balls])
+    gaps = np.linalg.norm(xy[:, None] - xy[None], axis=-1) + np.eye(len(xy)) * 1e9
+    assert len(xy) >= 3 and gaps.min() >= 2 * 60 - 1e-6
+
+
+def test_the_constraints_exercise_refuses_a_step_over_its_budget(capsys):
+    # once: iterations 25 x substeps 50 took 1.4 s a step (the two cloths' sweeps in Python)
+    assert_usage_error(main_cli(capsys, "--headless", "--scene", "exercise:constraints",
+                                "--steps", "1", "--set", "iterations=25", "--set", "substeps=50"),
+                       "iterations x substeps", "budget")
