@@ -20,8 +20,9 @@ import os
 import sys
 from typing import NoReturn
 
-from app.headless import (EXIT_OK, EXIT_USAGE, MAX_STEPS, InputFileError, check_output_path,
-                          load_events, run_headless)
+from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, InputFileError,
+                          check_output_path, load_events, run_headless, screenshot_path)
+from app.scene import plain_number, shown_text
 
 
 
@@ -33,28 +34,46 @@ class _Parser(argparse.ArgumentParser):
     """argparse, but an error is one line and exit code 2 (no usage block)."""
 
     def error(self, message: str) -> NoReturn:
-        raise UsageError(message)
+        # argparse echoes what it refuses: cut a pasted wall of text to one readable line
+        raise UsageError(message if len(message) <= 300 else message[:280] + " ...")
 
 
 def _positive_float(text: str) -> float:
     try:
+        if not plain_number(text):      # '1_0' and '١' too: numbers are plain ASCII (README)
+            raise ValueError(text)
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number; accepted: seconds > 0")
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not a number in plain ASCII; "
+                                         "accepted: seconds > 0")
     if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: a finite number "
-                                         "of seconds > 0")
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: a finite "
+                                         "number of seconds > 0")
+    return value
+
+
+MAX_TIMEOUT = 3600.0        # seconds: a check's time limit (a larger wait overflows the timer)
+
+
+def _timeout(text: str) -> float:
+    value = _positive_float(text)
+    if value > MAX_TIMEOUT:
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: seconds "
+                                         f"> 0 and at most {MAX_TIMEOUT:g}")
     return value
 
 
 def _positive_int(text: str) -> int:
     try:
+        if not plain_number(text):
+            raise ValueError(text)
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not an integer; accepted: steps >= 1")
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not an integer in plain ASCII; "
+                                         "accepted: steps >= 1")
     if not 1 <= value <= MAX_STEPS:
-        raise argparse.ArgumentTypeError(f"{text!r} is not accepted; accepted: steps from 1 to "
-                                         f"{MAX_STEPS:,}")
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: steps "
+                                         f"from 1 to {MAX_STEPS:,}")
     return value
 
 
@@ -92,7 +111,8 @@ def parse_sets(pairs: list[str]) -> dict[str, str]:
     for pair in pairs:
         key, sep, value = pair.partition("=")
         if not sep or not key.strip():
-            raise UsageError(f"--set {pair!r}: expected KEY=VALUE, e.g. --set substeps=4")
+            raise UsageError(f"--set {shown_text(pair)}: expected KEY=VALUE, e.g. --set "
+                             "substeps=4")
         if key.strip() in out:
             raise UsageError(f"--set {key.strip()} is given twice; give it once")
         out[key.strip()] = value.strip()
@@ -110,6 +130,9 @@ def main(argv: list[str] | None = None) -> int:
     except UsageError as e:
         print(f"python -m app: error: {e}", file=sys.stderr)
         return EXIT_USAGE
+    except BrokenPipeError:     # stdout closed early (`... --json | head -1`): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no error at exit
+        return EXIT_OK
 
 
 def app_main(argv: list[str]) -> int:
@@ -137,7 +160,7 @@ def app_main(argv: list[str]) -> int:
                              "exercise:NAME, or exercise:PATH/NAME.py of a file that exists")
         cls = get_scene(args.scene)
         if cls is None:
-            raise UsageError(f"unknown scene {args.scene!r}; accepted: {accepted}"
+            raise UsageError(f"unknown scene {shown_text(args.scene)}; accepted: {accepted}"
                              + (", all" if args.headless else ""))
         classes = [cls]
 
@@ -149,7 +172,8 @@ def app_main(argv: list[str]) -> int:
         names = sorted({n for c in classes for n in c.setting_names()})
         where = f"scene '{classes[0].name}' has" if len(classes) == 1 else "no scene has"
         what = "no parameter or effect" if len(classes) == 1 else "a parameter or effect"
-        raise UsageError(f"--set {unknown[0]}: {where} {what} '{unknown[0]}'; accepted: "
+        raise UsageError(f"--set {shown_text(unknown[0])}: {where} {what} "
+                         f"{shown_text(unknown[0])}; accepted: "
                          f"{', '.join(names)}")
     for cls in classes:
         try:
@@ -170,11 +194,20 @@ def app_main(argv: list[str]) -> int:
         except InputFileError as e:
             raise UsageError(str(e)) from None
 
-    for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record")):
+    shots = [screenshot_path(args.screenshot, c.name, len(classes) > 1) for c in classes
+             if args.headless and args.screenshot]     # the names the run will write
+    for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record"),
+                       *((shot, "--screenshot") for shot in shots if shot != args.screenshot)):
         if path is not None:
             problem = check_output_path(path, what)      # last: it may create the folder
             if problem:
                 raise UsageError(problem)
+
+    for cls in classes:     # an exercise's scene imports the student's file in this process
+        problem = cls.import_problem() if hasattr(cls, "import_problem") else None
+        if problem:
+            print(problem, file=sys.stderr)
+            return EXIT_NONFINITE      # like their code raising: exit 1 (README)
 
     if args.headless:
         if not classes:
@@ -203,7 +236,10 @@ def bench_main(argv: list[str]) -> int:
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats (a smoke run)")
     args = p.parse_args(argv)
     if args.which not in choices:
-        raise UsageError(f"unknown benchmark {args.which!r}; accepted: {', '.join(choices)}")
+        raise UsageError(f"unknown benchmark {shown_text(args.which)}; accepted: "
+                         f"{', '.join(choices)}")
+    if not args.out.strip():
+        raise UsageError("--out needs a folder name, e.g. --out bench-results")
     if os.path.exists(args.out) and not os.path.isdir(args.out):
         raise UsageError(f"--out '{args.out}' is a file; accepted: a folder")
     problem = check_output_path(os.path.join(args.out, "chart.png"), "--out folder")
@@ -228,7 +264,7 @@ def exercise_main(argv: list[str]) -> int:
                    "a folder holding NAME.py files")
     c.add_argument("--reference", action="store_true", help="grade the lab's own answer")
     c.add_argument("--json", action="store_true", help="one JSON object per exercise")
-    c.add_argument("--timeout", type=_positive_float, default=CHECK_TIMEOUT,
+    c.add_argument("--timeout", type=_timeout, default=CHECK_TIMEOUT,
                    help=f"seconds a check may run (default {CHECK_TIMEOUT:g})")
     k = sub.add_parser("copy", help="copy the starters into a folder of your own")
     k.add_argument("folder")
@@ -238,15 +274,21 @@ def exercise_main(argv: list[str]) -> int:
     if args.command == "list":
         return cli.list_exercises()
     if args.command == "copy":
+        if not args.folder.strip():
+            raise UsageError("copy needs a folder name, e.g. exercise copy mywork")
         if os.path.exists(args.folder) and not os.path.isdir(args.folder):
             raise UsageError(f"copy: '{args.folder}' is a file; accepted: a folder")
+        problem = check_output_path(os.path.join(args.folder, "verlet.py"), "copy: folder")
+        if problem:
+            raise UsageError(problem)
         taken = cli.existing_copies(args.folder)
         if taken:
             raise UsageError(f"copy: '{taken[0]}' exists; nothing copied (your work is never "
                              "overwritten): pick another folder or move it away")
         return cli.copy(args.folder)
     if args.name != "all" and get_exercise(args.name) is None:
-        raise UsageError(f"unknown exercise {args.name!r}; accepted: {', '.join(names)}, all")
+        raise UsageError(f"unknown exercise {shown_text(args.name)}; accepted: "
+                         f"{', '.join(names)}, all")
     if args.reference and args.path:
         raise UsageError("--reference grades the lab's own answer; it takes no --path")
     chosen = [get_exercise(n) for n in (names if args.name == "all" else [args.name])]

@@ -13,7 +13,6 @@ import math
 import os
 import statistics
 import sys
-import tempfile
 import time
 from typing import Any
 
@@ -24,6 +23,8 @@ EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
 EXIT_OK, EXIT_NONFINITE, EXIT_USAGE = 0, 1, 2       # the command line's exit codes (DESIGN.md)
 MAX_STEPS = 1_000_000           # a headless run longer than this is a typo, not an experiment
+MAX_INPUT_BYTES = 64 * 2**20    # an --input file (an hour of recorded mouse moves is ~10 MB);
+                                # read at most this much: /dev/zero or an endless pipe never ends
 
 
 class InputFileError(ValueError):
@@ -114,7 +115,8 @@ def load_events(path: str) -> list[InputEvent]:
         raise InputFileError("--input needs a file name (a JSON list of events)")
     try:
         with open(path, encoding="utf-8") as f:
-            data = json.load(f)
+            text = f.read(MAX_INPUT_BYTES + 1)
+        data = json.loads(text) if len(text) <= MAX_INPUT_BYTES else None
     except OSError as e:
         raise InputFileError(f"cannot read --input file '{path}': {e.strerror or e}") from None
     except RecursionError:
@@ -127,6 +129,9 @@ def load_events(path: str) -> list[InputEvent]:
     except ValueError:           # e.g. an integer of more than 4300 digits (Python's own limit)
         raise InputFileError(f"--input file '{path}' holds a number too long to read (over 4300 "
                              "digits); accepted: numbers of at most 300 digits") from None
+    if len(text) > MAX_INPUT_BYTES:
+        raise InputFileError(f"--input file '{path}' is larger than {MAX_INPUT_BYTES >> 20} MB; "
+                             "accepted: a JSON list of events up to that size")
     return parse_events(data, f"--input file '{path}'")
 
 
@@ -199,13 +204,26 @@ def check_output_path(path: str, what: str) -> str | None:
     if os.path.isdir(path):
         return f"{what} '{path}' is a folder; give a file name such as {path.rstrip('/')}/out.png"
     folder = os.path.dirname(os.path.abspath(path))
-    try:                                        # the honest test: make the folder, write a file
-        os.makedirs(folder, exist_ok=True)
-        with tempfile.TemporaryFile(dir=folder):
-            pass
+    try:                                  # the honest test: make the folder, open the very file
+        os.makedirs(folder, exist_ok=True)   # (a name too long for the file system fails here)
+        if os.path.exists(path):
+            with open(path, "ab"):            # writable; left as it was
+                pass
+        else:
+            with open(path, "xb"):
+                pass
+            os.remove(path)
     except OSError as e:
         return f"{what} '{path}': cannot write in '{folder}' ({e.strerror or e})"
     return None
+
+
+def screenshot_path(screenshot: str, scene_name: str, several: bool) -> str:
+    """Where a run saves a scene's screenshot: OUT.png, or OUT-<scene>.png with several scenes."""
+    if not several:
+        return screenshot
+    root, ext = os.path.splitext(screenshot)
+    return f"{root}-{scene_name}{ext}"
 
 
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
@@ -225,15 +243,13 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                   f"(first at t = {late[0].t:g} s, the run ends at t = {runner.clock:g} s): "
                   f"not delivered; give more --steps or --seconds", file=sys.stderr)
         if screenshot:
-            path = screenshot
-            if len(scene_classes) > 1:
-                root, ext = os.path.splitext(screenshot)
-                path = f"{root}-{scene.name}{ext}"
+            path = screenshot_path(screenshot, scene.name, len(scene_classes) > 1)
             try:
                 render(scene, path)
                 result["screenshot"] = path
             except OSError as e:
-                print(f"{scene.name}: could not save the screenshot '{path}': {e}", file=sys.stderr)
+                print(f"python -m app: error: {scene.name}: could not save the screenshot "
+                      f"'{path}': {e}", file=sys.stderr)
                 result["screenshot"] = None
                 unsaved = True
         if as_json:

@@ -91,7 +91,7 @@ class Param:
     def parse(self, value: Any) -> Any:
         """Return `value` (text from the command line or the panel, or a Python value) converted
         to this parameter's type; raise ParamError naming the problem and what is accepted."""
-        bad = f"parameter '{self.name}' got {value!r}"
+        bad = f"parameter '{self.name}' got {shown_text(value)}"
         if self.kind is bool:
             if isinstance(value, (bool, np.bool_)):
                 return bool(value)
@@ -108,7 +108,7 @@ class Param:
             return word
         if isinstance(value, (bool, np.bool_)):
             raise ParamError(f"{bad}: not a number; accepted: {self.accepted()}")
-        if isinstance(value, str) and not _plain_number(value):
+        if isinstance(value, str) and not plain_number(value):
             word = "an integer" if self.kind is int else "a number"
             raise ParamError(f"{bad}: not {word} in plain ASCII digits (no '_' separators); "
                              f"accepted: {self.accepted()}")
@@ -128,7 +128,7 @@ class Param:
         return number
 
 
-def _plain_number(text: str) -> bool:
+def plain_number(text: str) -> bool:
     """Python's int() and float() also read '1_0' and other scripts' digits ('١٠' is 10); a
     command line that means one thing everywhere accepts ASCII digits, sign, point and exponent
     only (and the words inf and nan, which the range check then refuses by name)."""
@@ -145,6 +145,15 @@ def _parse_int(value: Any) -> int | None:
         return int(str(value).strip())
     except ValueError:
         return None
+
+
+def shown_text(value: Any, limit: int = 40) -> str:
+    """repr(value) for a one-line message, cut to about `limit` characters (a 5,000-digit
+    number or a pasted file echoed in full would bury the message)."""
+    text = repr(value)
+    if len(text) <= limit:
+        return text
+    return f"{text[:limit - 10]}... ({len(str(value)):,} characters)"
 
 
 def _fmt(x: float | None) -> str:
@@ -290,11 +299,11 @@ class Scene:
                 return Param(eff.name, True, bool).parse(value)
             except ParamError:
                 strength = f" (its strength is the parameter '{eff.amount}')" if eff.amount else ""
-                raise ParamError(f"effect '{eff.name}' got {value!r}: an effect is on or off; "
-                                 f"accepted values are on, off, true, false, yes, no, 1, 0"
+                raise ParamError(f"effect '{eff.name}' got {shown_text(value)}: an effect is on or "
+                                 f"off; accepted values are on, off, true, false, yes, no, 1, 0"
                                  f"{strength}") from None
-        raise ParamError(f"scene '{cls.name}' has no parameter or effect '{key}'; accepted: "
-                         + ", ".join(cls.setting_names()))
+        raise ParamError(f"scene '{cls.name}' has no parameter or effect {shown_text(key)}; "
+                         "accepted: " + ", ".join(cls.setting_names()))
 
     @classmethod
     def check_combination(cls, values: Mapping[str, Any]) -> None:
@@ -464,4 +473,4 @@ def docstring_help(scene_cls: type[Scene]) -> str:
 __all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
            "COMMON_PARAMS",
            "common",
-           "hash_arrays", "docstring_help"]
+           "hash_arrays", "docstring_help", "shown_text", "plain_number"]

@@ -43,9 +43,10 @@ import pymunk
 from app.draw.hud import Line, text_box
 from app.exercises import get_exercise
 from app.exercises.base import BadAnswer, array_of
-from app.exercises.grade import load_module, shown, starter_path, student_traceback
+from app.exercises.grade import (CHECK_TIMEOUT, load_module, run_isolated, shown, starter_path,
+                                 student_traceback)
 from app.pymunk_scene import PymunkScene
-from app.scene import Effect, Param, Scene, SceneError, common
+from app.scene import Effect, Param, ParamError, Scene, SceneError, common
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.newtons_cradle import RADIUS, SLOP, NewtonsCradleScene
 from scenes.pivoting_l import PivotingLScene
@@ -75,6 +76,19 @@ class StudentCode:
     error_kind = ""                # the exception's class name, for the HUD
     draws_own_error = True         # draw() shows the traceback (headless screenshots too)
     ghost_note = "orange: the lab's"   # what the HUD says the reference looks like
+
+    @classmethod
+    def import_problem(cls, timeout: float = CHECK_TIMEOUT) -> str | None:
+        """Why the student's file cannot be imported safely, or None: imported first in a child
+        process (as the grader does), a file that calls os._exit, kills its own process or
+        loops forever at import would take the lab down with it. An exception at import is
+        not a problem here: the scene reports it with the student's file and line."""
+        if cls.student is not None:
+            return None
+        report = run_isolated(get_exercise(cls.exercise), None, cls.student_path, timeout)
+        if report.measured.startswith(("the process died", "still running")):
+            return f"{cls.student_path}: importing it, {report.measured}: {report.error}"
+        return None
 
     def build(self) -> None:
         self.error = None
@@ -345,6 +359,18 @@ class ConstraintsExercise(StudentCode, ParticleExercise):
                     rebuild=False),)
 
     live = ("iterations",)
+    # one sweep in one substep costs ~0.35 ms for the two cloths (the lab's answer, measured
+    # with other work running): 50 x 50 took ~0.9 s a step; refused over ~0.35 s
+    step_budget = 1000
+
+    @classmethod
+    def check_combination(cls, values) -> None:
+        work = values["iterations"] * values["substeps"]
+        if work > cls.step_budget:
+            raise ParamError(f"iterations x substeps = {values['iterations']} x "
+                             f"{values['substeps']} = {work:,} is too large: a step would take "
+                             f"over a third of a second (budget {cls.step_budget:,}); lower "
+                             "iterations or substeps")
 
     def make(self, impl):
         mine = impl is self.impl

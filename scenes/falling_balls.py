@@ -314,7 +314,7 @@ class FallingBallsScene(PymunkScene):
 
     def spawn(self, h: float) -> None:
         """Drop balls at a steady rate at random x above the L, from above the world (seeded:
-        self.random)."""
+        self.random); a ball whose place is taken goes on top of the ball there."""
         rate = self.p["spawn_rate"]
         if rate <= 0:
             return
@@ -323,8 +323,15 @@ class FallingBallsScene(PymunkScene):
             self._spawn_due += 1.0 / rate
             if len(self.balls) >= self.p["max_balls"]:
                 continue
-            x = L_ORIGIN[0] + self.random.uniform(*SPAWN_X)
-            self.add_ball((x, SPAWN_Y - self.p["radius"]))
+            r = self.p["radius"]
+            x, y = L_ORIGIN[0] + self.random.uniform(*SPAWN_X), SPAWN_Y - r
+            # a place already taken (balls due in one long step, or not yet fallen: gravity
+            # off) puts the ball on top: overlapping balls by the hundred made a step take
+            # seconds; a column over a world's height is full (it would be removed at once)
+            while self.space.point_query((x, y), r, pymunk.ShapeFilter()):
+                y -= 2 * r
+            if y > -self.world_size[1]:
+                self.add_ball((x, y))
 
     # ----- mouse ----------------------------------------------------------------------------
     def on_click(self, pos: tuple[float, float], button: int) -> None:

@@ -12,6 +12,7 @@ import subprocess
 import sys
 import warnings
 
+import numpy as np
 import pygame
 import pytest
 
@@ -19,6 +20,7 @@ from app.draw.view import View
 from app.scene import InputEvent
 from scenes import SCENES
 from scenes.falling_balls import FallingBallsScene
+from scenes.pivoting_l import PivotingLScene
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -158,3 +160,118 @@ def test_scene_all_goes_on_after_an_extreme_drag_in_every_scene(tmp_path):
     summaries = [json.loads(line) for line in r.stdout.splitlines()]
     assert [s["scene"] for s in summaries] == [cls.name for cls in SCENES]
     assert all(s["finite"] and os.path.exists(s["screenshot"]) for s in summaries)
+
+
+# ----- the r11 campaign (about 2,800 generated command lines): what still broke the contract ---
+# Usage errors are checked through app.__main__.main in this process (the same code as the
+# command line, without a Python start-up each); what needs a process of its own runs in one.
+def main_cli(capsys, *args):
+    from app.__main__ import main
+    code = main(list(args))
+    out, err = capsys.readouterr()
+    return subprocess.CompletedProcess(args, code, out, err)
+
+
+def test_a_pasted_wall_of_text_is_cut_in_the_one_line_message(capsys):
+    # once: a 5,000-digit --set value or scene name was echoed whole (a 5,000-character line)
+    for args in (["--scene", "cloth", "--set", "rows=" + "9" * 5000],
+                 ["--scene", "a" * 5000], ["--scene", "cloth", "--steps", "9" * 5000]):
+        r = main_cli(capsys, "--headless", *args)
+        assert_usage_error(r, "5,000 characters")
+        assert len(r.stderr) < 400, len(r.stderr)
+
+
+@pytest.mark.parametrize("option,value", [("--steps", "1_0"), ("--steps", "\u0661\u0660"),
+                                          ("--seconds", "\u0661")])
+def test_run_lengths_are_plain_ascii_numbers_like_set_values(capsys, option, value):
+    assert_usage_error(main_cli(capsys, "--headless", "--scene", "integrators", option, value),
+                       "plain ASCII")
+
+
+def test_an_endless_input_stream_is_refused_after_a_bounded_read(tmp_path, monkeypatch):
+    # once: --input /dev/zero read forever (a hang); the read is now bounded
+    import app.headless as headless
+    monkeypatch.setattr(headless, "MAX_INPUT_BYTES", 1000)
+    path = tmp_path / "big.json"
+    path.write_text(json.dumps([{"t": 0, "type": "key_down", "key": "x"}] * 100))
+    with pytest.raises(headless.InputFileError, match="larger than"):
+        headless.load_events(str(path))
+    if os.path.exists("/dev/zero"):
+        with pytest.raises(headless.InputFileError, match="larger than"):
+            headless.load_events("/dev/zero")
+
+
+def test_a_screenshot_name_too_long_for_the_file_system_is_refused_before_the_run(capsys,
+                                                                                  tmp_path):
+    # once: the run went ahead and the save failed after it, on one line per scene without the
+    # prefix; with --scene all the names grow by -<scene>, and each is checked
+    name = str(tmp_path / ("a" * 240 + ".png"))
+    assert_usage_error(main_cli(capsys, "--headless", "--scene", "all", "--steps", "1",
+                                "--screenshot", name), "--screenshot", "File name too long")
+
+
+@pytest.mark.parametrize("args,words", [
+    (["exercise", "check", "verlet", "--reference", "--timeout", "1e308"], ["at most 3600"]),
+    (["exercise", "copy", ""], ["copy needs a folder name"]),
+    (["exercise", "copy", "{file}/sub"], ["cannot write"]),
+    (["bench", "cloth", "--out", ""], ["--out needs a folder name"]),
+], ids=["timeout_overflow", "copy_empty", "copy_under_a_file", "bench_out_empty"])
+def test_exercise_and_bench_paths_and_limits_are_refused_in_one_line(capsys, tmp_path, args,
+                                                                     words):
+    # once: OverflowError, FileNotFoundError and NotADirectoryError tracebacks; `--out ''`
+    # wrote the charts into the current folder
+    a_file = tmp_path / "a_file"
+    a_file.write_text("x")
+    assert_usage_error(main_cli(capsys, *[a.format(file=a_file) for a in args]), *words)
+
+
+def test_a_reader_that_closes_the_pipe_early_gets_no_traceback():
+    # `python -m app --headless --scene all --json | head -1`: once a BrokenPipeError traceback
+    env = dict(os.environ, SDL_VIDEODRIVER="dummy", SDL_AUDIODRIVER="dummy")
+    read, write = os.pipe()
+    os.close(read)                       # the reader is gone before the first line
+    try:
+        r = subprocess.run([sys.executable, "-m", "app", "--headless", "--scene", "integrators",
+                            "--steps", "1", "--json"], cwd=ROOT, env=env, stdout=write,
+                           stderr=subprocess.PIPE, text=True, timeout=120)
+    finally:
+        os.close(write)
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+
+
+@pytest.mark.parametrize("body,code,words", [
+    ("import os\nos._exit(7)\n", 1, ["the process died (exit code 7)"]),
+    ("import sys\nsys.exit(3)\n", 1, ["SystemExit: 3"]),
+], ids=["os_exit", "sys_exit"])
+def test_an_exercise_scene_survives_a_student_file_that_exits_at_import(tmp_path, body, code,
+                                                                         words):
+    # once: the student's file, imported in the lab's own process, ended it with exit code 7
+    # (or 3, or -9 for a kill): no summary, no message
+    path = tmp_path / "verlet.py"
+    path.write_text("print('hello from the student')\n" + body)
+    r = run_cli("--headless", "--scene", f"exercise:{path}", "--steps", "2", "--json")
+    assert r.returncode == code and "Traceback" not in r.stderr, r.stderr
+    for word in words:
+        assert word in r.stderr, r.stderr
+    for line in r.stdout.splitlines():        # their print never lands in the JSON output
+        assert json.loads(line)["scene"] == f"exercise:{path}"
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene], ids=lambda c: c.name)
+def test_balls_due_in_one_long_step_are_spawned_without_overlap(cls):
+    # once: hertz 1, spawn_rate 200, radius 60, gravity off put 200 balls a step on top of each
+    # other in the spawn row; 800 overlapping balls took 1.4 s a step (the budget counts a
+    # settled pile). A taken place now puts the ball on top.
+    scene = cls({"hertz": 1, "spawn_rate": 200, "radius": 60, "gravity": "off"})
+    for _ in range(2):
+        scene.advance()           # spawning ends the step: the new balls have not moved yet
+    xy = np.array([tuple(b.body.position) for b in scene.balls])
+    gaps = np.linalg.norm(xy[:, None] - xy[None], axis=-1) + np.eye(len(xy)) * 1e9
+    assert len(xy) >= 3 and gaps.min() >= 2 * 60 - 1e-6
+
+
+def test_the_constraints_exercise_refuses_a_step_over_its_budget(capsys):
+    # once: iterations 25 x substeps 50 took 1.4 s a step (the two cloths' sweeps in Python)
+    assert_usage_error(main_cli(capsys, "--headless", "--scene", "exercise:constraints",
+                                "--steps", "1", "--set", "iterations=25", "--set", "substeps=50"),
+                       "iterations x substeps", "budget")
