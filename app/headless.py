@@ -16,7 +16,7 @@ import sys
 import time
 from typing import Any
 
-from app.runner import SceneRunner, deliver, run_scene   # noqa: F401 (deliver: for importers)
+from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
 from app.scene import InputEvent, Scene
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
@@ -263,8 +263,8 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
         elif not runner.finite:
             print(f"{scene.name}: the simulation went non-finite (NaN or inf, or past the scene's "
                   f"blow-up bounds) at step "
-                  f"{runner.steps} (t = {runner.steps * scene.dt:.3f} s); try a smaller dt "
-                  f"(raise hertz) or more substeps", file=sys.stderr)
+                  f"{runner.steps} (t = {runner.steps * scene.dt:.3f} s). {advice(scene)}",
+                  file=sys.stderr)
             nonfinite = True
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK

@@ -210,6 +210,21 @@ class PymunkScene(Scene):
     def state_arrays(self) -> Iterable[np.ndarray]:
         return (self.body_state(),)
 
+    # A scene whose bodies are all held by joints sets this: a body farther than this many px
+    # from the world has blown up (finite, but no pendulum or cradle gets there), and the run is
+    # reported and rolled back as a non-finite one. None: bodies may leave (falling balls).
+    blowup_reach: float | None = None
+
+    def is_finite(self) -> bool:
+        state = self.body_state()
+        if not np.isfinite(state).all():
+            return False
+        if self.blowup_reach is None or not len(state):
+            return True
+        w, h, r = *self.world_size, self.blowup_reach
+        x, y = state[:, 0], state[:, 1]
+        return bool(((x > -r) & (x < w + r) & (y > -r) & (y < h + r)).all())
+
     def snapshot(self) -> Any:
         """A deep copy of the world (the space and the scene's lists of its objects, copied
         together so they still refer to each other). A drag in progress is left out of it."""

@@ -36,7 +36,18 @@ RECENT_STEPS = 60            # steps in the HUD's median of the physics time
 
 NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf, or past the scene's blow-up bounds) "
                   "at t={bad:.3f} s: rolled back to "
-                  "t={good:.3f} s and paused. Try a smaller dt (raise hertz) or more substeps.")
+                  "t={good:.3f} s and paused. {advice}")
+
+
+def advice(scene: Scene) -> str:
+    """What to try after a blow-up: a smaller dt or more substeps, while they can still grow."""
+    room = [text for name, text in (("hertz", "a smaller dt (raise hertz)"),
+                                    ("substeps", "more substeps"))
+            if scene.p[name] < scene.param(name).hi]
+    if room:
+        return "Try " + " or ".join(room) + "."
+    return ("hertz and substeps are at their largest: these settings are past what this "
+            "solver can hold (change the others).")
 
 
 def deliver(scene: Scene, event: InputEvent) -> bool:
@@ -57,9 +68,10 @@ class Rollback:
     """What a rollback did: the time the state went bad and the time it went back to."""
     bad_t: float
     good_t: float
+    advice: str = ""
 
     def text(self) -> str:
-        return NONFINITE_TEXT.format(bad=self.bad_t, good=self.good_t)
+        return NONFINITE_TEXT.format(bad=self.bad_t, good=self.good_t, advice=self.advice)
 
 
 class SceneRunner:
@@ -189,7 +201,7 @@ class SceneRunner:
         else:                         # the restored state is the one to come back to next time
             self._good.clear()
             self._keep_snapshot()
-        return Rollback(bad_t, scene.time)
+        return Rollback(bad_t, scene.time, advice(scene))
 
     # --- what the HUD and the summary read ---------------------------------------------------
     @property

@@ -138,6 +138,7 @@ class DoublePendulumScene(PymunkScene):
     name = "double_pendulum"
     title = "Double pendulum vs. its equations"
     category = "Rigid bodies (pymunk)"
+    blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up
     params = PYMUNK_PARAMS + PENDULUM_PARAMS
     effects = PYMUNK_EFFECTS + (
         Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),

@@ -153,6 +153,7 @@ class NewtonsCradleScene(PymunkScene):
     name = "newtons_cradle"
     title = "Newton's cradle (pymunk)"
     category = "Rigid bodies (pymunk)"
+    blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up
     params = PYMUNK_PARAMS + CRADLE_PARAMS
     world_keys = ("space", "bodies", "strings", "track")
     color_key = ((LIFTED_COLOR, "yellow: the balls lifted and released"),

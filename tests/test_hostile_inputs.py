@@ -275,3 +275,19 @@ def test_the_constraints_exercise_refuses_a_step_over_its_budget(capsys):
     assert_usage_error(main_cli(capsys, "--headless", "--scene", "exercise:constraints",
                                 "--steps", "1", "--set", "iterations=25", "--set", "substeps=50"),
                        "iterations x substeps", "budget")
+
+
+def test_a_pendulum_flung_out_of_the_world_is_a_blow_up_and_the_advice_fits_the_settings():
+    """Finite but 1e23 px away is blown up (exit 1, finite false), and with hertz and substeps
+    at their largest the message does not tell the user to raise them."""
+    args = ["--headless", "--scene", "double_pendulum", "--steps", "20", "--json",
+            "--set", "g=2500", "--set", "hertz=1000", "--set", "substeps=50",
+            "--set", "angle1=-180", "--set", "angle2=180", "--set", "length1=170",
+            "--set", "length2=95", "--set", "mass1=0.05", "--set", "mass2=10.025"]
+    done = subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 1
+    summary = json.loads(done.stdout)
+    assert summary["finite"] is False and summary["steps"] < 20
+    assert "blow-up bounds" in done.stderr and "at their largest" in done.stderr
+    assert "raise hertz" not in done.stderr

@@ -255,7 +255,8 @@ def test_non_finite_state_rolls_back_and_pauses(window):
     # the one just before a blow-up may already be a wreck
     assert scene.steps == 0 and scene.time == 0.0
     banner = window.scene_view.banner
-    assert banner == NONFINITE_TEXT.format(bad=41 / 60, good=0.0)
+    assert banner == NONFINITE_TEXT.format(bad=41 / 60, good=0.0,
+                                     advice="Try a smaller dt (raise hertz) or more substeps.")
     window.render()
     key(window, pygame.K_SPACE)            # resuming clears the banner
     assert not window.scene_view.banner
