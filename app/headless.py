@@ -239,9 +239,10 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
         result = summary(runner, time.perf_counter() - start)
         late = runner.events_left
         if late:
-            print(f"{scene.name}: {len(late)} --input event(s) lie after the end of the run "
-                  f"(first at t = {late[0].t:g} s, the run ends at t = {runner.clock:g} s): "
-                  f"not delivered; give more --steps or --seconds", file=sys.stderr)
+            last = max(runner.clock - scene.dt, 0.0)   # an event is delivered before a step
+            print(f"{scene.name}: {len(late)} --input event(s) not delivered: the last step "
+                  f"starts at t = {last:g} s and the first of them is due at t = {late[0].t:g} s; "
+                  f"give more --steps or --seconds", file=sys.stderr)
         if screenshot:
             path = screenshot_path(screenshot, scene.name, len(scene_classes) > 1)
             try:

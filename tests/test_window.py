@@ -746,7 +746,14 @@ def test_headless_warns_about_events_after_the_end(capsys):
     assert run_headless([Tiny], {}, 30, None, events, None, True) == 0
     out, err = capsys.readouterr()
     assert json.loads(out)["events"] == 1
-    assert err.count("\n") == 1 and "1 --input event(s) lie after the end of the run" in err
+    assert err.count("\n") == 1 and "1 --input event(s) not delivered" in err
+    assert "the last step starts at t = 0.483333 s" in err and "due at t = 9 s" in err
+    # an event at the last step's start is delivered; one just after it is not
+    events = [InputEvent("key_down", key="u", t=29 / 60), InputEvent("key_down", key="u",
+                                                                     t=30 / 60)]
+    assert run_headless([Tiny], {}, 30, None, events, None, True) == 0
+    out, err = capsys.readouterr()
+    assert json.loads(out)["events"] == 1 and "1 --input event(s) not delivered" in err
 
 
 def test_the_key_table_makes_the_keys_the_help_and_the_readme():

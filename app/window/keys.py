@@ -29,7 +29,8 @@ class ShellKey:
 DIGITS = tuple("123456789") + tuple(f"[{d}]" for d in "123456789")
 
 KEYS: tuple[ShellKey, ...] = (
-    ShellKey(DIGITS, "1-9, mouse", "pick", "in the menu: open the scene with that number"),
+    ShellKey(DIGITS, "1-9, mouse, arrows + Enter", "pick",
+             "in the menu: open a scene (its number, a click, or Up/Down then Enter)"),
     ShellKey(("page up",), "PageUp", "previous_scene", "previous scene"),
     ShellKey(("page down",), "PageDown", "next_scene", "next scene"),
     ShellKey(("space",), "Space", "toggle_pause", "pause / resume"),
