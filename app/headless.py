@@ -145,7 +145,7 @@ def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
         "steps": runner.steps,
         "sim_seconds": round(runner.steps * s.dt, 9),
         "wall_seconds": round(wall_seconds, 6),
-        "step_ms": round(statistics.median(times) * 1000, 6) if times else 0.0,
+        "step_ms": round(statistics.median(times) * 1000, 6) if times else None,   # no step
         "params": clean(s.p),
         "effects": sorted(s.on),
         "metrics": clean(s.metrics()),
@@ -276,7 +276,7 @@ def describe(summary: dict[str, Any]) -> str:
     from app.draw.hud import fmt_number
     metrics = ", ".join(f"{k}={fmt_number(v)}" for k, v in summary["metrics"].items())
     lines = [f"{summary['scene']}: {summary['steps']} steps, {summary['sim_seconds']:.3g} s simulated "
-             f"in {summary['wall_seconds']:.3g} s, {summary['step_ms']:.3g} ms/step, "
+             f"in {summary['wall_seconds']:.3g} s, {fmt_number(summary['step_ms'])} ms/step, "
              f"finite={summary['finite']}, hash {summary['state_hash']}",
              f"  metrics: {metrics}"]
     if summary.get("screenshot"):

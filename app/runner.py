@@ -32,7 +32,7 @@ from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
 
 SNAPSHOT_EVERY = 30          # steps between last-good snapshots (window rollback)
 SNAPSHOTS_KEPT = 3           # a rollback goes to the oldest: 60 to 90 steps before the blow-up
-RECENT_STEPS = 60            # steps in the HUD's median of the physics time
+RECENT_STEPS = 60            # steps in the HUD's mean of the physics time
 
 NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf, or past the scene's blow-up bounds) "
                   "at t={bad:.3f} s: rolled back to "
@@ -210,10 +210,6 @@ class SceneRunner:
         like the scenes' per-effect costs, so the breakdown adds up to it); None before the
         first step. Unchanged while no step runs (paused)."""
         return statistics.fmean(self.recent_ms) if self.recent_ms else None
-
-    @property
-    def last_ms(self) -> float | None:
-        return self.recent_ms[-1] if self.recent_ms else None
 
 
 def run_scene(scene: Scene, steps: int, events: list[InputEvent] | None = None) -> SceneRunner:

@@ -120,6 +120,14 @@ class StudentCode:
     def metrics(self) -> dict[str, float]:
         return {} if self.error else super().metrics()
 
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        if self.error:                 # the world may not exist: the whole world area
+            return Scene.content_bounds(self)
+        return super().content_bounds()
+
+    def effect_costs(self) -> dict[str, float]:
+        return {} if self.error else super().effect_costs()
+
     def hud_lines(self) -> list[str]:
         if self.error:
             return [f"your code raised {self.error_kind} (below): fix it, save, press R"]

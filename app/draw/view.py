@@ -70,8 +70,3 @@ class View:
     def to_world(self, p) -> tuple[float, float]:
         """A screen point -> world point."""
         return ((p[0] - self.offset[0]) / self.scale, (p[1] - self.offset[1]) / self.scale)
-
-    def world_rect(self, world_size: tuple[int, int]) -> tuple[int, int, int, int]:
-        """The screen rectangle covered by the world."""
-        x, y = self.pt((0, 0))
-        return (x, y, int(round(world_size[0] * self.scale)), int(round(world_size[1] * self.scale)))
