@@ -31,7 +31,8 @@ which is the joint's limit, a parameter), pin_error (largest distance between th
 seen: a perfect pin keeps it 0), and falling_balls' counts; `tunneled` matters here: at a coarse
 step (hertz 1) most balls fall through the L without touching it, the L never tips, and the HUD
 says so rather than showing an L at rest as if it were the result; the few that hit it open the
-pin by a hundred px and more within a substep, and the HUD flags a pin error beyond 5 px too.
+pin by a hundred px and more within a substep: the HUD flags a pin error beyond 5 px too, and
+the metrics' pin_let_go says so in the JSON.
 
 Layout as in falling_balls: y down, the tutorial's lengths scaled by 1.5 (so the slide's max is
 25 * 1.5 = 37.5 px by default).
@@ -56,7 +57,7 @@ from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS,
     FallingBallsScene
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
-PIN_LOOSE = 5.0                  # px: a pin error beyond this is flagged in the HUD
+PIN_LOOSE = 5.0                  # px: a pin error beyond this is flagged (HUD, pin_let_go)
 
 PIVOT_PARAMS: tuple[Param, ...] = (
     Param("slide_max", 25 * S, float, 0.0, 150.0,
@@ -167,7 +168,9 @@ class PivotingLScene(FallingBallsScene):
              "slide_distance": self.slide_distance(),
              "slide_seen_min": self.record["slide_seen_min"],
              "slide_seen_max": self.record["slide_seen_max"],
-             "pin_error": self.record["pin_error"]}
+             "pin_error": self.record["pin_error"],
+             # the flag on a run whose step was too coarse for the joints (hertz 1: 225 px)
+             "pin_let_go": self.record["pin_error"] > PIN_LOOSE}
         m.update(super().metrics())
         return m
 

@@ -106,3 +106,16 @@ def test_a_step_too_coarse_for_the_balls_to_land_is_flagged_not_shown_as_a_resul
     assert m["pin_error"] > 100                  # the few that hit it opened the pin: flagged too
     assert any("PIN LET GO" in line for line in scene.hud_lines())
     assert "PIN LET GO" not in PivotingLScene().hud_lines()[1]      # not at the defaults
+
+
+def test_a_step_too_coarse_for_the_pin_is_flagged_in_the_metrics():
+    """At hertz 1 the pin opens by hundreds of px: the JSON says so (pin_let_go), not only the
+    HUD; at the default step it holds."""
+    coarse = PivotingLScene({"hertz": 1})
+    for _ in range(10):
+        coarse.advance()
+    assert coarse.metrics()["pin_let_go"] is True and coarse.metrics()["pin_error"] > 100
+    fine = PivotingLScene()
+    for _ in range(120):
+        fine.advance()
+    assert fine.metrics()["pin_let_go"] is False
