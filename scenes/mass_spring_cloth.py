@@ -31,6 +31,14 @@ denim and rubber hang.
 Settings: material sets the sliders below it (mass, tension, compression, shear_stiffness,
 bending_stiffness, spring_damping, air_damping: Blender's names and units); moving one of them
 afterwards makes the material `custom`. Integrator and every slider change live.
+
+Metrics (units: px, s, kg): particles, springs, integrator; omega_max (1/s, the top mode's
+frequency); explicit_limit_h (s: symplectic Euler's limit with this damping, which is what the HUD
+compares your step with; undamped it would be 2/omega_max); max_stretch and mean_stretch
+(|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
+start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
+256 px); cg_iterations (the last implicit solve's; null before the first solve, 0 with an
+explicit integrator); pinned_drift (px).
 """
 
 from __future__ import annotations
