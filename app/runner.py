@@ -40,7 +40,11 @@ NONFINITE_TEXT = ("The simulation went non-finite (NaN/inf, or past the scene's 
 
 
 def advice(scene: Scene) -> str:
-    """What to try after a blow-up: a smaller dt or more substeps, while they can still grow."""
+    """What to try after a blow-up: the scene's own hint if it has one, else a smaller dt or
+    more substeps, while they can still grow."""
+    hint = scene.blowup_hint()
+    if hint:
+        return hint
     room = [text for name, text in (("hertz", "a smaller dt (raise hertz)"),
                                     ("substeps", "more substeps"))
             if scene.p[name] < scene.param(name).hi]

@@ -28,7 +28,8 @@ The order in which the shell calls the hooks:
                                                    rebuild, else settings_changed({name})
     every frame:         draw(surface, view), metrics(), hud_lines(), effect_costs()
     layout:              content_bounds()          (what draw() covers, world coordinates)
-    non-finite guard:    is_finite(); snapshot() every so often; restore(snap) on a blow-up
+    non-finite guard:    is_finite(); snapshot() every so often; restore(snap) on a blow-up,
+                         then blowup_hint() for the message
     determinism tests:   state_hash()
 """
 
@@ -406,6 +407,11 @@ class Scene:
 
     def draw(self, surface, view) -> None:
         """Draw the world on a pygame surface through `view` (app.draw.view.View)."""
+
+    def blowup_hint(self) -> str:
+        """After a blow-up (rolled back): what to change, in the scene's own terms (e.g. the
+        predicted step limit). "" means the shell's general advice (smaller dt, more substeps)."""
+        return ""
 
     def content_bounds(self) -> tuple[float, float, float, float]:
         """The world rectangle (x, y, w, h) that draw() covers; the layout keeps the HUD, the

@@ -44,6 +44,7 @@ explicit integrator); pinned_drift (px).
 from __future__ import annotations
 
 import collections
+import math
 
 import numpy as np
 
@@ -225,6 +226,18 @@ class MassSpringClothScene(Scene):
         if name not in self._limits:
             self._limits[name] = predicted_limit(name, self.omega_max, self.mode_damping)
         return self._limits[name]
+
+    def blowup_hint(self) -> str:
+        """The explicit limit in so many words: how far past it the step was, and the way out."""
+        name, p = self.p["integrator"], self.p
+        pred = self.limit(name) if INTEGRATORS[name].explicit else None
+        if pred is None or pred <= 0:
+            return ""
+        h = self.dt / p["substeps"]
+        need = math.ceil(1.0 / pred)               # steps per second inside the limit
+        return (f"h = {h * 1e3:.3g} ms is {_times(h / pred)}x {INTEGRATORS[name].title}'s "
+                f"predicted limit ({pred * 1e3:.3g} ms): explicit methods are stable only below "
+                f"it. Raise hertz x substeps to at least {need:,}, or take implicit_euler.")
 
     def step(self, h: float) -> None:
         self.cloth.step(h, self.p["integrator"])

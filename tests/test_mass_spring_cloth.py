@@ -421,3 +421,28 @@ def test_the_hud_writes_a_large_step_ratio_as_a_plain_number():
     scene = MassSpringClothScene({"material": "leather", "integrator": "symplectic_euler"})
     where = next(str(x) for x in scene.hud_lines() if "you are at" in str(x))
     assert "e+" not in where and "231x symplectic Euler's limit" in where
+
+
+def test_an_explicit_blow_up_is_explained_by_the_predicted_limit():
+    """Past the limit the shell rolls back and the message names the limit in the scene's own
+    terms (issue 8): how far past it the step was and the hertz x substeps that would hold."""
+    from app.runner import SceneRunner
+    scene = MassSpringClothScene({"material": "leather", "integrator": "symplectic_euler"})
+    runner = SceneRunner(scene, rollback=True)
+    runner.rebuilt()
+    rollback = None
+    for _ in range(60):
+        rollback = runner.run(1)[1]
+        if rollback:
+            break
+    assert rollback is not None and scene.is_finite() and scene.steps == 0
+    pred = scene.limit("symplectic_euler")
+    text = rollback.text()
+    assert f"predicted limit ({pred * 1e3:.3g} ms)" in text and "implicit_euler" in text
+    assert f"at least {math.ceil(1 / pred):,}" in text and "raise hertz)" not in text
+    inside = MassSpringClothScene({"material": "leather", "integrator": "symplectic_euler",
+                                   "hertz": 1000, "substeps": math.ceil(1 / pred / 1000)})
+    for _ in range(60):                   # the advice holds: inside the limit it runs
+        inside.advance()
+    assert inside.is_finite()
+    assert MassSpringClothScene().blowup_hint() == ""     # implicit Euler: the general advice

@@ -400,8 +400,11 @@ class SceneView(ShellView):
             top = layout.hud.bottom + 8 if self.overlays else area.top + int(40 * s)
             hud.banner(screen, ERROR_TEXT.format(message=self.runner.error), area,
                        hud.ERROR_COLOR, y=top)
-        elif self.banner:
-            hud.banner(screen, self.banner, area, hud.WARN_COLOR, y=area.centery - int(60 * s))
+        elif self.banner:              # over the paused picture, never over the HUD box
+            top = area.centery - int(60 * s)
+            if self.overlays:
+                top = max(top, layout.hud.bottom + 8)
+            hud.banner(screen, self.banner, area, hud.WARN_COLOR, y=top)
         for _, text, color in reversed(self.window.messages):
             if color == hud.ERROR_COLOR:
                 bottom = hud.banner(screen, text, area, color, bottom=bottom).top
