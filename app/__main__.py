@@ -224,6 +224,18 @@ def app_main(argv: list[str]) -> int:
                       large_text=args.large_text, events=events)
 
 
+def writable_folder(path: str, what: str, example: str, probe: str) -> None:
+    """Refuse (UsageError) a folder argument that is empty, names a file, or cannot be written
+    (tried with a file called `probe`, before any work is done)."""
+    if not path.strip():
+        raise UsageError(f"{what} needs a folder name, e.g. {example}")
+    if os.path.exists(path) and not os.path.isdir(path):
+        raise UsageError(f"{what} '{path}' is a file; accepted: a folder")
+    problem = check_output_path(os.path.join(path, probe), f"{what} folder")
+    if problem:
+        raise UsageError(problem)
+
+
 def bench_main(argv: list[str]) -> int:
     from app.bench import BENCHMARKS, run_benchmarks
     choices = list(BENCHMARKS) + ["all"]
@@ -238,13 +250,7 @@ def bench_main(argv: list[str]) -> int:
     if args.which not in choices:
         raise UsageError(f"unknown benchmark {shown_text(args.which)}; accepted: "
                          f"{', '.join(choices)}")
-    if not args.out.strip():
-        raise UsageError("--out needs a folder name, e.g. --out bench-results")
-    if os.path.exists(args.out) and not os.path.isdir(args.out):
-        raise UsageError(f"--out '{args.out}' is a file; accepted: a folder")
-    problem = check_output_path(os.path.join(args.out, "chart.png"), "--out folder")
-    if problem:
-        raise UsageError(problem)
+    writable_folder(args.out, "--out", "--out bench-results", "chart.png")
     use_dummy_video()
     return run_benchmarks(args.which, args.json, args.out, args.quick)
 
@@ -274,13 +280,7 @@ def exercise_main(argv: list[str]) -> int:
     if args.command == "list":
         return cli.list_exercises()
     if args.command == "copy":
-        if not args.folder.strip():
-            raise UsageError("copy needs a folder name, e.g. exercise copy mywork")
-        if os.path.exists(args.folder) and not os.path.isdir(args.folder):
-            raise UsageError(f"copy: '{args.folder}' is a file; accepted: a folder")
-        problem = check_output_path(os.path.join(args.folder, "verlet.py"), "copy: folder")
-        if problem:
-            raise UsageError(problem)
+        writable_folder(args.folder, "copy", "exercise copy mywork", "verlet.py")
         taken = cli.existing_copies(args.folder)
         if taken:
             raise UsageError(f"copy: '{taken[0]}' exists; nothing copied (your work is never "
