@@ -36,7 +36,7 @@ last, ends each sweep at its rest length (blue), and moving the shared particles
 even batch again (red). Measured after 2 s hanging at 1 iteration: even rows 27% stretched, odd
 rows 0.0001%; at 20 iterations even rows 2%. More iterations shrink the red, and the stripes fade.
 We keep the fixed order and explain it rather than alternate it: it is a real property of the
-method, worth seeing (app/physics/cloth.py, "batches").
+method, worth seeing (app/physics/rods.py, "batches").
 
 The HUD's last line splits the physics time per step into its parts (the rod sets' sweeps, the
 Verlet step, each force, tearing), as shares, so it agrees with whatever ms/step the window
@@ -47,8 +47,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from app.physics.cloth import (DRAG, FORCE_NAMES, GRAVITY, ITERATIONS, PIN_CHOICES, SET_NAMES,
-                               TEAR_RATIO, WIND_FIELDS, WIND_STRENGTH, Cloth, sweep_size)
+from app.physics.cloth import (DRAG, FORCE_NAMES, GRAVITY, ITERATIONS, PIN_CHOICES, TEAR_RATIO,
+                               WIND_FIELDS, WIND_STRENGTH, Cloth)
+from app.physics.rods import SET_NAMES, sweep_size
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
 
 UNLOCK_KEY = "u"

@@ -11,7 +11,7 @@ pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keep
 paying in artificial damping (watch the energy with damping, air and wind off). It linearises
 the springs once per step (one Newton step), so a huge step still costs it: at hertz 1, cotton's
 energy leaps from 0 to ~2.4e5 J in the first 10 s before the damping wins (~11 J after 2 min).
-Physics: app/physics/mass_spring.py (its docstring maps Blender's units to pixels and seconds);
+Physics: app/physics/mass_spring.py (Blender's units in pixels and seconds: blender_cloth.py);
 drawing: app/draw/cloth_draw.py, the Verlet cloth's strain heat map and legend, so the two cloths
 compare directly.
 
@@ -49,11 +49,11 @@ import math
 import numpy as np
 
 from app.physics.bounds import clamp_point
-from app.physics.cloth import nearest_cell
+from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
-from app.physics.mass_spring import (FORCE_EFFECTS, MATERIAL_KEYS, MATERIALS, PINS,
-                                     MassSpringCloth, PX_PER_M, material_settings, predicted_limit,
-                                     symplectic_limit, top_mode)
+from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
+from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
+from app.physics.mass_spring_stability import predicted_limit, symplectic_limit, top_mode
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
 
 UNLOCK_KEY = "u"
@@ -63,7 +63,7 @@ UNLOCK_KEY = "u"
 STEP_BUDGET = 40_000
 MODE_EVERY = 30             # fixed steps between two estimates of omega_max (warm-started)
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
-JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (mass_spring.py)
+JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (blender_cloth.py)
 
 
 class MassSpringClothScene(Scene):

@@ -11,7 +11,8 @@ import pytest
 
 from app.draw.view import View
 
-from app.physics.cloth import Cloth, solve_order
+from app.physics.cloth import Cloth
+from app.physics.rods import solve_order
 from app.physics.cloth_naive import NaiveCloth
 from app.scene import InputEvent, ParamError
 from scenes.cloth import ClothScene

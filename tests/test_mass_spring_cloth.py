@@ -10,9 +10,10 @@ import numpy as np
 import pytest
 
 from app.physics.integrators import INTEGRATORS
-from app.physics.mass_spring import (MATERIALS, MassSpringCloth, SpringDamping, SpringSet,
-                                     implicit_euler, material_settings, predicted_limit,
-                                     spring_constants, symplectic_limit, top_mode)
+from app.physics.blender_cloth import MATERIALS, material_settings, spring_constants
+from app.physics.mass_spring import MassSpringCloth, implicit_euler
+from app.physics.mass_spring_stability import predicted_limit, symplectic_limit, top_mode
+from app.physics.spring_forces import SpringDamping, SpringSet
 from app.scene import ParamError
 from scenes.mass_spring_cloth import MassSpringClothScene
 
@@ -393,7 +394,7 @@ def test_top_modes_symplectic_limit_is_the_linearised_cloths_own():
     top_mode's limit and blow one up just above it, also where the stiffest and the most damped
     modes differ (cotton x100: the worst pairing alone put the limit 10 % low, this fails)."""
     from app.bench.mass_spring import make_cloth
-    from app.physics.mass_spring import block_product
+    from app.physics.spring_forces import block_product
     for material, scale in (("cotton", 100), ("denim", 10), ("rubber", 1)):
         c = make_cloth(material, scale, 6)
         ps = c.ps

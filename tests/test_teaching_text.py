@@ -13,8 +13,8 @@ import pytest
 from app.__main__ import main
 from app.exercises import rk4 as rk4_grader
 from app.physics.integrators import midpoint_step, rk4_step
-from app.physics.mass_spring import (G_LAB, MassSpringCloth, REF_CELL, material_settings,
-                                     spring_constants)
+from app.physics.blender_cloth import G_LAB, REF_CELL, material_settings, spring_constants
+from app.physics.mass_spring import MassSpringCloth
 from app.physics.neighbours import all_pair_tests, grid_shape
 from app.physics.particle_dance import MouseForce
 from scenes.mass_spring_cloth import JOULE, MassSpringClothScene
@@ -92,7 +92,7 @@ def test_the_mouse_pulls_hardest_half_way_to_its_radius_with_its_strength():
                                               ("denim", "0.02"), ("leather", "0.005"),
                                               ("rubber", "0.2")])
 def test_a_particles_weight_strains_a_spring_by_the_docstrings_percent(material, stated):
-    """app/physics/mass_spring.py: 'a particle's weight strains a spring by 0.00981 x mass /
+    """app/physics/blender_cloth.py: 'a particle's weight strains a spring by 0.00981 x mass /
     tension: 0.03 % for silk, 0.02 % for cotton and denim, 0.005 % for leather, 0.2 % for
     rubber'."""
     k = spring_constants(material_settings(material), REF_CELL)

@@ -39,8 +39,9 @@ import numpy as np
 from app.bench import Report, median_time
 from app.draw.plot import LineChart, save_grid
 from app.physics.integrators import INTEGRATORS
-from app.physics.mass_spring import (CG_TOLERANCE, MATERIALS, MassSpringCloth,
-                                     material_settings, predicted_limit, top_mode)
+from app.physics.blender_cloth import MATERIALS, material_settings
+from app.physics.mass_spring import CG_TOLERANCE, MassSpringCloth
+from app.physics.mass_spring_stability import predicted_limit, top_mode
 
 SCALES = (1, 10, 100)
 STIFFNESS_KEYS = ("tension", "compression", "shear_stiffness", "bending_stiffness")

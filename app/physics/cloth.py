@@ -25,16 +25,8 @@ set switched on mid-run eases its rods in from their current lengths (set_effect
 an effect on never tears the cloth by itself. What each part of a step costs is measured around
 the formulas by a Stopwatch (app/physics/timing.py), not inside them.
 
-How NumPy makes it fast (the slide loops over particle objects in Python):
-  * the state is grid-shaped: x has shape (2, rows, cols); x[0] holds every particle's x, x[1]
-    every y, and x[:, r, c] is particle (r, c);
-  * a *family* of rods joins every particle (r, c) to (r + dr, c + dc), e.g. (0, 1) = horizontal;
-  * a family is split into *batches* in which no two rods share a particle (horizontal rods from
-    even columns, then from odd columns). A batch is two strided slices of x, e.g.
-    x[:, :, 0:-1:2] and x[:, :, 1::2], solved at once; batch after batch is still a true
-    Gauss-Seidel sweep, because each batch sees the corrections of the ones before it;
-  * a torn rod stays in its batch with `alive` = 0 folded into its correction weight, so tearing
-    changes numbers, not array shapes.
+How NumPy makes it fast: the rods are grouped into batches of strided slices
+(app/physics/rods.py).
 
 Positions are float32 by default: half the memory traffic of float64, so about twice the speed,
 and a relative precision of 1e-7, far below anything the stretch metric or the eye can see.
@@ -45,16 +37,15 @@ resolution of a position; use float64 there.)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
-from typing import Callable, Iterator
+from typing import Callable
 
 import numpy as np
 
 from app.physics.bounds import REACH, clamp_point
+from app.physics.grid_shared import nearest_cell, wind_field
+from app.physics.rods import SET_NAMES, Family, RodSet, rod_lengths, rod_sets, solve_batch
 from app.physics.timing import Stopwatch
 
-EPS = 1e-9                                      # shortest length we divide by (no 0/0)
-SET_NAMES = ("structural", "shear", "bending")  # rod sets, in the order a sweep solves them
 FORCE_NAMES = ("drag", "gravity", "wind")       # force effects, in the order they apply (FORCES)
 
 # The defaults of the settings a Cloth reads every step; the cloth scene's parameters start from
@@ -69,157 +60,6 @@ EASE_TIME = 1.0        # s: a rod set switched on mid-run reaches its rest lengt
 PIN_CHOICES = ("top", "corners", "none")
 WIND_FIELDS = ("gust", "lecture")
 
-Slices = tuple[slice, slice]
-
-
-# ----- the rods ---------------------------------------------------------------------------------
-@dataclass
-class Batch:
-    """Rods of one family that share no particle: solved together in one array operation."""
-
-    a: Slices                  # rows/cols of the first particle of every rod (into an (R, C) grid)
-    b: Slices                  # ... and of the second
-    alive: np.ndarray          # view into the family's alive mask (1 = intact, 0 = torn)
-    ka: np.ndarray = None      # alive * w_a / (w_a + w_b): share of the correction moving a
-    kb: np.ndarray = None      # alive * w_b / (w_a + w_b)
-    d: np.ndarray = None       # work buffers (no allocation inside the sweep)
-    t: np.ndarray = None
-    length: np.ndarray = None
-    cells: Slices = None       # where this batch's rods sit in the family's grid
-
-    @property
-    def xa(self) -> tuple[slice, slice, slice]:
-        return (slice(None),) + self.a
-
-    @property
-    def xb(self) -> tuple[slice, slice, slice]:
-        return (slice(None),) + self.b
-
-
-@dataclass
-class Family:
-    """All rods joining particle (r, c) to (r + dr, c + dc), with one rest length."""
-
-    name: str
-    offset: tuple[int, int]
-    rest: float
-    a: Slices                  # the whole family as two slices (for metrics and tearing)
-    b: Slices
-    alive: np.ndarray          # shape of the family grid, 1.0 intact / 0.0 torn
-    batches: list[Batch] = field(default_factory=list)
-    rest_now: np.ndarray | None = None   # per-rod rest lengths while easing in (see set_effects)
-
-    def rest_of(self, cells: Slices) -> float | np.ndarray:
-        """The rest length the solver uses now for the batch at `cells`: `rest`, or while the
-        family eases in, the per-rod values."""
-        return self.rest if self.rest_now is None else self.rest_now[cells]
-
-
-@dataclass
-class RodSet:
-    """A named set of rod families (structural, shear, bending): one effect, one cost line."""
-
-    name: str
-    families: list[Family]
-    sweeps: int = 0            # how many times this set was swept (tests check 'off' costs 0)
-
-    @property
-    def count(self) -> int:
-        return sum(int(f.alive.size) for f in self.families)
-
-
-def _family(name: str, dr: int, dc: int, rows: int, cols: int, rest: float,
-            dtype: type) -> Family | None:
-    """The rods (r, c)-(r+dr, c+dc) of a rows x cols grid, split into particle-disjoint batches.
-
-    Batches: rods along a row (dr = 0) are split by column modulo 2*dc, all others by row modulo
-    2*dr; rods whose index differs by that modulus never share a particle."""
-    n_rows, n_cols = rows - dr, cols - abs(dc)
-    if n_rows <= 0 or n_cols <= 0:
-        return None
-    a0c = max(0, -dc)                       # column of particle a of rod (0, 0)
-    a = (slice(0, n_rows), slice(a0c, a0c + n_cols))
-    b = (slice(dr, dr + n_rows), slice(a0c + dc, a0c + dc + n_cols))
-    fam = Family(name, (dr, dc), rest, a, b, np.ones((n_rows, n_cols), dtype))
-    axis, m = (1, 2 * dc) if dr == 0 else (0, 2 * dr)
-    n = (n_rows, n_cols)[axis]
-    for k in range(min(m, n)):
-        sa, sb, sf = list(a), list(b), [slice(None), slice(None)]
-        sa[axis] = slice(a[axis].start + k, a[axis].stop, m)
-        sb[axis] = slice(b[axis].start + k, b[axis].stop, m)
-        sf[axis] = slice(k, n, m)
-        fam.batches.append(Batch(tuple(sa), tuple(sb), fam.alive[tuple(sf)], cells=tuple(sf)))
-    return fam
-
-
-# rod families of each set: (name, dr, dc, rest length in spacings)
-FAMILIES = {"structural": [("horizontal", 0, 1, 1.0), ("vertical", 1, 0, 1.0)],
-            "shear": [("diagonal", 1, 1, math.sqrt(2.0)), ("antidiagonal", 1, -1, math.sqrt(2.0))],
-            "bending": [("horizontal skip-one", 0, 2, 2.0), ("vertical skip-one", 2, 0, 2.0)]}
-
-
-def rod_sets(rows: int, cols: int, spacing: float, dtype: type = np.float32) -> dict[str, RodSet]:
-    """The three rod sets of a grid cloth with the given spacing."""
-    sets = {}
-    for name, fams in FAMILIES.items():
-        built = [_family(fname, dr, dc, rows, cols, rest * spacing, dtype)
-                 for fname, dr, dc, rest in fams]
-        sets[name] = RodSet(name, [f for f in built if f is not None])
-    return sets
-
-
-def sweep_size(rows: int, cols: int, set_names: tuple[str, ...] = SET_NAMES) -> tuple[int, int]:
-    """(rods, batches) of one sweep over the named sets, without building anything: what one
-    sweep costs is about rods x (a few ns) + batches x (a NumPy call overhead of ~10 us)."""
-    rods = batches = 0
-    for name in set_names:
-        for _, dr, dc, _ in FAMILIES[name]:
-            n_rows, n_cols = rows - dr, cols - abs(dc)
-            if n_rows > 0 and n_cols > 0:
-                rods += n_rows * n_cols
-                batches += min(2 * dc, n_cols) if dr == 0 else min(2 * dr, n_rows)
-    return rods, batches
-
-
-def solve_order(rows: int, cols: int, set_names: tuple[str, ...]
-                ) -> Iterator[tuple[tuple[int, int], tuple[int, int], str]]:
-    """Every rod as ((r1, c1), (r2, c2), set name) in the order one vectorised sweep solves them
-    (batch by batch). The per-object version uses it, so both do exactly the same arithmetic."""
-    sets = rod_sets(rows, cols, 1.0, np.float64)
-    for name in set_names:
-        for fam in sets[name].families:
-            for bt in fam.batches:
-                ra, ca = (range(s.start, s.stop, s.step or 1) for s in bt.a)
-                rb, cb = (range(s.start, s.stop, s.step or 1) for s in bt.b)
-                for r1, r2 in zip(ra, rb):
-                    for c1, c2 in zip(ca, cb):
-                        yield (r1, c1), (r2, c2), name
-
-
-def solve_batch(x: np.ndarray, bt: Batch, rest: float) -> None:
-    """Satisfy every rod of one batch at once (Jakobsen's constraint step, vectorised):
-
-        delta = x2 - x1;  diff = (|delta| - rest) / |delta|
-        x1 += delta * diff * w1/(w1+w2);  x2 -= delta * diff * w2/(w1+w2)
-
-    The loop it replaces: `for rod in batch: ...` with the same three lines per rod."""
-    xa, xb = x[bt.xa], x[bt.xb]                   # views: writing into them moves the particles
-    d = np.subtract(xb, xa, out=bt.d)             # delta, shape (2, ...)
-    np.multiply(d, d, out=bt.t)
-    length = np.add(bt.t[0], bt.t[1], out=bt.length)
-    np.sqrt(length, out=length)
-    np.maximum(length, EPS, out=length)           # two particles at one point: no 0/0
-    diff = np.divide(rest, length, out=length)
-    np.subtract(1.0, diff, out=diff)              # diff = 1 - rest/|delta| = (|delta|-rest)/|delta|
-    d *= diff                                     # delta * diff: the whole error
-    xa += np.multiply(d, bt.ka, out=bt.t)         # each end takes its share (0 if pinned or torn)
-    xb -= np.multiply(d, bt.kb, out=bt.t)
-
-
-def rod_lengths(x: np.ndarray, fam: Family) -> np.ndarray:
-    """|x_b - x_a| for every rod of a family, in the family's grid shape."""
-    d = x[(slice(None),) + fam.b] - x[(slice(None),) + fam.a]
-    return np.sqrt(d[0] * d[0] + d[1] * d[1])
 
 
 # ----- the cloth --------------------------------------------------------------------------------
@@ -540,32 +380,3 @@ def wind(c: Cloth, v: np.ndarray, h: float) -> None:
 
 # The force effects by name, in FORCE_NAMES order: the explicit table set_effects picks from.
 FORCES: dict[str, Force] = {"drag": drag, "gravity": gravity, "wind": wind}
-
-
-# ----- what the Verlet cloth and the mass-spring cloth share ------------------------------------
-def wind_field(field: str, x: np.ndarray, y: np.ndarray, t: float,
-               world: tuple[float, float]) -> tuple[np.ndarray, np.ndarray | float]:
-    """The wind's acceleration per unit strength at positions (x, y) and time t: (ax, ay).
-
-    lecture: the slide's F = (sin(x*y*t), cos(z*t)) with x, y in world widths/heights for a cloth
-    in the plane z = 1 (so cos(z t) = cos(t); the slide's third component is out of the plane);
-    gust: a breeze to the right whose strength travels across the cloth in waves."""
-    u = x / world[0]                                 # position in world widths/heights
-    w = y / world[1]
-    if field == "lecture":
-        np.clip(u, -10, 10, out=u)                   # sin(u w t) of a far-flung particle: no overflow
-        np.clip(w, -10, 10, out=w)
-        return np.sin(u * w * t), math.cos(t)
-    return ((0.6 + 0.4 * np.sin(1.7 * t - 6.0 * u)) * (0.8 + 0.2 * np.sin(5.0 * w + t)),
-            0.3 * np.sin(4.0 * u - 2.3 * t))
-
-
-def nearest_cell(x: np.ndarray, pos: tuple[float, float], radius: float,
-                 mask: np.ndarray | None = None) -> tuple[int, int] | None:
-    """The (row, col) of the particle nearest to pos within radius (among `mask` if given), or
-    None; x has shape (2, rows, cols)."""
-    d2 = (x[0] - pos[0]) ** 2 + (x[1] - pos[1]) ** 2
-    if mask is not None:
-        d2 = np.where(mask, d2, np.inf)
-    r, c = np.unravel_index(int(np.argmin(d2)), d2.shape)
-    return (int(r), int(c)) if d2[r, c] <= radius * radius else None

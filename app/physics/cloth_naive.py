@@ -18,7 +18,8 @@ from __future__ import annotations
 
 import math
 
-from app.physics.cloth import EPS, PIN_CHOICES, solve_order
+from app.physics.cloth import PIN_CHOICES
+from app.physics.rods import EPS, solve_order
 
 
 class Particle:
