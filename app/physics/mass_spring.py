@@ -51,6 +51,7 @@ from app.physics.particles import ParticleSystem
 from app.physics.rods import Family, rod_sets
 from app.physics.spring_forces import (Blocks, SpringDamping, SpringSet, Timed, Wind, block_product,
                                        spring_geometry)
+from app.physics.timing import Stopwatch
 
 
 # ----- the linear system of one implicit step ----------------------------------------------------
@@ -172,7 +173,8 @@ class MassSpringCloth:
         self.default_pins = {"top": [(0, c) for c in range(cols)], "corner": [(0, 0)],
                              "corners": [(0, 0), (0, cols - 1)], "none": []}[pins]
         self.t = 0.0
-        self.spent: dict[str, float] = {}
+        self.watch = Stopwatch()                 # seconds per force, timed around the forces
+        self.spent = self.watch.spent
         self.calls: dict[str, int] = {}
         self.material = material_settings("cotton")
         self.g, self.wind_field, self.wind_strength = G_LAB, "gust", 600.0
@@ -211,7 +213,7 @@ class MassSpringCloth:
             self.spent.setdefault(name, 0.0)
             self.calls.setdefault(name, 0)
         self.spent.setdefault("solve", 0.0)
-        self.ps.forces = [Timed(name, force, self.spent, self.calls) for name, force in forces]
+        self.ps.forces = [Timed(name, force, self.watch, self.calls) for name, force in forces]
         self.active_sets = sets
 
     # ----- pins and the mouse (a grabbed particle is a moving pin) -----------------------------

@@ -10,7 +10,6 @@ inside one family no particle appears twice in a slice, so no scatter-add is nee
 
 from __future__ import annotations
 
-import time
 from typing import Callable
 
 import numpy as np
@@ -18,6 +17,7 @@ import numpy as np
 from app.physics.grid_shared import wind_field
 from app.physics.particles import AddProduct, ParticleSystem
 from app.physics.rods import EPS, Family
+from app.physics.timing import Stopwatch
 
 
 # ----- spring families on the grid ---------------------------------------------------------------
@@ -198,19 +198,17 @@ class Wind:
 
 
 class Timed:
-    """A force as it is, plus a stopwatch around it: the seconds spent in it (and its Jacobian
-    blocks) go to spent[name], the calls to calls[name]. Keeps the timing out of the formulas."""
+    """A force as it is, timed from outside by a Stopwatch (app/physics/timing.py): the seconds
+    spent in it (and its Jacobian blocks) go to watch.spent[name], the calls to calls[name]."""
 
-    def __init__(self, name: str, force, spent: dict[str, float], calls: dict[str, int]):
-        self.name, self.force, self.spent, self.calls = name, force, spent, calls
+    def __init__(self, name: str, force, watch: Stopwatch, calls: dict[str, int]):
+        self.name, self.force, self.watch, self.calls = name, force, watch, calls
 
     def _timed(self, fn: Callable, *args):
-        t0 = time.perf_counter()
-        try:
-            return fn(*args)
-        finally:
-            self.spent[self.name] += time.perf_counter() - t0
-            self.calls[self.name] += 1
+        with self.watch(self.name):
+            out = fn(*args)
+        self.calls[self.name] += 1
+        return out
 
     def accumulate(self, ps, x, v, f) -> None:
         self._timed(self.force.accumulate, ps, x, v, f)
