@@ -23,7 +23,9 @@ from __future__ import annotations
 
 import numpy as np
 
-EPS = 1e-9          # shortest rod length we divide by: two particles at one point give no 0/0
+from app.physics.rods import EPS   # shortest rod length we divide by: no 0/0 at one point
+
+_batches: dict[tuple, list[np.ndarray]] = {}     # rod_batches by rod list: rods rarely change
 
 
 def verlet_step(x: np.ndarray, x_prev: np.ndarray, a: np.ndarray, h: float,
@@ -67,7 +69,12 @@ def satisfy_rods(x: np.ndarray, a: np.ndarray, b: np.ndarray, rest: np.ndarray, 
     safe = np.where(total > 0, total, 1.0)
     share_a = np.where(total > 0, w[a] / safe, 0.0)[:, None]   # both ends pinned: nobody moves
     share_b = np.where(total > 0, w[b] / safe, 0.0)[:, None]
-    batches = rod_batches(a, b, len(x))
+    key = (a.tobytes(), b.tobytes(), len(x))
+    if key not in _batches:             # the same rods every step: find their batches once
+        if len(_batches) > 16:
+            _batches.clear()
+        _batches[key] = rod_batches(a, b, len(x))
+    batches = _batches[key]
     for _ in range(iterations):
         for k in batches:            # the rods of one batch share no particle: solved at once
             ia, ib = a[k], b[k]
