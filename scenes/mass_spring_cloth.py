@@ -235,9 +235,14 @@ class MassSpringClothScene(Scene):
             return ""
         h = self.dt / p["substeps"]
         need = math.ceil(1.0 / pred)               # steps per second inside the limit
-        return (f"h = {h * 1e3:.3g} ms is {_times(h / pred)}x {INTEGRATORS[name].title}'s "
-                f"predicted limit ({pred * 1e3:.3g} ms): explicit methods are stable only below "
-                f"it. Raise hertz x substeps to at least {need:,}, or take implicit_euler.")
+        most = int(self.param("hertz").hi * self.param("substeps").hi)
+        way = (f"Raise hertz x substeps to at least {need:,}, or take implicit_euler."
+               if need <= most else
+               f"That takes {need:,} steps per second, more than hertz x substeps reach "
+               f"({most:,}): take implicit_euler.")
+        title = INTEGRATORS[name].title
+        return (f"h = {h * 1e3:.3g} ms is {_times(h / pred)}x {title}'s predicted limit "
+                f"({pred * 1e3:.3g} ms): keep the step below it. {way}")
 
     def step(self, h: float) -> None:
         self.cloth.step(h, self.p["integrator"])

@@ -447,3 +447,14 @@ def test_an_explicit_blow_up_is_explained_by_the_predicted_limit():
         inside.advance()
     assert inside.is_finite()
     assert MassSpringClothScene().blowup_hint() == ""     # implicit Euler: the general advice
+
+
+def test_the_blow_up_hint_never_asks_for_more_steps_than_the_sliders_reach():
+    """A cloth at the sliders' largest stiffness (1e5) needs ~62,000 steps per second with
+    symplectic Euler, more than hertz x substeps can give: the hint says so and points at
+    implicit Euler instead of an impossible setting."""
+    scene = MassSpringClothScene({"material": "custom", "tension": 1e5, "compression": 1e5,
+                                  "shear_stiffness": 1e5, "integrator": "symplectic_euler"})
+    hint = scene.blowup_hint()
+    assert "more than hertz x substeps reach (50,000)" in hint and "implicit_euler" in hint
+    assert "at least" not in hint
