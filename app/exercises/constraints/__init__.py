@@ -1,0 +1,1 @@
+"""The `constraints` exercise: its grader (grader.py: EXERCISE) and its scene (scene.py: SCENE)."""

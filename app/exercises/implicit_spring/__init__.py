@@ -1,0 +1,1 @@
+"""The `implicit_spring` exercise: its grader (grader.py: EXERCISE) and its scene (scene.py: SCENE)."""

@@ -1,0 +1,1 @@
+"""The `solver_interface` exercise: its grader (grader.py: EXERCISE) and its scene (scene.py: SCENE)."""
