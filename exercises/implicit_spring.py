@@ -28,13 +28,15 @@ written for you below). With l = x_a - x_b, u = l / |l|:
 Their derivatives, one 2 x 2 block per pair of particles (I is the 2 x 2 identity, u u^T the
 outer product np.outer(u, u)):
 
-    K_aa = df_a/dx_a = -ks [ u u^T + (1 - rest/|l|) (I - u u^T) ]
+    K_aa = df_a/dx_a = -ks [ u u^T + max(1 - rest/|l|, 0) (I - u u^T) ]
     D_aa = df_a/dv_a = -kd u u^T
     K_bb = K_aa, K_ab = K_ba = -K_aa;   the same for D
 
-(the damping force's x-derivative is dropped, "for symmetry's sake", as the slide and Baraff &
-Witkin do). Each spring adds its four blocks into K and D: block (i, j) is rows 2i, 2i+1 and
-columns 2j, 2j+1.
+Two simplifications, as the lab makes them (app/physics/forces.py, Springs.jacobian): the
+damping force's x-derivative is dropped ("for symmetry's sake", as the slide and Baraff & Witkin
+do), and the transverse part (1 - rest/|l|), negative for a squashed spring, is clamped at 0
+(Choi & Ko): exactly it would push sideways, and A would no longer be positive definite. Each
+spring adds its four blocks into K and D: block (i, j) is rows 2i, 2i+1 and columns 2j, 2j+1.
 
 Write `linear_system` (return A and rhs) and `implicit_euler_step` (solve A dv = rhs with
 np.linalg.solve, return x' and v'). x, v have shape (n, 2); w (n,); a, b integer arrays (m,);
@@ -49,8 +51,8 @@ Watch it:   python -m app --scene exercise:implicit_spring   (yours filled, the 
 What the grader measures: a free fall is exact (v' = v + h g, x' = x + h v', the pinned particle
 stays); one undamped spring at omega h = 10 keeps exactly 1/(1 + (omega h)^2) of its energy per
 step (backward Euler's artificial damping); your A and rhs solve to the lab's step, and your step
-agrees with it (1e-9) on a system of five particles; a stiff chain at 14x the explicit limit only
-loses energy; x and v are not changed.
+agrees with it (1e-9) on a system of five particles (one spring squashed); a stiff chain at 14x
+the explicit limit only loses energy; x and v are not changed.
 
 Hints:
   * Build K and D with np.zeros((2 n, 2 n)) and a loop over the springs (a few particles: a loop

@@ -87,6 +87,7 @@ WRONG = {
     "implicit_h_not_squared": ("implicit_spring", "A and rhs", "h K where it needs h^2 K"),
     "implicit_no_kv": ("implicit_spring", "the step", "rhs is missing h K v"),
     "implicit_no_transverse": ("implicit_spring", "the step", "missing its transverse part"),
+    "implicit_no_clamp": ("implicit_spring", "the step", "transverse part is not clamped"),
     "implicit_old_velocity": ("implicit_spring", "free fall", "x' uses the old velocity"),
     "grid_own_cell": ("neighbour_grid", "random particles", "NEIGHBOURING cells"),
     "grid_no_diagonals": ("neighbour_grid", "on the cell borders", "across a CORNER"),
@@ -102,7 +103,7 @@ def checks_of(report) -> dict:
     return {c.name: c for c in report.checks}
 
 
-# ----- the three ways -----------------------------------------------------------------------------
+# ----- the three ways ----------------------------------------------------------------------------
 @pytest.mark.parametrize("name", NAMES)
 def test_the_reference_passes_every_check(name):
     report = grade(get_exercise(name), None)
@@ -144,7 +145,7 @@ def test_every_exercise_has_two_wrong_answers_and_a_starter_that_names_its_funct
         assert scene_class(e.name) is not None
 
 
-# ----- robustness ---------------------------------------------------------------------------------
+# ----- robustness --------------------------------------------------------------------------------
 def test_a_syntax_error_is_a_failed_check_with_the_file_and_line():
     path = str(ANSWERS / "verlet_syntax_error.py")
     report = grade(get_exercise("verlet"), path)
@@ -234,7 +235,7 @@ def test_a_closed_pipe_ends_the_listing_quietly():
     assert "Traceback" not in err and "BrokenPipeError" not in err, err
 
 
-# ----- the command line ---------------------------------------------------------------------------
+# ----- the command line --------------------------------------------------------------------------
 def test_exercise_list_names_every_exercise_and_its_slide(capsys):
     assert main(["exercise", "list"]) == 0
     out = capsys.readouterr().out
@@ -300,7 +301,7 @@ def test_check_all_prints_a_summary_table(tmp_path, capsys):
     assert all(line.split()[-1] == "FAIL" for line in table[1:])   # missing files fail too
 
 
-# ----- the exercise scenes ------------------------------------------------------------------------
+# ----- the exercise scenes -----------------------------------------------------------------------
 @pytest.mark.parametrize("name", NAMES)
 def test_each_exercise_scene_runs_the_reference_beside_the_lab(name):
     cls = exercise_scene(name, student=get_exercise(name).reference())
@@ -335,7 +336,7 @@ def test_a_scene_whose_build_failed_raises_scene_error_on_the_first_step():
 
 def test_the_hud_names_the_exception_of_a_build_the_lab_refused():
     scene = exercise_scene("newtons_cradle", path=str(ANSWERS / "cradle_right_to_left.py"))({})
-    assert scene.hud_lines()[0].startswith("your code raised ValueError (below)")
+    assert scene.hud_lines()[0].startswith("your code raised ValueError: fix it")
     assert "left to right" in scene.error
 
 
@@ -437,7 +438,7 @@ def test_a_correct_answer_written_differently_passes_every_check(path):
     assert report.passed, report.text()
 
 
-# ----- the house: imports run one way; the new exercises' teaching text -----------------------------
+# ----- the house: imports run one way; the new exercises' teaching text --------------------------
 def test_nothing_below_the_exercise_house_imports_it():
     """app/exercises imports the lecture scenes (the pymunk exercises reuse them); nothing in
     scenes/ or the rest of app/ imports app/exercises (the command line, app/__main__.py, hands

@@ -33,7 +33,8 @@ HOSTILE = ROOT / "tests" / "exercise_answers" / "hostile"
 VERLET = get_exercise("verlet")
 
 
-def run_cli(*args: str, env: dict | None = None, timeout: float = 60) -> subprocess.CompletedProcess:
+def run_cli(*args: str, env: dict | None = None,
+            timeout: float = 60) -> subprocess.CompletedProcess:
     full = dict(os.environ, SDL_VIDEODRIVER="dummy", SDL_AUDIODRIVER="dummy", **(env or {}))
     return subprocess.run([sys.executable, "-m", "app", *args], cwd=ROOT, env=full,
                           capture_output=True, text=True, timeout=timeout)
@@ -45,7 +46,7 @@ def graded(name: str, timeout: float = 5.0):
     return report, time.monotonic() - start
 
 
-# ----- hostile files through the grader -----------------------------------------------------------
+# ----- hostile files through the grader ----------------------------------------------------------
 # file -> (words every failed check's text holds, or, for 'imports', the import's)
 FAILS = {
     "verlet_exits": ("every", "exit code 3"),
@@ -105,7 +106,8 @@ def test_several_endless_files_through_check_all_each_cost_one_time_limit(tmp_pa
     folder.mkdir()
     for name in ("verlet", "constraints", "spring"):
         fn = {"verlet": "verlet_step", "constraints": "satisfy_rods", "spring": "spring_forces"}
-        (folder / f"{name}.py").write_text(f"def {fn[name]}(*args):\n    while True:\n        pass\n")
+        (folder / f"{name}.py").write_text(
+            f"def {fn[name]}(*args):\n    while True:\n        pass\n")
     start = time.monotonic()
     assert main(["exercise", "check", "all", "--path", str(folder), "--timeout", "0.3"]) == 1
     seconds = time.monotonic() - start
@@ -196,7 +198,7 @@ def test_abbreviated_options_and_an_empty_path_are_refused(argv, capsys):
     assert err.count("\n") == 1 and err.startswith("python -m app: error:"), err
 
 
-# ----- the parent's verdicts -------------------------------------------------------------------------
+# ----- the parent's verdicts ---------------------------------------------------------------------
 def fake(judge, measure=lambda m: {"v": 1.0}) -> Exercise:
     from types import SimpleNamespace
     return Exercise("fake", "a fake", "-", (), lambda: SimpleNamespace(),
@@ -240,7 +242,7 @@ def test_the_channel_refuses_junk_oversize_foreign_and_deep_frames():
             parse(payload, token, 0)
 
 
-# ----- the live scenes survive what the student's code does ---------------------------------------
+# ----- the live scenes survive what the student's code does --------------------------------------
 def copy_as(tmp_path: Path, hostile: str, name: str) -> Path:
     path = tmp_path / f"{name}.py"          # the file's name says which exercise it is
     path.write_text((HOSTILE / f"{hostile}.py").read_text())

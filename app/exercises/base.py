@@ -181,7 +181,7 @@ def non_finite(value: Any) -> bool:
     return False
 
 
-# ----- small helpers for judges -------------------------------------------------------------------
+# ----- small helpers for judges ------------------------------------------------------------------
 def within(value: float, target: float, tol: float) -> bool:
     return bool(np.isfinite(value)) and abs(value - target) <= tol
 

@@ -33,19 +33,19 @@ import selectors
 import signal
 import sys
 import time
-from dataclasses import asdict, dataclass, field
-from typing import Any, Iterator
+from dataclasses import dataclass, field
+from typing import Iterator
 
 from app.exercises import base
-from app.exercises.base import Check, Exercise, Malformed, Raw, Result, non_finite, plain
+from app.exercises.base import Check, Exercise, plain
 from app.exercises.channel import ChannelError, Frame, FrameReader, parse
 from app.exercises.child import child_main, import_answer, outcome
 from app.exercises.loading import shown, starter_path
+from app.exercises.report import OUTPUT_SHOWN, CheckReport, Report, not_run, verdict
 
 CHECK_TIMEOUT = 10.0        # seconds a check may run before it counts as an endless loop
 CAN_FORK = hasattr(os, "fork")
 JOBS = max(1, min(4, os.cpu_count() or 1))   # exercises graded at once by `check all`
-OUTPUT_SHOWN = 8000         # bytes of a student's output shown; the rest is counted
 READ = 1 << 16
 
 DIED = ("the check's process ended without a result: a crash in a library (pymunk aborts on some "
@@ -55,91 +55,6 @@ ENDLESS = ("stopped after {t:g} s: an endless loop (a while loop whose condition
            "or a print of whole arrays in it adds up")
 SKIPPED = ("not run: the check before it ran out of time, and each would wait {t:g} s again; "
            "fix that one first")
-
-
-@dataclass
-class CheckReport:
-    name: str
-    passed: bool
-    measured: str = ""
-    bound: str = ""
-    hint: str = ""
-    error: str = ""          # the student's traceback (trimmed), a bad answer, a timeout, ...
-
-    def lines(self) -> list[str]:
-        mark = "PASS" if self.passed else "FAIL"
-        out = [f"  {mark}  {self.name:<26} measured {self.measured or '-'}; needed {self.bound}"]
-        if not self.passed:
-            for text in (self.error, self.hint and f"hint: {self.hint}"):
-                out += [f"        {line}" for line in text.splitlines() if text]
-        return out
-
-
-@dataclass
-class Report:
-    exercise: str
-    path: str
-    checks: list[CheckReport]
-    output: str = ""         # the first OUTPUT_SHOWN bytes of what the student's code printed
-    output_bytes: int = 0    # how much it printed in all
-
-    @property
-    def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
-
-    def to_json(self) -> dict[str, Any]:
-        return {"exercise": self.exercise, "path": self.path, "passed": self.passed,
-                "checks": [asdict(c) for c in self.checks], "output_bytes": self.output_bytes}
-
-    def text(self) -> str:
-        n = sum(c.passed for c in self.checks)
-        head = f"{self.exercise}: {self.path}: {n}/{len(self.checks)} checks pass"
-        return "\n".join([head] + [line for c in self.checks for line in c.lines()])
-
-    def output_text(self) -> str:
-        """What the student's code printed, as shown on stderr ('' if nothing)."""
-        if not self.output_bytes:
-            return ""
-        more = self.output_bytes - len(self.output.encode())
-        tail = f"\n--- ({more:,} more bytes not shown) ---" if more > 0 else ""
-        return (f"--- output of {self.path} ({self.output_bytes:,} bytes) ---\n"
-                f"{self.output.rstrip()}{tail}\n--- end of output ---")
-
-
-# ----- verdicts: the parent's -----------------------------------------------------------------
-def verdict(check: Check, frame: Frame) -> CheckReport:
-    """One check's report from its frame: the judge runs here, on the raw values."""
-    name, notes = check.name, " ".join(frame.notes)
-    if frame.status != "ok":
-        measured, bound = {"bad": ("unusable answer", "see the message"),
-                           "unwritten": ("not written yet", "a working answer"),
-                           "error": ("an exception", "no exception"),
-                           "lab": ("the lab's code raised", "no exception")}[frame.status]
-        return CheckReport(name, False, measured, bound, notes, frame.error)
-    try:
-        r = check.judge(Raw(frame.raw))
-        if not isinstance(r, Result):
-            raise TypeError(f"the judge returned {type(r).__name__}, not a Result")
-    except Malformed as e:
-        return CheckReport(name, False, "malformed values", "the values the check sends",
-                           error=f"the check's process sent malformed values ({e}): did your "
-                           "code write on the grader's channel?")
-    except Exception as e:      # noqa: BLE001 - the grader's bug, reported as the grader's
-        return CheckReport(name, False, "grader error", "-", error=(
-            f"the grader itself failed ({type(e).__name__}: {str(e)[:300]}): a bug in the lab, "
-            "not in your code; please report it with your file"))
-    passed, hint = bool(r.passed), r.hint
-    if passed and non_finite(frame.raw):      # a NaN never passes, whatever a judge compared
-        passed = False
-        hint = "NaN or inf among the values your code produced: a NaN never passes. " + hint
-    if not passed and notes:
-        hint = f"{hint} What came back: {notes}" if hint else f"what came back: {notes}"
-    return CheckReport(name, passed, str(r.measured), str(r.bound), "" if passed else hint)
-
-
-def not_run(check: Check, why: str) -> CheckReport:
-    return CheckReport(check.name, False, "not run", "the module imports" if "import" in why
-                       else "the checks before it", error=why)
 
 
 # ----- one exercise: its child (or children) and what came back --------------------------------
@@ -301,7 +216,8 @@ class Session:
         if self.child is not c:
             return
         if os.WIFSIGNALED(status):
-            how = f"killed by signal {os.WTERMSIG(status)} ({signal.Signals(os.WTERMSIG(status)).name})"
+            sig = os.WTERMSIG(status)
+            how = f"killed by signal {sig} ({signal.Signals(sig).name})"
         else:
             how = f"exit code {os.WEXITSTATUS(status)}"
         cut = " (in the middle of a frame)" if c.reader.partial() else ""

@@ -32,6 +32,7 @@ from pathlib import Path
 from typing import Any, Iterable, Iterator
 
 import numpy as np
+import pygame
 
 from app.draw.hud import Line, text_box
 from app.draw.view import View
@@ -157,7 +158,9 @@ class StudentCode:
             if demo is None:            # the world may not exist: the whole world area
                 return Scene.content_bounds(self)
             x, y, w, h = demo.content_bounds()
-            return (x, y - 0.6 * h, w, 1.6 * h)      # room above the demo for the message
+            # room above the demo for the message, and at least 4:3 so the message is wide
+            wide = max(w, 1.33 * 1.6 * h)
+            return (x - (wide - w) / 2, y - 0.6 * h, wide, 1.6 * h)
         return super().content_bounds()
 
     def effect_costs(self) -> dict[str, float]:
@@ -165,7 +168,7 @@ class StudentCode:
 
     def hud_lines(self) -> list[str]:
         if self.error:
-            lines = [f"your code raised {self.error_kind} (below): fix it, save, press R"]
+            lines = [f"your code raised {self.error_kind}: fix it, save, press R"]
             if self.demo_scene() is not None:
                 lines.append("orange: the lab's answer, running: what yours should do")
             return lines
@@ -241,9 +244,19 @@ class StudentCode:
             return
         self.run_demo(demo)
         demo = self.demo_scene()
-        area = (left, box.bottom + 8, right - left, bottom - box.bottom - 8)
-        if demo is not None and area[2] > 40 and area[3] > 40:
-            demo.draw(surface, View.fit_bounds(demo.content_bounds(), area))
+        area = pygame.Rect(left, box.bottom + 8, right - left, bottom - box.bottom - 8)
+        area = area.clip(surface.get_clip() or surface.get_rect())
+        if demo is None or area.width < 40 or area.height < 40:
+            return
+        # drawn on its own layer and tinted orange, whatever colours the scene draws with:
+        # the lab's answer is the orange ghost, as in the running exercise
+        layer = pygame.Surface(area.size, pygame.SRCALPHA)
+        demo.draw(layer, View.fit_bounds(demo.content_bounds(), (0, 0, *area.size)))
+        rgb = pygame.surfarray.pixels3d(layer)
+        light = rgb.max(axis=2, keepdims=True).astype(np.float32) / 255.0
+        rgb[...] = (0.35 + 0.65 * light) * np.array(GHOST, dtype=np.float32)
+        del rgb                          # the surface is locked while the array lives
+        surface.blit(layer, area.topleft)
 
 
 def bind(base: type[Scene], student: Any = None, path: str | None = None,

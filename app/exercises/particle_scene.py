@@ -76,14 +76,14 @@ class ParticleExercise(Scene):
         return {"apart_px": self.apart()}
 
     def live_line(self, m: dict[str, float]) -> str:
-        """The HUD line that reads them."""
+        """The HUD line that reads them (lines, if it holds a newline)."""
         return f"yours vs the lab's: {m['apart_px']:.3g} px apart"
 
     def metrics(self) -> dict[str, float]:
         return self.measure()
 
     def hud_lines(self) -> list[str]:
-        return [self.live_line(self.metrics())]
+        return self.live_line(self.metrics()).split("\n")
 
     def state_arrays(self) -> Iterable[np.ndarray]:
         return (self.mine.x, self.lab.x)

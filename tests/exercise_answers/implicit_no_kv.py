@@ -25,7 +25,7 @@ def jacobians(x, a, b, ks, kd, rest):
         length = np.linalg.norm(l)
         u = l / length
         uu = np.outer(u, u)
-        kaa = -ks * (uu + (1 - rest[k] / length) * (np.eye(2) - uu))
+        kaa = -ks * (uu + max(1 - rest[k] / length, 0.0) * (np.eye(2) - uu))
         daa = -kd * uu
         for p, q, s in ((i, i, 1), (j, j, 1), (i, j, -1), (j, i, -1)):
             K[2 * p:2 * p + 2, 2 * q:2 * q + 2] += s * kaa

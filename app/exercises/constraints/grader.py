@@ -116,7 +116,7 @@ def judge_shares(raw: Raw) -> Result:
                   "< 1e-09 px", "the heavier end (smaller w) moves less: " + WEIGHT_HINT)
 
 
-# ----- a hanging cloth -------------------------------------------------------------------------------
+# ----- a hanging cloth ---------------------------------------------------------------------------
 ROWS, SPACING, SWEEPS = 6, 20.0, (1, 5, 25)
 
 
@@ -164,7 +164,7 @@ def judge_stretch(raw: Raw) -> Result:
                   "falling as iterations rise", hint)
 
 
-# ----- coincident ----------------------------------------------------------------------------------
+# ----- coincident --------------------------------------------------------------------------------
 def measure_coincident(m: Student) -> dict:
     x = np.array([[5.0, 5.0], [5.0, 5.0], [25.0, 5.0]])
     return {"x": relax(m, x, np.array([0, 1]), np.array([1, 2]), np.array([10.0, 10.0]),

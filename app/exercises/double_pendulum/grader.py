@@ -49,7 +49,8 @@ def measure_built(m: Student) -> dict:
 
 
 def judge_built(raw: Raw) -> Result:
-    p1 = (ANCHOR[0] + LENGTHS[0] * math.sin(ANGLES[0]), ANCHOR[1] + LENGTHS[0] * math.cos(ANGLES[0]))
+    p1 = (ANCHOR[0] + LENGTHS[0] * math.sin(ANGLES[0]),
+          ANCHOR[1] + LENGTHS[0] * math.cos(ANGLES[0]))
     p2 = (p1[0] + LENGTHS[1] * math.sin(ANGLES[1]), p1[1] + LENGTHS[1] * math.cos(ANGLES[1]))
     err = max(math.dist(raw.array("p1", (2,)), p1), math.dist(raw.array("p2", (2,)), p2))
     masses = raw.array("masses", (2,))

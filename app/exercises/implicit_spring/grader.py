@@ -11,9 +11,11 @@ functions returned (positions, velocities, A and rhs); each judge does the physi
                    (five times past the explicit limit omega h = 2): each step keeps exactly
                    1/(1 + (omega h)^2) = 1/101 of the energy (+- 1e-6 relative), the backward
                    Euler amplification of a linear oscillator
-  A and rhs        5 particles, 7 damped springs (all stretched), one pinned, gravity, h = 0.1 s:
-                   A dv = rhs gives the exact linearised step's dv (1e-9 relative); a correct
-                   system in another form (M - h D - h^2 K, with M's rows) gives it too
+  A and rhs        5 particles, 7 damped springs (one squashed), one pinned, gravity, h = 0.1 s:
+                   A dv = rhs gives the lab's linearised step's dv (1e-9 relative: the exact
+                   linearisation, but for a squashed spring's transverse part, clamped at 0 as
+                   the lab does); a correct system in another form (M - h D - h^2 K, with M's
+                   rows) gives it too
   the step         the same system: (x', v') from implicit_euler_step agree with the lab's to 1e-9
   far past limit   a stiff chain (ks 5000, omega_max 138/s) hanging, disturbed, at h = 0.2 s (14x
                    the explicit limit 2/omega_max): for 40 steps its energy above rest never rises
@@ -34,7 +36,7 @@ from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student
                                 within)
 
 
-# ----- the lab's answer ---------------------------------------------------------------------------
+# ----- the lab's answer --------------------------------------------------------------------------
 def particle_system(x, v, w, a, b, ks, kd, rest, g):
     from app.physics.forces import Gravity, Springs
     from app.physics.particles import ParticleSystem
@@ -71,8 +73,9 @@ def reference() -> SimpleNamespace:
 
 
 # ----- the usual mistakes, for the hints (the parent computes them on the check's inputs) -------
-def _springs(x, v, a, b, ks, kd, rest, transverse=True):
-    """f0 and the dense K, D of the springs (the starter's formulas; a mistake switched by flag)."""
+def _springs(x, v, a, b, ks, kd, rest, transverse="clamped"):
+    """f0 and the dense K, D of the springs (the starter's formulas: the transverse part clamped
+    at 0 for a squashed spring; "none" or "unclamped" for the mistakes)."""
     n = len(x)
     f = np.zeros((n, 2))
     K, D = np.zeros((2 * n, 2 * n)), np.zeros((2 * n, 2 * n))
@@ -85,7 +88,9 @@ def _springs(x, v, a, b, ks, kd, rest, transverse=True):
     np.add.at(f, a, fa)
     np.add.at(f, b, -fa)
     uu = u[:, :, None] * u[:, None, :]
-    t = 1.0 - rest / np.maximum(length, 1e-12) if transverse else np.zeros(len(a))
+    t = 1.0 - rest / np.maximum(length, 1e-12)
+    t = np.maximum(t, 0.0) if transverse == "clamped" else t if transverse == "unclamped" \
+        else np.zeros(len(a))
     blocks = {"K": -ks * (uu + t[:, None, None] * (np.eye(2) - uu)), "D": -kd * uu}
     for M, blk in ((K, blocks["K"]), (D, blocks["D"])):
         for p, q, s in ((a, a, 1), (b, b, 1), (a, b, -1), (b, a, -1)):
@@ -101,7 +106,9 @@ def mistaken_step(kind: str, x, v, w, a, b, ks, kd, rest, g, h):
     w = np.asarray(w, dtype=float)
     if kind == "pinned not held":
         w = np.where(w > 0, w, 1.0)
-    f, K, D = _springs(x, v, a, b, ks, kd, rest, transverse=kind != "no transverse part")
+    f, K, D = _springs(x, v, a, b, ks, kd, rest, transverse={
+        "no transverse part": "none", "transverse part not clamped": "unclamped"}.get(kind,
+                                                                                 "clamped"))
     grav = np.where(w[:, None] > 0, g, 0.0) * (kind != "no gravity")
     acc = w[:, None] * f + grav
     if kind == "explicit Euler":
@@ -131,8 +138,13 @@ MISTAKES = {
                        "already pulls on the springs during the step)",
     "h K for h^2 K": "A has h K where it needs h^2 K: A = I - h W D - h^2 W K (dx = h (v + dv) "
                      "brings a second h)",
-    "no transverse part": "K is missing its transverse part: K_aa = -ks [u u^T + (1 - rest/|l|) "
-                          "(I - u u^T)]; without it a stretched spring does not resist turning",
+    "no transverse part": "K is missing its transverse part: K_aa = -ks [u u^T + max(1 - "
+                          "rest/|l|, 0) (I - u u^T)]; without it a stretched spring does not "
+                          "resist turning",
+    "transverse part not clamped": "the squashed spring's transverse part is not clamped: "
+                                   "max(1 - rest/|l|, 0), as the lab does (for |l| < rest the "
+                                   "exact term pushes sideways and A can lose its positive "
+                                   "definiteness, which conjugate gradients need)",
     "K's sign flipped": "K has the wrong sign: K = df/dx is negative along a spring (-ks u u^T): "
                         "A = I - h W D - h^2 W K has + h^2 ks/m on its diagonal",
     "no damping in A": "A is missing the damping: A = I - h W D - h^2 W K with D = df/dv "
@@ -158,7 +170,7 @@ def name_mistake(xv: tuple[np.ndarray, np.ndarray], inputs: tuple) -> str:
     return ""
 
 
-# ----- the systems the checks use ---------------------------------------------------------------------
+# ----- the systems the checks use ----------------------------------------------------------------
 G = np.array([0.0, 900.0])
 NO_SPRINGS = (np.zeros(0, np.intp), np.zeros(0, np.intp), 0.0, 0.0, np.zeros(0))
 
@@ -184,7 +196,8 @@ def random_inputs() -> tuple:
     x = rng.uniform(0.0, 200.0, (5, 2))
     v = rng.normal(0.0, 30.0, (5, 2))
     a, b = np.array([0, 1, 2, 3, 0, 1, 2]), np.array([1, 2, 3, 4, 2, 3, 4])
-    rest = 0.8 * np.linalg.norm(x[a] - x[b], axis=1)          # every spring stretched
+    rest = 0.8 * np.linalg.norm(x[a] - x[b], axis=1)          # stretched, but for one:
+    rest[6] *= 1.5                                            # squashed, 1.2x its length
     return x, v, np.array([0.0, 1.0, 0.5, 2.0, 1.0]), a, b, 400.0, 3.0, rest, G, 0.1
 
 
@@ -217,7 +230,7 @@ def energy(x, v, w, a, b, ks, rest, g) -> float:
                  - (m[:, None] * g * x).sum())
 
 
-# ----- calling the student's functions ------------------------------------------------------------
+# ----- calling the student's functions -----------------------------------------------------------
 def step(m: Student, inputs: tuple) -> tuple[np.ndarray, np.ndarray]:
     x, v = inputs[0], inputs[1]
     out = m.implicit_euler_step(x.copy(), v.copy(), *inputs[2:])
@@ -243,7 +256,7 @@ STEP_HINT = ("dv solves (I - h W D - h^2 W K) dv = h W (f0 + h K v) (+ h g for e
              "particle); v' = v + dv, x' = x + h v'.")
 
 
-# ----- the checks ---------------------------------------------------------------------------------
+# ----- the checks --------------------------------------------------------------------------------
 def measure_free_fall(m: Student) -> dict:
     x, v = step(m, free_fall_inputs())
     return {"x": x, "v": v}
@@ -334,7 +347,7 @@ def measure_step(m: Student) -> dict:
 
 def judge_step(raw: Raw) -> Result:
     err, hint = mismatch(raw, random_inputs())
-    return Result(within(err, 0.0, 1e-9), f"{fmt(err)} off the exact linearised step (relative)",
+    return Result(within(err, 0.0, 1e-9), f"{fmt(err)} off the lab's linearised step (relative)",
                   "< 1e-09", hint or STEP_HINT)
 
 

@@ -1,7 +1,7 @@
 """The `implicit_spring` exercise's scene: `python -m app --scene exercise:implicit_spring`.
 
-A small net of stiff damped springs pinned at the middle of its top row, swinging, stepped by the student's implicit_euler_step at a step far past the explicit limit, beside
-the lab's backward Euler (app/physics/integrators.py: implicit_euler, orange rings).
+A small net of stiff damped springs pinned at the middle of its top row, swinging, stepped by
+the student's implicit_euler_step at a step far past the explicit limit, beside the lab's backward Euler (app/physics/integrators.py: implicit_euler, orange rings).
 """
 
 from __future__ import annotations
@@ -136,9 +136,9 @@ class ImplicitSpringExercise(StudentCode, ParticleExercise):
                 "energy_left": left[0], "energy_left_lab": left[1]}
 
     def live_line(self, m: dict[str, float]) -> str:
-        return (f"h = {m['h_ms']:.1f} ms = {m['h_over_limit']:.1f}x the explicit limit "
-                f"2/omega_max = {m['explicit_limit_ms']:.1f} ms; yours vs the lab's: "
-                f"{m['apart_px']:.3g} px apart; energy left above rest: yours "
+        return (f"h = {m['h_ms']:.1f} ms: {m['h_over_limit']:.1f}x the explicit limit "
+                f"2/omega_max = {m['explicit_limit_ms']:.1f} ms\n"
+                f"yours vs the lab's: {m['apart_px']:.3g} px apart; swing energy left: yours "
                 f"{100 * m['energy_left']:.1f}%, the lab's {100 * m['energy_left_lab']:.1f}%")
 
 

@@ -36,7 +36,7 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(grid_pairs=grid_pairs)
 
 
-# ----- the particles -------------------------------------------------------------------------------
+# ----- the particles -----------------------------------------------------------------------------
 def random_case() -> tuple[np.ndarray, float, tuple[float, float]]:
     rng = np.random.default_rng(11)
     return rng.uniform(0.0, 1.0, (400, 2)) * (600.0, 400.0), CUTOFF, (600.0, 400.0)
@@ -74,7 +74,7 @@ def tests_case() -> tuple[np.ndarray, float, tuple[float, float]]:
 FEW = [np.zeros((0, 2)), np.array([[10.0, 10.0]]), np.array([[10.0, 10.0], [300.0, 300.0]])]
 
 
-# ----- calling the student's function --------------------------------------------------------------
+# ----- calling the student's function ------------------------------------------------------------
 def pairs_of(m: Student, x: np.ndarray, cutoff: float, box) -> dict:
     out = m.grid_pairs(x.copy(), cutoff, box)
     if not isinstance(out, tuple) or len(out) != 3:
@@ -108,7 +108,7 @@ def measure_case(case):
     return measure
 
 
-# ----- judging: the pairs as sets -----------------------------------------------------------------
+# ----- judging: the pairs as sets ----------------------------------------------------------------
 def true_pairs(x: np.ndarray, cutoff: float) -> set[tuple[int, int]]:
     from app.physics.neighbours import all_pairs
     i, j, _ = all_pairs(x, cutoff)

@@ -86,7 +86,7 @@ def judge_order(fname: str, f, target: float):
     return judge
 
 
-# ----- stage times ----------------------------------------------------------------------------------
+# ----- stage times -------------------------------------------------------------------------------
 def measure_quadrature(fname: str, power: int):
     def measure(m: Student) -> dict:
         y = integrate(getattr(m, fname), lambda t, y: np.array([t ** power]), np.array([0.0]),
@@ -121,7 +121,7 @@ def judge_midpoint_times(raw: Raw) -> Result:
                   "steps", f"{MIDPOINT_RULE:g} (the midpoint rule), +- 1e-12", hint)
 
 
-# ----- stability ----------------------------------------------------------------------------------
+# ----- stability ---------------------------------------------------------------------------------
 def growth(step, z: float, n: int = 400) -> float:
     """|y| after n steps of omega*h = z on x'' = -x, from |y| = 1."""
     y = np.array([1.0, 0.0])
@@ -154,7 +154,7 @@ def judge_stability(raw: Raw) -> Result:
                   f"{exact:.3f} +- 2%", hint)
 
 
-# ----- shapes and inputs ------------------------------------------------------------------------------
+# ----- shapes and inputs -------------------------------------------------------------------------
 Y_2D = np.array([[1.0, -0.5], [0.3, 2.0], [-1.2, 0.7]])
 
 
@@ -189,8 +189,8 @@ def judge_shape(raw: Raw) -> Result:
             problems.append(f"{fname} is {fmt(err)} off the lab's")
     return Result(not problems, "; ".join(problems) or "shape (3, 2), as the lab's",
                   "shape (3, 2), within 1e-12 of the lab's",
-                  "y may have any shape (here 3 particles x 2 coordinates): work with y and f(t, y) "
-                  "as whole arrays (y + h/2 * k1) and return an array of y's shape; ravel, flatten "
+                  "y may have any shape (here 3 particles x 2 coordinates): work with y and "
+                  "f(t, y) as whole arrays (y + h/2 * k1) and return an array of y's shape; ravel, flatten "
                   "and np.concatenate change it.")
 
 

@@ -19,7 +19,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Malformed, Raw, Result, Student, array_of, fmt, within
+from app.exercises.base import (Check, Exercise, Malformed, Raw, Result, Student, array_of, fmt,
+                                within)
 
 A = np.array([0, 1, 2, 3, 0, 1, 4, 2])
 B = np.array([1, 2, 3, 4, 2, 3, 0, 4])

@@ -187,7 +187,7 @@ def judge_terminal(raw: Raw) -> Result:
                   f"{TERMINAL:g} +- 0.5 px/s (g h / drag)", hint)
 
 
-# ----- inputs kept ---------------------------------------------------------------------------------
+# ----- inputs kept -------------------------------------------------------------------------------
 def inputs() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     rng = np.random.default_rng(1)
     x, x_prev, a = rng.normal(size=(3, 4, 2)) * 10

@@ -14,7 +14,7 @@ def parts(x, v, a, b, ks, kd, rest):
     np.add.at(f, a, fa)
     np.add.at(f, b, -fa)
     uu = np.einsum("ki,kj->kij", u, u)
-    kaa = -ks * (uu + (1 - rest / length)[:, None, None] * (np.eye(2) - uu))
+    kaa = -ks * (uu + np.maximum(1 - rest / length, 0.0)[:, None, None] * (np.eye(2) - uu))
     daa = -kd * uu
     K = np.zeros((n, 2, n, 2))
     D = np.zeros((n, 2, n, 2))
