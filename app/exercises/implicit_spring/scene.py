@@ -1,7 +1,8 @@
 """The `implicit_spring` exercise's scene: `python -m app --scene exercise:implicit_spring`.
 
 A small net of stiff damped springs pinned at the middle of its top row, swinging, stepped by
-the student's implicit_euler_step at a step far past the explicit limit, beside the lab's backward Euler (app/physics/integrators.py: implicit_euler, orange rings).
+the student's implicit_euler_step at a step far past the explicit limit, beside the lab's
+backward Euler (app/physics/integrators.py: implicit_euler, orange rings).
 """
 
 from __future__ import annotations

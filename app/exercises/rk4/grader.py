@@ -190,8 +190,8 @@ def judge_shape(raw: Raw) -> Result:
     return Result(not problems, "; ".join(problems) or "shape (3, 2), as the lab's",
                   "shape (3, 2), within 1e-12 of the lab's",
                   "y may have any shape (here 3 particles x 2 coordinates): work with y and "
-                  "f(t, y) as whole arrays (y + h/2 * k1) and return an array of y's shape; ravel, flatten "
-                  "and np.concatenate change it.")
+                  "f(t, y) as whole arrays (y + h/2 * k1) and return an array of y's shape; "
+                  "ravel, flatten and np.concatenate change it.")
 
 
 def measure_kept(m: Student) -> dict:
