@@ -90,9 +90,9 @@ def _message(exc: BaseException) -> str:
         text = str(exc)
     except Exception:                   # noqa: BLE001 - a __str__ that raises is theirs too
         text = "<the exception's message could not be shown>"
-    if len(text) > 4 * MAX_LINE_CHARS * MAX_ERROR_LINES:
-        text = text[:2 * MAX_LINE_CHARS] + f" [... {len(text) - 2 * MAX_LINE_CHARS} more " \
-            "characters]"
+    if len(text) > 4 * MAX_LINE_CHARS * MAX_ERROR_LINES:     # cut short enough for one line
+        keep = MAX_LINE_CHARS // 2
+        text = f"{text[:keep]} [... {len(text) - keep:,} more characters]"
     if isinstance(exc, SyntaxError):
         return "".join(traceback.format_exception_only(type(exc), exc)).rstrip()
     name = type(exc).__name__
