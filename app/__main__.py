@@ -138,7 +138,10 @@ def main(argv: list[str] | None = None) -> int:
 def app_main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     from app.scene import ParamError
-    from scenes import SCENES, get_scene, scene_names
+    from scenes import FINDERS, SCENES, get_scene, scene_names
+    if args.scene and args.scene.startswith("exercise:"):
+        from app.exercises.live import exercise_scene    # the exercises' scenes, by name
+        FINDERS["exercise"] = exercise_scene
 
     if args.list:
         for cls in SCENES:
@@ -258,13 +261,15 @@ def bench_main(argv: list[str]) -> int:
 def exercise_main(argv: list[str]) -> int:
     """`exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`."""
     from app.exercises import cli, exercise_names, get_exercise
-    from app.exercises.grade import CHECK_TIMEOUT, shown, starter_path
+    from app.exercises.grade import CHECK_TIMEOUT
+    from app.exercises.loading import shown, starter_path
     names = exercise_names()
-    p = _Parser(prog="python -m app exercise", description="student exercises: list them, "
-                "grade an answer, copy the starters")
-    sub = p.add_subparsers(dest="command", metavar="list|check|copy")
-    sub.add_parser("list", help="name, title and slide of every exercise")
-    c = sub.add_parser("check", help="grade an answer (headless)")
+    # allow_abbrev=False on every level: --ref is not --reference (README, "Command line")
+    p = _Parser(prog="python -m app exercise", allow_abbrev=False, description="student "
+                "exercises: list them, grade an answer, copy the starters")
+    sub = p.add_subparsers(dest="command", metavar="list|check|copy", parser_class=_Parser)
+    sub.add_parser("list", help="name, title and slide of every exercise", allow_abbrev=False)
+    c = sub.add_parser("check", help="grade an answer (headless)", allow_abbrev=False)
     c.add_argument("name", help=f"accepted: {', '.join(names)}, all")
     c.add_argument("--path", help="the file to grade (default exercises/NAME.py); with 'all': "
                    "a folder holding NAME.py files")
@@ -272,7 +277,8 @@ def exercise_main(argv: list[str]) -> int:
     c.add_argument("--json", action="store_true", help="one JSON object per exercise")
     c.add_argument("--timeout", type=_timeout, default=CHECK_TIMEOUT,
                    help=f"seconds a check may run (default {CHECK_TIMEOUT:g})")
-    k = sub.add_parser("copy", help="copy the starters into a folder of your own")
+    k = sub.add_parser("copy", help="copy the starters into a folder of your own",
+                       allow_abbrev=False)
     k.add_argument("folder")
     args = p.parse_args(argv)
     if args.command is None:
@@ -289,6 +295,8 @@ def exercise_main(argv: list[str]) -> int:
     if args.name != "all" and get_exercise(args.name) is None:
         raise UsageError(f"unknown exercise {shown_text(args.name)}; accepted: "
                          f"{', '.join(names)}, all")
+    if args.path is not None and not args.path.strip():
+        raise UsageError("--path needs a file name (with 'all': a folder of NAME.py files)")
     if args.reference and args.path:
         raise UsageError("--reference grades the lab's own answer; it takes no --path")
     chosen = [get_exercise(n) for n in (names if args.name == "all" else [args.name])]
@@ -308,6 +316,23 @@ def exercise_main(argv: list[str]) -> int:
     return cli.check(chosen, paths, args.json, args.timeout)
 
 
+def leave(code: int) -> NoReturn:
+    """Exit with `code`. An exercise scene runs the student's file in this process, and a thread
+    it started (even a non-daemon one, which Python waits for at exit, for ever) must not keep the
+    lab open: with such a thread alive, flush and leave at once."""
+    import threading
+    stray = [t for t in threading.enumerate()
+             if t is not threading.main_thread() and t.is_alive() and not t.daemon]
+    if not stray:
+        sys.exit(code)
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
+
+
 if __name__ == "__main__":
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    sys.exit(main())
+    leave(main())

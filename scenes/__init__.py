@@ -6,6 +6,8 @@ the smoke tests and the benchmarks all read this list.
 
 from __future__ import annotations
 
+from typing import Callable
+
 from app.scene import Scene
 from scenes.cloth import ClothScene
 from scenes.double_pendulum import DoublePendulumScene
@@ -28,14 +30,22 @@ SCENES: list[type[Scene]] = [
 ]
 
 
+# Scenes found by a prefix, `PREFIX:SPEC`, that are not in the menu: the exercises' scenes
+# (`exercise:verlet`). The exercise house (app/exercises) imports the lecture scenes, so this
+# registry never imports it; the command line puts its finder here (imports run one way).
+FINDERS: dict[str, Callable[[str], "type[Scene] | None"]] = {}
+
+
 def scene_names() -> list[str]:
     return [s.name for s in SCENES]
 
 
 def get_scene(name: str) -> type[Scene] | None:
-    """The scene class called `name`, or None. `exercise:NAME` (or `exercise:PATH/NAME.py`) is an
-    exercise's scene run by the student's file; those are not in the menu."""
-    if name.startswith("exercise:"):
-        from scenes.exercises import exercise_scene     # imported only when asked for
-        return exercise_scene(name[len("exercise:"):])
+    """The scene class called `name`, or None. `PREFIX:SPEC` asks the finder registered for
+    PREFIX (`exercise:NAME` or `exercise:PATH/NAME.py`: an exercise's scene run by the student's
+    file; those are not in the menu)."""
+    prefix, sep, spec = name.partition(":")
+    if sep:
+        finder = FINDERS.get(prefix)
+        return finder(spec) if finder is not None else None
     return next((s for s in SCENES if s.name == name), None)

@@ -257,7 +257,9 @@ class DoublePendulumScene(PymunkScene):
         for body, y0 in zip(self.bobs, lowest):
             (vx, vy), w = body.velocity, body.angular_velocity
             # x * x, not x ** 2: a float ** overflows with an exception, * gives inf
-            e += (0.5 * body.mass * (vx * vx + vy * vy) + 0.5 * body.moment * w * w
+            # a bob of infinite moment (it cannot spin) has no spin energy (inf * 0 is NaN)
+            spin = 0.5 * body.moment * w * w if math.isfinite(body.moment) else 0.0
+            e += (0.5 * body.mass * (vx * vx + vy * vy) + spin
                   + body.mass * g * (y0 - body.position.y))
         return e
 

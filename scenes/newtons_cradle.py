@@ -293,8 +293,12 @@ class NewtonsCradleScene(PymunkScene):
         """Kinetic + potential energy of the balls, potential zero with every ball at rest."""
         xy, v = self.xv()
         w = np.array([b.angular_velocity for b in self.bodies])
-        moment = self.bodies[0].moment
-        kinetic = 0.5 * MASS * float((v ** 2).sum()) + 0.5 * moment * float((w ** 2).sum())
+        moment = np.array([b.moment for b in self.bodies])
+        # a ball of infinite moment (pymunk.Body(m, inf): it cannot spin) has no spin energy;
+        # inf * 0 would make the whole energy NaN
+        spin = np.where(np.isfinite(moment), 0.5 * np.where(np.isfinite(moment), moment, 0.0)
+                        * w * w, 0.0)
+        kinetic = 0.5 * MASS * float((v ** 2).sum()) + float(spin.sum())
         height = self.rest[:, 1] - xy[:, 1]               # y is down: up is rest_y - y
         return kinetic + MASS * self.gravity() * float(height.sum())
 

@@ -1,27 +1,43 @@
-"""What an exercise is: a name, the slide it comes from, the functions the student writes, the
-lab's own code that answers it (the reference), and the checks that grade an answer.
+"""What an exercise is, and the two halves of a check.
 
-A check is a function `run(module) -> Result`: it calls the student's functions (attributes of
-`module`) on a small system, measures one physical fact and says whether it holds. It raises
-nothing on a wrong answer (a wrong number is a Result with passed=False); an exception raised by
-the student's code propagates and the grader (app/exercises/grade.py) reports it with their file
-and line. `BadAnswer` is for answers of the wrong kind (a wrong shape, not a pymunk body, ...).
+An exercise is a name, the slide it comes from, the functions the student writes, the lab's own
+code that answers it (the reference) and its checks. A check has two halves that run in two
+processes (app/exercises/grade.py):
+
+  measure(module) -> raw values     in the CHILD, the process that imported the student's file:
+                                    it calls their functions on a small system and returns what
+                                    came back, as plain data (numbers, lists, short text): the
+                                    positions their step produced, the forces their function
+                                    summed, the metrics the lab's scene read off the world their
+                                    builder made. No verdict here.
+  judge(raw) -> Result              in the PARENT, the grader's own process: it reads the raw
+                                    values (untrusted: `Raw` refuses anything malformed), does
+                                    the physics (errors, orders, energies) and decides PASS or
+                                    FAIL with the number measured, the bound and a hint.
+
+So nothing the student's code does in its process can change a verdict: it can only change what
+its functions return. A wrong shape or type is a `BadAnswer` (raised by measure, reported with its
+message); `array_of` also notes what came back (float32, NaN) for the hint.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any, Callable
 
 import numpy as np
 
-
 Student = Any    # the module being graded (or the reference's namespace): its functions by name
 
 
 class BadAnswer(Exception):
     """The student's function returned something the check cannot use (the message says what)."""
+
+
+class Malformed(Exception):
+    """Raw values that are not what the check's measure sends: a forged or damaged frame."""
 
 
 @dataclass(frozen=True)
@@ -37,8 +53,9 @@ class Result:
 
 @dataclass(frozen=True)
 class Check:
-    name: str                                  # short, e.g. "free fall"
-    run: Callable[[Any], Result]
+    name: str                                   # short, e.g. "free fall"
+    measure: Callable[[Any], dict[str, Any]]    # in the child: student -> raw values
+    judge: Callable[["Raw"], Result]            # in the parent: raw values -> verdict
 
 
 @dataclass(frozen=True)
@@ -51,23 +68,122 @@ class Exercise:
     checks: tuple[Check, ...] = field(default=())
 
 
-def within(value: float, target: float, tol: float) -> bool:
-    return bool(np.isfinite(value)) and abs(value - target) <= tol
+# ----- the child's side: calling the student's functions --------------------------------------
+NOTES: dict[str, str] = {}      # what came back, noted once per function per check (the hint)
 
 
 def array_of(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
-    """`value` as a float array of `shape`, or BadAnswer naming what came back."""
+    """`value` as a float64 array of `shape`, or BadAnswer naming what came back. Notes a float32
+    (or other non-float64) result and the first NaN or inf, for the hint."""
     if value is None:       # NumPy would make it a NaN of shape (): say what happened instead
         raise BadAnswer(f"{what} returned None; expected an array of shape {shape} (no return "
                         "statement? changing an array in place does not return it)")
+    dtype = getattr(value, "dtype", None)
     try:
         arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise BadAnswer(f"{what} returned {type(value).__name__}; expected an array of shape "
                         f"{shape}") from None
     if arr.shape != shape:
-        raise BadAnswer(f"{what} returned shape {arr.shape}; expected {shape}")
+        flat = arr.size == math.prod(shape) and arr.ndim != len(shape)
+        raise BadAnswer(f"{what} returned shape {arr.shape}; expected {shape}"
+                        + (" (the same numbers, reshaped: keep the shape you were given; "
+                           "ravel/flatten/concatenate change it)" if flat else ""))
+    if dtype is not None and np.dtype(dtype) != np.float64 and what not in NOTES:
+        kind = np.dtype(dtype).name
+        if kind in ("float32", "float16"):
+            NOTES[what] = (f"{what} returned {kind} values: about {7 if kind == 'float32' else 3} "
+                           "significant digits, too few for these checks; compute in float64 "
+                           "(NumPy's default: drop the dtype=np." + kind + ")")
+    if not np.isfinite(arr).all() and what + " nan" not in NOTES:
+        NOTES[what + " nan"] = (f"{what} returned NaN or inf: a division by zero (a length of "
+                                "0?), or values that grew without bound")
     return arr
+
+
+# ----- the parent's side: reading the raw values -----------------------------------------------
+class Raw:
+    """The raw values a check's child sent back, as the parent reads them: every accessor checks
+    the kind and shape and raises Malformed otherwise (the child's process is the student's)."""
+
+    def __init__(self, values: Any):
+        if not isinstance(values, dict):
+            raise Malformed("expected a mapping of named values")
+        self.values = values
+
+    def _get(self, key: str) -> Any:
+        if key not in self.values:
+            raise Malformed(f"'{key}' is missing")
+        return self.values[key]
+
+    def has(self, key: str) -> bool:
+        return key in self.values
+
+    def number(self, key: str) -> float:
+        v = self._get(key)
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise Malformed(f"'{key}' is not a number")
+        return float(v)
+
+    def optional(self, key: str) -> float | None:
+        """A number, or None where the measurement says 'none yet'."""
+        return None if self._get(key) is None else self.number(key)
+
+    def integer(self, key: str) -> int:
+        v = self._get(key)
+        if isinstance(v, bool) or not isinstance(v, int):
+            raise Malformed(f"'{key}' is not an integer")
+        return v
+
+    def flag(self, key: str) -> bool:
+        v = self._get(key)
+        if not isinstance(v, bool):
+            raise Malformed(f"'{key}' is not true or false")
+        return v
+
+    def text(self, key: str) -> str:
+        v = self._get(key)
+        if not isinstance(v, str):
+            raise Malformed(f"'{key}' is not text")
+        return v
+
+    def array(self, key: str, shape: tuple[int | None, ...] | None = None,
+              dtype: type = float) -> np.ndarray:
+        """A list of numbers (nested for more dimensions) as an array; `shape` may hold None for
+        'any length'."""
+        v = self._get(key)
+        try:
+            arr = np.asarray(v, dtype=dtype)
+        except (TypeError, ValueError, OverflowError):
+            raise Malformed(f"'{key}' is not an array of numbers") from None
+        if arr.dtype == object:
+            raise Malformed(f"'{key}' is not an array of numbers")
+        if shape is not None and (arr.ndim != len(shape) or any(
+                want is not None and got != want for got, want in zip(arr.shape, shape))):
+            raise Malformed(f"'{key}' has shape {arr.shape}, not {shape}")
+        return arr
+
+    def texts(self, key: str) -> list[str]:
+        v = self._get(key)
+        if not isinstance(v, list) or not all(isinstance(t, str) for t in v):
+            raise Malformed(f"'{key}' is not a list of text")
+        return v
+
+
+def non_finite(value: Any) -> bool:
+    """True if a raw value holds a NaN or an infinity anywhere (a NaN never passes a check)."""
+    if isinstance(value, float):
+        return not math.isfinite(value)
+    if isinstance(value, dict):
+        return any(non_finite(v) for v in value.values())
+    if isinstance(value, list):
+        return any(non_finite(v) for v in value)
+    return False
+
+
+# ----- small helpers for judges ------------------------------------------------------------------
+def within(value: float, target: float, tol: float) -> bool:
+    return bool(np.isfinite(value)) and abs(value - target) <= tol
 
 
 def order(errors: list[float]) -> float:
@@ -79,5 +195,20 @@ def order(errors: list[float]) -> float:
     return float(np.log2(e1 / e2))
 
 
-def fmt(x: float) -> str:
+def fmt(x: float | None) -> str:
+    if x is None:
+        return "none"
     return "NaN" if x != x else f"{x:.3g}"
+
+
+def plain(value: Any) -> Any:
+    """Raw values as plain data for the channel: arrays to (nested) lists of Python numbers."""
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    return value

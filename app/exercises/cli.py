@@ -14,7 +14,8 @@ import sys
 from typing import Callable
 
 from app.exercises import EXERCISES, Exercise
-from app.exercises.grade import CHECK_TIMEOUT, Report, grade, shown, starter_path
+from app.exercises.grade import CHECK_TIMEOUT, Report, grade_many
+from app.exercises.loading import shown, starter_path
 
 
 def quiet_pipe(command: Callable[..., int]) -> Callable[..., int]:
@@ -40,12 +41,14 @@ def list_exercises() -> int:
 @quiet_pipe
 def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
           timeout: float = CHECK_TIMEOUT) -> int:
-    """Grade each exercise on its file (None: the lab's reference); print the reports (and a
-    summary table for more than one)."""
+    """Grade each exercise on its file (None: the lab's reference), several at once; print the
+    reports in order (what the student's code printed first, on stderr, capped), and a summary
+    table for more than one."""
     reports: list[Report] = []
-    for exercise, path in zip(exercises, paths):
-        report = grade(exercise, path, timeout)
+    for report in grade_many(list(zip(exercises, paths)), timeout):
         reports.append(report)
+        if report.output_bytes:
+            print(report.output_text(), file=sys.stderr, flush=True)
         if as_json:
             print(json.dumps(report.to_json()), flush=True)
         else:

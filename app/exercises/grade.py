@@ -1,225 +1,409 @@
-"""Grading a student's module so that nothing in it can break the lab.
+"""Grading a student's file so that nothing in it can break the lab or change a verdict.
 
-Every check (and the import before them) runs in a child process forked from the grader:
-  * a syntax error, an import of a missing package or an exception at import is a failed
-    "imports" check with the student's file and line (their traceback, trimmed to their frames);
-    the other checks are then reported as not run;
-  * an exception inside a check fails that check (with their traceback) and the next check runs;
-  * a check that runs longer than the time limit (an endless loop) is killed and failed;
-  * a child that dies (pymunk aborts the process on some values) is a failed check, not a crash.
-Forking costs a few milliseconds per check: NumPy and pymunk are already loaded in the parent.
+One child process per exercise (forked: NumPy and pymunk are already loaded) imports the file
+ONCE and runs the measuring half of every check (app/exercises/child.py); the verdicts are the
+parent's, computed here from the raw values each check sends back (app/exercises/base.py):
+
+  * the channel is untrusted (app/exercises/channel.py): framed, JSON, bounded in size, and
+    bounded in time by a deadline per check; junk, a forged frame, half a frame is a failed
+    check with a one-line reason, never the grader's traceback;
+  * a syntax error, a missing package, an exception at import is a failed "imports" check with
+    the student's file and line; the other checks are then reported as not run;
+  * an exception in a check fails that check (their traceback) and the next check runs;
+  * a check still running after the time limit is stopped, and the exercise's remaining checks
+    are skipped (each would wait as long again), saying so;
+  * a child that dies (pymunk aborts the process on some values, os._exit) fails the check it was
+    in; a new child imports the file again for the checks after it;
+  * the child has a process group of its own, and the whole group is killed when the exercise
+    is done: no process the student's code started outlives the check;
+  * the student's output (prints, os.write, subprocesses) is captured and its first OUTPUT_SHOWN
+    bytes shown (on stderr, before the report), the rest counted and dropped;
+  * the grader's own errors (a judge that raises) are reported as the grader's.
+`check all` grades up to JOBS exercises at once, each in its own child.
 (Windows cannot fork: there the checks run in the grader's process, which still catches every
-exception but cannot stop an endless loop.)
-The student's prints go to stderr, so `--json` output stays clean.
+exception but cannot stop an endless loop nor keep a verdict out of the student's reach.)
 """
 
 from __future__ import annotations
 
-import importlib.util
-import multiprocessing
+import json
 import os
+import secrets
+import selectors
+import signal
 import sys
-import traceback
-import warnings
-from dataclasses import asdict, dataclass
-from pathlib import Path
-from types import ModuleType
-from typing import Any
+import time
+from dataclasses import dataclass, field
+from typing import Iterator
 
-from app.exercises.base import BadAnswer, Check, Exercise
-from app.scene import SceneError
+from app.exercises import base
+from app.exercises.base import Check, Exercise, plain
+from app.exercises.channel import ChannelError, Frame, FrameReader, parse
+from app.exercises.child import child_main, import_answer, outcome
+from app.exercises.loading import shown, starter_path
+from app.exercises.report import OUTPUT_SHOWN, CheckReport, Report, not_run, verdict
 
 CHECK_TIMEOUT = 10.0        # seconds a check may run before it counts as an endless loop
-CAN_FORK = "fork" in multiprocessing.get_all_start_methods()
-REPO = Path(__file__).resolve().parents[2]
-STARTERS = REPO / "exercises"
+CAN_FORK = hasattr(os, "fork")
+JOBS = max(1, min(4, os.cpu_count() or 1))   # exercises graded at once by `check all`
+READ = 1 << 16
+
+DIED = ("the check's process ended without a result: a crash in a library (pymunk aborts on some "
+        "values, e.g. a negative radius or mass), os._exit, or a signal")
+ENDLESS = ("stopped after {t:g} s: an endless loop (a while loop whose condition never changes)? "
+           "Or a step far too slow: a check calls your function hundreds of times, so a sleep "
+           "or a print of whole arrays in it adds up")
+SKIPPED = ("not run: the check before it ran out of time, and each would wait {t:g} s again; "
+           "fix that one first")
 
 
+# ----- one exercise: its child (or children) and what came back --------------------------------
 @dataclass
-class CheckReport:
-    name: str
-    passed: bool
-    measured: str = ""
-    bound: str = ""
-    hint: str = ""
-    error: str = ""          # the student's traceback (trimmed), a bad answer or a timeout
-
-    def lines(self) -> list[str]:
-        mark = "PASS" if self.passed else "FAIL"
-        out = [f"  {mark}  {self.name:<26} measured {self.measured or '-'}; needed {self.bound}"]
-        if not self.passed:
-            for text in (self.error, self.hint and f"hint: {self.hint}"):
-                out += [f"        {line}" for line in text.splitlines() if text]
-        return out
+class Child:
+    pid: int
+    token: str
+    channel: int
+    output: int
+    pidfd: int | None
+    expected: int                # the check whose frame comes next (-1: the import)
+    first: int                   # the first check this child runs
+    deadline: float
+    reader: FrameReader = field(default_factory=FrameReader)
+    exited: bool = False
 
 
-@dataclass
-class Report:
-    exercise: str
-    path: str
-    checks: list[CheckReport]
+class Session:
+    """Grading one exercise: starts children, reads their frames and output, keeps the reports."""
 
-    @property
-    def passed(self) -> bool:
-        return all(c.passed for c in self.checks)
+    def __init__(self, exercise: Exercise, path: str | None, timeout: float,
+                 checks: list[Check]):
+        self.exercise, self.path, self.timeout, self.checks = exercise, path, timeout, checks
+        self.reports: list[CheckReport | None] = [None] * len(checks)
+        self.imports: CheckReport | None = None
+        self.output = bytearray()
+        self.output_bytes = 0
+        self.child: Child | None = None
+        self.done = False
+        self.sel: selectors.BaseSelector | None = None
 
-    def to_json(self) -> dict[str, Any]:
-        return {"exercise": self.exercise, "path": self.path, "passed": self.passed,
-                "checks": [asdict(c) for c in self.checks]}
+    # --- the child's life ------------------------------------------------------------------------
+    def start(self, sel: selectors.BaseSelector, first: int) -> None:
+        self.sel = sel
+        token = secrets.token_hex(16)
+        chan_r, chan_w = os.pipe()
+        out_r, out_w = os.pipe()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:                      # the child: never returns
+            child_main(self.exercise, self.path,
+                       [(k, self.checks[k]) for k in range(first, len(self.checks))],
+                       token, chan_w, out_w)
+        os.close(chan_w)
+        os.close(out_w)
+        try:
+            os.setpgid(pid, pid)          # the child does it too: whoever runs first
+        except OSError:
+            pass
+        for fd in (chan_r, out_r):
+            os.set_blocking(fd, False)
+        try:
+            pidfd = os.pidfd_open(pid)    # readable when the child ends (Linux 5.3+)
+        except (AttributeError, OSError):
+            pidfd = None
+        self.child = c = Child(pid, token, chan_r, out_r, pidfd, -1, first,
+                               time.monotonic() + self.timeout)
+        sel.register(chan_r, selectors.EVENT_READ, self.on_channel)
+        sel.register(out_r, selectors.EVENT_READ, self.on_output)
+        if pidfd is not None:
+            sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
 
-    def text(self) -> str:
-        n = sum(c.passed for c in self.checks)
-        head = f"{self.exercise}: {self.path}: {n}/{len(self.checks)} checks pass"
-        return "\n".join([head] + [line for c in self.checks for line in c.lines()])
+    def fds(self) -> list[int]:
+        c = self.child
+        if c is None:
+            return []
+        return [fd for fd in (c.channel, c.output, c.pidfd) if fd is not None and fd >= 0]
 
+    def _unregister(self, fd: int) -> None:
+        try:
+            self.sel.unregister(fd)
+        except (KeyError, ValueError):
+            pass
 
-def starter_path(name: str) -> Path:
-    return STARTERS / f"{name}.py"
-
-
-def shown(path: str | os.PathLike) -> str:
-    """A path as a student would type it: relative to the current folder when inside it."""
-    rel = os.path.relpath(path)
-    return rel if not rel.startswith("..") else os.path.abspath(path)
-
-
-def load_module(path: str) -> ModuleType:
-    """Import the file at `path` as a fresh module (never cached: each child imports it anew)."""
-    name = "student_" + Path(path).stem
-    spec = importlib.util.spec_from_file_location(name, path)
-    if spec is None or spec.loader is None:
-        raise ImportError(f"cannot import {path}")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[name] = module           # dataclasses and pickling look modules up by name
-    spec.loader.exec_module(module)
-    return module
-
-
-def student_traceback(exc: BaseException, path: str | None) -> str:
-    """The exception as the student should read it: only the frames in their file, then the
-    error line (a SyntaxError says its own file, line and caret). A BadAnswer is its message."""
-    if isinstance(exc, BadAnswer):
-        return str(exc)
-    lines: list[str] = []
-    if path is not None:
-        mine = os.path.realpath(path)
-        frames = [f for f in traceback.extract_tb(exc.__traceback__)
-                  if os.path.realpath(f.filename) == mine]
-        repeats = 0
-        for k, frame in enumerate(frames):
-            # a runaway recursion repeats one frame ~1000 times: show it once, then the count
-            if k and (frame.lineno, frame.name) == (frames[k - 1].lineno, frames[k - 1].name):
-                repeats += 1
-                continue
-            if repeats:
-                lines.append(f"  [the line above repeated {repeats} more times]")
-                repeats = 0
-            lines.append(f'File "{path}", line {frame.lineno}, in {frame.name}')
-            if frame.line:
-                lines.append(f"    {frame.line}")
-        if repeats:
-            lines.append(f"  [the line above repeated {repeats} more times]")
-    lines += "".join(traceback.format_exception_only(type(exc), exc)).rstrip().splitlines()
-    return "\n".join(lines)
-
-
-def _import(path: str | None, exercise: Exercise) -> Any:
-    """The module to grade: the student's file, or the lab's reference answer (path None)."""
-    if path is None:
-        return exercise.reference()
-    module = load_module(path)
-    missing = [f for f in exercise.functions if not callable(getattr(module, f, None))]
-    if missing:
-        raise BadAnswer(f"{path} defines no function {', '.join(missing)}")
-    return module
-
-
-def _run_check(exercise: Exercise, check: Check | None, path: str | None) -> CheckReport:
-    """In the child: import, then run one check (None: only import). Never raises."""
-    name = check.name if check else "imports"
-    try:
-        module = _import(path, exercise)
-        if check is None:
-            return CheckReport(name, True, "it imports", "no error at import")
-        r = check.run(module)
-        return CheckReport(name, bool(r.passed), str(r.measured), str(r.bound),
-                           "" if r.passed else r.hint)
-    except BadAnswer as e:
-        return CheckReport(name, False, "unusable answer", "see the message", error=str(e))
-    except NotImplementedError as e:
-        return CheckReport(name, False, "not written yet", "a working answer",
-                           error=student_traceback(e, path))
-    except SceneError as e:         # the exercise's scene ran the student's code (pymunk ones)
-        unwritten = "NotImplementedError" in str(e)
-        return CheckReport(name, False, "not written yet" if unwritten else "an exception",
-                           "a working answer" if unwritten else "no exception", error=str(e))
-    except BaseException as e:      # noqa: BLE001 - anything the student's code does is a fail
-        return CheckReport(name, False, "an exception", "no exception",
-                           error=student_traceback(e, path))
-
-
-def _child(conn, exercise: Exercise, check: Check | None, path: str | None) -> None:
-    os.dup2(2, 1)                   # the student's prints go to stderr (keeps --json clean)
-    sys.stdout = sys.stderr
-    # a wrong answer overflows or divides by zero on purpose-built cases: the check reports
-    # the result (NaN, a huge error); NumPy's warnings would only bury the report
-    warnings.simplefilter("ignore", RuntimeWarning)
-    try:
-        conn.send(_run_check(exercise, check, path))
-    finally:
-        conn.close()
-
-
-def run_isolated(exercise: Exercise, check: Check | None, path: str | None,
-                 timeout: float) -> CheckReport:
-    """Run one check in a forked child; kill it after `timeout` seconds. Where the system cannot
-    fork (Windows), the check runs in this process: exceptions are still caught, but an endless
-    loop cannot be stopped there."""
-    name = check.name if check else "imports"
-    if not CAN_FORK:
-        return _run_check(exercise, check, path)
-    ctx = multiprocessing.get_context("fork")
-    receive, send = ctx.Pipe(duplex=False)
-    proc = ctx.Process(target=_child, args=(send, exercise, check, path), daemon=True)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    proc.start()
-    send.close()
-    try:
-        if receive.poll(timeout):
+    def stop_child(self) -> None:
+        """Kill the child's whole process group, reap it, keep the output it left, close."""
+        c = self.child
+        if c is None:
+            return
+        try:
+            os.killpg(c.pid, signal.SIGKILL)     # the student's background processes too
+        except OSError:
+            pass
+        if not c.exited:
             try:
-                return receive.recv()
-            except EOFError:        # the child died without an answer (a crash, an abort)
-                proc.join()
-                return CheckReport(name, False, f"the process died (exit code {proc.exitcode})",
-                                   "a normal return", error="the check's process ended without "
-                                   "a result: a crash in a library (pymunk aborts on some "
-                                   "values, e.g. a negative radius or mass) or os._exit")
-        proc.kill()
-        return CheckReport(name, False, f"still running after {timeout:g} s",
-                           f"done within {timeout:g} s", error=f"stopped after {timeout:g} s: an "
-                           "endless loop (a while loop whose condition never changes)? Or a "
-                           "step far too slow: a check calls your function hundreds of times, "
-                           "so a sleep or a print of whole arrays in it adds up")
-    finally:
-        proc.join()
-        receive.close()
+                os.kill(c.pid, signal.SIGKILL)
+            except OSError:
+                pass
+            try:
+                os.waitpid(c.pid, 0)
+            except ChildProcessError:
+                pass
+        self.read_output(c.output, drain=True)
+        for fd in self.fds():
+            self._unregister(fd)
+            os.close(fd)
+        self.child = None
+
+    # --- events --------------------------------------------------------------------------------
+    def on_output(self, fd: int) -> None:
+        self.read_output(fd)
+
+    def read_output(self, fd: int, drain: bool = False) -> None:
+        for _ in range(64 if drain else 1):
+            try:
+                data = os.read(fd, READ)
+            except (BlockingIOError, OSError):
+                return
+            if not data:
+                self._unregister(fd)
+                return
+            self.output_bytes += len(data)
+            room = OUTPUT_SHOWN - len(self.output)
+            if room > 0:
+                self.output += data[:room]
+
+    def on_channel(self, fd: int) -> None:
+        c = self.child
+        try:
+            data = os.read(fd, READ)
+        except OSError:                    # nothing yet (or closed meanwhile)
+            return
+        if not data:                       # every writer closed it: wait for the exit
+            self._unregister(fd)
+            return
+        self.take(c, data)
+
+    def take(self, c: Child, data: bytes) -> None:
+        """Judge the complete frames in `data`; junk or a bad frame breaks the check running."""
+        try:
+            for payload in c.reader.feed(data):
+                self.accept(parse(payload, c.token, c.expected))
+                if self.child is not c:    # the session moved on (done, or a new child)
+                    return
+            if c.reader.junk is not None:
+                raise ChannelError(c.reader.junk)
+        except ChannelError as e:
+            self.broken(f"the check's process sent {e}: nothing but the grader may write on its "
+                        "channel (did your code write to every open file descriptor?)",
+                        "a damaged channel")
+
+    def on_exit(self, fd: int | None = None) -> None:
+        """The child ended: take the frames it wrote first, then judge what is missing."""
+        c = self.child
+        try:
+            _, status = os.waitpid(c.pid, 0)
+        except ChildProcessError:
+            status = 0
+        c.exited = True
+        while self.child is c:             # frames still in the pipe
+            try:
+                data = os.read(c.channel, READ)
+            except (BlockingIOError, OSError):
+                break
+            if not data:
+                break
+            self.take(c, data)
+        if self.child is not c:
+            return
+        if os.WIFSIGNALED(status):
+            sig = os.WTERMSIG(status)
+            how = f"killed by signal {sig} ({signal.Signals(sig).name})"
+        else:
+            how = f"exit code {os.WEXITSTATUS(status)}"
+        cut = " (in the middle of a frame)" if c.reader.partial() else ""
+        self.broken(DIED + cut, f"the process died ({how})")
+
+    def tick(self, now: float) -> None:
+        c = self.child
+        if c is None:
+            return
+        if c.pidfd is None:                # no pidfd: poll for the exit
+            try:
+                pid, _ = os.waitpid(c.pid, os.WNOHANG)
+            except ChildProcessError:
+                pid = c.pid
+            if pid:
+                c.exited = True
+                self.broken(DIED, "the process died")
+                return
+        if now >= c.deadline:
+            self.timed_out()
+
+    # --- what the frames and the failures mean ---------------------------------------------------
+    def accept(self, frame: Frame) -> None:
+        c = self.child
+        if frame.check == -1:
+            if frame.status != "ok":
+                self.import_failed(verdict(Check("imports", None, None), frame))
+                return
+            if self.imports is None:
+                self.imports = CheckReport("imports", True, "it imports", "no error at import")
+            c.expected = c.first
+        else:
+            self.reports[frame.check] = verdict(self.checks[frame.check], frame)
+            c.expected = frame.check + 1
+        c.deadline = time.monotonic() + self.timeout
+        if c.expected >= len(self.checks):
+            self.finish()
+
+    def import_failed(self, report: CheckReport) -> None:
+        if self.imports is None:           # the first import: only it gets a line of its own
+            self.imports = report
+            why = "not run: the module does not import (see above)"
+        else:                              # imported again after a crash, and failed now
+            why = f"not run: importing the file again after the crash failed: {report.error}"
+        for k, r in enumerate(self.reports):
+            if r is None:
+                self.reports[k] = not_run(self.checks[k], why)
+        self.finish()
+
+    def broken(self, error: str, measured: str) -> None:
+        """The child died or its channel is damaged while check `expected` ran: that check
+        fails; a new child goes on with the checks after it."""
+        c = self.child
+        if c.expected == -1:
+            self.import_failed(CheckReport("imports", False, measured, "a normal import",
+                                           error=error))
+            return
+        k = c.expected
+        self.reports[k] = CheckReport(self.checks[k].name, False, measured, "a normal return",
+                                      error=error)
+        self.stop_child()
+        if k + 1 < len(self.checks):
+            self.start(self.sel, k + 1)
+        else:
+            self.finish()
+
+    def timed_out(self) -> None:
+        c = self.child
+        t = self.timeout
+        if c.expected == -1:
+            self.import_failed(CheckReport("imports", False, f"still running after {t:g} s",
+                                           f"done within {t:g} s", error=ENDLESS.format(t=t)))
+            return
+        k = c.expected
+        self.reports[k] = CheckReport(self.checks[k].name, False, f"still running after {t:g} s",
+                                      f"done within {t:g} s", error=ENDLESS.format(t=t))
+        for j in range(k + 1, len(self.checks)):
+            self.reports[j] = not_run(self.checks[j], SKIPPED.format(t=t))
+        self.finish()
+
+    def finish(self) -> None:
+        self.stop_child()
+        self.done = True
+
+    def report(self) -> Report:
+        where = "the lab's reference" if self.path is None else str(self.path)
+        checks = [r for r in self.reports]
+        if self.imports is not None and not self.imports.passed:
+            checks = [self.imports] + checks
+        text = self.output.decode("utf-8", "replace")
+        text = "".join(ch if ch in "\n\t" or ch.isprintable() else "?" for ch in text)
+        return Report(self.exercise.name, where, checks, text, self.output_bytes)
+
+
+def run_sessions(sessions: list[Session], jobs: int = JOBS) -> Iterator[Report]:
+    """Run the sessions, at most `jobs` at once; yield their reports in the order given."""
+    sel = selectors.DefaultSelector()
+    waiting, running, done = list(sessions), [], 0
+    try:
+        while done < len(sessions):
+            while waiting and len(running) < jobs:
+                s = waiting.pop(0)
+                s.start(sel, 0)
+                running.append(s)
+            now = time.monotonic()
+            limit = min(s.child.deadline for s in running if s.child) - now if running else 0
+            if any(s.child and s.child.pidfd is None for s in running):
+                limit = min(limit, 0.05)
+            for key, _ in sel.select(max(0.0, limit)):
+                try:                        # an earlier callback may have closed this fd
+                    current = sel.get_key(key.fd)
+                except KeyError:
+                    continue
+                if current.data == key.data:
+                    key.data(key.fd)
+            now = time.monotonic()
+            for s in running:
+                if not s.done:
+                    s.tick(now)
+            running = [s for s in running if not s.done]
+            while done < len(sessions) and sessions[done].done:
+                yield sessions[done].report()
+                done += 1
+    finally:                                # Ctrl-C, or a reader gone: leave no child behind
+        for s in sessions:
+            if s.child is not None:
+                s.stop_child()
+        sel.close()
+
+
+# ----- without fork (Windows): in this process ---------------------------------------------------
+def in_process(exercise: Exercise, path: str | None, checks: list[Check]) -> Report:
+    where = "the lab's reference" if path is None else str(path)
+    try:
+        module = import_answer(path, exercise)
+    except BaseException as e:      # noqa: BLE001
+        status, error = outcome(e, path)
+        first = verdict(Check("imports", None, None), Frame(-1, status, {}, error))
+        return Report(exercise.name, where, [first] + [
+            not_run(c, "not run: the module does not import (see above)") for c in checks])
+    reports = []
+    for c in checks:
+        base.NOTES.clear()
+        try:
+            raw = json.loads(json.dumps(plain(c.measure(module))))   # as the channel carries it
+            frame = Frame(0, "ok", raw, "", list(base.NOTES.values()))
+        except BaseException as e:  # noqa: BLE001
+            status, error = outcome(e, path)
+            frame = Frame(0, status, {}, error, list(base.NOTES.values()))
+        reports.append(verdict(c, frame))
+    return Report(exercise.name, where, reports)
+
+
+# ----- the grader's entry points ----------------------------------------------------------------
+def chosen(exercise: Exercise, only: tuple[str, ...] | None) -> list[Check]:
+    return [c for c in exercise.checks if only is None or c.name in only]
+
+
+def grade_many(jobs: list[tuple[Exercise, str | None]], timeout: float = CHECK_TIMEOUT,
+               only: tuple[str, ...] | None = None, parallel: int = JOBS) -> Iterator[Report]:
+    """Grade each (exercise, path) (path None: the lab's reference answer); yield the reports
+    in order, as soon as each is complete."""
+    if not CAN_FORK:
+        for exercise, path in jobs:
+            yield in_process(exercise, path, chosen(exercise, only))
+        return
+    sessions = [Session(e, p, timeout, chosen(e, only)) for e, p in jobs]
+    yield from run_sessions(sessions, parallel)
 
 
 def grade(exercise: Exercise, path: str | None, timeout: float = CHECK_TIMEOUT,
           only: tuple[str, ...] | None = None) -> Report:
     """Grade the module at `path` (None: the lab's reference answer): the import, then every
-    check (or those named in `only`), each in its own child process."""
-    checks = [c for c in exercise.checks if only is None or c.name in only]
-    where = "the lab's reference" if path is None else str(path)
-    first = run_isolated(exercise, None, path, timeout)
-    if not first.passed:            # only a failed import gets a line of its own
-        return Report(exercise.name, where, [first] + [
-            CheckReport(c.name, False, "not run", "the module imports",
-                        error="not run: the module does not import (see above)")
-            for c in checks])
-    return Report(exercise.name, where, [run_isolated(exercise, c, path, timeout) for c in checks])
+    check (or those named in `only`)."""
+    return next(grade_many([(exercise, path)], timeout, only, 1))
 
 
-__all__ = ["grade", "Report", "CheckReport", "load_module", "student_traceback", "starter_path",
-           "CHECK_TIMEOUT", "STARTERS", "shown"]
+def import_probe(exercise: Exercise, path: str, timeout: float = CHECK_TIMEOUT) -> CheckReport:
+    """Only import the file, in a child, as the grader does (the exercise scenes ask this
+    before they import it in the lab's own process)."""
+    if not CAN_FORK:
+        return CheckReport("imports", True, "not probed (no fork here)", "-")
+    report = next(run_sessions([Session(exercise, path, timeout, [])], 1))
+    return report.checks[0] if report.checks else CheckReport("imports", True, "it imports",
+                                                              "no error at import")
+
+
+__all__ = ["grade", "grade_many", "import_probe", "Report", "CheckReport", "CHECK_TIMEOUT",
+           "JOBS", "OUTPUT_SHOWN", "starter_path", "shown"]

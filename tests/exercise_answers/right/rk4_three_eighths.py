@@ -1,11 +1,10 @@
-"""Right: Kutta's 3/8-rule (also fourth order) for rk4_step and Heun's method (also second order)
-for midpoint_step: other members of the same families, with other weights."""
+"""Right: Kutta's 3/8-rule (also fourth order, other weights) for rk4_step, and the midpoint
+method written with the midpoint state named (the slide's form, in other words)."""
 
 
 def midpoint_step(f, t, y, h):
-    k1 = f(t, y)
-    k2 = f(t + h, y + h * k1)
-    return y + h / 2 * (k1 + k2)
+    y_mid = y + 0.5 * h * f(t, y)
+    return y + h * f(t + 0.5 * h, y_mid)
 
 
 def rk4_step(f, t, y, h):

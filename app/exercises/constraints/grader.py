@@ -1,0 +1,193 @@
+"""Grader of exercises/constraints.py: Jakobsen's rod relaxation with inverse masses.
+
+Reference: app.physics.jakobsen.satisfy_rods. Each measure sends back the positions the
+student's satisfy_rods returned; each judge measures:
+  pinned never move   a chain with both ends pinned (w = 0), stretched at random, 20 sweeps:
+                      the pinned particles move by exactly 0
+  one rod, one pass   one rod of length 50, rest 20: after one sweep its length is 20 (+- 1e-9)
+  squashed rod        one rod of length 10, rest 20: after one sweep its length is 20 too (a rod
+                      pushes as well as pulls)
+  shares by mass      the rod of length 50 with w = 1 and 3: the centre of mass (masses 1/w)
+                      stays put
+  stretch falls       a hanging 6 x 6 cloth (top row pinned) for 1/3 s at 60 Hz, stepped by the
+                      lab's Verlet: the mean stretch after 1, 5, 25 sweeps per step falls
+  coincident          two particles at one point, rest 10: the result is finite (no 0/0)
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from app.exercises.base import Check, Exercise, Raw, Result, Student, array_of, fmt, within
+
+
+def reference() -> SimpleNamespace:
+    from app.physics.jakobsen import satisfy_rods
+    return SimpleNamespace(satisfy_rods=satisfy_rods)
+
+
+def relax(m: Student, x, a, b, rest, w, iterations) -> np.ndarray:
+    out = m.satisfy_rods(x.copy(), a, b, rest, w, iterations)
+    return array_of(out, x.shape, "satisfy_rods")
+
+
+WEIGHT_HINT = ("move each end by its share w_a / (w_a + w_b) of the correction (w = 0: pinned, "
+               "it never moves). Did you split it 50/50?")
+
+
+# ----- pinned -----------------------------------------------------------------------------------
+def chain() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(2)
+    n = 8
+    x = np.stack([np.arange(n) * 15.0, np.zeros(n)], axis=1) + rng.normal(0, 4, (n, 2))
+    w = np.ones(n)
+    w[[0, n - 1]] = 0.0
+    return x, np.arange(n - 1), np.arange(1, n), w
+
+
+def measure_pinned(m: Student) -> dict:
+    x, a, b, w = chain()
+    return {"x": relax(m, x, a, b, np.full(len(a), 10.0), w, 20)}
+
+
+def judge_pinned(raw: Raw) -> Result:
+    x, _, _, w = chain()
+    out = raw.array("x", x.shape)
+    moved = float(np.abs(out[w == 0] - x[w == 0]).max())
+    return Result(moved == 0.0, f"pinned particles moved {fmt(moved)} px", "0 px", WEIGHT_HINT)
+
+
+# ----- one rod -----------------------------------------------------------------------------------
+ROD_W = np.array([1.0, 3.0])
+STRETCHED = np.array([[0.0, 0.0], [30.0, 40.0]])      # length 50
+SQUASHED = np.array([[0.0, 0.0], [6.0, 8.0]])         # length 10
+REST = 20.0
+
+
+def measure_rod(x0: np.ndarray):
+    def measure(m: Student) -> dict:
+        return {"x": relax(m, x0, np.array([0]), np.array([1]), np.array([REST]), ROD_W, 1)}
+    return measure
+
+
+ONE_ROD_HINT = ("one rod alone is satisfied exactly by one correction: diff = (|delta| - rest) / "
+                "|delta| (divide by the length), then the ends move by delta * diff * their "
+                "shares w_a / (w_a + w_b) and w_b / (w_a + w_b), which add up to 1.")
+
+
+def judge_one_rod(raw: Raw) -> Result:
+    out = raw.array("x", (2, 2))
+    err = abs(float(np.linalg.norm(out[1] - out[0])) - REST)
+    along = STRETCHED[1] - STRETCHED[0]
+    length = float((out[1] - out[0]) @ along / np.linalg.norm(along))   # < 0: ends crossed
+    hint = ONE_ROD_HINT
+    if length > 50.0 + 1e-9:
+        hint = "the rod got LONGER (50 -> " + f"{length:.3g}): a sign is flipped. " + hint
+    elif length < REST - 1e-9:
+        hint = (f"the ends moved too far (50 px -> {length:.3g} along the old rod, rest 20; "
+                "below 0 they crossed): did you forget to divide by w_a + w_b? " + hint)
+    return Result(within(err, 0.0, 1e-9), f"|length - rest| = {fmt(err)} px after one pass",
+                  "< 1e-09 px", hint)
+
+
+def judge_squashed(raw: Raw) -> Result:
+    out = raw.array("x", (2, 2))
+    length = float(np.linalg.norm(out[1] - out[0]))
+    err = abs(length - REST)
+    hint = ("a rod is a distance constraint both ways: diff = (|delta| - rest) / |delta| is "
+            "negative for a squashed rod, and the same correction pushes its ends apart. " +
+            ONE_ROD_HINT)
+    if within(length, 10.0, 1e-9):
+        hint = ("a squashed rod stays squashed (10 px, rest 20): the correction must push apart "
+                "too (no `if |delta| <= rest: continue`; that is a rope, not a rod). " + hint)
+    return Result(within(err, 0.0, 1e-9), f"length {length:.6g} px after one pass (was 10)",
+                  "20 +- 1e-09 px", hint)
+
+
+def judge_shares(raw: Raw) -> Result:
+    out = raw.array("x", (2, 2))
+    mass = 1.0 / ROD_W
+    before = (mass[:, None] * STRETCHED).sum(0) / mass.sum()
+    after = (mass[:, None] * out).sum(0) / mass.sum()
+    moved = float(np.linalg.norm(after - before))
+    return Result(within(moved, 0.0, 1e-9), f"centre of mass moved {fmt(moved)} px",
+                  "< 1e-09 px", "the heavier end (smaller w) moves less: " + WEIGHT_HINT)
+
+
+# ----- a hanging cloth ---------------------------------------------------------------------------
+ROWS, SPACING, SWEEPS = 6, 20.0, (1, 5, 25)
+
+
+def cloth() -> tuple[np.ndarray, ...]:
+    r, c = np.mgrid[0:ROWS, 0:ROWS]
+    idx = r * ROWS + c
+    a = np.concatenate([idx[:, :-1].ravel(), idx[:-1, :].ravel()])
+    b = np.concatenate([idx[:, 1:].ravel(), idx[1:, :].ravel()])
+    x = np.stack([c.ravel() * SPACING, r.ravel() * SPACING], axis=1).astype(float)
+    w = np.ones(len(x))
+    w[:ROWS] = 0.0                                      # the top row is pinned
+    return x, a, b, np.full(len(a), SPACING), w
+
+
+def measure_stretch(m: Student) -> dict:
+    """The cloth after 1/3 s (the lab's Verlet, your rods) at each number of sweeps."""
+    from app.physics.jakobsen import verlet_step
+    out = []
+    for iterations in SWEEPS:
+        x, a, b, rest, w = cloth()
+        acc = np.where(w[:, None] > 0, np.array([0.0, 900.0]), 0.0)
+        x_prev = x.copy()
+        for _ in range(20):
+            x, x_prev = verlet_step(x, x_prev, acc, 1 / 60, 0.01)
+            x = relax(m, x, a, b, rest, w, iterations)
+        out.append(x)
+    return {"x": out}
+
+
+def judge_stretch(raw: Raw) -> Result:
+    _, a, b, rest, _ = cloth()
+    xs = raw.array("x", (len(SWEEPS), ROWS * ROWS, 2))
+    s = [float(np.abs(np.linalg.norm(x[b] - x[a], axis=1) / rest - 1).mean()) for x in xs]
+    ok = bool(np.all(np.isfinite(s)) and s[0] > s[1] > s[2])
+    hint = ("each sweep must start from the corrections of the one before (work on x in place, "
+            "sweep `iterations` times).")
+    if not np.all(np.isfinite(s)) or max(s) > 1.0:
+        hint = ("the cloth blows up: the corrections push the ends the wrong way or too far "
+                "(see 'one rod, one pass').")
+    elif min(s) < 1e-12:
+        hint = ("the stretch is already 0, so it cannot fall: does the cloth still hang from "
+                "its pinned top row? Fix the other checks first ('pinned never move', 'one rod, "
+                "one pass').")
+    return Result(ok, f"mean stretch {', '.join(map(fmt, s))} at 1, 5, 25 iterations",
+                  "falling as iterations rise", hint)
+
+
+# ----- coincident --------------------------------------------------------------------------------
+def measure_coincident(m: Student) -> dict:
+    x = np.array([[5.0, 5.0], [5.0, 5.0], [25.0, 5.0]])
+    return {"x": relax(m, x, np.array([0, 1]), np.array([1, 2]), np.array([10.0, 10.0]),
+                       np.ones(3), 3)}
+
+
+def judge_coincident(raw: Raw) -> Result:
+    ok = bool(np.isfinite(raw.array("x", (3, 2))).all())
+    return Result(ok, "finite" if ok else "NaN or inf in the positions", "finite",
+                  "two particles at one point have |delta| = 0: divide by max(|delta|, 1e-9).")
+
+
+EXERCISE = Exercise(
+    name="constraints",
+    title="Jakobsen's rods: relaxing distance constraints",
+    slide="Cloth Simulation: 'Verlet cloth' (rods, not springs; solve by local iteration) and "
+          "the slide's satisfyConstraints()",
+    functions=("satisfy_rods",),
+    reference=reference,
+    checks=(Check("pinned never move", measure_pinned, judge_pinned),
+            Check("one rod, one pass", measure_rod(STRETCHED), judge_one_rod),
+            Check("a squashed rod pushes", measure_rod(SQUASHED), judge_squashed),
+            Check("shares by inverse mass", measure_rod(STRETCHED), judge_shares),
+            Check("stretch falls", measure_stretch, judge_stretch),
+            Check("coincident particles", measure_coincident, judge_coincident)),
+)

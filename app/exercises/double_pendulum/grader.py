@@ -1,0 +1,134 @@
+"""Grader of exercises/double_pendulum.py: a pymunk double pendulum against its equations of motion.
+
+Reference: scenes.double_pendulum.build_double_pendulum (the scene's builder); the scene's ghost
+is the lab's RK4 solution of Lagrange's equations (app/physics/double_pendulum_ode.py). The
+student's builder builds `python -m app --scene exercise:double_pendulum`. The measures send back
+where the bodies are and what the scene measured; the judges decide:
+  built as asked   bob positions at the given angles and lengths (1e-6 px), masses as given,
+                   both bodies and both rods (PinJoints) added to the space
+  agrees           released low (10 and 10 degrees), the tip stays within 1 px of the ghost for
+                   2 s (the largest `reference_divergence` seen)
+  energy kept      released high (the scene's 120 and 150 degrees), 20 s: |energy drift| < 1%
+                   at every step (a NaN bob is no drift of 0: it fails)
+  joints hold      the same release, 5 s: the rods' length error stays under 1 px (`pin_error`)
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student, fmt
+from app.exercises.pymunk_run import run_scene
+
+SOFT_HINT = ("pymunk's joints are soft by default: they correct only part of the length error "
+             "each step and that bleeds energy. Set joint.error_bias = 0 on both PinJoints.")
+ANCHOR, LENGTHS, MASSES, ANGLES = (480.0, 350.0), (160.0, 120.0), (1.0, 2.0), (0.5, -1.0)
+
+
+def reference() -> SimpleNamespace:
+    from scenes.double_pendulum import build_double_pendulum
+    return SimpleNamespace(build_double_pendulum=build_double_pendulum)
+
+
+def measure_built(m: Student) -> dict:
+    import pymunk
+    space = pymunk.Space()
+    pair = m.build_double_pendulum(space, ANCHOR, LENGTHS, MASSES, ANGLES)
+    if (not isinstance(pair, (tuple, list)) or len(pair) != 2
+            or not all(isinstance(b, pymunk.Body) for b in pair)):
+        raise BadAnswer(f"build_double_pendulum returned {pair!r:.200}; expected (body1, body2)")
+    rods = [{j.a, j.b} for j in space.constraints if isinstance(j, (pymunk.PinJoint,
+                                                                    pymunk.SlideJoint))]
+    return {"p1": tuple(pair[0].position), "p2": tuple(pair[1].position),
+            "masses": [pair[0].mass, pair[1].mass],
+            "in_space": [b.space is space for b in pair],
+            "rod_to_static": any(pair[0] in r and any(b.body_type == pymunk.Body.STATIC
+                                                      for b in r) for r in rods),
+            "rod_between": {pair[0], pair[1]} in rods}
+
+
+def judge_built(raw: Raw) -> Result:
+    p1 = (ANCHOR[0] + LENGTHS[0] * math.sin(ANGLES[0]),
+          ANCHOR[1] + LENGTHS[0] * math.cos(ANGLES[0]))
+    p2 = (p1[0] + LENGTHS[1] * math.sin(ANGLES[1]), p1[1] + LENGTHS[1] * math.cos(ANGLES[1]))
+    err = max(math.dist(raw.array("p1", (2,)), p1), math.dist(raw.array("p2", (2,)), p2))
+    masses = raw.array("masses", (2,))
+    mass_err = float(max(abs(masses[0] - MASSES[0]), abs(masses[1] - MASSES[1])))
+    in_space = raw.array("in_space", (2,), dtype=bool)
+    # bodies or joints left out of the space never move: that would pass the energy checks
+    missing = [f"body{k + 1} is not in the space" for k in range(2) if not in_space[k]]
+    if not raw.flag("rod_to_static"):
+        missing.append("no rod (PinJoint) from a static body to body1 in the space")
+    if not raw.flag("rod_between"):
+        missing.append("no rod (PinJoint) between body1 and body2 in the space")
+    ok = err < 1e-6 and mass_err < 1e-9 and not missing
+    hint = ("angles are radians from straight DOWN and y points down: p1 = anchor + l1 "
+            "(sin t1, cos t1), p2 = p1 + l2 (sin t2, cos t2); Body(mass, moment).")
+    if missing:
+        hint = "space.add(...) every body, shape and joint you make. " + hint
+    return Result(ok, f"bobs {fmt(err)} px from where asked, masses off by {fmt(mass_err)}"
+                  + "".join(f"; {m}" for m in missing),
+                  "< 1e-06 px, masses exact, both bodies and rods in the space", hint)
+
+
+def measure_agrees(m: Student) -> dict:
+    worst = [0.0]
+
+    def watch(scene):
+        d = scene.metrics()["reference_divergence"]
+        d = math.inf if d is None else d          # no ghost to compare with: no agreement
+        if worst[0] == worst[0] and not d <= worst[0]:      # the largest, and NaN sticks
+            worst[0] = d
+    scene = run_scene("double_pendulum", m, 2.0, {"angle1": 10.0, "angle2": 10.0}, watch)
+    return {"worst": worst[0], "finite": scene.is_finite()}
+
+
+def judge_agrees(raw: Raw) -> Result:
+    worst = raw.number("worst")
+    ok = raw.flag("finite") and worst < 1.0
+    return Result(bool(ok), f"tip up to {fmt(worst)} px from the equations' in 2 s", "< 1 px",
+                  "two PinJoints: anchor-bob1 and bob1-bob2, each between the bodies' centres; "
+                  "the bobs must not collide with each other. " + SOFT_HINT)
+
+
+def measure_energy(m: Student) -> dict:
+    scene = run_scene("double_pendulum", m, 20.0, {"reference": "off", "trail": "off"})
+    mt = scene.metrics()
+    return {"drift_max": mt["energy_drift_max"], "drift": mt["energy_drift"],
+            "finite": scene.is_finite()}
+
+
+def judge_energy(raw: Raw) -> Result:
+    drift, last = raw.number("drift_max"), raw.number("drift")
+    worst = max(abs(drift), abs(last)) if drift == drift and last == last else math.nan
+    ok = raw.flag("finite") and worst < 0.01
+    hint = SOFT_HINT if raw.flag("finite") else (
+        "the bobs' positions became NaN: a mass or moment of 0, or an infinite one moving? " +
+        SOFT_HINT)
+    return Result(bool(ok), f"largest energy drift {100 * worst:.3f}% in 20 s", "< 1%", hint)
+
+
+def measure_joints(m: Student) -> dict:
+    scene = run_scene("double_pendulum", m, 5.0, {"reference": "off", "trail": "off"})
+    return {"pin_error": scene.metrics()["pin_error"]}
+
+
+def judge_joints(raw: Raw) -> Result:
+    err = raw.number("pin_error")
+    return Result(bool(err < 1.0), f"rod length error {fmt(err)} px after 5 s", "< 1 px",
+                  SOFT_HINT)
+
+
+EXERCISE = Exercise(
+    name="double_pendulum",
+    title="A double pendulum in pymunk",
+    slide="Physics in Computer Animations and Games: 'test 10 doublePendulum.py' (the pymunk "
+          "exercise after the Newton's cradle classwork)",
+    functions=("build_double_pendulum",),
+    reference=reference,
+    checks=(Check("built as asked", measure_built, judge_built),
+            Check("agrees with the equations", measure_agrees, judge_agrees),
+            Check("energy kept", measure_energy, judge_energy),
+            Check("joints hold", measure_joints, judge_joints)),
+)

@@ -1,0 +1,261 @@
+"""Grader of exercises/neighbour_grid.py: the particle dance's cell grid, the pairs within a
+cut-off found without testing all pairs.
+
+Reference: app.physics.neighbours.grid_pairs (the particle dance's grid); the pairs it must find
+are those of app.physics.neighbours.all_pairs (every pair tested). Each measure sends back the
+pairs (i, j) and the test count the student's grid_pairs returned; each judge compares them, as
+sets of unordered pairs, with all pairs closer than the cut-off:
+  random           400 particles spread over a 600 x 400 box, cut-off 40
+  clustered        five tight clusters of 60 (many particles in one cell) and 50 strays
+  on the borders   a lattice 0.97 cut-offs apart laid over cell borders and the box's edges
+                   (x = 0, x = w, y = h included), and pairs exactly one cut-off apart (not
+                   pairs: |d| < cut-off)
+  few particles    0, 1 and 2 particles: no pairs, no error
+  pair tests       2000 particles over the particle dance's box (960 x 720), cut-off 40: the
+                   distances computed are at least the pairs found and at most the particles of
+                   the 9 cells around each particle, summed (about 80 000, 4% of all pairs' 2
+                   million): the grid's reason to exist
+A miss or an extra is named: pairs across a cell border missed, a particle on the far edge, a
+distance test with <= or none at all, a pair given twice or a particle paired with itself.
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student
+
+CUTOFF = 40.0
+
+
+def reference() -> SimpleNamespace:
+    from app.physics.neighbours import grid_pairs
+    return SimpleNamespace(grid_pairs=grid_pairs)
+
+
+# ----- the particles -----------------------------------------------------------------------------
+def random_case() -> tuple[np.ndarray, float, tuple[float, float]]:
+    rng = np.random.default_rng(11)
+    return rng.uniform(0.0, 1.0, (400, 2)) * (600.0, 400.0), CUTOFF, (600.0, 400.0)
+
+
+def clustered_case() -> tuple[np.ndarray, float, tuple[float, float]]:
+    rng = np.random.default_rng(12)
+    centres = rng.uniform(60.0, 540.0, (5, 2)) * (1.0, 340.0 / 540.0)
+    blobs = [c + rng.normal(0.0, 8.0, (60, 2)) for c in centres]
+    strays = rng.uniform(0.0, 1.0, (50, 2)) * (600.0, 400.0)
+    x = np.clip(np.concatenate(blobs + [strays]), 0.0, [600.0, 400.0])
+    return x, CUTOFF, (600.0, 400.0)
+
+
+def border_case() -> tuple[np.ndarray, float, tuple[float, float]]:
+    box = (610.0, 410.0)                 # cells of 40.67 x 41 (the grid's: box / cells)
+    step = 0.97 * CUTOFF
+    gx = np.concatenate([np.arange(0.0, box[0], step), [box[0]]])
+    gy = np.concatenate([np.arange(0.0, box[1], step), [box[1]]])
+    lattice = np.stack(np.meshgrid(gx, gy), axis=-1).reshape(-1, 2)
+    cells = np.array([[k * box[0] / 15, m * box[1] / 10] for k in range(16) for m in range(11)])
+    exact = np.array([[5.0, 200.0], [45.0, 200.0], [300.0, 5.0], [300.0, 45.0]])  # |d| = 40
+    x = np.concatenate([lattice, cells + (0.3, 0.7), exact])
+    return np.clip(x, 0.0, box), CUTOFF, box
+
+
+PAIR_N, PAIR_BOX = 2000, (960.0, 720.0)
+
+
+def tests_case() -> tuple[np.ndarray, float, tuple[float, float]]:
+    rng = np.random.default_rng(13)
+    return rng.uniform(0.0, 1.0, (PAIR_N, 2)) * PAIR_BOX, CUTOFF, PAIR_BOX
+
+
+FEW = [np.zeros((0, 2)), np.array([[10.0, 10.0]]), np.array([[10.0, 10.0], [300.0, 300.0]])]
+
+
+# ----- calling the student's function ------------------------------------------------------------
+def pairs_of(m: Student, x: np.ndarray, cutoff: float, box) -> dict:
+    out = m.grid_pairs(x.copy(), cutoff, box)
+    if not isinstance(out, tuple) or len(out) != 3:
+        raise BadAnswer(f"grid_pairs returned {type(out).__name__}; expected (i, j, tests)"
+                        + (" (no return statement?)" if out is None else ""))
+    i, j, tests = out
+    try:
+        ia, ja = np.asarray(i), np.asarray(j)
+        if ia.size == 0:
+            ia = ia.astype(np.intp)
+        if ja.size == 0:
+            ja = ja.astype(np.intp)
+        if ia.ndim != 1 or ja.ndim != 1 or len(ia) != len(ja):
+            raise ValueError
+        if ia.dtype.kind not in "iu" or ja.dtype.kind not in "iu":
+            raise TypeError
+        count = int(tests)
+        if count != tests:
+            raise TypeError
+    except (TypeError, ValueError, OverflowError):
+        raise BadAnswer("grid_pairs must return (i, j, tests): two integer arrays of the same "
+                        f"length (the pairs' particle indices) and an integer; got "
+                        f"{type(i).__name__} {np.shape(i)}, {type(j).__name__} {np.shape(j)}, "
+                        f"{type(tests).__name__}") from None
+    return {"i": ia.astype(np.int64), "j": ja.astype(np.int64), "tests": count}
+
+
+def measure_case(case):
+    def measure(m: Student) -> dict:
+        return pairs_of(m, *case())
+    return measure
+
+
+# ----- judging: the pairs as sets ----------------------------------------------------------------
+def true_pairs(x: np.ndarray, cutoff: float) -> set[tuple[int, int]]:
+    from app.physics.neighbours import all_pairs
+    i, j, _ = all_pairs(x, cutoff)
+    return {(int(p), int(q)) for p, q in zip(np.minimum(i, j), np.maximum(i, j))}
+
+
+def compare(raw: Raw, x: np.ndarray, cutoff: float, box) -> tuple[bool, str, str]:
+    """(passed, measured text, hint) for the pairs sent against all pairs within the cut-off."""
+    n = len(x)
+    i, j = raw.array("i", (None,), dtype=np.int64), raw.array("j", (None,), dtype=np.int64)
+    if len(i) != len(j):
+        return False, "i and j of different lengths", "return two arrays, one entry per pair"
+    if len(i) and (min(i.min(), j.min()) < 0 or max(i.max(), j.max()) >= n):
+        return False, f"indices outside 0..{n - 1}", "i and j are particle indices (0..n-1)"
+    want = true_pairs(x, cutoff)
+    lo, hi = np.minimum(i, j), np.maximum(i, j)
+    got = list(zip(lo.tolist(), hi.tolist()))
+    seen = set(got)
+    self_pairs = int((lo == hi).sum())
+    twice = len(got) - len(seen)
+    missed = want - seen
+    extra = {p for p in seen - want if p[0] != p[1]}
+    measured = (f"{len(seen - {(k, k) for k in range(n)})} pairs found of {len(want)}: "
+                f"{len(missed)} missed, {len(extra)} too many, {twice} twice, {self_pairs} with "
+                "itself")
+    ok = not missed and not extra and not twice and not self_pairs
+    return ok, measured, "" if ok else hint_for(x, cutoff, box, missed, extra, twice, self_pairs)
+
+
+def hint_for(x, cutoff, box, missed, extra, twice, self_pairs) -> str:
+    hints = []
+    if self_pairs:
+        hints.append("a particle is paired with itself: in its own cell, pair it only with the "
+                     "particles after it")
+    if twice:
+        hints.append("a pair comes twice ((i, j) and (j, i), or from two cells): each pair once, "
+                     "e.g. own cell with the ones after it plus half the neighbours (right, and "
+                     "the row below), or keep only i < j")
+    if extra:
+        d = [math.dist(x[p], x[q]) for p, q in extra]
+        if all(abs(v - cutoff) < 1e-9 for v in d):
+            hints.append(f"pairs exactly {cutoff:g} apart are not within the cut-off: "
+                         "|d| < cutoff, not <=")
+        else:
+            hints.append(f"pairs farther apart than the cut-off (up to {max(d):.3g}): a shared or "
+                         "neighbouring cell is only a candidate; test |x_j - x_i| < cutoff")
+    if missed:
+        from app.physics.neighbours import grid_shape
+        nx, ny = grid_shape(box, cutoff)
+        cell = np.stack([np.clip(np.floor(x[:, 0] * nx / box[0]), 0, nx - 1),
+                         np.clip(np.floor(x[:, 1] * ny / box[1]), 0, ny - 1)], axis=1)
+        steps = {tuple(np.abs(cell[q] - cell[p]).astype(int)) for p, q in missed}
+        def edge(p: int) -> bool:
+            return bool(x[p, 0] >= box[0] - 1e-9 or x[p, 1] >= box[1] - 1e-9)
+        if all(edge(p) or edge(q) for p, q in missed):
+            hints.append("a particle on the far edge (x = w or y = h) falls in cell number "
+                         "nx (or ny), one past the last: clamp the cell index into 0..nx-1")
+        if steps <= {(0, 0)}:
+            hints.append("pairs in the same cell were missed: pair each particle with every "
+                         "other particle of its own cell")
+        elif steps <= {(1, 1)}:
+            hints.append("only pairs across a CORNER were missed: the diagonal neighbour cells "
+                         "count too (8 neighbours, or 4 in a half stencil)")
+        else:
+            hints.append(f"{len(missed)} pairs within the cut-off missed: two particles closer "
+                         "than the cut-off are in the same or in NEIGHBOURING cells (cells at "
+                         "least a cut-off wide: nx = floor(w / cutoff)), so search the 3 x 3 "
+                         "block of cells around each particle's cell")
+    return "; ".join(hints) + "."
+
+
+def judge_case(case):
+    def judge(raw: Raw) -> Result:
+        x, cutoff, box = case()
+        ok, measured, hint = compare(raw, x, cutoff, box)
+        return Result(ok, measured, "every pair with |d| < cut-off, once", hint)
+    return judge
+
+
+def measure_few(m: Student) -> dict:
+    return {str(k): pairs_of(m, x, CUTOFF, (400.0, 400.0)) for k, x in enumerate(FEW)}
+
+
+def judge_few(raw: Raw) -> Result:
+    problems = []
+    for k, x in enumerate(FEW):
+        ok, measured, _ = compare(Raw(raw.values.get(str(k))), x, CUTOFF, (400.0, 400.0))
+        if not ok:
+            problems.append(f"{len(x)} particles: {measured}")
+    return Result(not problems, "; ".join(problems) or "no pairs, no error", "no pairs",
+                  "with 0 or 1 particles there are no pairs: empty arrays (np.zeros(0, int)); "
+                  "an empty cell is no error")
+
+
+def block_candidates(x: np.ndarray, cutoff: float, box) -> int:
+    """Particles in the 3 x 3 cells around each particle's cell (itself included), summed: the
+    tests of a grid that tries every candidate of the full stencil, both ways round."""
+    from app.physics.neighbours import grid_shape
+    nx, ny = grid_shape(box, cutoff)
+    cx = np.clip(np.floor(x[:, 0] * nx / box[0]), 0, nx - 1).astype(int)
+    cy = np.clip(np.floor(x[:, 1] * ny / box[1]), 0, ny - 1).astype(int)
+    count = np.zeros((ny + 2, nx + 2), int)              # a border of empty cells around
+    np.add.at(count, (cy + 1, cx + 1), 1)
+    block = sum(count[1 + dy:ny + 1 + dy, 1 + dx:nx + 1 + dx]
+                for dx in (-1, 0, 1) for dy in (-1, 0, 1))
+    return int(block[cy, cx].sum())
+
+
+def judge_tests(raw: Raw) -> Result:
+    from app.physics.neighbours import all_pair_tests, grid_shape
+    x, cutoff, box = tests_case()
+    ok_pairs, measured, hint = compare(raw, x, cutoff, box)
+    tests = raw.integer("tests")
+    most = block_candidates(x, cutoff, box)      # every particle of the 9 cells around each
+    found = len(set(zip(raw.array("i", (None,), np.int64).tolist(),
+                        raw.array("j", (None,), np.int64).tolist())))
+    every = all_pair_tests(len(x))
+    ok = ok_pairs and found <= tests <= most
+    text = f"{tests:,} pair tests ({100 * tests / every:.1f}% of all {every:,} pairs)"
+    if not ok_pairs:
+        return Result(False, f"{text}; {measured}", f"the right pairs, and at most {most:,} tests",
+                      hint)
+    nx, ny = grid_shape(box, cutoff)
+    if tests < found:
+        hint = (f"fewer tests than pairs found ({found:,}): count every distance you compute "
+                "(the candidates from the cells), not only the pairs kept")
+    elif tests >= 0.5 * every:
+        hint = ("that is testing all pairs: the grid's point is to test only the particles of "
+                "the 3 x 3 cells around each particle's cell")
+    elif tests > most:
+        hint = (f"more tests than the 9 cells around each particle hold: are the cells larger "
+                f"than the cut-off? nx = floor(w / cutoff) = {nx} cells across, {ny} down")
+    return Result(bool(ok), text, f"{found:,} (the pairs) to {most:,} (the 9 cells around each "
+                  "particle)", hint)
+
+
+EXERCISE = Exercise(
+    name="neighbour_grid",
+    title="The neighbour grid: pairs within a cut-off without testing all pairs",
+    slide="Physics in Computer Animations and Games: 'Spatial forces' (forces between any pairs "
+          "of particles, depending on their positions) and the particle dance's cell grid",
+    functions=("grid_pairs",),
+    reference=reference,
+    checks=(Check("random particles", measure_case(random_case), judge_case(random_case)),
+            Check("clustered particles", measure_case(clustered_case),
+                  judge_case(clustered_case)),
+            Check("on the cell borders", measure_case(border_case), judge_case(border_case)),
+            Check("few particles", measure_few, judge_few),
+            Check("pair tests", measure_case(tests_case), judge_tests)),
+)

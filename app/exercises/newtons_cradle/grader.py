@@ -1,0 +1,148 @@
+"""Grader of exercises/newtons_cradle.py: the classwork, judged on the cradle scene's own verdict.
+
+Reference: scenes.newtons_cradle.build_cradle (the scene's builder). The student's build_cradle
+builds the scene (`python -m app --scene exercise:newtons_cradle`), at its defaults (5 balls,
+hertz 120 x 30 substeps). The measures run it in the child and send back what the scene measured
+(or, for 'lifted as asked', where the balls and their strings' anchors are); the judges decide:
+  lifted as asked  5 balls, 2 lifted: each hangs STRING px from its anchor, the lifted ones at
+                   LIFT_ANGLE (30 degrees) to the left, the others straight down (1e-6)
+  k in, k out      lift k = 1, 2, 3 and release: k balls swing out at the far end (the scene's
+                   `balls_out`, counted in the half swing after the first impact)
+  middle still     2 lifted, 10 s: the balls between stay within 2 px of rest (`middle_max_drift`)
+  energy kept      1 lifted, 10 s: more than 95% of the energy is left (`energy_ratio`)
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student, fmt
+from app.exercises.pymunk_run import run_scene
+
+GRADED = {"reference": "off"}       # the grader reads the scene's verdict; no ghost needed
+LIFT_DEG, STRING_PX, BALLS, LIFTED = 30.0, 280.0, 5, 2
+
+SPACING_HINT = ("balls pressed together at rest (overlapping) are solved as one lump, and balls "
+                "that touch exactly pass only by rounding: leave a hair of space between them "
+                "(gap ~0.02 px: pitch = 2 * radius + gap), elasticity 0.9999999 (the slide's "
+                "hint), friction 0, strings with error_bias 0.")
+
+
+def reference() -> SimpleNamespace:
+    from scenes.newtons_cradle import build_cradle
+    return SimpleNamespace(build_cradle=build_cradle)
+
+
+def measure_lifted(m: Student) -> dict:
+    import pymunk
+    from scenes.newtons_cradle import RADIUS, string_of
+    space = pymunk.Space()
+    bodies = m.build_cradle(space, BALLS, RADIUS, LIFTED)
+    if not isinstance(bodies, (list, tuple)) or len(bodies) != BALLS or not all(
+            isinstance(b, pymunk.Body) for b in bodies):
+        raise BadAnswer(f"build_cradle returned {bodies!r:.200}; expected a list of {BALLS} "
+                        "pymunk.Body objects")
+    anchors = []
+    for b in bodies:
+        try:
+            anchors.append(string_of(space, b)[1])
+        except ValueError:
+            anchors.append(None)
+    return {"positions": [tuple(b.position) for b in bodies], "anchors": anchors}
+
+
+def judge_lifted(raw: Raw) -> Result:
+    pos = raw.array("positions", (BALLS, 2))
+    anchors = raw.values.get("anchors")
+    if not isinstance(anchors, list) or len(anchors) != BALLS:
+        return Result(False, "no strings found", "a string per ball",
+                      "hang each ball on a pymunk.PinJoint(space.static_body, ball, anchor, "
+                      "(0, 0)) and add it to the space.")
+    if any(a is None for a in anchors):
+        k = anchors.index(None)
+        return Result(False, f"ball {k} hangs on no string", "a string per ball",
+                      "each ball needs a PinJoint to the static body (its string), added to the "
+                      "space.")
+    anchor = Raw({"a": anchors}).array("a", (BALLS, 2))
+    d = pos - anchor
+    angles = np.degrees(np.arctan2(d[:, 0], d[:, 1]))        # from straight down, + to the right
+    lengths = np.hypot(d[:, 0], d[:, 1])
+    want = np.array([-LIFT_DEG if i < LIFTED else 0.0 for i in range(BALLS)])
+    angle_err = float(np.abs(angles - want).max())
+    length_err = float(np.abs(lengths - STRING_PX).max())
+    ok = angle_err < 1e-6 and length_err < 1e-6
+    hint = ("ball i = anchor i + STRING (sin th, cos th), th = -LIFT_ANGLE for the first `lifted` "
+            "balls (to the left; y is down), 0 for the others. LIFT_ANGLE is already in radians.")
+    lifted = angles[:LIFTED]
+    if np.all(np.abs(lifted + math.radians(LIFT_DEG)) < 1e-6):
+        hint = ("the lifted balls hang at -0.52 degrees, not -30: LIFT_ANGLE is already in "
+                "radians, and math.radians(LIFT_ANGLE) converts it twice. " + hint)
+    elif np.all(np.abs(lifted - LIFT_DEG) < 1e-6):
+        hint = "the lifted balls are pulled out to the RIGHT: the first balls go left (-x). " + hint
+    shown = ", ".join(f"{a:.3g}" for a in angles)
+    return Result(ok, f"angles {shown} deg; strings {fmt(length_err)} px off {STRING_PX:g}",
+                  f"-30, -30, 0, 0, 0 deg and {STRING_PX:g} px, +- 1e-06", hint)
+
+
+def measure_k_out(k: int):
+    def measure(m: Student) -> dict:
+        return {"out": run_scene("newtons_cradle", m, 2.8, {**GRADED, "lifted": k}
+                                 ).metrics()["balls_out"]}
+    return measure
+
+
+def judge_k_out(k: int):
+    def judge(raw: Raw) -> Result:
+        out = raw.integer("out")
+        hint = SPACING_HINT
+        if out == 0:
+            hint = "no ball swings out: is the elasticity near 1? " + SPACING_HINT
+        return Result(out == k, f"{k} in, {out} out", f"{k} out", hint)
+    return judge
+
+
+def measure_middle(m: Student) -> dict:
+    scene = run_scene("newtons_cradle", m, 10.0, {**GRADED, "lifted": 2})
+    return {"drift": scene.metrics()["middle_max_drift"]}
+
+
+def judge_middle(raw: Raw) -> Result:
+    drift = raw.number("drift")
+    return Result(bool(drift < 2.0), f"middle balls moved up to {fmt(drift)} px in 10 s",
+                  "< 2 px", SPACING_HINT)
+
+
+def measure_energy(m: Student) -> dict:
+    return {"ratio": run_scene("newtons_cradle", m, 10.0, {**GRADED, "lifted": 1}
+                               ).metrics()["energy_ratio"]}
+
+
+def judge_energy(raw: Raw) -> Result:
+    ratio = raw.optional("ratio")
+    hint = ("every impact keeps e^2 of the approach energy: elasticity 0.9999999 on every ball "
+            "(pymunk multiplies the two shapes' values), friction 0, and strings that do not "
+            "stretch (error_bias 0).")
+    if ratio is None:
+        return Result(False, "no energy at release", "> 95%", "the lifted balls start at rest "
+                      "at the height of their lift: do they hang where asked? " + hint)
+    return Result(bool(ratio > 0.95), f"{100 * ratio:.2f}% of the energy left after 10 s",
+                  "> 95%", hint)
+
+
+EXERCISE = Exercise(
+    name="newtons_cradle",
+    title="Newton's cradle in pymunk",
+    slide="Physics in Computer Animations and Games: 'Classwork: Newton's Cradle' "
+          "(hint: shape.elasticity = 0.9999999)",
+    functions=("build_cradle",),
+    reference=reference,
+    checks=(Check("lifted as asked", measure_lifted, judge_lifted),
+            Check("1 in, 1 out", measure_k_out(1), judge_k_out(1)),
+            Check("2 in, 2 out", measure_k_out(2), judge_k_out(2)),
+            Check("3 in, 3 out", measure_k_out(3), judge_k_out(3)),
+            Check("middle balls still", measure_middle, judge_middle),
+            Check("energy kept", measure_energy, judge_energy)),
+)

@@ -1,0 +1,2 @@
+"""The `pivoting_l` exercise: its grader (grader.py: EXERCISE) and its live scene
+(scene.py: SCENE), side by side."""

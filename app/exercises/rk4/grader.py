@@ -1,0 +1,235 @@
+"""Grader of exercises/rk4.py: classical Runge-Kutta and the midpoint method for any ODE
+dy/dt = f(t, y).
+
+Reference: app.physics.integrators.rk4_step and midpoint_step. Each measure sends back the y the
+student's steps produced (the stability check: the limit its bisection found); each judge:
+  RK4 order, spring       x'' = -x over 2.5 s in 16, 32, 64 steps: measured order 4 +- 0.2
+  RK4 order, pendulum     theta'' = -sin theta from 1 rad: order 4 +- 0.2 (exact: the lab's RK4
+                          at 4096 steps)
+  RK4 stage times         dy/dt = t^3 from 0 to 1 in 4 steps: RK4 is Simpson's rule here, exact
+                          (to 1e-12) if k2, k3 are taken at t + h/2 and k4 at t + h
+  RK4 stability limit     the largest omega*h at which RK4 keeps the spring bounded:
+                          2 sqrt 2 = 2.83 +- 2% (found by bisection on 400-step runs)
+  midpoint order, spring  order 2 +- 0.2;   midpoint order, pendulum: order 2 +- 0.2
+  midpoint, not Heun      dy/dt = t^2 from 0 to 1 in 4 steps: the midpoint method is the
+                          midpoint rule here (0.328125, f at t + h/2); Heun's method, also second
+                          order, is the trapezoid rule (0.34375), Ralston's is exact (1/3)
+  any shape of y          y of shape (3, 2): both steps return shape (3, 2), equal to the lab's
+  y kept                  neither step changes the y it was given
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from app.exercises.base import (Check, Exercise, Raw, Result, Student, array_of, fmt, order,
+                                within)
+
+STEPS = (16, 32, 64)
+T_END, Y0 = 2.5, (1.0, 0.0)
+
+
+def reference() -> SimpleNamespace:
+    from app.physics.integrators import midpoint_step, rk4_step
+    return SimpleNamespace(rk4_step=rk4_step, midpoint_step=midpoint_step)
+
+
+def spring(t: float, y: np.ndarray) -> np.ndarray:
+    return np.array([y[1], -y[0]])
+
+
+def pendulum(t: float, y: np.ndarray) -> np.ndarray:
+    return np.array([y[1], -math.sin(y[0])])
+
+
+def integrate(step, f, y0, t_end: float, n: int, what: str) -> np.ndarray:
+    y, h = np.array(y0, dtype=float), t_end / n
+    for k in range(n):
+        y = array_of(step(f, k * h, y, h), y.shape, what)
+    return y
+
+
+# ----- orders ------------------------------------------------------------------------------------
+def measure_order(fname: str, f):
+    def measure(m: Student) -> dict:
+        step = getattr(m, fname)
+        return {"y": [integrate(step, f, Y0, T_END, n, fname) for n in STEPS]}
+    return measure
+
+
+def judge_order(fname: str, f, target: float):
+    def judge(raw: Raw) -> Result:
+        ys = raw.array("y", (len(STEPS), 2))
+        exact = (np.array([math.cos(T_END), -math.sin(T_END)]) if f is spring
+                 else integrate(reference().rk4_step, f, Y0, T_END, 4096, "the lab's RK4"))
+        errors = [float(np.abs(y - exact).max()) for y in ys]
+        p = order(errors)
+        if fname == "rk4_step":
+            hint = ("y' = y + h/6 (k1 + 2 k2 + 2 k3 + k4) with k2 = f(t + h/2, y + h/2 k1), "
+                    "k3 = f(t + h/2, y + h/2 k2), k4 = f(t + h, y + h k3).")
+            if within(p, 2.0, 0.4):
+                hint = ("second order: " + hint + " Equal weights (k1 + k2 + k3 + k4)/4 give "
+                        "order 2.")
+            elif within(p, 1.0, 0.3):
+                hint = ("first order: the stages' states are off. " + hint + " k2 and k3 go "
+                        "half a step (h/2), k4 a whole one.")
+        else:
+            hint = "y' = y + h f(t + h/2, y + h/2 f(t, y)): a HALF step to the midpoint."
+            if within(p, 1.0, 0.3):
+                hint = ("first order: " + hint + " A full step to the 'midpoint' takes the slope "
+                        "at the end of an Euler step: first order, like Euler.")
+        return Result(within(p, target, 0.2), f"order {fmt(p)} (errors "
+                      f"{', '.join(map(fmt, errors))})", f"{target:g} +- 0.2", hint)
+    return judge
+
+
+# ----- stage times -------------------------------------------------------------------------------
+def measure_quadrature(fname: str, power: int):
+    def measure(m: Student) -> dict:
+        y = integrate(getattr(m, fname), lambda t, y: np.array([t ** power]), np.array([0.0]),
+                      1.0, 4, fname)
+        return {"y": float(y[0])}
+    return measure
+
+
+def judge_rk4_times(raw: Raw) -> Result:
+    err = abs(raw.number("y") - 0.25)
+    return Result(within(err, 0.0, 1e-12), f"error {fmt(err)} on dy/dt = t^3", "< 1e-12 (exact)",
+                  "f(t, y) depends on t: evaluate the stages at their own times (k2 and k3 at "
+                  "t + h/2, k4 at t + h).")
+
+
+MIDPOINT_RULE = 0.25 * sum((t + 0.125) ** 2 for t in (0.0, 0.25, 0.5, 0.75))     # 0.328125
+TRAPEZOID = 0.25 * sum((t * t + (t + 0.25) ** 2) / 2 for t in (0.0, 0.25, 0.5, 0.75))  # .34375
+
+
+def judge_midpoint_times(raw: Raw) -> Result:
+    y = raw.number("y")
+    hint = ("the midpoint method takes the slope at the midpoint, once: y + h f(t + h/2, "
+            "y + h/2 f(t, y)). On dy/dt = t^2 that is the midpoint rule.")
+    if within(y, TRAPEZOID, 1e-12):
+        hint = ("that is Heun's method (the trapezoid: y + h/2 (k1 + k2) with k2 at t + h): also "
+                "second order, but not the midpoint method the slide means (and a different "
+                "method in Blender's list). " + hint)
+    elif within(y, 1.0 / 3.0, 1e-12):
+        hint = ("exact here: that is another second-order Runge-Kutta (Ralston's, k2 at t + 2h/3"
+                "), not the midpoint method. " + hint)
+    return Result(within(y, MIDPOINT_RULE, 1e-12), f"{y:.6g} on dy/dt = t^2 from 0 to 1 in 4 "
+                  "steps", f"{MIDPOINT_RULE:g} (the midpoint rule), +- 1e-12", hint)
+
+
+# ----- stability ---------------------------------------------------------------------------------
+def growth(step, z: float, n: int = 400) -> float:
+    """|y| after n steps of omega*h = z on x'' = -x, from |y| = 1."""
+    y = np.array([1.0, 0.0])
+    for k in range(n):
+        y = array_of(step(spring, k * z, y, z), (2,), "rk4_step")
+        if not np.isfinite(y).all() or abs(y).max() > 1e6:
+            return math.inf
+    return float(np.hypot(*y))
+
+
+def measure_stability(m: Student) -> dict:
+    lo, hi = 0.5, 4.0
+    if growth(m.rk4_step, lo) > 2:
+        lo = hi = 0.0                           # unstable even at small steps
+    else:
+        while hi - lo > 1e-3:
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if growth(m.rk4_step, mid) <= 2 else (lo, mid)
+    return {"limit": (lo + hi) / 2}
+
+
+def judge_stability(raw: Raw) -> Result:
+    limit, exact = raw.number("limit"), 2 * math.sqrt(2)
+    hint = "RK4's region reaches omega*h = 2 sqrt 2 on the imaginary axis; check the weights."
+    if limit < 0.1:
+        hint = ("unstable even at small steps, as the midpoint method and forward Euler are on a "
+                "spring (they gain energy at every h; midpoint by 1 + (omega h)^4/4 per step): "
+                + hint)
+    return Result(within(limit, exact, 0.02 * exact), f"omega*h = {limit:.3f}",
+                  f"{exact:.3f} +- 2%", hint)
+
+
+# ----- shapes and inputs -------------------------------------------------------------------------
+Y_2D = np.array([[1.0, -0.5], [0.3, 2.0], [-1.2, 0.7]])
+
+
+def decay(t: float, y: np.ndarray) -> np.ndarray:
+    return -y
+
+
+def measure_shape(m: Student) -> dict:
+    out = {}
+    for fname in ("rk4_step", "midpoint_step"):
+        y = getattr(m, fname)(decay, 0.0, Y_2D.copy(), 0.1)
+        shape = list(np.shape(y)) if y is not None else None
+        out[fname] = {"shape": shape,
+                      "y": array_of(y, Y_2D.shape, fname) if shape == [3, 2] else None}
+    return out
+
+
+def judge_shape(raw: Raw) -> Result:
+    ref = reference()
+    problems = []
+    for fname in ("rk4_step", "midpoint_step"):
+        got = Raw(raw.values.get(fname))
+        shape = got.values.get("shape")
+        if shape != [3, 2]:
+            shown = "None" if shape is None else str(tuple(shape)) if isinstance(shape, list) \
+                else "?"
+            problems.append(f"{fname} returned shape {shown}")
+            continue
+        err = float(np.abs(got.array("y", (3, 2)) - getattr(ref, fname)(decay, 0.0, Y_2D, 0.1)
+                           ).max())
+        if not within(err, 0.0, 1e-12):
+            problems.append(f"{fname} is {fmt(err)} off the lab's")
+    return Result(not problems, "; ".join(problems) or "shape (3, 2), as the lab's",
+                  "shape (3, 2), within 1e-12 of the lab's",
+                  "y may have any shape (here 3 particles x 2 coordinates): work with y and "
+                  "f(t, y) as whole arrays (y + h/2 * k1) and return an array of y's shape; "
+                  "ravel, flatten and np.concatenate change it.")
+
+
+def measure_kept(m: Student) -> dict:
+    out = {}
+    for fname in ("rk4_step", "midpoint_step"):
+        y = np.array([0.3, -0.2])
+        array_of(getattr(m, fname)(pendulum, 0.0, y, 0.1), (2,), fname)
+        out[fname] = y
+    return out
+
+
+def judge_kept(raw: Raw) -> Result:
+    problems = [f"{fname} changed y" for fname in ("rk4_step", "midpoint_step")
+                if not np.array_equal(raw.array(fname, (2,)), [0.3, -0.2])]
+    return Result(not problems, "; ".join(problems) or "y untouched", "y unchanged",
+                  "return y + ... (a new array); y += ... changes the caller's y, which a "
+                  "solver may still need (to retry a step, or to measure the error).")
+
+
+EXERCISE = Exercise(
+    name="rk4",
+    title="Runge-Kutta: RK4 and the midpoint method for any ODE",
+    slide="Physics in Computer Animations and Games: 'Integrating Equations of State' (Euler, "
+          "Midpoint = 2nd order Runge-Kutta, RK4 = 4th order Runge-Kutta)",
+    functions=("rk4_step", "midpoint_step"),
+    reference=reference,
+    checks=(Check("RK4 order, spring", measure_order("rk4_step", spring),
+                  judge_order("rk4_step", spring, 4)),
+            Check("RK4 order, pendulum", measure_order("rk4_step", pendulum),
+                  judge_order("rk4_step", pendulum, 4)),
+            Check("RK4 stage times", measure_quadrature("rk4_step", 3), judge_rk4_times),
+            Check("RK4 stability limit", measure_stability, judge_stability),
+            Check("midpoint order, spring", measure_order("midpoint_step", spring),
+                  judge_order("midpoint_step", spring, 2)),
+            Check("midpoint order, pendulum", measure_order("midpoint_step", pendulum),
+                  judge_order("midpoint_step", pendulum, 2)),
+            Check("midpoint, not Heun", measure_quadrature("midpoint_step", 2),
+                  judge_midpoint_times),
+            Check("any shape of y", measure_shape, judge_shape),
+            Check("y kept", measure_kept, judge_kept)),
+)

@@ -1,0 +1,199 @@
+"""Grader of exercises/spring.py: damped Hooke springs, summed per particle (an n-ary force).
+
+Reference: app.physics.forces.Springs (its accumulate). Each measure sends back the forces the
+student's spring_forces returned (or the state their forces moved); each judge compares:
+  Hooke part       5 particles, 8 springs (particles shared by several springs), kd = 0: the
+                   forces agree with the lab's to 1e-9 (relative)
+  damping part     the same springs with ks = 0, kd = 2: agree to 1e-9
+  third law        the forces of all springs add up to zero
+  a particle alone 6 particles, the last (the highest index) in no spring: the result has a row
+                   for it, and its force is 0
+  damping removes  two particles on a stretched damped spring, 2 s of small symplectic Euler
+                   steps: the energy falls below half of its start
+  inputs kept      x and v are not changed
+"""
+
+from __future__ import annotations
+
+from types import SimpleNamespace
+
+import numpy as np
+
+from app.exercises.base import (Check, Exercise, Malformed, Raw, Result, Student, array_of, fmt,
+                                within)
+
+A = np.array([0, 1, 2, 3, 0, 1, 4, 2])
+B = np.array([1, 2, 3, 4, 2, 3, 0, 4])
+
+
+def reference() -> SimpleNamespace:
+    from app.physics.forces import Springs
+
+    def spring_forces(x, v, a, b, ks, kd, rest):
+        f = np.zeros_like(np.asarray(x, dtype=float))
+        Springs(a, b, ks, kd, rest).accumulate(None, x, v, f)   # Springs never reads the system
+        return f
+    return SimpleNamespace(spring_forces=spring_forces)
+
+
+def forces(m: Student, x, v, a, b, ks, kd, rest) -> np.ndarray:
+    return array_of(m.spring_forces(x.copy(), v.copy(), a, b, ks, kd, rest), x.shape,
+                    "spring_forces")
+
+
+def system(seed: int = 3, n: int = 5, springs: int = len(A)
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(seed)
+    x = rng.uniform(0, 100, (n, 2))
+    v = rng.normal(0, 20, (n, 2))
+    rest = rng.uniform(20, 60, springs)
+    return x, v, rest
+
+
+def rel_error(f: np.ndarray, ref: np.ndarray) -> float:
+    return float(np.abs(f - ref).max() / np.abs(ref).max())
+
+
+def measure_forces(ks: float, kd: float):
+    def measure(m: Student) -> dict:
+        x, v, rest = system()
+        return {"f": forces(m, x, v, A, B, ks, kd, rest)}
+    return measure
+
+
+def judge_forces(ks: float, kd: float, hint: str):
+    def judge(raw: Raw) -> Result:
+        x, v, rest = system()
+        spring_force = reference().spring_forces
+        ref = spring_force(x, v, A, B, ks, kd, rest)
+        f = raw.array("f", x.shape)
+        err = rel_error(f, ref)
+        # a common slip: f[a] += fa with repeated indices keeps one write per particle
+        fa = np.array([spring_force(x, v, A[k:k + 1], B[k:k + 1], ks, kd, rest[k:k + 1])[A[k]]
+                       for k in range(len(A))])
+        lost = np.zeros_like(x)
+        lost[A] += fa
+        lost[B] -= fa
+        text = hint
+        if rel_error(f, -ref) < 1e-9:
+            text = ("your forces are the lab's with the sign flipped: f_a = -[...] l/|l| with "
+                    "l = x_a - x_b (a stretched spring pulls a towards b), f_b = -f_a.")
+        elif rel_error(f, lost) < 1e-9:
+            text = ("a particle in several springs gets only one of them: f[a] += fa keeps the "
+                    "last write for a repeated index. Use np.add.at(f, a, fa) (or a loop over "
+                    "springs).")
+        return Result(within(err, 0.0, 1e-9), f"largest difference {fmt(err)} of the largest "
+                      "force", "< 1e-09 (relative)", text)
+    return judge
+
+
+def measure_third_law(m: Student) -> dict:
+    x, v, rest = system(4)
+    return {"f": forces(m, x, v, A, B, 50.0, 2.0, rest)}
+
+
+def judge_third_law(raw: Raw) -> Result:
+    f = raw.array("f", (5, 2))
+    total = float(np.linalg.norm(f.sum(0)) / max(float(np.abs(f).max()), 1e-300))
+    return Result(within(total, 0.0, 1e-12), f"|sum of forces| = {fmt(total)} of the largest "
+                  "force", "< 1e-12 (zero)", "each spring adds f_a to particle a and -f_a to "
+                  "particle b.")
+
+
+# particles 0..4 in springs, particle 5 (the highest index) in none
+ALONE_A, ALONE_B = np.array([0, 1, 2, 3]), np.array([1, 2, 3, 4])
+
+
+def measure_alone(m: Student) -> dict:
+    x, v, rest = system(6, n=6, springs=len(ALONE_A))
+    f = m.spring_forces(x.copy(), v.copy(), ALONE_A, ALONE_B, 50.0, 2.0, rest)
+    shape = list(np.shape(f)) if f is not None else None
+    return {"shape": shape, "f": array_of(f, x.shape, "spring_forces") if shape == [6, 2]
+            else None}
+
+
+def judge_alone(raw: Raw) -> Result:
+    x, v, rest = system(6, n=6, springs=len(ALONE_A))
+    shape = raw.values.get("shape")
+    if shape is not None and not (isinstance(shape, list) and all(
+            isinstance(k, int) and not isinstance(k, bool) for k in shape)):
+        raise Malformed("'shape' is not a list of integers")
+    hint = ("f has a row for every particle, in a spring or not: f = np.zeros_like(x) "
+            "(not sized from the largest index in a and b).")
+    if shape != [6, 2]:
+        shown = "nothing" if shape is None else f"shape {tuple(shape)}"
+        if shape == [5, 2]:
+            hint = ("the force array has one row too few: it was sized from the largest index "
+                    "in the springs (5 rows), and particle 5 is in no spring. " + hint)
+        return Result(False, f"{shown} for 6 particles", "shape (6, 2)", hint)
+    f = raw.array("f", (6, 2))
+    ref = reference().spring_forces(x, v, ALONE_A, ALONE_B, 50.0, 2.0, rest)
+    err = rel_error(f, ref)
+    return Result(within(err, 0.0, 1e-9), f"largest difference {fmt(err)} of the largest force "
+                  f"(the lone particle: {fmt(float(np.abs(f[5]).max()))})",
+                  "< 1e-09 (relative), 0 on the lone particle", hint)
+
+
+def damping_run(m: Student) -> tuple[np.ndarray, np.ndarray]:
+    x = np.array([[0.0, 0.0], [80.0, 0.0]])
+    v = np.zeros_like(x)
+    a, b, rest = np.array([0]), np.array([1]), np.array([50.0])
+    h = 1e-3
+    for _ in range(2000):               # symplectic Euler, unit masses
+        v = v + h * forces(m, x, v, a, b, 50.0, 1.0, rest)
+        x = x + h * v
+    return x, v
+
+
+def measure_damping_removes(m: Student) -> dict:
+    x, v = damping_run(m)
+    return {"x": x, "v": v}
+
+
+def judge_damping_removes(raw: Raw) -> Result:
+    ks = 50.0
+
+    def energy(x, v):
+        return 0.5 * float((v * v).sum()) + 0.5 * ks * (np.linalg.norm(x[1] - x[0]) - 50.0) ** 2
+    e0 = energy(np.array([[0.0, 0.0], [80.0, 0.0]]), np.zeros((2, 2)))
+    ratio = energy(raw.array("x", (2, 2)), raw.array("v", (2, 2))) / e0
+    return Result(bool(ratio < 0.5), f"energy ratio {fmt(ratio)} after 2 s", "< 0.5",
+                  "the damping force must oppose the relative velocity along the spring: "
+                  "-kd ((v_a - v_b) . u) u on a, with u = (x_a - x_b)/|x_a - x_b| (check signs).")
+
+
+def measure_inputs(m: Student) -> dict:
+    x, v, rest = system(5)
+    m.spring_forces(x, v, A, B, 50.0, 2.0, rest)
+    return {"x": x, "v": v}
+
+
+def judge_inputs(raw: Raw) -> Result:
+    x0, v0, _ = system(5)
+    problems = [f"{name} was changed" for name, before in (("x", x0), ("v", v0))
+                if not np.array_equal(raw.array(name, before.shape), before)]
+    return Result(not problems, "; ".join(problems) or "x and v untouched",
+                  "x and v unchanged",
+                  "sum the forces into a new array (f = np.zeros_like(x)): x and v are the "
+                  "particles' state, which the caller goes on stepping.")
+
+
+EXERCISE = Exercise(
+    name="spring",
+    title="Damped springs: an n-ary force",
+    slide="Physics in Computer Animations and Games: 'A Newtonian Particle' / damped springs "
+          "(f_a = -[ks(|l| - r) + kd (v_a - v_b).l/|l|] l/|l|, f_b = -f_a)",
+    functions=("spring_forces",),
+    reference=reference,
+    checks=(Check("Hooke part", measure_forces(50.0, 0.0), judge_forces(50.0, 0.0, (
+                "f_a = -ks (|l| - rest) l/|l| with l = x_a - x_b: the direction is the UNIT "
+                "vector l/|l| (without it the force grows with the length twice), and "
+                "f_b = -f_a."))),
+            Check("damping part", measure_forces(0.0, 2.0), judge_forces(0.0, 2.0, (
+                "the damping term is kd (v_a - v_b) . l/|l|: the relative velocity projected "
+                "on the spring, times l/|l| (not kd (v_a - v_b))."))),
+            Check("third law", measure_third_law, judge_third_law),
+            Check("a particle in no spring", measure_alone, judge_alone),
+            Check("damping removes energy", measure_damping_removes, judge_damping_removes),
+            Check("inputs kept", measure_inputs, judge_inputs)),
+)

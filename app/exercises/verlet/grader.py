@@ -1,0 +1,235 @@
+"""Grader of exercises/verlet.py: the velocity-less Verlet step with the slide's drag.
+
+Reference: app.physics.jakobsen.verlet_step. Each check's measure (in the child) runs the
+student's verlet_step and sends back the positions it produced; its judge (here, in the grader)
+does the physics on them:
+  free fall        exact for constant acceleration: Verlet's x' - 2x + x_prev = a h^2 is the
+                   central difference, which a parabola satisfies exactly (the error is rounding)
+  order            a spring x'' = -omega^2 x over 1.25 s in 40, 80, 160 steps: the error falls
+                   4x per halving, measured order 2 +- 0.2 (the slide's "4th order accurate"
+                   counts one step's O(h^4) error; over a fixed time Verlet is second order;
+                   see tests/test_integrators.py)
+  energy kept      drag 0, the spring for 20 s at 60 Hz: the energy of the last second within 1% of
+                   the first's (it wobbles within the step, but does not drift)
+  drag             drag 0.01 per step: the energy falls by 1 - drag per step (0.99^60 = 0.55 in
+                   one second at 60 Hz), +- 0.05
+  terminal speed   a fall with drag 0.01 at 60 Hz settles where the step's travel s satisfies
+                   s = (1 - drag) s + g h^2: s = g h^2 / drag, a speed g h / drag = 1500 px/s
+                   (+- 0.5). Drag that also scales g h^2 settles at (1 - drag) of it: 1485.
+  inputs kept      x and a are not changed; the new x is a new array
+"""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+
+from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, array_of, fmt,
+                                order, within)
+
+G = np.array([0.0, 900.0])            # px/s^2, y down
+OMEGA = 2 * math.pi                   # the test spring: one period per second
+AMPLITUDE = 100.0
+
+
+def reference() -> SimpleNamespace:
+    from app.physics.jakobsen import verlet_step
+    return SimpleNamespace(verlet_step=verlet_step)
+
+
+def step(m: Student, x, x_prev, a, h, drag):
+    """Call the student's verlet_step and check the shape of what comes back."""
+    out = m.verlet_step(x, x_prev, a, h, drag)
+    if not isinstance(out, tuple) or len(out) != 2:
+        raise BadAnswer(f"verlet_step returned {type(out).__name__}; expected a pair "
+                        "(x_new, x)" + (" (no return statement?)" if out is None else ""))
+    return (array_of(out[0], x.shape, "verlet_step's x_new"),
+            array_of(out[1], x.shape, "verlet_step's second value (the new x_prev)"))
+
+
+def run_spring(m: Student, h: float, seconds: float, drag: float = 0.0) -> np.ndarray:
+    """The spring x'' = -omega^2 x from x = AMPLITUDE at rest, started exactly (x_prev = x(-h)):
+    the positions x_k (k = 0..N)."""
+    n = round(seconds / h)
+    x = np.array([[AMPLITUDE, 0.0]])
+    x_prev = np.array([[AMPLITUDE * math.cos(OMEGA * h), 0.0]])
+    xs = [x[0, 0]]
+    for _ in range(n):
+        x, x_prev = step(m, x, x_prev, -OMEGA ** 2 * x, h, drag)
+        xs.append(x[0, 0])
+    return np.array(xs)
+
+
+def spring_energy(xs: np.ndarray, h: float) -> np.ndarray:
+    """Energy per unit mass at steps 1..N-1 (velocity from the central difference)."""
+    v = (xs[2:] - xs[:-2]) / (2 * h)
+    return 0.5 * v ** 2 + 0.5 * OMEGA ** 2 * xs[1:-1] ** 2
+
+
+# ----- free fall ---------------------------------------------------------------------------------
+FALL_X0 = np.array([[100.0, 100.0], [300.0, 50.0], [500.0, 400.0]])
+FALL_V0 = np.array([[0.0, 0.0], [120.0, -300.0], [-50.0, -600.0]])
+FALL_H, FALL_N = 1 / 60, 60
+
+
+def measure_free_fall(m: Student) -> dict:
+    x, x_prev = FALL_X0.copy(), FALL_X0 - FALL_V0 * FALL_H + G * FALL_H ** 2 / 2   # x(-h)
+    for _ in range(FALL_N):
+        x, x_prev = step(m, x, x_prev, np.tile(G, (3, 1)), FALL_H, 0.0)
+    return {"x": x}
+
+
+def judge_free_fall(raw: Raw) -> Result:
+    x = raw.array("x", (3, 2))
+    t = FALL_N * FALL_H
+    exact = FALL_X0 + FALL_V0 * t + G * t * t / 2
+    err = float(np.abs(x - exact).max())
+    drop = float((x[:, 1] - FALL_X0[:, 1] - FALL_V0[:, 1] * t).mean()) / (G[1] * t * t / 2)
+    hint = "x' = x + (x - x_prev) + a h^2: check each term."
+    if abs(drop) < 0.05:
+        hint = ("the particles do not fall: the acceleration never reaches the positions. Did "
+                "you move with the old velocity only (Euler's x + h v) and add a h to a velocity "
+                "afterwards? In Verlet a h^2 goes into the position.")
+    elif abs(drop - 0.5) < 0.05:
+        hint = "they fall half as far: a h^2, not a h^2 / 2 (Verlet has no 1/2)."
+    elif drop > 5:
+        hint = "they fall far too fast: a h^2 (h squared), not a h."
+    return Result(within(err, 0.0, 1e-6), f"{fmt(err)} px off the parabola after 1 s",
+                  "< 1e-06 px (exact but for rounding)", hint)
+
+
+# ----- the spring: order, energy, drag -----------------------------------------------------------
+ORDER_STEPS = (40, 80, 160)            # end at 1.25 periods: the phase error shows fully there
+
+
+def measure_order(m: Student) -> dict:
+    return {"ends": [run_spring(m, 1.25 / n, 1.25)[-1] for n in ORDER_STEPS]}
+
+
+def judge_order(raw: Raw) -> Result:
+    ends = raw.array("ends", (len(ORDER_STEPS),))
+    errors = [float(abs(e - AMPLITUDE * math.cos(OMEGA * 1.25))) for e in ends]
+    p = order(errors)
+    hint = "x' = x + (x - x_prev) + a h^2 with a at the current x."
+    if within(p, 1.0, 0.3):
+        hint = ("error halves when h halves: first order. Did you update the position with the "
+                "old velocity (Euler) instead of x + (x - x_prev) + a h^2?")
+    elif within(p, 0.0, 0.3):
+        hint = "the error does not shrink with h: a term has the wrong power of h (a h^2)."
+    return Result(within(p, 2.0, 0.2), f"order {fmt(p)} (errors {', '.join(map(fmt, errors))} px)",
+                  "2 +- 0.2", hint)
+
+
+def measure_energy(m: Student) -> dict:
+    return {"xs": run_spring(m, 1 / 60, 20.0)}
+
+
+def judge_energy(raw: Raw) -> Result:
+    e = spring_energy(raw.array("xs", (1201,)), 1 / 60)
+    ratio = float(e[-60:].mean() / e[:60].mean())
+    hint = ("with drag 0 the energy must not drift: x' = x + (x - x_prev) + a h^2 exactly "
+            "(1 - drag multiplies only (x - x_prev)).")
+    if ratio > 1.01:
+        hint = "the energy grows: that is forward Euler's spiral, not Verlet."
+    return Result(within(ratio, 1.0, 0.01), f"energy ratio {ratio:.4f} after 20 s",
+                  "1 +- 0.01", hint)
+
+
+DRAG_HINT = ("drag takes a fraction of the distance travelled: x' = x + (1 - drag) (x - x_prev) "
+             "+ a h^2, i.e. (2 - drag) x - (1 - drag) x_prev + a h^2.")
+
+
+def measure_drag(m: Student) -> dict:
+    return {"xs": run_spring(m, 1 / 60, 2.0, drag=0.01)}
+
+
+def judge_drag(raw: Raw) -> Result:
+    e = spring_energy(raw.array("xs", (121,)), 1 / 60)
+    ratio = float(e[-60:].mean() / e[:60].mean())
+    expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
+    hint = (DRAG_HINT + " Lowering only the 2 (1.99 x - x_prev) is no drag: it pulls every "
+            "particle towards x = 0.")
+    if ratio > 1.05:
+        hint = "the energy GROWS: (1 - drag), not (1 + drag). " + hint
+    elif ratio > 0.99:
+        hint = "almost no energy lost: did you ignore drag? " + hint
+    return Result(within(ratio, expected, 0.05), f"energy ratio {ratio:.3f} over 1 s at drag 0.01",
+                  f"{expected:.2f} +- 0.05 (x (1 - drag) per step)", hint)
+
+
+TERMINAL_H, TERMINAL_DRAG, TERMINAL_STEPS = 1 / 60, 0.01, 1200
+TERMINAL = G[1] * TERMINAL_H / TERMINAL_DRAG        # 1500 px/s
+
+
+def measure_terminal(m: Student) -> dict:
+    x = np.array([[480.0, 0.0]])
+    x_prev = x.copy()
+    for _ in range(TERMINAL_STEPS):
+        x, x_prev = step(m, x, x_prev, G[None, :], TERMINAL_H, TERMINAL_DRAG)
+    return {"x": x[0], "x_prev": x_prev[0]}
+
+
+def judge_terminal(raw: Raw) -> Result:
+    x, x_prev = raw.array("x", (2,)), raw.array("x_prev", (2,))
+    speed = float(x[1] - x_prev[1]) / TERMINAL_H
+    hint = (f"a fall with drag settles where the drag takes as much travel as gravity adds: "
+            f"(x - x_prev) drag = g h^2, a speed g h / drag = {TERMINAL:g} px/s. " + DRAG_HINT)
+    if within(speed, (1 - TERMINAL_DRAG) * TERMINAL, 0.5):
+        hint = ("terminal speed (1 - drag) x 1500: your drag also slows gravity. (1 - drag) "
+                "multiplies only (x - x_prev); a h^2 is added in full: x + (1 - drag) (x - x_prev) "
+                "+ a h^2, not x + (1 - drag) ((x - x_prev) + a h^2).")
+    elif within(speed, 0.0, 1.0):
+        hint = "it does not fall: " + hint
+    return Result(within(speed, TERMINAL, 0.5),
+                  f"speed {speed:.1f} px/s after {TERMINAL_STEPS / 60:g} s of falling",
+                  f"{TERMINAL:g} +- 0.5 px/s (g h / drag)", hint)
+
+
+# ----- inputs kept -------------------------------------------------------------------------------
+def inputs() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    rng = np.random.default_rng(1)
+    x, x_prev, a = rng.normal(size=(3, 4, 2)) * 10
+    return x, x_prev, a
+
+
+def measure_inputs(m: Student) -> dict:
+    x, x_prev, a = inputs()
+    x_new, x_old = step(m, x, x_prev, a, 0.01, 0.0)
+    return {"x_after": x, "a_after": a, "second": x_old, "same_array": bool(
+        np.shares_memory(x_new, x))}
+
+
+def judge_inputs(raw: Raw) -> Result:
+    x0, _, a0 = inputs()
+    problems = []
+    if not np.array_equal(raw.array("x_after", (4, 2)), x0):
+        problems.append("x was changed")
+    if not np.array_equal(raw.array("a_after", (4, 2)), a0):
+        problems.append("a was changed")
+    if raw.flag("same_array"):
+        problems.append("x_new is the array x")
+    if not np.array_equal(raw.array("second", (4, 2)), x0):
+        problems.append("the second value is not the old x")
+    return Result(not problems, "; ".join(problems) or "x and a untouched, x_new a new array",
+                  "x and a unchanged; return (x_new, x)",
+                  "compute x_new into a new array (x + ... makes one; x += ... changes the "
+                  "caller's x, which is also the x_prev you return). Reusing x_prev's array for "
+                  "x_new is fine: the caller is done with it (the slide's pointer swap).")
+
+
+EXERCISE = Exercise(
+    name="verlet",
+    title="Verlet integration: the velocity-less step with drag",
+    slide="Physics in Computer Animations and Games: 'Verlet integration' "
+          "(x' = 2x - x_prev + a h^2; lowering 2 to 1.99 adds drag)",
+    functions=("verlet_step",),
+    reference=reference,
+    checks=(Check("free fall", measure_free_fall, judge_free_fall),
+            Check("order 2 on a spring", measure_order, judge_order),
+            Check("energy kept (drag 0)", measure_energy, judge_energy),
+            Check("drag loses energy", measure_drag, judge_drag),
+            Check("terminal speed with drag", measure_terminal, judge_terminal),
+            Check("inputs kept", measure_inputs, judge_inputs)),
+)
