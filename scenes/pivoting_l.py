@@ -52,7 +52,7 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
-from app.scene import Param, Try, common
+from app.scene import Param, Try, Unit, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 
@@ -89,9 +89,12 @@ class PivotingLScene(FallingBallsScene):
         + tuple(p for p in BALL_PARAMS if p.name not in ("container", "spawn_rate")) \
         + PIVOT_PARAMS + (SUBSTEPS_2,)
     world_keys = FallingBallsScene.world_keys + ("pin", "slide", "record")
-    color_key = ((D.SLIDE, "green band: the slide joint's allowed range (0 to slide_max)"),
-                 (D.SLIDE_LIMIT, "red dot: the slide joint sits at a limit"),
-                 (D.DYNAMIC, "yellow: the L (a dynamic body)"))
+    color_key = ((D.SLIDE, "green band: the slide joint's range (0 to slide_max)"),
+                 (D.SLIDE_LIMIT, "red dot: at a limit"),
+                 (D.DYNAMIC, "yellow: the L"))
+    metric_units = {"angle_deg": Unit("deg"), "slide_distance": Unit("px"),
+                    "slide_seen_min": Unit("px"), "slide_seen_max": Unit("px"),
+                    "pin_error": Unit("px")}
     tries = (
         Try("PivotJoint, not the pin", {"pivot": "pivot"},
             "the L turns the same way: a pivot joint is a pin joint of length 0"),
@@ -178,6 +181,10 @@ class PivotingLScene(FallingBallsScene):
         pin = self.record["pin_error"]
         # a pin that opened by more than a few px is no result to read angles from: say why
         loose = ": PIN LET GO (step too coarse)" if pin > PIN_LOOSE else ""
+        balls = super().hud_lines()
         return [f"L angle {math.degrees(self.L_body.angle):6.1f} deg   slide "
                 f"{self.slide_distance():5.1f} px (range {self.slide.min:g}..{self.slide.max:g})",
-                f"largest pin error {pin:.3f} px{loose}"] + super().hud_lines()
+                f"largest pin error {pin:.3f} px{loose}"] + balls[1:]   # (+ tunneling)
+
+    def hud_details(self) -> list[str]:
+        return super().hud_lines()[:1]          # the balls' count

@@ -9,12 +9,12 @@ what to show.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import pygame
 
 from app.draw.text import TEXT, font
+from app.units import fmt_number  # noqa: F401  (the HUD's number format; importers use it)
 
 HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 px lines
 HELP_SIZE = 28
@@ -26,28 +26,6 @@ DIM_COLOR = (170, 178, 190)
 WARN_COLOR = (255, 200, 90)
 ERROR_COLOR = (255, 120, 110)
 ACCENT_COLOR = (120, 190, 255)
-
-
-def fmt_number(x) -> str:
-    """A compact form of a metric: integers as they are, floats with 4 significant digits, "-"
-    for a value that does not exist yet (None; null in JSON)."""
-    if x is None:
-        return "-"
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    if isinstance(x, int):
-        return str(x)
-    try:
-        v = float(x)
-    except (TypeError, ValueError):
-        return str(x)
-    if not math.isfinite(v):
-        return str(v)
-    if v.is_integer() and abs(v) < 1e9:
-        return str(int(v))
-    if abs(v) >= 1e5 or abs(v) < 1e-3:
-        return f"{v:.3g}"
-    return f"{v:.4g}"
 
 
 def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
@@ -85,11 +63,13 @@ def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") 
 @dataclass
 class Line:
     """One line of overlay text and its colour; `swatch`: a colour square drawn before it (a
-    colour key: what a colour on screen means)."""
+    colour key: what a colour on screen means); `hint`: dim text after it (never wrapped away
+    from it: it goes on the line's last row)."""
     text: str
     color: tuple[int, int, int] = TEXT_COLOR
     swatch: tuple[int, int, int] | None = None
     keys: tuple = ()      # a colour key packed into rows: (colour or None, text) items
+    hint: str = ""
 
 
 def _as_line(item) -> Line:
@@ -104,7 +84,8 @@ def _key_width(f: pygame.font.Font, key: tuple) -> int:
 def _line_width(f: pygame.font.Font, it: Line) -> int:
     if it.keys:
         return sum(_key_width(f, k) for k in it.keys)
-    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0)
+    hint = f.size("   " + it.hint)[0] if it.hint else 0
+    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0) + hint
 
 
 def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int) -> list[Line]:
@@ -122,8 +103,13 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
             wrapped += [Line("", item.color, keys=tuple(r)) for r in rows]
             continue
         room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
-        for i, t in enumerate(wrap(item.text, f, room)):
-            wrapped.append(Line(t, item.color, item.swatch if i == 0 else None))
+        rows = wrap(item.text, f, room)
+        hint = item.hint
+        if hint and f.size(rows[-1] + "   " + hint)[0] > room:
+            rows.append("")                 # the hint on a row of its own
+        for i, t in enumerate(rows):
+            wrapped.append(Line(t, item.color, item.swatch if i == 0 else None,
+                                hint=hint if i == len(rows) - 1 else ""))
     return wrapped
 
 
@@ -172,6 +158,9 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
             x += _swatch_w(f)
         surface.blit(f.render(it.text, True, (0, 0, 0)), (x + 1, y + 1))
         surface.blit(f.render(it.text, True, it.color), (x, y))
+        if it.hint:
+            x += f.size(it.text + "   ")[0] if it.text else 0
+            surface.blit(f.render(it.hint, True, DIM_COLOR), (x, y))
         y += f.get_linesize()
     return pygame.Rect(pos, (w, h))
 
@@ -208,24 +197,41 @@ def dt_text(scene) -> str:
     return f"dt = 1/{scene.p['hertz']} s" + (f" in {sub} substeps" if sub > 1 else "")
 
 
-def scene_lines(scene, status: list, notes: list = ()) -> list:
-    """The HUD box of a scene: its title, the shell's `status` lines (fps, time, pause...), the
-    scene's own hud_lines(), its colour key, and passing `notes`. The window and headless
-    screenshots draw the same box."""
-    lines: list = [Line(scene.title or scene.name, ACCENT_COLOR), *status]
+DETAILS_HINT = ("F4: details", "F4: fewer lines")
+
+
+def scene_lines(scene, status: list, notes: list = (), details: bool = False,
+                more: list = ()) -> list:
+    """The HUD box of a scene: its title, the shell's `status` lines (time, cost, pause...),
+    the scene's hud_lines() (what a class reads every frame), its colour key, the passing
+    `notes` (messages), and on the second page (`details`) the scene's hud_details() and the
+    shell's `more` lines after them. The window, headless screenshots and any pane draw the
+    same box."""
+    lines: list = [Line(scene.title or scene.name, ACCENT_COLOR,
+                        hint=DETAILS_HINT[1 if details else 0]), *status]
     lines += [x if isinstance(x, Line) else str(x) for x in scene.hud_lines()]
     key = tuple(getattr(scene, "color_key", ()))
-    if len(key) > 3:          # a scale (the cloth's strain): packed into rows
+    late = getattr(scene, "color_key_details", False)
+    if key and not late:      # packed into as many rows as it takes
         lines.append(Line("", DIM_COLOR, keys=key))
-    else:
-        lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
-    return lines + list(notes)
+    lines += list(notes)
+    if details:
+        lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR)
+                  for x in [*scene.hud_details(), *more]]
+        if late:              # a long key: a line per colour
+            lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
+    return lines
+
+
+def physics_text(step_ms: float | None) -> str:
+    """'physics 1.59 ms/step': the one physics figure of the HUD."""
+    return f"physics {fmt_number(None) if step_ms is None else f'{step_ms:.2f}'} ms/step"
 
 
 def physics_line(step_ms: float | None, costs: dict[str, float]) -> str:
     """'physics 1.59 ms/step (structural 0.80, shear 0.31, ...)': the one physics figure of the
-    HUD (the runner's median of scene.advance()) with the scene's breakdown by effect."""
-    text = f"physics {fmt_number(None) if step_ms is None else f'{step_ms:.2f}'} ms/step"
+    HUD with the scene's breakdown by effect (the HUD's second page)."""
+    text = physics_text(step_ms)
     if costs:
         text += " (" + ", ".join(f"{k} {v:.2f}" for k, v in costs.items()) + ")"
     return text
@@ -236,10 +242,10 @@ def hud_width(area: pygame.Rect) -> int:
     return max(1, min(area.width - 16, int(HUD_WIDTH * TEXT.scale)))
 
 
-def metric_lines(metrics: dict, width: int, size: int = HUD_SIZE) -> list[str]:
-    """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels; what does not fit
-    is counted as "+N more (--json)"."""
-    items = [f"{k} {fmt_number(v)}" for k, v in metrics.items()]
+def metric_lines(scene, metrics: dict, width: int, size: int = HUD_SIZE) -> list[str]:
+    """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels, each value in the
+    unit the HUD uses for it (scene.shown); what does not fit is counted as "+N more (--json)"."""
+    items = [f"{k} {scene.shown(k, v)}" for k, v in metrics.items()]
     f = font(size)
     lines = pack(items, f, width - 16)
     if len(lines) > MAX_METRIC_LINES:
@@ -260,7 +266,8 @@ def strip_height(scene, area: pygame.Rect, size: int = HUD_SIZE) -> int:
 def draw_metrics(surface: pygame.Surface, area: pygame.Rect, scene,
                  size: int = HUD_SIZE) -> pygame.Rect:
     """The metrics strip along the bottom of `area` (text of `size`); return its rectangle."""
-    lines = metric_lines(scene.metrics(), area.width - 16, size) if scene.metrics_box else []
+    lines = metric_lines(scene, scene.metrics(), area.width - 16, size) if scene.metrics_box \
+        else []
     if not lines:
         return pygame.Rect(area.left, area.bottom, 0, 0)
     return text_box(surface, lines, (area.left + 8, area.bottom - 6), size,
