@@ -29,7 +29,8 @@ The order in which the shell calls the hooks:
     every frame:         draw(surface, view), metrics(), hud_lines(), effect_costs();
                          hud_details() too while the HUD shows its second page (F4)
     a "try this" card:   apply_card(card): the defaults plus the card's settings, then build()
-    layout:              content_bounds()          (what draw() covers, world coordinates)
+    layout:              content_bounds()          (what draw() covers, world coordinates);
+                         fit_to(size) first for a scene whose content_fills its room
     non-finite guard:    is_finite(); snapshot() every so often; restore(snap) on a blow-up,
                          then blowup_hint() for the message
     determinism tests:   state_hash()
@@ -131,6 +132,8 @@ class Scene:
                                                                    # HUD shows it as a key
     color_key_details: bool = False   # True: the key is long (a line per species): it goes on
                                       # the HUD's second page (F4), not the first
+    content_fills: bool = False   # True: the scene lays itself out in screen pixels in the room
+                                  # it gets (charts, tables): fit_to(size) tells it the room
     snapshot_skip: tuple[str, ...] = ()   # attributes the default snapshot leaves out (caches)
     draws_own_error: bool = False   # True: draw() shows a SceneError it raised (the exercises),
                                     # so the window adds no message with the same text
@@ -313,6 +316,12 @@ class Scene:
         """The world rectangle (x, y, w, h) that draw() covers; the layout keeps the HUD, the
         metrics strip and the panel off it. Default: the whole world_size."""
         return (0.0, 0.0, float(self.world_size[0]), float(self.world_size[1]))
+
+    def fit_to(self, size: tuple[float, float]) -> None:
+        """The room (w, h) the content gets, in world units (at least world_size in one
+        direction and more in the other), told before content_bounds() to a scene whose
+        `content_fills`: it returns (0, 0, w, h) then, and lays out its panels in the screen
+        rectangle the view maps that to."""
 
     def handle_event(self, event: InputEvent) -> None:
         """React to a mouse or key event (positions already in world coordinates)."""

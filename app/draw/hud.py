@@ -94,6 +94,11 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
         return items
     wrapped: list[Line] = []
     for item in items:
+        if item.keys and max(_key_width(f, k) for k in item.keys) > max_width - 2 * pad:
+            # a key wider than the box: one wrapped line per key instead
+            items_ = [Line(text, item.color, swatch=color) for color, text in item.keys]
+            wrapped += _box_lines(items_, f, max_width, pad)
+            continue
         if item.keys:             # as many key items per row as fit
             rows: list[list] = [[]]
             for k in item.keys:
@@ -197,7 +202,7 @@ def dt_text(scene) -> str:
     return f"dt = 1/{scene.p['hertz']} s" + (f" in {sub} substeps" if sub > 1 else "")
 
 
-DETAILS_HINT = ("F4: details", "F4: fewer lines")
+DETAILS_HINT = ("F4: more", "F4: less")
 
 
 def scene_lines(scene, status: list, notes: list = (), details: bool = False,
@@ -223,9 +228,16 @@ def scene_lines(scene, status: list, notes: list = (), details: bool = False,
     return lines
 
 
+def ms_text(ms: float | None) -> str:
+    """Milliseconds to three figures at most: '0.35', '4.21', '29.6', '312'."""
+    if ms is None:
+        return fmt_number(None)
+    return f"{ms:.0f}" if ms >= 100 else f"{ms:.1f}" if ms >= 10 else f"{ms:.2f}"
+
+
 def physics_text(step_ms: float | None) -> str:
     """'physics 1.59 ms/step': the one physics figure of the HUD."""
-    return f"physics {fmt_number(None) if step_ms is None else f'{step_ms:.2f}'} ms/step"
+    return f"physics {ms_text(step_ms)} ms/step"
 
 
 def physics_line(step_ms: float | None, costs: dict[str, float]) -> str:

@@ -36,6 +36,7 @@ class Layout:
     bounds: tuple[float, float, float, float] = (0.0, 0.0, 1.0, 1.0)   # the content, world
     hud_text: int = 28    # the HUD's text size (as font() takes it)
     hud_width: int = 0    # the width the HUD's lines are wrapped to
+    filled: bool = False  # the content fills the free room 1:1 (Scene.content_fills)
 
     def content_rect(self, bounds: tuple[float, float, float, float] | None = None
                      ) -> pygame.Rect:
@@ -71,6 +72,30 @@ def fit(area: pygame.Rect, bounds: tuple[float, float, float, float],
     return Layout(area, hud, strip, free, View.fit_bounds(bounds, free), bounds)
 
 
+def fill(area: pygame.Rect, scene, hud_size: tuple[int, int], strip_h: int) -> Layout:
+    """As fit, for a scene whose content fills its room (Scene.content_fills): the larger of the
+    rooms below and beside the HUD is all the content's (it lays itself out in pixels). The
+    zoom is the one that shows the whole world_size in the room, so world coordinates (the
+    mouse, recordings) keep their meaning; the content is the room, in world units."""
+    hw, hh = hud_size
+    layout = fit(area, (0.0, 0.0, 1.0, 1.0), hud_size, strip_h)
+    if hw and hh:
+        bottom = (layout.strip.top if strip_h else area.bottom) - MARGIN
+        below = pygame.Rect(area.left + MARGIN, layout.hud.bottom + MARGIN,
+                            area.width - 2 * MARGIN, bottom - layout.hud.bottom - MARGIN)
+        right = pygame.Rect(layout.hud.right + MARGIN, area.top + MARGIN,
+                            area.right - layout.hud.right - 2 * MARGIN, bottom - area.top - MARGIN)
+        layout.free = max((below, right), key=lambda r: max(r.width, 0) * max(r.height, 0))
+    free = layout.free
+    zoom = max(min(free.width / scene.world_size[0], free.height / scene.world_size[1]), 1e-3)
+    scene.fit_to((max(free.width, 1) / zoom, max(free.height, 1) / zoom))
+    layout.bounds = scene.content_bounds()
+    layout.view = View(zoom, (free.left - layout.bounds[0] * zoom,
+                              free.top - layout.bounds[1] * zoom))
+    layout.filled = True
+    return layout
+
+
 def _scale(bounds, rect: pygame.Rect) -> float:
     if rect.width <= 0 or rect.height <= 0:
         return 0.0
@@ -85,9 +110,11 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
     largest (the widest on a tie)."""
     from app.draw import hud
     from app.draw.text import TEXT
-    bounds = scene.content_bounds()
+    place = (lambda a, b, hud_size, strip_h: fill(a, scene, hud_size, strip_h)) \
+        if getattr(scene, "content_fills", False) else fit
     if lines is None:
-        return fit(area, bounds, (0, 0), 0)
+        return place(area, scene.content_bounds(), (0, 0), 0)
+    bounds = scene.content_bounds()
     widest = hud.hud_width(area)
     widths = [hud_width] if hud_width else \
         sorted({max(1, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
@@ -99,11 +126,23 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
             size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
             w, h = hud.box_size(lines, int(round(size)), max_width=width)
         strip_h = hud.strip_height(scene, area, int(round(size))) if strip else 0
-        layout = fit(area, bounds, (max(room[0], w), max(room[1], h)), strip_h)
+        layout = place(area, bounds, (max(room[0], w), max(room[1], h)), strip_h)
         layout.hud_text, layout.hud_width = int(round(size)), width
-        if best is None or _scale(bounds, layout.free) > 1.01 * _scale(bounds, best.free):
+        if best is None or _better(layout, best):
             best = layout
+    if best.filled:                     # the room chosen is the one the scene lays out in
+        scene.fit_to((best.bounds[2], best.bounds[3]))
     return best
+
+
+def _better(a: Layout, b: Layout) -> bool:
+    """Is layout `a` better than `b`: its HUD text not shrunk where b's is, else its content
+    more than 1 % larger (on a tie the first tried, the widest HUD, stays)."""
+    if a.hud_text != b.hud_text:
+        return a.hud_text > b.hud_text
+    if a.filled:                        # rooms the content fills: the larger room
+        return a.bounds[2] * a.bounds[3] > 1.01 * b.bounds[2] * b.bounds[3]
+    return _scale(a.bounds, a.free) > 1.01 * _scale(b.bounds, b.free)
 
 
 class Pane:
@@ -121,11 +160,17 @@ class Pane:
         self.room, self.hud_width = (0, 0), None
 
     def fit(self, rect: pygame.Rect, lines: list | None, strip: bool = False) -> Layout:
-        """The layout in `rect` with these HUD lines (None: HUD and strip hidden)."""
-        self.layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width)
+        """The layout in `rect` with these HUD lines (None: HUD and strip hidden). Lines that
+        no longer fit the room reserved redo it (its width chosen again): the picture moves
+        then, and only then."""
+        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width)
+        if lines is not None and self.hud_width is not None and \
+                layout.hud.size != tuple(self.room):
+            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None)
         if lines is not None:
-            self.room, self.hud_width = self.layout.hud.size, self.layout.hud_width
-        return self.layout
+            self.room, self.hud_width = layout.hud.size, layout.hud_width
+        self.layout = layout
+        return layout
 
     def draw(self, surface: pygame.Surface, rect: pygame.Rect, lines: list | None,
              strip: bool = False) -> Layout:

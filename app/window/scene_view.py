@@ -365,7 +365,7 @@ class SceneView(ShellView):
         L, scene, clock = hud.Line, self.scene, self.clock
         self._costs = safe(scene.effect_costs, {})     # read with physics_ms: the same steps
         lines: list = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}  |  "
-                       f"{hud.physics_text(self.physics_ms())}  |  {self.fps:.0f} fps"]
+                       f"{hud.physics_text(self.physics_ms())}"]
         state = []
         if clock.paused:
             state.append("PAUSED (Space resumes, . steps)")
@@ -382,9 +382,12 @@ class SceneView(ShellView):
         return lines
 
     def detail_lines(self) -> list:
-        """The shell's lines on the HUD's second page: the physics cost by effect."""
+        """The shell's lines on the HUD's second page: the physics cost by effect, the frame
+        rate."""
         costs = getattr(self, "_costs", {})
-        return [hud.physics_line(self._shown_ms, costs)] if costs else []
+        return ([hud.physics_line(self._shown_ms, costs)] if costs else []) + [
+            f"{self.fps:.0f} frames per second (drawing {1000 * self.window.last_draw_seconds:.1f}"
+            " ms a frame)"]
 
     def notes(self) -> list:
         """The messages, as HUD lines: the scene's error, the rollback's advice, then the

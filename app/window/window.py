@@ -330,10 +330,11 @@ def _open_display(size: tuple[int, int]) -> pygame.Surface:
 
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
-               large_text: bool = False, events: list | None = None) -> int:
-    """Open the window (the menu, or `scene_name` with `overrides`) and run it until the user
-    quits, or for `seconds` of wall time. Return the exit code (2 when there is no display).
-    With `record`, the events are written and the replay command printed on every way out."""
+               large_text: bool = False, events: list | None = None, card=None) -> int:
+    """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
+    applied as a click applies it) and run it until the user quits, or for `seconds` of wall
+    time. Return the exit code (2 when there is no display). With `record`, the events are
+    written and the replay command printed on every way out."""
     try:
         screen = _open_display(DEFAULT_SIZE)
     except pygame.error as e:
@@ -347,7 +348,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
     scene_cls = get_scene(scene_name) if scene_name else None
     if scene_cls is not None:
-        window.open_scene(scene_cls, overrides)
+        if window.open_scene(scene_cls, overrides) and card is not None:
+            window.scene_view.apply_try(card)
     if screenshot and seconds is None:
         seconds = 2.0
     fps_clock = pygame.time.Clock()
