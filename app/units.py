@@ -31,6 +31,7 @@ class Unit:
     symbol: str = ""
     factor: float = 1.0
     resolution: float = 0.0
+    digits: int = 4          # significant digits written
 
     def convert(self, value: float) -> float:
         shown = value * self.factor
@@ -40,9 +41,10 @@ class Unit:
 PLAIN = Unit()
 
 
-def fmt_number(x: Any) -> str:
-    """A compact form of a number: integers as they are, floats with 4 significant digits, "-"
-    for a value that does not exist yet (None; null in JSON), yes/no for a truth value."""
+def fmt_number(x: Any, digits: int = 4) -> str:
+    """A compact form of a number: integers as they are, floats with `digits` significant
+    digits, "-" for a value that does not exist yet (None; null in JSON), yes/no for a truth
+    value."""
     if x is None:
         return "-"
     if isinstance(x, bool):
@@ -58,8 +60,8 @@ def fmt_number(x: Any) -> str:
     if v.is_integer() and abs(v) < 1e9:
         return str(int(v))
     if abs(v) >= 1e5 or abs(v) < 1e-3:
-        return f"{v:.3g}"
-    return f"{v:.4g}"
+        return f"{v:.{min(digits, 3)}g}"
+    return f"{v:.{digits}g}"
 
 
 def shown(value: Any, unit: Unit = PLAIN) -> str:
@@ -72,7 +74,7 @@ def shown(value: Any, unit: Unit = PLAIN) -> str:
         return str(value)
     if not math.isfinite(v):
         return fmt_number(v)
-    text = fmt_number(unit.convert(v)) if unit is not PLAIN else fmt_number(value)
+    text = fmt_number(unit.convert(v), unit.digits) if unit is not PLAIN else fmt_number(value)
     if not unit.symbol:
         return text
     return text + unit.symbol if unit.symbol == "%" else f"{text} {unit.symbol}"

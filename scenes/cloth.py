@@ -116,8 +116,8 @@ class ClothScene(Scene):
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),
     )
-    metric_units = {"max_stretch": Unit("%", 100.0, resolution=0.01),
-                    "mean_stretch": Unit("%", 100.0, resolution=0.01),
+    metric_units = {"max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
+                    "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "pinned_drift": Unit("px", resolution=0.01)}
     tries = (
         Try("Stretchy: 2 iterations", {"iterations": 2, "substeps": 1},

@@ -143,8 +143,8 @@ class DoublePendulumScene(PymunkScene):
         Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
         Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
     world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
-    color_key = (((230, 159, 0), "orange ghost: the exact equations (RK4)"),
-                 ((86, 180, 233), "pymunk's bobs and the tip's trail"))
+    color_key = (((230, 159, 0), "ghost: the exact equations (RK4)"),
+                 ((86, 180, 233), "pymunk"))
     metric_units = {"energy_drift": Unit("%", 100.0, resolution=1e-4),
                     "energy_drift_max": Unit("%", 100.0, resolution=1e-4),
                     "reference_energy_drift": Unit("%", 100.0, resolution=1e-6),

@@ -135,8 +135,8 @@ class MassSpringClothScene(Scene):
     )
     # the HUD and the metrics strip write these alike (the JSON keeps px, s, kg and fractions)
     metric_units = {"energy": Unit("J", 1.0 / JOULE, resolution=1e-3),
-                    "max_stretch": Unit("%", 100.0, resolution=0.01),
-                    "mean_stretch": Unit("%", 100.0, resolution=0.01),
+                    "max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
+                    "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "omega_max": Unit("1/s"),
                     "explicit_limit_h": Unit("ms", 1e3),
                     "pinned_drift": Unit("px", resolution=0.01)}

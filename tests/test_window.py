@@ -457,11 +457,11 @@ def test_the_physics_figure_holds_while_paused(window):
     for _ in range(10):
         window.update(1 / 60)
     key(window, pygame.K_SPACE)
-    figure = window.scene_view.status_lines()[0].split("  |  ")[2]
+    figure = window.scene_view.status_lines()[0].split(" | ")[2]
     for _ in range(20):
         window.update(1 / 60)
         window.render()
-    assert window.scene_view.status_lines()[0].split("  |  ")[2] == figure
+    assert window.scene_view.status_lines()[0].split(" | ")[2] == figure
     assert figure.startswith("physics ") and "ms/step" in figure
 
 

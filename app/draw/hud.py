@@ -63,8 +63,8 @@ def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") 
 @dataclass
 class Line:
     """One line of overlay text and its colour; `swatch`: a colour square drawn before it (a
-    colour key: what a colour on screen means); `hint`: dim text after it (never wrapped away
-    from it: it goes on the line's last row)."""
+    colour key: what a colour on screen means); `hint`: dim text after it, on the line's last
+    row if it fits there, else left out (never a row of its own)."""
     text: str
     color: tuple[int, int, int] = TEXT_COLOR
     swatch: tuple[int, int, int] | None = None
@@ -78,7 +78,7 @@ def _as_line(item) -> Line:
 
 def _key_width(f: pygame.font.Font, key: tuple) -> int:
     color, text = key
-    return (_swatch_w(f) if color is not None else 0) + f.size(text + "   ")[0]
+    return (_swatch_w(f) if color is not None else 0) + f.size(text + "  ")[0]
 
 
 def _line_width(f: pygame.font.Font, it: Line) -> int:
@@ -111,7 +111,7 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
         rows = wrap(item.text, f, room)
         hint = item.hint
         if hint and f.size(rows[-1] + "   " + hint)[0] > room:
-            rows.append("")                 # the hint on a row of its own
+            hint = ""                       # no row of its own for a hint (the help has it)
         for i, t in enumerate(rows):
             wrapped.append(Line(t, item.color, item.swatch if i == 0 else None,
                                 hint=hint if i == len(rows) - 1 else ""))
@@ -156,7 +156,7 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
                 pygame.draw.rect(surface, color, (x, y + (f.get_height() - side) // 2, side, side))
                 x += _swatch_w(f)
             surface.blit(f.render(text, True, it.color), (x, y))
-            x += f.size(text + "   ")[0]
+            x += f.size(text + "  ")[0]
         if it.swatch:
             side = f.get_height() * 3 // 4
             pygame.draw.rect(surface, it.swatch, (x, y + (f.get_height() - side) // 2, side, side))
@@ -222,9 +222,10 @@ def scene_lines(scene, status: list, notes: list = (), details: bool = False,
     lines += list(notes)
     if details:
         lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR)
-                  for x in [*scene.hud_details(), *more]]
+                  for x in scene.hud_details()]
         if late:              # a long key: a line per colour
             lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
+        lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR) for x in more]
     return lines
 
 

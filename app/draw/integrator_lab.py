@@ -181,7 +181,7 @@ class LabDrawing:
         inner = self.frame(surface, r, f"{problem.title}  (white ring: exact)", bottom=True)
         names_h = 2 * font(SMALL_SIZE).get_linesize() + 4 if problem.name == "spring" else 0
         box = pygame.Rect(inner.x, inner.y, inner.width, max(inner.height - names_h, 1))
-        view = View.fit_bounds(SYSTEM_BOX, box)
+        view = View.fit_bounds(SYSTEM_BOX, box)      # (centred: the names go right under)
         old_clip = surface.get_clip()
         surface.set_clip(inner.clip(old_clip))
         x_ref, _ = scene.exact()
@@ -193,7 +193,9 @@ class LabDrawing:
 
     def _springs(self, surface, view: View, scene, x_ref, box: pygame.Rect, names_h: int) -> None:
         k = SPRING_DRAW_SCALE
-        names_row = pygame.Rect(box.left, box.bottom, box.width, names_h)
+        drawn = pygame.Rect(view.pt(SYSTEM_BOX[:2]), (round(view.len(SYSTEM_BOX[2])),
+                                                       round(view.len(SYSTEM_BOX[3]))))
+        names_row = pygame.Rect(box.left, drawn.bottom, box.width, names_h)
         column = int(view.len(80.0))
         names = list(SHORT.values()) + ["blew up", "t=88.88s"]
         size = fit_size(names, SMALL_SIZE, column - 4, smallest=SMALLEST_TEXT)
@@ -208,7 +210,7 @@ class LabDrawing:
             run = next((r for r in scene.runs if r.name == name), None)
             color = run.color if run else OFF
             cx = view.pt(origin)[0]
-            y = box.bottom + 2 + (font(size).get_linesize() if staggered and i % 2 else 0)
+            y = names_row.top + 2 + (font(size).get_linesize() if staggered and i % 2 else 0)
             self.text(surface, (cx, y), SHORT[name], color, size, "midtop", within=names_row)
             pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)),
                              view.pt(origin + (18, 0)), px(2))

@@ -140,8 +140,8 @@ def _better(a: Layout, b: Layout) -> bool:
     more than 1 % larger (on a tie the first tried, the widest HUD, stays)."""
     if a.hud_text != b.hud_text:
         return a.hud_text > b.hud_text
-    if a.filled:                        # rooms the content fills: the larger room
-        return a.bounds[2] * a.bounds[3] > 1.01 * b.bounds[2] * b.bounds[3]
+    if a.filled:                        # rooms the content fills: the larger room on screen
+        return a.free.width * a.free.height > 1.01 * b.free.width * b.free.height
     return _scale(a.bounds, a.free) > 1.01 * _scale(b.bounds, b.free)
 
 

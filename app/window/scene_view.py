@@ -364,7 +364,7 @@ class SceneView(ShellView):
         only when they apply, pause and slow motion, recording, slower than real time."""
         L, scene, clock = hud.Line, self.scene, self.clock
         self._costs = safe(scene.effect_costs, {})     # read with physics_ms: the same steps
-        lines: list = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}  |  "
+        lines: list = [f"t = {scene.time:.2f} s | {hud.dt_text(scene)} | "
                        f"{hud.physics_text(self.physics_ms())}"]
         state = []
         if clock.paused:
@@ -391,7 +391,8 @@ class SceneView(ShellView):
 
     def notes(self) -> list:
         """The messages, as HUD lines: the scene's error, the rollback's advice, then the
-        window's passing messages (newest last)."""
+        window's passing messages (newest last; a card's "Try:" only with the panel hidden:
+        the panel shows it under the cards)."""
         lines = []
         if self.runner.error is not None and not self.scene.draws_own_error:
             text = ERROR_TEXT.format(message=self.runner.error).split("\n")
@@ -401,7 +402,10 @@ class SceneView(ShellView):
             lines.append(hud.Line("\n".join(text), hud.ERROR_COLOR))
         if self.banner:
             lines.append(hud.Line(self.banner, hud.WARN_COLOR))
-        return lines + [hud.Line(m.text, m.color) for m in self.window.messages]
+        # a card's promise is in the panel's box under the cards while the panel is shown
+        shown_there = self.panel is not None and self.panel.watch_box is not None
+        return lines + [hud.Line(m.text, m.color) for m in self.window.messages
+                        if not (shown_there and m.topic == "card" and m.text.startswith("Try: "))]
 
     def hud_lines(self) -> list:
         """Everything in the HUD box, as drawn."""

@@ -16,6 +16,7 @@ from collections import deque
 SETTLE_FRAMES = 20          # frames after opening a scene or a new layout whose hiccups (the
                             # build, the first draw, font loading) are not "slower than real time"
 SHOWN_SECONDS = 1.0         # how long the HUD keeps saying it after the last slow frame
+FPS_CAP = 60                # the window draws at most this many frames a second
 
 
 class SpeedWatch:
@@ -52,11 +53,14 @@ class SpeedWatch:
         if not dropped:
             return
         ms = lambda s: f"{1000 * s:.0f} ms"          # noqa: E731
+        # the cap is the cause when even a frame at full speed asks for more steps than it
+        # runs; after a long frame it is only the symptom of what made the frame long
+        cap_binds = scene.p["hertz"] * clock.slow_motion / FPS_CAP > clock.max_steps_per_frame
         if physics >= draw and physics >= 0.3 * frame:
             why = (f"physics takes {ms(physics)} of a {ms(frame)} frame: fewer iterations, "
                    "substeps or hertz catch up")
-        elif capped:
-            why = cap_text(frame, clock, scene)
+        elif capped and cap_binds:
+            why = cap_text(clock, scene)
         elif draw >= 0.3 * frame:
             why = (f"drawing takes {ms(draw)} of a {ms(frame)} frame (physics {ms(physics)}): "
                    "a smaller window or fewer effects drawn catch up")
@@ -72,16 +76,15 @@ class SpeedWatch:
         return None
 
 
-def cap_text(frame: float, clock, scene) -> str:
-    """Why time runs slow when the loop's cap on steps per frame binds, and what to change."""
+def cap_text(clock, scene) -> str:
+    """Why time runs slow when the loop's cap on steps per frame binds at full frame rate (on
+    any machine, however fast), and what to change."""
     cap, hz = clock.max_steps_per_frame, scene.p["hertz"]
-    fps = 1.0 / max(frame, 1e-3)
-    need = frame * clock.slow_motion * hz                  # steps this frame asked for
-    most = max(1, int(cap * fps / clock.slow_motion))      # the hertz that fits under the cap
+    need = hz * clock.slow_motion / FPS_CAP                # steps a full-speed frame asks for
+    most = max(1, int(cap * FPS_CAP / clock.slow_motion))  # the hertz that fits under the cap
     text = (f"the loop runs at most {cap} steps a frame (app/loop.py): hertz {hz} asks for "
-            f"{need:.1f} per {1000 * frame:.0f} ms frame, so time runs at "
-            f"{min(cap / need, 1.0):.2f}x real time on any machine. For real time: hertz "
-            f"{most} or less")
+            f"{need:.1f} per frame at {FPS_CAP} fps, so time runs at {cap / need:.2f}x real "
+            f"time on any machine. For real time: hertz {most} or less")
     k = math.ceil(hz / most)
     sub = scene.p["substeps"] * k
     if k > 1 and sub <= scene.param("substeps").hi and hz % k == 0:

@@ -37,11 +37,11 @@ from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene, SceneError
 from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
+from app.window.speed import FPS_CAP
 from app.window.views import HelpView, MenuView, ShellView
 
 DEFAULT_SIZE = (1280, 800)        # world 960x720 at zoom 1 + a 320 px panel
 LARGE_TEXT_SCALE = 1.6
-FPS_CAP = 60
 MESSAGE_SECONDS = 4.0
 NO_DISPLAY = ("python -m app: error: no display for the window: {}; use --headless, or run under "
               "xvfb-run")
