@@ -47,8 +47,8 @@ from typing import Any, Iterable, Mapping
 import numpy as np
 
 from app.keys import SHELL_KEY_NAMES
-from app.params import (COMMON_PARAMS, FALSE_WORDS, TRUE_WORDS, Effect, Param,  # noqa: F401
-                        ParamError, common, plain_number, shown_text)
+from app.params import (COMMON_PARAMS, Effect, Param, ParamError,  # noqa: F401 (re-exported)
+                        common, plain_number, shown_text)
 from app.units import PLAIN, Unit
 from app.units import shown as shown_in
 

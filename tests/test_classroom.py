@@ -18,7 +18,7 @@ from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Try
 from scenes import SCENES, get_scene
-from tests.test_window import Tiny, key, open_window, type_into
+from tests.test_window import Tiny, open_window, type_into
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 

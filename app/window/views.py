@@ -18,7 +18,7 @@ from typing import Any, Protocol
 import pygame
 
 from app import keys
-from app.draw import hud
+from app.draw import hud, menu
 from app.draw.text import TEXT, font
 from app.scene import Scene, docstring_help
 
@@ -97,11 +97,11 @@ class MenuView(ShellView):
     def __init__(self, window: WindowLike, message: str = ""):
         super().__init__(window)
         self.message = message
-        self.entries: list[hud.MenuEntry] = []
+        self.entries: list[menu.MenuEntry] = []
 
     @property
     def order(self) -> list[int]:
-        return hud.menu_order(self.window.scenes)
+        return menu.menu_order(self.window.scenes)
 
     def pick(self, key: int) -> None:
         """Digit n opens the n-th scene shown."""
@@ -135,7 +135,7 @@ class MenuView(ShellView):
                     return
 
     def draw(self, screen: pygame.Surface) -> None:
-        self.entries = hud.draw_menu(screen, self.window.scenes, self.window.menu_selected,
+        self.entries = menu.draw_menu(screen, self.window.scenes, self.window.menu_selected,
                                      self.message)
 
 

@@ -31,7 +31,7 @@ from typing import Any, NamedTuple, Sequence
 
 import pygame
 
-from app.draw import hud, save_png
+from app.draw import hud, menu, save_png
 from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene, SceneError
@@ -160,7 +160,7 @@ class Window:
         """PageUp/PageDown: the previous/next scene in the menu's order."""
         if not self.scenes:
             return
-        order = hud.menu_order(self.scenes)
+        order = menu.menu_order(self.scenes)
         cur = type(self.scene) if self.scene is not None else None
         if cur in self.scenes:
             i = order.index(self.scenes.index(cur)) + delta
