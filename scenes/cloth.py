@@ -38,9 +38,9 @@ rows 0.0001%; at 20 iterations even rows 2%. More iterations shrink the red, and
 We keep the fixed order and explain it rather than alternate it: it is a real property of the
 method, worth seeing (app/physics/rods.py, "batches").
 
-The HUD's last line splits the physics time per step into its parts (the rod sets' sweeps, the
-Verlet step, each force, tearing), as shares, so it agrees with whatever ms/step the window
-shows for the whole step.
+The HUD's second page (F4) splits the physics time per step into its parts (the rod sets'
+sweeps, the Verlet step, each force, tearing), as shares, so it agrees with whatever ms/step the
+window shows for the whole step.
 """
 
 from __future__ import annotations

@@ -324,6 +324,12 @@ class DoublePendulumScene(PymunkScene):
                          f"apart after {self.time - self.track['start']:.1f} s")
         return lines
 
+    def hud_details(self) -> list[str]:
+        m = self.metrics()
+        return ["LMB: drag a bob (the ghost restarts from there when you let go)",
+                f"rods stretched by {self.shown('pin_error', m['pin_error'])} (pin error); the "
+                f"ghost's own energy drift {self.shown('reference_energy_drift', m['reference_energy_drift'])}"]
+
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
         if "trail" in self.on:

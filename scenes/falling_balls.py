@@ -379,6 +379,9 @@ class FallingBallsScene(PymunkScene):
                          f"(step too coarse?)")
         return lines
 
+    def hud_details(self) -> list[str]:
+        return ["LMB: drag a ball, or click empty space to drop one"]
+
 
 def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
     """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""

@@ -38,7 +38,8 @@ compares your step with; undamped it would be 2/omega_max); max_stretch and mean
 (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
 256 px); cg_iterations (the last implicit solve's; null before the first solve, 0 with an
-explicit integrator); pinned_drift (px).
+explicit integrator); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
+in J, the stretches in %, explicit_limit_h in ms (`metric_units`).
 """
 
 from __future__ import annotations
@@ -72,9 +73,10 @@ class MassSpringClothScene(Scene):
     LMB: grab a particle and drag it (a moving pin); drop it: it stays locked there.
     RMB: unlock a locked particle.   U: unlock all and restore the default pins.
     material sets the sliders (Blender's units); moving a slider makes it 'custom'.
-    The HUD gives the explicit limit h < 2/omega_max and the step you are at: switch the
-    integrator to symplectic_euler at 60 Hz and it blows up (rolled back); implicit_euler goes on.
-    Effects: gravity, air, wind, damping, shear, bending (each on/off, each with its cost).
+    The HUD gives the step you are at against the explicit limit (F4: the limit itself, h <
+    2/omega_max undamped, less with damping): switch the integrator to symplectic_euler at 60 Hz
+    and it blows up (rolled back); implicit_euler goes on.
+    Effects: gravity, air, wind, damping, shear, bending (each on/off, each with its cost: F4).
     """
 
     name = "mass_spring_cloth"

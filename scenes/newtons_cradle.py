@@ -366,9 +366,10 @@ class NewtonsCradleScene(PymunkScene):
 
     def hud_details(self) -> list[str]:
         m = self.metrics()
+        drag = "LMB: drag a ball (letting go re-arms the verdict)"
         if self.track["impact_time"] is None or self.track["window_open"]:
-            return []
-        return [f"out speed {self.shown('out_speed_ratio', m['out_speed_ratio'])} of "
+            return [drag]
+        return [drag, f"out speed {self.shown('out_speed_ratio', m['out_speed_ratio'])} of "
                 f"{self.shown('release_speed', m['release_speed'])}; middle drift "
                 f"{self.shown('middle_max_drift', m['middle_max_drift'])}"]
 

@@ -191,4 +191,5 @@ class PivotingLScene(FallingBallsScene):
                 f"largest pin error {pin:.3f} px{loose}"] + balls[1:]   # (+ tunneling)
 
     def hud_details(self) -> list[str]:
-        return super().hud_lines()[:1]          # the balls' count
+        return ["LMB: drag the L or a ball; click empty space to drop a ball",
+                super().hud_lines()[0]]          # the balls' count

@@ -143,6 +143,16 @@ def test_a_card_from_the_command_line_is_the_click(capsys):
     assert main(["--headless", "--scene", "all", "--try", "x"]) == 2
 
 
+def test_a_card_from_the_command_line_opens_the_window_with_it(tmp_path, capsys):
+    """--try in the window is the click: recording from the start, the replay command carries
+    the card's values as --set (the card restarted the recording from a fresh scene)."""
+    shot, rec = tmp_path / "w.png", tmp_path / "rec.json"
+    assert main(["--scene", "pivoting_l", "--try", "No slide range", "--seconds", "0.3",
+                 "--screenshot", str(shot), "--record", str(rec)]) == 0
+    out = capsys.readouterr().out
+    assert "--scene pivoting_l --set slide_max=0" in out and shot.exists()
+
+
 def test_the_catalogue_lists_every_scene_param_effect_and_card(capsys):
     assert main(["--list", "--json"]) == 0
     catalogue = json.loads(capsys.readouterr().out)
@@ -253,7 +263,7 @@ def test_every_declared_unit_is_a_metric_of_its_scene(cls):
 # ----- 4. the integrator lab at every size ----------------------------------------------------
 @pytest.mark.parametrize("problem", ["spring", "orbit"])
 def test_the_integrator_labs_labels_never_overlap_and_grow_with_large_text(problem, tmp_path):
-    """At 1024x640, 1280x800 and 1920x1080 and both text sizes no two labels of the lab touch
+    """At 1024x640, 1024x768, 1280x800 and 1920x1080 and both text sizes no two labels touch
     (the energy chart's '2e-01' and '1e+00' were drawn on top of each other, the names over
     the caption), every label lies inside the scene's room, and large text makes the table's
     and the titles' glyphs larger, not smaller."""
@@ -264,7 +274,7 @@ def test_the_integrator_labs_labels_never_overlap_and_grow_with_large_text(probl
         w.update(1 / 20)
     heights = {}
     try:
-        for size in ((1024, 640), (1280, 800), (1920, 1080)):
+        for size in ((1024, 640), (1024, 768), (1280, 800), (1920, 1080)):
             for large in (False, True):
                 w.screen = pygame.Surface(size)
                 TEXT.scale = 1.6 if large else 1.0
@@ -317,6 +327,11 @@ def test_the_scene_gets_most_of_the_world_area_and_the_first_page_is_short(cls, 
 
 # ----- 6. the panel ----------------------------------------------------------------------------
 def test_pointing_at_a_card_shows_what_it_sets_below_the_cards_not_over_them(tmp_path):
+    """No tooltip covers the cards (the box under them says what a card does); the other
+    tooltips' text grows with F2 like the rest of the panel."""
+    from app.window.panel import theme
+    assert int(theme(1.6)["tool_tip.text_box"]["font"]["size"]) == round(
+        1.6 * int(theme(1.0)["tool_tip.text_box"]["font"]["size"]))
     cls = get_scene("mass_spring_cloth")
     w = open_window(cls, tmp_path, size=(1024, 768))
     panel = w.scene_view.panel
