@@ -2,7 +2,8 @@
 
     python -m app                          window, scene menu
     python -m app --scene cloth            window, open one scene
-    python -m app --list                   one line per scene: name, title
+    python -m app --list [--json]          one line per scene: name, title (--json: the catalogue)
+    python -m app [--headless] --scene NAME --try LABEL    a "try this" card, as a click applies it
     python -m app --headless --scene NAME [--seconds S | --steps N] [--set KEY=VALUE]...
                   [--input EVENTS.json] [--screenshot OUT.png] [--json]
     python -m app --headless --scene all   every scene in turn
@@ -83,7 +84,10 @@ def build_parser() -> argparse.ArgumentParser:
                 "physics in computer animation and games. Without options: a window with the "
                 "scene menu.")
     p.add_argument("--scene", help="scene to open (see --list); 'all' with --headless")
-    p.add_argument("--list", action="store_true", help="list the scenes: name, title")
+    p.add_argument("--list", action="store_true", help="list the scenes: name, title; with "
+                   "--json the catalogue (params, effects, try cards)")
+    p.add_argument("--try", dest="card", metavar="LABEL", help="apply one of the scene's "
+                   "\"try this\" cards (its defaults plus the card's settings), as a click does")
     p.add_argument("--headless", action="store_true", help="run without a window")
     length = p.add_mutually_exclusive_group()
     length.add_argument("--seconds", type=_positive_float, help="simulated seconds to run "
@@ -144,6 +148,11 @@ def app_main(argv: list[str]) -> int:
         FINDERS["exercise"] = exercise_scene
 
     if args.list:
+        if args.json:
+            import json
+            from app.catalogue import catalogue
+            print(json.dumps(catalogue(list(SCENES)), indent=1))
+            return EXIT_OK
         for cls in SCENES:
             print(f"{cls.name:18} {cls.title}")
         return EXIT_OK
@@ -170,6 +179,7 @@ def app_main(argv: list[str]) -> int:
     overrides = parse_sets(args.set)
     if overrides and not classes:
         raise UsageError("--set needs --scene NAME (parameters belong to a scene)")
+    card = find_card(args.card, classes, overrides) if args.card is not None else None
     unknown = [k for k in overrides if not any(k in c.setting_names() for c in classes)]
     if unknown:
         names = sorted({n for c in classes for n in c.setting_names()})
@@ -217,14 +227,31 @@ def app_main(argv: list[str]) -> int:
             raise UsageError(f"--headless needs --scene NAME or --scene all; accepted: {accepted}")
         use_dummy_video()
         return run_headless(classes, overrides, args.steps, args.seconds, events,
-                            args.screenshot, args.json)
+                            args.screenshot, args.json, card)
 
     if args.steps is not None or args.json:
         raise UsageError("--steps and --json are for --headless runs")
     from app.window import run_window
     return run_window(classes[0].name if classes else None, overrides, record=args.record,
                       screenshot=args.screenshot, seconds=args.seconds,
-                      large_text=args.large_text, events=events)
+                      large_text=args.large_text, events=events, card=card)
+
+
+def find_card(label: str, classes: list, overrides: dict):
+    """The scene's try card called `label`; UsageError if there is none, if the scene is not
+    one, or with --set (a card is the scene's defaults plus its own settings)."""
+    if len(classes) != 1:
+        raise UsageError("--try needs --scene NAME (a card belongs to one scene)")
+    cls = classes[0]
+    if overrides:
+        raise UsageError("--try sets the scene's values itself (its defaults plus the card's, as "
+                         "a click does); drop --set, or give the values as --set without --try")
+    card = cls.find_card(label)
+    if card is None:
+        labels = ", ".join(repr(c.label) for c in cls.tries) or "none (this scene has no cards)"
+        raise UsageError(f"--try {shown_text(label)}: scene '{cls.name}' has no such card; "
+                         f"accepted: {labels}")
+    return card
 
 
 def writable_folder(path: str, what: str, example: str, probe: str) -> None:

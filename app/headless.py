@@ -17,7 +17,7 @@ import time
 from typing import Any
 
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
-from app.scene import InputEvent, Scene
+from app.scene import InputEvent, Scene, Try
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -177,12 +177,12 @@ def render(scene: Scene, path: str) -> None:
     import pygame
 
     from app.draw import hud, save_png
-    from app.draw.layout import draw_scene, scene_layout
+    from app.draw.layout import Pane
 
     surface = pygame.Surface(scene.world_size)
     status = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"]
     lines = hud.scene_lines(scene, status)
-    draw_scene(surface, scene_layout(surface.get_rect(), scene, lines), scene, lines)
+    Pane(scene).draw(surface, surface.get_rect(), lines)
     try:
         save_png(surface, path)
     except pygame.error as e:
@@ -228,15 +228,21 @@ def screenshot_path(screenshot: str, scene_name: str, several: bool) -> str:
 
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
-                 as_json: bool) -> int:
-    """Run each scene in turn; print one JSON object per scene (or a readable summary)."""
+                 as_json: bool, card: Try | None = None) -> int:
+    """Run each scene in turn; print one JSON object per scene (or a readable summary). With
+    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card)."""
     nonfinite = unsaved = False
     for cls in scene_classes:
         scene = cls(cls.own_settings(overrides))
+        if card is not None:
+            scene.apply_card(card)
         n = steps if steps is not None else steps_for(seconds, scene.dt)
         start = time.perf_counter()
         runner = run_scene(scene, n, events)
         result = summary(runner, time.perf_counter() - start)
+        if card is not None:
+            result["try"] = {"label": card.label, "settings": clean(dict(card.settings)),
+                             "watch": card.watch}
         late = runner.events_left
         if late:
             last = max(runner.clock - scene.dt, 0.0)   # an event is delivered before a step
@@ -279,6 +285,8 @@ def describe(summary: dict[str, Any]) -> str:
              f"in {summary['wall_seconds']:.3g} s, {fmt_number(summary['step_ms'])} ms/step, "
              f"finite={summary['finite']}, hash {summary['state_hash']}",
              f"  metrics: {metrics}"]
+    if summary.get("try"):
+        lines.append(f"  try: {summary['try']['label']}: watch: {summary['try']['watch']}")
     if summary.get("screenshot"):
         lines.append(f"  screenshot: {summary['screenshot']}")
     if summary.get("error"):

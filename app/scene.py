@@ -26,8 +26,11 @@ The order in which the shell calls the hooks:
     between steps:       handle_event(event)       (mouse and key events, world coordinates)
                          set(name, value)          (the panel) -> build() if the setting needs a
                                                    rebuild, else settings_changed({name})
-    every frame:         draw(surface, view), metrics(), hud_lines(), effect_costs()
-    layout:              content_bounds()          (what draw() covers, world coordinates)
+    every frame:         draw(surface, view), metrics(), hud_lines(), effect_costs();
+                         hud_details() too while the HUD shows its second page (F4)
+    a "try this" card:   apply_card(card): the defaults plus the card's settings, then build()
+    layout:              content_bounds()          (what draw() covers, world coordinates);
+                         fit_to(size) first for a scene whose content_fills its room
     non-finite guard:    is_finite(); snapshot() every so often; restore(snap) on a blow-up,
                          then blowup_hint() for the message
     determinism tests:   state_hash()
@@ -37,18 +40,17 @@ from __future__ import annotations
 
 import copy
 import hashlib
-import math
 import random
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, Iterable, Mapping
 
 import numpy as np
 
-from app.window.keys import SHELL_KEY_NAMES
-
-
-class ParamError(ValueError):
-    """A parameter value (or name) that the scene does not accept; the message is one line."""
+from app.keys import SHELL_KEY_NAMES
+from app.params import (COMMON_PARAMS, Effect, Param, ParamError,  # noqa: F401 (re-exported)
+                        common, plain_number, shown_text)
+from app.units import PLAIN, Unit
+from app.units import shown as shown_in
 
 
 class SceneError(RuntimeError):
@@ -58,147 +60,13 @@ class SceneError(RuntimeError):
     student's traceback: their file and line)."""
 
 
-TRUE_WORDS = ("on", "true", "yes", "1")
-FALSE_WORDS = ("off", "false", "no", "0")
-
-
-@dataclass(frozen=True)
-class Param:
-    """A tunable value of a scene.
-
-    kind is int, float, bool or str (str needs `choices`). Numbers need `lo` and `hi` (inclusive).
-    `rebuild=True` means a change rebuilds the scene (e.g. grid size); False means the scene reads
-    the new value on its next step (e.g. constraint iterations).
-    """
-
-    name: str
-    default: Any
-    kind: type
-    lo: float | None = None
-    hi: float | None = None
-    choices: tuple[str, ...] | None = None
-    help: str = ""
-    rebuild: bool = True
-
-    def accepted(self) -> str:
-        """Describe the accepted values, for error messages and the help text."""
-        if self.kind is bool:
-            return "on or off"
-        if self.choices is not None:
-            return "one of " + ", ".join(self.choices)
-        word = "an integer" if self.kind is int else "a number"
-        return f"{word} from {_fmt(self.lo)} to {_fmt(self.hi)}"
-
-    def parse(self, value: Any) -> Any:
-        """Return `value` (text from the command line or the panel, or a Python value) converted
-        to this parameter's type; raise ParamError naming the problem and what is accepted."""
-        bad = f"parameter '{self.name}' got {shown_text(value)}"
-        if self.kind is bool:
-            if isinstance(value, (bool, np.bool_)):
-                return bool(value)
-            word = str(value).strip().lower()
-            if word in TRUE_WORDS:
-                return True
-            if word in FALSE_WORDS:
-                return False
-            raise ParamError(f"{bad}: accepted values are {self.accepted()}")
-        if self.choices is not None:
-            word = str(value).strip()
-            if word not in self.choices:
-                raise ParamError(f"{bad}: accepted values are {self.accepted()}")
-            return word
-        if isinstance(value, (bool, np.bool_)):
-            raise ParamError(f"{bad}: not a number; accepted: {self.accepted()}")
-        if isinstance(value, str) and not plain_number(value):
-            word = "an integer" if self.kind is int else "a number"
-            raise ParamError(f"{bad}: not {word} in plain ASCII digits (no '_' separators); "
-                             f"accepted: {self.accepted()}")
-        if self.kind is int:
-            number = _parse_int(value)
-            if number is None:
-                raise ParamError(f"{bad}: not an integer; accepted: {self.accepted()}")
-        else:
-            try:
-                number = float(value)
-            except (TypeError, ValueError):
-                raise ParamError(f"{bad}: not a number; accepted: {self.accepted()}") from None
-            if not math.isfinite(number):
-                raise ParamError(f"{bad}: must be finite; accepted: {self.accepted()}")
-        if (self.lo is not None and number < self.lo) or (self.hi is not None and number > self.hi):
-            raise ParamError(f"{bad}: out of range; accepted: {self.accepted()}")
-        return number
-
-
-def plain_number(text: str) -> bool:
-    """Python's int() and float() also read '1_0' and other scripts' digits ('١٠' is 10); a
-    command line that means one thing everywhere accepts ASCII digits, sign, point and exponent
-    only (and the words inf and nan, which the range check then refuses by name)."""
-    t = text.strip()
-    return t.isascii() and "_" not in t
-
-
-def _parse_int(value: Any) -> int | None:
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        return int(value) if math.isfinite(value) and float(value).is_integer() else None
-    try:
-        return int(str(value).strip())
-    except ValueError:
-        return None
-
-
-def shown_text(value: Any, limit: int = 40) -> str:
-    """repr(value) for a one-line message, cut to about `limit` characters (a 5,000-digit
-    number or a pasted file echoed in full would bury the message)."""
-    text = repr(value)
-    if len(text) <= limit:
-        return text
-    return f"{text[:limit - 10]}... ({len(str(value)):,} characters)"
-
-
-def _fmt(x: float | None) -> str:
-    if x is None:
-        return "any"
-    return str(int(x)) if float(x).is_integer() else f"{x:g}"
-
-
-@dataclass(frozen=True)
-class Effect:
-    """A physical effect a scene can simulate. Off means it costs nothing: the scene's step must
-    not compute it at all (no zero-filled force, no loop skipped by an `if` per element)."""
-
-    name: str
-    default: bool = True
-    help: str = ""
-    rebuild: bool = False
-    amount: str = ""      # the param that sets how strong it is, if any (named in errors)
-
-
-# Every scene has these; a scene may re-declare one (same name) to change its default or range.
-COMMON_PARAMS: tuple[Param, ...] = (
-    Param("hertz", 60, int, 1, 1000, help="physics steps per simulated second (dt = 1/hertz)",
-          rebuild=False),
-    Param("substeps", 1, int, 1, 50, help="sub-steps inside each step (each of dt/substeps)",
-          rebuild=False),
-    Param("seed", 0, int, 0, 2**31 - 1, help="seed of the scene's random numbers"),
-)
-
-
-# The shell's keys, as pygame names them (from the one key table, app/window/keys.py): they
+# The shell's keys, as pygame names them (from the one key table, app/keys.py): they
 # pause, step, reset, help, ... in the window, and never reach a scene (live or replayed).
 SHELL_KEYS = SHELL_KEY_NAMES
 
 # An event is due at step k when t <= k * dt + EVENT_SLACK: times written by hand or rounded in a
 # file still land on the step they name (1 microsecond is far below any dt the lab accepts).
 EVENT_SLACK = 1e-6
-
-
-def common(name: str, **changes: Any) -> Param:
-    """A common param (hertz, substeps, seed) with some fields changed, for a scene that needs,
-    say, another default: `params = (common("substeps", default=30), ...)`."""
-    prm = next(p for p in COMMON_PARAMS if p.name == name)
-    return replace(prm, **changes)
 
 
 @dataclass(frozen=True)
@@ -209,6 +77,17 @@ class Try:
     label: str
     settings: Mapping[str, Any]
     watch: str
+
+    def changes(self) -> str:
+        """What the card sets, as `--set` writes it: 'material=leather, integrator=...'."""
+        def text(v: Any) -> str:
+            return ("on" if v else "off") if isinstance(v, bool) else f"{v}"
+        return ", ".join(f"{k}={text(v)}" for k, v in self.settings.items())
+
+    def describe(self) -> str:
+        """The card's whole promise in one line: what it sets (the rest at the defaults) and
+        what to watch for."""
+        return f"{self.label}: sets {self.changes()} (the rest at the defaults). {self.watch}"
 
 
 @dataclass
@@ -251,9 +130,15 @@ class Scene:
     tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
     color_key: tuple[tuple[tuple[int, int, int], str], ...] = ()   # (colour, what it means): the
                                                                    # HUD shows it as a key
+    color_key_details: bool = False   # True: the key is long (a line per species): it goes on
+                                      # the HUD's second page (F4), not the first
+    content_fills: bool = False   # True: the scene lays itself out in screen pixels in the room
+                                  # it gets (charts, tables): fit_to(size) tells it the room
     snapshot_skip: tuple[str, ...] = ()   # attributes the default snapshot leaves out (caches)
     draws_own_error: bool = False   # True: draw() shows a SceneError it raised (the exercises),
-                                    # so the window adds no banner with the same text over it
+                                    # so the window adds no message with the same text
+    metric_units: Mapping[str, Unit] = {}   # how the HUD and the strip write a metric, e.g.
+                                            # {"energy": Unit("J", 1 / 256**2)} (app/units.py)
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
         self.p, self.on = self.resolve(overrides or {})
@@ -341,6 +226,20 @@ class Scene:
         cls.check_combination(values)
         return values, on
 
+    @classmethod
+    def find_card(cls, label: str) -> Try | None:
+        """The "try this" card called `label` (case and surrounding spaces do not matter)."""
+        want = " ".join(label.split()).casefold()
+        return next((c for c in cls.tries if " ".join(c.label.split()).casefold() == want), None)
+
+    def apply_card(self, card: Try) -> None:
+        """A "try this" card: the scene's defaults plus the card's settings, whatever was set or
+        clicked before, and the world rebuilt from them (a fresh start: what the card says to
+        watch for then holds). Raises ParamError, changing nothing, if the card's settings are
+        refused. The window's click and `--try` both come here."""
+        self.p, self.on = type(self).resolve(card.settings)
+        self.reset()
+
     def settings(self) -> dict[str, Any]:
         """Every param's value and every effect's on/off state, by name."""
         return {**self.p, **{e.name: e.name in self.on for e in self.effects}}
@@ -418,6 +317,12 @@ class Scene:
         metrics strip and the panel off it. Default: the whole world_size."""
         return (0.0, 0.0, float(self.world_size[0]), float(self.world_size[1]))
 
+    def fit_to(self, size: tuple[float, float]) -> None:
+        """The room (w, h) the content gets, in world units (at least world_size in one
+        direction and more in the other), told before content_bounds() to a scene whose
+        `content_fills`: it returns (0, 0, w, h) then, and lays out its panels in the screen
+        rectangle the view maps that to."""
+
     def handle_event(self, event: InputEvent) -> None:
         """React to a mouse or key event (positions already in world coordinates)."""
 
@@ -425,9 +330,20 @@ class Scene:
         """Scene-specific numbers (names are part of the contract in DESIGN.md)."""
         return {}
 
-    def hud_lines(self) -> list[str]:
-        """Extra lines of text for the HUD (a verdict, a hint)."""
+    def hud_lines(self) -> list:
+        """What a class reads every frame, below the shell's status line: a few lines (a
+        verdict, the one number the scene is about). Strings, or app.draw.hud.Line for colour."""
         return []
+
+    def hud_details(self) -> list:
+        """The HUD's second page (F4), after hud_lines(): what a class need not read every
+        frame (the mouse controls, counts, the derivation of a limit)."""
+        return []
+
+    def shown(self, name: str, value: Any) -> str:
+        """Metric `name` with this value as the screen writes it, in the unit `metric_units`
+        declares (the HUD and the metrics strip both use it: one unit per quantity)."""
+        return shown_in(value, self.metric_units.get(name, PLAIN))
 
     def effect_costs(self) -> dict[str, float]:
         """Milliseconds per step spent on each active effect, where the scene measures it."""
@@ -477,6 +393,7 @@ def docstring_help(scene_cls: type[Scene]) -> str:
 
 
 __all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
+           "Unit",
            "COMMON_PARAMS",
            "common",
            "hash_arrays", "docstring_help", "shown_text", "plain_number"]

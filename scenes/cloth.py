@@ -38,9 +38,9 @@ rows 0.0001%; at 20 iterations even rows 2%. More iterations shrink the red, and
 We keep the fixed order and explain it rather than alternate it: it is a real property of the
 method, worth seeing (app/physics/rods.py, "batches").
 
-The HUD's last line splits the physics time per step into its parts (the rod sets' sweeps, the
-Verlet step, each force, tearing), as shares, so it agrees with whatever ms/step the window
-shows for the whole step.
+The HUD's second page (F4) splits the physics time per step into its parts (the rod sets'
+sweeps, the Verlet step, each force, tearing), as shares, so it agrees with whatever ms/step the
+window shows for the whole step.
 """
 
 from __future__ import annotations
@@ -50,7 +50,7 @@ import numpy as np
 from app.physics.cloth import (DRAG, FORCE_NAMES, GRAVITY, ITERATIONS, PIN_CHOICES, TEAR_RATIO,
                                WIND_FIELDS, WIND_STRENGTH, Cloth)
 from app.physics.rods import SET_NAMES, sweep_size
-from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
+from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 
 UNLOCK_KEY = "u"
 # Work per step, in rod updates: iterations x substeps x (rods + BATCH_COST x batches), counting
@@ -116,6 +116,9 @@ class ClothScene(Scene):
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),
     )
+    metric_units = {"max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
+                    "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
+                    "pinned_drift": Unit("px", resolution=0.01)}
     tries = (
         Try("Stretchy: 2 iterations", {"iterations": 2, "substeps": 1},
             "the rods cannot relax in 2 sweeps: the cloth sags, warm colours, the stretch in the "
@@ -278,10 +281,17 @@ class ClothScene(Scene):
         return {k: v / total for k, v in costs.items()} if total > 0 else {}
 
     def hud_lines(self) -> list[str]:
+        """What a class reads every frame: the sweeps a step buys and the stretch they leave."""
+        m = self.metrics()
+        it, sub = self.p["iterations"], self.p["substeps"]
+        torn = f"  |  {m['torn']} rods torn" if m["torn"] else ""
+        return [f"{it} iterations x {sub} substeps = {it * sub} sweeps/step",
+                f"stretch: mean {self.shown('mean_stretch', m['mean_stretch'])}  max "
+                f"{self.shown('max_stretch', m['max_stretch'])}{torn}"]
+
+    def hud_details(self) -> list[str]:
         c, m = self.cloth, self.metrics()
         sets = "+".join(rs.name for rs in c.active_sets)
-        it, sub = self.p["iterations"], self.p["substeps"]
-        torn = f", {m['torn']} torn" if m["torn"] else ""
         shares = sorted(self.time_shares().items(), key=lambda kv: -kv[1])
         # the three largest parts, the others summed (one line on the projector)
         parts = [f"{k} {100 * v:.0f}%" for k, v in shares[:3]]
@@ -290,10 +300,8 @@ class ClothScene(Scene):
         split = ", ".join(parts) or "-"
         return [
             "LMB: move+lock  |  RMB: unlock  |  U: unlock all",
-            f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets}){torn}",
-            f"{it} iterations x {sub} substeps = {it * sub} sweeps/step",
+            f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets})",
             f"physics time: {split}",
-            f"stretch: mean {m['mean_stretch'] * 100:.2f}%  max {m['max_stretch'] * 100:.1f}%",
         ]
 
     # ----- state --------------------------------------------------------------------------------

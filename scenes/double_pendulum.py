@@ -65,12 +65,11 @@ import pygame
 import pymunk
 
 from app.draw import pymunk_draw as D
-from app.draw.hud import Line, text_box
 from app.draw.ring import Ring
 from app.physics.double_pendulum_ode import DoublePendulumODE
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.draw.text import px
-from app.scene import Effect, Param, Try, common
+from app.scene import Effect, Param, Try, Unit, common
 
 PIVOT = (480.0, 350.0)
 BOB_RADIUS = 14.0
@@ -144,8 +143,14 @@ class DoublePendulumScene(PymunkScene):
         Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
         Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
     world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
-    color_key = (((230, 159, 0), "orange ghost: the exact equations (RK4, tiny step)"),
-                 ((86, 180, 233), "blue: pymunk's bobs and the tip's trail"))
+    color_key = (((230, 159, 0), "ghost: the exact equations (RK4)"),
+                 ((86, 180, 233), "pymunk"))
+    metric_units = {"energy_drift": Unit("%", 100.0, resolution=1e-4),
+                    "energy_drift_max": Unit("%", 100.0, resolution=1e-4),
+                    "reference_energy_drift": Unit("%", 100.0, resolution=1e-6),
+                    "reference_divergence": Unit("px", resolution=0.01),
+                    "divergence_time": Unit("s"), "engine_blowup_t": Unit("s"),
+                    "reference_blowup_t": Unit("s"), "pin_error": Unit("px", resolution=1e-3)}
     tries = (
         Try("Released low", {"angle1": 20, "angle2": 20},
             "small swings are not chaotic: the ghost and the bobs stay within a few px"),
@@ -314,12 +319,18 @@ class DoublePendulumScene(PymunkScene):
                          f"adaptive step could not follow)")
             lines.append("ghost hidden, the engine runs on; drag a bob to restart it")
         elif m["divergence_time"] is not None:
-            lines.append(f"parted from the exact solution after {m['divergence_time']:.2f} s "
-                         f"(now {m['reference_divergence']:.0f} px apart)")
+            lines.append(f"parted from the exact solution after {m['divergence_time']:.2f} s, "
+                         f"at the X (now {m['reference_divergence']:.0f} px apart)")
         else:
             lines.append(f"still with the exact solution: {m['reference_divergence']:.2f} px "
                          f"apart after {self.time - self.track['start']:.1f} s")
         return lines
+
+    def hud_details(self) -> list[str]:
+        m = self.metrics()
+        return ["LMB: drag a bob (the ghost restarts from there when you let go)",
+                f"rods stretched by {self.shown('pin_error', m['pin_error'])} (pin error); the "
+                f"ghost's own energy drift {self.shown('reference_energy_drift', m['reference_energy_drift'])}"]
 
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
@@ -343,8 +354,7 @@ class DoublePendulumScene(PymunkScene):
             c, r = view.pt(mark), max(4.0, view.len(9))
             pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] - r), (c[0] + r, c[1] + r), px(3))
             pygame.draw.line(surface, MARK_COLOR, (c[0] - r, c[1] + r), (c[0] + r, c[1] - r), px(3))
-            text_box(surface, [Line(f"parted at {self.track['divergence_time']:.2f} s", MARK_COLOR)],
-                     (int(c[0] + r), int(c[1] - r) - 8), 18)
+            # (the time is in the HUD: a label here lay across the rods swinging past it)
         self.draw_mouse(surface, view)
 
 

@@ -88,8 +88,8 @@ class FallingBallsScene(PymunkScene):
     effects = PYMUNK_EFFECTS + (
         Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
     world_keys = ("space", "balls", "L_shapes", "L_body", "walls", "counts", "_spawn_due")
-    color_key = ((D.BALL, "blue: a ball awake (simulated)"),
-                 (D.dim(D.BALL), "dim blue: a ball asleep (skipped by the solver)"))
+    color_key = ((D.BALL, "awake (simulated)"),
+                 (D.dim(D.BALL), "asleep (skipped by the solver)"))
     tries = (
         Try("Catch 60 balls in a box", {"container": True, "spawn_rate": 20, "max_balls": 60},
             "a pile builds up; resting groups fall asleep one after another (drawn dim, "
@@ -370,14 +370,17 @@ class FallingBallsScene(PymunkScene):
 
     def hud_lines(self) -> list[str]:
         c = self.counts
-        lines = [f"balls: {len(self.balls)} alive, {c['spawned']} spawned, "
-                 f"{c['removed']} removed",
-                 f"asleep: {self.asleep_count()} of {len(self.balls)}"
-                 + ("" if "sleeping" in self.on else " (sleeping off)")]
+        asleep = ("sleeping off" if "sleeping" not in self.on
+                  else f"{self.asleep_count()} asleep")
+        lines = [f"balls: {len(self.balls)} alive ({asleep}), {c['spawned']} spawned, "
+                 f"{c['removed']} removed"]
         if c["tunneled"]:
             lines.append(f"TUNNELED through the L: {c['tunneled']} of {c['spawned']} "
                          f"(step too coarse?)")
         return lines
+
+    def hud_details(self) -> list[str]:
+        return ["LMB: drag a ball, or click empty space to drop one"]
 
 
 def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:

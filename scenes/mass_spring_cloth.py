@@ -38,7 +38,8 @@ compares your step with; undamped it would be 2/omega_max); max_stretch and mean
 (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
 256 px); cg_iterations (the last implicit solve's; null before the first solve, 0 with an
-explicit integrator); pinned_drift (px).
+explicit integrator); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
+in J, the stretches in %, explicit_limit_h in ms (`metric_units`).
 """
 
 from __future__ import annotations
@@ -54,7 +55,7 @@ from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
 from app.physics.mass_spring_stability import predicted_limit, symplectic_limit, top_mode
-from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
+from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 
 UNLOCK_KEY = "u"
 # particles x substeps per step: 32x32 x 39, 64x64 x 9. Measured at 64x64 x 9, implicit Euler:
@@ -72,9 +73,10 @@ class MassSpringClothScene(Scene):
     LMB: grab a particle and drag it (a moving pin); drop it: it stays locked there.
     RMB: unlock a locked particle.   U: unlock all and restore the default pins.
     material sets the sliders (Blender's units); moving a slider makes it 'custom'.
-    The HUD gives the explicit limit h < 2/omega_max and the step you are at: switch the
-    integrator to symplectic_euler at 60 Hz and it blows up (rolled back); implicit_euler goes on.
-    Effects: gravity, air, wind, damping, shear, bending (each on/off, each with its cost).
+    The HUD gives the step you are at against the explicit limit (F4: the limit itself, h <
+    2/omega_max undamped, less with damping): switch the integrator to symplectic_euler at 60 Hz
+    and it blows up (rolled back); implicit_euler goes on.
+    Effects: gravity, air, wind, damping, shear, bending (each on/off, each with its cost: F4).
     """
 
     name = "mass_spring_cloth"
@@ -133,6 +135,13 @@ class MassSpringClothScene(Scene):
                "docstring)", amount="shear_stiffness"),
         Effect("bending", True, "skip-one springs resist folding", amount="bending_stiffness"),
     )
+    # the HUD and the metrics strip write these alike (the JSON keeps px, s, kg and fractions)
+    metric_units = {"energy": Unit("J", 1.0 / JOULE, resolution=1e-3),
+                    "max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
+                    "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
+                    "omega_max": Unit("1/s"),
+                    "explicit_limit_h": Unit("ms", 1e3),
+                    "pinned_drift": Unit("px", resolution=0.01)}
     tries = (
         Try("Leather past its limit", {"material": "leather", "integrator": "symplectic_euler"},
             "symplectic Euler at h = 16.7 ms, far past the predicted limit: it blows up, the "
@@ -144,8 +153,8 @@ class MassSpringClothScene(Scene):
             "damping cuts 2/omega_max's 0.66 ms tenfold): stable, but 20000 steps per second"),
         Try("Implicit Euler at 30 Hz", {"material": "denim", "integrator": "implicit_euler",
                                          "hertz": 30},
-            "a step ~90x symplectic Euler's limit (25x 2/omega_max) and still stable; watch the "
-            "CG iterations"),
+            "h = 33 ms: 70x symplectic Euler's limit at rest, ~90x once the cloth hangs (22-25x "
+            "2/omega_max), and still stable; watch the CG iterations"),
         Try("Silk in the wind", {"material": "silk", "wind": True},
             "the wind pushes on area, not mass: light silk flows; switch to denim or rubber "
             "(7x and 20x heavier) and it hardly moves"),
@@ -343,35 +352,28 @@ class MassSpringClothScene(Scene):
         return {k: self._costs.get(k, 0.0) for k in shown}
 
     def _energy_change(self) -> str:
-        """The energy's change over the last simulated second, as text (J)."""
+        """The energy's change over the last simulated second, in the HUD's unit."""
         if len(self._energy) < 2:
             return ""
         t1, e1 = self._energy[-1]
         t0, e0 = next((t, e) for t, e in self._energy if t >= t1 - 1.0)
         if t1 <= t0:
             return ""
-        return f", {(e1 - e0) / JOULE:+.3g} J in the last {t1 - t0:.1f} s"
+        change = self.shown("energy", e1 - e0)
+        return f" ({'' if change.startswith('-') else '+'}{change} in {t1 - t0:.2g} s)"
 
-    def hud_lines(self) -> list[str]:
-        c, m, p = self.cloth, self.metrics(), self.p
+    def _where(self) -> str:
+        """Where the step is against the explicit limit: 'h = 16.667 ms = 33x symplectic
+        Euler's limit' (the line a class reads)."""
+        c, p = self.cloth, self.p
         h = self.dt / p["substeps"]
         om, limit, name = self.omega_max, self.explicit_limit(), p["integrator"]
         title = INTEGRATORS[name].title
-        lines = [
-            "LMB: move+lock | RMB: unlock | U: unlock all",
-            f"{p['material']}, {title}: {m['particles']} particles, {m['springs']} springs",
-        ]
-        if om > 0:
-            lines.append(f"undamped, explicit methods are stable below h = 2/omega_max = "
-                         f"{2e3 / om:.3f} ms (RK4: 2.83/omega_max = {2.83e3 / om:.3f} ms; forward "
-                         f"Euler, midpoint: no h)"
-                         + (f"; this damping lowers symplectic Euler's to {limit * 1e3:.3f} ms"
-                            if self.mode_damping > 0 else ""))
-        where = f"you are at h = {h * 1e3:.3f} ms"
+        where = f"h = {h * 1e3:.3f} ms"
         pred = self.limit(name)
         if not INTEGRATORS[name].explicit:
             where += ((f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else "")
-                      + f"; CG {c.ps.cg_iterations} iterations, residual {c.ps.cg_residual:.1e}")
+                      + f"; CG {c.ps.cg_iterations} iterations")
         elif om <= 0:                          # every stiffness 0: no top mode, no limit
             where += ": no stiffness, so no step limit"
         elif pred is None:
@@ -383,9 +385,33 @@ class MassSpringClothScene(Scene):
         else:       # one mode's limit: where damping mixes the modes, off by up to ~35 %
             where += (f" = {_times(h / pred)}x {title}'s limit estimated on one mode "
                       f"({pred * 1e3:.3f} ms)")
-        lines.append(where)
-        lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} | stretch: "
-                     f"mean {m['mean_stretch'] * 100:.2f}%, max {m['max_stretch'] * 100:.1f}%")
+        return where
+
+    def hud_lines(self) -> list[str]:
+        """What a class reads every frame: the material and integrator, the step against the
+        explicit limit, the energy and the stretch."""
+        m, p = self.metrics(), self.p
+        title = INTEGRATORS[p["integrator"]].title
+        return [f"{p['material']}, {title}: {self._where()}",
+                f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
+                f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
+
+    def hud_details(self) -> list[str]:
+        """The controls, the cloth's size, the limit's derivation and the CG residual."""
+        c, m = self.cloth, self.metrics()
+        om, limit = self.omega_max, self.explicit_limit()
+        lines = ["LMB: move+lock | RMB: unlock | U: unlock all",
+                 f"{m['particles']} particles, {m['springs']} springs; stretch: mean "
+                 f"{self.shown('mean_stretch', m['mean_stretch'])}"]
+        if om > 0:
+            lines.append(f"undamped, explicit methods are stable below h = 2/omega_max = "
+                         f"{2e3 / om:.3f} ms (RK4: 2.83/omega_max = {2.83e3 / om:.3f} ms; forward "
+                         f"Euler, midpoint: no h)"
+                         + (f"; this damping lowers symplectic Euler's to {limit * 1e3:.3f} ms"
+                            if self.mode_damping > 0 else ""))
+        if not INTEGRATORS[self.p["integrator"]].explicit:
+            lines.append(f"CG: {c.ps.cg_iterations} iterations, residual {c.ps.cg_residual:.1e} "
+                         f"(stops at {self.p['cg_tolerance']:g} x |b|)")
         return lines
 
     # ----- state --------------------------------------------------------------------------------

@@ -77,7 +77,7 @@ import pymunk
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS, PymunkScene
 from app.draw.text import px
-from app.scene import Param, ParamError, Try, common
+from app.scene import Param, ParamError, Try, Unit, common
 
 RADIUS = 24.0            # ball radius, px
 STRING = 280.0           # string length, anchor to ball centre, px
@@ -156,8 +156,10 @@ class NewtonsCradleScene(PymunkScene):
     blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up
     params = PYMUNK_PARAMS + CRADLE_PARAMS
     world_keys = ("space", "bodies", "strings", "track")
-    color_key = ((LIFTED_COLOR, "yellow: the balls lifted and released"),
-                 (BALL_COLOR, "blue: the balls at rest"))
+    color_key = ((LIFTED_COLOR, "lifted and released"), (BALL_COLOR, "at rest"))
+    metric_units = {"middle_max_drift": Unit("px", resolution=0.01),
+                    "energy_ratio": Unit("%", 100.0), "release_speed": Unit("px/s"),
+                    "out_speed_ratio": Unit("%", 100.0)}
     tries = (
         Try("Two balls in", {"lifted": 2}, "two balls swing in, two swing out at the far end"),
         Try("Balls pressed together", {"gap": -0.01},
@@ -354,15 +356,61 @@ class NewtonsCradleScene(PymunkScene):
             left = t["impact_time"] + 0.9 * self.half_period() - self.time
             lines.append(f"{k} in: the far end is swinging out; the verdict in {left:.1f} s")
         else:
-            good = out == k and m["middle_max_drift"] < 2.0 and m["out_speed_ratio"] >= 0.97
-            verdict = "like a real cradle" if good else "NOT like a real cradle"
-            lines.append(f"{k} in, {out} out: {verdict}")
-            lines.append(f"out speed {100 * m['out_speed_ratio']:.1f}% of "
-                         f"{m['release_speed']:.0f} px/s; middle drift "
-                         f"{m['middle_max_drift']:.2f} px")
+            failed = self.failed_criteria(m)
+            lines.append(f"{k} in, {out} out: "
+                         + ("NOT like a real cradle" if failed else "like a real cradle"))
+            if failed:
+                lines.append("why: " + "; ".join(failed))
+                causes = self.suspects()
+                if causes:
+                    lines.append("the setting that breaks it: " + "; ".join(causes))
         ratio = m["energy_ratio"]
-        lines.append("energy left: -" if ratio is None else f"energy left: {100 * ratio:.2f}%")
+        lines.append(f"energy left: {self.shown('energy_ratio', ratio)}")
         return lines
+
+    def hud_details(self) -> list[str]:
+        m = self.metrics()
+        drag = "LMB: drag a ball (letting go re-arms the verdict)"
+        if self.track["impact_time"] is None or self.track["window_open"]:
+            return [drag]
+        return [drag, f"out speed {self.shown('out_speed_ratio', m['out_speed_ratio'])} of "
+                f"{self.shown('release_speed', m['release_speed'])}; middle drift "
+                f"{self.shown('middle_max_drift', m['middle_max_drift'])}"]
+
+    @staticmethod
+    def failed_criteria(m: dict) -> list[str]:
+        """What a real cradle does and this run did not: k balls out, the middle ones still
+        (under 2 px), the far ones leaving at 97 % of the release speed or more."""
+        k, out = int(m["lifted"]), int(m["balls_out"])
+        failed = []
+        if out != k:
+            failed.append(f"{out} out, not {k}")
+        if m["middle_max_drift"] >= 2.0:
+            failed.append(f"the middle moved {m['middle_max_drift']:.1f} px (>= 2)")
+        if m["out_speed_ratio"] < 0.97:
+            failed.append(f"out at {100 * m['out_speed_ratio']:.0f}% of the speed in (< 97%)")
+        return failed
+
+    def suspects(self) -> list[str]:
+        """The settings, changed from the defaults, that break a cradle, and how (the module
+        docstring has the why at length)."""
+        p = self.p
+        base = {prm.name: prm.default for prm in self.all_params()}
+        out = []
+        if p["gap"] <= 0:
+            out.append(f"gap {p['gap']:g}: touching balls, every contact solved at once")
+        elif p["gap"] > 1.0:
+            out.append(f"gap {p['gap']:g} px: each impact carries a ball across the gap")
+        per, per0 = p["hertz"] * p["substeps"], base["hertz"] * base["substeps"]
+        if per < per0:
+            out.append(f"hertz x substeps {per} (default {per0}): balls found overlapping")
+        if p["elasticity"] < base["elasticity"]:
+            out.append(f"elasticity {p['elasticity']:g}: each impact loses energy")
+        if p["damping"] < 1.0:
+            out.append(f"damping {p['damping']:g}: air drag")
+        if p["iterations"] < base["iterations"]:
+            out.append(f"iterations {p['iterations']}: the solver stops short")
+        return out
 
     # ----- drawing --------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:

@@ -37,7 +37,7 @@ from app.physics.bounds import clamp_point
 from app.physics.neighbours import NEIGHBOUR_METHODS, all_pair_tests, expected_grid_tests
 from app.physics.particle_dance import (CORE, EFFECTS, RULES, MouseForce, PairRule,
                                         ParticleDance, rule_matrix)
-from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try
+from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit
 
 DOT_RADIUS = 3.5            # world px
 MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
@@ -226,18 +226,24 @@ class ParticleDanceScene(Scene):
             shown.append("mouse")
         return {k: self._costs.get(k, 0.0) for k in shown}
 
+    def hud_details(self) -> list[str]:
+        """The mouse; the rule matrix follows (color_key, on this page: a line per species)."""
+        return ["LMB: pull   RMB: push   (hold and move)",
+                f"rules: {self.p['rules']}; who likes whom:" if "interaction" in self.on
+                else "interaction off: no rules act"]
+
     def hud_lines(self) -> list[str]:
         self._update_costs()
         d, p = self.dance, self.p
         n = d.ps.n
-        lines = ["LMB: pull   RMB: push   (hold and move)"]
+        lines = []
         if "interaction" not in self.on:
             return lines + [f"{n} particles, interaction off: no pairs to find"]
         method = p["neighbour_method"]
         search = self._costs.get("search", 0.0)
         total = self._costs.get("interaction", 0.0)
         every = "" if method == "all_pairs" else f" (all pairs: {all_pair_tests(n):,})"
-        lines.append(f"{method}: {d.pair_force.tests:,} pair tests/step{every}")
+        lines.append(f"{n} particles, {method}: {d.pair_force.tests:,} pair tests/step{every}")
         lines.append(f"find pairs {search:.2f} + forces {max(total - search, 0.0):.2f} = "
                      f"{total:.2f} ms/step, {d.pair_force.pairs:,} pairs < R")
         return lines
@@ -253,6 +259,9 @@ class ParticleDanceScene(Scene):
         draw_particles(surface, view, d.ps.x, d.species, self.p["species"], DOT_RADIUS)
         if d.mouse is not None:
             draw_mouse(surface, view, d.mouse.point, d.mouse.radius, d.mouse.strength >= 0)
+
+    color_key_details = True     # a line per species: on the HUD's second page (F4)
+    metric_units = {"kinetic_energy": Unit("px^2/s^2")}    # (every mass is 1)
 
     @property
     def color_key(self) -> tuple:

@@ -52,12 +52,14 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
-from app.scene import Param, Try, common
+from app.scene import Param, Try, Unit, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
 PIN_LOOSE = 5.0                  # px: a pin error beyond this is flagged (HUD, pin_let_go)
+TIP_REACH = 210.0                # px below the pin the tipped L reaches (measured: y 644 at
+                                 # slide_max 150, the largest; 547 at the default 37.5)
 
 PIVOT_PARAMS: tuple[Param, ...] = (
     Param("slide_max", 25 * S, float, 0.0, 150.0,
@@ -89,9 +91,11 @@ class PivotingLScene(FallingBallsScene):
         + tuple(p for p in BALL_PARAMS if p.name not in ("container", "spawn_rate")) \
         + PIVOT_PARAMS + (SUBSTEPS_2,)
     world_keys = FallingBallsScene.world_keys + ("pin", "slide", "record")
-    color_key = ((D.SLIDE, "green band: the slide joint's allowed range (0 to slide_max)"),
-                 (D.SLIDE_LIMIT, "red dot: the slide joint sits at a limit"),
-                 (D.DYNAMIC, "yellow: the L (a dynamic body)"))
+    color_key = ((D.SLIDE, "green: the slide joint's range"), (D.SLIDE_LIMIT, "red: at a limit"),
+                 (D.DYNAMIC, "the L"))
+    metric_units = {"angle_deg": Unit("deg"), "slide_distance": Unit("px"),
+                    "slide_seen_min": Unit("px"), "slide_seen_max": Unit("px"),
+                    "pin_error": Unit("px")}
     tries = (
         Try("PivotJoint, not the pin", {"pivot": "pivot"},
             "the L turns the same way: a pivot joint is a pin joint of length 0"),
@@ -102,11 +106,14 @@ class PivotingLScene(FallingBallsScene):
     )
 
     def content_bounds(self) -> tuple[float, float, float, float]:
-        """The L (and where it can tip to), the balls' way in from the top, the slide joint."""
+        """The L and where it can tip to, the balls' way in from the top, the slide joint (the
+        balls' fall to the world's bottom after they roll off is left out: nothing happens
+        there)."""
         left = L_ORIGIN[0] + L_LONG[0][0] - 60
         right = L_ORIGIN[0] + L_LONG[1][0] + 60
-        _, top, _, height = super().content_bounds()
-        return (left, top, right - left, height)
+        _, top, _, _ = super().content_bounds()
+        bottom = L_ORIGIN[1] + TIP_REACH + 20
+        return (left, top, right - left, bottom - top)
 
     def build_space(self, space: pymunk.Space) -> None:
         super().build_space(space)
@@ -178,6 +185,11 @@ class PivotingLScene(FallingBallsScene):
         pin = self.record["pin_error"]
         # a pin that opened by more than a few px is no result to read angles from: say why
         loose = ": PIN LET GO (step too coarse)" if pin > PIN_LOOSE else ""
+        balls = super().hud_lines()
         return [f"L angle {math.degrees(self.L_body.angle):6.1f} deg   slide "
                 f"{self.slide_distance():5.1f} px (range {self.slide.min:g}..{self.slide.max:g})",
-                f"largest pin error {pin:.3f} px{loose}"] + super().hud_lines()
+                f"largest pin error {pin:.3f} px{loose}"] + balls[1:]   # (+ tunneling)
+
+    def hud_details(self) -> list[str]:
+        return ["LMB: drag the L or a ball; click empty space to drop a ball",
+                super().hud_lines()[0]]          # the balls' count

@@ -398,6 +398,6 @@ def test_the_step_is_timed_from_outside_and_the_hud_splits_it_in_shares():
     assert {"verlet", "drag", "gravity", "wind", "structural"} <= set(spent)
     shares = scene.time_shares()
     assert sum(shares.values()) == pytest.approx(1.0)
-    line = next(l for l in scene.hud_lines() if l.startswith("physics time: "))
+    line = next(l for l in scene.hud_details() if l.startswith("physics time: "))
     assert "ms" not in line                          # one ms/step figure: the window's
-    assert "  |  " in scene.hud_lines()[0]           # "LMB: move+lock  |  RMB: unlock  |  ..."
+    assert "  |  " in scene.hud_details()[0]         # "LMB: move+lock  |  RMB: unlock  |  ..."

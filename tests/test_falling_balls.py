@@ -99,7 +99,7 @@ def test_a_settled_pile_falls_asleep_and_the_batch_order_tells_who_sleeps():
         scene.advance()
     m = scene.metrics()
     assert m["balls_asleep"] == 300
-    assert any(line.startswith("asleep: 300 of 300") for line in scene.hud_lines())
+    assert scene.hud_lines()[0].startswith("balls: 300 alive (300 asleep)")
     # the split of the batch order (awake | static | asleep) matches Body.is_sleeping, asleep,
     # while a kick wakes the pile, and a moment later
     for _ in range(2):

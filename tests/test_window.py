@@ -199,7 +199,7 @@ def test_bad_typed_value_is_refused_and_the_old_one_kept(window):
         type_into(panel, "count", bad)
         assert window.scene.p["count"] == 3
         assert panel.entries["count"].get_text() == "3"
-    assert any("count" in text for _, text, _ in window.messages)
+    assert any("count" in text for _, text, *_ in window.messages)
     type_into(panel, "g", "-1")
     assert window.scene.p["g"] == 100.0
     window.render()                        # the error banner draws without trouble
@@ -330,7 +330,7 @@ def test_f12_writes_a_png(window, tmp_path):
     shots = list((tmp_path / "shots").glob("tiny-*.png"))
     assert len(shots) == 1
     assert pygame.image.load(str(shots[0])).get_size() == (1280, 800)
-    assert any(text == f"screenshot saved: {shots[0].resolve()}" for _, text, _ in window.messages)
+    assert any(text == f"screenshot saved: {shots[0].resolve()}" for _, text, *_ in window.messages)
 
 
 def test_help_menu_and_scene_switching(window):
@@ -457,11 +457,11 @@ def test_the_physics_figure_holds_while_paused(window):
     for _ in range(10):
         window.update(1 / 60)
     key(window, pygame.K_SPACE)
-    figure = window.scene_view.status_lines()[1]
+    figure = window.scene_view.status_lines()[0].split(" | ")[2]
     for _ in range(20):
         window.update(1 / 60)
         window.render()
-    assert window.scene_view.status_lines()[1] == figure
+    assert window.scene_view.status_lines()[0].split(" | ")[2] == figure
     assert figure.startswith("physics ") and "ms/step" in figure
 
 
@@ -499,7 +499,8 @@ def test_the_physics_figure_and_its_breakdown_add_up_when_the_cost_jumps(tmp_pat
     w.scene.slow = True
     for _ in range(12):
         w.update(1 / 60)
-        line = w.scene_view.status_lines()[1]          # 'physics T ms/step (work P)'
+        w.scene_view.status_lines()                    # reads the figure and the parts
+        line = w.scene_view.detail_lines()[0]          # 'physics T ms/step (work P)'
         total, part = float(line.split()[1]), float(line.split("work ")[1].rstrip(")"))
         assert part <= total + 0.01, line
     assert part > 0.5                                   # the jump is seen
@@ -662,7 +663,8 @@ def test_a_card_starts_afresh_and_runs_and_shows_its_choice(window):
         press("calm")
         assert not sv.paused and not sv.banner and window.scene.steps == 0
         assert sv.panel.dropdowns["method"].selected_option[0] == "verlet"
-        assert [m[1] for m in window.messages if m[1].startswith("Try: ")] == ["Try: it falls"]
+        assert [m[1] for m in window.messages if m[1].startswith("Try: ")] == [
+            "Try: calm (blowup=off, method=verlet): it falls"]
         window.update(1 / 60)
         assert window.scene.steps > 0
     finally:
@@ -715,18 +717,14 @@ class FailingAndSaysSo(Failing):
     draws_own_error = True
 
 
-@pytest.mark.parametrize("cls, banners", [(Failing, 1), (FailingAndSaysSo, 0)])
-def test_a_scene_error_is_shown_once(tmp_path, monkeypatch, cls, banners):
-    """The window's banner repeats the error only for a scene that does not draw it itself
-    (an exercise's traceback showed twice, the banner over the scene's box)."""
-    shown = []
-    real = hud.banner
-    monkeypatch.setattr(hud, "banner", lambda s, text, *a, **k: shown.append(text) or real(
-        s, text, *a, **k))
+@pytest.mark.parametrize("cls, shown", [(Failing, 1), (FailingAndSaysSo, 0)])
+def test_a_scene_error_is_shown_once(tmp_path, cls, shown):
+    """The HUD repeats the error only for a scene that does not draw it itself (an exercise's
+    traceback showed twice, a banner over the scene's box)."""
     w = open_window(cls, tmp_path, frames=20)
-    shown.clear()
     w.render()
-    assert sum("ZeroDivisionError" in t for t in shown) == banners
+    text = [str(getattr(x, "text", x)) for x in w.scene_view.hud_lines()]
+    assert sum("ZeroDivisionError" in t for t in text) == shown
 
 
 def test_headless_reports_a_scene_error_and_goes_on(capsys):
@@ -759,7 +757,7 @@ def test_headless_warns_about_events_after_the_end(capsys):
 def test_the_key_table_makes_the_keys_the_help_and_the_readme():
     from pathlib import Path
     from app.scene import SHELL_KEYS
-    from app.window import keys
+    from app import keys
     from app.window.scene_view import SceneView
     from app.window.views import HelpView, MenuView
     readme = (Path(__file__).resolve().parent.parent / "README.md").read_text()
@@ -813,32 +811,36 @@ from scenes import SCENES  # noqa: E402
 
 @pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])
 def test_hud_metrics_and_panel_never_cover_the_content(cls, tmp_path):
-    """At both text sizes and at 1024x640, 1280x800 and 1920x1080, the HUD box, the metrics
-    strip and the panel do not intersect the screen rectangle of the scene's content_bounds()
-    (the layout is computed as render() computes it; the panel is what the world area leaves)."""
+    """At both text sizes, at 1024x640, 1280x800 and 1920x1080, on both pages of the HUD (F4),
+    the HUD box, the metrics strip and the panel do not intersect the screen rectangle of the
+    scene's content_bounds() (the layout is computed as render() computes it; the panel is what
+    the world area leaves)."""
     w = open_window(cls, tmp_path, frames=3)
     sv = w.scene_view
     try:
         for scale in (1.0, 1.6):
             TEXT.scale = scale
             for size in ((1024, 640), (1280, 800), (1920, 1080)):
-                w.screen = pygame.Surface(size)
-                sv.hud_room = (0, 0)
-                layout = sv.fit()
-                area = layout.area
-                content = layout.content_rect(w.scene.content_bounds())
-                panel = pygame.Rect(area.right, 0, size[0] - area.right, size[1])
-                drawn = hud.box_size(sv.hud_lines(), layout.hud_text,
-                                     max_width=hud.hud_width(area))
-                where = (scale, size)
-                assert panel.width >= 300 and area.width >= 600, where
-                assert drawn[0] <= layout.hud.width and drawn[1] <= layout.hud.height, where
-                assert area.contains(content), (where, content, area)
-                assert content.width > 0.25 * area.width or \
-                    content.height > 0.25 * area.height, where     # fitted, not a stamp
-                for name, rect in (("HUD", layout.hud), ("metrics", layout.strip),
-                                   ("panel", panel)):
-                    assert not rect.colliderect(content), (where, name, rect, content)
+                for details in (False, True):
+                    w.hud_details = details
+                    w.screen = pygame.Surface(size)
+                    sv.pane.forget()
+                    layout = sv.fit()
+                    area = layout.area
+                    content = layout.content_rect()
+                    panel = pygame.Rect(area.right, 0, size[0] - area.right, size[1])
+                    drawn = hud.box_size(sv.hud_lines(), layout.hud_text,
+                                         max_width=layout.hud_width)
+                    where = (scale, size, details)
+                    assert panel.width >= 300 and area.width >= 600, where
+                    assert drawn[0] <= layout.hud.width and drawn[1] <= layout.hud.height, where
+                    assert area.contains(content), (where, content, area)
+                    assert content.width > 0.25 * area.width or \
+                        content.height > 0.25 * area.height, where     # fitted, not a stamp
+                    assert (layout.strip.height > 0) == (details and w.scene.metrics_box)
+                    for name, rect in (("HUD", layout.hud), ("metrics", layout.strip),
+                                       ("panel", panel)):
+                        assert not rect.colliderect(content), (where, name, rect, content)
     finally:
         TEXT.scale = 1.0
 
@@ -870,6 +872,7 @@ def test_a_scene_error_while_building_goes_back_to_the_menu_with_the_message(tmp
 
 
 def test_f3_hides_hud_and_metrics_and_the_content_grows(window):
+    key(window, pygame.K_F4)                # the second page: a taller HUD and the strip
     window.update(1 / 60)
     window.render()
     before = window.scene_view.layout.content_rect(window.scene.content_bounds())

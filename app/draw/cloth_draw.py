@@ -132,8 +132,10 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
 
 
 def strain_key() -> tuple:
-    """The strain colours as a colour key (colour or None, text): the HUD shows it."""
+    """The strain colours as a colour key (colour or None, text) for the HUD: each chip with the
+    stretch |l/rest - 1| it goes up to ('<0.2%', '<0.5', ... '>20%'), short enough to read as
+    one scale on one line."""
     labels = ([f"<{STRAIN_EDGES[0] * 100:g}%"]
-              + [f"{a * 100:g}-{b * 100:g}%" for a, b in zip(STRAIN_EDGES, STRAIN_EDGES[1:])]
+              + [f"<{b * 100:g}" for b in STRAIN_EDGES[1:]]
               + [f">{STRAIN_EDGES[-1] * 100:g}%"])
-    return ((None, "stretch |l/rest - 1|:"), *zip(STRAIN_COLORS, labels))
+    return ((None, "stretch:"), *zip(STRAIN_COLORS, labels))

@@ -1,4 +1,5 @@
-"""Drawing helpers of the window's overlays: the HUD box, banners, the help overlay and the scene menu.
+"""Drawing helpers of the window's overlays: the HUD box, the metrics strip, banners and the help
+overlay (the scene menu: app/draw/menu.py).
 
 Everything here draws plain text on dark boxes, readable from the back of a classroom; the layout
 (app/draw/layout.py) keeps the HUD and the metrics strip off the scene's content. Sizes are at text
@@ -9,12 +10,12 @@ what to show.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import pygame
 
 from app.draw.text import TEXT, font
+from app.units import fmt_number  # noqa: F401  (the HUD's number format; importers use it)
 
 HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 px lines
 HELP_SIZE = 28
@@ -26,28 +27,6 @@ DIM_COLOR = (170, 178, 190)
 WARN_COLOR = (255, 200, 90)
 ERROR_COLOR = (255, 120, 110)
 ACCENT_COLOR = (120, 190, 255)
-
-
-def fmt_number(x) -> str:
-    """A compact form of a metric: integers as they are, floats with 4 significant digits, "-"
-    for a value that does not exist yet (None; null in JSON)."""
-    if x is None:
-        return "-"
-    if isinstance(x, bool):
-        return "yes" if x else "no"
-    if isinstance(x, int):
-        return str(x)
-    try:
-        v = float(x)
-    except (TypeError, ValueError):
-        return str(x)
-    if not math.isfinite(v):
-        return str(v)
-    if v.is_integer() and abs(v) < 1e9:
-        return str(int(v))
-    if abs(v) >= 1e5 or abs(v) < 1e-3:
-        return f"{v:.3g}"
-    return f"{v:.4g}"
 
 
 def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
@@ -85,11 +64,13 @@ def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") 
 @dataclass
 class Line:
     """One line of overlay text and its colour; `swatch`: a colour square drawn before it (a
-    colour key: what a colour on screen means)."""
+    colour key: what a colour on screen means); `hint`: dim text after it, on the line's last
+    row if it fits there, else left out (never a row of its own)."""
     text: str
     color: tuple[int, int, int] = TEXT_COLOR
     swatch: tuple[int, int, int] | None = None
     keys: tuple = ()      # a colour key packed into rows: (colour or None, text) items
+    hint: str = ""
 
 
 def _as_line(item) -> Line:
@@ -98,13 +79,14 @@ def _as_line(item) -> Line:
 
 def _key_width(f: pygame.font.Font, key: tuple) -> int:
     color, text = key
-    return (_swatch_w(f) if color is not None else 0) + f.size(text + "   ")[0]
+    return (_swatch_w(f) if color is not None else 0) + f.size(text + "  ")[0]
 
 
 def _line_width(f: pygame.font.Font, it: Line) -> int:
     if it.keys:
         return sum(_key_width(f, k) for k in it.keys)
-    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0)
+    hint = f.size("   " + it.hint)[0] if it.hint else 0
+    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0) + hint
 
 
 def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int) -> list[Line]:
@@ -113,6 +95,11 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
         return items
     wrapped: list[Line] = []
     for item in items:
+        if item.keys and max(_key_width(f, k) for k in item.keys) > max_width - 2 * pad:
+            # a key wider than the box: one wrapped line per key instead
+            items_ = [Line(text, item.color, swatch=color) for color, text in item.keys]
+            wrapped += _box_lines(items_, f, max_width, pad)
+            continue
         if item.keys:             # as many key items per row as fit
             rows: list[list] = [[]]
             for k in item.keys:
@@ -122,8 +109,13 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
             wrapped += [Line("", item.color, keys=tuple(r)) for r in rows]
             continue
         room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
-        for i, t in enumerate(wrap(item.text, f, room)):
-            wrapped.append(Line(t, item.color, item.swatch if i == 0 else None))
+        rows = wrap(item.text, f, room)
+        hint = item.hint
+        if hint and f.size(rows[-1] + "   " + hint)[0] > room:
+            hint = ""                       # no row of its own for a hint (the help has it)
+        for i, t in enumerate(rows):
+            wrapped.append(Line(t, item.color, item.swatch if i == 0 else None,
+                                hint=hint if i == len(rows) - 1 else ""))
     return wrapped
 
 
@@ -165,13 +157,16 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
                 pygame.draw.rect(surface, color, (x, y + (f.get_height() - side) // 2, side, side))
                 x += _swatch_w(f)
             surface.blit(f.render(text, True, it.color), (x, y))
-            x += f.size(text + "   ")[0]
+            x += f.size(text + "  ")[0]
         if it.swatch:
             side = f.get_height() * 3 // 4
             pygame.draw.rect(surface, it.swatch, (x, y + (f.get_height() - side) // 2, side, side))
             x += _swatch_w(f)
         surface.blit(f.render(it.text, True, (0, 0, 0)), (x + 1, y + 1))
         surface.blit(f.render(it.text, True, it.color), (x, y))
+        if it.hint:
+            x += f.size(it.text + "   ")[0] if it.text else 0
+            surface.blit(f.render(it.hint, True, DIM_COLOR), (x, y))
         y += f.get_linesize()
     return pygame.Rect(pos, (w, h))
 
@@ -208,24 +203,49 @@ def dt_text(scene) -> str:
     return f"dt = 1/{scene.p['hertz']} s" + (f" in {sub} substeps" if sub > 1 else "")
 
 
-def scene_lines(scene, status: list, notes: list = ()) -> list:
-    """The HUD box of a scene: its title, the shell's `status` lines (fps, time, pause...), the
-    scene's own hud_lines(), its colour key, and passing `notes`. The window and headless
-    screenshots draw the same box."""
-    lines: list = [Line(scene.title or scene.name, ACCENT_COLOR), *status]
+DETAILS_HINT = ("F4: more", "F4: less")
+
+
+def scene_lines(scene, status: list, notes: list = (), details: bool = False,
+                more: list = ()) -> list:
+    """The HUD box of a scene: its title, the shell's `status` lines (time, cost, pause...),
+    the scene's hud_lines() (what a class reads every frame), its colour key, the passing
+    `notes` (messages), and on the second page (`details`) the scene's hud_details() and the
+    shell's `more` lines after them. The window, headless screenshots and any pane draw the
+    same box."""
+    lines: list = [Line(scene.title or scene.name, ACCENT_COLOR,
+                        hint=DETAILS_HINT[1 if details else 0]), *status]
     lines += [x if isinstance(x, Line) else str(x) for x in scene.hud_lines()]
     key = tuple(getattr(scene, "color_key", ()))
-    if len(key) > 3:          # a scale (the cloth's strain): packed into rows
+    late = getattr(scene, "color_key_details", False)
+    if key and not late:      # packed into as many rows as it takes
         lines.append(Line("", DIM_COLOR, keys=key))
-    else:
-        lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
-    return lines + list(notes)
+    lines += list(notes)
+    if details:
+        lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR)
+                  for x in scene.hud_details()]
+        if late:              # a long key: a line per colour
+            lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
+        lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR) for x in more]
+    return lines
+
+
+def ms_text(ms: float | None) -> str:
+    """Milliseconds to three figures at most: '0.35', '4.21', '29.6', '312'."""
+    if ms is None:
+        return fmt_number(None)
+    return f"{ms:.0f}" if ms >= 100 else f"{ms:.1f}" if ms >= 10 else f"{ms:.2f}"
+
+
+def physics_text(step_ms: float | None) -> str:
+    """'physics 1.59 ms/step': the one physics figure of the HUD."""
+    return f"physics {ms_text(step_ms)} ms/step"
 
 
 def physics_line(step_ms: float | None, costs: dict[str, float]) -> str:
     """'physics 1.59 ms/step (structural 0.80, shear 0.31, ...)': the one physics figure of the
-    HUD (the runner's median of scene.advance()) with the scene's breakdown by effect."""
-    text = f"physics {fmt_number(None) if step_ms is None else f'{step_ms:.2f}'} ms/step"
+    HUD with the scene's breakdown by effect (the HUD's second page)."""
+    text = physics_text(step_ms)
     if costs:
         text += " (" + ", ".join(f"{k} {v:.2f}" for k, v in costs.items()) + ")"
     return text
@@ -236,10 +256,10 @@ def hud_width(area: pygame.Rect) -> int:
     return max(1, min(area.width - 16, int(HUD_WIDTH * TEXT.scale)))
 
 
-def metric_lines(metrics: dict, width: int, size: int = HUD_SIZE) -> list[str]:
-    """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels; what does not fit
-    is counted as "+N more (--json)"."""
-    items = [f"{k} {fmt_number(v)}" for k, v in metrics.items()]
+def metric_lines(scene, metrics: dict, width: int, size: int = HUD_SIZE) -> list[str]:
+    """`metrics` packed into at most MAX_METRIC_LINES lines of `width` pixels, each value in the
+    unit the HUD uses for it (scene.shown); what does not fit is counted as "+N more (--json)"."""
+    items = [f"{k} {scene.shown(k, v)}" for k, v in metrics.items()]
     f = font(size)
     lines = pack(items, f, width - 16)
     if len(lines) > MAX_METRIC_LINES:
@@ -260,7 +280,8 @@ def strip_height(scene, area: pygame.Rect, size: int = HUD_SIZE) -> int:
 def draw_metrics(surface: pygame.Surface, area: pygame.Rect, scene,
                  size: int = HUD_SIZE) -> pygame.Rect:
     """The metrics strip along the bottom of `area` (text of `size`); return its rectangle."""
-    lines = metric_lines(scene.metrics(), area.width - 16, size) if scene.metrics_box else []
+    lines = metric_lines(scene, scene.metrics(), area.width - 16, size) if scene.metrics_box \
+        else []
     if not lines:
         return pygame.Rect(area.left, area.bottom, 0, 0)
     return text_box(surface, lines, (area.left + 8, area.bottom - 6), size,
@@ -342,151 +363,3 @@ class HelpPage:
 
 
 HELP_BACKGROUND = (12, 14, 19)      # opaque: the room reads the text, not the scene behind it
-
-
-@dataclass
-class MenuEntry:
-    """One scene in the menu: its index in the registry, its number on screen (display order)
-    and the rectangle that opens it."""
-    index: int
-    rect: pygame.Rect
-    number: int = 0
-
-
-def menu_order(scenes: list) -> list[int]:
-    """Registry indices in the order the menu shows them: grouped by category, categories in
-    the order they first appear, scenes in registry order within one. The menu numbers the
-    scenes 1, 2, 3 ... in this order, and the digit keys follow it."""
-    categories: list[str] = []
-    for cls in scenes:
-        cat = getattr(cls, "category", "") or "Other"
-        if cat not in categories:
-            categories.append(cat)
-    return [i for cat in categories for i, cls in enumerate(scenes)
-            if (getattr(cls, "category", "") or "Other") == cat]
-
-
-def _first_paragraph(cls) -> str:
-    return " ".join((cls.__doc__ or "").strip().split("\n\n")[0].split())
-
-
-def _menu_blocks(scenes: list, order: list[int], f, f_small, text_w: int,
-                 described: bool) -> list[tuple[tuple, int]]:
-    """The menu's blocks in display order, each (what, height): ("category", name) headers and
-    ("scene", number, registry index, title lines, description lines) rows."""
-    blocks: list[tuple[tuple, int]] = []
-    category = None
-    for number, i in enumerate(order, start=1):
-        cat = getattr(scenes[i], "category", "") or "Other"
-        if cat != category:
-            category = cat
-            blocks.append((("category", cat), f_small.get_linesize() + 12))
-        first = _first_paragraph(scenes[i]) if described else ""
-        sub = wrap(first, f_small, text_w) if first else []
-        titles = wrap(scenes[i].title or scenes[i].name, f, text_w)
-        blocks.append((("scene", number, i, titles, sub),
-                       len(titles) * f.get_linesize() + len(sub) * f_small.get_linesize() + 14))
-    return blocks
-
-
-def _flow(blocks: list[tuple[tuple, int]], columns: int, top: int,
-          bottom: int) -> list[tuple[int, int]] | None:
-    """(column, y) of every block flowed into `columns` columns between `top` and `bottom`
-    (a category header never ends a column), or None if they do not fit."""
-    placed: list[tuple[int, int]] = []
-    col, y = 0, top
-    for k, (kind, h) in enumerate(blocks):
-        need = h + (blocks[k + 1][1] if kind[0] == "category" and k + 1 < len(blocks) else 0)
-        if y + need > bottom and y > top:
-            col, y = col + 1, top
-        if col >= columns or y + need > bottom:
-            return None
-        placed.append((col, y))
-        y += h
-    return placed
-
-
-MENU_HINT = "click a scene or press its number;  PageUp/PageDown, arrows + Enter;  Esc quits"
-
-
-def _menu_layout(surface: pygame.Surface, scenes: list, f_title, f, f_small) -> tuple:
-    """Where the menu's blocks go with these fonts: (x, column width, number width, blocks,
-    their places, the top of the list, whether it all fits)."""
-    W, H = surface.get_size()
-    x, y = 40, 28
-    y += f_title.get_linesize() * len(wrap("Physics for animation and games: choose a scene",
-                                           f_title, W - 2 * x)) + 4
-    y += f_small.get_linesize() * len(wrap(MENU_HINT, f_small, W - 2 * x)) + 14
-    order = menu_order(scenes)
-    num_w = f.size("9")[0] + 24
-    top, bottom = y, H - 10
-    # the first of these that fits: one column with descriptions, two columns with them, then
-    # the same without descriptions (never a description cut short)
-    for columns, described in ((1, True), (2, True), (1, False), (2, False), (3, False)):
-        col_w = (W - 2 * x - 40 * (columns - 1)) // columns
-        blocks = _menu_blocks(scenes, order, f, f_small, col_w - num_w, described)
-        placed = _flow(blocks, columns, top, bottom)
-        if placed is not None:
-            return x, col_w, num_w, blocks, placed, y, True
-    col_w = W - 2 * x                       # nothing fits: one column, what fits is shown
-    blocks = _menu_blocks(scenes, order, f, f_small, col_w - num_w, False)
-    placed = [(0, top + sum(h for _, h in blocks[:k])) for k in range(len(blocks))]
-    return x, col_w, num_w, blocks, placed, y, False
-
-
-def draw_menu(surface: pygame.Surface, scenes: list, selected: int, message: str = "",
-              message_color=ERROR_COLOR) -> list[MenuEntry]:
-    """Draw the scene menu (grouped by category, numbered in display order, descriptions
-    wrapped, in as many columns as it takes) and return the clickable entries. When the
-    descriptions do not fit, they are left out (each scene's help overlay has them)."""
-    W, H = surface.get_size()
-    # the first text size at which the menu fits (large text in a small window shrinks it
-    # towards the normal size before anything is cut)
-    for k in (1.0, 0.85, 0.72, 0.62):
-        fonts = font(int(TITLE_SIZE * k)), font(int(MENU_SIZE * k)), font(int(HUD_SIZE * k))
-        laid = _menu_layout(surface, scenes, *fonts)
-        if laid[-1]:
-            break
-    f_title, f, f_small = fonts
-    x, col_w, num_w, blocks, placed, y, _ = laid
-    surface.fill((18, 20, 26))
-    y0 = 28
-    for t in wrap("Physics for animation and games: choose a scene", f_title, W - 2 * x):
-        surface.blit(f_title.render(t, True, ACCENT_COLOR), (x, y0))
-        y0 += f_title.get_linesize()
-    y0 += 4
-    for t in wrap(MENU_HINT, f_small, W - 2 * x):
-        surface.blit(f_small.render(t, True, DIM_COLOR), (x, y0))
-        y0 += f_small.get_linesize()
-    entries: list[MenuEntry] = []
-    if not scenes:
-        surface.blit(f.render("No scenes registered yet (scenes/__init__.py SCENES is empty).",
-                              True, WARN_COLOR), (x, y))
-    for (kind, h), (col, yy) in zip(blocks, placed):
-        left = x + col * (col_w + 40)
-        if kind[0] == "category":
-            surface.blit(f_small.render(kind[1].upper(), True, DIM_COLOR), (left, yy + 6))
-            continue
-        _, number, i, titles, sub = kind
-        cls = scenes[i]
-        rect = pygame.Rect(left - 10, yy - 4, col_w + 20, h - 6)
-        if i == selected:
-            pygame.draw.rect(surface, (40, 60, 90), rect, border_radius=6)
-        if number <= 9:
-            surface.blit(f.render(str(number), True, WARN_COLOR), (left, yy))
-        ty = yy
-        for t in titles:
-            surface.blit(f.render(t, True, TEXT_COLOR), (left + num_w, ty))
-            ty += f.get_linesize()
-        name_x = left + num_w + f.size(titles[-1])[0] + 20
-        tag = f_small.render(f"--scene {cls.name}", True, DIM_COLOR)
-        if name_x + tag.get_width() <= left + col_w:
-            surface.blit(tag, (name_x, ty - f.get_linesize()
-                               + (f.get_linesize() - f_small.get_linesize()) // 2))
-        for t in sub:
-            surface.blit(f_small.render(t, True, DIM_COLOR), (left + num_w, ty))
-            ty += f_small.get_linesize()
-        entries.append(MenuEntry(i, rect, number))
-    if message:
-        banner(surface, message, surface.get_rect(), color=message_color, size=HUD_SIZE)
-    return entries

@@ -1,11 +1,15 @@
-"""Where things go in the world area: the HUD box (top left), the metrics strip (bottom) and the
-scene's content, fitted into what they leave free, so that HUD and metrics never cover what the
-scene draws (its `content_bounds()`), at any text size and window size.
+"""Where things go in a rectangle of the window: the HUD box (top left), the metrics strip (bottom,
+on the HUD's second page) and the scene's content, fitted into what they leave free, so that HUD
+and strip never cover what the scene draws (its `content_bounds()`), at any text size, window
+size or pane size.
 
-The HUD's room is reserved, not measured per frame: it only grows (a new line, a message) and is
-forgotten when the layout is redone (another scene, F2, F3, Tab, a resize), so the picture does
-not jump with every message. The content goes below the HUD or to its right, whichever shows it
-larger; small scenes (a cradle, a pendulum) are zoomed to fill the space.
+A `Pane` is one scene drawn with its HUD into a given rectangle: the window's world area today,
+one of several side by side tomorrow (compare mode). It keeps the HUD's reserved room between
+frames: the room only grows (a line appears) and is forgotten when the layout is redone (another
+scene, F2, F3, F4, Tab, a resize, a message that comes or goes), so the picture does not jump
+with every frame's text. When the room is redone the HUD's width is chosen too: a wide, short box
+above content that is wider than the space (it takes room the content could not use anyway), a
+narrow, tall one beside content that is taller; whichever shows the content larger.
 """
 
 from __future__ import annotations
@@ -19,22 +23,32 @@ from app.draw.view import View
 MARGIN = 8          # pixels between the content and the HUD, strip and edges
 HUD_SHARE = 0.5     # the HUD may take this much of the height before its text shrinks (never
                     # below the normal size)
+HUD_WIDTHS = (1.0, 0.75, 0.55)   # the HUD box's widths tried, as fractions of the widest
 
 
 @dataclass
 class Layout:
-    area: pygame.Rect     # the world area (the window left of the panel)
+    area: pygame.Rect     # the rectangle the pane draws in (the window's world area)
     hud: pygame.Rect      # reserved for the HUD box (empty when hidden)
     strip: pygame.Rect    # reserved for the metrics strip (empty when none or hidden)
     free: pygame.Rect     # where the content is fitted
     view: View
+    bounds: tuple[float, float, float, float] = (0.0, 0.0, 1.0, 1.0)   # the content, world
     hud_text: int = 28    # the HUD's text size (as font() takes it)
+    hud_width: int = 0    # the width the HUD's lines are wrapped to
+    filled: bool = False  # the content fills the free room 1:1 (Scene.content_fills)
 
-    def content_rect(self, bounds: tuple[float, float, float, float]) -> pygame.Rect:
-        """The screen rectangle of a world rectangle (x, y, w, h)."""
-        (x0, y0), (x1, y1) = self.view.pt(bounds[:2]), self.view.pt((bounds[0] + bounds[2],
-                                                                     bounds[1] + bounds[3]))
+    def content_rect(self, bounds: tuple[float, float, float, float] | None = None
+                     ) -> pygame.Rect:
+        """The screen rectangle of a world rectangle (x, y, w, h); default: the content."""
+        b = self.bounds if bounds is None else bounds
+        (x0, y0), (x1, y1) = self.view.pt(b[:2]), self.view.pt((b[0] + b[2], b[1] + b[3]))
         return pygame.Rect(x0, y0, x1 - x0, y1 - y0)
+
+    def content_share(self, window: tuple[int, int]) -> float:
+        """The share of a window of this size that the scene's content gets on screen."""
+        r = self.content_rect().clip(self.area)
+        return r.width * r.height / float(window[0] * window[1])
 
 
 def fit(area: pygame.Rect, bounds: tuple[float, float, float, float],
@@ -55,7 +69,31 @@ def fit(area: pygame.Rect, bounds: tuple[float, float, float, float],
     else:
         free = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN,
                            bottom - area.top - MARGIN)
-    return Layout(area, hud, strip, free, View.fit_bounds(bounds, free))
+    return Layout(area, hud, strip, free, View.fit_bounds(bounds, free), bounds)
+
+
+def fill(area: pygame.Rect, scene, hud_size: tuple[int, int], strip_h: int) -> Layout:
+    """As fit, for a scene whose content fills its room (Scene.content_fills): the larger of the
+    rooms below and beside the HUD is all the content's (it lays itself out in pixels). The
+    zoom is the one that shows the whole world_size in the room, so world coordinates (the
+    mouse, recordings) keep their meaning; the content is the room, in world units."""
+    hw, hh = hud_size
+    layout = fit(area, (0.0, 0.0, 1.0, 1.0), hud_size, strip_h)
+    if hw and hh:
+        bottom = (layout.strip.top if strip_h else area.bottom) - MARGIN
+        below = pygame.Rect(area.left + MARGIN, layout.hud.bottom + MARGIN,
+                            area.width - 2 * MARGIN, bottom - layout.hud.bottom - MARGIN)
+        right = pygame.Rect(layout.hud.right + MARGIN, area.top + MARGIN,
+                            area.right - layout.hud.right - 2 * MARGIN, bottom - area.top - MARGIN)
+        layout.free = max((below, right), key=lambda r: max(r.width, 0) * max(r.height, 0))
+    free = layout.free
+    zoom = max(min(free.width / scene.world_size[0], free.height / scene.world_size[1]), 1e-3)
+    scene.fit_to((max(free.width, 1) / zoom, max(free.height, 1) / zoom))
+    layout.bounds = scene.content_bounds()
+    layout.view = View(zoom, (free.left - layout.bounds[0] * zoom,
+                              free.top - layout.bounds[1] * zoom))
+    layout.filled = True
+    return layout
 
 
 def _scale(bounds, rect: pygame.Rect) -> float:
@@ -64,39 +102,100 @@ def _scale(bounds, rect: pygame.Rect) -> float:
     return min(rect.width / bounds[2], rect.height / bounds[3])
 
 
-def scene_layout(area: pygame.Rect, scene, lines: list | None,
-                 room: tuple[int, int] = (0, 0)) -> Layout:
-    """The layout of `scene` in `area` with these HUD lines (None: HUD and metrics hidden); the
-    HUD's room is at least `room` (what was reserved before)."""
+def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, int] = (0, 0),
+                 strip: bool = True, hud_width: int | None = None) -> Layout:
+    """The layout of `scene` in `area` with these HUD lines (None: HUD and strip hidden; `strip`
+    False: no metrics strip); the HUD's room is at least `room` (what was reserved before), its
+    lines wrapped to `hud_width` if given, else to whichever of HUD_WIDTHS shows the content
+    largest (the widest on a tie)."""
     from app.draw import hud
     from app.draw.text import TEXT
+    place = (lambda a, b, hud_size, strip_h: fill(a, scene, hud_size, strip_h)) \
+        if getattr(scene, "content_fills", False) else fit
     if lines is None:
-        return fit(area, scene.content_bounds(), (0, 0), 0)
-    size = hud.HUD_SIZE     # large text in a small window: the HUD gives back some of its growth
-    w, h = hud.box_size(lines, size, max_width=hud.hud_width(area))
-    while h > HUD_SHARE * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
-        size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
-        w, h = hud.box_size(lines, int(round(size)), max_width=hud.hud_width(area))
-    layout = fit(area, scene.content_bounds(), (max(room[0], w), max(room[1], h)),
-                 hud.strip_height(scene, area, int(round(size))))
-    layout.hud_text = int(round(size))
-    return layout
+        return place(area, scene.content_bounds(), (0, 0), 0)
+    bounds = scene.content_bounds()
+    widest = hud.hud_width(area)
+    widths = [hud_width] if hud_width else \
+        sorted({max(1, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
+    best: Layout | None = None
+    for width in widths:
+        size = hud.HUD_SIZE  # large text in a small window: the HUD gives back some of its growth
+        w, h = hud.box_size(lines, size, max_width=width)
+        while h > HUD_SHARE * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+            size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
+            w, h = hud.box_size(lines, int(round(size)), max_width=width)
+        strip_h = hud.strip_height(scene, area, int(round(size))) if strip else 0
+        layout = place(area, bounds, (max(room[0], w), max(room[1], h)), strip_h)
+        layout.hud_text, layout.hud_width = int(round(size)), width
+        if best is None or _better(layout, best):
+            best = layout
+    if best.filled:                     # the room chosen is the one the scene lays out in
+        scene.fit_to((best.bounds[2], best.bounds[3]))
+    return best
 
 
-def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | None) -> int:
-    """Draw the scene's world (clipped to the world area), then its HUD box and metrics strip
-    unless `lines` is None; return the y above the strip (for banners stacked on it)."""
+def _better(a: Layout, b: Layout) -> bool:
+    """Is layout `a` better than `b`: its HUD text not shrunk where b's is, else its content
+    more than 1 % larger (on a tie the first tried, the widest HUD, stays)."""
+    if a.hud_text != b.hud_text:
+        return a.hud_text > b.hud_text
+    if a.filled:                        # rooms the content fills: the larger room on screen
+        return a.free.width * a.free.height > 1.01 * b.free.width * b.free.height
+    return _scale(a.bounds, a.free) > 1.01 * _scale(b.bounds, b.free)
+
+
+class Pane:
+    """One scene drawn with its HUD (and, on the second page, its metrics strip) into a
+    rectangle of a surface. `forget()` redoes the HUD's room on the next frame."""
+
+    def __init__(self, scene):
+        self.scene = scene
+        self.room = (0, 0)                 # the HUD box reserved so far
+        self.hud_width: int | None = None  # chosen when the room is redone
+        self.layout: Layout | None = None
+
+    def forget(self) -> None:
+        """Redo the HUD's room and width on the next fit (a new size, text size, page, ...)."""
+        self.room, self.hud_width = (0, 0), None
+
+    def fit(self, rect: pygame.Rect, lines: list | None, strip: bool = False) -> Layout:
+        """The layout in `rect` with these HUD lines (None: HUD and strip hidden). Lines that
+        no longer fit the room reserved redo it (its width chosen again): the picture moves
+        then, and only then."""
+        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width)
+        if lines is not None and self.hud_width is not None and \
+                layout.hud.size != tuple(self.room):
+            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None)
+        if lines is not None:
+            self.room, self.hud_width = layout.hud.size, layout.hud_width
+        self.layout = layout
+        return layout
+
+    def draw(self, surface: pygame.Surface, rect: pygame.Rect, lines: list | None,
+             strip: bool = False) -> Layout:
+        """Fit, then draw the scene, its HUD box and (with `strip`) its metrics strip in
+        `rect`; return the layout used."""
+        layout = self.fit(rect, lines, strip)
+        draw_scene(surface, layout, self.scene, lines, strip)
+        return layout
+
+
+def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | None,
+               strip: bool = False) -> None:
+    """Draw the scene's world (clipped to the layout's area), then its HUD box and, with
+    `strip`, its metrics strip, unless `lines` is None."""
     from app.draw import hud
     area = layout.area
     surface.fill(scene.background, area)
-    surface.set_clip(area)                 # nothing of the world under the panel
+    old_clip = surface.get_clip()
+    surface.set_clip(area.clip(old_clip))          # nothing of the world outside its rectangle
     try:
         scene.draw(surface, layout.view)
     finally:
-        surface.set_clip(None)
+        surface.set_clip(old_clip)
     if lines is None:
-        return area.bottom - 6
-    hud.text_box(surface, lines, layout.hud.topleft, layout.hud_text,
-                 max_width=hud.hud_width(area))
-    strip = hud.draw_metrics(surface, area, scene, layout.hud_text)
-    return strip.top if strip.height else area.bottom - 6
+        return
+    hud.text_box(surface, lines, layout.hud.topleft, layout.hud_text, max_width=layout.hud_width)
+    if strip:
+        hud.draw_metrics(surface, area, scene, layout.hud_text)

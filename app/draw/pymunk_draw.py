@@ -36,7 +36,8 @@ BALL: Color = (86, 180, 233)
 STATIC: Color = (200, 200, 210)
 DYNAMIC: Color = (240, 200, 70)
 PIN: Color = (235, 235, 235)
-SLIDE: Color = (120, 200, 120)
+SLIDE: Color = (120, 220, 120)
+OUTLINE: Color = (10, 12, 16)     # around what must stand out among bodies (the slide joint)
 SLIDE_LIMIT: Color = (230, 97, 76)
 MOUSE: Color = (255, 120, 200)
 TICK: Color = (20, 22, 28)
@@ -204,18 +205,26 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
                      color: Color = SLIDE, limit_color: Color = SLIDE_LIMIT) -> None:
     """The slide joint: a thin line between the anchors, and from anchor b a thick band along
     that line from distance `min` to distance `max`: the range the joint allows. The anchor dot
-    on body a turns red when the joint sits at a limit."""
+    on body a turns red when the joint sits at a limit. Everything has a dark outline: the
+    joint sits among the balls that land on the L (a plain green line between blue balls was
+    lost among them)."""
     a, b = anchors(joint)
     d = (a - b).length
     u = (a - b) / d if d > 1e-9 else pymunk.Vec2d(1, 0)
     lo, hi = b + u * joint.min, b + u * joint.max
+    band = max(px(5), int(view.len(7)))
+    n = pymunk.Vec2d(-u.y, u.x) * 9            # the range's end marks, across the line
+    edge = px(2)
+    rod(surface, OUTLINE, view.pt(b), view.pt(a), px(2) + 2 * edge)
+    pygame.draw.line(surface, OUTLINE, view.pt(lo), view.pt(hi), band + 2 * edge)
+    for end in (lo, hi):
+        pygame.draw.line(surface, OUTLINE, view.pt(end - n), view.pt(end + n), px(3) + 2 * edge)
     rod(surface, color, view.pt(b), view.pt(a), px(2))
-    pygame.draw.line(surface, dim(color, 0.7), view.pt(lo), view.pt(hi),
-                     max(px(4), int(view.len(6))))
-    n = pymunk.Vec2d(-u.y, u.x) * 8            # the range's end marks, across the line
+    pygame.draw.line(surface, color, view.pt(lo), view.pt(hi), band)
     for end in (lo, hi):
         pygame.draw.line(surface, color, view.pt(end - n), view.pt(end + n), px(3))
     at_limit = d <= joint.min + 0.5 or d >= joint.max - 0.5
+    _dot(surface, view, a, OUTLINE, 8)
     _dot(surface, view, a, limit_color if at_limit else color, 6)
     _dot(surface, view, b, color, 4)
 

@@ -1,15 +1,16 @@
 """The interactive window, as a package (see app/window/window.py for the loop and the layout).
 
-    window.py     the pygame loop, the layout of world, HUD, metrics and panel, event routing
-    views.py      what the window shows, one view at a time (switched like arcade's show_view):
-                  the menu and the help overlay
-    scene_view.py the view of a running scene: its SceneRunner, clock, layout and input routing
+    window.py     the pygame loop, the window's messages, event routing to the current view
+    views.py      the base of every view and the two simple ones (switched like arcade's
+                  show_view): the menu and the help overlay
+    scene_view.py the view of a running scene: its SceneRunner, clock, pane and input routing
     panel.py      the parameter panel (pygame-gui) with the scene's "try this" cards
     recorder.py   --record: the events a scene received and the command that replays them
-    keys.py       the ONE table of shell keys (plain data; app.scene reads it)
 
-Importing this package imports no pygame until `Window` or `run_window` is asked for, so that
-app.scene can read the key table.
+Imports run one way: window -> scene_view -> views (and panel, recorder); a view reaches the
+window only through the object passed to it (views.WindowLike says what it may ask for). The
+shell keys' table is app/keys.py, below the Scene contract. Importing this package imports no
+pygame until `Window` or `run_window` is asked for.
 """
 
 from __future__ import annotations

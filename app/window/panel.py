@@ -29,6 +29,8 @@ _THEMES: dict[float, dict] = {}
 
 
 BUTTON_LABELS = ("Resume", "Reset", "Help")   # the top row's widest labels (Pause <-> Resume)
+WATCH_HINT = ("Point at a card to see what it sets; click it: the scene starts afresh from its "
+              "defaults plus the card's values, and says what to watch for.")
 
 
 def theme(scale: float) -> dict:
@@ -151,17 +153,24 @@ class ParamPanel:
             label("Try this", obj="#section")
             y += row
             for card in scene.tries:
+                # no tooltip: it covered the cards below; pointing at a card shows what it does
+                # in the box under the cards instead
                 b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
-                             container=self.container, object_id="#card",
-                             tool_tip_text=card.watch)
+                             container=self.container, object_id="#card")
                 self.cards[b] = card
                 y += row + gap
-            lines = 5 if s > 1 else 4          # room for the watch line, wrapped
-            self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, lines * int(row * 0.75)),
+            self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, row),
                                        manager, container=self.container, object_id="#watch")
-            self.watch_box.set_text("Click a card: it restarts the scene with its values and "
-                                    "says here what to watch for.")
-            y += lines * int(row * 0.75) + 2 * gap
+            # as tall as the longest card's text wrapped (a box that scrolls hides the end)
+            watch_font = manager.get_theme().get_font(self.watch_box.combined_element_ids)
+            texts = [WATCH_HINT] + [_watch_text(c) for c in scene.tries]
+            lines = max(len(hud.wrap(t, watch_font, inner_w - 16)) for t in texts)
+            height = int(lines * watch_font.size("Ay")[1] * 1.25) + 12
+            self.watch_box.set_dimensions((inner_w, height))
+            self.watch_box.set_text(_html(WATCH_HINT))
+            self._watch_shown = WATCH_HINT
+            self._clicked: Try | None = None
+            y += height + 2 * gap
         label("Parameters", obj="#section")
         y += row
         for prm in scene.all_params():
@@ -257,10 +266,18 @@ class ParamPanel:
         """True while a text box of the panel has the keyboard."""
         return any(e.is_focused for e in self.entries.values())
 
-    def show_watch(self, card: Try) -> None:
-        """Below the cards: what the card is about and what to watch for."""
-        if self.watch_box is not None:
-            self.watch_box.set_text(f"{_html(card.label)}: {_html(card.watch)}")
+    def show_watch(self, card: Try | None, clicked: bool = True) -> None:
+        """Below the cards: what a card sets and what to watch for (the card clicked last, or
+        the one the pointer is on; None: back to the card clicked last, or the hint)."""
+        if self.watch_box is None:
+            return
+        if clicked:
+            self._clicked = card
+        shown = card or self._clicked
+        text = _watch_text(shown) if shown is not None else WATCH_HINT
+        if text != self._watch_shown:
+            self._watch_shown = text
+            self.watch_box.set_text(_html(text))
 
     def release_keyboard(self) -> None:
         """Take the keyboard from the text box through the manager: unfocusing the element alone
@@ -291,6 +308,12 @@ class ParamPanel:
             if self.host.apply_try(card):
                 self.show_watch(card)
             self.refresh()
+            return True
+        if ev.type == gui.UI_BUTTON_ON_HOVERED and element in self.cards:
+            self.show_watch(self.cards[element], clicked=False)
+            return True
+        if ev.type == gui.UI_BUTTON_ON_UNHOVERED and element in self.cards:
+            self.show_watch(None, clicked=False)
             return True
         what = self._by_element.get(element)
         if what is None:
@@ -324,6 +347,11 @@ def _select(dropdown, text: str) -> None:
     closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
     if dropdown.current_state is closed and closed.selected_option_button is not None:
         closed.selected_option_button.set_text(text)
+
+
+def _watch_text(card: Try) -> str:
+    """The watch box's text for a card: what it sets, then what to watch for."""
+    return f"{card.label}: sets {card.changes()}, the rest at the defaults. Watch: {card.watch}"
 
 
 def _html(text: str) -> str:

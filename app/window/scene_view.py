@@ -1,44 +1,49 @@
 """The view of a running scene: its SceneRunner (stepping, timing, events, rollback), the
-fixed-step clock, the layout of world, HUD, metrics strip and panel, and the routing of mouse and
-keys to the scene (or to the panel while one of its text boxes has the keyboard).
+fixed-step clock, the pane that draws the scene with its HUD in the world area, the panel, and
+the routing of mouse and keys to the scene (or to the panel while one of its text boxes has the
+keyboard).
+
+The HUD box holds everything the shell has to say: the status (time, step, cost), the scene's
+own lines, and the messages (a refused value, a blow-up rolled back, what a card asks you to
+watch): nothing is drawn over the scene's content. Each message names its topic and goes when
+that changes (another value, another card, a reset, another scene).
 """
 
 from __future__ import annotations
 
 import time
 import traceback
-from collections import deque
 from typing import TYPE_CHECKING, Any
 
 import pygame
 
+from app import keys
 from app.draw import hud
-from app.draw.layout import Layout, draw_scene, scene_layout
+from app.draw.layout import Layout, Pane, draw_scene
 from app.draw.text import TEXT
 from app.loop import FixedStepClock
 from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
-from app.window import keys
-from app.window.views import HelpView, ShellView
+from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
+from app.window.views import HelpView, ShellView, WindowLike
 
 if TYPE_CHECKING:
     from app.window.panel import ParamPanel
-    from app.window.window import Window
 
 STEP_BUDGET_SECONDS = 0.1   # physics time per frame after which the frame's other steps are
                             # dropped (the window stays responsive; time runs slower)
-SETTLE_FRAMES = 20          # frames after opening a scene or a new layout whose hiccups (the
-                            # build, the first draw, font loading) are not "slower than real time"
 PANEL_BACKGROUND = (21, 24, 29)
 ERROR_TEXT = ("The scene stopped: {message}\n\nThe scene is paused and stays open: fix the code, "
               "then press R to run it again.")
+ERROR_LINES = 12            # the HUD shows at most this many lines of an error (the terminal has
+                            # the whole traceback)
 
 
 class SceneView(ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
-    def __init__(self, window: "Window", scene: Scene, opened_with: dict[str, Any],
+    def __init__(self, window: WindowLike, scene: Scene, opened_with: dict[str, Any],
                  events: list[InputEvent] | None = None):
         super().__init__(window)
         self.scene = scene
@@ -50,14 +55,12 @@ class SceneView(ShellView):
         self.panel: ParamPanel | None = None
         self.panel_visible = window.panel_visible
         self.overlays = True                # F3 hides HUD and metrics
-        self.banner = ""                    # the non-finite rollback's message
+        self.banner = ""                    # the non-finite rollback's message (in the HUD)
         self.dragging: set[int] = set()     # mouse buttons pressed in the world area
         self.typed_keys: set[int] = set()   # keys pressed while typing into the panel
-        self.layout: Layout | None = None
-        self.hud_room = (0, 0)              # reserved HUD box; grows, reset by on_layout
-        self.settle = SETTLE_FRAMES
-        self.frames: deque[float] = deque()  # wall times of the last second's frames
-        self.slow: tuple[float, str] | None = None   # (wall time, why) of the last slow frame
+        self.pane = Pane(scene)             # the scene and its HUD in the world area
+        self._notes_shown: tuple = ()       # the messages the HUD's room was made for
+        self.speed = SpeedWatch()            # frames per second; why a frame dropped steps
         self._shown_ms: float | None = None          # the HUD's physics figure (physics_ms)
         self._ms_mark = 0                            # runner.steps when it was last read
         window.recorder.start(scene.name, self.opened_with)
@@ -77,8 +80,8 @@ class SceneView(ShellView):
             area = self.world_area()
             self.panel = ParamPanel(self, self.manager,
                                     pygame.Rect(area.right, 0, size[0] - area.right, size[1]))
-        self.hud_room = (0, 0)
-        self.settle = SETTLE_FRAMES
+        self.pane.forget()
+        self.speed.restart()
         self.fit()
 
     @property
@@ -94,18 +97,25 @@ class SceneView(ShellView):
         return pygame.Rect(0, 0, max(w - self.panel_width, 1), h)
 
     def fit(self, lines: list | None = None) -> Layout:
-        """Fit the scene's content into the world area less the HUD and the metrics strip (the
-        HUD's room only grows until the next on_layout)."""
+        """Fit the scene's content into the world area less the HUD (and, on the HUD's second
+        page, the metrics strip); the HUD's room only grows until the next on_layout or until
+        the messages change."""
         if self.overlays and lines is None:
             lines = self.hud_lines()
-        self.layout = scene_layout(self.world_area(), self.scene, lines if self.overlays else None,
-                                   self.hud_room)
-        self.hud_room = self.layout.hud.size
-        return self.layout
+        notes = tuple(n.text for n in self.notes())
+        if notes != self._notes_shown:      # a message came or went: the room is redone
+            self._notes_shown = notes
+            self.pane.forget()
+        return self.pane.fit(self.world_area(), lines if self.overlays else None,
+                             strip=self.window.hud_details)
+
+    @property
+    def layout(self) -> Layout | None:
+        return self.pane.layout
 
     @property
     def view(self):
-        return self.layout.view
+        return self.pane.layout.view
 
     # --- keys of the table (names are the table's actions) -----------------------------------
     @property
@@ -138,7 +148,13 @@ class SceneView(ShellView):
 
     def toggle_overlays(self) -> None:
         self.overlays = not self.overlays
-        self.hud_room = (0, 0)
+        self.pane.forget()
+        self.fit()
+
+    def toggle_details(self) -> None:
+        """F4: the HUD's second page or its first (the window remembers it for every scene)."""
+        self.window.hud_details = not self.window.hud_details
+        self.pane.forget()
         self.fit()
 
     def toggle_panel(self) -> None:
@@ -153,11 +169,12 @@ class SceneView(ShellView):
         """Change a param or effect through scene.set (validated). A refused value keeps the old
         one and shows why; return True if the value was taken."""
         scene, w = self.scene, self.window
+        topic = f"setting:{scene.canonical(name)}"
         before = scene.settings().get(scene.canonical(name))
         try:
             rebuilt = scene.set(name, value)
         except ParamError as e:
-            w.flash(str(e), hud.ERROR_COLOR)
+            w.flash(str(e), hud.ERROR_COLOR, topic=topic)
             self._refresh_panel()
             return False
         except SceneError as e:
@@ -166,7 +183,8 @@ class SceneView(ShellView):
             return False
         except Exception as e:          # a broken scene must not take the room's window down
             traceback.print_exc()
-            w.flash(f"{name}={value!r} failed: {type(e).__name__}: {e}", hud.ERROR_COLOR)
+            w.flash(f"{name}={value!r} failed: {type(e).__name__}: {e}", hud.ERROR_COLOR,
+                    topic=topic)
             try:
                 scene.set(name, before)
             except Exception:
@@ -174,9 +192,14 @@ class SceneView(ShellView):
             self._after_rebuild()
             return False
         after = scene.settings().get(scene.canonical(name))
+        w.clear_messages(topic)            # the refusal it answers is out of date
         if rebuilt:
             self._after_rebuild()
         if after != before:
+            # what was said about the old settings no longer holds: the blow-up and its advice,
+            # the card's promise ("watch ..." is about the card's values)
+            self.banner = ""
+            w.clear_messages("card")
             self._recorded_change(scene.canonical(name), after)
         self._refresh_panel()
         return True
@@ -189,37 +212,42 @@ class SceneView(ShellView):
             self.runner.on_reset = self._after_rebuild
             self.window.recorder.start(self.scene.name, changed_settings(self.scene))
             self.window.flash(f"recording restarted with {name}={value}: the replay starts "
-                              "from here (given as --set)", hud.WARN_COLOR)
+                              "from here (given as --set)", hud.WARN_COLOR, topic="recording")
         elif what == "note":
             self.window.flash(f"recording: {name}={value} is a panel change after the first "
                               "press: the replay cannot repeat it (the exit message names it)",
-                              hud.WARN_COLOR)
+                              hud.WARN_COLOR, topic="recording")
 
     def apply_try(self, card: Try) -> bool:
-        """A "try this" card: check all its settings together (Scene.resolve, the panel's
-        validation), apply them one by one, restart the scene and run it; say what to watch
-        for."""
-        scene = self.scene
-        wanted = {scene.canonical(k): v for k, v in card.settings.items()}
+        """A "try this" card (a click, or --try in the window): the scene's defaults plus the
+        card's settings, whatever ran or was set before (Scene.apply_card, as --headless --try
+        does), rebuilt and running; the HUD says what the card set and what to watch for."""
+        scene, w = self.scene, self.window
+        before = scene.settings()
         try:
-            type(scene).resolve({**scene.settings(), **wanted})
-        except ParamError as e:
-            self.window.flash(f"{card.label}: {e}", hud.ERROR_COLOR)
+            scene.apply_card(card)
+        except ParamError as e:             # refused as a whole: nothing changed
+            w.flash(f"{card.label}: {e}", hud.ERROR_COLOR, topic="card")
             return False
-        ok = all([self.apply_setting(k, v) for k, v in wanted.items()])
-        if ok:
-            # an experiment from a fresh start, running: what the card says to watch then holds
-            # whatever ran before (RK4 damped at hertz 4 took long to blow up at 3; a blown-up
-            # try stayed paused under the next; "Released high" mid-run changed nothing)
-            if self.scene.steps:     # not just rebuilt by the settings (or a recording's
-                self.reset()         # restart): a reset, recorded as "r" like the R key
-            self.banner = ""         # (a rollback to t = 0 needs no reset, but its banner goes)
-            self.clock.paused = False
-            # one "Try:" line at a time: stacked ones grew the HUD and shrank the picture
-            self.window.messages = [m for m in self.window.messages
-                                    if not m[1].startswith("Try: ")]
-            self.window.flash(f"Try: {card.watch}", hud.ACCENT_COLOR, seconds=12.0)
-        return ok
+        except Exception as e:              # a broken scene must not take the window down
+            traceback.print_exc()
+            w.flash(f"{card.label} failed: {type(e).__name__}: {e}", hud.ERROR_COLOR,
+                    topic="card")
+            scene.reset()
+            self._after_rebuild()
+            return False
+        self.runner.clear_error()
+        self._after_rebuild()               # a new world: snapshots, timings, the banner go
+        w.clear_messages("setting:", "card")
+        self.clock.paused = False           # an experiment from a fresh start, running
+        self.clock.accumulator = 0.0
+        if scene.settings() != before:
+            self._recorded_change("card", card.label)
+        w.flash(f"Try: {card.label} ({card.changes()}): {card.watch}", hud.ACCENT_COLOR,
+                seconds=12.0, topic="card")
+        if self.panel is not None:
+            self.panel.show_watch(card)
+        return True
 
     def _after_rebuild(self) -> None:
         """The scene was (re)built: new snapshot and timings (the runner), fresh banner."""
@@ -287,15 +315,13 @@ class SceneView(ShellView):
     # --- time ----------------------------------------------------------------------------------
     def update(self, frame_seconds: float) -> int:
         """One frame: the panel, then the steps the clock grants, within the step budget."""
-        wall = self.window.wall
-        self.frames.append(wall)
-        while self.frames and self.frames[0] < wall - 1.0:
-            self.frames.popleft()
+        self.speed.frame(self.window.wall)
         if self.manager is not None:
             self.manager.update(frame_seconds)
         self._refresh_panel()
         dropped_before = self.clock.dropped_steps
         n = self.clock.steps_for_frame(frame_seconds, self.scene.dt)
+        capped = self.clock.dropped_steps > dropped_before       # the loop's cap dropped some
         t0 = time.perf_counter()
         ran, rollback = self.runner.run(n, STEP_BUDGET_SECONDS)
         physics = time.perf_counter() - t0
@@ -310,37 +336,14 @@ class SceneView(ShellView):
         elif ran < n:
             self.clock.dropped_steps += n - ran      # the rest would freeze the window
         self.window.recorder.steps_run(self.runner.steps)
-        self._watch_speed(frame_seconds, physics, self.clock.dropped_steps > dropped_before)
+        self.speed.watch(self.window.wall, frame_seconds, physics, self.window.last_draw_seconds,
+                         self.clock.dropped_steps > dropped_before, capped, self.clock, self.scene)
         return ran
-
-    def _watch_speed(self, frame: float, physics: float, dropped: bool) -> None:
-        """Remember why the last frame that dropped steps was slow: physics, drawing or the
-        rest (the display, other programs). The first frames after a new layout do not count."""
-        if self.settle > 0:
-            self.settle -= 1
-            return
-        if not dropped:
-            return
-        draw = self.window.last_draw_seconds
-        ms = lambda s: f"{1000 * s:.0f} ms"          # noqa: E731
-        if physics >= draw and physics >= 0.3 * frame:
-            why = (f"physics takes {ms(physics)} of a {ms(frame)} frame: fewer iterations, "
-                   "substeps or hertz catch up")
-        elif draw >= 0.3 * frame:
-            why = (f"drawing takes {ms(draw)} of a {ms(frame)} frame (physics {ms(physics)}): "
-                   "a smaller window or fewer effects drawn catch up")
-        else:
-            why = (f"the display or the machine is slow: a {ms(frame)} frame, of which physics "
-                   f"{ms(physics)} and drawing {ms(draw)}")
-        self.slow = (self.window.wall, why)
 
     # --- what the HUD reads --------------------------------------------------------------------
     @property
     def fps(self) -> float:
-        if len(self.frames) < 2:
-            return 0.0
-        span = self.frames[-1] - self.frames[0]
-        return (len(self.frames) - 1) / span if span > 0 else 0.0
+        return self.speed.fps
 
     def physics_ms(self) -> float | None:
         """The HUD's ms per step: the mean of the steps run since the last call, smoothed
@@ -357,57 +360,77 @@ class SceneView(ShellView):
         return self._shown_ms
 
     def status_lines(self) -> list:
-        """The shell's lines of the HUD box: fps, the physics cost, time and speed, warnings."""
-        L, scene = hud.Line, self.scene
-        lines: list = [f"{self.fps:.0f} fps  |  {hud.dt_text(scene)}",
-                       hud.physics_line(self.physics_ms(), safe(scene.effect_costs, {}))]
-        state = f"t = {scene.time:.2f} s  |  speed x{_slow_text(self.clock.slow_motion)}"
-        if self.clock.paused:
-            state += "  |  PAUSED (Space resumes, . steps)"
-        slow = self.clock.paused or self.clock.slow_motion != 1.0
-        lines.append(L(state, hud.WARN_COLOR if slow else hud.TEXT_COLOR))
+        """The shell's lines of the HUD box: one line of time, step, cost and frame rate; then,
+        only when they apply, pause and slow motion, recording, slower than real time."""
+        L, scene, clock = hud.Line, self.scene, self.clock
+        self._costs = safe(scene.effect_costs, {})     # read with physics_ms: the same steps
+        lines: list = [f"t = {scene.time:.2f} s | {hud.dt_text(scene)} | "
+                       f"{hud.physics_text(self.physics_ms())}"]
+        state = []
+        if clock.paused:
+            state.append("PAUSED (Space resumes, . steps)")
+        if clock.slow_motion != 1.0:
+            state.append(f"speed x{_slow_text(clock.slow_motion)} (- slower, = faster)")
+        if state:
+            lines.append(L("  |  ".join(state), hud.WARN_COLOR))
         if self.window.recorder.active:
             lines.append(L(f"REC  recording to {self.window.recorder.path} (the replay command is "
                            "printed on exit)", hud.ERROR_COLOR))
-        if self.slow is not None and self.window.wall - self.slow[0] < 1.0:
-            lines.append(L("slower than real time: " + self.slow[1], hud.WARN_COLOR))
+        slow = self.speed.line(self.window.wall)
+        if slow:
+            lines.append(L(slow, hud.WARN_COLOR))
         return lines
 
+    def detail_lines(self) -> list:
+        """The shell's lines on the HUD's second page: the physics cost by effect, the frame
+        rate."""
+        costs = getattr(self, "_costs", {})
+        return ([hud.physics_line(self._shown_ms, costs)] if costs else []) + [
+            f"{self.fps:.0f} frames per second (drawing {1000 * self.window.last_draw_seconds:.1f}"
+            " ms a frame)"]
+
     def notes(self) -> list:
-        """Passing messages shown at the end of the HUD box (errors get a banner instead)."""
-        return [hud.Line(text, color) for _, text, color in self.window.messages
-                if color != hud.ERROR_COLOR]
+        """The messages, as HUD lines: the scene's error, the rollback's advice, then the
+        window's passing messages (newest last; a card's "Try:" only with the panel hidden:
+        the panel shows it under the cards)."""
+        lines = []
+        if self.runner.error is not None and not self.scene.draws_own_error:
+            text = ERROR_TEXT.format(message=self.runner.error).split("\n")
+            if len(text) > ERROR_LINES:
+                text = text[:ERROR_LINES - 1] + [f"... ({len(text) - ERROR_LINES + 1} more lines "
+                                                 "in the terminal)"]
+            lines.append(hud.Line("\n".join(text), hud.ERROR_COLOR))
+        if self.banner:
+            lines.append(hud.Line(self.banner, hud.WARN_COLOR))
+        # a card's promise is in the panel's box under the cards while the panel is shown
+        shown_there = self.panel is not None and self.panel.watch_box is not None
+        return lines + [hud.Line(m.text, m.color) for m in self.window.messages
+                        if not (shown_there and m.topic == "card" and m.text.startswith("Try: "))]
 
     def hud_lines(self) -> list:
         """Everything in the HUD box, as drawn."""
-        return hud.scene_lines(self.scene, self.status_lines(), self.notes())
+        status = self.status_lines()
+        details = self.window.hud_details
+        return hud.scene_lines(self.scene, status, self.notes(), details,
+                               self.detail_lines() if details else ())
 
     # --- drawing -------------------------------------------------------------------------------
     def draw(self, screen: pygame.Surface) -> None:
         scene = self.scene
-        area = self.world_area()
-        lines = self.hud_lines() if self.overlays else []
-        layout = self.fit(lines)
-        screen.fill(PANEL_BACKGROUND)
         try:
-            bottom = draw_scene(screen, layout, scene, lines if self.overlays else None)
+            lines = self.hud_lines() if self.overlays else None
         except SceneError as e:
             self.runner.fail(e)
             self.clock.paused = True
-            bottom = area.bottom - 6
-        s = TEXT.scale
-        if self.runner.error is not None and not scene.draws_own_error:
-            top = layout.hud.bottom + 8 if self.overlays else area.top + int(40 * s)
-            hud.banner(screen, ERROR_TEXT.format(message=self.runner.error), area,
-                       hud.ERROR_COLOR, y=top)
-        elif self.banner:              # over the paused picture, never over the HUD box
-            top = area.centery - int(60 * s)
-            if self.overlays:
-                top = max(top, layout.hud.bottom + 8)
-            hud.banner(screen, self.banner, area, hud.WARN_COLOR, y=top)
-        for _, text, color in reversed(self.window.messages):
-            if color == hud.ERROR_COLOR:
-                bottom = hud.banner(screen, text, area, color, bottom=bottom).top
+            lines = None
+        layout = self.fit(lines)
+        screen.fill(PANEL_BACKGROUND)
+        try:
+            draw_scene(screen, layout, scene, lines, strip=self.window.hud_details)
+        except SceneError as e:
+            self.runner.fail(e)
+            self.clock.paused = True
+            screen.fill(scene.background, layout.area)
         if self.panel is not None:
             screen.fill(PANEL_BACKGROUND, self.panel.rect)
             pygame.draw.line(screen, (60, 66, 76), self.panel.rect.topleft,

@@ -2,31 +2,62 @@
 running scene (app/window/scene_view.py), and the help overlay of a running scene.
 
 Each view handles the pygame events routed to it, advances its state once per frame (`update`)
-and draws itself (`draw`). Shell keys are looked up in the one key table (app/window/keys.py) and
+and draws itself (`draw`). Shell keys are looked up in the one key table (app/keys.py) and
 run as the view's method named by the table's action (or the window's, for the actions every view
 shares: large text, screenshot, scene switching); a view that has no such method ignores the key.
+
+This module imports nothing of the window: a view reaches the window through the object it is
+given (`WindowLike` says what it may ask for), so imports run one way (window -> scene_view ->
+views).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Any, Protocol
 
 import pygame
 
-from app.draw import hud
+from app import keys
+from app.draw import hud, menu
 from app.draw.text import TEXT, font
 from app.scene import Scene, docstring_help
-from app.window import keys
 
-if TYPE_CHECKING:
-    from app.window.scene_view import SceneView
-    from app.window.window import Window
+
+class WindowLike(Protocol):
+    """What a view may ask of the window that shows it (app/window/window.py's Window)."""
+
+    screen: pygame.Surface
+    scenes: list[type[Scene]]
+    menu_selected: int
+    running: bool
+    panel_visible: bool
+    hud_details: bool
+    wall: float
+    last_draw_seconds: float
+    recorder: Any
+    PANEL_WIDTH: int
+
+    def show_view(self, view: "ShellView") -> None: ...
+    def open_scene(self, scene_cls: type[Scene], overrides: dict | None = None) -> bool: ...
+    def open_menu(self) -> None: ...
+    def flash(self, text: str, color: tuple = ..., seconds: float = ...,
+              topic: str = "") -> None: ...
+    def clear_messages(self, *topics: str) -> None: ...
+
+
+class RunningScene(Protocol):
+    """What the help overlay asks of the view of the scene it covers."""
+
+    scene: Scene
+
+    def update(self, frame_seconds: float) -> int: ...
+    def on_layout(self) -> None: ...
 
 
 class ShellView:
     """A screen of the window. Override what you use (hooks that do nothing by default)."""
 
-    def __init__(self, window: "Window"):
+    def __init__(self, window: WindowLike):
         self.window = window
 
     def on_show(self) -> None:
@@ -63,14 +94,14 @@ class ShellView:
 class MenuView(ShellView):
     """The scene menu: categories, scenes numbered in the order shown, click or press a digit."""
 
-    def __init__(self, window: "Window", message: str = ""):
+    def __init__(self, window: WindowLike, message: str = ""):
         super().__init__(window)
         self.message = message
-        self.entries: list[hud.MenuEntry] = []
+        self.entries: list[menu.MenuEntry] = []
 
     @property
     def order(self) -> list[int]:
-        return hud.menu_order(self.window.scenes)
+        return menu.menu_order(self.window.scenes)
 
     def pick(self, key: int) -> None:
         """Digit n opens the n-th scene shown."""
@@ -104,7 +135,7 @@ class MenuView(ShellView):
                     return
 
     def draw(self, screen: pygame.Surface) -> None:
-        self.entries = hud.draw_menu(screen, self.window.scenes, self.window.menu_selected,
+        self.entries = menu.draw_menu(screen, self.window.scenes, self.window.menu_selected,
                                      self.message)
 
 
@@ -113,7 +144,7 @@ class HelpView(ShellView):
     """The help overlay of a running scene: opaque, wrapped, scrollable; the scene runs on
     underneath. Esc, H or F1 close it."""
 
-    def __init__(self, window: "Window", under: "SceneView"):
+    def __init__(self, window: WindowLike, under: RunningScene):
         super().__init__(window)
         self.under = under
         self.scroll = 0

@@ -8,10 +8,13 @@ the views (menu, running scene, help; app/window/views.py), the parameter panel 
 this" cards (panel.py), the recorder (recorder.py) and the shell keys, all listed in ONE table
 (keys.py) that also produces the help overlay's list and the README's Controls table.
 
-Layout: the world area is the window left of the panel. The HUD box sits at its top left and the
-metrics strip along its bottom; the scene's content (`content_bounds()`) is fitted into what
-they leave free (app/draw/layout.py), so they never cover it, at any text size (F2) and window
-size. F3 hides HUD and metrics for a clean picture.
+Layout: the world area is the window left of the panel. The HUD box sits at its top left (and,
+on its second page, F4, the metrics strip along the bottom); the scene's content
+(`content_bounds()`) is fitted into what they leave free (app/draw/layout.py), so they never
+cover it, at any text size (F2) and window size. Messages (a refused value, a blow-up, what a
+card asks you to watch) are lines of the HUD box, never a banner over the scene, and each names
+its topic, so that it goes when what it speaks of changes. F3 hides HUD and metrics for a clean
+picture.
 
 The `Window` never owns the main loop, so tests drive it directly (handle_pygame_event, update,
 render); `run_window` is the loop the command line calls.
@@ -24,26 +27,39 @@ import sys
 import time
 import traceback
 from pathlib import Path
-from typing import Any, Sequence
+from typing import Any, NamedTuple, Sequence
 
 import pygame
 
-from app.draw import hud, save_png
+from app.draw import hud, menu, save_png
 from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene, SceneError
 from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
+from app.window.speed import FPS_CAP
 from app.window.views import HelpView, MenuView, ShellView
 
 DEFAULT_SIZE = (1280, 800)        # world 960x720 at zoom 1 + a 320 px panel
 LARGE_TEXT_SCALE = 1.6
-FPS_CAP = 60
 MESSAGE_SECONDS = 4.0
 NO_DISPLAY = ("python -m app: error: no display for the window: {}; use --headless, or run under "
               "xvfb-run")
 
-__all__ = ["Window", "run_window", "NONFINITE_TEXT", "SNAPSHOT_EVERY", "LARGE_TEXT_SCALE"]
+__all__ = ["Window", "Message", "run_window", "NONFINITE_TEXT", "SNAPSHOT_EVERY",
+           "LARGE_TEXT_SCALE"]
+
+class Message(NamedTuple):
+    """A passing message of the window: shown until `until` (the window's clock) or until what
+    it speaks of changes. topic: "setting:NAME" (a refused value of NAME), "card" (a card's
+    promise), "recording", "scene" (anything else about the open scene); "" is the window's
+    own (a screenshot saved), which outlives a scene switch."""
+
+    until: float
+    text: str
+    color: tuple[int, int, int]
+    topic: str = ""
+
 
 class Window:
     """The shell around one view at a time (menu, running scene, help).
@@ -66,8 +82,9 @@ class Window:
         self.running = True
         self.recorder = Recorder(record)
         self.panel_visible = True
+        self.hud_details = False              # F4: the HUD's second page (every scene)
         self.menu_selected = 0
-        self.messages: list[tuple[float, str, tuple[int, int, int]]] = []   # (until, text, colour)
+        self.messages: list[Message] = []
         self.wall = 0.0                       # seconds of frames seen (update's clock)
         self.last_draw_seconds = 0.0          # wall time of the last render()
         self._replay = list(events or [])
@@ -123,6 +140,7 @@ class Window:
             self._replay_scene = scene_cls        # --input events belong to the first scene
             events, self._replay = self._replay, []
         opened_with = {k: str(v) for k, v in (overrides or {}).items()}
+        self.messages = [m for m in self.messages if not m.topic]    # the old scene's go
         self.show_view(SceneView(self, scene, opened_with, events))
         if pygame.display.get_init() and pygame.display.get_surface() is not None:
             pygame.display.set_caption(f"Physics lab: {scene_cls.title or scene_cls.name}")
@@ -142,7 +160,7 @@ class Window:
         """PageUp/PageDown: the previous/next scene in the menu's order."""
         if not self.scenes:
             return
-        order = hud.menu_order(self.scenes)
+        order = menu.menu_order(self.scenes)
         cur = type(self.scene) if self.scene is not None else None
         if cur in self.scenes:
             i = order.index(self.scenes.index(cur)) + delta
@@ -172,14 +190,30 @@ class Window:
     def relayout(self) -> None:
         self.current_view.on_layout()
 
+    def toggle_details(self) -> None:
+        """F4: the HUD's second page (every line, the costs by effect, the metrics strip) or
+        its first (what a class reads every frame); it stays so for the next scene."""
+        self.hud_details = not self.hud_details
+        self.relayout()
+
     def resize(self, surface: pygame.Surface | None = None) -> None:
         self.screen = surface or pygame.display.get_surface() or self.screen
         self.relayout()
 
     # --- messages ------------------------------------------------------------------------------
-    def flash(self, text: str, color=hud.WARN_COLOR, seconds: float = MESSAGE_SECONDS) -> None:
-        """Show a message for a few seconds."""
-        self.messages.append((self.wall + seconds, text, color))
+    def flash(self, text: str, color=hud.WARN_COLOR, seconds: float = MESSAGE_SECONDS,
+              topic: str = "scene") -> None:
+        """Show a message for a few seconds (in the HUD box), or until its topic is cleared; a
+        message on the same topic replaces the last one."""
+        self.clear_messages(topic)
+        self.messages.append(Message(self.wall + seconds, text, color, topic))
+
+    def clear_messages(self, *topics: str) -> None:
+        """Remove the messages on these topics ("setting:" clears every setting's; "" none)."""
+        def gone(m: Message) -> bool:
+            return any(t and (m.topic == t or (t.endswith(":") and m.topic.startswith(t)))
+                       for t in topics)
+        self.messages = [m for m in self.messages if not gone(m)]
 
     # --- the frame -----------------------------------------------------------------------------
     def handle_pygame_event(self, ev: pygame.event.Event) -> None:
@@ -194,7 +228,7 @@ class Window:
         """Advance the window by one frame of `frame_seconds` wall time; return the number of
         physics steps run."""
         self.wall += frame_seconds
-        self.messages = [m for m in self.messages if m[0] > self.wall]
+        self.messages = [m for m in self.messages if m.until > self.wall]
         return self.current_view.update(frame_seconds)
 
     def render(self) -> None:
@@ -223,9 +257,9 @@ class Window:
         try:
             self.save_screenshot(path)
         except (pygame.error, OSError) as e:
-            self.flash(f"screenshot failed: {e}", hud.ERROR_COLOR)
+            self.flash(f"screenshot failed: {e}", hud.ERROR_COLOR, topic="")
             return
-        self.flash(f"screenshot saved: {path.resolve()}", (140, 230, 140), seconds=6.0)
+        self.flash(f"screenshot saved: {path.resolve()}", (140, 230, 140), seconds=6.0, topic="")
 
     def save_screenshot(self, path: str | Path) -> None:
         save_png(self.screen, path)
@@ -296,10 +330,11 @@ def _open_display(size: tuple[int, int]) -> pygame.Surface:
 
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
-               large_text: bool = False, events: list | None = None) -> int:
-    """Open the window (the menu, or `scene_name` with `overrides`) and run it until the user
-    quits, or for `seconds` of wall time. Return the exit code (2 when there is no display).
-    With `record`, the events are written and the replay command printed on every way out."""
+               large_text: bool = False, events: list | None = None, card=None) -> int:
+    """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
+    applied as a click applies it) and run it until the user quits, or for `seconds` of wall
+    time. Return the exit code (2 when there is no display). With `record`, the events are
+    written and the replay command printed on every way out."""
     try:
         screen = _open_display(DEFAULT_SIZE)
     except pygame.error as e:
@@ -313,7 +348,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
     scene_cls = get_scene(scene_name) if scene_name else None
     if scene_cls is not None:
-        window.open_scene(scene_cls, overrides)
+        if window.open_scene(scene_cls, overrides) and card is not None:
+            window.scene_view.apply_try(card)
     if screenshot and seconds is None:
         seconds = 2.0
     fps_clock = pygame.time.Clock()

@@ -5,9 +5,10 @@ The window's key handling looks a pressed key up here and calls the view's metho
 live or replayed) is the set of their pygame names; and the README's Controls table is
 `controls_table()` (a test checks that the README holds exactly it). Print the table with
 
-    python -m app.window.keys
+    python -m app.keys
 
-This module is plain data (no pygame): app.scene imports it.
+This module is plain data (no pygame, no imports from the lab): it sits below the Scene contract
+(app.scene reads the key names from it) and the window (app/window) reads the table from it.
 """
 
 from __future__ import annotations
@@ -45,6 +46,8 @@ KEYS: tuple[ShellKey, ...] = (
     ShellKey(("f2",), "F2", "toggle_large_text",
              "large text for the back row (projector mode): everything scales"),
     ShellKey(("f3",), "F3", "toggle_overlays", "hide / show the HUD and metrics (a clean picture)"),
+    ShellKey(("f4",), "F4", "toggle_details",
+             "HUD details: the few lines a class reads <-> every line, the costs and the metrics"),
     ShellKey(("tab",), "Tab", "toggle_panel", "hide / show the parameter panel"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
              "full path)"),
