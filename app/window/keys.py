@@ -46,6 +46,8 @@ KEYS: tuple[ShellKey, ...] = (
              "large text for the back row (projector mode): everything scales"),
     ShellKey(("f3",), "F3", "toggle_overlays", "hide / show the HUD and metrics (a clean picture)"),
     ShellKey(("tab",), "Tab", "toggle_panel", "hide / show the parameter panel"),
+    ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
+             "--video's file; the message gives the full path)"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
              "full path)"),
     ShellKey(("escape",), "Esc", "escape", "close the help; else back to the menu; in the menu: "
