@@ -189,3 +189,24 @@ def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
         assert gif.size == (320, height)
     assert w.clips.finish(w) == []              # nothing left to save on the way out
     pygame.display.quit()
+
+
+def test_the_readmes_clip_commands_run(tmp_path, monkeypatch, capsys):
+    """The headless --video commands of README's "Clips and charts for slides", shortened to
+    0.2 s at 160 px (the same scenes, settings and file names)."""
+    import shlex
+    text = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    block = text.split("## Clips and charts for slides", 1)[1].split("## ", 1)[0]
+    commands = [shlex.split(line.split("#", 1)[0])[3:] for line in block.splitlines()
+                if line.strip().startswith("python -m app --headless") and "--video" in line]
+    assert len(commands) == 3
+    monkeypatch.chdir(tmp_path)
+    for args in commands:
+        at = args.index("--seconds")
+        args[at + 1] = "0.2"
+        assert main(args + ["--width", "160"]) == 0, capsys.readouterr().err
+        out = args[args.index("--video") + 1]
+        written = [tmp_path / out] if "all" not in args else \
+            list((tmp_path / out).parent.glob("all-*.gif"))
+        assert written and all(p.stat().st_size > 0 for p in written), args
+    capsys.readouterr()
