@@ -284,7 +284,7 @@ def clip_problem(args: argparse.Namespace, classes: list) -> None:
             dt = 1.0 / cls.resolve(cls.own_settings(parse_sets(args.set)))[0]["hertz"]
             steps = args.steps if args.steps is not None else steps_for(args.seconds, dt)
             frames = frame_count(steps, dt, fps)
-        problem = check_video(args.video, fps, frames)
+        problem = check_video(args.video, fps, frames, width=args.width or DEFAULT_WIDTH)
         if problem:
             raise UsageError((f"{cls.name}: " if cls and len(classes) > 1 else "") + problem)
 

@@ -12,8 +12,10 @@ How it is encoded, with well-kept libraries (not an encoder of our own):
     that do not change from one frame to the next are left transparent (Pillow's `optimize`),
     and frame durations are rounded to GIF's 10 ms so that they add up to real time (30 fps
     plays 30, 40, 30 ms, ...). A GIF is written when the clip ends, so its frames are kept
-    until then, zlib-compressed by a worker thread while the next frame is drawn: at most
-    MAX_GIF_FRAMES frames.
+    until then, zlib-compressed by a worker thread while the next frame is drawn, and Pillow
+    holds every frame while it writes the file (~2 bytes per pixel: 2.4 GB measured for 900
+    frames of 1280 x 960): a GIF is at most GIF_MEGAPIXELS megapixels of frames (~1 GB), at
+    1280 px wide 366 frames (12 s at 30 fps); longer clips are MP4s.
   * MP4 (H.264, yuv420p, plays in slide programs and browsers) with imageio-ffmpeg, whose wheel
     ships its own ffmpeg: frames stream to it, any length. It is an optional install (68 MB
     download, 165 MB on disk: more than all other requirements together): `MP4_INSTALL`.
@@ -48,7 +50,7 @@ MIN_WIDTH, MAX_WIDTH = 160, 1920
 MAX_FPS = 60
 MAX_GIF_FPS = 50              # browsers and slide programs play GIF frames shorter than 20 ms
                               # at 100 ms: a 60 fps GIF would crawl
-MAX_GIF_FRAMES = 900          # 30 s at 30 fps: a GIF keeps every frame until it is written
+GIF_MEGAPIXELS = 450          # frames x pixels of a GIF (~1 GB while Pillow writes it)
 MP4_INSTALL = "pip install imageio-ffmpeg"
 MP4_CRF = 18                  # x264 quality: 18 is visually lossless for flat-coloured scenes
 MP4_PRESET = "medium"         # x264 speed against file size
@@ -72,10 +74,16 @@ def mp4_problem() -> str | None:
     return None
 
 
-def check_video(path: str, fps: int, frames: int | None = None, what: str = "--video"
-                ) -> str | None:
-    """None if a clip can be written to `path` at `fps` (with `frames` frames, if known), else
-    a one-line reason. (Whether the folder is writable: app.headless.check_output_path.)"""
+def max_gif_frames(width: int, height: int | None = None) -> int:
+    """The most frames a GIF of this size may hold (GIF_MEGAPIXELS; a 4:3 frame if no height)."""
+    return int(GIF_MEGAPIXELS * 1e6 / (width * (height or width * 3 / 4)))
+
+
+def check_video(path: str, fps: int, frames: int | None = None, what: str = "--video",
+                width: int = DEFAULT_WIDTH) -> str | None:
+    """None if a clip can be written to `path` at `fps` (with `frames` frames `width` px wide,
+    if known), else a one-line reason. (Whether the folder is writable:
+    app.headless.check_output_path.)"""
     if not path.strip():
         return f"{what} needs a file name ending in .gif or .mp4"
     fmt = video_format(path)
@@ -85,10 +93,11 @@ def check_video(path: str, fps: int, frames: int | None = None, what: str = "--v
         if fps > MAX_GIF_FPS:
             return (f"{what} '{path}': a GIF plays at most {MAX_GIF_FPS} fps (players slow "
                     f"faster GIFs down); give --fps {MAX_GIF_FPS} or less, or an .mp4")
-        if frames is not None and frames > MAX_GIF_FRAMES:
-            return (f"{what} '{path}': {frames} frames; a GIF holds at most {MAX_GIF_FRAMES} "
-                    f"({MAX_GIF_FRAMES // DEFAULT_FPS} s at {DEFAULT_FPS} fps): give fewer "
-                    "--seconds, a lower --fps, or an .mp4 (streamed, any length)")
+        most = max_gif_frames(width)
+        if frames is not None and frames > most:
+            return (f"{what} '{path}': {frames} frames; a GIF {width} px wide holds at most "
+                    f"{most} ({most / fps:.3g} s at {fps} fps: it is made in memory): give "
+                    "fewer --seconds, a lower --fps or --width, or an .mp4 (any length)")
     elif fmt == ".mp4":
         problem = mp4_problem()
         if problem:
@@ -240,7 +249,7 @@ class GifWriter(ClipWriter):
             def indexed(k: int):
                 return self._frame(k).quantize(palette=palette, dither=Image.Dither.NONE)
             with ThreadPoolExecutor(max_workers=2, thread_name_prefix="gif-palette") as pool:
-                frames = pool.map(indexed, range(self.frames))     # in order, computed ahead
+                frames = _ahead(pool, indexed, self.frames, 4)
                 first = next(frames)
                 first.save(self.path, format="GIF", save_all=True, append_images=frames,
                            duration=self.durations(), loop=0, optimize=True, disposal=1)
@@ -251,6 +260,18 @@ class GifWriter(ClipWriter):
     def abandon(self) -> None:
         self._pool.shutdown(wait=True)
         self._packed = []
+
+
+def _ahead(pool: ThreadPoolExecutor, fn: Callable, n: int, lookahead: int):
+    """fn(0), ..., fn(n - 1) in order, computed by `pool` at most `lookahead` ahead of the
+    consumer (Executor.map would start them all at once: every frame in memory twice)."""
+    pending: list[Future] = []
+    for k in range(n):
+        pending.append(pool.submit(fn, k))
+        if len(pending) > lookahead:
+            yield pending.pop(0).result()
+    for future in pending:
+        yield future.result()
 
 
 class Mp4Writer(ClipWriter):

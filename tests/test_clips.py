@@ -13,8 +13,8 @@ import pygame
 import pytest
 
 from app.__main__ import main
-from app.clips import (MAX_GIF_FRAMES, MP4_INSTALL, GifWriter, check_video, clip_size,
-                       frame_count, frame_steps)
+from app.clips import (MP4_INSTALL, GifWriter, check_video, clip_size, frame_count,
+                       frame_steps, max_gif_frames)
 
 
 def run_json(capsys, *args) -> dict:
@@ -97,7 +97,8 @@ BAD = [
     (["--video", ""], "--video needs a file name"),
     (["--video", "/proc/no-such-folder/clip.gif"], "cannot write"),
     (["--video", "clip.gif", "--fps", "60"], "a GIF plays at most 50 fps"),
-    (["--video", "clip.gif", "--seconds", "31"], f"a GIF holds at most {MAX_GIF_FRAMES}"),
+    (["--video", "clip.gif", "--seconds", "13"], "a GIF 1280 px wide holds at most 366 (12.2 s"),
+    (["--video", "clip.gif", "--seconds", "13", "--width", "1920"], "1920 px wide holds at most 162"),
     (["--video", "clip.gif", "--fps", "0"], "accepted: frames per second from 1 to 60"),
     (["--video", "clip.gif", "--width", "10"], "accepted: a width in pixels from 160 to 1920"),
     (["--video", "clip.gif", "--width", "1e3"], "not an integer"),
@@ -111,8 +112,9 @@ BAD = [
 def test_bad_clip_options_are_refused_in_one_line_before_the_run(capsys, tmp_path, monkeypatch,
                                                                   extra, fragment):
     monkeypatch.chdir(tmp_path)
-    # 30 s of the mass-spring cloth (the longest GIF) take a minute: a refusal comes first
-    seconds = [] if "--seconds" in extra else ["--seconds", "30"]
+    # 12 s of the mass-spring cloth (the longest GIF at 1280 px) take a while: the refusal
+    # comes before them
+    seconds = [] if "--seconds" in extra else ["--seconds", "12"]
     code = main(["--headless", "--scene", "mass_spring_cloth", *seconds, *extra])
     captured = capsys.readouterr()
     assert code == 2 and captured.out == ""

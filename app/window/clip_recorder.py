@@ -12,7 +12,8 @@ pause adds nothing to the clip, slow motion plays slow, and a frame the window c
 in time (a slow machine) is the previous picture repeated rather than a jump in time. Frames
 are `width` px wide at most (default 1280; a smaller world area is not scaled up). A GIF is
 written when the clip stops, in a background thread (the window keeps running); a GIF stops by
-itself at MAX_GIF_FRAMES frames. Closing the window saves a clip still running.
+itself when it reaches its size limit (app/clips.py: max_gif_frames, ~17 s of a 960 x 800 scene
+area at 30 fps). Closing the window saves a clip still running.
 """
 
 from __future__ import annotations
@@ -24,8 +25,8 @@ from typing import TYPE_CHECKING
 
 import pygame
 
-from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, MAX_GIF_FRAMES, Clip, ClipWriter, even,
-                       check_video, open_clip)
+from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, Clip, ClipWriter, check_video, even,
+                       max_gif_frames, open_clip)
 from app.draw import hud
 
 if TYPE_CHECKING:
@@ -147,9 +148,10 @@ class ClipRecorder:
                 return
         else:
             self._next = max(self._next, int(self._video_t * self.fps) + 1)
-        if self.writer.frames >= MAX_GIF_FRAMES and Path(self.writer.path).suffix.lower() == ".gif":
-            self.stop(window, f"a GIF holds at most {MAX_GIF_FRAMES} frames (for longer clips: "
-                      "--video OUT.mp4): ")
+        most = max_gif_frames(*self.writer.size)
+        if self.writer.frames >= most and Path(self.writer.path).suffix.lower() == ".gif":
+            self.stop(window, f"a GIF of this size holds at most {most} frames (for longer "
+                      "clips: --video OUT.mp4): ")
             return
         self._draw_box(screen)
 
