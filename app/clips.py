@@ -118,7 +118,8 @@ def frame_steps(steps: int, dt: float, fps: int) -> list[int]:
 
 
 def even(n: float) -> int:
-    return max(2, 2 * int(round(n / 2)))
+    """The even number of pixels at or below n (never above: a frame is never scaled up)."""
+    return max(2, int(n + 1e-9) // 2 * 2)
 
 
 def clip_size(scene: "Scene", width: int, clean: bool) -> tuple[int, int]:

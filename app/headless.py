@@ -176,7 +176,9 @@ def frame(scene: Scene, size: tuple[int, int] | None = None, clean: bool = False
     scene's current frame, with its own drawing code and the window's HUD (less fps, which a
     headless run has none of) laid out as the window lays them out (the HUD off the scene's
     content); `clean` leaves HUD and metrics out. Drawn at `size` (text scaled with the width),
-    not scaled afterwards, so a large frame stays sharp. Screenshots and clips both use it."""
+    not scaled afterwards, so a large frame stays sharp. Screenshots (render) and clips
+    (record_clip) both take their pictures here: a renderer of several panes side by side
+    (--compare) replaces this one function."""
     import pygame
 
     from app.draw import hud
