@@ -122,12 +122,14 @@ def figure(charts: Sequence[LineChart], cols: int = 2, size: tuple[float, float]
             fig.legend([handles[k] for k in shared], shared, loc="outside lower center",
                        ncols=min(len(shared), 6), frameon=False)
         _fit_texts(fig, texts)
+        outside = False
         if not shared:
             for i, chart in enumerate(charts):
                 if len(chart.series) > 1:
-                    _place_legend(fig, axes[i // cols][i % cols])
-        fig.draw_without_rendering()     # the final layout (a legend may have moved outside),
-        fig.set_layout_engine("none")    # kept as it is: saving twice does not redo it
+                    outside |= not _place_legend(fig, axes[i // cols][i % cols])
+        if outside:                      # the layout makes room for a legend outside the axes
+            fig.draw_without_rendering()
+        fig.set_layout_engine("none")    # the layout is kept as it is: saving twice redoes none
     return fig
 
 
@@ -289,11 +291,11 @@ PLACES = ("upper right", "upper left", "lower left", "lower right", "center righ
           "upper center", "lower center", "center")
 
 
-def _place_legend(fig, ax) -> None:
+def _place_legend(fig, ax) -> bool:
     """Put the axes' legend in the first inside place (the corners first) where its box covers
     no line and no marker (measured in pixels on the laid-out figure: the box's size once, its
     place at each candidate as matplotlib anchors it); if every place covers data, outside the
-    axes on the right."""
+    axes on the right. Return True if it is inside."""
     from matplotlib.transforms import Bbox
     legend = ax.legend(loc="upper right")
     size = legend.get_window_extent()
@@ -312,9 +314,10 @@ def _place_legend(fig, ax) -> None:
         box = Bbox.from_extents(x0 - air, y0 - air, x0 + w + air, y0 + h + air)
         if not any(box.contains(x, y) for x, y in points):
             legend.set_loc(loc)
-            return
+            return True
     legend.remove()
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
+    return False
 
 
 def _data_pixels(ax) -> list[tuple[float, float]]:
