@@ -142,9 +142,11 @@ def test_gif_durations_add_up_to_real_time_at_any_rate():
 
 def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
     """F9 starts a clip, F9 stops it; frames follow the steps run (none while paused, twice as
-    many per step in slow motion x1/2); the file is written in the background and named."""
+    many per step in slow motion x1/2); a scene area that changes shape (F2) is fitted into the
+    clip's frame; the file is written in the background and named."""
     from PIL import Image
 
+    from app.draw.text import TEXT
     from app.window import Window
     from app.window.clip_recorder import ClipRecorder
     from scenes import get_scene
@@ -165,8 +167,10 @@ def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
         w.handle_pygame_event(pygame.event.Event(pygame.KEYUP, key=k, mod=0, scancode=0,
                                                  unicode=""))
     frames(3)
+    area = w.scene_view.world_area()
+    height = int(320 * area.height / area.width) // 2 * 2
     press(pygame.K_F9)
-    assert w.clips.active
+    assert w.clips.active and w.clips.writer.size == (320, height)
     frames(30)                                  # 0.5 s at x1: 15 frames after frame 0
     assert w.clips.writer.frames == 16
     press(pygame.K_SPACE)
@@ -176,6 +180,10 @@ def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
     press(pygame.K_MINUS)                       # x1/2: 0.25 s simulated plays 0.5 s
     frames(30)
     assert w.clips.writer.frames == 31
+    press(pygame.K_F2)                          # large text: the panel widens, the scene area
+    frames(8)                                   # narrows; the clip goes on at its size (still
+                                                # at x1/2: 4 steps, 4 frames)
+    assert w.clips.active and w.clips.writer.frames == 35
     press(pygame.K_F9)
     assert not w.clips.active
     for _ in range(2000):                       # the GIF is written in the background; the
@@ -184,11 +192,11 @@ def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
         if saved:
             break
     (clip,) = (tmp_path / "clips").glob("falling_balls-*.gif")
-    height = round(320 * 500 / w.scene_view.world_area().width / 2) * 2
-    assert saved == [f"clip saved: {clip.resolve()} (31 frames, 320x{height}, 1.0 s, "
+    assert saved == [f"clip saved: {clip.resolve()} (35 frames, 320x{height}, 1.2 s, "
                      f"{clip.stat().st_size / 1e6:.2f} MB)"]
     with Image.open(clip) as gif:
         assert gif.size == (320, height)
+    TEXT.scale = 1.0
     assert w.clips.finish(w) == []              # nothing left to save on the way out
     pygame.display.quit()
 

@@ -3,17 +3,19 @@
 F9 starts a clip of the world area (the window left of the panel: the scene with its HUD and
 metrics, as shown; F3 first for a clean picture) and F9 again stops it. The clip goes to
 clips/<scene>-<date>-<time>.gif, or to the file `--video OUT.gif|OUT.mp4` names (then OUT-2,
-OUT-3, ... for the next ones); the red REC box at the top right (drawn after the frame is taken,
-so it is not in the clip) gives its full path, and so does the message when it is saved.
+OUT-3, ... for the next ones); the red REC box at the top right (below the HUD where it would
+cover it; drawn after the frame is taken, so it is not in the clip) gives its full path, and so
+does the message when it is saved.
 
 Frames follow the simulation, not the wall clock, as headless clips do: one frame per 1/fps of
 simulated time divided by the slow-motion factor, counted from the steps the runner ran. So a
-pause adds nothing to the clip, slow motion plays slow, and a frame the window could not draw
-in time (a slow machine) is the previous picture repeated rather than a jump in time. Frames
-are `width` px wide at most (default 1280; a smaller world area is not scaled up). A GIF is
-written when the clip stops, in a background thread (the window keeps running); a GIF stops by
-itself when it reaches its size limit (app/clips.py: max_gif_frames, ~17 s of a 960 x 800 scene
-area at 30 fps). Closing the window saves a clip still running.
+pause adds nothing to the clip, slow motion plays slow, and a frame the window could not draw in
+time (a slow machine) is the previous picture repeated rather than a jump in time. Frames are
+`width` px wide at most (default 1280; a smaller scene area is not scaled up); if the area
+changes shape while recording (F2, Tab, a resize), it is scaled to fit the clip's frame,
+centred. A GIF is written when the clip stops, in a background thread (the window keeps
+running); a GIF stops by itself at its size limit (app/clips.py: max_gif_frames, ~19 s of a
+960 x 800 scene area at 30 fps). Closing the window saves a clip still running.
 """
 
 from __future__ import annotations
@@ -130,9 +132,7 @@ class ClipRecorder:
         if view is not self._view:
             self.stop(window, "the scene closed: ")
             return
-        if view.world_area() != self._area:
-            self.stop(window, "the scene area changed size (window, Tab): ")
-            return
+        self._area = view.world_area()             # F2, Tab or a resize may change it
         runner = view.runner
         if runner is not self._mark[0]:            # a recording restart made a new runner
             self._mark = (runner, 0)
@@ -141,7 +141,8 @@ class ClipRecorder:
         if window.current_view is view:            # not while the help covers the scene
             try:
                 while self._next <= self._video_t * self.fps + 1e-6:
-                    self.writer.add_surface(screen.subsurface(self._area))
+                    self.writer.add_surface(self._fitted(screen.subsurface(self._area),
+                                                         view.scene.background))
                     self._next += 1
             except (OSError, ValueError) as e:     # ffmpeg gone, a broken pipe
                 self.stop(window, f"the clip stopped ({e}): ")
@@ -153,17 +154,37 @@ class ClipRecorder:
             self.stop(window, f"a GIF of this size holds at most {most} frames (for longer "
                       "clips: --video OUT.mp4): ")
             return
-        self._draw_box(screen)
+        self._draw_box(screen, view.layout.hud)
 
-    def _draw_box(self, screen: pygame.Surface) -> None:
+    def _fitted(self, area: pygame.Surface, background) -> pygame.Surface:
+        """The scene area as a frame of the clip's size: as it is if its shape is the clip's
+        (scaled down if larger), else scaled to fit and centred on the scene's background (the
+        area changed shape while recording: F2, Tab, a resize)."""
+        w, h = self.writer.size
+        aw, ah = area.get_size()
+        if abs(aw * h - ah * w) <= max(w, h):        # the same shape, to a pixel
+            return area
+        k = min(w / aw, h / ah)
+        frame = pygame.Surface((w, h), 0, 32)
+        frame.fill(background)
+        scaled = pygame.transform.smoothscale(area.convert(32) if area.get_bitsize() < 24
+                                              else area, (max(1, int(aw * k)), max(1, int(ah * k))))
+        frame.blit(scaled, ((w - scaled.get_width()) // 2, (h - scaled.get_height()) // 2))
+        return frame
+
+    def _draw_box(self, screen: pygame.Surface, hud_box: pygame.Rect) -> None:
+        """The REC box at the top right of the scene area, or below the HUD box where it would
+        cover it (a narrow window, large text)."""
         seconds = self.writer.frames / self.fps
         lines = [hud.Line(f"REC clip {seconds:.1f} s ({self.writer.frames} frames): F9 stops",
                           hud.ERROR_COLOR),
                  hud.Line(str(Path(self.writer.path).resolve()), hud.DIM_COLOR)]
         width = max(1, min(self._area.width - 16, 620))
-        w, _ = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
-        hud.text_box(screen, lines, (self._area.right - w - 8, self._area.top + 8), hud.HUD_SIZE,
-                     max_width=width)
+        w, h = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
+        box = pygame.Rect(self._area.right - w - 8, self._area.top + 8, w, h)
+        if box.colliderect(hud_box):
+            box.top = hud_box.bottom + 8
+        hud.text_box(screen, lines, box.topleft, hud.HUD_SIZE, max_width=width)
 
     def _report(self, window: "Window") -> None:
         for thread, result in [s for s in self._saving if not s[0].is_alive()]:
