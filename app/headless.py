@@ -18,7 +18,7 @@ from typing import Any
 
 from app.clips import Clip
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
-from app.scene import InputEvent, Scene
+from app.scene import InputEvent, Scene, SceneError
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -319,7 +319,10 @@ def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path:
         runner.run(steps)
         return runner, f"could not start the clip '{path}': {e}"
     try:
-        record_run(runner, steps, fps, lambda: frame(scene, size, clean), writer)
+        try:
+            record_run(runner, steps, fps, lambda: frame(scene, size, clean), writer)
+        except SceneError as e:            # a student's drawing code failed: the frames so far
+            runner.fail(e)                 # are the clip, the run stops (exit 1)
         return runner, writer.close()
     except (OSError, RuntimeError, ValueError) as e:
         writer.abandon()
