@@ -220,3 +220,16 @@ def test_the_readmes_clip_commands_run(tmp_path, monkeypatch, capsys):
             list((tmp_path / out).parent.glob("all-*.gif"))
         assert written and all(p.stat().st_size > 0 for p in written), args
     capsys.readouterr()
+
+
+def test_f9_clips_go_to_the_videos_name_then_numbered_ones(tmp_path):
+    from app.window.clip_recorder import ClipRecorder
+    named = ClipRecorder(path=str(tmp_path / "demo.mp4"))
+    assert named.next_path("cloth") == tmp_path / "demo.mp4"
+    named.made = 2
+    assert named.next_path("cloth") == tmp_path / "demo-3.mp4"
+    dated = ClipRecorder(folder=tmp_path)
+    first = dated.next_path("cloth")
+    assert first.parent == tmp_path and first.name.startswith("cloth-") and first.suffix == ".gif"
+    first.write_bytes(b"")                      # never over an existing file
+    assert dated.next_path("cloth") != first
