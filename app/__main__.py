@@ -121,10 +121,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--screenshot", metavar="OUT.png", help="save the last frame as a PNG")
     p.add_argument("--video", metavar="OUT.gif|OUT.mp4", help="headless: a clip of the run "
                    "(GIF, or MP4 with imageio-ffmpeg); window: where F9's clips go")
-    p.add_argument("--fps", type=_fps, help=f"clip frames per simulated second (default "
-                   f"{DEFAULT_FPS})")
-    p.add_argument("--width", type=_width, help=f"clip and screenshot width in pixels (default: "
-                   f"clips {DEFAULT_WIDTH}, screenshots the world's)")
+    p.add_argument("--fps", type=_fps, help=f"clip frames per simulated second, headless and "
+                   f"F9 (default {DEFAULT_FPS})")
+    p.add_argument("--width", type=_width, help=f"width in pixels of headless clips and "
+                   f"screenshots and of F9's clips (default: clips {DEFAULT_WIDTH}, screenshots "
+                   "the world's)")
     p.add_argument("--clean", action="store_true", help="headless: no HUD or metrics in "
                    "--screenshot and --video, cropped to the scene's content")
     p.add_argument("--json", action="store_true", help="print one JSON summary per scene")
