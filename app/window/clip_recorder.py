@@ -5,7 +5,7 @@ metrics, as shown; F3 first for a clean picture) and F9 again stops it. The clip
 clips/<scene>-<date>-<time>.gif, or to the file `--video OUT.gif|OUT.mp4` names (then OUT-2,
 OUT-3, ... for the next ones); the red REC box at the top right (below the HUD where it would
 cover it; drawn after the frame is taken, so it is not in the clip) gives its full path, and so
-does the message when it is saved.
+does the message when it is saved (in the window and on the terminal).
 
 Frames follow the simulation, not the wall clock, as headless clips do: one frame per 1/fps of
 simulated time divided by the slow-motion factor, counted from the steps the runner ran. So a
@@ -187,10 +187,14 @@ class ClipRecorder:
         hud.text_box(screen, lines, box.topleft, hud.HUD_SIZE, max_width=width)
 
     def _report(self, window: "Window") -> None:
+        """Say so for each clip written since the last frame: in the window, and on stdout (a
+        clip saved while the menu shows, or just before quitting, is named there too)."""
         for thread, result in [s for s in self._saving if not s[0].is_alive()]:
             self._saving.remove((thread, result))
-            window.flash(_saved_text(result), hud.ERROR_COLOR if "error" in result else
-                         SAVED_COLOR, seconds=8.0)
+            text = _saved_text(result)
+            window.flash(text, hud.ERROR_COLOR if "error" in result else SAVED_COLOR,
+                         seconds=8.0)
+            print(text, flush=True)
 
     def finish(self, window: "Window") -> list[str]:
         """On the way out: stop a clip still running, wait for every clip to be written, and
