@@ -33,6 +33,7 @@ import math
 import os
 import sys
 import zlib
+from abc import ABC, abstractmethod
 from concurrent.futures import Future, ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Callable
@@ -164,7 +165,7 @@ def raw_frame(surface: "pygame.Surface", fresh: bool = False) -> bytes | memoryv
     return memoryview(surface.get_buffer()) if fresh else surface.get_buffer().raw
 
 
-class ClipWriter:
+class ClipWriter(ABC):
     """Frames in, a clip file out: add_surface(surface) for each frame, then close().
     open_clip() picks the writer for the file's extension."""
 
@@ -180,13 +181,15 @@ class ClipWriter:
             surface, fresh = pygame.transform.smoothscale(raw_surface(surface), self.size), True
         self.add(raw_frame(surface, fresh))
 
+    @abstractmethod
     def add(self, raw: bytes | memoryview) -> None:
         """Add a frame of RAW bytes of the clip's size."""
-        raise NotImplementedError
 
+    @abstractmethod
     def close(self) -> Clip:
-        raise NotImplementedError
+        """Write the file; return what was written."""
 
+    @abstractmethod
     def abandon(self) -> None:
         """Stop without writing (an error elsewhere): free what is held."""
 
