@@ -18,7 +18,8 @@ How it is encoded, with well-kept libraries (not an encoder of our own):
     1280 px wide 366 frames (12 s at 30 fps); longer clips are MP4s.
   * MP4 (H.264, yuv420p, plays in slide programs and browsers) with imageio-ffmpeg, whose wheel
     ships its own ffmpeg: frames stream to it, any length. It is an optional install (68 MB
-    download, 165 MB on disk: more than all other requirements together): `MP4_INSTALL`.
+    download, 165 MB on disk: two thirds of all other requirements together, 255 MB with
+    matplotlib): `MP4_INSTALL`.
 
 Frame size: `width` pixels wide (default 1280), drawn at that size, not scaled up from a
 screenshot, so lines and text stay sharp (the HUD's text grows with the width: the picture
