@@ -97,6 +97,9 @@ def run(report: Report) -> dict[str, Any]:
     report.say(f"\nslowest: {out['slowest']} at {slowest['speed_x_real_time']:.2f}x real time "
                f"({'faster' if out['all_faster_than_real_time'] else 'SLOWER'} than real time); "
                f"clips in {folder}")
+    if quick:
+        report.say("  (--quick: 1 s clips, where starting up (fonts, threads, ffmpeg, the GIF's "
+                   "palette) weighs most; run without --quick to measure 10 s clips)")
     return out
 
 
