@@ -16,8 +16,9 @@ import sys
 import time
 from typing import Any
 
+from app.clips import Clip
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
-from app.scene import InputEvent, Scene, Try
+from app.scene import InputEvent, Scene, SceneError, Try
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -170,21 +171,44 @@ def clean(value: Any) -> Any:
     return value
 
 
-def render(scene: Scene, path: str) -> None:
-    """Draw the scene's current frame, with its own drawing code and the window's HUD (less
-    fps, which a headless run has none of) laid out as the window lays them out (the HUD off the
-    scene's content), and save it as a PNG. Raises OSError if it cannot."""
+json_clean = clean    # run_headless's `clean` (a clip without HUD) hides this name there
+
+
+def frame(scene: Scene, size: tuple[int, int] | None = None, clean: bool = False):
+    """What a screenshot shows, as a pygame Surface of `size` (default: the world's size): the
+    scene's current frame, with its own drawing code and the window's HUD (less fps, which a
+    headless run has none of) laid out as the window lays them out (the HUD off the scene's
+    content); `clean` leaves HUD and metrics out. Drawn at `size` (text scaled with the width),
+    not scaled afterwards, so a large frame stays sharp. Screenshots (render) and clips
+    (record_clip) both take their pictures here: a renderer of several panes side by side
+    (--compare) replaces this one function."""
     import pygame
 
-    from app.draw import hud, save_png
+    from app.draw import hud
     from app.draw.layout import Pane
+    from app.draw.text import TEXT
 
-    surface = pygame.Surface(scene.world_size)
-    status = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"]
-    lines = hud.scene_lines(scene, status)
-    Pane(scene).draw(surface, surface.get_rect(), lines)
+    surface = pygame.Surface(size or scene.world_size)
+    saved, TEXT.scale = TEXT.scale, surface.get_width() / scene.world_size[0]
     try:
-        save_png(surface, path)
+        lines = None if clean else hud.scene_lines(
+            scene, [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"])
+        Pane(scene).draw(surface, surface.get_rect(), lines)
+    finally:
+        TEXT.scale = saved
+    return surface
+
+
+def render(scene: Scene, path: str, width: int | None = None, clean: bool = False) -> None:
+    """Save frame() as a PNG: the world's size, or `width` px wide (with `clean`: cropped to the
+    scene's content). Raises OSError if it cannot."""
+    import pygame
+
+    from app.clips import clip_size
+    from app.draw import save_png
+    size = clip_size(scene, width or scene.world_size[0], clean) if width or clean else None
+    try:
+        save_png(frame(scene, size, clean), path)
     except pygame.error as e:
         raise OSError(str(e)) from None
 
@@ -228,9 +252,11 @@ def screenshot_path(screenshot: str, scene_name: str, several: bool) -> str:
 
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
-                 as_json: bool, card: Try | None = None) -> int:
+                 as_json: bool, card: Try | None = None, video: str | None = None,
+                 fps: int | None = None, width: int | None = None, clean: bool = False) -> int:
     """Run each scene in turn; print one JSON object per scene (or a readable summary). With
-    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card)."""
+    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card). With
+    `video`, record a clip of each run (app/clips.py) at `fps`, `width` px wide."""
     nonfinite = unsaved = False
     for cls in scene_classes:
         scene = cls(cls.own_settings(overrides))
@@ -238,11 +264,22 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
             scene.apply_card(card)
         n = steps if steps is not None else steps_for(seconds, scene.dt)
         start = time.perf_counter()
-        runner = run_scene(scene, n, events)
+        if video:
+            runner, clip = record_clip(scene, n, events, screenshot_path(
+                video, scene.name, len(scene_classes) > 1), fps, width, clean)
+        else:
+            runner = run_scene(scene, n, events)
         result = summary(runner, time.perf_counter() - start)
         if card is not None:
-            result["try"] = {"label": card.label, "settings": clean(dict(card.settings)),
+            result["try"] = {"label": card.label, "settings": json_clean(dict(card.settings)),
                              "watch": card.watch}
+        if video:
+            done = isinstance(clip, Clip)
+            result.update(video=clip.path if done else None, video_frames=clip.frames if done
+                          else None, video_bytes=clip.bytes if done else None)
+            if not done:
+                print(f"python -m app: error: {scene.name}: {clip}", file=sys.stderr)
+                unsaved = True
         late = runner.events_left
         if late:
             last = max(runner.clock - scene.dt, 0.0)   # an event is delivered before a step
@@ -252,7 +289,7 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
         if screenshot:
             path = screenshot_path(screenshot, scene.name, len(scene_classes) > 1)
             try:
-                render(scene, path)
+                render(scene, path, width, clean)
                 result["screenshot"] = path
             except OSError as e:
                 print(f"python -m app: error: {scene.name}: could not save the screenshot "
@@ -277,6 +314,30 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
 
+def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path: str,
+                fps: int | None, width: int | None, clean: bool) -> tuple[SceneRunner, Any]:
+    """Run `steps` steps of `scene` (as run_scene) while recording a clip of frame() to
+    `path`; return the runner and the Clip written, or a one-line message if it was not."""
+    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, clip_size, open_clip, record_run
+    fps = fps or DEFAULT_FPS
+    size = clip_size(scene, width or DEFAULT_WIDTH, clean)
+    runner = SceneRunner(scene, events, keep_all_times=True)
+    try:
+        writer = open_clip(path, size, fps)
+    except (OSError, RuntimeError) as e:
+        runner.run(steps)
+        return runner, f"could not start the clip '{path}': {e}"
+    try:
+        try:
+            record_run(runner, steps, fps, lambda: frame(scene, size, clean), writer)
+        except SceneError as e:            # a student's drawing code failed: the frames so far
+            runner.fail(e)                 # are the clip, the run stops (exit 1)
+        return runner, writer.close()
+    except (OSError, RuntimeError, ValueError) as e:
+        writer.abandon()
+        return runner, f"could not write the clip '{path}': {e}"
+
+
 def describe(summary: dict[str, Any]) -> str:
     """A readable few lines for a run without --json."""
     from app.draw.hud import fmt_number
@@ -289,6 +350,9 @@ def describe(summary: dict[str, Any]) -> str:
         lines.append(f"  try: {summary['try']['label']}: watch: {summary['try']['watch']}")
     if summary.get("screenshot"):
         lines.append(f"  screenshot: {summary['screenshot']}")
+    if summary.get("video"):
+        lines.append(f"  video: {summary['video']} ({summary['video_frames']} frames, "
+                     f"{summary['video_bytes'] / 1e6:.2f} MB)")
     if summary.get("error"):
         lines.append(f"  error: {summary['error'].splitlines()[-1]} (details on stderr)")
     return "\n".join(lines)

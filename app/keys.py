@@ -49,6 +49,8 @@ KEYS: tuple[ShellKey, ...] = (
     ShellKey(("f4",), "F4", "toggle_details",
              "HUD details: the few lines a class reads <-> every line, the costs and the metrics"),
     ShellKey(("tab",), "Tab", "toggle_panel", "hide / show the parameter panel"),
+    ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
+             "--video's file; the message gives the full path)"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
              "full path)"),
     ShellKey(("escape",), "Esc", "escape", "close the help; else back to the menu; in the menu: "

@@ -35,6 +35,7 @@ from app.draw import hud, menu, save_png
 from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene, SceneError
+from app.window.clip_recorder import ClipRecorder
 from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
 from app.window.speed import FPS_CAP
@@ -81,6 +82,7 @@ class Window:
         self.screenshot_dir = Path(screenshot_dir)
         self.running = True
         self.recorder = Recorder(record)
+        self.clips = ClipRecorder()           # F9 (run_window sets --video, --fps, --width)
         self.panel_visible = True
         self.hud_details = False              # F4: the HUD's second page (every scene)
         self.menu_selected = 0
@@ -235,6 +237,7 @@ class Window:
         t0 = time.perf_counter()
         self.current_view.draw(self.screen)
         self.last_draw_seconds = time.perf_counter() - t0
+        self.clips.after_draw(self, self.screen)     # a clip's frames (before the REC box)
         self._save_pending()
 
     # --- screenshots -----------------------------------------------------------------------------
@@ -263,6 +266,10 @@ class Window:
 
     def save_screenshot(self, path: str | Path) -> None:
         save_png(self.screen, path)
+
+    def toggle_clip(self) -> None:
+        """F9: start or stop a clip of the scene area (app/window/clip_recorder.py)."""
+        self.clips.toggle(self)
 
     # --- recording (what the tests and run_window read) ------------------------------------------
     @property
@@ -330,11 +337,13 @@ def _open_display(size: tuple[int, int]) -> pygame.Surface:
 
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
-               large_text: bool = False, events: list | None = None, card=None) -> int:
+               large_text: bool = False, events: list | None = None, card=None,
+               clips: dict | None = None) -> int:
     """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
     applied as a click applies it) and run it until the user quits, or for `seconds` of wall
     time. Return the exit code (2 when there is no display). With `record`, the events are
-    written and the replay command printed on every way out."""
+    written and the replay command printed on every way out; `clips` (path, fps, width) set up
+    F9's clips, saved and named on every way out too."""
     try:
         screen = _open_display(DEFAULT_SIZE)
     except pygame.error as e:
@@ -346,6 +355,7 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.key.set_repeat()
     from scenes import SCENES, get_scene
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
+    window.clips = ClipRecorder(**(clips or {}))
     scene_cls = get_scene(scene_name) if scene_name else None
     if scene_cls is not None:
         if window.open_scene(scene_cls, overrides) and card is not None:
@@ -372,6 +382,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     finally:
         line = window.recorder.write()
         if line:
+            print(line, flush=True)
+        for line in window.clips.finish(window):
             print(line, flush=True)
         pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
     return 0
