@@ -42,12 +42,18 @@ from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try
 DOT_RADIUS = 3.5            # world px
 MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
 
-# Step budget, in estimated seconds per fixed step (the cloth and the pymunk scenes refuse
-# about 0.5 s too). Measured on the 2-core lab machine, idle to busy with other work: all_pairs
-# 3-16 ns per pair test (n = 5000: 12.5 M tests, 40-200 ms), the grid 25-120 ns per candidate
-# pair (sorting, gathering; n = 5000 spread out: 250 k candidates, 7-30 ms).
-STEP_BUDGET_S = 0.5
-SECONDS_PER_TEST = {"all_pairs": 1e-8, "grid": 5e-8}
+# Step budget: the window gives physics at most 0.1 s of a frame (app/window/scene_view.py) but
+# always runs one whole step, so a step estimated above STEP_BUDGET_S is refused (the window would
+# answer only every step). The estimate: a cost per particle (sorting, integrating, drag, walls)
+# plus one per pair test (with the force on the pairs that pass); measured on the 2-core lab
+# machine from idle to busy (`bench particles` prints the estimate beside the measured step):
+# the grid 12-30 ns per candidate pair, all pairs 3.5-8 ns per test, 60-150 ns per particle.
+STEP_BUDGET_S = 0.1
+SECONDS_PER_TEST = {"all_pairs": 7e-9, "grid": 2.5e-8}
+SECONDS_PER_PARTICLE = 1.5e-7
+# Spread over the box at 5000 particles, a particle has some 30 partners within R = 40 (60 after
+# the clusters form); past CROWD the HUD calls it a crowd (the mouse gathers hundreds).
+CROWD = 100
 
 
 class ParticleDanceScene(Scene):
@@ -96,12 +102,12 @@ class ParticleDanceScene(Scene):
     # ----- settings ---------------------------------------------------------------------------
     @classmethod
     def step_seconds(cls, values) -> float:
-        """Estimated seconds of pair search per fixed step (uniformly spread particles)."""
+        """Estimated seconds of one fixed step, with the particles spread out (not crowded)."""
         n, method = values["particles"], values["neighbour_method"]
         world = (float(cls.world_size[0]), float(cls.world_size[1]))
         tests = (all_pair_tests(n) if method == "all_pairs"
                  else expected_grid_tests(n, values["cutoff"], world))
-        return values["substeps"] * tests * SECONDS_PER_TEST[method]
+        return values["substeps"] * (tests * SECONDS_PER_TEST[method] + n * SECONDS_PER_PARTICLE)
 
     @classmethod
     def omega(cls, values) -> float:
@@ -139,8 +145,8 @@ class ParticleDanceScene(Scene):
             raise ParamError(
                 f"particles x substeps too large for {values['neighbour_method']}: "
                 f"{values['particles']} particles x {values['substeps']} substeps would take "
-                f"~{cost:.2f} s per step; accepted: at most {STEP_BUDGET_S:g} s per step "
-                f"(use fewer particles or substeps"
+                f"~{cost * 1000:.0f} ms per step; accepted: at most {STEP_BUDGET_S * 1000:.0f} ms "
+                f"(the window waits for a whole step; use fewer particles or substeps"
                 + (", or neighbour_method=grid)" if values["neighbour_method"] == "all_pairs"
                    else ")"))
 
@@ -226,20 +232,31 @@ class ParticleDanceScene(Scene):
             shown.append("mouse")
         return {k: self._costs.get(k, 0.0) for k in shown}
 
-    def hud_lines(self) -> list[str]:
+    def step_ms(self) -> float:
+        """Measured ms of physics per fixed step: the effects' costs added up (0 before any)."""
+        return sum(v for k, v in self._costs.items() if k != "search")
+
+    def hud_lines(self) -> list:
+        from app.draw.hud import WARN_COLOR, Line
         self._update_costs()
         d, p = self.dance, self.p
-        n = d.ps.n
-        lines = ["LMB: pull   RMB: push   (hold and move)"]
+        pf, n = d.pair_force, d.ps.n
+        lines: list = ["LMB: pull   RMB: push   (hold and move)"]
         if "interaction" not in self.on:
             return lines + [f"{n} particles, interaction off: no pairs to find"]
-        method = p["neighbour_method"]
+        method, every = p["neighbour_method"], all_pair_tests(n)
+        of_all = (f"{pf.tests / every:.0%} of all {every:,}" if method == "grid" and every
+                  else "every pair")
+        lines.append(f"{method}: {pf.tests:,} pair tests/step ({of_all})")
         search = self._costs.get("search", 0.0)
         total = self._costs.get("interaction", 0.0)
-        every = "" if method == "all_pairs" else f" (all pairs: {all_pair_tests(n):,})"
-        lines.append(f"{method}: {d.pair_force.tests:,} pair tests/step{every}")
         lines.append(f"find pairs {search:.2f} + forces {max(total - search, 0.0):.2f} = "
-                     f"{total:.2f} ms/step, {d.pair_force.pairs:,} pairs < R")
+                     f"{total:.2f} ms/step, {pf.pairs:,} pairs < R")
+        step, need = self.step_ms(), 1000.0 / p["hertz"]
+        if step > need:                  # physics alone needs more than the time it simulates
+            crowd = f"; a crowd: {pf.pairs / n:.0f} pairs a particle" if pf.pairs > CROWD * n else ""
+            lines.append(Line(f"too slow for real time: {step:.0f} ms per {need:.1f} ms step "
+                              f"(x{need / step:.2f}){crowd}", WARN_COLOR))
         return lines
 
     # ----- state ------------------------------------------------------------------------------

@@ -131,7 +131,7 @@ def test_drag_takes_out_kinetic_energy():
 
 def test_effects_that_are_off_do_no_work(monkeypatch):
     calls = {"find_pairs": 0, "walls": 0, "drag": 0}
-    find, reflect = pd.find_pairs, pd.reflect_into_box
+    find, reflect = pd.PairForce.pair_blocks, pd.reflect_into_box
 
     def counting_find(*args):
         calls["find_pairs"] += 1
@@ -141,7 +141,7 @@ def test_effects_that_are_off_do_no_work(monkeypatch):
         calls["walls"] += 1
         return reflect(*args)
 
-    monkeypatch.setattr(pd, "find_pairs", counting_find)
+    monkeypatch.setattr(pd.PairForce, "pair_blocks", counting_find)
     monkeypatch.setattr(pd, "reflect_into_box", counting_reflect)
     s = scene(interaction=False, drag=False, walls=False)
     drag_accumulate = s.dance.drag.accumulate
