@@ -15,10 +15,13 @@ pairs from the same or neighbouring cells: 4.5 cells' worth per particle, O(n) a
 This box is fixed, so more particles means denser and the grid's tests grow like n^2 too, but
 from about 1/50 of all pairs at R = 40 (n x 4.5 cells' worth of the 24 x 18 = 432 against
 n^2/2: 9/432; still 1/50 after 10 s at 2000 particles; 1/33 to 1/21 over 10 s of the LMB
-gathering a crowd at the centre), after a fixed cost per step (some 0.07 ms of NumPy calls,
-whatever n is) that makes all pairs the cheaper one below about 100-200 particles. The HUD
-shows the pair tests and the ms per step of the method in use: raise `particles` and switch the
-method live.
+gathering a crowd at the centre), after a fixed cost per step (about 0.1 ms of NumPy calls,
+whatever n is) that makes all pairs the cheaper one below about 100 particles. The HUD shows
+the pair tests (and, for the grid, their share of all pairs) and the ms per step of the method in
+use: raise `particles` and switch the method live. Hold the LMB and a crowd forms in which
+each particle has many more neighbours within R: the grid's share of all pairs climbs, and each
+pair within R needs its force whichever method found it. The HUD says when the physics no longer
+keeps up with real time, and names a crowd when there is one.
 
 Controls:
   LMB (held)  pull the particles near the cursor towards it (follow it around)
@@ -34,7 +37,8 @@ import math
 import numpy as np
 
 from app.physics.bounds import clamp_point
-from app.physics.neighbours import NEIGHBOUR_METHODS, all_pair_tests, expected_grid_tests
+from app.physics.neighbours import (NEIGHBOUR_METHODS, all_pair_tests, crowded_share,
+                                    expected_grid_tests)
 from app.physics.particle_dance import (CORE, EFFECTS, RULES, MouseForce, PairRule,
                                         ParticleDance, rule_matrix)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try
@@ -51,8 +55,8 @@ MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
 STEP_BUDGET_S = 0.1
 SECONDS_PER_TEST = {"all_pairs": 7e-9, "grid": 2.5e-8}
 SECONDS_PER_PARTICLE = 1.5e-7
-# Spread over the box at 5000 particles, a particle has some 30 partners within R = 40 (60 after
-# the clusters form); past CROWD the HUD calls it a crowd (the mouse gathers hundreds).
+# Spread over the box at 5000 particles, a particle has some 35 neighbours within R = 40 (60 once
+# the clusters form); past CROWD the HUD calls it crowded (the mouse gathers hundreds).
 CROWD = 100
 
 
@@ -245,7 +249,7 @@ class ParticleDanceScene(Scene):
         if "interaction" not in self.on:
             return lines + [f"{n} particles, interaction off: no pairs to find"]
         method, every = p["neighbour_method"], all_pair_tests(n)
-        of_all = (f"{pf.tests / every:.0%} of all {every:,}" if method == "grid" and every
+        of_all = (f"{crowded_share(pf.tests, n):.0%} of all {every:,}" if method == "grid" and every
                   else "every pair")
         lines.append(f"{method}: {pf.tests:,} pair tests/step ({of_all})")
         search = self._costs.get("search", 0.0)
@@ -254,7 +258,8 @@ class ParticleDanceScene(Scene):
                      f"{total:.2f} ms/step, {pf.pairs:,} pairs < R")
         step, need = self.step_ms(), 1000.0 / p["hertz"]
         if step > need:                  # physics alone needs more than the time it simulates
-            crowd = f"; a crowd: {pf.pairs / n:.0f} pairs a particle" if pf.pairs > CROWD * n else ""
+            partners = 2.0 * pf.pairs / n                   # each pair has two particles
+            crowd = f"; crowded: {partners:.0f} neighbours within R each" if partners > CROWD else ""
             lines.append(Line(f"too slow for real time: {step:.0f} ms per {need:.1f} ms step "
                               f"(x{need / step:.2f}){crowd}", WARN_COLOR))
         return lines

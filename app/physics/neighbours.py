@@ -5,7 +5,7 @@ on any or all pairs of particles, depending on their positions") that vanishes b
 only needs the pairs with |x_j - x_i| < R. Two ways to find them, same answer:
 
 * `all_pairs`: test every pair i < j, n (n - 1) / 2 distance tests: O(n^2). Simple, and the
-  cheaper one below a few hundred particles (`python -m app bench particles` says where).
+  cheaper one below about a hundred particles (`python -m app bench particles` says where).
 * `grid_pairs`: a uniform grid (a cell list) of cells at least R wide. Two particles closer than R
   lie in the same cell or in neighbouring cells, so each particle is only tested against the
   particles of its own cell and of the 8 around it (each pair once: its own cell and 4 of the 8,
@@ -13,8 +13,8 @@ only needs the pairs with |x_j - x_i| < R. Two ways to find them, same answer:
   is O(n) tests; in a fixed box, where more particles means denser, it is still a fixed fraction
   of all pairs (9 / cells: 4.5 cells' worth per particle against n/2 partners each for all
   pairs; 9/432, about 1/50, in the particle dance's box at R = 40). The price is sorting the
-  particles by cell every step and a fixed cost per search (some tens of microseconds of NumPy
-  calls, whatever n is) that makes all pairs the cheaper method for small n.
+  particles by cell every step and a fixed cost per search (about 0.08 ms of NumPy calls,
+  whatever n is) that makes all pairs the cheaper method for small n.
 
 The grid in three steps, as on the slide:
 
@@ -37,8 +37,9 @@ the grid is never slower than all pairs; `crowded_share` says how much of its ad
 
 Both methods hand out their pairs in blocks (`PairBlock`) of some tens of thousands, with the
 separation d = x_j - x_i and |d|^2 they already computed: a force summed block by block keeps
-its temporary arrays in the processor's cache (at 5,000 particles that made the whole step about
-twice as fast as one array of every pair). `all_pairs`, `grid_pairs` and `find_pairs` return
+its temporary arrays in the processor's cache (at 5,000 particles on the lab's busy 2-core
+machine, the grid's search and forces took about half the time they took over one array of every
+pair). `all_pairs`, `grid_pairs` and `find_pairs` return
 every pair at once: (i, j, tests), i != j, each unordered pair once, with |x_j - x_i| < R, and
 the number of pair tests (distances compared with R) it took. The two methods list the pairs in a
 different order, so forces summed over them agree to rounding, not bit for bit.
