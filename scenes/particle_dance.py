@@ -16,7 +16,7 @@ This box is fixed, so more particles means denser and the grid's tests grow like
 from about 1/50 of all pairs at R = 40 (n x 4.5 cells' worth of the 24 x 18 = 432 against
 n^2/2: 9/432; still 1/50 after 10 s at 2000 particles; 1/33 to 1/21 over 10 s of the LMB
 gathering a crowd at the centre), after a fixed cost per step (about 0.1 ms of NumPy calls,
-whatever n is) that makes all pairs the cheaper one below about 100 particles. The HUD shows
+whatever n is) that makes all pairs the cheaper one below about 100-200 particles. The HUD shows
 the pair tests (and, for the grid, their share of all pairs) and the ms per step of the method in
 use: raise `particles` and switch the method live. Hold the LMB and a crowd forms in which
 each particle has many more neighbours within R: the grid's share of all pairs climbs, and each
@@ -50,11 +50,12 @@ MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
 # always runs one whole step, so a step estimated above STEP_BUDGET_S is refused (the window would
 # answer only every step). The estimate: a cost per particle (sorting, integrating, drag, walls)
 # plus one per pair test (with the force on the pairs that pass); measured on the 2-core lab
-# machine from idle to busy (`bench particles` prints the estimate beside the measured step):
-# the grid 12-30 ns per candidate pair, all pairs 3.5-8 ns per test, 60-150 ns per particle.
+# machine, busy (`bench particles` prints the estimate beside the measured step): the grid
+# 17-43 ns per candidate pair, all pairs 3.4-7.6 ns per test, and 230-375 ns per particle at
+# cut-off 10 px (where the pair tests cost next to nothing); the constants lean to the busy end.
 STEP_BUDGET_S = 0.1
 SECONDS_PER_TEST = {"all_pairs": 7e-9, "grid": 2.5e-8}
-SECONDS_PER_PARTICLE = 1.5e-7
+SECONDS_PER_PARTICLE = 3e-7
 # Spread over the box at 5000 particles, a particle has some 35 neighbours within R = 40 (60 once
 # the clusters form); past CROWD the HUD calls it crowded (the mouse gathers hundreds).
 CROWD = 100
