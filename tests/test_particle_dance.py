@@ -368,7 +368,7 @@ def test_bench_particles_quick_has_the_scaling_table(capsys, tmp_path):
     for b in out["budget"]:                        # the costliest settings the scene accepts
         assert b["estimate_ms"] <= 100.0 and b["step_ms"] > 0
     targets = {t["target"]: t for t in out["targets"]}
-    assert len(targets) == 5 and all((t["reason"] is None) == t["met"] for t in targets.values())
+    assert len(targets) == 6 and all((t["reason"] is None) == t["met"] for t in targets.values())
 
 
 def test_pair_tests_do_not_exist_before_the_first_search():
