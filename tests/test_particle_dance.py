@@ -182,6 +182,12 @@ def test_force_is_the_slope_of_the_potential_and_energy_holds_at_a_small_step():
     slope = (rule.potential(r + e, a) - rule.potential(r - e, a)) / (2 * e)
     np.testing.assert_allclose(slope, rule.magnitude(r, a), atol=1e-5)
     assert (rule.magnitude(r[r >= 40.0], a[r >= 40.0]) == 0).all()
+    # the module docstring's F(r), piece by piece, for either sign of A (b = 12, R = 40)
+    for like in (0.7, -0.4):
+        a = np.full_like(r, like)
+        docstring = np.where(r < 12.0, 1000.0 * (r / 12.0 - 1.0),
+                             np.where(r < 40.0, like * 300.0 * (1 - np.abs(2 * r - 52.0) / 28.0), 0.0))
+        np.testing.assert_allclose(rule.magnitude(r, a), docstring, rtol=1e-12, atol=1e-9)
 
     def drift(hertz):                                # relative change of KE + PE over 2 s
         d = scene(drag=False, hertz=hertz).dance
