@@ -31,9 +31,10 @@ The grid in three steps, as on the slide:
 
 When the particles crowd together, the grid saves less and less: with everyone within one cell
 and its neighbours it tests every pair, as all pairs does. It needs no fallback even then: its
-blocks of candidates cost no more than all pairs' blocks of rows (measured with every particle
-at one point and in crowds of every size: `python -m app bench particles`, table "Crowds"), so
-the grid is never slower than all pairs; `crowded_share` says how much of its advantage is gone.
+blocks of candidates cost no more than all pairs' blocks of rows (`python -m app bench
+particles`, table "Crowds": 0.68-0.93 of all pairs' time with every particle at one point, 0.82-
+0.99 in its worst case, every pair a candidate and a quarter of them within R), so falling back
+would only make a crowd slower; `crowded_share` says how much of the grid's advantage is gone.
 
 Both methods hand out their pairs in blocks (`PairBlock`) of some tens of thousands, with the
 separation d = x_j - x_i and |d|^2 they already computed: a force summed block by block keeps
