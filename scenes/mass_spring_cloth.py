@@ -198,6 +198,7 @@ class MassSpringClothScene(Scene):
         self._stretch: tuple[np.ndarray, np.ndarray] | None = None
         self._energy: collections.deque = collections.deque(maxlen=600)   # (time, energy)
         self._mode: np.ndarray | None = None
+        self._cg_failure_t: float | None = None      # when implicit Euler's CG last stopped short
         self._sync()
 
     def _sync(self) -> None:
@@ -245,7 +246,10 @@ class MassSpringClothScene(Scene):
                 f"({pred * 1e3:.3g} ms): keep the step below it. {way}")
 
     def step(self, h: float) -> None:
+        failures = self.cloth.ps.cg_failures
         self.cloth.step(h, self.p["integrator"])
+        if self.cloth.ps.cg_failures > failures:
+            self._cg_failure_t = self.time
         self._stretch = None
 
     def after_step(self) -> None:
@@ -315,6 +319,7 @@ class MassSpringClothScene(Scene):
         if not self._energy or self._energy[-1][0] != self.time:
             self._energy.append((self.time, energy))
         implicit = self.p["integrator"] == "implicit_euler"
+        solved = implicit and self.steps > 0 and bool(c.ps.solve.method)
         return {
             "particles": c.rows * c.cols,
             "springs": c.spring_count(),
@@ -325,7 +330,11 @@ class MassSpringClothScene(Scene):
             "mean_stretch": float(s.mean()),
             "energy": energy,
             # implicit only (else 0); None before its first step (no solve yet)
-            "cg_iterations": (c.ps.cg_iterations if self.steps else None) if implicit else 0,
+            "cg_iterations": (c.ps.cg_iterations if solved else None) if implicit else 0,
+            # how the last solve ended (None: no implicit solve yet, or an explicit integrator)
+            "cg_converged": c.ps.solve.converged if solved else None,
+            "cg_residual": c.ps.solve.residual if solved else None,
+            "cg_failures": c.ps.cg_failures,          # implicit steps whose CG stopped short
             "pinned_drift": c.pinned_drift(),
         }
 
@@ -386,6 +395,10 @@ class MassSpringClothScene(Scene):
         lines.append(where)
         lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} | stretch: "
                      f"mean {m['mean_stretch'] * 100:.2f}%, max {m['max_stretch'] * 100:.1f}%")
+        if self._cg_failure_t is not None:          # a solve that stopped short, in words
+            n = c.ps.cg_failures
+            lines.append(f"t = {self._cg_failure_t:.2f} s ({n} step{'s' if n > 1 else ''} so "
+                         f"far): {c.ps.last_cg_failure.words()}")
         return lines
 
     # ----- state --------------------------------------------------------------------------------

@@ -40,17 +40,18 @@ filtered out of the solve (their rows stay 0: Baraff-Witkin's filter for a fixed
 from __future__ import annotations
 
 import time
-from typing import Callable, Iterable
+from typing import Callable, Iterable, NamedTuple
 
 import numpy as np
 
 from app.physics.blender_cloth import G_LAB, WIND_DENSITY, material_settings, spring_constants
 from app.physics.forces import Drag, Gravity
-from app.physics.integrators import INTEGRATORS, preconditioned_cg
+from app.physics.integrators import INTEGRATORS
+from app.physics.linear_solve import solve
 from app.physics.particles import ParticleSystem
 from app.physics.rods import Family, rod_sets
 from app.physics.spring_forces import (Blocks, SpringDamping, SpringSet, Timed, Wind, block_product,
-                                       spring_geometry)
+                                       sparse_matrix, spring_geometry)
 from app.physics.timing import Stopwatch
 
 
@@ -63,7 +64,6 @@ class MassSpringSystem(ParticleSystem):
         super().__init__(x, v, mass, forces, pinned)
         self.rows, self.cols = rows, cols
         self.cg_tolerance = CG_TOLERANCE
-        self.cg_residual = 0.0                    # |r| / |b| after the last implicit step
 
     def blocks(self, x: np.ndarray) -> tuple[Blocks, Blocks]:
         """The stiffness blocks (-df/dx) and damping blocks (-df/dv) of forces that have them."""
@@ -81,9 +81,10 @@ class MassSpringSystem(ParticleSystem):
         return sum(getattr(f, "force", f).kd for f in self.forces
                    if isinstance(getattr(f, "force", f), Drag))
 
-    def linear_system(self, x: np.ndarray, h: float):
+    def linear_system(self, x: np.ndarray, h: float) -> "ImplicitSystem":
         """At x: implicit Euler's A = M - h df/dv - h^2 df/dx and K = df/dx as products on
-        component-major vectors (2, n), and 1/diag(A) (the Jacobi preconditioner), (2, n)."""
+        component-major vectors (2, n), 1/diag(A) (the Jacobi preconditioner), (2, n), and a
+        direct solve of A (the fallback where CG stops short)."""
         stiff, damp = self.blocks(x)
         combined: dict[int, tuple[Family, np.ndarray]] = {}     # one block per family: h D + h^2 K
         for scale, blocks in ((h * h, stiff), (h, damp)):
@@ -107,7 +108,24 @@ class MassSpringSystem(ParticleSystem):
             d = np.stack((B[0, 0], B[1, 1]))
             diagonal[(slice(None),) + fam.a] += d
             diagonal[(slice(None),) + fam.b] += d
-        return A, K, 1.0 / diagonal.reshape(2, -1)
+
+        def direct(b: np.ndarray) -> np.ndarray | None:
+            """A x = b on the free rows by a sparse LU (SuperLU), x = 0 on the fixed ones."""
+            from scipy.sparse.linalg import spsolve
+            free = np.broadcast_to(self.free.T, b.shape).ravel() > 0
+            matrix = sparse_matrix(system, np.repeat(M, 2, axis=0), rows, cols).tocsc()
+            x = np.zeros(b.size)
+            x[free] = spsolve(matrix[free][:, free], b.ravel()[free])
+            return x.reshape(b.shape)
+        return ImplicitSystem(A, K, 1.0 / diagonal.reshape(2, -1), direct)
+
+
+class ImplicitSystem(NamedTuple):
+    """One implicit step's linear system (MassSpringSystem.linear_system)."""
+    A: Callable[[np.ndarray], np.ndarray]         # w -> A w
+    K: Callable[[np.ndarray], np.ndarray]         # w -> (df/dx) w
+    inv_diagonal: np.ndarray                      # 1 / diag(A)
+    direct: Callable[[np.ndarray], np.ndarray | None]    # b -> A^-1 b (sparse LU)
 
 
 # CG stops at |r| <= CG_TOLERANCE |b|. Chosen from the error it leaves (the tolerance table of
@@ -123,10 +141,11 @@ def implicit_euler(ps: MassSpringSystem, h: float) -> None:
     (M - h df/dv - h^2 df/dx) dv = h (f0 + h (df/dx) v0);  v' = v0 + dv;  x' = x0 + h v'."""
     x0, v0 = ps.x, ps.v
     f0 = ps.force(x0, v0).T                       # component-major (2, n): see block_product
-    A, K, inv_diagonal = ps.linear_system(x0, h)
-    b = h * (f0 + h * K(np.ascontiguousarray(v0.T)))
-    dv, ps.cg_iterations, ps.cg_residual = preconditioned_cg(
-        A, b, ps.free.T, inv_diagonal, ps.cg_tolerance, ps.cg_max_iterations)
+    system = ps.linear_system(x0, h)
+    b = h * (f0 + h * system.K(np.ascontiguousarray(v0.T)))
+    dv, report = solve(system.A, b, ps.free.T, system.inv_diagonal, ps.cg_tolerance,
+                       ps.cg_max_iterations, ("sparse LU", lambda: system.direct(b)))
+    ps.record_solve(report)
     v = v0 + dv.T
     ps.set_xv(x0 + h * v, v)
 
