@@ -347,10 +347,15 @@ def test_bench_mass_spring_quick_runs_and_has_its_json_keys(tmp_path):
                        timeout=120)
     assert r.returncode == 0, r.stderr
     data = json.loads(r.stdout)
-    assert {"large_steps", "step_ms"} <= set(data)
+    assert {"large_steps", "step_ms", "implicit_vs_explicit"} <= set(data)
     row = data["large_steps"][0]
     assert {"material", "stiffness_scale", "integrator", "max_stable_h", "predicted_h",
-            "ms_per_sim_second"} <= set(row)
+            "margin", "unstable_seen_at_step", "ms_per_sim_second"} <= set(row)
+    for r in data["large_steps"]:       # symplectic Euler's own limit is never exceeded
+        if r["integrator"] == "symplectic_euler":
+            assert r["max_stable_h"] and r["margin"] <= 1.0 and not r["above_prediction"]
+            assert r["unstable_seen_at_step"] < r["horizon_steps"] / 2    # growth seen in time
+    assert {q["stiffness_scale"] for q in data["implicit_vs_explicit"]} == {1, 100}
     assert set(data["step_ms"]) == set(INTEGRATORS)
     assert list(tmp_path.glob("*.png"))
 
