@@ -58,7 +58,8 @@ from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
-from app.physics.mass_spring_stability import ESTIMATE_EVERY, MARGINAL, LimitWatch
+from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
+                                               MARGINAL, LimitWatch)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
 
 UNLOCK_KEY = "u"
@@ -285,8 +286,10 @@ class MassSpringClothScene(Scene):
         # the cloth's limit falls as it shears and stretches: follow it (every ESTIMATE_EVERY
         # simulated seconds, warm-started) and keep the lowest for the current integrator
         name = self.p["integrator"]
-        if self.cloth.is_sane() and self.watch.follow(self.cloth.ps, self.time):
-            if INTEGRATORS[name].explicit:
+        explicit = INTEGRATORS[name].explicit
+        every = ESTIMATE_EVERY if explicit else ESTIMATE_EVERY_IMPLICIT
+        if self.cloth.is_sane() and self.watch.follow(self.cloth.ps, self.time, every):
+            if explicit:
                 self.watch.track(name, self.dt / self.p["substeps"])
 
     # ----- the mouse ----------------------------------------------------------------------------
@@ -409,8 +412,9 @@ class MassSpringClothScene(Scene):
             f"{p['material']}, {title}: {m['particles']} particles, {m['springs']} springs",
         ]
         if om > 0:
+            every = ESTIMATE_EVERY if INTEGRATORS[name].explicit else ESTIMATE_EVERY_IMPLICIT
             lines.append(f"omega_max {om:.4g}/s on the cloth as it is now (re-estimated every "
-                         f"{ESTIMATE_EVERY:g} s): undamped, explicit methods are stable below h = "
+                         f"{every:g} s): undamped, explicit methods are stable below h = "
                          f"2/omega_max = "
                          f"{2e3 / om:.3f} ms (RK4: 2.83/omega_max = {2.83e3 / om:.3f} ms; forward "
                          f"Euler, midpoint: no h)"
