@@ -59,7 +59,7 @@ from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
 from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
-                                               MARGINAL, LimitWatch)
+                                               LimitWatch, marginal)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, common
 
 UNLOCK_KEY = "u"
@@ -71,7 +71,7 @@ MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
 JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (blender_cloth.py)
 BAND_WORDS = {
     "stable": "stable",
-    "marginal": f"MARGINAL: safe only below {MARGINAL:g}x, the limit falls as the cloth deforms",
+    "marginal": "MARGINAL: safe only below {m:g}x of it, the limit falls as the cloth deforms",
     "past the limit": "PAST THE LIMIT: its top mode grows (a shiver, or a blow-up)",
 }
 # settings that change the step or the solver, not the cloth: its limits seen so far still hold
@@ -260,10 +260,11 @@ class MassSpringClothScene(Scene):
         h = self.dt / p["substeps"]
         rest = self.watch.rest(name) or pred
         now = p["hertz"] * p["substeps"]
-        need = max(math.ceil(1.0 / (MARGINAL * pred)), now + 1)   # steps per second, stable band
+        m = marginal(name)
+        need = max(math.ceil(1.0 / (m * pred)), now + 1)   # steps per second in the stable band
         most = int(self.param("hertz").hi * self.param("substeps").hi)
         way = (f"Raise hertz x substeps from {now:,} to at least {need:,} (the stable band, "
-               f"below {MARGINAL:g}x), or take implicit_euler." if need <= most else
+               f"below {m:g}x), or take implicit_euler." if need <= most else
                f"That takes {need:,} steps per second, more than hertz x substeps reach "
                f"({most:,}): take implicit_euler.")
         title = INTEGRATORS[name].title
@@ -271,7 +272,7 @@ class MassSpringClothScene(Scene):
                  + (f"; {rest * 1e3:.3g} ms at rest, lower as the cloth deformed)"
                     if rest > pred * 1.0005 else ")"))
         if h <= pred:
-            where += (f": inside the limit but not below {MARGINAL:g}x of it, where a "
+            where += (f": inside the limit but not below {m:g}x of it, where a "
                       f"deforming cloth can pass it")
         return f"h = {h * 1e3:.3g} ms was {where}. {way}"
 
@@ -437,7 +438,7 @@ class MassSpringClothScene(Scene):
             rest = self.watch.rest(name) or pred
             seen = (f"; {rest * 1e3:.3f} at rest" if rest > pred * 1.0005 else "")
             where += (f" = {_times(h / pred)}x {title}'s limit ({pred * 1e3:.3f} ms, {kind}, "
-                      f"lowest so far{seen}): " + BAND_WORDS[band])
+                      f"lowest so far{seen}): " + BAND_WORDS[band].format(m=marginal(name)))
         lines.append(where)
         lines.append(f"energy {m['energy'] / JOULE:.4g} J{self._energy_change()} | stretch: "
                      f"mean {m['mean_stretch'] * 100:.2f}%, max {m['max_stretch'] * 100:.1f}%")
