@@ -5,9 +5,15 @@ bending), with Blender's cloth presets (cotton, denim, leather, rubber, silk) an
 integrators of the particle system, switchable live. The HUD predicts the explicit methods'
 stability limit from the cloth's highest frequency omega_max (power iteration with the stiffness
 product and the masses; 2/omega_max undamped, less with spring damping: leather's is a tenth of
-it) and says where the current step is; past the limit the top mode grows (just past it, it may
-only shiver), well past it an explicit integrator blows up, the shell's guard rolls back and
-pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keeps going,
+it) and says where the current step is. The limit belongs to the cloth's state: as the cloth
+drapes its cells shear and its springs stretch, and its limit falls (to 0.62x of the value at
+rest for rubber, 0.82x for silk; flung, to 0.62-0.74x), so the HUD re-estimates it on the moving
+cloth (every 0.05 s), keeps the lowest seen, and gives a band: "stable" below half of it (0.4
+for forward Euler), measured to hold for every material and explicit integrator from rest and
+from a fling; "marginal" up to it (runs there blew up or gained energy from 0.6x to 0.9x of the
+limit shown at the start); "past the limit" beyond. Past the limit the top mode grows (just past
+it, it may only shiver), well past it an explicit integrator blows up, the shell's guard rolls
+back and pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keeps going,
 paying in artificial damping (watch the energy with damping, air and wind off). It linearises
 the springs once per step (one Newton step), so a huge step still costs it: at hertz 1, cotton's
 energy leaps from 0 to ~1.9e7 J at t = 3 s before the damping wins: within a minute it is back
