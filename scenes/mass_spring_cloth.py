@@ -22,6 +22,13 @@ CPU's BLAS, moves it from -30 to +30 J; CG stops at 1e-2 of the residual, and a 
 amplifies what that leaves). With cg_tolerance 1e-10 (exact: the sparse LU takes over where CG
 cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging lower than it
 started, from 10 s on, on every machine.
+Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16
+cloth, wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit
+integrator at its own measured limit): for stiff cloth by far (leather 19x cheaper at Blender's
+stiffness, 160x at x10, 1600x at x100; denim at x100 66x), but at the soft presets' own
+stiffness it is about even or explicit wins (cotton 0.3-1.1x, silk 0.4-0.8x, rubber 1.0-1.6x,
+noisy on a loaded machine); and an explicit step kept in the stable band (half its limit) costs
+twice that again.
 Physics: app/physics/mass_spring.py (Blender's units in pixels and seconds: blender_cloth.py);
 drawing: app/draw/cloth_draw.py, the Verlet cloth's strain heat map and legend, so the two cloths
 compare directly.
