@@ -293,7 +293,7 @@ class MassSpringClothScene(Scene):
         failures = self.cloth.ps.cg_failures
         self.cloth.step(h, self.p["integrator"])
         if self.cloth.ps.cg_failures > failures:
-            self._cg_failure_t = self.time
+            self._cg_failure_t = self.cloth.t         # the end of the step that failed
         self._stretch = None
 
     def after_step(self) -> None:

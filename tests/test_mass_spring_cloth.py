@@ -588,7 +588,7 @@ def test_a_step_in_the_stable_band_neither_blows_up_nor_gains_energy(material, i
     """The HUD's 'stable' band holds: 0.95 x marginal() x the limit shown at the start, from rest
     and from a fling, 1.5 s: finite, and the energy's peak in the second half of the run no
     higher than in the first (steps beyond 50,000 per second, which the sliders cannot set, are
-    skipped)."""
+    skipped). 46 runs + 4 skipped, 5 min 17 s on 2 workers."""
     out = run_from(material, integrator, 0.95 * marginal(integrator), fling)
     if out is None:
         pytest.skip("no reachable step")
@@ -597,8 +597,9 @@ def test_a_step_in_the_stable_band_neither_blows_up_nor_gains_energy(material, i
     assert s.is_finite(), f"blew up at t = {s.time:.2f} s"
     half = len(energy) // 2
     assert max(energy[half:]) <= max(energy[:half]) + 0.01 * max(abs(e) for e in energy)
-    if not fling:
-        assert max(energy) <= 1e-6 * max(abs(e) for e in energy) + 1e-9   # from rest: <= 0 J
+    if not fling:      # from rest the energy only falls; forward Euler's own O(h) error gains
+        # 1/2 m g^2 h^2 a step while the cloth falls freely: 1e-4 of the energy released here
+        assert max(energy) <= 1e-3 * max(abs(e) for e in energy)
 
 
 def test_rubber_falling_at_half_its_limit_is_stable_and_at_four_fifths_is_not():
