@@ -11,7 +11,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import statistics
 import sys
 import time
 from typing import Any
@@ -140,13 +139,13 @@ def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
     """The JSON summary object of DESIGN.md for a finished run (plus "error" when the scene
     raised SceneError)."""
     s = runner.scene
-    times = runner.all_seconds or []
+    median = runner.step_times.median() if runner.step_times is not None else None
     out = {
         "scene": s.name,
         "steps": runner.steps,
         "sim_seconds": round(runner.steps * s.dt, 9),
         "wall_seconds": round(wall_seconds, 6),
-        "step_ms": round(statistics.median(times) * 1000, 6) if times else None,   # no step
+        "step_ms": round(median * 1000, 6) if median is not None else None,   # None: no step
         "params": clean(s.p),
         "effects": sorted(s.on),
         "metrics": clean(s.metrics()),
