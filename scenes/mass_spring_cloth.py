@@ -71,25 +71,23 @@ from app.physics.bounds import clamp_point
 from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
-from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
+from app.physics.mass_spring import FORCE_EFFECTS, PINS, SOLVERS, MassSpringCloth
+from app.physics.mass_spring_cost import STEP_BUDGET_S, iteration_cap, step_estimate, what_fits
 from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
                                                LimitWatch, marginal)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 
 UNLOCK_KEY = "u"
-# particles x substeps per step: 32x32 x 39, 64x64 x 9. Measured at 64x64 x 9, implicit Euler:
-# 0.06 s per step (cotton) to 0.4 s (every stiffness 1e5, mass 0.001, shear on); 1.2 s with
-# cg_tolerance 1e-10 on top (CG iterations, not particles, decide the rest)
-STEP_BUDGET = 40_000
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
 JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (blender_cloth.py)
+SOLVER_WORDS = {"cg": "CG", "direct": "direct LU"}
 BAND_WORDS = {
     "stable": "stable",
     "marginal": "MARGINAL: safe only below {m:g}x of it, the limit falls as the cloth deforms",
     "past the limit": "PAST THE LIMIT: its top mode grows (a shiver, or a blow-up)",
 }
 # settings that change the step or the solver, not the cloth: its limits seen so far still hold
-STEP_SETTINGS = {"integrator", "hertz", "substeps", "cg_tolerance"}
+STEP_SETTINGS = {"integrator", "hertz", "substeps", "cg_tolerance", "solver"}
 
 
 class MassSpringClothScene(Scene):
@@ -149,8 +147,13 @@ class MassSpringClothScene(Scene):
         Param("wind_field", "gust", str, choices=("gust", "lecture"),
               help="gust: travelling gusts; lecture: the slide's (sin(x*y*t), cos(z*t)), z = 1",
               rebuild=False),
+        Param("solver", "cg", str, choices=SOLVERS,
+              help="implicit Euler's linear solve: cg (conjugate gradients, Baraff & Witkin's) "
+                   "or direct (SciPy's sparse LU); the HUD gives the cost of each",
+              rebuild=False),
         Param("cg_tolerance", 1e-2, float, 1e-10, 0.5,
-              help="implicit Euler: CG stops at |residual| <= this x |b|", rebuild=False),
+              help="implicit Euler: CG stops at |residual| <= this x |b| (and a direct solve "
+                   "must reach it too)", rebuild=False),
     )
     effects = (
         Effect("gravity", True, "gravity f = m g", amount="g"),
@@ -189,12 +192,37 @@ class MassSpringClothScene(Scene):
     # ----- settings ---------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:
-        work = values["rows"] * values["cols"] * values["substeps"]
-        if work > STEP_BUDGET:
-            raise ParamError(
-                f"rows x cols x substeps too large: {values['rows']}x{values['cols']} x "
-                f"{values['substeps']} substeps = {work} particle-steps per step; accepted: at "
-                f"most {STEP_BUDGET} (up to ~0.4 s per step with implicit Euler)")
+        """Refuse a setting whose one step would take longer than the window waits for a step
+        (STEP_BUDGET_S), as estimated by app/physics/mass_spring_cost.py from what a step does:
+        particles, substeps, the integrator's force evaluations, the solver, and CG's iterations
+        (from the substep against the cloth's highest frequency, and the tolerance)."""
+        seconds, its = cls.step_cost(values)
+        if seconds <= STEP_BUDGET_S:
+            return
+        p = values
+        what = (f"{p['rows']}x{p['cols']} x {p['substeps']} substep"
+                + ("s" if p["substeps"] > 1 else "") + f", {p['integrator']}")
+        if not INTEGRATORS[p["integrator"]].explicit:
+            what += (f", solver {p['solver']}" + (f", ~{its:,} CG iterations a substep at "
+                                                   f"cg_tolerance {p['cg_tolerance']:g}"
+                                                   if p["solver"] == "cg" else ""))
+        ways = what_fits(p, cls.world_size)
+        raise ParamError(
+            f"a step too slow for the window: {what} would take ~{_seconds(seconds)} a step; "
+            f"accepted: at most {STEP_BUDGET_S * 1e3:.0f} ms (the window waits for whole steps)"
+            + (": " + ", or ".join(ways) + " would fit" if ways else ""))
+
+    @classmethod
+    def step_cost(cls, values) -> tuple[float, int]:
+        """(estimated seconds of one step, CG iterations a substep) for these settings; while a
+        named material's preset is being applied (set('material', ...)), the more expensive of
+        the values given and the preset's."""
+        estimate = step_estimate(values, cls.world_size)
+        if values["material"] != "custom":
+            preset = step_estimate({**values, **material_settings(values["material"])},
+                                   cls.world_size)
+            estimate = max(estimate, preset)
+        return estimate
 
     @classmethod
     def resolve(cls, overrides):
@@ -234,6 +262,8 @@ class MassSpringClothScene(Scene):
         self._energy: collections.deque = collections.deque(maxlen=600)   # (time, energy)
         self.watch = LimitWatch()                # omega_max and the limits, on the moving cloth
         self._cg_failure_t: float | None = None      # when implicit Euler's CG last stopped short
+        self._solve_ms: dict[str, float] = {}        # ms per step of each solver, as measured
+        self._solve_mark = 0.0                       # cloth.spent["solve"] at the last step
         self._sync()
 
     def _sync(self, names: set[str] | None = None) -> None:
@@ -244,7 +274,10 @@ class MassSpringClothScene(Scene):
         c.g, c.wind_field, c.wind_strength = p["g"], p["wind_field"], p["wind_strength"]
         c.on = set(self.on)
         c.configure()
-        c.ps.cg_tolerance = p["cg_tolerance"]
+        c.ps.cg_tolerance, c.ps.solver = p["cg_tolerance"], p["solver"]
+        c.ps.budget_iterations = iteration_cap(p)    # CG's most in a substep (the step budget)
+        if names is None or names - {"solver"}:
+            self._solve_ms.clear()                   # the costs measured no longer hold
         self._energy.clear()
         if names is None or names - STEP_SETTINGS:
             self.watch.forget()
@@ -306,10 +339,18 @@ class MassSpringClothScene(Scene):
         self._stretch = None
 
     def after_step(self) -> None:
-        # the cloth's limit falls as it shears and stretches: follow it (every ESTIMATE_EVERY
-        # simulated seconds, warm-started) and keep the lowest for the current integrator
         name = self.p["integrator"]
         explicit = INTEGRATORS[name].explicit
+        # what this step's solve cost, kept per solver (smoothed) so the HUD can set them side
+        # by side once both have run on this cloth
+        spent = self.cloth.spent["solve"]
+        if not explicit:
+            ms, solver = (spent - self._solve_mark) * 1e3, self.p["solver"]
+            old = self._solve_ms.get(solver)
+            self._solve_ms[solver] = ms if old is None else 0.8 * old + 0.2 * ms
+        self._solve_mark = spent
+        # the cloth's limit falls as it shears and stretches: follow it (every ESTIMATE_EVERY
+        # simulated seconds, warm-started) and keep the lowest for the current integrator
         every = ESTIMATE_EVERY if explicit else ESTIMATE_EVERY_IMPLICIT
         if self.cloth.is_sane() and self.watch.follow(self.cloth.ps, self.time, every):
             if explicit:
@@ -385,6 +426,7 @@ class MassSpringClothScene(Scene):
             "particles": c.rows * c.cols,
             "springs": c.spring_count(),
             "integrator": self.p["integrator"],
+            "solver": self.p["solver"],
             "omega_max": self.omega_max,
             "explicit_limit_h": self.explicit_limit(),
             # the integrator's own limit the band is judged against (the lowest seen) and the band
@@ -437,8 +479,7 @@ class MassSpringClothScene(Scene):
         pred = self.limit(name)
         band = self.watch.band(name, h)
         if not INTEGRATORS[name].explicit:
-            where += ((f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else "")
-                      + f"; CG {c.ps.cg_iterations} iterations")
+            where += f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else ""
         elif om <= 0:                          # every stiffness 0: no top mode, no limit
             where += ": no stiffness, so no step limit"
         elif pred is None:
@@ -459,9 +500,15 @@ class MassSpringClothScene(Scene):
         short (in words)."""
         c, m, p = self.cloth, self.metrics(), self.p
         title = INTEGRATORS[p["integrator"]].title
-        lines = [f"{p['material']}, {title}: {self._where()}",
-                 f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
-                 f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
+        lines = [f"{p['material']}, {title}: {self._where()}"]
+        if not INTEGRATORS[p["integrator"]].explicit:
+            lines.append(self._solve_line())
+        lines.append(f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
+                     f"max stretch {self.shown('max_stretch', m['max_stretch'])}")
+        slow = self._real_time_words()
+        if slow:
+            from app.draw.hud import WARN_COLOR, Line
+            lines.append(Line(slow, WARN_COLOR))
         if self._cg_failure_t is not None:          # a solve that stopped short, in words
             n = c.ps.cg_failures
             lines.append(f"t = {self._cg_failure_t:.2f} s ({n} step{'s' if n > 1 else ''} so "
@@ -484,9 +531,63 @@ class MassSpringClothScene(Scene):
                          + (f"; this damping lowers symplectic Euler's to {limit * 1e3:.3f} ms"
                             if self.mode_damping > 0 else ""))
         if not INTEGRATORS[name].explicit:
-            lines.append(f"CG: {c.ps.cg_iterations} iterations, residual {c.ps.cg_residual:.1e} "
-                         f"(stops at {self.p['cg_tolerance']:g} x |b|)")
+            lines.append(self._solve_details())
         return lines
+
+    # ----- the solve's cost, and real time ------------------------------------------------------
+    def _solve_line(self) -> str:
+        """'solve: CG 86 iterations, 9.1 ms a step (direct LU: 58 ms, when last used)': the
+        solver in use and its measured cost, beside the other one's if it ran on this cloth."""
+        solver, report, ms = self.p["solver"], self.cloth.ps.solve, self._solve_ms
+        if not report.method:
+            return f"solve: {SOLVER_WORDS[solver]}, no step yet"
+        cost = f"{ms[solver]:.3g} ms a step" if solver in ms else "-"
+        text = (f"solve: CG {report.iterations} iterations, {cost}" if solver == "cg"
+                else f"solve: {SOLVER_WORDS[solver]} {cost}")
+        other = "direct" if solver == "cg" else "cg"
+        if other in ms:
+            text += f" ({SOLVER_WORDS[other]}: {ms[other]:.3g} ms, when last used)"
+        return text
+
+    def _solve_details(self) -> str:
+        """The second page's line on the solve: CG's residual, its first guess and the cost of
+        an iteration; the direct solve's residual and its factors' size against A's."""
+        c, report = self.cloth, self.cloth.ps.solve
+        nonzeros = c.ps.matrix.nonzeros if c.ps.matrix is not None else 0
+        if report.method == "cg":
+            start = "the last steps' dv" if report.warm else "dv = 0"
+            return (f"CG: {report.iterations} iterations (block Jacobi preconditioner, from "
+                    f"{start}), residual {report.residual:.1e} (stops at "
+                    f"{self.p['cg_tolerance']:g} x |b|); it only multiplies by A ({nonzeros:,} "
+                    "non-zeros), which it never factors")
+        if report.method:
+            fill = (f": its factors L and U hold {report.fill:,} non-zeros, "
+                    f"{report.fill / nonzeros:.1f}x A's {nonzeros:,}"
+                    if report.fill and nonzeros else "")
+            return (f"direct: SuperLU factors A anew every step{fill}; residual "
+                    f"{report.residual:.1e}")
+        return "solve: no step yet"
+
+    def step_ms(self) -> float:
+        """Measured ms of physics per fixed step: the effects' costs added up (0 before any)."""
+        self.effect_costs()
+        return sum(self._costs.values())
+
+    def _real_time_words(self) -> str:
+        """'' while the physics keeps up with real time; else in words how far behind it is and
+        what would catch up."""
+        step, need = self.step_ms(), 1000.0 / self.p["hertz"]
+        if self.steps < 5 or step <= need:
+            return ""
+        p, ms = self.p, self._solve_ms
+        if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "direct" and (
+                ms.get("cg", math.inf) < ms.get("direct", 0.0)):
+            way = "solver=cg"
+        else:
+            way = ("fewer particles or substeps" + (", a looser cg_tolerance"
+                   if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "cg" else ""))
+        return (f"not real time: {step:.3g} ms of physics per {need:.3g} ms step "
+                f"({need / step:.2f}x real time); {way} would catch up")
 
     # ----- state --------------------------------------------------------------------------------
     def state_arrays(self):
@@ -513,6 +614,11 @@ class MassSpringClothScene(Scene):
 
 def _finite(x: float | None) -> float | None:
     return x if x is not None and math.isfinite(x) else None
+
+
+def _seconds(seconds: float) -> str:
+    """'85 ms', '3.2 s'."""
+    return f"{seconds * 1e3:.0f} ms" if seconds < 1.0 else f"{seconds:.2g} s"
 
 
 def _times(ratio: float) -> str:

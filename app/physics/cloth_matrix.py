@@ -67,6 +67,7 @@ class ClothMatrix:
             self.family_entries.append((start, 4 * ia.size))
             start += 8 * ia.size
         row, col = np.concatenate(rows_at), np.concatenate(cols_at)
+        self.nonzeros = row.size                          # A's non-zeros: 4 n + 8 per spring
         # Stored by diagonals (SciPy's DIA format): every entry lies on a diagonal col - row =
         # offset, and the grid's springs put all of them on a few (3 + 6 per family: 27 for the
         # default cloth); data[k, col] holds the entry of diagonal k in column col, zero where

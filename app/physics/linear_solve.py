@@ -48,7 +48,8 @@ class SolveReport:
     the first solve). iterations: CG's iterations (0 for a direct solve). residual: |b - A x| / |b|
     of its answer (recomputed, not CG's running estimate), tolerance: what it had to reach.
     converged: residual <= tolerance. stop: why it stopped ("converged", "breakdown", "iteration
-    cap", "rounding"; a direct solve: "solved", or "failed" where it had no answer). fallback: the
+    cap", "rounding", "budget": a caller's cap for time; a direct solve: "solved", or "failed"
+    where it had no answer). fallback: the
     solve that gave the step instead ("dense LU", "sparse LU", "cg"), None if the first answer
     was used or no other solve was possible; fallback_residual: that answer's |b - A x| / |b|.
     warm: CG started from the caller's first guess (x0). fill: a direct solve's factor size
@@ -85,6 +86,8 @@ class SolveReport:
             return f"{what}; {used}"
         why = {"breakdown": "broke down (p.Ap <= 0: A not positive definite)",
                "iteration cap": f"hit its cap of {self.iterations} iterations",
+               "budget": f"stopped at {self.iterations} iterations, all the step's time "
+                         "budget holds",
                "rounding": "met its tolerance in its running residual only"}[self.stop]
         used = (f"used a {self.fallback} solve (residual {self.fallback_residual:.1e})"
                 if self.fallback else "no other solve: used CG's last iterate")

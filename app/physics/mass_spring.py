@@ -75,6 +75,7 @@ class MassSpringSystem(ParticleSystem):
         self.rows, self.cols = rows, cols
         self.cg_tolerance = CG_TOLERANCE
         self.solver = "cg"                         # or "direct" (SOLVERS)
+        self.budget_iterations: int | None = None  # CG's most that fit the step's time budget
         self.matrix: ClothMatrix | None = None     # A's pattern, built on the first solve
         self.last_dv: np.ndarray | None = None     # the last two steps' dv (2, n), for CG's
         self.dv_before: np.ndarray | None = None   # first guess (next_dv_guess)
@@ -180,16 +181,26 @@ def implicit_euler(ps: MassSpringSystem, h: float) -> None:
     """Baraff-Witkin's linearised backward Euler step:
     (M - h df/dv - h^2 df/dx) dv = h (f0 + h (df/dx) v0);  v' = v0 + dv;  x' = x0 + h v'.
     solver "cg": conjugate gradients with the block Jacobi preconditioner, started from the last
-    step's dv (the sparse LU where it stops short); "direct": the sparse LU (CG where it fails)."""
+    steps' dv (the sparse LU where it stops short); "direct": the sparse LU (CG where it fails).
+    CG stops after ps.cg_max_iterations (default: the unknowns) or ps.budget_iterations (what
+    fits the scene's time budget, app/physics/mass_spring_cost.py), whichever is fewer; stopped
+    by the budget it takes no direct solve (that would not fit either) and reports "budget"."""
     x0, v0 = ps.x, ps.v
     f0 = ps.force(x0, v0).T                       # component-major (2, n): see block_product
     system = ps.linear_system(x0, h)
     b = h * (f0 + h * system.K(np.ascontiguousarray(v0.T)))
     free = ps.free.T
 
+    unknowns = 2 * int(ps.free.sum())
+    cap = min(ps.cg_max_iterations or unknowns, ps.budget_iterations or unknowns)
+    budget = cap < (ps.cg_max_iterations or unknowns)   # the time budget caps CG, not the size
+
     def cg(fallback=None):
-        return solve(system.A, b, free, system.precondition, ps.cg_tolerance,
-                     ps.cg_max_iterations, fallback, x0=ps.next_dv_guess())
+        dv, report = solve(system.A, b, free, system.precondition, ps.cg_tolerance, cap,
+                           None if budget else fallback, x0=ps.next_dv_guess())
+        if budget and report.stop == "iteration cap":
+            report.stop = "budget"                # no direct solve either: it would not fit
+        return dv, report
     if ps.solver == "direct":
         dv, report = solve_directly(system.A, b, free, "sparse LU", lambda: system.direct(b),
                                     ps.cg_tolerance, cg)

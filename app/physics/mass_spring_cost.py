@@ -1,0 +1,150 @@
+"""What one step of the mass-spring cloth costs, estimated before it runs: the scene's step budget.
+
+The window gives physics at most STEP_BUDGET_S of a frame (app/window/scene_view.py) but always
+finishes the step it started, so a setting whose one step takes longer would freeze it: the scene
+refuses such a setting, and says what would fit. A step is `substeps` substeps, and a substep
+costs (constants measured on the lab's 2-core machine while other jobs ran, the busy end kept):
+
+    explicit      evaluations x (the forces: FORCES_PER_PARTICLE x n)
+    implicit, cg  the forces and the matrix (SETUP_PER_PARTICLE x n) + CG's iterations x (one
+                  iteration: ITERATION_FIXED + ITERATION_PER_PARTICLE x n)
+    direct        the forces and the matrix + SuperLU's factorization, LU_SECONDS x n^LU_POWER
+                  (its factors fill in: the cost grows faster than n)
+
+with n = rows x cols. CG's iterations are what the settings move most, from 1 to thousands. CG's
+bound on the residual: with kappa the condition number of the preconditioned matrix, it needs
+at most sqrt(kappa)/2 ln(2 sqrt(kappa)/tolerance) iterations, and here kappa ~ 1 + (h omega)^2:
+the substep h against the cloth's highest frequency omega (at rest; `rest_omega`, from a small
+probe of the same cells). The bound holds but overshoots: measured (first 40-100 steps from
+rest, every preset at 16x16 and 32x32, hertz 30-1000, tolerance 1e-2 to 1e-10) the worst
+iterations were 0.11-0.75 of it wherever it exceeds 30 (0.3-0.6 at 64x64), so the estimate
+takes ITERATIONS_OF_BOUND = 0.8 of it. For a very stiff cloth (every stiffness 1e5, mass 0.001:
+h omega up to 1e5) it is far too high: where the springs outweigh the masses the condition
+number is the grid's own, and the measured worst was 0.7-1.0 x max(rows, cols) x ln(1/tolerance)
+iterations at 16x16 and 32x32, 0.7 at 64x64 (GRID_ITERATIONS = 0.8), and up to 2.2x that at
+a tolerance of 1e-10, near the rounding floor, where CG stalls (GRID_STALL: x (1 + side/32));
+the estimate is the smaller of the two.
+
+An estimate is not a guarantee: a fling can take more iterations than a hang. The scene caps CG
+at what fits the budget (`iteration_cap`); a solve that hits the cap says so in the HUD, like any
+solve that stops short (app/physics/linear_solve.py).
+"""
+
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+from app.physics.blender_cloth import MATERIAL_KEYS
+
+STEP_BUDGET_S = 0.1                  # s: one step's most (the window's physics time per frame)
+FORCES_PER_PARTICLE = 0.45e-6        # s per particle: one evaluation of every force (64x64: 1.4 ms)
+SETUP_PER_PARTICLE = 1.2e-6          # s per particle: forces, Jacobian blocks, matrix refresh
+SETUP_FIXED = 0.3e-3                 # s per substep, whatever the size
+ITERATION_FIXED = 20e-6              # s per CG iteration: its NumPy calls
+ITERATION_PER_PARTICLE = 35e-9       # s per particle per iteration (64x64: 0.12-0.16 ms)
+LU_SECONDS, LU_POWER = 1.1e-6, 1.35  # SuperLU: 13 ms at 32x32, 60-100 ms at 64x64
+ITERATIONS_OF_BOUND = 0.8
+GRID_ITERATIONS = 0.8
+GRID_STALL = 1e-8                    # below this tolerance CG stalls in rounding near its floor
+EXPLICIT_EVALUATIONS = {"euler": 1, "symplectic_euler": 1, "verlet": 1, "midpoint": 2, "rk4": 4}
+
+
+def cloth_spacing(values, world: tuple[float, float]) -> float:
+    """The cell size the scene builds (its spacing, shrunk so the cloth fits the world)."""
+    w, h = world
+    return min(values["spacing"], 0.6 * w / (values["cols"] - 1), 0.6 * h / (values["rows"] - 1))
+
+
+PROBE_SPACING = 16.0
+
+
+@lru_cache(maxsize=64)
+def _probe_omega(material: tuple) -> float:
+    from app.physics.mass_spring import MassSpringCloth
+    from app.physics.mass_spring_stability import top_mode
+    probe = MassSpringCloth(6, 6, PROBE_SPACING, (0.0, 0.0), "none")
+    probe.material = dict(zip(MATERIAL_KEYS, material))
+    probe.on = {"damping", "shear", "bending"}          # shear on: the stiffer case (1.2x)
+    probe.configure()
+    return top_mode(probe.ps, 60)[0]
+
+
+def rest_omega(values, spacing: float) -> float:
+    """omega_max (1/s) of a cloth of these material values and this cell size at rest, shear on:
+    the top mode of a 6x6 probe of 16 px cells (a local quantity: the cloth's size hardly moves
+    it), scaled to the cell size: every stiffness goes as 1/spacing and every mass as spacing^2,
+    so omega^2 goes as spacing^-3. (As the cloth drapes it rises by up to 1.6x: the iterations
+    behind cg_iterations were measured on the moving cloth.)"""
+    omega = _probe_omega(tuple(float(values[k]) for k in MATERIAL_KEYS))
+    return omega * (PROBE_SPACING / spacing) ** 1.5
+
+
+def cg_iterations(h_omega: float, tolerance: float, rows: int, cols: int) -> int:
+    """CG's iterations per solve, estimated (see the module docstring)."""
+    root = math.sqrt(1.0 + h_omega * h_omega)
+    bound = ITERATIONS_OF_BOUND * root / 2.0 * math.log(2.0 * root / tolerance)
+    grid = GRID_ITERATIONS * max(rows, cols) * math.log(1.0 / tolerance)
+    if tolerance < GRID_STALL:
+        grid *= 1.0 + max(rows, cols) / 32.0
+    return max(1, math.ceil(min(bound, grid, 2 * rows * cols)))
+
+
+def iteration_seconds(particles: int) -> float:
+    return ITERATION_FIXED + ITERATION_PER_PARTICLE * particles
+
+
+def substep_seconds(values, h_omega: float) -> tuple[float, int]:
+    """(seconds, CG iterations) of one substep with these settings."""
+    n = values["rows"] * values["cols"]
+    name = values["integrator"]
+    if name in EXPLICIT_EVALUATIONS:
+        return EXPLICIT_EVALUATIONS[name] * FORCES_PER_PARTICLE * n, 0
+    setup = SETUP_FIXED + SETUP_PER_PARTICLE * n
+    if values["solver"] == "direct":
+        return setup + LU_SECONDS * n ** LU_POWER, 0
+    its = cg_iterations(h_omega, values["cg_tolerance"], values["rows"], values["cols"])
+    return setup + its * iteration_seconds(n), its
+
+
+def step_estimate(values, world: tuple[float, float]) -> tuple[float, int]:
+    """(seconds of one step: substeps x a substep, CG iterations per substep)."""
+    h = 1.0 / (values["hertz"] * values["substeps"])
+    omega = rest_omega(values, cloth_spacing(values, world))
+    seconds, its = substep_seconds(values, h * omega)
+    return values["substeps"] * seconds, its
+
+
+def iteration_cap(values) -> int:
+    """The most CG iterations a substep may take and still fit the budget (at least 1): the
+    solver's cap (MassSpringSystem.cg_max_iterations)."""
+    n = values["rows"] * values["cols"]
+    room = STEP_BUDGET_S / values["substeps"] - SETUP_FIXED - SETUP_PER_PARTICLE * n
+    return max(1, int(room / iteration_seconds(n)))
+
+
+def what_fits(values, world: tuple[float, float]) -> list[str]:
+    """Settings one change away that fit the budget, in words ('substeps <= 3', ...)."""
+    fits = lambda **change: step_estimate({**values, **change}, world)[0] <= STEP_BUDGET_S  # noqa
+    ways = []
+    fewer = [s for s in range(values["substeps"] - 1, 0, -1) if fits(substeps=s)]
+    if fewer:
+        ways.append(f"substeps <= {fewer[0]}")
+    name = values["integrator"]
+    if name not in EXPLICIT_EVALUATIONS and values["solver"] == "direct" and fits(solver="cg"):
+        ways.append("solver=cg")
+    if name not in EXPLICIT_EVALUATIONS and values["solver"] == "cg":
+        looser = [t for t in (1e-8, 1e-6, 1e-4, 1e-3, 1e-2, 1e-1)
+                  if t > values["cg_tolerance"] and fits(cg_tolerance=t)]
+        if looser:
+            ways.append(f"cg_tolerance >= {looser[0]:g}")
+    side = max(values["rows"], values["cols"])
+    smaller = [k for k in range(side - 1, 1, -1)
+               if fits(rows=min(values["rows"], k), cols=min(values["cols"], k))]
+    if smaller:
+        ways.append(f"at most {smaller[0]}x{smaller[0]} particles")
+    return ways
+
+
+__all__ = ["STEP_BUDGET_S", "step_estimate", "iteration_cap", "what_fits", "rest_omega",
+           "cg_iterations", "cloth_spacing"]
