@@ -29,6 +29,20 @@ stiffness, 160x at x10, 1600x at x100; denim at x100 66x), but at the soft prese
 stiffness it is about even or explicit wins (cotton 0.3-1.1x, silk 0.4-0.8x, rubber 1.0-1.6x,
 noisy on a loaded machine); and an explicit step kept in the stable band (half its limit) costs
 twice that again.
+Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
+Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
+cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
+`direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
+every step, and its factors fill in (11x the matrix's non-zeros at 64x64). Measured (`python -m
+app bench mass_spring`, denim): the LU's solve costs {LU32}x CG's at 32x32 and {LU64}x at 64x64,
+and grows as particles^{PLU} against CG's particles^{PCG}. The HUD gives each one's ms a step once
+it has run on this cloth: switch it live to compare.
+The step budget: the window waits for whole steps, so a setting whose one step would take over
+0.1 s is refused, naming what would fit (fewer substeps, a looser cg_tolerance, solver=cg, fewer
+particles). The estimate counts the forces, the matrix, CG's iterations (from the substep against
+the cloth's highest frequency, and the tolerance) or the LU, times the substeps
+(app/physics/mass_spring_cost.py); CG is also capped at the iterations that fit, and a solve
+stopped there says so. When the physics cannot keep up with real time the HUD says so in words.
 Physics: app/physics/mass_spring.py (Blender's units in pixels and seconds: blender_cloth.py);
 drawing: app/draw/cloth_draw.py, the Verlet cloth's strain heat map and legend, so the two cloths
 compare directly.
@@ -55,8 +69,9 @@ frequency); explicit_limit_h (s: symplectic Euler's limit with this damping, whi
 compares your step with; undamped it would be 2/omega_max); max_stretch and mean_stretch
 (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
-256 px); cg_iterations (the last implicit solve's; null before the first solve, 0 with an
-explicit integrator); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
+256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
+an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
+answer, whichever solver gave it), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
 in J, the stretches in %, explicit_limit_h in ms (`metric_units`).
 """
 
@@ -227,7 +242,14 @@ class MassSpringClothScene(Scene):
     @classmethod
     def resolve(cls, overrides):
         """As Scene.resolve, then a named material fills in the sliders not given explicitly;
-        a slider given with a value other than the material's makes the material 'custom'."""
+        a slider given with a value other than the material's makes the material 'custom'. (The
+        preset's values are filled in before Scene.resolve checks the combination, so the step
+        budget sees the cloth that will be built.)"""
+        named = next((v for k, v in overrides.items() if cls.canonical(k) == "material"), None)
+        if named is not None and cls.check_setting("material", named) != "custom":
+            given = {cls.canonical(k) for k in overrides}
+            preset = material_settings(cls.check_setting("material", named))
+            overrides = {**{k: v for k, v in preset.items() if k not in given}, **overrides}
         values, on = super().resolve(overrides)
         if values["material"] != "custom":
             given = {cls.canonical(k) for k in overrides}
@@ -556,16 +578,14 @@ class MassSpringClothScene(Scene):
         nonzeros = c.ps.matrix.nonzeros if c.ps.matrix is not None else 0
         if report.method == "cg":
             start = "the last steps' dv" if report.warm else "dv = 0"
-            return (f"CG: {report.iterations} iterations (block Jacobi preconditioner, from "
-                    f"{start}), residual {report.residual:.1e} (stops at "
-                    f"{self.p['cg_tolerance']:g} x |b|); it only multiplies by A ({nonzeros:,} "
-                    "non-zeros), which it never factors")
+            return (f"CG from {start} (block Jacobi): residual {report.residual:.1e}, stops at "
+                    f"{self.p['cg_tolerance']:g} x |b|; it only multiplies by A ({nonzeros:,} "
+                    "non-zeros), never factors it")
         if report.method:
-            fill = (f": its factors L and U hold {report.fill:,} non-zeros, "
+            fill = (f"; its factors L and U hold {report.fill:,} non-zeros, "
                     f"{report.fill / nonzeros:.1f}x A's {nonzeros:,}"
                     if report.fill and nonzeros else "")
-            return (f"direct: SuperLU factors A anew every step{fill}; residual "
-                    f"{report.residual:.1e}")
+            return f"direct: SuperLU factors A anew every step{fill}; residual {report.residual:.1e}"
         return "solve: no step yet"
 
     def step_ms(self) -> float:
@@ -584,10 +604,10 @@ class MassSpringClothScene(Scene):
                 ms.get("cg", math.inf) < ms.get("direct", 0.0)):
             way = "solver=cg"
         else:
-            way = ("fewer particles or substeps" + (", a looser cg_tolerance"
+            way = ("fewer particles or substeps" + (" or a looser cg_tolerance"
                    if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "cg" else ""))
         return (f"not real time: {step:.3g} ms of physics per {need:.3g} ms step "
-                f"({need / step:.2f}x real time); {way} would catch up")
+                f"({need / step:.2f}x); {way} would catch up")
 
     # ----- state --------------------------------------------------------------------------------
     def state_arrays(self):

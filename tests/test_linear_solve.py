@@ -72,17 +72,20 @@ def test_the_cloths_sparse_matrix_is_its_product():
     ps = c.ps
     ps.x = c.rest_x * 1.02 + np.random.default_rng(1).normal(0, 0.3, ps.x.shape)
     stiff, damp = ps.blocks(ps.x)
+    assert [fam for fam, _ in stiff] == [fam for fam, _ in damp]     # every set damped
     blocks = [(fam, B + 0.3 * D) for (fam, B), (_, D) in zip(stiff, damp)]
     mass = np.random.default_rng(2).uniform(1, 2, ps.n)
-    matrix = ClothMatrix([fam for fam, _ in blocks], 4, 5)
     w = np.random.default_rng(3).normal(size=(2, ps.n))
     from app.physics.spring_forces import block_product
     expected = mass * w + block_product(blocks, w, 4, 5)
-    for _ in range(2):                      # refreshed in place: the second time the same
-        matrix.refresh(mass, blocks)
-        assert np.allclose(matrix.product(w), expected, rtol=1e-12, atol=1e-9)
-    dense = matrix.matrix.toarray()
-    assert np.array_equal(dense, dense.T)                 # symmetric, entry for entry
+    for storage in ("dia", "csr"):
+        matrix = ClothMatrix([fam for fam, _ in blocks], 4, 5, storage)
+        for _ in range(2):                      # refreshed in place: the second time the same
+            matrix.refresh(mass, blocks)
+            assert np.allclose(matrix.product(w), expected, rtol=1e-12, atol=1e-9)
+        dense = matrix.matrix.toarray()
+        assert np.array_equal(dense, dense.T)                 # symmetric, entry for entry
+        assert np.count_nonzero(dense) <= matrix.nonzeros
 
 
 def test_a_cloth_step_whose_cg_stops_short_is_the_direct_solve_and_says_so():

@@ -20,10 +20,11 @@ rest, every preset at 16x16 and 32x32, hertz 30-1000, tolerance 1e-2 to 1e-10) t
 iterations were 0.11-0.75 of it wherever it exceeds 30 (0.3-0.6 at 64x64), so the estimate
 takes ITERATIONS_OF_BOUND = 0.8 of it. For a very stiff cloth (every stiffness 1e5, mass 0.001:
 h omega up to 1e5) it is far too high: where the springs outweigh the masses the condition
-number is the grid's own, and the measured worst was 0.7-1.0 x max(rows, cols) x ln(1/tolerance)
-iterations at 16x16 and 32x32, 0.7 at 64x64 (GRID_ITERATIONS = 0.8), and up to 2.2x that at
-a tolerance of 1e-10, near the rounding floor, where CG stalls (GRID_STALL: x (1 + side/32));
-the estimate is the smaller of the two.
+number is the grid's own, and the measured worst was 1.97-2.33 x side^0.75 x ln(1/tolerance)
+iterations (side = max(rows, cols); 16x16, 32x32 and 64x64; cotton at 16x16 and 30 Hz too), so
+GRID_ITERATIONS = 2.4 of that, and up to 1.6x (32x32) and 2.6x (64x64) more at a tolerance of
+1e-10, near the rounding floor, where CG stalls (GRID_STALL: x (1 + side/32)); the estimate is
+the smaller of the two.
 
 An estimate is not a guarantee: a fling can take more iterations than a hang. The scene caps CG
 at what fits the budget (`iteration_cap`); a solve that hits the cap says so in the HUD, like any
@@ -43,9 +44,9 @@ SETUP_PER_PARTICLE = 1.2e-6          # s per particle: forces, Jacobian blocks, 
 SETUP_FIXED = 0.3e-3                 # s per substep, whatever the size
 ITERATION_FIXED = 20e-6              # s per CG iteration: its NumPy calls
 ITERATION_PER_PARTICLE = 35e-9       # s per particle per iteration (64x64: 0.12-0.16 ms)
-LU_SECONDS, LU_POWER = 1.1e-6, 1.35  # SuperLU: 13 ms at 32x32, 60-100 ms at 64x64
+LU_SECONDS, LU_POWER = 7e-6, 1.2     # SuperLU: 16-24 ms at 32x32, 93-114 ms at 57x57 (stiff)
 ITERATIONS_OF_BOUND = 0.8
-GRID_ITERATIONS = 0.8
+GRID_ITERATIONS = 2.4
 GRID_STALL = 1e-8                    # below this tolerance CG stalls in rounding near its floor
 EXPLICIT_EVALUATIONS = {"euler": 1, "symplectic_euler": 1, "verlet": 1, "midpoint": 2, "rk4": 4}
 
@@ -84,9 +85,10 @@ def cg_iterations(h_omega: float, tolerance: float, rows: int, cols: int) -> int
     """CG's iterations per solve, estimated (see the module docstring)."""
     root = math.sqrt(1.0 + h_omega * h_omega)
     bound = ITERATIONS_OF_BOUND * root / 2.0 * math.log(2.0 * root / tolerance)
-    grid = GRID_ITERATIONS * max(rows, cols) * math.log(1.0 / tolerance)
+    side = max(rows, cols)
+    grid = GRID_ITERATIONS * side ** 0.75 * math.log(1.0 / tolerance)
     if tolerance < GRID_STALL:
-        grid *= 1.0 + max(rows, cols) / 32.0
+        grid *= 1.0 + side / 32.0
     return max(1, math.ceil(min(bound, grid, 2 * rows * cols)))
 
 
