@@ -87,10 +87,15 @@ from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, SOLVERS, MassSpringCloth
-from app.physics.mass_spring_cost import STEP_BUDGET_S, iteration_cap, step_estimate, what_fits
+from app.loop import FPS_CAP, FixedStepClock
+from app.physics.mass_spring_cost import iteration_cap, step_estimate, what_fits
 from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
                                                LimitWatch, marginal)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
+
+# The window gives physics at most 0.1 s of a frame (app/window/scene_view.py) but always finishes
+# the step it started: a setting whose frame of steps is estimated above this is refused.
+FRAME_BUDGET_S = 0.1
 
 UNLOCK_KEY = "u"
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
@@ -207,37 +212,39 @@ class MassSpringClothScene(Scene):
     # ----- settings ---------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:
-        """Refuse a setting whose one step would take longer than the window waits for a step
-        (STEP_BUDGET_S), as estimated by app/physics/mass_spring_cost.py from what a step does:
-        particles, substeps, the integrator's force evaluations, the solver, and CG's iterations
-        (from the substep against the cloth's highest frequency, and the tolerance)."""
-        seconds, its = cls.step_cost(values)
-        if seconds <= STEP_BUDGET_S:
+        """Refuse a setting whose frames would hold the window longer than FRAME_BUDGET_S: a
+        frame runs hertz/60 steps (at most the loop's 8) and the window waits for whole steps.
+        A step's cost is estimated by app/physics/mass_spring_cost.py from what it does:
+        particles, substeps, the integrator's force evaluations, the solver, and CG's
+        iterations (from the substep against the cloth's highest frequency, and the tolerance)."""
+        frame, step, its = cls.frame_cost(values)
+        if frame <= FRAME_BUDGET_S:
             return
-        p = values
+        p, k = values, steps_per_frame(values["hertz"])
         what = (f"{p['rows']}x{p['cols']} x {p['substeps']} substep"
                 + ("s" if p["substeps"] > 1 else "") + f", {p['integrator']}")
         if not INTEGRATORS[p["integrator"]].explicit:
-            what += (f", solver {p['solver']}" + (f", ~{its:,} CG iterations a substep at "
-                                                   f"cg_tolerance {p['cg_tolerance']:g}"
+            what += (f", solver {p['solver']}" + (f" (~{its:,} CG iterations a substep at "
+                                                   f"cg_tolerance {p['cg_tolerance']:g})"
                                                    if p["solver"] == "cg" else ""))
-        ways = what_fits(p, cls.world_size)
+        per_frame = (f"; at hertz {p['hertz']} a frame runs {k} steps: ~{_seconds(frame)}"
+                     if k > 1 else "")
+        ways = what_fits(p, lambda v: cls.frame_cost(v)[0] <= FRAME_BUDGET_S)
         raise ParamError(
-            f"a step too slow for the window: {what} would take ~{_seconds(seconds)} a step; "
-            f"accepted: at most {STEP_BUDGET_S * 1e3:.0f} ms (the window waits for whole steps)"
-            + (": " + ", or ".join(ways) + " would fit" if ways else ""))
+            f"too slow for the window: {what} would take ~{_seconds(step)} a step{per_frame}; "
+            f"accepted: at most {FRAME_BUDGET_S * 1e3:.0f} ms a frame (the window waits for "
+            "whole steps)" + (": " + ", or ".join(ways) + " would fit" if ways else ""))
 
     @classmethod
-    def step_cost(cls, values) -> tuple[float, int]:
-        """(estimated seconds of one step, CG iterations a substep) for these settings; while a
-        named material's preset is being applied (set('material', ...)), the more expensive of
-        the values given and the preset's."""
-        estimate = step_estimate(values, cls.world_size)
+    def frame_cost(cls, values) -> tuple[float, float, int]:
+        """(seconds of the steps a frame runs, of one step, CG iterations a substep) for these
+        settings, estimated; while a named material's preset is being applied (set('material',
+        ...)), the more expensive of the values given and the preset's."""
+        step, its = step_estimate(values, cls.world_size)
         if values["material"] != "custom":
-            preset = step_estimate({**values, **material_settings(values["material"])},
-                                   cls.world_size)
-            estimate = max(estimate, preset)
-        return estimate
+            step, its = max((step, its), step_estimate(
+                {**values, **material_settings(values["material"])}, cls.world_size))
+        return steps_per_frame(values["hertz"]) * step, step, its
 
     @classmethod
     def resolve(cls, overrides):
@@ -297,7 +304,8 @@ class MassSpringClothScene(Scene):
         c.on = set(self.on)
         c.configure()
         c.ps.cg_tolerance, c.ps.solver = p["cg_tolerance"], p["solver"]
-        c.ps.budget_iterations = iteration_cap(p)    # CG's most in a substep (the step budget)
+        c.ps.budget_iterations = iteration_cap(        # CG's most in a substep (the budget)
+            p, FRAME_BUDGET_S / steps_per_frame(p["hertz"]))
         if names is None or names - {"solver"}:
             self._solve_ms.clear()                   # the costs measured no longer hold
         self._energy.clear()
@@ -522,11 +530,11 @@ class MassSpringClothScene(Scene):
         short (in words)."""
         c, m, p = self.cloth, self.metrics(), self.p
         title = INTEGRATORS[p["integrator"]].title
-        lines = [f"{p['material']}, {title}: {self._where()}"]
+        lines = [f"{p['material']}, {title}: {self._where()}",
+                 f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
+                 f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())
-        lines.append(f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
-                     f"max stretch {self.shown('max_stretch', m['max_stretch'])}")
         slow = self._real_time_words()
         if slow:
             from app.draw.hud import WARN_COLOR, Line
@@ -578,14 +586,13 @@ class MassSpringClothScene(Scene):
         nonzeros = c.ps.matrix.nonzeros if c.ps.matrix is not None else 0
         if report.method == "cg":
             start = "the last steps' dv" if report.warm else "dv = 0"
-            return (f"CG from {start} (block Jacobi): residual {report.residual:.1e}, stops at "
-                    f"{self.p['cg_tolerance']:g} x |b|; it only multiplies by A ({nonzeros:,} "
-                    "non-zeros), never factors it")
+            return (f"CG (block Jacobi, from {start}): residual {report.residual:.1e} (stops "
+                    f"at {self.p['cg_tolerance']:g} |b|); A: {nonzeros:,} non-zeros, never "
+                    "factored")
         if report.method:
-            fill = (f"; its factors L and U hold {report.fill:,} non-zeros, "
-                    f"{report.fill / nonzeros:.1f}x A's {nonzeros:,}"
-                    if report.fill and nonzeros else "")
-            return f"direct: SuperLU factors A anew every step{fill}; residual {report.residual:.1e}"
+            fill = (f": L and U hold {report.fill:,} non-zeros, {report.fill / nonzeros:.1f}x "
+                    f"A's {nonzeros:,}" if report.fill and nonzeros else "")
+            return f"direct: SuperLU factors A every step{fill}; residual {report.residual:.1e}"
         return "solve: no step yet"
 
     def step_ms(self) -> float:
@@ -601,7 +608,8 @@ class MassSpringClothScene(Scene):
             return ""
         p, ms = self.p, self._solve_ms
         if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "direct" and (
-                ms.get("cg", math.inf) < ms.get("direct", 0.0)):
+                ms.get("cg", self.frame_cost({**p, "solver": "cg"})[1] * 1e3)
+                < ms.get("direct", 0.0)):           # CG as measured here, else as estimated
             way = "solver=cg"
         else:
             way = ("fewer particles or substeps" + (" or a looser cg_tolerance"
@@ -634,6 +642,11 @@ class MassSpringClothScene(Scene):
 
 def _finite(x: float | None) -> float | None:
     return x if x is not None and math.isfinite(x) else None
+
+
+def steps_per_frame(hertz: int) -> int:
+    """The steps a frame runs at full speed: hertz / FPS_CAP, at most the loop's cap."""
+    return min(FixedStepClock.max_steps_per_frame, max(1, math.ceil(hertz / FPS_CAP)))
 
 
 def _seconds(seconds: float) -> str:

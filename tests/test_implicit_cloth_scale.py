@@ -7,11 +7,10 @@ import numpy as np
 import pytest
 
 from app.physics.linear_solve import preconditioned_cg
-from app.physics.mass_spring_cost import (STEP_BUDGET_S, cg_iterations, cloth_spacing,
-                                          rest_omega)
+from app.physics.mass_spring_cost import cg_iterations, cloth_spacing, rest_omega
 from app.physics.spring_forces import block_product
 from app.scene import ParamError
-from scenes.mass_spring_cloth import MassSpringClothScene
+from scenes.mass_spring_cloth import FRAME_BUDGET_S, MassSpringClothScene
 
 
 def system_by_slices(ps, h):
@@ -122,16 +121,17 @@ def test_the_direct_solver_fills_the_same_report_and_the_hud_sets_both_costs_sid
     assert m["cg_converged"] is True and m["cg_residual"] < 1e-10 and m["cg_failures"] == 0
     report = s.cloth.ps.solve
     assert report.method == "sparse LU" and report.fill > s.cloth.ps.matrix.nonzeros
-    assert "direct LU" in s.hud_lines()[1] and "ms a step" in s.hud_lines()[1]
-    assert any("factors L and U hold" in line for line in s.hud_details())
+    line = next(str(x) for x in s.hud_lines() if str(x).startswith("solve:"))
+    assert "direct LU" in line and "ms a step" in line
+    assert any("L and U hold" in line for line in s.hud_details())
     s.set("solver", "cg")
     for _ in range(5):
         s.advance()
-    line = s.hud_lines()[1]
+    line = next(str(x) for x in s.hud_lines() if str(x).startswith("solve:"))
     assert line.startswith("solve: CG") and "direct LU:" in line and "when last used" in line
     assert s.metrics()["cg_iterations"] > 0
     s.set("material", "leather")                        # another cloth: the old costs go
-    assert "direct LU" not in s.hud_lines()[1]
+    assert not any("direct LU" in str(x) for x in s.hud_lines())
 
 
 def test_cg_stopped_by_the_step_budget_says_so_and_takes_no_direct_solve():
@@ -153,11 +153,14 @@ def test_a_step_over_the_budget_is_refused_in_one_line_that_names_what_would_fit
         MassSpringClothScene(case)
     text = str(refused.value)
     assert "\n" not in text and "too slow for the window" in text and "would fit" in text
-    assert "at most 100 ms" in text and "CG iterations a substep" in text
-    # a change it names is accepted
+    assert "at most 100 ms a frame" in text and "CG iterations a substep" in text
+    assert "at hertz 1000 a frame runs 8 steps" in text
+    # the changes it names are accepted
     side = int(text.split("at most ")[-1].split("x")[0])
     values, _ = MassSpringClothScene.resolve({**case, "rows": side, "cols": side})
-    assert MassSpringClothScene.step_cost(values)[0] <= STEP_BUDGET_S
+    assert MassSpringClothScene.frame_cost(values)[0] <= FRAME_BUDGET_S
+    assert "this cloth at hertz 60, 1 substep, solver cg to cg_tolerance 0.01" in text
+    MassSpringClothScene({**case, "hertz": 60, "substeps": 1, "cg_tolerance": 1e-2})
     # the targets are accepted, and the direct solver at 64x64 is not
     MassSpringClothScene({"material": "denim", "rows": 64, "cols": 64})
     with pytest.raises(ParamError, match="solver=cg"):
@@ -167,6 +170,11 @@ def test_a_step_over_the_budget_is_refused_in_one_line_that_names_what_would_fit
     with pytest.raises(ParamError, match="substeps <= "):
         s.set("substeps", 40)
     assert s.p["substeps"] == 1
+    # hertz counts within a frame: 8 steps of 64x64 at hertz 1000 do not fit, 1 at hertz 60 does
+    with pytest.raises(ParamError, match="hertz <= "):
+        MassSpringClothScene({"material": "denim", "rows": 64, "cols": 64, "hertz": 1000,
+                              "substeps": 2})
+    MassSpringClothScene({"material": "denim", "rows": 64, "cols": 64, "hertz": 1000})
 
 
 def test_the_iteration_estimate_is_not_below_the_iterations_measured_at_16x16():

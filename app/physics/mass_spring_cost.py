@@ -1,9 +1,8 @@
-"""What one step of the mass-spring cloth costs, estimated before it runs: the scene's step budget.
+"""What one step of the mass-spring cloth costs, estimated before it runs (the scene's step budget,
+scenes/mass_spring_cloth.py, refuses a setting whose frames would hold the window too long).
 
-The window gives physics at most STEP_BUDGET_S of a frame (app/window/scene_view.py) but always
-finishes the step it started, so a setting whose one step takes longer would freeze it: the scene
-refuses such a setting, and says what would fit. A step is `substeps` substeps, and a substep
-costs (constants measured on the lab's 2-core machine while other jobs ran, the busy end kept):
+A step is `substeps` substeps, and a substep costs (constants measured on the lab's 2-core
+machine while other jobs ran, the busy end kept):
 
     explicit      evaluations x (the forces: FORCES_PER_PARTICLE x n)
     implicit, cg  the forces and the matrix (SETUP_PER_PARTICLE x n) + CG's iterations x (one
@@ -35,10 +34,10 @@ from __future__ import annotations
 
 import math
 from functools import lru_cache
+from typing import Callable
 
 from app.physics.blender_cloth import MATERIAL_KEYS
 
-STEP_BUDGET_S = 0.1                  # s: one step's most (the window's physics time per frame)
 FORCES_PER_PARTICLE = 0.45e-6        # s per particle: one evaluation of every force (64x64: 1.4 ms)
 SETUP_PER_PARTICLE = 1.2e-6          # s per particle: forces, Jacobian blocks, matrix refresh
 SETUP_FIXED = 0.3e-3                 # s per substep, whatever the size
@@ -117,36 +116,44 @@ def step_estimate(values, world: tuple[float, float]) -> tuple[float, int]:
     return values["substeps"] * seconds, its
 
 
-def iteration_cap(values) -> int:
-    """The most CG iterations a substep may take and still fit the budget (at least 1): the
-    solver's cap (MassSpringSystem.cg_max_iterations)."""
+def iteration_cap(values, step_budget: float) -> int:
+    """The most CG iterations a substep may take for the step to stay within `step_budget`
+    seconds (at least 1): the solver's cap (MassSpringSystem.budget_iterations)."""
     n = values["rows"] * values["cols"]
-    room = STEP_BUDGET_S / values["substeps"] - SETUP_FIXED - SETUP_PER_PARTICLE * n
+    room = step_budget / values["substeps"] - SETUP_FIXED - SETUP_PER_PARTICLE * n
     return max(1, int(room / iteration_seconds(n)))
 
 
-def what_fits(values, world: tuple[float, float]) -> list[str]:
-    """Settings one change away that fit the budget, in words ('substeps <= 3', ...)."""
-    fits = lambda **change: step_estimate({**values, **change}, world)[0] <= STEP_BUDGET_S  # noqa
+def what_fits(values, fits: Callable[[dict], bool]) -> list[str]:
+    """Settings one change away for which fits(settings) is true, in words ('substeps <= 3',
+    'hertz <= 120', 'solver=cg', 'cg_tolerance >= 1e-4', 'at most 40x40 particles')."""
+    ok = lambda **change: fits({**values, **change})      # noqa: E731
     ways = []
-    fewer = [s for s in range(values["substeps"] - 1, 0, -1) if fits(substeps=s)]
+    fewer = [s for s in range(values["substeps"] - 1, 0, -1) if ok(substeps=s)]
     if fewer:
         ways.append(f"substeps <= {fewer[0]}")
-    name = values["integrator"]
-    if name not in EXPLICIT_EVALUATIONS and values["solver"] == "direct" and fits(solver="cg"):
+    slower = [hz for hz in (960, 720, 480, 360, 240, 180, 120, 60, 30)
+              if hz < values["hertz"] and ok(hertz=hz)]
+    if slower:
+        ways.append(f"hertz <= {slower[0]}")
+    implicit = values["integrator"] not in EXPLICIT_EVALUATIONS
+    if implicit and values["solver"] == "direct" and ok(solver="cg"):
         ways.append("solver=cg")
-    if name not in EXPLICIT_EVALUATIONS and values["solver"] == "cg":
+    if implicit and values["solver"] == "cg":
         looser = [t for t in (1e-8, 1e-6, 1e-4, 1e-3, 1e-2, 1e-1)
-                  if t > values["cg_tolerance"] and fits(cg_tolerance=t)]
+                  if t > values["cg_tolerance"] and ok(cg_tolerance=t)]
         if looser:
             ways.append(f"cg_tolerance >= {looser[0]:g}")
     side = max(values["rows"], values["cols"])
     smaller = [k for k in range(side - 1, 1, -1)
-               if fits(rows=min(values["rows"], k), cols=min(values["cols"], k))]
+               if ok(rows=min(values["rows"], k), cols=min(values["cols"], k))]
     if smaller:
         ways.append(f"at most {smaller[0]}x{smaller[0]} particles")
+    step = {"hertz": 60, "substeps": 1, "solver": "cg", "cg_tolerance": 1e-2}  # the defaults
+    if any(values[k] != v for k, v in step.items()) and ok(**step):
+        ways.append("this cloth at hertz 60, 1 substep, solver cg to cg_tolerance 0.01")
     return ways
 
 
-__all__ = ["STEP_BUDGET_S", "step_estimate", "iteration_cap", "what_fits", "rest_omega",
-           "cg_iterations", "cloth_spacing"]
+__all__ = ["step_estimate", "iteration_cap", "what_fits", "rest_omega", "cg_iterations",
+           "cloth_spacing"]
