@@ -87,15 +87,11 @@ from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, SOLVERS, MassSpringCloth
-from app.loop import FPS_CAP, FixedStepClock
-from app.physics.mass_spring_cost import iteration_cap, step_estimate, what_fits
+from app.physics.mass_spring_cost import (FRAME_BUDGET_S, frame_cost, iteration_cap, refusal,
+                                          steps_per_frame)
 from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
                                                LimitWatch, marginal)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
-
-# The window gives physics at most 0.1 s of a frame (app/window/scene_view.py) but always finishes
-# the step it started: a setting whose frame of steps is estimated above this is refused.
-FRAME_BUDGET_S = 0.1
 
 UNLOCK_KEY = "u"
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
@@ -212,39 +208,12 @@ class MassSpringClothScene(Scene):
     # ----- settings ---------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:
-        """Refuse a setting whose frames would hold the window longer than FRAME_BUDGET_S: a
-        frame runs hertz/60 steps (at most the loop's 8) and the window waits for whole steps.
-        A step's cost is estimated by app/physics/mass_spring_cost.py from what it does:
-        particles, substeps, the integrator's force evaluations, the solver, and CG's
-        iterations (from the substep against the cloth's highest frequency, and the tolerance)."""
-        frame, step, its = cls.frame_cost(values)
-        if frame <= FRAME_BUDGET_S:
-            return
-        p, k = values, steps_per_frame(values["hertz"])
-        what = (f"{p['rows']}x{p['cols']} x {p['substeps']} substep"
-                + ("s" if p["substeps"] > 1 else "") + f", {p['integrator']}")
-        if not INTEGRATORS[p["integrator"]].explicit:
-            what += (f", solver {p['solver']}" + (f" (~{its:,} CG iterations a substep at "
-                                                   f"cg_tolerance {p['cg_tolerance']:g})"
-                                                   if p["solver"] == "cg" else ""))
-        per_frame = (f"; at hertz {p['hertz']} a frame runs {k} steps: ~{_seconds(frame)}"
-                     if k > 1 else "")
-        ways = what_fits(p, lambda v: cls.frame_cost(v)[0] <= FRAME_BUDGET_S)
-        raise ParamError(
-            f"too slow for the window: {what} would take ~{_seconds(step)} a step{per_frame}; "
-            f"accepted: at most {FRAME_BUDGET_S * 1e3:.0f} ms a frame (the window waits for "
-            "whole steps)" + (": " + ", or ".join(ways) + " would fit" if ways else ""))
-
-    @classmethod
-    def frame_cost(cls, values) -> tuple[float, float, int]:
-        """(seconds of the steps a frame runs, of one step, CG iterations a substep) for these
-        settings, estimated; while a named material's preset is being applied (set('material',
-        ...)), the more expensive of the values given and the preset's."""
-        step, its = step_estimate(values, cls.world_size)
-        if values["material"] != "custom":
-            step, its = max((step, its), step_estimate(
-                {**values, **material_settings(values["material"])}, cls.world_size))
-        return steps_per_frame(values["hertz"]) * step, step, its
+        """Refuse a setting whose frame of steps would hold the window longer than
+        FRAME_BUDGET_S (app/physics/mass_spring_cost.py: what a step costs, and what would
+        fit), in one line."""
+        text = refusal(values, cls.world_size)
+        if text:
+            raise ParamError(text)
 
     @classmethod
     def resolve(cls, overrides):
@@ -608,7 +577,7 @@ class MassSpringClothScene(Scene):
             return ""
         p, ms = self.p, self._solve_ms
         if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "direct" and (
-                ms.get("cg", self.frame_cost({**p, "solver": "cg"})[1] * 1e3)
+                ms.get("cg", frame_cost({**p, "solver": "cg"}, self.world_size)[1] * 1e3)
                 < ms.get("direct", 0.0)):           # CG as measured here, else as estimated
             way = "solver=cg"
         else:
@@ -642,16 +611,6 @@ class MassSpringClothScene(Scene):
 
 def _finite(x: float | None) -> float | None:
     return x if x is not None and math.isfinite(x) else None
-
-
-def steps_per_frame(hertz: int) -> int:
-    """The steps a frame runs at full speed: hertz / FPS_CAP, at most the loop's cap."""
-    return min(FixedStepClock.max_steps_per_frame, max(1, math.ceil(hertz / FPS_CAP)))
-
-
-def _seconds(seconds: float) -> str:
-    """'85 ms', '3.2 s'."""
-    return f"{seconds * 1e3:.0f} ms" if seconds < 1.0 else f"{seconds:.2g} s"
 
 
 def _times(ratio: float) -> str:

@@ -7,10 +7,11 @@ import numpy as np
 import pytest
 
 from app.physics.linear_solve import preconditioned_cg
-from app.physics.mass_spring_cost import cg_iterations, cloth_spacing, rest_omega
+from app.physics.mass_spring_cost import (FRAME_BUDGET_S, cg_iterations, cloth_spacing,
+                                          frame_cost, rest_omega)
 from app.physics.spring_forces import block_product
 from app.scene import ParamError
-from scenes.mass_spring_cloth import FRAME_BUDGET_S, MassSpringClothScene
+from scenes.mass_spring_cloth import MassSpringClothScene
 
 
 def system_by_slices(ps, h):
@@ -158,7 +159,7 @@ def test_a_step_over_the_budget_is_refused_in_one_line_that_names_what_would_fit
     # the changes it names are accepted
     side = int(text.split("at most ")[-1].split("x")[0])
     values, _ = MassSpringClothScene.resolve({**case, "rows": side, "cols": side})
-    assert MassSpringClothScene.frame_cost(values)[0] <= FRAME_BUDGET_S
+    assert frame_cost(values, MassSpringClothScene.world_size)[0] <= FRAME_BUDGET_S
     assert "this cloth at hertz 60, 1 substep, solver cg to cg_tolerance 0.01" in text
     MassSpringClothScene({**case, "hertz": 60, "substeps": 1, "cg_tolerance": 1e-2})
     # the targets are accepted, and the direct solver at 64x64 is not

@@ -42,6 +42,7 @@ from scipy.sparse.linalg import spilu
 from app.bench import Report
 from app.physics.cloth_matrix import ClothMatrix
 from app.physics.linear_solve import preconditioned_cg
+from app.physics.mass_spring_cost import FRAME_BUDGET_S, frame_cost, steps_per_frame
 from app.physics.spring_forces import block_product
 from app.scene import ParamError
 
@@ -242,7 +243,7 @@ def routes(report: Report, quick: bool) -> list[dict[str, Any]]:
 
 # ----- 3. CG against the direct solve ------------------------------------------------------------
 def solvers(report: Report, quick: bool) -> dict[str, Any]:
-    rows = []
+    rows, steps = [], 10 if quick else SOLVER_STEPS
     for n in ((16, 24) if quick else SOLVER_SIZES):
         for solver in ("cg", "direct"):
             report.progress(f"solver {solver} at {n}x{n}")
@@ -250,7 +251,7 @@ def solvers(report: Report, quick: bool) -> dict[str, Any]:
             scene.cloth.ps.solver = solver           # past the step budget too: measured here
             spent = scene.cloth.spent
             step_ms, solve_ms, its = [], [], []
-            for _ in range(10 if quick else SOLVER_STEPS):
+            for _ in range(steps):
                 s0, t0 = spent["solve"], time.perf_counter()
                 scene.advance()
                 step_ms.append((time.perf_counter() - t0) * 1e3)
@@ -271,7 +272,7 @@ def solvers(report: Report, quick: bool) -> dict[str, Any]:
                       f"{cg['step_ms']:.3g}", f"{lu['step_ms']:.3g}", f"{cg['nonzeros']:,}",
                       f"{lu['fill']:,}", f"{lu['fill'] / cg['nonzeros']:.1f}"])
     report.table(f"solver: CG (block Jacobi, warm start, to 1e-2) vs SciPy's sparse LU, denim n x "
-                 f"n, median of the first {SOLVER_STEPS} steps (ms)",
+                 f"n, median of the first {steps} steps (ms)",
                  ["size", "CG solve", "CG its", "LU solve", "LU/CG", "CG step", "LU step",
                   "A non-zeros", "LU non-zeros", "fill"], table)
     growth = {}
@@ -325,12 +326,12 @@ def corner_settings() -> list[dict[str, Any]]:
 
 
 def window(report: Report, quick: bool) -> dict[str, Any]:
-    from scenes.mass_spring_cloth import FRAME_BUDGET_S, MassSpringClothScene, steps_per_frame
+    from scenes.mass_spring_cloth import MassSpringClothScene
     rows = []
     for settings in corner_settings():
         report.progress(f"window: {settings}")
         scene = MassSpringClothScene(settings)
-        frame_estimate, step_estimate, _ = MassSpringClothScene.frame_cost(scene.p)
+        frame_estimate, step_estimate, _ = frame_cost(scene.p, scene.world_size)
         ms = []
         for _ in range(CORNER_STEPS):
             t0 = time.perf_counter()

@@ -49,11 +49,10 @@ class SolveReport:
     of its answer (recomputed, not CG's running estimate), tolerance: what it had to reach.
     converged: residual <= tolerance. stop: why it stopped ("converged", "breakdown", "iteration
     cap", "rounding", "budget": a caller's cap for time; a direct solve: "solved", or "failed"
-    where it had no answer). fallback: the
-    solve that gave the step instead ("dense LU", "sparse LU", "cg"), None if the first answer
-    was used or no other solve was possible; fallback_residual: that answer's |b - A x| / |b|.
-    warm: CG started from the caller's first guess (x0). fill: a direct solve's factor size
-    (non-zeros of L and U), None for CG."""
+    where it had no answer). fallback: the solve that gave the step instead ("dense LU", "sparse
+    LU", "cg"), None if the first answer was used or no other solve was possible;
+    fallback_residual: that answer's |b - A x| / |b|. warm: CG started from the caller's first
+    guess (x0). fill: a direct solve's factor size (non-zeros of L and U), None for CG."""
 
     method: str = ""
     iterations: int = 0

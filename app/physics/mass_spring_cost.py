@@ -1,5 +1,8 @@
-"""What one step of the mass-spring cloth costs, estimated before it runs (the scene's step budget,
-scenes/mass_spring_cloth.py, refuses a setting whose frames would hold the window too long).
+"""What one step of the mass-spring cloth costs, estimated before it runs, and the budget the scene
+(scenes/mass_spring_cloth.py) holds it to: the window gives physics at most FRAME_BUDGET_S of a
+frame (app/window/scene_view.py) but always finishes the step it started, and a frame runs
+hertz/60 steps (at most the loop's 8, app/loop.py), so a setting whose frame of steps is
+estimated above FRAME_BUDGET_S is refused (`refusal`: one line that says what would fit).
 
 A step is `substeps` substeps, and a substep costs (constants measured on the lab's 2-core
 machine while other jobs ran, the busy end kept):
@@ -36,7 +39,11 @@ import math
 from functools import lru_cache
 from typing import Callable
 
-from app.physics.blender_cloth import MATERIAL_KEYS
+from app.loop import FPS_CAP, FixedStepClock
+from app.physics.blender_cloth import MATERIAL_KEYS, material_settings
+from app.physics.integrators import INTEGRATORS
+
+FRAME_BUDGET_S = 0.1                 # s of physics a frame may hold the window
 
 FORCES_PER_PARTICLE = 0.45e-6        # s per particle: one evaluation of every force (64x64: 1.4 ms)
 SETUP_PER_PARTICLE = 1.2e-6          # s per particle: forces, Jacobian blocks, matrix refresh
@@ -155,5 +162,47 @@ def what_fits(values, fits: Callable[[dict], bool]) -> list[str]:
     return ways
 
 
-__all__ = ["step_estimate", "iteration_cap", "what_fits", "rest_omega", "cg_iterations",
-           "cloth_spacing"]
+def steps_per_frame(hertz: int) -> int:
+    """The steps a frame runs at full speed: hertz / FPS_CAP, at most the loop's cap."""
+    return min(FixedStepClock.max_steps_per_frame, max(1, math.ceil(hertz / FPS_CAP)))
+
+
+def frame_cost(values, world: tuple[float, float]) -> tuple[float, float, int]:
+    """(seconds of the steps a frame runs, of one step, CG iterations a substep), estimated;
+    while a named material's preset is being applied (a scene's set('material', ...)), the more
+    expensive of the values given and the preset's."""
+    step, its = step_estimate(values, world)
+    if values["material"] != "custom":
+        step, its = max((step, its), step_estimate(
+            {**values, **material_settings(values["material"])}, world))
+    return steps_per_frame(values["hertz"]) * step, step, its
+
+
+def refusal(values, world: tuple[float, float]) -> str:
+    """'' if a frame of these settings fits FRAME_BUDGET_S; else one line: what it would cost
+    and what would fit."""
+    frame, step, its = frame_cost(values, world)
+    if frame <= FRAME_BUDGET_S:
+        return ""
+    p, k = values, steps_per_frame(values["hertz"])
+    what = (f"{p['rows']}x{p['cols']} x {p['substeps']} substep"
+            + ("s" if p["substeps"] > 1 else "") + f", {p['integrator']}")
+    if not INTEGRATORS[p["integrator"]].explicit:
+        what += f", solver {p['solver']}" + (
+            f" (~{its:,} CG iterations a substep at cg_tolerance {p['cg_tolerance']:g})"
+            if p["solver"] == "cg" else "")
+    per_frame = (f"; at hertz {p['hertz']} a frame runs {k} steps: ~{_seconds(frame)}"
+                 if k > 1 else "")
+    ways = what_fits(p, lambda v: frame_cost(v, world)[0] <= FRAME_BUDGET_S)
+    return (f"too slow for the window: {what} would take ~{_seconds(step)} a step{per_frame}; "
+            f"accepted: at most {FRAME_BUDGET_S * 1e3:.0f} ms a frame (the window waits for "
+            "whole steps)" + (": " + ", or ".join(ways) + " would fit" if ways else ""))
+
+
+def _seconds(seconds: float) -> str:
+    """'85 ms', '3.2 s'."""
+    return f"{seconds * 1e3:.0f} ms" if seconds < 1.0 else f"{seconds:.2g} s"
+
+
+__all__ = ["FRAME_BUDGET_S", "step_estimate", "frame_cost", "refusal", "steps_per_frame",
+           "iteration_cap", "what_fits", "rest_omega", "cg_iterations", "cloth_spacing"]
