@@ -165,12 +165,13 @@ class ImplicitSystem(NamedTuple):
 
 # CG stops at |r| <= CG_TOLERANCE |b|: relative to |b|, which grows with the motion, so what it
 # leaves in the positions grows too. Measured after one step at h = 1/60 s against a 1e-10 solve
-# (`python -m app bench mass_spring`, the CG tolerance table): near rest (a 32x32 cloth 20 steps
-# into its hang) 1e-2 leaves under 1e-4 px (leather 3e-9, cotton 4e-6, denim 3e-5, silk 7e-5 px);
-# moving, more: 2.5-3.7e-4 px 5 steps into the hang, 0.003-0.01 px on the scene's default cloth
-# as it falls, 0.7-2.9 px in a step of a fling at ~1900 px/s (a step of 32 px: a few per cent).
-# Below a pixel except in a fling, and smaller than the O(h^2) error of linearising once per step,
-# in ~20-95 iterations; every tenfold tightening costs another 15-25 iterations.
+# (the scene's cloth, corner pins; issue 19's solver: block Jacobi, warm start; the solver before
+# it, Jacobi from dv = 0, left as much): a 32x32 cloth 5 and 20 steps into its fall, 0.003-0.014 px
+# (leather, cotton, denim, silk; before: 0.003-0.012); the scene's default cloth over its first
+# second, at most 0.04 px (0.03); in a fling, the grabbed particle moved 32 px a step (1920 px/s,
+# the cloth up to ~2700 px/s), 0.5-5.7 px (0.7-8.3): a few per cent of a step of 32 px. Below a
+# pixel except in a fling, and smaller than the O(h^2) error of linearising once per step, in
+# 11-53 iterations at 32x32 (to 1e-10: 145-339).
 CG_TOLERANCE = 1e-2
 
 
