@@ -7,6 +7,8 @@
     python -m app --headless --scene NAME [--seconds S | --steps N] [--set KEY=VALUE]...
                   [--input EVENTS.json] [--screenshot OUT.png] [--json]
     python -m app --headless --scene all   every scene in turn
+    python -m app [--headless] --scene NAME --compare A B [C [D]]   variants side by side
+    python -m app [--headless] ... [--csv FILE] [--plot M1,M2] [--arrows]   the instruments
     python -m app bench [cloth|integrators|pymunk|mass_spring|particles|all] [--json] [--out DIR] [--quick]
     python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
 
@@ -21,8 +23,9 @@ import os
 import sys
 from typing import NoReturn
 
-from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, InputFileError,
-                          check_output_path, load_events, run_headless, screenshot_path)
+from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras,
+                          InputFileError, check_output_path, load_events, run_headless,
+                          screenshot_path)
 from app.scene import plain_number, shown_text
 
 
@@ -101,6 +104,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--record", metavar="FILE", help="window: save your mouse and key events "
                    "in the --input format")
     p.add_argument("--large-text", action="store_true", help="window: start with large text")
+    p.add_argument("--compare", nargs="+", metavar="KEY=VALUE[,KEY=VALUE]", help="run 2 to 4 "
+                   "variants of the scene side by side in lockstep (--set values are shared)")
+    p.add_argument("--csv", metavar="FILE", help="write every metric over time: a row per step "
+                   "(headless) or per frame (window), with a header")
+    p.add_argument("--plot", metavar="METRIC[,METRIC]", help="plot these metrics over time "
+                   "(window: at start, P picks others; headless: in --screenshot)")
+    p.add_argument("--arrows", action="store_true", help="velocity and force arrows (window: "
+                   "at start, V toggles; headless: in --screenshot)")
     return p
 
 
@@ -180,6 +191,9 @@ def app_main(argv: list[str]) -> int:
     if overrides and not classes:
         raise UsageError("--set needs --scene NAME (parameters belong to a scene)")
     card = find_card(args.card, classes, overrides) if args.card is not None else None
+    shared, variants = overrides, None
+    if args.compare is not None or (card is not None and card.compare):
+        shared, variants = compare_variants(args, classes, overrides, card)
     unknown = [k for k in overrides if not any(k in c.setting_names() for c in classes)]
     if unknown:
         names = sorted({n for c in classes for n in c.setting_names()})
@@ -193,10 +207,12 @@ def app_main(argv: list[str]) -> int:
             values, _ = cls.resolve(cls.own_settings(overrides))   # what the run will build
         except ParamError as e:
             raise UsageError(f"--set: {cls.name} {e}") from None
-        if args.headless and args.seconds is not None and args.seconds * values["hertz"] > MAX_STEPS:
-            raise UsageError(f"--seconds {args.seconds:g} at {values['hertz']} Hz is more than "
+        hertz = max([values["hertz"]] + [cls.resolve({**shared, **v.settings})[0]["hertz"]
+                                         for v in variants or ()])
+        if args.headless and args.seconds is not None and args.seconds * hertz > MAX_STEPS:
+            raise UsageError(f"--seconds {args.seconds:g} at {hertz} Hz is more than "
                              f"{MAX_STEPS:,} steps; accepted: at most "
-                             f"{MAX_STEPS // values['hertz']:,} seconds for {cls.name}")
+                             f"{MAX_STEPS // hertz:,} seconds for {cls.name}")
     if args.headless and args.record:
         raise UsageError("--record records what you do in the window; it needs no --headless")
 
@@ -209,7 +225,11 @@ def app_main(argv: list[str]) -> int:
 
     shots = [screenshot_path(args.screenshot, c.name, len(classes) > 1) for c in classes
              if args.headless and args.screenshot]     # the names the run will write
+    tables = [screenshot_path(args.csv, c.name, len(classes) > 1) for c in classes
+              if args.csv and len(classes) > 1]
+    instrument_problem(args, classes)
     for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record"),
+                       (args.csv, "--csv"), *((t, "--csv") for t in tables),
                        *((shot, "--screenshot") for shot in shots if shot != args.screenshot)):
         if path is not None:
             problem = check_output_path(path, what)      # last: it may create the folder
@@ -222,19 +242,81 @@ def app_main(argv: list[str]) -> int:
             print(problem, file=sys.stderr)
             return EXIT_NONFINITE      # like their code raising: exit 1 (README)
 
+    plot = check_plot(args.plot, classes, shared)
+    extras = Extras(args.csv, args.arrows, tuple(plot))
     if args.headless:
         if not classes:
             raise UsageError(f"--headless needs --scene NAME or --scene all; accepted: {accepted}")
         use_dummy_video()
+        if variants is not None:
+            from app.headless_compare import run_compare
+            return run_compare(classes[0], shared, variants, args.steps, args.seconds, events,
+                               args.screenshot, args.json, card, extras)
         return run_headless(classes, overrides, args.steps, args.seconds, events,
-                            args.screenshot, args.json, card)
+                            args.screenshot, args.json, card, extras)
 
     if args.steps is not None or args.json:
         raise UsageError("--steps and --json are for --headless runs")
     from app.window import run_window
-    return run_window(classes[0].name if classes else None, overrides, record=args.record,
+    return run_window(classes[0].name if classes else None, shared, record=args.record,
                       screenshot=args.screenshot, seconds=args.seconds,
-                      large_text=args.large_text, events=events, card=card)
+                      large_text=args.large_text, events=events, card=card,
+                      compare=variants, extras=extras)
+
+
+def compare_variants(args: argparse.Namespace, classes: list, overrides: dict, card):
+    """The shared settings and the variants of a comparison (--compare, or a comparison card),
+    checked as --set is; UsageError (one line) if they are refused."""
+    from app.compare import Variant, parse_variant, resolve_variants
+    from app.scene import ParamError, variant_text
+    if len(classes) != 1:
+        raise UsageError("--compare needs --scene NAME (one scene, run side by side at each "
+                         "variant's settings)")
+    cls = classes[0]
+    if card is not None and args.compare is not None:
+        raise UsageError("--try gives the settings itself (a comparison card, its variants too); "
+                         "drop --compare, or give the variants without --try")
+    try:
+        if card is not None:
+            shared = dict(card.settings)
+            variants = [Variant(variant_text(v), dict(v)) for v in card.compare]
+        else:
+            shared, variants = overrides, [parse_variant(t) for t in args.compare]
+        resolve_variants(cls, shared, variants)
+    except ParamError as e:
+        raise UsageError(f"--compare: {cls.name}: {e}") from None
+    return shared, variants
+
+
+def instrument_problem(args: argparse.Namespace, classes: list) -> None:
+    """Refuse (UsageError) instruments that do not fit the run."""
+    if args.headless and (args.arrows or args.plot) and not args.screenshot:
+        what = "--arrows" if args.arrows else "--plot"
+        raise UsageError(f"{what} draws into --screenshot when headless; give --screenshot "
+                         "OUT.png (or --csv FILE for the numbers)")
+    if args.plot is not None and len(classes) != 1:
+        raise UsageError("--plot needs --scene NAME (the metrics belong to a scene)")
+    if (args.csv is not None or args.arrows) and not classes:
+        raise UsageError(f"{'--csv' if args.csv is not None else '--arrows'} needs --scene NAME")
+
+
+def check_plot(text: str | None, classes: list, shared: dict) -> list[str]:
+    """The metrics --plot names, checked against what the scene reports (it is built once to
+    ask it); UsageError naming the accepted ones."""
+    if text is None:
+        return []
+    names = [n.strip() for n in text.split(",")]
+    if not all(names):
+        raise UsageError(f"--plot {shown_text(text)}: accepted: METRIC[,METRIC...], e.g. "
+                         "--plot max_stretch,mean_stretch")
+    from app.series import plottable
+    cls = classes[0]
+    accepted = list(plottable(cls(cls.own_settings(shared)).metrics()))
+    unknown = [n for n in names if n not in accepted]
+    if unknown:
+        raise UsageError(f"--plot {shown_text(unknown[0])}: {cls.name} reports no such number; "
+                         f"accepted: {', '.join(accepted)}")
+    return list(dict.fromkeys(names))
 
 
 def find_card(label: str, classes: list, overrides: dict):

@@ -14,10 +14,15 @@ import os
 import statistics
 import sys
 import time
-from typing import Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
 from app.scene import InputEvent, Scene, Try
+from app.series import MAX_WINDOW, clean
+
+if TYPE_CHECKING:
+    from app.instruments import Instruments
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -157,32 +162,17 @@ def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
     return out
 
 
-def clean(value: Any) -> Any:
-    """Make a value JSON-safe: NumPy scalars to Python numbers, NaN and infinities to None."""
-    if isinstance(value, dict):
-        return {str(k): clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [clean(v) for v in value]
-    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
-def render(scene: Scene, path: str) -> None:
-    """Draw the scene's current frame, with its own drawing code and the window's HUD (less
-    fps, which a headless run has none of) laid out as the window lays them out (the HUD off the
-    scene's content), and save it as a PNG. Raises OSError if it cannot."""
+def render(scene: Scene, path: str, runners: list | None = None, inst=None,
+           compare: bool = False) -> None:
+    """Draw the run's last frame (app/frames.py: the scene's own drawing code and the window's
+    HUD, laid out as the window lays them out; with `runners` of a comparison every pane; with
+    `inst` the plot and the arrows) and save it as a PNG. Raises OSError if it cannot."""
     import pygame
 
-    from app.draw import hud, save_png
-    from app.draw.layout import Pane
+    from app.draw import save_png
+    from app.frames import picture
 
-    surface = pygame.Surface(scene.world_size)
-    status = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"]
-    lines = hud.scene_lines(scene, status)
-    Pane(scene).draw(surface, surface.get_rect(), lines)
+    surface = picture(runners or [SceneRunner(scene)], inst, compare)
     try:
         save_png(surface, path)
     except pygame.error as e:
@@ -226,23 +216,51 @@ def screenshot_path(screenshot: str, scene_name: str, several: bool) -> str:
     return f"{root}-{scene_name}{ext}"
 
 
+@dataclass
+class Extras:
+    """The instruments asked for on the command line: --csv FILE, --arrows, --plot M1,M2."""
+    csv: str | None = None
+    arrows: bool = False
+    plot: tuple[str, ...] = ()
+
+    def instruments(self, csv_path: str | None, compare: bool,
+                    seconds: float) -> "Instruments | None":
+        """The run's instruments (None if none is asked for): the plot's window is the whole
+        run, up to its longest; the CSV is opened at `csv_path`."""
+        if not (self.csv or self.arrows or self.plot):
+            return None
+        from app.instruments import Instruments      # pygame: only when drawing is asked for
+        inst = Instruments(self.plot, window=min(max(seconds, 1e-3), MAX_WINDOW),
+                           arrows=self.arrows)
+        if csv_path:
+            inst.open_csv(csv_path, compare, warn=lambda text: print(text, file=sys.stderr))
+        return inst
+
+
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
-                 as_json: bool, card: Try | None = None) -> int:
+                 as_json: bool, card: Try | None = None, extras: Extras | None = None) -> int:
     """Run each scene in turn; print one JSON object per scene (or a readable summary). With
-    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card)."""
+    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card); with
+    `extras` the CSV, the plot and the arrows (app/instruments.py)."""
     nonfinite = unsaved = False
+    extras = extras or Extras()
+    several = len(scene_classes) > 1
     for cls in scene_classes:
         scene = cls(cls.own_settings(overrides))
         if card is not None:
             scene.apply_card(card)
         n = steps if steps is not None else steps_for(seconds, scene.dt)
+        csv_path = screenshot_path(extras.csv, scene.name, several) if extras.csv else None
+        inst = extras.instruments(csv_path, False, n * scene.dt)
         start = time.perf_counter()
-        runner = run_scene(scene, n, events)
+        runner = SceneRunner(scene, events, keep_all_times=True)
+        if inst is not None:
+            inst.attach([runner], per_step=True)
+        runner.run(n)
         result = summary(runner, time.perf_counter() - start)
         if card is not None:
-            result["try"] = {"label": card.label, "settings": clean(dict(card.settings)),
-                             "watch": card.watch}
+            result["try"] = card_json(card)
         late = runner.events_left
         if late:
             last = max(runner.clock - scene.dt, 0.0)   # an event is delivered before a step
@@ -250,31 +268,55 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                   f"starts at t = {last:g} s and the first of them is due at t = {late[0].t:g} s; "
                   f"give more --steps or --seconds", file=sys.stderr)
         if screenshot:
-            path = screenshot_path(screenshot, scene.name, len(scene_classes) > 1)
-            try:
-                render(scene, path)
-                result["screenshot"] = path
-            except OSError as e:
-                print(f"python -m app: error: {scene.name}: could not save the screenshot "
-                      f"'{path}': {e}", file=sys.stderr)
-                result["screenshot"] = None
-                unsaved = True
+            path = screenshot_path(screenshot, scene.name, several)
+            unsaved = not save_screenshot(path, scene.name, result, [runner], inst) or unsaved
+        if inst is not None and inst.csv is not None:
+            result.update(csv=csv_path, csv_rows=inst.csv.rows)
+            inst.close_csv()
         if as_json:
             print(json.dumps(result, allow_nan=False), flush=True)
         else:
             print(describe(result), flush=True)
-        if runner.error is not None:       # a student's code failed: say where, go on with the
-            print(f"{scene.name}: {runner.error}\n(stopped at step {runner.steps + 1})",
-                  file=sys.stderr)         # next scene, exit 1 (like a run that went non-finite)
-            nonfinite = True
-        elif not runner.finite:
-            print(f"{scene.name}: the simulation went non-finite (NaN or inf, or past the scene's "
-                  f"blow-up bounds) at step "
-                  f"{runner.steps} (t = {runner.steps * scene.dt:.3f} s). {advice(scene)}",
-                  file=sys.stderr)
-            nonfinite = True
+        nonfinite = report_stop(runner, scene.name) or nonfinite
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
+
+
+def card_json(card: Try) -> dict[str, Any]:
+    out = {"label": card.label, "settings": clean(dict(card.settings)), "watch": card.watch}
+    if card.compare:
+        out["compare"] = [clean(dict(v)) for v in card.compare]
+    return out
+
+
+def save_screenshot(path: str, name: str, result: dict, runners: list, inst,
+                    compare: bool = False) -> bool:
+    """Render and save the screenshot; note it in `result`; False (and a line on stderr) if it
+    could not be saved."""
+    try:
+        render(runners[0].scene, path, runners, inst, compare)
+        result["screenshot"] = path
+        return True
+    except OSError as e:
+        print(f"python -m app: error: {name}: could not save the screenshot '{path}': {e}",
+              file=sys.stderr)
+        result["screenshot"] = None
+        return False
+
+
+def report_stop(runner: SceneRunner, name: str) -> bool:
+    """Say on stderr why a run stopped early, if it did; True if it did (exit code 1)."""
+    scene = runner.scene
+    if runner.error is not None:       # a student's code failed: say where, go on with the
+        print(f"{name}: {runner.error}\n(stopped at step {runner.steps + 1})",
+              file=sys.stderr)         # next scene, exit 1 (like a run that went non-finite)
+        return True
+    if not runner.finite:
+        print(f"{name}: the simulation went non-finite (NaN or inf, or past the scene's "
+              f"blow-up bounds) at step {runner.steps} (t = {runner.steps * scene.dt:.3f} s). "
+              f"{advice(scene)}", file=sys.stderr)
+        return True
+    return False
 
 
 def describe(summary: dict[str, Any]) -> str:
@@ -289,6 +331,8 @@ def describe(summary: dict[str, Any]) -> str:
         lines.append(f"  try: {summary['try']['label']}: watch: {summary['try']['watch']}")
     if summary.get("screenshot"):
         lines.append(f"  screenshot: {summary['screenshot']}")
+    if summary.get("csv"):
+        lines.append(f"  csv: {summary['csv']} ({summary['csv_rows']} rows)")
     if summary.get("error"):
         lines.append(f"  error: {summary['error'].splitlines()[-1]} (details on stderr)")
     return "\n".join(lines)

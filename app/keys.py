@@ -49,6 +49,10 @@ KEYS: tuple[ShellKey, ...] = (
     ShellKey(("f4",), "F4", "toggle_details",
              "HUD details: the few lines a class reads <-> every line, the costs and the metrics"),
     ShellKey(("tab",), "Tab", "toggle_panel", "hide / show the parameter panel"),
+    ShellKey(("p",), "P", "toggle_plot",
+             "live plot: a list of the scene's numbers to plot over time (in compare mode one "
+             "line per pane)"),
+    ShellKey(("v",), "V", "toggle_arrows", "velocity and force arrows on / off"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
              "full path)"),
     ShellKey(("escape",), "Esc", "escape", "close the help; else back to the menu; in the menu: "

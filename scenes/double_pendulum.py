@@ -135,6 +135,8 @@ class DoublePendulumScene(PymunkScene):
     """
 
     name = "double_pendulum"
+    arrow_name = "bob"
+    error_metric, error_label = "reference_divergence", "off the RK4 reference"
     title = "Double pendulum vs. its equations"
     category = "Rigid bodies (pymunk)"
     blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up

@@ -56,6 +56,7 @@ from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, materi
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
 from app.physics.mass_spring_stability import predicted_limit, symplectic_limit, top_mode
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
+from app.vectors import Arrows, grid_sample, sample_text
 
 UNLOCK_KEY = "u"
 # particles x substeps per step: 32x32 x 39, 64x64 x 9. Measured at 64x64 x 9, implicit Euler:
@@ -135,6 +136,7 @@ class MassSpringClothScene(Scene):
                "docstring)", amount="shear_stiffness"),
         Effect("bending", True, "skip-one springs resist folding", amount="bending_stiffness"),
     )
+    error_metric, error_label = "max_stretch", "largest stretch"
     # the HUD and the metrics strip write these alike (the JSON keeps px, s, kg and fractions)
     metric_units = {"energy": Unit("J", 1.0 / JOULE, resolution=1e-3),
                     "max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
@@ -290,6 +292,14 @@ class MassSpringClothScene(Scene):
             horizontal, vertical = self.cloth.sets["structural"].families
             self._stretch = (self.cloth.stretch(horizontal), self.cloth.stretch(vertical))
         return self._stretch
+
+    def arrows(self) -> Arrows:
+        """A regular sample of the particles (edges included) with their masses."""
+        c = self.cloth
+        ids = grid_sample(c.rows, c.cols)
+        ps = c.ps
+        return Arrows(ids, ps.x[ids].copy(), ps.v[ids].copy(), ps.mass[ids].copy(),
+                      sample_text(len(ids), c.rows * c.cols, "particle"))
 
     def draw(self, surface, view) -> None:
         from app.draw.cloth_draw import draw_cloth

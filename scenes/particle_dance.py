@@ -38,6 +38,7 @@ from app.physics.neighbours import NEIGHBOUR_METHODS, all_pair_tests, expected_g
 from app.physics.particle_dance import (CORE, EFFECTS, RULES, MouseForce, PairRule,
                                         ParticleDance, rule_matrix)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit
+from app.vectors import Arrows, sample_every, sample_text
 
 DOT_RADIUS = 3.5            # world px
 MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
@@ -191,6 +192,14 @@ class ParticleDanceScene(Scene):
             self.dance.set_mouse(None)
         elif event.kind == "mouse_move" and self.dance.mouse is not None:
             self.dance.mouse.point = np.asarray(self.mouse_pos, dtype=float)
+
+    def arrows(self) -> Arrows:
+        """Every particle, or one in k when there are more than MAX_ARROWS (a thicket of 5000
+        arrows reads as nothing)."""
+        ps = self.dance.ps
+        ids = np.arange(0, ps.n, sample_every(ps.n))
+        return Arrows(ids, ps.x[ids].copy(), ps.v[ids].copy(), ps.mass[ids].copy(),
+                      sample_text(len(ids), ps.n, "particle"))
 
     # ----- reports ----------------------------------------------------------------------------
     def metrics(self) -> dict[str, float | str | None]:

@@ -60,6 +60,8 @@ class PanelHost(Protocol):
     def toggle_help(self) -> None: ...
     def apply_setting(self, name: str, value: Any) -> bool: ...
     def apply_try(self, card: Try) -> bool: ...
+    def toggle_plot(self) -> None: ...
+    def toggle_arrows(self) -> None: ...
 
 
 # ----------------------------------------------------------------------------------------------
@@ -146,7 +148,26 @@ class ParamPanel:
         self.pause_button, self.reset_button, self.help_button = (
             UIButton(pygame.Rect(x, y, w, row), text, manager, container=self.container)
             for x, w, text in zip(xs, widths, ("Pause", "Reset", "Help")))
+        y += row + gap
+        # the instruments: the plot's list (P) and the arrows (V), in every scene
+        half = (inner_w - gap) // 2
+        self.plot_button = UIButton(pygame.Rect(pad, y, half, row), "Plot... (P)", manager,
+                                    container=self.container)
+        self.arrows_button = UIButton(pygame.Rect(pad + half + gap, y, inner_w - half - gap, row),
+                                      "", manager, container=self.container)
         y += row + 2 * gap
+        # a comparison: whose settings the panel shows and edits (every pane, or one)
+        self.target_menu = None
+        targets = host.targets() if hasattr(host, "targets") else None
+        self._targets = list(targets or [])
+        locked = host.locked_settings() if hasattr(host, "locked_settings") else set()
+        if targets:
+            label("Settings of", obj="#section")
+            y += row
+            self.target_menu = UIDropDownMenu(targets, targets[host.target_index()],
+                                              pygame.Rect(pad, y, inner_w, row), manager,
+                                              container=self.container)
+            y += row + 2 * gap
         self.cards: dict[Any, Try] = {}
         self.watch_box = None
         if scene.tries:
@@ -176,6 +197,10 @@ class ParamPanel:
         for prm in scene.all_params():
             value = scene.p[prm.name]
             tip = prm.help or None
+            if prm.name in locked:
+                label(f"{prm.name}: differs by pane", short=prm.name)
+                y += row + gap
+                continue
             if prm.kind is bool:
                 label(prm.name, width=inner_w // 2)
                 b = UIButton(pygame.Rect(pad + inner_w // 2, y, inner_w - inner_w // 2, row),
@@ -220,6 +245,10 @@ class ParamPanel:
             label("Effects (off = not computed)", obj="#section", short="Effects")
             y += row
             for eff in scene.effects:
+                if eff.name in locked:
+                    label(f"{eff.name}: differs by pane", short=eff.name)
+                    y += row + gap
+                    continue
                 b = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
                              container=self.container, tool_tip_text=eff.help or None)
                 self.toggles[eff.name] = b
@@ -261,6 +290,10 @@ class ParamPanel:
         want = "Resume" if paused else "Pause"
         if self.pause_button.text != want:
             self.pause_button.set_text(want)
+        arrows = bool(getattr(getattr(self.host, "inst", None), "arrows", False))
+        want = f"Arrows (V): {'ON' if arrows else 'OFF'}"
+        if self.arrows_button.text != want:
+            self.arrows_button.set_text(want)
 
     def is_typing(self) -> bool:
         """True while a text box of the panel has the keyboard."""
@@ -303,6 +336,17 @@ class ParamPanel:
             if element is self.help_button:
                 self.host.toggle_help()
                 return True
+            if element is self.plot_button:
+                self.host.toggle_plot()
+                return True
+            if element is self.arrows_button:
+                self.host.toggle_arrows()
+                self.refresh()
+                return True
+        if ev.type == gui.UI_DROP_DOWN_MENU_CHANGED and element is self.target_menu:
+            if ev.text in self._targets:
+                self.host.set_target(self._targets.index(ev.text))
+            return True
         if ev.type == gui.UI_BUTTON_PRESSED and element in self.cards:
             card = self.cards[element]
             if self.host.apply_try(card):
