@@ -6,10 +6,11 @@
     python -m app [--headless] --scene NAME --try LABEL    a "try this" card, as a click applies it
     python -m app --headless --scene NAME [--seconds S | --steps N] [--set KEY=VALUE]...
                   [--input EVENTS.json] [--screenshot OUT.png] [--json]
+                  [--video OUT.gif|OUT.mp4 [--fps N]] [--width PX] [--clean]
     python -m app --headless --scene all   every scene in turn
     python -m app [--headless] --scene NAME --compare A B [C [D]]   variants side by side
     python -m app [--headless] ... [--csv FILE] [--plot M1,M2] [--arrows]   the instruments
-    python -m app bench [cloth|integrators|pymunk|mass_spring|particles|all] [--json] [--out DIR] [--quick]
+    python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|all] [--json] [--out DIR] [--quick]
     python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
 
 Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.
@@ -23,9 +24,11 @@ import os
 import sys
 from typing import NoReturn
 
+from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, MAX_FPS, MAX_WIDTH, MIN_WIDTH, check_video,
+                       frame_count)
 from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras,
                           InputFileError, check_output_path, load_events, run_headless,
-                          screenshot_path)
+                          screenshot_path, steps_for)
 from app.scene import plain_number, shown_text
 
 
@@ -67,6 +70,28 @@ def _timeout(text: str) -> float:
     return value
 
 
+def _int_in(text: str, lo: int, hi: int, what: str) -> int:
+    try:
+        if not plain_number(text):
+            raise ValueError(text)
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not an integer in plain ASCII; "
+                                         f"accepted: {what} from {lo} to {hi}")
+    if not lo <= value <= hi:
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: {what} "
+                                         f"from {lo} to {hi}")
+    return value
+
+
+def _fps(text: str) -> int:
+    return _int_in(text, 1, MAX_FPS, "frames per second")
+
+
+def _width(text: str) -> int:
+    return _int_in(text, MIN_WIDTH, MAX_WIDTH, "a width in pixels")
+
+
 def _positive_int(text: str) -> int:
     try:
         if not plain_number(text):
@@ -100,6 +125,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="set a parameter or effect (on/off); repeatable")
     p.add_argument("--input", metavar="EVENTS.json", help="replay timed mouse and key events")
     p.add_argument("--screenshot", metavar="OUT.png", help="save the last frame as a PNG")
+    p.add_argument("--video", metavar="OUT.gif|OUT.mp4", help="headless: a clip of the run "
+                   "(GIF, or MP4 with imageio-ffmpeg); window: where F9's clips go")
+    p.add_argument("--fps", type=_fps, help=f"clip frames per simulated second, headless and "
+                   f"F9 (default {DEFAULT_FPS})")
+    p.add_argument("--width", type=_width, help=f"width in pixels of headless clips and "
+                   f"screenshots and of F9's clips (default: clips {DEFAULT_WIDTH}, screenshots "
+                   "the world's)")
+    p.add_argument("--clean", action="store_true", help="headless: no HUD or metrics in "
+                   "--screenshot and --video, cropped to the scene's content")
     p.add_argument("--json", action="store_true", help="print one JSON summary per scene")
     p.add_argument("--record", metavar="FILE", help="window: save your mouse and key events "
                    "in the --input format")
@@ -215,6 +249,7 @@ def app_main(argv: list[str]) -> int:
                              f"{MAX_STEPS // hertz:,} seconds for {cls.name}")
     if args.headless and args.record:
         raise UsageError("--record records what you do in the window; it needs no --headless")
+    clip_problem(args, classes)
 
     events = None
     if args.input is not None:        # '' too: an empty name is refused, not ignored
@@ -230,7 +265,8 @@ def app_main(argv: list[str]) -> int:
     instrument_problem(args, classes)
     for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record"),
                        (args.csv, "--csv"), *((t, "--csv") for t in tables),
-                       *((shot, "--screenshot") for shot in shots if shot != args.screenshot)):
+                       *((shot, "--screenshot") for shot in shots if shot != args.screenshot),
+                       *((clip, "--video") for clip in clip_paths(args, classes))):
         if path is not None:
             problem = check_output_path(path, what)      # last: it may create the folder
             if problem:
@@ -251,9 +287,11 @@ def app_main(argv: list[str]) -> int:
         if variants is not None:
             from app.headless_compare import run_compare
             return run_compare(classes[0], shared, variants, args.steps, args.seconds, events,
-                               args.screenshot, args.json, card, extras)
+                               args.screenshot, args.json, card, extras, video=args.video,
+                               fps=args.fps, width=args.width, clean=args.clean)
         return run_headless(classes, overrides, args.steps, args.seconds, events,
-                            args.screenshot, args.json, card, extras)
+                            args.screenshot, args.json, card, extras, video=args.video,
+                            fps=args.fps, width=args.width, clean=args.clean)
 
     if args.steps is not None or args.json:
         raise UsageError("--steps and --json are for --headless runs")
@@ -261,7 +299,8 @@ def app_main(argv: list[str]) -> int:
     return run_window(classes[0].name if classes else None, shared, record=args.record,
                       screenshot=args.screenshot, seconds=args.seconds,
                       large_text=args.large_text, events=events, card=card,
-                      compare=variants, extras=extras)
+                      compare=variants, extras=extras,
+                      clips=dict(path=args.video, fps=args.fps, width=args.width))
 
 
 def compare_variants(args: argparse.Namespace, classes: list, overrides: dict, card):
@@ -334,6 +373,43 @@ def find_card(label: str, classes: list, overrides: dict):
         raise UsageError(f"--try {shown_text(label)}: scene '{cls.name}' has no such card; "
                          f"accepted: {labels}")
     return card
+
+
+def clip_problem(args: argparse.Namespace, classes: list) -> None:
+    """Refuse (UsageError) clip options that do not fit together, and a clip that cannot be
+    made (its extension, its frame rate, a GIF too long, MP4 without imageio-ffmpeg), before
+    the run. Headless, --video records the run; in the window it names where F9's clips go."""
+    if args.clean and not args.headless:
+        raise UsageError("--clean is for --headless --screenshot and --video; in the window, F3 "
+                         "hides the HUD")
+    if args.clean and not (args.screenshot or args.video):
+        raise UsageError("--clean leaves the HUD out of --screenshot and --video; give one")
+    if args.fps is not None and args.video is None and args.headless:
+        raise UsageError("--fps is a clip's frame rate; give --video OUT.gif|OUT.mp4")
+    if args.width is not None and args.headless and not (args.screenshot or args.video):
+        raise UsageError("--width sizes --screenshot and --video; give one")
+    if args.video is None:
+        return
+    fps = args.fps or DEFAULT_FPS
+    for cls in classes or [None]:
+        frames = None
+        if args.headless and cls is not None:
+            dt = 1.0 / cls.resolve(cls.own_settings(parse_sets(args.set)))[0]["hertz"]
+            steps = args.steps if args.steps is not None else steps_for(args.seconds, dt)
+            frames = frame_count(steps, dt, fps)
+        problem = check_video(args.video, fps, frames, width=args.width or DEFAULT_WIDTH)
+        if problem:
+            raise UsageError((f"{cls.name}: " if cls and len(classes) > 1 else "") + problem)
+
+
+def clip_paths(args: argparse.Namespace, classes: list) -> list[str]:
+    """The clip files a run will write (OUT-<scene>.gif with --scene all), or where the
+    window's first F9 clip goes."""
+    if args.video is None:
+        return []
+    several = args.headless and len(classes) > 1
+    return [screenshot_path(args.video, c.name, several) for c in classes] if several \
+        else [args.video]
 
 
 def writable_folder(path: str, what: str, example: str, probe: str) -> None:

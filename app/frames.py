@@ -22,9 +22,41 @@ PLOT_SHARE = 0.3           # the plot strip's share of the height (window and sc
 PLOT_MIN = 150             # and its least height, px at text scale 1
 
 
-def plot_height(height: int) -> int:
-    """The plot strip's height in an area `height` px tall."""
-    return int(min(max(PLOT_SHARE * height, PLOT_MIN * TEXT.scale), 0.5 * height))
+def plot_height(height: int, scale: float | None = None) -> int:
+    """The plot strip's height in an area `height` px tall (text at `scale`, default the
+    current one)."""
+    k = TEXT.scale if scale is None else scale
+    return int(min(max(PLOT_SHARE * height, PLOT_MIN * k), 0.5 * height))
+
+
+def base_size(scene, clean: bool, compare: bool) -> tuple[float, float]:
+    """A picture's shape at text scale 1: the world's size (twice its width and 1.5 times its
+    height for a comparison), or with `clean` alone the scene's content's."""
+    w, h = scene.world_size
+    if compare:
+        return 2.0 * w, 1.5 * h
+    if clean:
+        _, _, cw, ch = scene.content_bounds()
+        return float(cw), float(ch)
+    return float(w), float(h)
+
+
+def picture_size(scene, width: int | None, clean: bool, compare: bool,
+                 plotting: bool) -> tuple[int, int]:
+    """The size of picture(): `width` px wide (default the base size's width) in the base
+    shape, plus the plot strip below when metrics are plotted. With a width or `clean`, even
+    numbers (a clip's H.264 frames need them)."""
+    from app.clips import even
+    bw, bh = base_size(scene, clean, compare)
+    if width is None and not clean:
+        w, h = int(bw), int(bh)
+    else:
+        width = width or int(scene.world_size[0])
+        w, h = even(width), even(width * bh / bw)
+    if plotting:
+        extra = plot_height(h, w / bw)
+        h += extra if width is None and not clean else even(extra)
+    return w, h
 
 
 def compare_header(scenes, t: float, status: list = (), notes: list = ()) -> list:
@@ -63,37 +95,42 @@ def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = No
 
 
 def picture(runners: list[SceneRunner], inst: Instruments | None = None,
-            compare: bool = False) -> pygame.Surface:
-    """A whole frame as a screenshot shows it: the one scene (its world's size) or every pane
-    of a comparison (twice the world's width, 1.5 times its height), the HUD text as the window
-    writes it (less the frame rate, which a headless run has none of), the plot strip below if
-    metrics are plotted, the arrows if they are on."""
+            compare: bool = False, width: int | None = None,
+            clean: bool = False) -> pygame.Surface:
+    """A whole frame as a screenshot or a clip shows it (its size: picture_size): the one
+    scene, or every pane of a comparison, with the HUD text as the window writes it (less the
+    frame rate, which a headless run has none of; none with `clean`), the plot strip below if
+    metrics are plotted, the arrows if they are on. Text is scaled with the width."""
     scene = runners[0].scene
-    w, h = scene.world_size
-    size = (2 * w, int(1.5 * h)) if compare else (w, h)
     plotting = inst is not None and bool(inst.plot)
-    extra_h = plot_height(size[1]) if plotting else 0
-    surface = pygame.Surface((size[0], size[1] + extra_h))
-    surface.fill((21, 24, 29))
-    area = pygame.Rect(0, 0, *size)
-    overlay = None
-    legend: list = []
-    if inst is not None and inst.arrows:
-        inst.update_scale()
-        overlay = inst.overlay
-        legend = inst.legend()
-    if compare:
-        header = compare_header([r.scene for r in runners], scene.time)
-        lines = compare_pane_lines(runners, extra=legend)
-        PaneGrid([r.scene for r in runners]).draw(surface, area, header, lines, overlay=overlay)
-    else:
-        status = [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"]
-        lines = hud.scene_lines(scene, status, legend)
-        Pane(scene).draw(surface, area, lines,
-                         overlay=(lambda s, lay: overlay(s, 0, lay)) if overlay else None)
-    if plotting:
-        inst.draw_plot(surface, pygame.Rect(0, size[1], size[0], extra_h))
+    w, h = picture_size(scene, width, clean, compare, plotting)
+    bw, _ = base_size(scene, clean, compare)
+    saved, TEXT.scale = TEXT.scale, w / bw
+    try:
+        surface = pygame.Surface((w, h))
+        surface.fill((21, 24, 29))
+        plot_h = h - picture_size(scene, width, clean, compare, False)[1] if plotting else 0
+        area = pygame.Rect(0, 0, w, h - plot_h)
+        overlay, legend = None, []
+        if inst is not None and inst.arrows:
+            inst.update_scale()
+            overlay = inst.overlay
+            legend = inst.legend()
+        if compare:
+            header = None if clean else compare_header([r.scene for r in runners], scene.time)
+            lines = [None] * len(runners) if clean else compare_pane_lines(runners, extra=legend)
+            PaneGrid([r.scene for r in runners]).draw(surface, area, header, lines,
+                                                      overlay=overlay)
+        else:
+            lines = None if clean else hud.scene_lines(
+                scene, [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"], legend)
+            Pane(scene).draw(surface, area, lines,
+                             overlay=(lambda s, lay: overlay(s, 0, lay)) if overlay else None)
+        if plotting:
+            inst.draw_plot(surface, pygame.Rect(0, area.bottom, w, plot_h))
+    finally:
+        TEXT.scale = saved
     return surface
 
 
-__all__ = ["picture", "compare_header", "compare_pane_lines", "plot_height"]
+__all__ = ["picture", "picture_size", "base_size", "compare_header", "compare_pane_lines", "plot_height"]

@@ -11,14 +11,14 @@ from __future__ import annotations
 import json
 import math
 import os
-import statistics
 import sys
 import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from app.clips import Clip
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
-from app.scene import InputEvent, Scene, Try
+from app.scene import InputEvent, Scene, SceneError, Try
 from app.series import MAX_WINDOW, clean
 
 if TYPE_CHECKING:
@@ -144,13 +144,13 @@ def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
     """The JSON summary object of DESIGN.md for a finished run (plus "error" when the scene
     raised SceneError)."""
     s = runner.scene
-    times = runner.all_seconds or []
+    median = runner.step_times.median() if runner.step_times is not None else None
     out = {
         "scene": s.name,
         "steps": runner.steps,
         "sim_seconds": round(runner.steps * s.dt, 9),
         "wall_seconds": round(wall_seconds, 6),
-        "step_ms": round(statistics.median(times) * 1000, 6) if times else None,   # no step
+        "step_ms": round(median * 1000, 6) if median is not None else None,   # None: no step
         "params": clean(s.p),
         "effects": sorted(s.on),
         "metrics": clean(s.metrics()),
@@ -162,19 +162,30 @@ def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
     return out
 
 
-def render(scene: Scene, path: str, runners: list | None = None, inst=None,
+json_clean = clean    # run_headless's `clean` (a clip without HUD) hides this name there
+
+
+def frame(runners: list, width: int | None = None, clean: bool = False, inst=None,
+          compare: bool = False):
+    """What a screenshot shows, as a pygame Surface: the scene's current frame (or every pane
+    of a comparison), with its own drawing code and the window's HUD (less fps, which a headless
+    run has none of) laid out as the window lays them out (the HUD off the scene's content), the
+    plot strip and the arrows if `inst` has them on; `clean` leaves HUD and metrics out. Drawn
+    `width` px wide (text scaled with it; default: the world's width), not scaled afterwards, so
+    a large frame stays sharp. Screenshots (render) and clips (record_clip) both take their
+    pictures here (app/frames.py: picture)."""
+    from app.frames import picture
+    return picture(runners, inst, compare, width, clean)
+
+
+def render(runners: list, path: str, width: int | None = None, clean: bool = False, inst=None,
            compare: bool = False) -> None:
-    """Draw the run's last frame (app/frames.py: the scene's own drawing code and the window's
-    HUD, laid out as the window lays them out; with `runners` of a comparison every pane; with
-    `inst` the plot and the arrows) and save it as a PNG. Raises OSError if it cannot."""
+    """Save frame() as a PNG. Raises OSError if it cannot."""
     import pygame
 
     from app.draw import save_png
-    from app.frames import picture
-
-    surface = picture(runners or [SceneRunner(scene)], inst, compare)
     try:
-        save_png(surface, path)
+        save_png(frame(runners, width, clean, inst, compare), path)
     except pygame.error as e:
         raise OSError(str(e)) from None
 
@@ -239,10 +250,13 @@ class Extras:
 
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
-                 as_json: bool, card: Try | None = None, extras: Extras | None = None) -> int:
+                 as_json: bool, card: Try | None = None, extras: Extras | None = None,
+                 video: str | None = None, fps: int | None = None, width: int | None = None,
+                 clean: bool = False) -> int:
     """Run each scene in turn; print one JSON object per scene (or a readable summary). With
     `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card); with
-    `extras` the CSV, the plot and the arrows (app/instruments.py)."""
+    `extras` the CSV, the plot and the arrows (app/instruments.py). With `video`, record a clip
+    of each run (app/clips.py) at `fps`, `width` px wide."""
     nonfinite = unsaved = False
     extras = extras or Extras()
     several = len(scene_classes) > 1
@@ -257,10 +271,16 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
         runner = SceneRunner(scene, events, keep_all_times=True)
         if inst is not None:
             inst.attach([runner], per_step=True)
-        runner.run(n)
+        if video:
+            clip = record_clip(scene, n, events, screenshot_path(video, scene.name, several),
+                               fps, width, clean, runner=runner, inst=inst)[1]
+        else:
+            runner.run(n)
         result = summary(runner, time.perf_counter() - start)
         if card is not None:
             result["try"] = card_json(card)
+        if video:
+            unsaved = not note_clip(result, clip, scene.name) or unsaved
         late = runner.events_left
         if late:
             last = max(runner.clock - scene.dt, 0.0)   # an event is delivered before a step
@@ -269,7 +289,8 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                   f"give more --steps or --seconds", file=sys.stderr)
         if screenshot:
             path = screenshot_path(screenshot, scene.name, several)
-            unsaved = not save_screenshot(path, scene.name, result, [runner], inst) or unsaved
+            unsaved = not save_screenshot(path, scene.name, result, [runner], inst, width=width,
+                                          clean=clean) or unsaved
         if inst is not None and inst.csv is not None:
             result.update(csv=csv_path, csv_rows=inst.csv.rows)
             inst.close_csv()
@@ -282,19 +303,29 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
 
+def note_clip(result: dict, clip: Any, name: str) -> bool:
+    """Put the clip written (or null) in `result`; False (and a line on stderr) if it was not."""
+    done = isinstance(clip, Clip)
+    result.update(video=clip.path if done else None, video_frames=clip.frames if done
+                  else None, video_bytes=clip.bytes if done else None)
+    if not done:
+        print(f"python -m app: error: {name}: {clip}", file=sys.stderr)
+    return done
+
+
 def card_json(card: Try) -> dict[str, Any]:
-    out = {"label": card.label, "settings": clean(dict(card.settings)), "watch": card.watch}
+    out = {"label": card.label, "settings": json_clean(dict(card.settings)), "watch": card.watch}
     if card.compare:
-        out["compare"] = [clean(dict(v)) for v in card.compare]
+        out["compare"] = [json_clean(dict(v)) for v in card.compare]
     return out
 
 
 def save_screenshot(path: str, name: str, result: dict, runners: list, inst,
-                    compare: bool = False) -> bool:
+                    compare: bool = False, width: int | None = None, clean: bool = False) -> bool:
     """Render and save the screenshot; note it in `result`; False (and a line on stderr) if it
     could not be saved."""
     try:
-        render(runners[0].scene, path, runners, inst, compare)
+        render(runners, path, width, clean, inst, compare)
         result["screenshot"] = path
         return True
     except OSError as e:
@@ -319,6 +350,37 @@ def report_stop(runner: SceneRunner, name: str) -> bool:
     return False
 
 
+def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path: str,
+                fps: int | None, width: int | None, clean: bool, runner=None, inst=None,
+                compare: bool = False) -> tuple[Any, Any]:
+    """Run `steps` steps of `scene` (as run_scene; or of `runner`, a SceneRunner or a
+    comparison's CompareRunner) while recording a clip of frame() to `path`; return the runner
+    and the Clip written, or a one-line message if it was not."""
+    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, open_clip, record_run
+    from app.frames import picture_size
+    fps = fps or DEFAULT_FPS
+    runner = runner or SceneRunner(scene, events, keep_all_times=True)
+    runners = runner.runners if compare else [runner]
+    plotting = inst is not None and bool(inst.plot)
+    size = picture_size(scene, width or DEFAULT_WIDTH, clean, compare, plotting)
+    try:
+        writer = open_clip(path, size, fps)
+    except (OSError, RuntimeError) as e:
+        runner.run(steps)
+        return runner, f"could not start the clip '{path}': {e}"
+    try:
+        try:
+            record_run(runner, steps, fps,
+                       lambda: frame(runners, size[0], clean, inst, compare), writer)
+        except SceneError as e:            # a student's drawing code failed: the frames so far
+            for r in runners:              # are the clip, the run stops (exit 1)
+                r.fail(e)
+        return runner, writer.close()
+    except (OSError, RuntimeError, ValueError) as e:
+        writer.abandon()
+        return runner, f"could not write the clip '{path}': {e}"
+
+
 def describe(summary: dict[str, Any]) -> str:
     """A readable few lines for a run without --json."""
     from app.draw.hud import fmt_number
@@ -333,6 +395,9 @@ def describe(summary: dict[str, Any]) -> str:
         lines.append(f"  screenshot: {summary['screenshot']}")
     if summary.get("csv"):
         lines.append(f"  csv: {summary['csv']} ({summary['csv_rows']} rows)")
+    if summary.get("video"):
+        lines.append(f"  video: {summary['video']} ({summary['video_frames']} frames, "
+                     f"{summary['video_bytes'] / 1e6:.2f} MB)")
     if summary.get("error"):
         lines.append(f"  error: {summary['error'].splitlines()[-1]} (details on stderr)")
     return "\n".join(lines)

@@ -22,7 +22,8 @@ from typing import Any
 
 from app.compare import TAGS, CompareRunner, Variant, labels, resolve_variants
 from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, Extras, card_json, describe,
-                          report_stop, save_screenshot, steps_for, summary)
+                          note_clip, record_clip, report_stop, save_screenshot, steps_for,
+                          summary)
 from app.scene import InputEvent, Scene, Try
 from app.series import clean
 
@@ -39,8 +40,10 @@ def compare_steps(cls: type[Scene], overrides: list[dict[str, Any]], steps: int 
 def run_compare(cls: type[Scene], shared: dict[str, Any], variants: list[Variant],
                 steps: int | None, seconds: float | None, events: list[InputEvent] | None,
                 screenshot: str | None, as_json: bool, card: Try | None = None,
-                extras: Extras | None = None) -> int:
-    """Run the comparison; print one JSON object (or readable summary) per variant."""
+                extras: Extras | None = None, video: str | None = None, fps: int | None = None,
+                width: int | None = None, clean: bool = False) -> int:
+    """Run the comparison; print one JSON object (or readable summary) per variant. With
+    `video`, a clip of every pane (app/clips.py) at `fps`, `width` px wide."""
     extras = extras or Extras()
     overrides = resolve_variants(cls, shared, variants)
     runner = CompareRunner([cls(o) for o in overrides], events, keep_all_times=True)
@@ -49,7 +52,12 @@ def run_compare(cls: type[Scene], shared: dict[str, Any], variants: list[Variant
     if inst is not None:
         inst.attach(runner.runners, [v.text for v in variants], per_step=True)
     start = time.perf_counter()
-    runner.run(n)
+    clip = None
+    if video:
+        clip = record_clip(runner.scenes[0], n, None, video, fps, width, clean, runner=runner,
+                           inst=inst, compare=True)[1]
+    else:
+        runner.run(n)
     wall = time.perf_counter() - start
     late = runner.events_left
     if late:
@@ -68,11 +76,14 @@ def run_compare(cls: type[Scene], shared: dict[str, Any], variants: list[Variant
             result["try"] = card_json(card)
         results.append(result)
     unsaved = False
+    shared_out: dict = {}
+    if video:
+        unsaved = not note_clip(shared_out, clip, cls.name)
     if screenshot:
-        shot: dict = {}
-        unsaved = not save_screenshot(screenshot, cls.name, shot, runner.runners, inst, True)
-        for result in results:
-            result.update(shot)
+        unsaved = not save_screenshot(screenshot, cls.name, shared_out, runner.runners, inst,
+                                      True, width, clean) or unsaved
+    for result in results:
+        result.update(shared_out)
     if inst is not None and inst.csv is not None:
         for result in results:
             result.update(csv=extras.csv, csv_rows=inst.csv.rows)

@@ -32,7 +32,10 @@ An integrator that blows up (non-finite, or 1000x the problem's size away) is fr
 
 On the orbit, implicit Euler's numerical damping makes the bodies spiral into each other until a
 close encounter (a singular 1/r^2 force that one linearised step cannot follow) flings them
-apart: stable is not the same as accurate.
+apart: stable is not the same as accurate. At hertz 60 the encounter (t = 0.57 s, 19 px apart)
+makes implicit Euler's linear system indefinite: its conjugate gradients break down at once (no
+direction along which A is positive), the HUD says so, and that step takes a dense LU solve of
+the same system instead, the true linearised step (E/E0 about -6: flung apart, unbound).
 
 Controls: `problem` chooses the system; `hertz` sets dt = 1/hertz (1..1000); each integrator is an
 effect you can switch off (only the ones shown are computed; switching restarts the race);
@@ -75,6 +78,7 @@ class Run:
     ps: ParticleSystem
     color: tuple[int, int, int]
     blew_up_t: float | None = None
+    cg_failure_t: float | None = None     # implicit Euler: when its CG last stopped short
     error: float = 0.0
     energy_ratio: float = 1.0
     step_seconds: deque = field(default_factory=lambda: deque(maxlen=TIMING_WINDOW))
@@ -150,6 +154,8 @@ class IntegratorsScene(Scene):
             t0 = time.perf_counter()
             run.integrator.step(ps, h)
             run.step_seconds.append(time.perf_counter() - t0)
+            if not run.integrator.explicit and not ps.solve.converged:
+                run.cg_failure_t = self.t + h
             if not ps.is_finite() or np.abs(ps.x).max() > BLOWUP_SIZE * self.problem.scale:
                 ps.x, ps.v = before       # freeze at the last finite state
                 ps.x_prev = None
@@ -191,6 +197,11 @@ class IntegratorsScene(Scene):
             m[f"{run.name}_step_us"] = float(run.step_us)
             m[f"{run.name}_energy_ratio"] = float(run.energy_ratio)
             m[f"{run.name}_blew_up_t"] = run.blew_up_t      # None while it has not
+            if not run.integrator.explicit:          # how its linear solves ended
+                solve = run.ps.solve
+                m[f"{run.name}_cg_converged"] = solve.converged if solve.method else None
+                m[f"{run.name}_cg_residual"] = solve.residual if solve.method else None
+                m[f"{run.name}_cg_failures"] = run.ps.cg_failures
         return m
 
     def reference_error(self) -> tuple[str, str, float] | None:
@@ -206,7 +217,7 @@ class IntegratorsScene(Scene):
 
     def hud_lines(self) -> list[str]:
         """Two short lines at most: omega*h against the limits, and the first blow-up (the
-        table has the rest)."""
+        table has the rest); a third once implicit Euler's CG stopped short of its tolerance."""
         limits = ("spring's limits: 2, RK4 2.83" if self.problem.name == "spring" else
                   "the spring's limits do not apply")
         lines = [f"omega*h = {self.omega_h:.3f}; {limits}"]
@@ -214,6 +225,11 @@ class IntegratorsScene(Scene):
         if dead:
             more = f"  (+{len(dead) - 1} more)" if len(dead) > 1 else ""
             lines.append(f"{SHORT[dead[0].name]} blew up at t = {dead[0].blew_up_t:.2f} s{more}")
+        for run in self.runs:                   # a linear solve that stopped short, in words
+            if run.cg_failure_t is not None:
+                n = run.ps.cg_failures
+                lines.append(f"implicit Euler, t = {run.cg_failure_t:.2f} s ({n} step"
+                             f"{'s' if n > 1 else ''} so far): {run.ps.last_cg_failure.words()}")
         return lines
 
     def hud_details(self) -> list[str]:

@@ -5,12 +5,30 @@ bending), with Blender's cloth presets (cotton, denim, leather, rubber, silk) an
 integrators of the particle system, switchable live. The HUD predicts the explicit methods'
 stability limit from the cloth's highest frequency omega_max (power iteration with the stiffness
 product and the masses; 2/omega_max undamped, less with spring damping: leather's is a tenth of
-it) and says where the current step is; past the limit the top mode grows (just past it, it may
-only shiver), well past it an explicit integrator blows up, the shell's guard rolls back and
-pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keeps going,
+it) and says where the current step is. The limit belongs to the cloth's state: as the cloth
+drapes its cells shear and its springs stretch, and its limit falls (to 0.62x of the value at
+rest for rubber, 0.82x for silk; flung, to 0.62-0.74x), so the HUD re-estimates it on the moving
+cloth (every 0.05 s), keeps the lowest seen, and gives a band: "stable" below half of it (0.4
+for forward Euler), measured to hold for every material and explicit integrator from rest and
+from a fling; "marginal" up to it (runs there blew up or gained energy from 0.6x to 0.9x of the
+limit shown at the start); "past the limit" beyond. Past the limit the top mode grows (just past
+it, it may only shiver), well past it an explicit integrator blows up, the shell's guard rolls
+back and pauses, and implicit Euler (Baraff & Witkin's large steps) at the same step keeps going,
 paying in artificial damping (watch the energy with damping, air and wind off). It linearises
 the springs once per step (one Newton step), so a huge step still costs it: at hertz 1, cotton's
-energy leaps from 0 to ~2.4e5 J in the first 10 s before the damping wins (~11 J after 2 min).
+energy leaps from 0 to ~1.9e7 J at t = 3 s before the damping wins: within a minute it is back
+to a few tens of J (where exactly depends on rounding: a 1e-12 px nudge of the start, or another
+CPU's BLAS, moves it from -30 to +30 J; CG stops at 1e-2 of the residual, and a step this large
+amplifies what that leaves). With cg_tolerance 1e-10 (exact: the sparse LU takes over where CG
+cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging lower than it
+started, from 10 s on, on every machine.
+Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16
+cloth, wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit
+integrator at its own measured limit): for stiff cloth by far (leather 19x cheaper at Blender's
+stiffness, 160x at x10, 1600x at x100; denim at x100 66x), but at the soft presets' own
+stiffness it is about even or explicit wins (cotton 0.3-1.1x, silk 0.4-0.8x, rubber 1.0-1.6x,
+noisy on a loaded machine); and an explicit step kept in the stable band (half its limit) costs
+twice that again.
 Physics: app/physics/mass_spring.py (Blender's units in pixels and seconds: blender_cloth.py);
 drawing: app/draw/cloth_draw.py, the Verlet cloth's strain heat map and legend, so the two cloths
 compare directly.
@@ -54,7 +72,8 @@ from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
 from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
-from app.physics.mass_spring_stability import predicted_limit, symplectic_limit, top_mode
+from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
+                                               LimitWatch, marginal)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 from app.vectors import Arrows, grid_sample, sample_text
 
@@ -63,9 +82,15 @@ UNLOCK_KEY = "u"
 # 0.06 s per step (cotton) to 0.4 s (every stiffness 1e5, mass 0.001, shear on); 1.2 s with
 # cg_tolerance 1e-10 on top (CG iterations, not particles, decide the rest)
 STEP_BUDGET = 40_000
-MODE_EVERY = 30             # fixed steps between two estimates of omega_max (warm-started)
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
 JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (blender_cloth.py)
+BAND_WORDS = {
+    "stable": "stable",
+    "marginal": "MARGINAL: safe only below {m:g}x of it, the limit falls as the cloth deforms",
+    "past the limit": "PAST THE LIMIT: its top mode grows (a shiver, or a blow-up)",
+}
+# settings that change the step or the solver, not the cloth: its limits seen so far still hold
+STEP_SETTINGS = {"integrator", "hertz", "substeps", "cg_tolerance"}
 
 
 class MassSpringClothScene(Scene):
@@ -102,7 +127,8 @@ class MassSpringClothScene(Scene):
         Param("shear_stiffness", 15.0, float, 0.0, 1e5, help="stiffness of the diagonal springs",
               rebuild=False),
         Param("bending_stiffness", 0.5, float, 0.0, 1e5,
-              help="stiffness of the skip-one springs (Blender's linear bending: /20)",
+              help="stiffness of the skip-one springs (scaled as Blender's linear bending, /20; "
+                   "ours push and pull)",
               rebuild=False),
         Param("spring_damping", 5.0, float, 0.0, 1e4,
               help="spring damping (Blender units; / 0.0528 s -> kg/s)", rebuild=False),
@@ -190,7 +216,7 @@ class MassSpringClothScene(Scene):
             self.p.update(material_settings(self.p["material"]))
         elif names & set(MATERIAL_KEYS):
             self.p["material"] = "custom"
-        self._sync()
+        self._sync(names)
 
     # ----- world --------------------------------------------------------------------------------
     def build(self) -> None:
@@ -208,11 +234,13 @@ class MassSpringClothScene(Scene):
         self._cost_mark = (0, dict(self.cloth.spent))
         self._stretch: tuple[np.ndarray, np.ndarray] | None = None
         self._energy: collections.deque = collections.deque(maxlen=600)   # (time, energy)
-        self._mode: np.ndarray | None = None
+        self.watch = LimitWatch()                # omega_max and the limits, on the moving cloth
+        self._cg_failure_t: float | None = None      # when implicit Euler's CG last stopped short
         self._sync()
 
-    def _sync(self) -> None:
-        """Hand the settings to the cloth (new force list, masses) and re-estimate omega_max."""
+    def _sync(self, names: set[str] | None = None) -> None:
+        """Hand the settings to the cloth (new force list, masses) and re-estimate omega_max;
+        a change of the cloth itself (not of the step or the solver) starts the watch anew."""
         c, p = self.cloth, self.p
         c.material = {k: p[k] for k in MATERIAL_KEYS}
         c.g, c.wind_field, c.wind_strength = p["g"], p["wind_field"], p["wind_strength"]
@@ -220,48 +248,74 @@ class MassSpringClothScene(Scene):
         c.configure()
         c.ps.cg_tolerance = p["cg_tolerance"]
         self._energy.clear()
+        if names is None or names - STEP_SETTINGS:
+            self.watch.forget()
         self._estimate_mode(iterations=60)
 
     def _estimate_mode(self, iterations: int) -> None:
-        """omega_max and the damping rate from the current state (kept as they were while the
-        state is blown up; a fresh start after a rollback)."""
-        if not self.cloth.is_sane():
-            return
-        self.omega_max, self.mode_damping, self._mode = top_mode(self.cloth.ps, iterations,
-                                                                 self._mode)
-        self._limits: dict[str, float | None] = {}
+        """omega_max and the damping rate from the current state, from scratch (kept as they
+        were while the state is blown up)."""
+        if self.cloth.is_sane():
+            self.watch.restart(self.cloth.ps, self.time, iterations)
+
+    @property
+    def omega_max(self) -> float:
+        return self.watch.omega
+
+    @property
+    def mode_damping(self) -> float:
+        return self.watch.damping
 
     def limit(self, name: str) -> float | None:
-        """Integrator `name`'s predicted step limit on the top mode (cached until the next
-        estimate of omega_max)."""
-        if name not in self._limits:
-            self._limits[name] = predicted_limit(name, self.omega_max, self.mode_damping)
-        return self._limits[name]
+        """Integrator `name`'s predicted step limit: the lowest seen on the moving cloth since
+        its settings changed (None: unstable at every step; inf: implicit)."""
+        if not INTEGRATORS[name].explicit:
+            return math.inf
+        return self.watch.lowest(name)
 
     def blowup_hint(self) -> str:
-        """The explicit limit in so many words: how far past it the step was, and the way out."""
+        """The explicit limit in so many words: where the step was against the limit (at rest
+        and as the cloth moved), and a step that is inside the stable band of the lowest limit
+        seen, never one at or below the step that just failed."""
         name, p = self.p["integrator"], self.p
         pred = self.limit(name) if INTEGRATORS[name].explicit else None
-        if pred is None or pred <= 0:
+        if pred is None or pred <= 0 or not math.isfinite(pred):
             return ""
         h = self.dt / p["substeps"]
-        need = math.ceil(1.0 / pred)               # steps per second inside the limit
+        rest = self.watch.rest(name) or pred
+        now = p["hertz"] * p["substeps"]
+        m = marginal(name)
+        need = max(math.ceil(1.0 / (m * pred)), now + 1)   # steps per second in the stable band
         most = int(self.param("hertz").hi * self.param("substeps").hi)
-        way = (f"Raise hertz x substeps to at least {need:,}, or take implicit_euler."
-               if need <= most else
+        way = (f"Raise hertz x substeps from {now:,} to at least {need:,} (the stable band, "
+               f"below {m:g}x), or take implicit_euler." if need <= most else
                f"That takes {need:,} steps per second, more than hertz x substeps reach "
                f"({most:,}): take implicit_euler.")
         title = INTEGRATORS[name].title
-        return (f"h = {h * 1e3:.3g} ms is {_times(h / pred)}x {title}'s predicted limit "
-                f"({pred * 1e3:.3g} ms): keep the step below it. {way}")
+        where = (f"{_times(h / pred)}x {title}'s predicted limit ({pred * 1e3:.3g} ms"
+                 + (f"; {rest * 1e3:.3g} ms at rest, lower as the cloth deformed)"
+                    if rest > pred * 1.0005 else ")"))
+        if h <= pred:
+            where += (f": inside the limit but not below {m:g}x of it, where a "
+                      f"deforming cloth can pass it")
+        return f"h = {h * 1e3:.3g} ms was {where}. {way}"
 
     def step(self, h: float) -> None:
+        failures = self.cloth.ps.cg_failures
         self.cloth.step(h, self.p["integrator"])
+        if self.cloth.ps.cg_failures > failures:
+            self._cg_failure_t = self.cloth.t         # the end of the step that failed
         self._stretch = None
 
     def after_step(self) -> None:
-        if self.steps % MODE_EVERY == 0:
-            self._estimate_mode(iterations=10)     # the stretch changes omega_max a little
+        # the cloth's limit falls as it shears and stretches: follow it (every ESTIMATE_EVERY
+        # simulated seconds, warm-started) and keep the lowest for the current integrator
+        name = self.p["integrator"]
+        explicit = INTEGRATORS[name].explicit
+        every = ESTIMATE_EVERY if explicit else ESTIMATE_EVERY_IMPLICIT
+        if self.cloth.is_sane() and self.watch.follow(self.cloth.ps, self.time, every):
+            if explicit:
+                self.watch.track(name, self.dt / self.p["substeps"])
 
     # ----- the mouse ----------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
@@ -324,8 +378,9 @@ class MassSpringClothScene(Scene):
 
     # ----- reports ------------------------------------------------------------------------------
     def explicit_limit(self) -> float:
-        """Symplectic Euler's predicted largest step: 2/omega_max undamped, less with damping."""
-        return symplectic_limit(self.omega_max, self.mode_damping)
+        """Symplectic Euler's predicted largest step on the cloth as it is now (the latest
+        estimate): 2/omega_max undamped, less with damping."""
+        return self.watch.limit("symplectic_euler")
 
     def metrics(self) -> dict:
         c = self.cloth
@@ -333,18 +388,27 @@ class MassSpringClothScene(Scene):
         energy = c.energy()
         if not self._energy or self._energy[-1][0] != self.time:
             self._energy.append((self.time, energy))
-        implicit = self.p["integrator"] == "implicit_euler"
+        name = self.p["integrator"]
+        implicit = not INTEGRATORS[name].explicit
+        solved = implicit and self.steps > 0 and bool(c.ps.solve.method)
         return {
             "particles": c.rows * c.cols,
             "springs": c.spring_count(),
             "integrator": self.p["integrator"],
             "omega_max": self.omega_max,
             "explicit_limit_h": self.explicit_limit(),
+            # the integrator's own limit the band is judged against (the lowest seen) and the band
+            "step_limit_h": None if implicit else _finite(self.limit(name)),
+            "limit_band": None if implicit else self.watch.band(name, self.dt / self.p["substeps"]),
             "max_stretch": float(s.max()),
             "mean_stretch": float(s.mean()),
             "energy": energy,
             # implicit only (else 0); None before its first step (no solve yet)
-            "cg_iterations": (c.ps.cg_iterations if self.steps else None) if implicit else 0,
+            "cg_iterations": (c.ps.cg_iterations if solved else None) if implicit else 0,
+            # how the last solve ended (None: no implicit solve yet, or an explicit integrator)
+            "cg_converged": c.ps.solve.converged if solved else None,
+            "cg_residual": c.ps.solve.residual if solved else None,
+            "cg_failures": c.ps.cg_failures,          # implicit steps whose CG stopped short
             "pinned_drift": c.pinned_drift(),
         }
 
@@ -373,14 +437,15 @@ class MassSpringClothScene(Scene):
         return f" ({'' if change.startswith('-') else '+'}{change} in {t1 - t0:.2g} s)"
 
     def _where(self) -> str:
-        """Where the step is against the explicit limit: 'h = 16.667 ms = 33x symplectic
-        Euler's limit' (the line a class reads)."""
+        """Where the step is against the explicit limit and in which band: 'h = 16.667 ms =
+        33x symplectic Euler's limit (...): PAST THE LIMIT ...' (the line a class reads)."""
         c, p = self.cloth, self.p
         h = self.dt / p["substeps"]
         om, limit, name = self.omega_max, self.explicit_limit(), p["integrator"]
         title = INTEGRATORS[name].title
         where = f"h = {h * 1e3:.3f} ms"
         pred = self.limit(name)
+        band = self.watch.band(name, h)
         if not INTEGRATORS[name].explicit:
             where += ((f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else "")
                       + f"; CG {c.ps.cg_iterations} iterations")
@@ -388,38 +453,47 @@ class MassSpringClothScene(Scene):
             where += ": no stiffness, so no step limit"
         elif pred is None:
             where += f": {title} is unstable at any h here (too little damping)"
-        elif name == "symplectic_euler":       # the linearised cloth's own limit (top_mode)
-            where += (f" = {_times(h / pred)}x {title}'s limit ({pred * 1e3:.3f} ms, damped)"
-                      + (": its top mode grows (a shiver, or a blow-up)" if h > pred
-                         else ": stable"))
-        else:       # one mode's limit: where damping mixes the modes, off by up to ~35 %
-            where += (f" = {_times(h / pred)}x {title}'s limit estimated on one mode "
-                      f"({pred * 1e3:.3f} ms)")
+        else:
+            # symplectic Euler's is the linearised cloth's own limit (top_mode); the others' an
+            # estimate on one mode: where damping mixes the modes, off by up to ~35 %
+            kind = "damped" if name == "symplectic_euler" else "on one mode"
+            rest = self.watch.rest(name) or pred
+            seen = (f"; {rest * 1e3:.3f} at rest" if rest > pred * 1.0005 else "")
+            where += (f" = {_times(h / pred)}x {title}'s limit ({pred * 1e3:.3f} ms, {kind}, "
+                      f"lowest so far{seen}): " + BAND_WORDS[band].format(m=marginal(name)))
         return where
 
     def hud_lines(self) -> list[str]:
         """What a class reads every frame: the material and integrator, the step against the
-        explicit limit, the energy and the stretch."""
-        m, p = self.metrics(), self.p
+        explicit limit and its band, the energy and the stretch, and a solve that stopped
+        short (in words)."""
+        c, m, p = self.cloth, self.metrics(), self.p
         title = INTEGRATORS[p["integrator"]].title
-        return [f"{p['material']}, {title}: {self._where()}",
-                f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
-                f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
+        lines = [f"{p['material']}, {title}: {self._where()}",
+                 f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
+                 f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
+        if self._cg_failure_t is not None:          # a solve that stopped short, in words
+            n = c.ps.cg_failures
+            lines.append(f"t = {self._cg_failure_t:.2f} s ({n} step{'s' if n > 1 else ''} so "
+                         f"far): {c.ps.last_cg_failure.words()}")
+        return lines
 
     def hud_details(self) -> list[str]:
         """The controls, the cloth's size, the limit's derivation and the CG residual."""
-        c, m = self.cloth, self.metrics()
+        c, m, name = self.cloth, self.metrics(), self.p["integrator"]
         om, limit = self.omega_max, self.explicit_limit()
         lines = ["LMB: move+lock | RMB: unlock | U: unlock all",
                  f"{m['particles']} particles, {m['springs']} springs; stretch: mean "
                  f"{self.shown('mean_stretch', m['mean_stretch'])}"]
         if om > 0:
-            lines.append(f"undamped, explicit methods are stable below h = 2/omega_max = "
-                         f"{2e3 / om:.3f} ms (RK4: 2.83/omega_max = {2.83e3 / om:.3f} ms; forward "
-                         f"Euler, midpoint: no h)"
+            every = ESTIMATE_EVERY if INTEGRATORS[name].explicit else ESTIMATE_EVERY_IMPLICIT
+            lines.append(f"omega_max {om:.4g}/s on the cloth as it is now (re-estimated every "
+                         f"{every:g} s): undamped, explicit methods are stable below h = "
+                         f"2/omega_max = {2e3 / om:.3f} ms (RK4: 2.83/omega_max = "
+                         f"{2.83e3 / om:.3f} ms; forward Euler, midpoint: no h)"
                          + (f"; this damping lowers symplectic Euler's to {limit * 1e3:.3f} ms"
                             if self.mode_damping > 0 else ""))
-        if not INTEGRATORS[self.p["integrator"]].explicit:
+        if not INTEGRATORS[name].explicit:
             lines.append(f"CG: {c.ps.cg_iterations} iterations, residual {c.ps.cg_residual:.1e} "
                          f"(stops at {self.p['cg_tolerance']:g} x |b|)")
         return lines
@@ -443,10 +517,14 @@ class MassSpringClothScene(Scene):
         self.cloth.restore_state(snap)
         self._stretch = None
         self._energy.clear()
-        self._mode = None
-        self._estimate_mode(iterations=60)
+        self._estimate_mode(iterations=60)     # the lowest limit seen before stays (the hint)
+        self.watch.estimated_at = -math.inf    # the runner sets the time back: estimate anew
+
+
+def _finite(x: float | None) -> float | None:
+    return x if x is not None and math.isfinite(x) else None
 
 
 def _times(ratio: float) -> str:
-    """A ratio for the HUD: '0.72', '3.5', '230' (not '2.3e+02')."""
-    return f"{ratio:.2g}" if ratio < 10 else f"{ratio:.0f}"
+    """A ratio for the HUD: '0.72', '1.04', '3.50', '230' (not '2.3e+02')."""
+    return f"{ratio:.2f}" if ratio < 10 else f"{ratio:.0f}"

@@ -15,10 +15,13 @@ pairs from the same or neighbouring cells: 4.5 cells' worth per particle, O(n) a
 This box is fixed, so more particles means denser and the grid's tests grow like n^2 too, but
 from about 1/50 of all pairs at R = 40 (n x 4.5 cells' worth of the 24 x 18 = 432 against
 n^2/2: 9/432; still 1/50 after 10 s at 2000 particles; 1/33 to 1/21 over 10 s of the LMB
-gathering a crowd at the centre), after a fixed cost per step (some 0.07 ms of NumPy calls,
-whatever n is) that makes all pairs the cheaper one below about 100-200 particles. The HUD
-shows the pair tests and the ms per step of the method in use: raise `particles` and switch the
-method live.
+gathering a crowd at the centre), after a fixed cost per step (about 0.1 ms of NumPy calls,
+whatever n is) that makes all pairs the cheaper one below about 100-200 particles. The HUD shows
+the pair tests (and, for the grid, their share of all pairs) and the ms per step of the method in
+use: raise `particles` and switch the method live. Hold the LMB and a crowd forms in which
+each particle has many more neighbours within R: the grid's share of all pairs climbs, and each
+pair within R needs its force whichever method found it. The HUD says when the physics no longer
+keeps up with real time, and names a crowd when there is one.
 
 Controls:
   LMB (held)  pull the particles near the cursor towards it (follow it around)
@@ -34,7 +37,8 @@ import math
 import numpy as np
 
 from app.physics.bounds import clamp_point
-from app.physics.neighbours import NEIGHBOUR_METHODS, all_pair_tests, expected_grid_tests
+from app.physics.neighbours import (NEIGHBOUR_METHODS, all_pair_tests, crowded_share,
+                                    expected_grid_tests)
 from app.physics.particle_dance import (CORE, EFFECTS, RULES, MouseForce, PairRule,
                                         ParticleDance, rule_matrix)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit
@@ -43,12 +47,19 @@ from app.vectors import Arrows, sample_every, sample_text
 DOT_RADIUS = 3.5            # world px
 MAX_SPECIES = 6             # as many as app/draw/dance_draw.py has colours
 
-# Step budget, in estimated seconds per fixed step (the cloth and the pymunk scenes refuse
-# about 0.5 s too). Measured on the 2-core lab machine, idle to busy with other work: all_pairs
-# 3-16 ns per pair test (n = 5000: 12.5 M tests, 40-200 ms), the grid 25-120 ns per candidate
-# pair (sorting, gathering; n = 5000 spread out: 250 k candidates, 7-30 ms).
-STEP_BUDGET_S = 0.5
-SECONDS_PER_TEST = {"all_pairs": 1e-8, "grid": 5e-8}
+# Step budget: the window gives physics at most 0.1 s of a frame (app/window/scene_view.py) but
+# always runs one whole step, so a step estimated above STEP_BUDGET_S is refused (the window would
+# answer only every step). The estimate: a cost per particle (sorting, integrating, drag, walls)
+# plus one per pair test (with the force on the pairs that pass); measured on the 2-core lab
+# machine, busy (`bench particles` prints the estimate beside the measured step): the grid
+# 17-43 ns per candidate pair, all pairs 3.4-7.6 ns per test, and 230-375 ns per particle at
+# cut-off 10 px (where the pair tests cost next to nothing); the constants lean to the busy end.
+STEP_BUDGET_S = 0.1
+SECONDS_PER_TEST = {"all_pairs": 7e-9, "grid": 2.5e-8}
+SECONDS_PER_PARTICLE = 3e-7
+# Spread over the box at 5000 particles, a particle has some 35 neighbours within R = 40 (60 once
+# the clusters form); past CROWD the HUD calls it crowded (the mouse gathers hundreds).
+CROWD = 100
 
 
 class ParticleDanceScene(Scene):
@@ -97,12 +108,12 @@ class ParticleDanceScene(Scene):
     # ----- settings ---------------------------------------------------------------------------
     @classmethod
     def step_seconds(cls, values) -> float:
-        """Estimated seconds of pair search per fixed step (uniformly spread particles)."""
+        """Estimated seconds of one fixed step, with the particles spread out (not crowded)."""
         n, method = values["particles"], values["neighbour_method"]
         world = (float(cls.world_size[0]), float(cls.world_size[1]))
         tests = (all_pair_tests(n) if method == "all_pairs"
                  else expected_grid_tests(n, values["cutoff"], world))
-        return values["substeps"] * tests * SECONDS_PER_TEST[method]
+        return values["substeps"] * (tests * SECONDS_PER_TEST[method] + n * SECONDS_PER_PARTICLE)
 
     @classmethod
     def omega(cls, values) -> float:
@@ -140,8 +151,8 @@ class ParticleDanceScene(Scene):
             raise ParamError(
                 f"particles x substeps too large for {values['neighbour_method']}: "
                 f"{values['particles']} particles x {values['substeps']} substeps would take "
-                f"~{cost:.2f} s per step; accepted: at most {STEP_BUDGET_S:g} s per step "
-                f"(use fewer particles or substeps"
+                f"~{cost * 1000:.0f} ms per step; accepted: at most {STEP_BUDGET_S * 1000:.0f} ms "
+                f"(the window waits for a whole step; use fewer particles or substeps"
                 + (", or neighbour_method=grid)" if values["neighbour_method"] == "all_pairs"
                    else ")"))
 
@@ -241,20 +252,32 @@ class ParticleDanceScene(Scene):
                 f"rules: {self.p['rules']}; who likes whom:" if "interaction" in self.on
                 else "interaction off: no rules act"]
 
-    def hud_lines(self) -> list[str]:
+    def step_ms(self) -> float:
+        """Measured ms of physics per fixed step: the effects' costs added up (0 before any)."""
+        return sum(v for k, v in self._costs.items() if k != "search")
+
+    def hud_lines(self) -> list:
+        from app.draw.hud import WARN_COLOR, Line
         self._update_costs()
         d, p = self.dance, self.p
-        n = d.ps.n
-        lines = []
+        pf, n = d.pair_force, d.ps.n
+        lines: list = []
         if "interaction" not in self.on:
             return lines + [f"{n} particles, interaction off: no pairs to find"]
-        method = p["neighbour_method"]
+        method, every = p["neighbour_method"], all_pair_tests(n)
+        of_all = (f"{crowded_share(pf.tests, n):.0%} of all {every:,}" if method == "grid" and every
+                  else "every pair")
+        lines.append(f"{n} particles, {method}: {pf.tests:,} pair tests/step ({of_all})")
         search = self._costs.get("search", 0.0)
         total = self._costs.get("interaction", 0.0)
-        every = "" if method == "all_pairs" else f" (all pairs: {all_pair_tests(n):,})"
-        lines.append(f"{n} particles, {method}: {d.pair_force.tests:,} pair tests/step{every}")
         lines.append(f"find pairs {search:.2f} + forces {max(total - search, 0.0):.2f} = "
-                     f"{total:.2f} ms/step, {d.pair_force.pairs:,} pairs < R")
+                     f"{total:.2f} ms/step, {pf.pairs:,} pairs < R")
+        step, need = self.step_ms(), 1000.0 / p["hertz"]
+        if step > need:                  # physics alone needs more than the time it simulates
+            partners = 2.0 * pf.pairs / n                   # each pair has two particles
+            crowd = f"; crowded: {partners:.0f} neighbours within R each" if partners > CROWD else ""
+            lines.append(Line(f"too slow for real time: {step:.0f} ms per {need:.1f} ms step "
+                              f"(x{need / step:.2f}){crowd}", WARN_COLOR))
         return lines
 
     # ----- state ------------------------------------------------------------------------------

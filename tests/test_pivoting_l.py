@@ -95,12 +95,14 @@ def test_one_substep_pin_error_and_the_slide_overshoot_are_what_the_docstring_sa
 
 
 def test_a_step_too_coarse_for_the_balls_to_land_is_flagged_not_shown_as_a_result():
-    # hertz 1: the balls fall through the L; angle 0 and slide 0 are no result, and the HUD says so
+    # hertz 1: the balls fall through the L; its angle and slide are no result, and the HUD says
+    # so. (Whether a ball or two hits the L on the way is chaotic: the angle was 0.0 here and
+    # -2.1 degrees with the start nudged by 1e-12, so only the flags are asserted.)
     scene = PivotingLScene({"hertz": 1})
     for _ in range(20):
         scene.advance()
     m = scene.metrics()
-    assert m["tunneled"] > 10 and m["angle_deg"] == 0.0
+    assert m["tunneled"] > 10
     assert any(line.startswith("TUNNELED through the L") and "step too coarse" in line
                for line in scene.hud_lines())
     assert m["pin_error"] > 100                  # the few that hit it opened the pin: flagged too

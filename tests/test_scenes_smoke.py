@@ -28,10 +28,10 @@ CONTRACT_METRICS = {
     # per integrator (each an effect): error, step_us, energy_ratio
     "mass_spring_cloth": {"particles", "springs", "integrator", "omega_max", "explicit_limit_h",
                           "max_stretch", "mean_stretch", "energy", "cg_iterations",
-                          "pinned_drift"},
+                          "cg_converged", "cg_residual", "pinned_drift"},
     "integrators": {f"{name}_{m}" for name in ("euler", "symplectic_euler", "verlet", "midpoint",
                                                "rk4", "implicit_euler")
-                    for m in ("error", "step_us", "energy_ratio")},
+                    for m in ("error", "step_us", "energy_ratio")} | {"implicit_euler_cg_converged"},
     "particle_dance": {"particles", "pair_tests", "neighbour_method", "kinetic_energy"},
 }
 

@@ -116,6 +116,9 @@ def test_the_wind_gives_silk_twice_cottons_push_and_denim_a_third():
         c.on = {"wind"}
         c.configure()
         a = c.ps.accel(c.ps.x, c.ps.v)
+        c.on = set()                   # the structural springs alone (0 at rest, not if nudged)
+        c.configure()
+        a = a - c.ps.accel(c.ps.x, c.ps.v)
         accel[material] = float(np.abs(a[5]).max())           # an interior particle
     assert accel["silk"] / accel["cotton"] == pytest.approx(2.0, rel=1e-9)
     assert round(accel["denim"] / accel["cotton"], 1) == 0.3
@@ -155,15 +158,37 @@ def test_the_readmes_try_commands_run_as_written(tmp_path, capsys):
 
 
 def test_implicit_euler_at_hertz_1_leaps_in_energy_before_the_damping_wins():
-    """scenes/mass_spring_cloth.py: 'at hertz 1, cotton's energy leaps from 0 to ~2.4e5 J in the
-    first 10 s before the damping wins (~11 J after 2 min)'."""
+    """scenes/mass_spring_cloth.py: 'at hertz 1, cotton's energy leaps from 0 to ~1.9e7 J at
+    t = 3 s before the damping wins: within a minute it is back to a few tens of J (where
+    exactly depends on rounding ...)'. Only what holds on every machine is asserted: the peak's
+    size and time (1.88-1.89e7 J at 3 s measured, every start nudged by 1e-12 and every OpenBLAS
+    kernel tried), and a bound after a minute (|E| <= 55 J from 60 to 120 s in 24 runs; the value at 10 s went
+    from 283 J to 2.4e5 J with a 1e-12 nudge)."""
     s = MassSpringClothScene({"hertz": 1, "material": "cotton"})
+    energy = []
+    for _ in range(80):
+        s.advance()
+        energy.append(s.cloth.energy() / JOULE)
+    assert s.is_finite() and s.metrics()["cg_failures"] == 0
+    peak = int(np.argmax(energy[:10]))
+    assert 1.5e7 < energy[peak] < 2.5e7 and peak + 1 <= 4          # J, at t = 3 s
+    assert max(abs(e) for e in energy[59:]) < 100.0                  # J, from a minute on
+
+
+def test_solved_exactly_at_hertz_1_the_cloth_peaks_at_2_s_and_hangs_at_minus_47_j_by_10_s():
+    """The same sentence: 'with cg_tolerance 1e-10 (exact: the sparse LU takes over where CG
+    cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging lower than it
+    started, from 10 s on, on every machine'. CG is capped at 50 iterations here so that the
+    direct solve takes over at once (the same step, sooner)."""
+    s = MassSpringClothScene({"hertz": 1, "material": "cotton", "cg_tolerance": 1e-10})
+    s.cloth.ps.cg_max_iterations = 50
+    energy = []
     for _ in range(10):
         s.advance()
-    assert s.metrics()["energy"] / JOULE == pytest.approx(2.4e5, rel=0.1)
-    for _ in range(110):
-        s.advance()
-    assert s.is_finite() and 5.0 < s.metrics()["energy"] / JOULE < 20.0
+        energy.append(s.metrics()["energy"] / JOULE)
+    assert s.cloth.ps.cg_failures > 0 and s.cloth.ps.solve.step_residual < 1e-10
+    assert int(np.argmax(energy)) == 1 and 4.5e7 < energy[1] < 5e7
+    assert -50.0 < energy[-1] < -44.0
 
 
 @pytest.mark.parametrize("integrator", ["symplectic_euler", "implicit_euler"])

@@ -1,4 +1,4 @@
-"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|mass_spring|particles|all] [--json] [--out DIR] [--quick]`.
+"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|all] [--json] [--out DIR] [--quick]`.
 
 Speed is measured here, never asserted in tests. Every figure is a median over repeated runs, and
 every comparison is a ratio against a baseline run in the same process, so the numbers mean the
@@ -25,6 +25,7 @@ BENCHMARKS = {           # name -> module (imported only when run)
     "pymunk": "app.bench.pymunk_bench",
     "mass_spring": "app.bench.mass_spring",
     "particles": "app.bench.particles",
+    "clips": "app.bench.clips",
 }
 
 
@@ -109,7 +110,7 @@ def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-resu
         results[name] = module.run(report)
         report.progress(f"{name} done in {time.perf_counter() - t0:.1f} s")
     if report.charts:
-        report.say("\ncharts: " + ", ".join(report.charts))
+        report.say("\ncharts (each PNG has an SVG beside it): " + ", ".join(report.charts))
     if as_json:
         print(json.dumps(results if which == "all" else results[which], indent=1))
     return 0

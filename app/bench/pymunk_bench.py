@@ -119,12 +119,13 @@ def run(report: Report) -> dict:
                f"{s['draw_speedup_vs_debug_draw']:.1f}x faster than space.debug_draw; a sleeping "
                f"pile of {pile_n} steps {s['sleep_speedup']:.1f}x faster than awake")
 
-    chart = LineChart("falling_balls: ms per step, settled pile", "balls", "ms per step",
-                      logy=True)
+    chart = LineChart("falling_balls: a settled pile, asleep or awake", "balls",
+                      "time per step (ms)", logy=True)
     chart.add("awake (sleeping off)", counts, step_awake)
     chart.add("asleep (sleeping on)", counts, step_asleep)
     chart.save(report.chart_path("pymunk_step.png"))
-    chart = LineChart("falling_balls: ms per draw", "balls", "ms per draw", logy=True)
+    chart = LineChart("falling_balls: drawing a frame", "balls", "time per frame drawn (ms)",
+                      logy=True)
     chart.add("space.debug_draw", counts, draw_debug)
     chart.add("pymunk_draw (batch + sprites)", counts, draw_own)
     chart.save(report.chart_path("pymunk_draw.png"))

@@ -1,4 +1,5 @@
-"""Drawing helpers: the world<->screen view, text, HUD, pymunk and cloth drawing, charts. Uses pygame."""
+"""Drawing helpers: the world<->screen view, text, HUD, pymunk and cloth drawing (pygame), and
+the benchmarks' charts for slides (plot.py: matplotlib, imported only when a chart is saved)."""
 
 from __future__ import annotations
 

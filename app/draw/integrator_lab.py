@@ -372,8 +372,9 @@ def table_rows(scene) -> list[tuple[tuple[int, int, int], tuple[str, ...], tuple
         note = ("", "")
         if run.blew_up_t is not None:
             note = (f"blew up at t = {run.blew_up_t:.2f} s", f"blew up {run.blew_up_t:.2f} s")
-        elif getattr(run.ps, "cg_converged", True) is False:    # the solver says it stopped
-            note = ("CG stopped short: not the true step", "CG stopped short")
+        elif run.cg_failure_t is not None:      # CG stopped short; a dense solve took over
+            note = (f"CG stopped short at t = {run.cg_failure_t:.2f} s: dense solve used",
+                    "CG fell back")
         rows.append((run.color, (info.title, evals, f"{run.step_us:.1f}", f"{run.error:.2e}",
                                  f"{run.energy_ratio:.4g}"), note))
     return rows

@@ -4,11 +4,26 @@ MATERIALS holds Blender's own cloth presets, from the files
 scripts/presets/cloth/{Cotton,Denim,Leather,Rubber,Silk}.py of the blender/blender repository
 (vertex mass, tension, compression, shear and bending stiffness, spring damping, air damping).
 How Blender turns them into forces is in source/blender/simulation/intern/SIM_mass_spring.cc
-(cloth_calc_spring_force, cloth_calc_force): a spring's stiffness is k = stiffness /
-avg_spring_len (a force per unit *strain*, the same for any mesh resolution), a linear bending
-spring's is stiffness / (20 avg_spring_len) with damping 0.5 x its stiffness (bending_damping's
-default), the damping value is the spring's damping coefficient, air drag is f = -0.01
-air_damping v, and gravity is 0.001 x 9.81 (Blender's solver does not count time in seconds).
+(cloth_calc_spring_force) and implicit_solver.cc: a spring's stiffness is k = stiffness /
+avg_spring_len (a force per unit *strain*, the same for any mesh resolution); a structural spring
+pulls with the tension stiffness when stretched, and resists compression only through Choi &
+Ko's buckling curve ("Stable but Responsive Cloth", 2002; the default) or, with `resist_compress`
+on, as a linear spring of the compression stiffness; a shear spring resists no compression at
+all (its compression stiffness is 0). Blender's default bending model is *angular* (a spring on
+the angle between neighbouring faces, damped by `bending_damping`); its older *linear* model has
+skip-one bending springs of stiffness kb = bending / (20 avg_spring_len) that act only when
+compressed, along Choi & Ko's curve f = max(kb fb(|l|), cb (|l| - r)) whose linear part has the
+slope cb = kb x bending_damping: there `cb` is a stiffness, not a damping (those springs have no
+damping: "XXX damping not supported"). The damping value is the spring's damping coefficient, air
+drag is f = -0.01 air_damping v, and gravity is 0.001 x 9.81 (Blender's solver does not count
+time in seconds).
+**This lab's simplification (ours, not Blender's):** every spring is a plain damped Hooke
+spring, in tension and compression alike: structural springs with the preset's tension value
+when stretched and its compression value when compressed, shear and skip-one bending springs with
+one stiffness each (bending scaled as Blender's linear model, / 20); spring damping on structural
+and shear springs, and on the bending springs a damping rate of BENDING_DAMPING x its stiffness
+in Blender time (0.5, Blender's default bending_damping: a damping in its angular model, borrowed
+here for our linear springs).
 Mapping to this lab's units (px, s, kg; g = 900 px/s^2):
   * length: Blender's springs are taken as 1/16 m (a 2 m plane of 32 x 32 cells), so one
     Blender metre = PX_PER_M = 256 px and a Blender spring = REF_CELL = 16 px;
@@ -36,7 +51,9 @@ PX_PER_M = 256.0                     # one Blender metre
 REF_CELL = 16.0                      # px: a Blender spring (1/16 m); a cell of it weighs `mass`
 TAU = math.sqrt(PX_PER_M * BLENDER_G / G_LAB)      # seconds per Blender time unit (0.0528)
 K_UNIT = PX_PER_M / TAU ** 2         # Blender stiffness -> kg px/s^2 per unit strain (9.17e4)
-BENDING_DAMPING = 0.5    # Blender's default bending_damping (DNA_cloth_defaults.h): c = .5 TAU k
+# Blender's default bending_damping (DNA_cloth_defaults.h): a damping in its angular bending model,
+# the slope cb = kb x this of Choi & Ko's curve in its linear one; ours: damping c = .5 TAU k
+BENDING_DAMPING = 0.5
 
 
 @dataclass(frozen=True)

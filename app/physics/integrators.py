@@ -45,6 +45,7 @@ from typing import Callable
 
 import numpy as np
 
+from app.physics.linear_solve import dense_solve, preconditioned_cg, solve
 from app.physics.particles import ParticleSystem
 
 StepFunction = Callable[[ParticleSystem, float], None]
@@ -126,7 +127,9 @@ def verlet(ps: ParticleSystem, h: float) -> None:
 def implicit_euler(ps: ParticleSystem, h: float) -> None:
     """Backward Euler with one Newton step: solve (M - h D - h^2 K) dv = h (f0 + h K v0),
     K = df/dx and D = df/dv at the current state, by conjugate gradients; then
-    v' = v0 + dv and x' = x0 + h v'."""
+    v' = v0 + dv and x' = x0 + h v'. Where CG stops short (an attracting force makes the matrix
+    indefinite at a large step), the same system is solved densely for a few unknowns
+    (linear_solve.dense_solve) and ps.solve says so (app/physics/linear_solve.py)."""
     x0, v0 = ps.x, ps.v
     f0 = ps.force(x0, v0).copy()
     K, D = ps.force_jacobians(x0, v0)
@@ -136,54 +139,11 @@ def implicit_euler(ps: ParticleSystem, h: float) -> None:
         return M * w - h * D(w) - h * h * K(w)
 
     b = h * (f0 + h * K(v0))
-    dv, ps.cg_iterations = conjugate_gradient(A, b, ps.free, ps.cg_tolerance, ps.cg_max_iterations)
+    dv, report = solve(A, b, ps.free, None, ps.cg_tolerance, ps.cg_max_iterations,
+                       ("dense LU", lambda: dense_solve(A, b, ps.free)))
+    ps.record_solve(report)
     v = v0 + dv
     ps.set_xv(x0 + h * v, v)
-
-
-def conjugate_gradient(A: Callable[[np.ndarray], np.ndarray], b: np.ndarray, free: np.ndarray,
-                       tolerance: float = 1e-12, max_iterations: int | None = None
-                       ) -> tuple[np.ndarray, int]:
-    """Solve A x = b for the free rows (free: (n, 1) of 1.0 free / 0.0 pinned; pinned rows of x
-    stay 0, Baraff & Witkin's filter). Return (x, iterations). Stops when |r| <= tolerance |b|,
-    after `max_iterations` (default: the number of unknowns, enough in exact arithmetic), or when
-    A is not positive definite along the search direction (an attracting, indefinite Jacobian at
-    a very large step): then the best iterate so far is returned."""
-    x, iterations, _ = preconditioned_cg(A, b, free, None, tolerance, max_iterations)
-    return x, iterations
-
-
-def preconditioned_cg(A: Callable[[np.ndarray], np.ndarray], b: np.ndarray, free: np.ndarray,
-                      inv_diagonal: np.ndarray | None = None, tolerance: float = 1e-12,
-                      max_iterations: int | None = None) -> tuple[np.ndarray, int, float]:
-    """Conjugate gradients on the free rows with a diagonal (Jacobi) preconditioner: each
-    residual is divided by A's diagonal (`inv_diagonal` = 1/diag(A), same shape as b; None: no
-    preconditioning), which evens out heavy and light, stiff and soft rows. Returns (x,
-    iterations, |r| / |b|). Stopping rules as in conjugate_gradient."""
-    x = np.zeros_like(b)
-    r = b * free
-    z = r if inv_diagonal is None else inv_diagonal * r
-    p = z.copy()
-    rz = float(np.vdot(r, z))
-    b_norm = math.sqrt(float(np.vdot(r, r)))
-    r_norm = b_norm
-    limit = max_iterations or int(np.broadcast_to(free, b.shape).sum()) + 1   # the unknowns
-    iterations = 0
-    while iterations < limit and r_norm > tolerance * b_norm and rz > 0.0:
-        Ap = A(p) * free
-        pAp = float(np.vdot(p, Ap))
-        if pAp <= 0.0:
-            break
-        alpha = rz / pAp
-        x += alpha * p
-        r -= alpha * Ap
-        z = r if inv_diagonal is None else inv_diagonal * r
-        rz_new = float(np.vdot(r, z))
-        p = z + (rz_new / rz) * p
-        rz = rz_new
-        r_norm = math.sqrt(float(np.vdot(r, r)))
-        iterations += 1
-    return x, iterations, (r_norm / b_norm if b_norm > 0 else 0.0)
 
 
 # ----- the registry -------------------------------------------------------------------------------
@@ -258,5 +218,5 @@ def integrate(ps: ParticleSystem, name: str, h: float, steps: int) -> ParticleSy
 
 __all__ = ["euler", "symplectic_euler", "verlet", "midpoint", "rk4", "rk4_tuple", "implicit_euler",
            "midpoint_step", "rk4_step",
-           "conjugate_gradient", "preconditioned_cg", "Integrator", "INTEGRATORS", "get_integrator", "integrate",
+           "preconditioned_cg", "Integrator", "INTEGRATORS", "get_integrator", "integrate",
            "check_step"]

@@ -15,9 +15,12 @@ A spring pulls its ends a and b together along l = x_a - x_b, with damping along
     f_a = -[ k_s (|l| - r) + k_d ((v_a - v_b) . l/|l|) ] l/|l|,     f_b = -f_a
 
 split into two force objects, the Hooke part (`SpringSet`) and the damping part (`SpringDamping`),
-so each costs only when its effect is on. As in Blender, a structural spring has two stiffnesses:
-k_s is the *tension* value when the spring is longer than its rest length r, the *compression*
-value when it is shorter. Other forces: gravity f = m g, air resistance f = -k v (forces.Drag) and
+so each costs only when its effect is on. A structural spring has two stiffnesses, Blender's
+*tension* and *compression* values: k_s is the tension value when the spring is longer than its
+rest length r, the compression value when it is shorter. Plain Hooke springs either way are our
+simplification, not Blender's model: Blender resists compression only along Choi & Ko's buckling
+curve (or linearly with `resist_compress`), its shear springs resist no compression at all, and
+its default bending is angular (app/physics/blender_cloth.py). Other forces: gravity f = m g, air resistance f = -k v (forces.Drag) and
 wind (`Wind`, a pressure: a force per area, the same on every material, so a light cloth is
 blown further than a heavy one).
 
@@ -40,17 +43,18 @@ filtered out of the solve (their rows stay 0: Baraff-Witkin's filter for a fixed
 from __future__ import annotations
 
 import time
-from typing import Callable, Iterable
+from typing import Callable, Iterable, NamedTuple
 
 import numpy as np
 
 from app.physics.blender_cloth import G_LAB, WIND_DENSITY, material_settings, spring_constants
 from app.physics.forces import Drag, Gravity
-from app.physics.integrators import INTEGRATORS, preconditioned_cg
+from app.physics.integrators import INTEGRATORS
+from app.physics.linear_solve import solve
 from app.physics.particles import ParticleSystem
 from app.physics.rods import Family, rod_sets
 from app.physics.spring_forces import (Blocks, SpringDamping, SpringSet, Timed, Wind, block_product,
-                                       spring_geometry)
+                                       sparse_matrix, spring_geometry)
 from app.physics.timing import Stopwatch
 
 
@@ -63,7 +67,6 @@ class MassSpringSystem(ParticleSystem):
         super().__init__(x, v, mass, forces, pinned)
         self.rows, self.cols = rows, cols
         self.cg_tolerance = CG_TOLERANCE
-        self.cg_residual = 0.0                    # |r| / |b| after the last implicit step
 
     def blocks(self, x: np.ndarray) -> tuple[Blocks, Blocks]:
         """The stiffness blocks (-df/dx) and damping blocks (-df/dv) of forces that have them."""
@@ -81,9 +84,10 @@ class MassSpringSystem(ParticleSystem):
         return sum(getattr(f, "force", f).kd for f in self.forces
                    if isinstance(getattr(f, "force", f), Drag))
 
-    def linear_system(self, x: np.ndarray, h: float):
+    def linear_system(self, x: np.ndarray, h: float) -> "ImplicitSystem":
         """At x: implicit Euler's A = M - h df/dv - h^2 df/dx and K = df/dx as products on
-        component-major vectors (2, n), and 1/diag(A) (the Jacobi preconditioner), (2, n)."""
+        component-major vectors (2, n), 1/diag(A) (the Jacobi preconditioner), (2, n), and a
+        direct solve of A (the fallback where CG stops short)."""
         stiff, damp = self.blocks(x)
         combined: dict[int, tuple[Family, np.ndarray]] = {}     # one block per family: h D + h^2 K
         for scale, blocks in ((h * h, stiff), (h, damp)):
@@ -107,14 +111,34 @@ class MassSpringSystem(ParticleSystem):
             d = np.stack((B[0, 0], B[1, 1]))
             diagonal[(slice(None),) + fam.a] += d
             diagonal[(slice(None),) + fam.b] += d
-        return A, K, 1.0 / diagonal.reshape(2, -1)
+
+        def direct(b: np.ndarray) -> np.ndarray | None:
+            """A x = b on the free rows by a sparse LU (SuperLU), x = 0 on the fixed ones."""
+            from scipy.sparse.linalg import spsolve
+            free = np.broadcast_to(self.free.T, b.shape).ravel() > 0
+            matrix = sparse_matrix(system, np.repeat(M, 2, axis=0), rows, cols).tocsc()
+            x = np.zeros(b.size)
+            x[free] = spsolve(matrix[free][:, free], b.ravel()[free])
+            return x.reshape(b.shape)
+        return ImplicitSystem(A, K, 1.0 / diagonal.reshape(2, -1), direct)
 
 
-# CG stops at |r| <= CG_TOLERANCE |b|. Chosen from the error it leaves (the tolerance table of
-# `python -m app bench mass_spring`): on a 32x32 cloth at h = 1/60 s, 1e-2 leaves the positions
-# of one step within 1e-4 px of a 1e-10 solve (denim 3e-5, silk 7e-5, leather 3e-9 px), far
-# below a pixel and below the O(h^2) error of linearising once per step, in ~35-95 iterations;
-# every tenfold tightening costs another 15-25 iterations for an error nobody can see.
+class ImplicitSystem(NamedTuple):
+    """One implicit step's linear system (MassSpringSystem.linear_system)."""
+    A: Callable[[np.ndarray], np.ndarray]         # w -> A w
+    K: Callable[[np.ndarray], np.ndarray]         # w -> (df/dx) w
+    inv_diagonal: np.ndarray                      # 1 / diag(A)
+    direct: Callable[[np.ndarray], np.ndarray | None]    # b -> A^-1 b (sparse LU)
+
+
+# CG stops at |r| <= CG_TOLERANCE |b|: relative to |b|, which grows with the motion, so what it
+# leaves in the positions grows too. Measured after one step at h = 1/60 s against a 1e-10 solve
+# (`python -m app bench mass_spring`, the CG tolerance table): near rest (a 32x32 cloth 20 steps
+# into its hang) 1e-2 leaves under 1e-4 px (leather 3e-9, cotton 4e-6, denim 3e-5, silk 7e-5 px);
+# moving, more: 2.5-3.7e-4 px 5 steps into the hang, 0.003-0.01 px on the scene's default cloth
+# as it falls, 0.7-2.9 px in a step of a fling at ~1900 px/s (a step of 32 px: a few per cent).
+# Below a pixel except in a fling, and smaller than the O(h^2) error of linearising once per step,
+# in ~20-95 iterations; every tenfold tightening costs another 15-25 iterations.
 CG_TOLERANCE = 1e-2
 
 
@@ -123,10 +147,11 @@ def implicit_euler(ps: MassSpringSystem, h: float) -> None:
     (M - h df/dv - h^2 df/dx) dv = h (f0 + h (df/dx) v0);  v' = v0 + dv;  x' = x0 + h v'."""
     x0, v0 = ps.x, ps.v
     f0 = ps.force(x0, v0).T                       # component-major (2, n): see block_product
-    A, K, inv_diagonal = ps.linear_system(x0, h)
-    b = h * (f0 + h * K(np.ascontiguousarray(v0.T)))
-    dv, ps.cg_iterations, ps.cg_residual = preconditioned_cg(
-        A, b, ps.free.T, inv_diagonal, ps.cg_tolerance, ps.cg_max_iterations)
+    system = ps.linear_system(x0, h)
+    b = h * (f0 + h * system.K(np.ascontiguousarray(v0.T)))
+    dv, report = solve(system.A, b, ps.free.T, system.inv_diagonal, ps.cg_tolerance,
+                       ps.cg_max_iterations, ("sparse LU", lambda: system.direct(b)))
+    ps.record_solve(report)
     v = v0 + dv.T
     ps.set_xv(x0 + h * v, v)
 
@@ -173,6 +198,7 @@ class MassSpringCloth:
         self.default_pins = {"top": [(0, c) for c in range(cols)], "corner": [(0, 0)],
                              "corners": [(0, 0), (0, cols - 1)], "none": []}[pins]
         self.t = 0.0
+        self._verlet_back: np.ndarray | None = None
         self.watch = Stopwatch()                 # seconds per force, timed around the forces
         self.spent = self.watch.spent
         self.calls: dict[str, int] = {}
@@ -283,6 +309,10 @@ class MassSpringCloth:
         if self.grabbed is not None:
             self._place(self.grabbed, self.grab_target)
         forces_before = self._force_seconds()
+        # Verlet's positions a step back (x_n-1, the same h), for its centred velocity (energy())
+        ps = self.ps
+        self._verlet_back = (ps.x_prev if integrator == "verlet" and ps.x_prev is not None
+                             and ps.h_prev == h else None)
         t0 = time.perf_counter()
         STEPPERS[integrator](self.ps, h)
         elapsed = time.perf_counter() - t0
@@ -304,15 +334,24 @@ class MassSpringCloth:
 
     def energy(self) -> float:
         """Kinetic + elastic (active springs) + gravitational energy, 0 at rest in the start
-        pose (y down: a particle that fell by d lost m g d)."""
+        pose (y down: a particle that fell by d lost m g d).
+
+        After a Verlet step it is the energy one step back, at x_n, with the centred velocity
+        (x_n+1 - x_n-1) / 2h: Verlet's own velocity estimate v' = (x' - x)/h + a h/2 (taken at
+        the new point with the old acceleration) is off by O(h^2) in a way that does not average
+        out, so on an undamped cloth the energy it gives climbs (cotton without damping or air
+        at h = 0.5 ms: +2.1 J over 6 s) while the centred one stays within 0.24 J of 0."""
         ps = self.ps
+        x, v = ps.x, ps.v
+        if self._verlet_back is not None and ps.x_prev is not None:
+            x, v = ps.x_prev, (ps.x - self._verlet_back) / (2.0 * ps.h_prev)
         free = ps.free[:, 0]
-        e = 0.5 * float(np.sum(free * ps.mass * np.sum(ps.v * ps.v, axis=1)))
+        e = 0.5 * float(np.sum(free * ps.mass * np.sum(v * v, axis=1)))
         for force in ps.forces:
             if isinstance(force.force, SpringSet):
-                e += force.force.energy(ps.x)
+                e += force.force.energy(x)
         if "gravity" in self.on:
-            e -= self.g * float(np.sum(free * ps.mass * (ps.x[:, 1] - self.rest_x[:, 1])))
+            e -= self.g * float(np.sum(free * ps.mass * (x[:, 1] - self.rest_x[:, 1])))
         return e
 
     def kinetic_energy(self) -> float:
@@ -343,6 +382,7 @@ class MassSpringCloth:
         self.locked[...] = snap["locked"]
         self.anchor[...] = snap["anchor"]
         self.grabbed, self.grab_target, self.t = snap["grabbed"], snap["grab_target"], snap["t"]
+        self._verlet_back = None
         self._update_pins()
 
 

@@ -5,7 +5,7 @@ on any or all pairs of particles, depending on their positions") that vanishes b
 only needs the pairs with |x_j - x_i| < R. Two ways to find them, same answer:
 
 * `all_pairs`: test every pair i < j, n (n - 1) / 2 distance tests: O(n^2). Simple, and the
-  cheapest below about 100-200 particles (`python -m app bench particles` says where).
+  cheaper one below about a hundred particles (`python -m app bench particles` says where).
 * `grid_pairs`: a uniform grid (a cell list) of cells at least R wide. Two particles closer than R
   lie in the same cell or in neighbouring cells, so each particle is only tested against the
   particles of its own cell and of the 8 around it (each pair once: its own cell and 4 of the 8,
@@ -13,13 +13,37 @@ only needs the pairs with |x_j - x_i| < R. Two ways to find them, same answer:
   is O(n) tests; in a fixed box, where more particles means denser, it is still a fixed fraction
   of all pairs (9 / cells: 4.5 cells' worth per particle against n/2 partners each for all
   pairs; 9/432, about 1/50, in the particle dance's box at R = 40). The price is sorting the
-  particles by cell every step and a fixed cost per search (some 0.07 ms of NumPy calls, whatever
-  n is: measured 72 us at n = 2, 78 us at n = 100) that makes all pairs the cheaper method for
-  small n.
+  particles by cell every step and a fixed cost per search (about 0.08 ms of NumPy calls,
+  whatever n is) that makes all pairs the cheaper method for small n.
 
-Both return the pairs (i, j), i != j, each unordered pair once, with |x_j - x_i| < R, and the
-number of pair tests (distances compared with R) it took. The pairs come in a different order,
-so forces summed over them agree to rounding, not bit for bit.
+The grid in three steps, as on the slide:
+
+1. cell index: particle p at (x, y) is in cell (cx, cy) = (floor(x / cell width), floor(y /
+   cell height)), numbered row by row: cell = cy * columns + cx;
+2. sort: the particles sorted by cell number (`order`), so each cell's particles sit side by
+   side in the sorted list, from start[cell] to stop[cell];
+3. neighbouring cells: numbered row by row, the cell to the right of c is c + 1 and the three
+   cells below are c + columns - 1, c + columns, c + columns + 1: consecutive numbers, so their
+   particles are one run of the sorted list. A particle's candidate partners are therefore two
+   runs: the rest of its own cell followed by the cell to its right, and the three cells below.
+   A border of empty cells (a column on each side, a row below) gives every cell all its
+   neighbours, so no cell needs a special case.
+
+When the particles crowd together, the grid saves less and less: with everyone within one cell
+and its neighbours it tests every pair, as all pairs does. It needs no fallback even then: its
+blocks of candidates cost no more than all pairs' blocks of rows (`python -m app bench
+particles`, table "Crowds": 0.68-0.93 of all pairs' time with every particle at one point, 0.82-
+0.99 in its worst case, every pair a candidate and a quarter of them within R), so falling back
+would only make a crowd slower; `crowded_share` says how much of the grid's advantage is gone.
+
+Both methods hand out their pairs in blocks (`PairBlock`) of some tens of thousands, with the
+separation d = x_j - x_i and |d|^2 they already computed: a force summed block by block keeps
+its temporary arrays in the processor's cache (at 5,000 particles on the lab's busy 2-core
+machine, the grid's search and forces took about half the time they took over one array of every
+pair). `all_pairs`, `grid_pairs` and `find_pairs` return
+every pair at once: (i, j, tests), i != j, each unordered pair once, with |x_j - x_i| < R, and
+the number of pair tests (distances compared with R) it took. The two methods list the pairs in a
+different order, so forces summed over them agree to rounding, not bit for bit.
 
 The grid covers a box (0, 0)-(w, h); a particle outside the box is counted in the nearest border
 cell. That keeps the method exact (clamping never moves two particles' cells further apart than
@@ -27,6 +51,9 @@ one) and only costs speed if many particles leave the box.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Iterator
 
 import numpy as np
 
@@ -36,85 +63,161 @@ NEIGHBOUR_METHODS = ("all_pairs", "grid")
 # each temporary array near 0.5 MB, whatever n is (measured: 1M-pair blocks, 8 MB arrays fresh from
 # the allocator every block, made n = 1000 about 5x slower).
 BLOCK_PAIRS = 1 << 16
-
+# The grid tests its candidates in blocks of about this many (runs are never split, so a block
+# of a crowded cell can be longer): 16 k candidates, 128 kB per array, stay in the cache.
+GRID_BLOCK = 1 << 14
 # The half stencil: a cell's pairs with the cells right of it and in the row below (the other four
 # neighbours see this cell in their own stencil), so every pair of neighbouring cells is met once.
+# sort_into_cells's two runs per particle cover exactly these cells (a test counts them).
 HALF_STENCIL = ((1, 0), (-1, 1), (0, 1), (1, 1))
 
+
+@dataclass
+class PairBlock:
+    """Some of the pairs closer than the cut-off: particle indices i and j (i != j, each pair
+    once), and what the test already computed: d = x_j - x_i per axis (dx, dy) and r2 = |d|^2."""
+
+    i: np.ndarray
+    j: np.ndarray
+    dx: np.ndarray
+    dy: np.ndarray
+    r2: np.ndarray
+
+
+def _concatenate(blocks: Iterator[PairBlock]) -> tuple[np.ndarray, np.ndarray]:
+    """The i and j of every block, as two arrays."""
+    found = list(blocks)
+    if not found:
+        return np.zeros(0, np.intp), np.zeros(0, np.intp)
+    return np.concatenate([b.i for b in found]), np.concatenate([b.j for b in found])
+
+
+# ----- all pairs ------------------------------------------------------------------------------
 
 def all_pair_tests(n: int) -> int:
     """Distance tests of `all_pairs` for n particles: n (n - 1) / 2."""
     return n * (n - 1) // 2
 
 
-def all_pairs(x: np.ndarray, cutoff: float) -> tuple[np.ndarray, np.ndarray, int]:
-    """Every pair i < j with |x_j - x_i| < cutoff, by testing them all. Returns (i, j, tests)."""
+def all_pair_blocks(x: np.ndarray, cutoff: float) -> Iterator[PairBlock]:
+    """Every pair i < j with |x_j - x_i| < cutoff, by testing them all, block by block."""
     n = len(x)
     r2_max = cutoff * cutoff
     rows = max(1, BLOCK_PAIRS // max(n, 1))
-    found_i, found_j = [], []
+    x0, x1 = x[:, 0], x[:, 1]
     # the loop over blocks of rows (not over particles) replaces the double loop
     # `for i in range(n): for j in range(i + 1, n): test |x_j - x_i| < R`
     for a in range(0, n - 1, rows):
         b = min(n - 1, a + rows)
-        dx = x[None, a + 1:, 0] - x[a:b, None, 0]             # row i = a + r, column j = a + 1 + c
-        dy = x[None, a + 1:, 1] - x[a:b, None, 1]
-        hits = np.flatnonzero(dx * dx + dy * dy < r2_max)     # flat: ~10x faster than 2-D
+        dx = x0[None, a + 1:] - x0[a:b, None]                 # row i = a + r, column j = a + 1 + c
+        dy = x1[None, a + 1:] - x1[a:b, None]
+        r2 = dx * dx + dy * dy
+        hits = np.flatnonzero(r2 < r2_max)                    # flat: ~10x faster than 2-D
         r, c = np.divmod(hits, n - a - 1)
         keep = c >= r                                          # j > i: each pair once
-        found_i.append(a + r[keep])
-        found_j.append(a + 1 + c[keep])
-    if not found_i:
-        return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
-    return np.concatenate(found_i), np.concatenate(found_j), all_pair_tests(n)
+        hits = hits[keep]
+        yield PairBlock(a + r[keep], a + 1 + c[keep], dx.ravel().take(hits),
+                        dy.ravel().take(hits), r2.ravel().take(hits))
 
+
+def all_pairs(x: np.ndarray, cutoff: float) -> tuple[np.ndarray, np.ndarray, int]:
+    """Every pair i < j with |x_j - x_i| < cutoff, by testing them all. Returns (i, j, tests)."""
+    i, j = _concatenate(all_pair_blocks(x, cutoff))
+    return i, j, all_pair_tests(len(x))
+
+
+# ----- the grid -------------------------------------------------------------------------------
 
 def grid_shape(box: tuple[float, float], cutoff: float) -> tuple[int, int]:
     """Cells across and down: as many as fit with each cell at least `cutoff` wide and high."""
     return max(1, int(box[0] // cutoff)), max(1, int(box[1] // cutoff))
 
 
-def _runs(owner: np.ndarray, first: np.ndarray, count: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """For each k: owner[k] paired with the positions first[k], first[k] + 1, ..., first[k] +
-    count[k] - 1 (of the cell-sorted particle list). Replaces the loop
-    `for k: for q in range(first[k], first[k] + count[k]): pairs.append((owner[k], q))`."""
-    total = int(count.sum())
-    i = np.repeat(owner, count)
-    run_start = np.repeat(np.cumsum(count) - count, count)      # where each owner's run begins
-    q = np.repeat(first, count) + (np.arange(total) - run_start)
-    return i, q
+@dataclass
+class CellList:
+    """The particles sorted into the grid's cells, and each one's candidate partners.
+
+    order[k] is the particle at position k of the sorted list. Particle order[k] is tested
+    against the positions first[k] .. stop[k] - 1 (the rest of its own cell and the cell to its
+    right) and first[n + k] .. stop[n + k] - 1 (the three cells below). `tests` is the number of
+    candidate pairs, sum(stop - first)."""
+
+    order: np.ndarray
+    first: np.ndarray
+    stop: np.ndarray
+    tests: int
+
+
+def sort_into_cells(x: np.ndarray, cutoff: float, box: tuple[float, float]) -> CellList:
+    """Steps 1-3 of the module docstring: cell index, sort, the runs of neighbouring cells."""
+    n = len(x)
+    nx, ny = grid_shape(box, cutoff)
+    columns = nx + 2                               # an empty column on either side...
+    rows = ny + 1                                  # ...and an empty row below
+    # 1. cell index (clamped into the box, then shifted right past the empty column)
+    cx = np.clip(np.floor(x[:, 0] * (nx / box[0])), 0, nx - 1).astype(np.intp) + 1
+    cy = np.clip(np.floor(x[:, 1] * (ny / box[1])), 0, ny - 1).astype(np.intp)
+    cell = cy * columns + cx
+    # 2. sort: particle indices in cell order; each cell's run is start[c] .. stop[c] - 1
+    order = np.argsort(cell, kind="stable")
+    count = np.bincount(cell, minlength=columns * rows)    # particles per cell
+    stop = np.cumsum(count)
+    start = stop - count
+    # 3. neighbouring cells: for the particle at sorted position k, in cell c
+    k = np.arange(n)
+    c = cell[order]
+    first = np.concatenate((k + 1,                     # own cell after k, then cell c + 1
+                            start[c + columns - 1]))  # cells c + columns - 1 .. c + columns + 1
+    stops = np.concatenate((stop[c + 1], stop[c + columns + 1]))
+    return CellList(order, first, stops, int((stops - first).sum()))
+
+
+def grid_pair_blocks(x: np.ndarray, cutoff: float, box: tuple[float, float],
+                     cells: CellList | None = None) -> Iterator[PairBlock]:
+    """Every pair with |x_j - x_i| < cutoff among the grid's candidates, block by block (`cells`:
+    the sort, if it was made already)."""
+    cells = cells if cells is not None else sort_into_cells(x, cutoff, box)
+    order, first = cells.order, cells.first
+    length = cells.stop - first                    # candidates in each run
+    owner = np.concatenate((np.arange(len(x)),) * 2)   # the sorted position each run belongs to
+    xs, ys = x[order, 0], x[order, 1]              # coordinates in sorted order: neighbours sit
+    r2_max = cutoff * cutoff                       # side by side in memory
+    # blocks of whole runs, about GRID_BLOCK candidates each
+    ends = np.cumsum(length)
+    cuts = np.searchsorted(ends, np.arange(GRID_BLOCK, cells.tests, GRID_BLOCK))
+    bounds = np.unique(np.concatenate(([0], cuts + 1, [len(length)])))
+    for a, b in zip(bounds[:-1], bounds[1:]):
+        runs, p = length[a:b], owner[a:b]
+        slot = np.cumsum(runs) - runs              # where each run begins in this block
+        # q: the partner of each candidate pair, its position in the sorted list; replaces
+        # `for each run: for q in range(first, stop): candidates.append((p, q))`
+        q = np.arange(int(runs.sum())) + np.repeat(first[a:b] - slot, runs)
+        # the owner's coordinates repeated along its run (cheaper than gathering them per pair)
+        dx = xs.take(q) - np.repeat(xs.take(p), runs)
+        dy = ys.take(q) - np.repeat(ys.take(p), runs)
+        r2 = dx * dx + dy * dy
+        hits = np.flatnonzero(r2 < r2_max)
+        i = np.repeat(order.take(p), runs).take(hits)
+        j = order.take(q.take(hits))
+        yield PairBlock(i, j, dx.take(hits), dy.take(hits), r2.take(hits))
 
 
 def grid_pairs(x: np.ndarray, cutoff: float, box: tuple[float, float]
                ) -> tuple[np.ndarray, np.ndarray, int]:
     """Every pair with |x_j - x_i| < cutoff, found with a uniform grid over `box` (w, h).
     Returns (i, j, tests): tests counts the candidate pairs from the same and neighbouring cells."""
-    n = len(x)
-    nx, ny = grid_shape(box, cutoff)
-    cx = np.clip(np.floor(x[:, 0] * (nx / box[0])), 0, nx - 1).astype(np.intp)
-    cy = np.clip(np.floor(x[:, 1] * (ny / box[1])), 0, ny - 1).astype(np.intp)
-    cell = cy * nx + cx
-    order = np.argsort(cell, kind="stable")        # particle indices, sorted by cell
-    count = np.bincount(cell, minlength=nx * ny)   # particles per cell
-    start = np.cumsum(count) - count               # where each cell's run begins in `order`
-    k = np.arange(n)                               # positions in the sorted list
-    kx, ky, kc = cx[order], cy[order], cell[order]
-    # same cell: each particle with the ones after it in its cell's run (each pair once)
-    pieces = [_runs(k, k + 1, start[kc] + count[kc] - (k + 1))]
-    for dx, dy in HALF_STENCIL:                    # the 4 neighbouring cells of the half stencil
-        ox, oy = kx + dx, ky + dy
-        inside = (ox >= 0) & (ox < nx) & (oy >= 0) & (oy < ny)
-        other = np.where(inside, oy * nx + ox, 0)
-        pieces.append(_runs(k, start[other], np.where(inside, count[other], 0)))
-    qi = np.concatenate([p[0] for p in pieces])
-    qj = np.concatenate([p[1] for p in pieces])
-    # coordinates in cell order (neighbours sit close in memory), one 1-D array each: taking
-    # from 1-D arrays is about twice as fast as gathering rows of the (n, 2) array
-    xs, ys = x[order, 0], x[order, 1]
-    dx, dy = xs.take(qj) - xs.take(qi), ys.take(qj) - ys.take(qi)
-    close = dx * dx + dy * dy < cutoff * cutoff
-    return order[qi[close]], order[qj[close]], len(qi)
+    cells = sort_into_cells(x, cutoff, box)
+    i, j = _concatenate(grid_pair_blocks(x, cutoff, box, cells))
+    return i, j, cells.tests
 
+
+def crowded_share(grid_tests: int, n: int) -> float:
+    """The grid's tests as a share of all pairs' (0 to 1): about 9 / cells spread out, 1 when
+    every particle is in one cell or its neighbours."""
+    return grid_tests / all_pair_tests(n) if n > 1 else 0.0
+
+
+# ----- both -----------------------------------------------------------------------------------
 
 def find_pairs(method: str, x: np.ndarray, cutoff: float, box: tuple[float, float]
                ) -> tuple[np.ndarray, np.ndarray, int]:
@@ -134,5 +237,6 @@ def expected_grid_tests(n: int, cutoff: float, box: tuple[float, float]) -> floa
     return n * (per_cell * 4.5 - 0.5) if n > 1 else 0.0
 
 
-__all__ = ["NEIGHBOUR_METHODS", "all_pairs", "grid_pairs", "find_pairs", "all_pair_tests",
-           "grid_shape", "expected_grid_tests"]
+__all__ = ["NEIGHBOUR_METHODS", "PairBlock", "CellList", "all_pairs", "all_pair_blocks",
+           "grid_pairs", "grid_pair_blocks", "sort_into_cells", "crowded_share", "find_pairs",
+           "all_pair_tests", "grid_shape", "expected_grid_tests"]

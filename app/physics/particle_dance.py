@@ -42,13 +42,16 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Iterator
 
 import numpy as np
 
 from app.physics.forces import Drag
 from app.physics.integrators import symplectic_euler
-from app.physics.neighbours import NEIGHBOUR_METHODS, find_pairs
+from app.physics.neighbours import (NEIGHBOUR_METHODS, PairBlock, all_pair_blocks, all_pair_tests,
+                                    find_pairs, grid_pair_blocks, sort_into_cells)
 from app.physics.particles import ParticleSystem, scatter_add
+from app.physics.timing import Stopwatch
 
 CORE = 0.3            # the repulsive core is the inner 30 % of the cut-off radius
 RULES = ("random", "like_own", "opposites")
@@ -78,8 +81,10 @@ class PairRule:
         """F(r) for pairs at distances r whose species like each other by a = A[s_i, s_j]."""
         R = self.cutoff
         b = CORE * R
-        tent = a * self.attraction * np.maximum(1.0 - np.abs(2.0 * r - R - b) / (R - b), 0.0)
-        return np.where(r < b, self.repulsion * (r / b - 1.0), tent)
+        peak, w = (b + R) / 2.0, (R - b) / 2.0          # the tent's peak and half-width
+        core = self.repulsion * np.minimum(r / b - 1.0, 0.0)        # r < b only (0 from b on)
+        tent = a * self.attraction * np.maximum(1.0 - np.abs(r - peak) / w, 0.0)  # b < r < R only
+        return core + tent
 
     def potential(self, r: np.ndarray, a: np.ndarray) -> np.ndarray:
         """U(r) = -integral from r to R of F: the pair's potential energy (0 beyond R), so that
@@ -98,7 +103,9 @@ class PairRule:
 class PairForce:
     """Spatial interaction: the pair rule over every pair closer than the cut-off, found by
     `method` ("all_pairs" or "grid", switchable at any time). After each evaluation, `tests` is
-    the number of pair tests the search made and `pairs` the pairs that interacted."""
+    the number of pair tests the search made and `pairs` the pairs that interacted;
+    `watch.spent["search"]` sums the seconds spent finding pairs (the rest of the interaction's
+    time is the force itself)."""
 
     def __init__(self, rule: PairRule, species: np.ndarray, box: tuple[float, float],
                  method: str = "grid"):
@@ -108,25 +115,66 @@ class PairForce:
         self.rule, self.species, self.box, self.method = rule, species, box, method
         self.tests = 0
         self.pairs = 0
-        self.search_seconds = 0.0     # time spent finding pairs (the rest is the force itself)
+        self.watch = Stopwatch()
+
+    @property
+    def search_seconds(self) -> float:
+        """Seconds spent finding pairs, summed over every evaluation."""
+        return self.watch.spent["search"]
+
+    def pair_blocks(self, x: np.ndarray) -> Iterator[PairBlock]:
+        """The pairs closer than R, block by block, by the method in use; sets `tests`."""
+        R = self.rule.cutoff
+        if self.method == "grid":
+            cells = sort_into_cells(x, R, self.box)
+            self.tests = cells.tests
+            return grid_pair_blocks(x, R, self.box, cells)
+        self.tests = all_pair_tests(len(x))
+        return all_pair_blocks(x, R)
+
+    def forces_of(self, dx: np.ndarray, dy: np.ndarray, r: np.ndarray, i: np.ndarray,
+                  j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """f_i = (fx, fy) of each pair (i, j) at separation d = x_j - x_i = (dx, dy), r = |d|
+        (f_j = -f_i)."""
+        s = self.species
+        likes = self.rule.matrix.ravel().take(s.take(i) * len(self.rule.matrix) + s.take(j))
+        # (likes = A[s_i, s_j], read from the flattened matrix: half the time of A[s[i], s[j]])
+        scale = self.rule.magnitude(r, likes) / np.maximum(r, 1e-12)   # r = 0: d = 0, no NaN
+        return scale * dx, scale * dy
 
     def pair_forces(self, x: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-        """f_i of each pair (i, j) (f_j = -f_i), shape (pairs, 2)."""
+        """f_i of each pair (i, j) of the positions x (f_j = -f_i), shape (pairs, 2)."""
         x0, x1 = x[:, 0], x[:, 1]
         dx, dy = x0.take(j) - x0.take(i), x1.take(j) - x1.take(i)   # d = x_j - x_i, per axis
-        r = np.sqrt(dx * dx + dy * dy)
-        F = self.rule.magnitude(r, self.rule.matrix[self.species.take(i), self.species.take(j)])
-        scale = F / np.maximum(r, 1e-12)                        # r = 0: d = 0, no force, no NaN
-        return np.column_stack((scale * dx, scale * dy))
+        return np.column_stack(self.forces_of(dx, dy, np.sqrt(dx * dx + dy * dy), i, j))
 
     def accumulate(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray, f: np.ndarray) -> None:
-        t0 = time.perf_counter()
-        i, j, self.tests = find_pairs(self.method, x, self.rule.cutoff, self.box)
-        self.search_seconds += time.perf_counter() - t0
-        self.pairs = len(i)
-        fi = self.pair_forces(x, i, j)
-        scatter_add(f, i, fi)                      # f_i += fi for every pair
-        scatter_add(f, j, -fi)                     # f_j -= fi
+        n = len(x)
+        fx_sum, fy_sum = np.zeros(n), np.zeros(n)
+        self.pairs = 0
+        with self.watch("search"):
+            blocks = self.pair_blocks(x)
+        for b in timed(blocks, self.watch("search")):
+            fx, fy = self.forces_of(b.dx, b.dy, np.sqrt(b.r2), b.i, b.j)   # the search's d
+            # f_i += f and f_j -= f for every pair (Newton's third law); bincount sums the
+            # repeated indices (replaces `for each pair: f[i] += fi; f[j] -= fi`)
+            fx_sum += np.bincount(b.i, fx, n) - np.bincount(b.j, fx, n)
+            fy_sum += np.bincount(b.i, fy, n) - np.bincount(b.j, fy, n)
+            self.pairs += len(b.i)
+        f[:, 0] += fx_sum
+        f[:, 1] += fy_sum
+
+
+def timed(blocks: Iterator[PairBlock], lap) -> Iterator[PairBlock]:
+    """The blocks of an iterator, each one's making timed by `lap` (a Stopwatch's context): the
+    search's share of the time, measured outside both the search and the force."""
+    it = iter(blocks)
+    while True:
+        with lap:
+            block = next(it, None)
+        if block is None:
+            return
+        yield block
 
 
 class MouseForce:
@@ -149,12 +197,16 @@ class MouseForce:
 def reflect_into_box(x: np.ndarray, v: np.ndarray, box: tuple[float, float]) -> None:
     """Walls: fold every coordinate back into [0, w] x [0, h] as a mirror would (however far out
     it went: the fold repeats with period 2w) and flip the velocity component of each particle
-    reflected an odd number of times. In place."""
+    reflected an odd number of times. In place; only the coordinates outside are touched."""
     size = np.asarray(box, dtype=float)
-    period = np.floor(x / size)                            # 0 inside; +-1, +-2, ... outside
-    folded = np.mod(x, 2.0 * size)
-    x[...] = np.where(folded > size, 2.0 * size - folded, folded)
-    v *= np.where(np.mod(period, 2.0) == 1.0, -1.0, 1.0)
+    row, axis = np.nonzero((x < 0.0) | (x > size))            # the coordinates outside
+    if len(row) == 0:
+        return
+    side = size[axis]
+    period = np.floor(x[row, axis] / side)                     # +-1, +-2, ... outside
+    folded = np.mod(x[row, axis], 2.0 * side)
+    x[row, axis] = np.where(folded > side, 2.0 * side - folded, folded)
+    v[row, axis] *= np.where(np.mod(period, 2.0) == 1.0, -1.0, 1.0)
 
 
 class Timed:

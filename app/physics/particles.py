@@ -23,6 +23,8 @@ from typing import Callable, Optional, Protocol, Sequence
 
 import numpy as np
 
+from app.physics.linear_solve import SolveReport
+
 # A Jacobian's action: w (n, dim) -> J w (n, dim). An AddProduct adds J w into `out` instead.
 JacobianProduct = Callable[[np.ndarray], np.ndarray]
 AddProduct = Callable[[np.ndarray, np.ndarray], None]
@@ -68,7 +70,26 @@ class ParticleSystem:
         self.h_prev = 0.0                          # the step x_prev belongs to
         self.cg_tolerance = 1e-12                  # implicit Euler: CG stops at |r| <= tol |b|
         self.cg_max_iterations: int | None = None  # None: the number of unknowns
-        self.cg_iterations = 0                     # CG iterations of the last implicit step
+        self.solve = SolveReport()                 # how the last implicit step's solve ended
+        self.cg_failures = 0                       # implicit steps whose CG stopped short
+        self.last_cg_failure: SolveReport | None = None   # the latest of those
+
+    @property
+    def cg_iterations(self) -> int:
+        """CG iterations of the last implicit step."""
+        return self.solve.iterations
+
+    @property
+    def cg_residual(self) -> float:
+        """|b - A x| / |b| of CG's answer in the last implicit step."""
+        return self.solve.residual
+
+    def record_solve(self, report: SolveReport) -> None:
+        """Keep the report of an implicit step's solve; count it if CG stopped short."""
+        self.solve = report
+        if not report.converged:
+            self.cg_failures += 1
+            self.last_cg_failure = report
 
     # ----- sizes ------------------------------------------------------------------------------
     @property

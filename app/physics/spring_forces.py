@@ -54,6 +54,28 @@ def block_product(blocks: Blocks, w: np.ndarray, rows: int, cols: int) -> np.nda
     return out.reshape(w.shape)
 
 
+def sparse_matrix(blocks: Blocks, diagonal: np.ndarray, rows: int, cols: int):
+    """The matrix whose product is diag(diagonal) w + block_product(blocks, w), as a SciPy sparse
+    matrix on component-major vectors (index = component x n + particle): the same 2x2 blocks
+    written out, B at (a, a) and (b, b), -B at (a, b) and (b, a) for every spring. For a direct
+    solve (mass_spring.implicit_euler's fallback); CG never needs it."""
+    from scipy import sparse                 # imported when a direct solve is needed
+    n = rows * cols
+    ids = np.arange(n).reshape(rows, cols)
+    r_idx, c_idx, vals = [np.arange(2 * n)], [np.arange(2 * n)], [diagonal.ravel()]
+    for fam, B in blocks:
+        ia, ib = ids[fam.a].ravel(), ids[fam.b].ravel()
+        for c in range(2):
+            for d in range(2):
+                value = B[c, d].ravel()
+                for i, j, sign in ((ia, ia, 1.0), (ib, ib, 1.0), (ia, ib, -1.0), (ib, ia, -1.0)):
+                    r_idx.append(c * n + i)
+                    c_idx.append(d * n + j)
+                    vals.append(sign * value)
+    return sparse.csr_matrix((np.concatenate(vals), (np.concatenate(r_idx),
+                                                     np.concatenate(c_idx))), shape=(2 * n, 2 * n))
+
+
 def _as_product(blocks_of: Callable[[], Blocks], rows: int, cols: int) -> AddProduct:
     """An AddProduct out += J w on (n, 2) arrays for the Jacobian J whose blocks are -B."""
     blocks = blocks_of()

@@ -35,6 +35,7 @@ from app.draw import hud, menu, save_png
 from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene, SceneError
+from app.window.clip_recorder import ClipRecorder
 from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
 from app.window.speed import FPS_CAP
@@ -81,6 +82,7 @@ class Window:
         self.screenshot_dir = Path(screenshot_dir)
         self.running = True
         self.recorder = Recorder(record)
+        self.clips = ClipRecorder()           # F9 (run_window sets --video, --fps, --width)
         self.panel_visible = True
         self.hud_details = False              # F4: the HUD's second page (every scene)
         self.menu_selected = 0
@@ -283,6 +285,7 @@ class Window:
         t0 = time.perf_counter()
         self.current_view.draw(self.screen)
         self.last_draw_seconds = time.perf_counter() - t0
+        self.clips.after_draw(self, self.screen)     # a clip's frames (before the REC box)
         self._save_pending()
 
     # --- screenshots -----------------------------------------------------------------------------
@@ -311,6 +314,10 @@ class Window:
 
     def save_screenshot(self, path: str | Path) -> None:
         save_png(self.screen, path)
+
+    def toggle_clip(self) -> None:
+        """F9: start or stop a clip of the scene area (app/window/clip_recorder.py)."""
+        self.clips.toggle(self)
 
     # --- recording (what the tests and run_window read) ------------------------------------------
     @property
@@ -379,12 +386,13 @@ def _open_display(size: tuple[int, int]) -> pygame.Surface:
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
                large_text: bool = False, events: list | None = None, card=None,
-               compare: list | None = None, extras=None) -> int:
+               compare: list | None = None, extras=None, clips: dict | None = None) -> int:
     """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
     applied as a click applies it, or a comparison of the `compare` variants with `overrides`
     shared) and run it until the user quits, or for `seconds` of wall time. Return the exit
     code (2 when there is no display). With `record`, the events are written and the replay
-    command printed on every way out; `extras` (app.headless.Extras): --csv, --plot, --arrows."""
+    command printed on every way out; `clips` (path, fps, width) set up F9's clips, saved and
+    named on every way out too; `extras` (app.headless.Extras): --csv, --plot, --arrows."""
     try:
         screen = _open_display(DEFAULT_SIZE)
     except pygame.error as e:
@@ -396,6 +404,7 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.key.set_repeat()
     from scenes import SCENES, get_scene
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
+    window.clips = ClipRecorder(**(clips or {}))
     if extras is not None:
         window.csv_path, window.arrows = extras.csv, extras.arrows
         window.plot_start = list(extras.plot)
@@ -429,6 +438,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
         window.close()
         line = window.recorder.write()
         if line:
+            print(line, flush=True)
+        for line in window.clips.finish(window):
             print(line, flush=True)
         pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
     return 0

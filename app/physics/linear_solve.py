@@ -1,0 +1,173 @@
+"""The linear solve of an implicit step, and how it ended.
+
+Implicit Euler solves one linear system A dv = b per step (app/physics/integrators.py for any
+particle system, app/physics/mass_spring.py for the cloth) with conjugate gradients (CG), the
+lecture's method: only products A w, no matrix. CG is made for a symmetric positive definite A,
+and it can stop short of its tolerance:
+
+  * breakdown: p.Ap <= 0 along a search direction, so A is not positive definite there (two
+    bodies pulling each other harder the closer they get, at a large step: h^2 df/dx outweighs
+    M), or rounding has destroyed the directions' conjugacy;
+  * the iteration cap (by default the number of unknowns, enough in exact arithmetic; not
+    always in floating point when A is badly conditioned: a stiff cloth at a step of a second).
+
+Like SciPy's cg, which returns `info` beside its answer, the solve says how it ended: a
+`SolveReport` (the iterations, the true relative residual |b - A x| / |b| of the answer, whether
+it met the tolerance, and why it stopped). Where CG stops short, the caller can solve the same
+system another way (`solve`'s `fallback`: a dense LU for a few unknowns, a sparse direct solve
+for the cloth), which gives the true linearised step wherever A is not singular; the report says
+which answer the step took. A second solver (a direct one chosen instead of CG) fills in the same
+report, so the metrics and the HUD read one object whatever solved the step.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+Product = Callable[[np.ndarray], np.ndarray]
+DENSE_LIMIT = 400       # unknowns up to which dense_solve builds the matrix (400 products + LU)
+
+
+@dataclass
+class SolveReport:
+    """How the last linear solve of an implicit step ended.
+
+    method: the solver tried first ("cg"; "" before the first solve). iterations: its iterations.
+    residual: |b - A x| / |b| of its answer (recomputed, not CG's running estimate), tolerance:
+    what it had to reach. converged: residual <= tolerance. stop: why CG stopped ("converged",
+    "breakdown", "iteration cap"). fallback: the solve that gave the step instead ("dense LU",
+    "sparse LU"), None if the first answer was used or no other solve was possible;
+    fallback_residual: that answer's |b - A x| / |b|."""
+
+    method: str = ""
+    iterations: int = 0
+    residual: float = 0.0
+    tolerance: float = 0.0
+    converged: bool = True
+    stop: str = ""
+    fallback: str | None = None
+    fallback_residual: float | None = None
+
+    @property
+    def step_residual(self) -> float:
+        """The relative residual of the answer the step used."""
+        return self.residual if self.fallback_residual is None else self.fallback_residual
+
+    def words(self) -> str:
+        """One line for the HUD: '' when CG converged; else what happened and what the step used."""
+        if self.converged:
+            return ""
+        why = {"breakdown": "broke down (p.Ap <= 0: A not positive definite)",
+               "iteration cap": f"hit its cap of {self.iterations} iterations",
+               "rounding": "met its tolerance in its running residual only"}[self.stop]
+        used = (f"used a {self.fallback} solve (residual {self.fallback_residual:.1e})"
+                if self.fallback else "no other solve: used CG's last iterate")
+        return f"CG {why}, residual {self.residual:.1e} > {self.tolerance:.0e}; {used}"
+
+
+def relative_residual(A: Product, b: np.ndarray, x: np.ndarray, free: np.ndarray) -> float:
+    """|b - A x| / |b| over the free rows (0 if b = 0)."""
+    b_norm = float(np.linalg.norm(b * free))
+    if b_norm == 0.0:
+        return 0.0
+    return float(np.linalg.norm((b - A(x)) * free)) / b_norm
+
+
+def preconditioned_cg(A: Product, b: np.ndarray, free: np.ndarray,
+                      inv_diagonal: np.ndarray | None = None, tolerance: float = 1e-12,
+                      max_iterations: int | None = None) -> tuple[np.ndarray, SolveReport]:
+    """Conjugate gradients for A x = b on the free rows (free: 1.0 free / 0.0 fixed, broadcast
+    against b; fixed rows of x stay 0, Baraff & Witkin's filter), with a diagonal (Jacobi)
+    preconditioner: each residual is divided by A's diagonal (`inv_diagonal` = 1/diag(A), the
+    shape of b; None: no preconditioning), which evens out heavy and light, stiff and soft rows.
+
+    Stops when |r| <= tolerance |b|, after `max_iterations` (default: the number of unknowns),
+    or on a breakdown (p.Ap <= 0: A is not positive definite along p). Returns (x, report): x is
+    the last iterate x_k, 0 if it broke down before its first step. For a positive definite A,
+    x_k is the best answer in A's energy norm among all combinations of the k directions searched
+    so far; for any other A it is only where CG stopped. The report's residual is recomputed from
+    x_k (one more product), because CG's running residual drifts from the true one in rounding."""
+    x = np.zeros_like(b)
+    r = b * free                                 # the residual b - A x at x = 0
+    z = r if inv_diagonal is None else inv_diagonal * r
+    p = z.copy()
+    rz = float(np.vdot(r, z))
+    b_norm = math.sqrt(float(np.vdot(r, r)))
+    r_norm = b_norm
+    limit = max_iterations or int(np.broadcast_to(free, b.shape).sum()) + 1   # the unknowns
+    iterations, stop = 0, "converged"
+    while r_norm > tolerance * b_norm:
+        if iterations >= limit:
+            stop = "iteration cap"
+            break
+        Ap = A(p) * free
+        pAp = float(np.vdot(p, Ap))
+        if pAp <= 0.0 or rz <= 0.0:              # no descent along p: A is not definite here
+            stop = "breakdown"
+            break
+        alpha = rz / pAp
+        x += alpha * p                           # step along p to the minimum of the energy
+        r -= alpha * Ap
+        z = r if inv_diagonal is None else inv_diagonal * r
+        rz_new = float(np.vdot(r, z))
+        p = z + (rz_new / rz) * p                # the next direction, conjugate to the last
+        rz = rz_new
+        r_norm = math.sqrt(float(np.vdot(r, r)))
+        iterations += 1
+    residual = relative_residual(A, b, x, free) if iterations else (1.0 if b_norm else 0.0)
+    report = SolveReport("cg", iterations, residual, tolerance, stop == "converged"
+                         and residual <= tolerance, stop)
+    if stop == "converged" and not report.converged:
+        report.stop = "rounding"                 # the running residual met it, the true one not
+    return x, report
+
+
+def solve(A: Product, b: np.ndarray, free: np.ndarray, inv_diagonal: np.ndarray | None,
+          tolerance: float, max_iterations: int | None,
+          fallback: tuple[str, Callable[[], np.ndarray | None]] | None = None
+          ) -> tuple[np.ndarray, SolveReport]:
+    """CG (preconditioned_cg); if it stops short and a fallback (name, function returning the
+    solution or None where it has none) is given, the fallback's answer when its residual is
+    smaller. Returns (the answer the step uses, the report)."""
+    x, report = preconditioned_cg(A, b, free, inv_diagonal, tolerance, max_iterations)
+    if report.converged or fallback is None:
+        return x, report
+    name, other = fallback
+    y = other()
+    if y is not None and np.isfinite(y).all():
+        residual = relative_residual(A, b, y, free)
+        if residual < report.residual:
+            report.fallback, report.fallback_residual = name, residual
+            return y, report
+    return x, report
+
+
+def dense_solve(A: Product, b: np.ndarray, free: np.ndarray) -> np.ndarray | None:
+    """A x = b on the free rows by building A column by column from its products (A e_j) and an
+    LU solve: for a few unknowns (at most DENSE_LIMIT), the exact answer whether or not A is
+    definite. None if there are too many unknowns or A is singular there."""
+    mask = np.broadcast_to(free, b.shape).ravel() > 0
+    unknowns = np.flatnonzero(mask)
+    if unknowns.size == 0 or unknowns.size > DENSE_LIMIT:
+        return None
+    columns = []
+    for j in unknowns:
+        e = np.zeros(b.size)
+        e[j] = 1.0
+        columns.append(A(e.reshape(b.shape)).ravel()[unknowns])
+    matrix = np.array(columns).T
+    try:
+        solution = np.linalg.solve(matrix, b.ravel()[unknowns])
+    except np.linalg.LinAlgError:
+        return None
+    x = np.zeros(b.size)
+    x[unknowns] = solution
+    return x.reshape(b.shape)
+
+
+__all__ = ["SolveReport", "preconditioned_cg", "solve", "dense_solve", "relative_residual",
+           "DENSE_LIMIT"]
