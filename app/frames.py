@@ -16,7 +16,7 @@ from app.draw.layout import Pane
 from app.draw.panes import PANE_COLORS, PaneGrid, pane_lines
 from app.draw.text import TEXT
 from app.instruments import Instruments
-from app.runner import SceneRunner
+from app.runner import SceneRunner, advice
 
 PLOT_SHARE = 0.3           # the plot strip's share of the height (window and screenshots)
 PLOT_MIN = 150             # and its least height, px at text scale 1
@@ -87,6 +87,10 @@ def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = No
             own.insert(0, hud.Line(held[k], hud.WARN_COLOR))
         if runner.error is not None:
             own.insert(0, hud.Line(f"stopped: {runner.error.splitlines()[-1]}", hud.ERROR_COLOR))
+        elif not runner.finite:
+            own.insert(0, hud.Line(f"went non-finite (NaN/inf, or past the scene's blow-up "
+                                   f"bounds) at t = {s.time:.3f} s and stopped there; the "
+                                   f"others went on. {advice(s)}", hud.ERROR_COLOR))
         clock = "" if same_dt and not (held and k in held) else \
             f"t = {s.time:.2f} s | {hud.dt_text(s)}"
         out.append(pane_lines(s, "ABCD"[k], label, PANE_COLORS[k], runner.step_ms,
@@ -117,8 +121,10 @@ def picture(runners: list[SceneRunner], inst: Instruments | None = None,
             overlay = inst.overlay
             legend = inst.legend()
         if compare:
-            header = None if clean else compare_header([r.scene for r in runners], scene.time)
-            lines = [None] * len(runners) if clean else compare_pane_lines(runners, extra=legend)
+            t = max(r.scene.time for r in runners)      # the clock (a pane may have stopped)
+            header = None if clean else compare_header([r.scene for r in runners], t, (),
+                                                       legend)
+            lines = [None] * len(runners) if clean else compare_pane_lines(runners)
             PaneGrid([r.scene for r in runners]).draw(surface, area, header, lines,
                                                       overlay=overlay)
         else:

@@ -25,7 +25,7 @@ from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, Extras, card_json
                           note_clip, record_clip, report_stop, save_screenshot, steps_for,
                           summary)
 from app.scene import InputEvent, Scene, Try
-from app.series import clean
+from app.series import clean as json_clean
 
 
 def compare_steps(cls: type[Scene], overrides: list[dict[str, Any]], steps: int | None,
@@ -71,7 +71,7 @@ def run_compare(cls: type[Scene], shared: dict[str, Any], variants: list[Variant
         result["events"] = runner.next_event
         err = r.scene.reference_error()
         result["reference_error"] = None if err is None else \
-            {"what": err[0], "metric": err[1], "value": clean(err[2])}
+            {"what": err[0], "metric": err[1], "value": json_clean(err[2])}
         if card is not None:
             result["try"] = card_json(card)
         results.append(result)

@@ -158,8 +158,9 @@ class Instruments:
                 if unit is not None:
                     vs = [unit.convert(v) if v == v else v for v in vs]
                 label = name + (f" ({unit.symbol})" if unit is not None and unit.symbol else "")
-                if compare:
-                    out.append(live_plot.Line(f"{g.tag} {label}", g.color, ts, vs, dash=i))
+                if compare:         # a pane that went non-finite does not scale the axis
+                    out.append(live_plot.Line(f"{g.tag} {label}", g.color, ts, vs, dash=i,
+                                              scales=not g.runner.stopped))
                 else:
                     out.append(live_plot.Line(label, live_plot.PALETTE[i % 8], ts, vs))
         return out
@@ -179,6 +180,8 @@ class Instruments:
             return
         vel, force = [], []
         for g in self.gauges:
+            if g.runner.stopped:        # a wreck's speeds would dwarf every other pane's arrows
+                continue
             arrows, f = g.probe.current(g.runner.scene)
             if arrows is not None:
                 vel.append(arrows.vel)
@@ -194,6 +197,8 @@ class Instruments:
         if not self.arrows or k >= len(self.gauges):
             return
         g = self.gauges[k]
+        if g.runner.stopped:            # a pane that went non-finite: no arrows on its wreck
+            return
         arrows, force = g.probe.current(g.runner.scene)
         if arrows is not None and len(arrows.ids):
             draw_arrows(surface, layout.view, arrows, force, self.scale)
@@ -203,8 +208,8 @@ class Instruments:
         if not self.arrows or not self.gauges:
             return []
         g = self.gauges[0]
-        arrows, force = g.probe.current(g.runner.scene)
-        return legend_lines(arrows, self.scale, force is not None)
+        arrows, _ = g.probe.current(g.runner.scene)
+        return legend_lines(arrows, self.scale, self.scale.per["force"] is not None)
 
 
 __all__ = ["Instruments", "Gauge", "WINDOWS", "DEFAULT_WINDOW"]

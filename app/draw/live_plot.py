@@ -37,6 +37,8 @@ class Line:
     ts: list[float]
     vs: list[float]
     dash: int = 0
+    scales: bool = True     # False: the axis is not scaled to it (a run that blew up leaves the
+                            # top of the plot instead of flattening every other line)
 
 
 def nice_ticks(lo: float, hi: float, most: int = 6) -> list[float]:
@@ -56,7 +58,8 @@ def nice_ticks(lo: float, hi: float, most: int = 6) -> list[float]:
 
 def y_range(lines: list[Line], t0: float, log: bool) -> tuple[float, float] | None:
     """The y range the visible samples need (with a margin), or None if none is drawable."""
-    values = [v for ln in lines for t, v in zip(ln.ts, ln.vs)
+    scaling = [ln for ln in lines if ln.scales] or lines
+    values = [v for ln in scaling for t, v in zip(ln.ts, ln.vs)
               if t >= t0 and math.isfinite(v) and (v > 0 or not log)]
     if not values:
         return None
