@@ -12,7 +12,7 @@ import inspect
 import shlex
 from typing import Any
 
-from app.scene import Effect, Param, Scene, Try
+from app.scene import Effect, Param, Scene, Try, variant_text
 
 
 def param_entry(prm: Param) -> dict[str, Any]:
@@ -38,7 +38,10 @@ def card_entry(card: Try) -> dict[str, Any]:
     """A try card: its settings as `--set` takes them (on/off for effects and switches)."""
     settings = {k: (("on" if v else "off") if isinstance(v, bool) else v)
                 for k, v in card.settings.items()}
-    return {"label": card.label, "settings": settings, "watch": card.watch}
+    entry = {"label": card.label, "settings": settings, "watch": card.watch}
+    if card.compare:         # a comparison: each pane's own settings, as --compare takes them
+        entry["compare"] = [variant_text(v) for v in card.compare]
+    return entry
 
 
 def scene_entry(cls: type[Scene]) -> dict[str, Any]:

@@ -100,8 +100,15 @@ def differing(scenes: Sequence[Scene]) -> list[str]:
 def labels(scenes: Sequence[Scene]) -> list[str]:
     """Each pane's label: what differs, as --compare writes it ('iterations=2')."""
     names = differing(scenes)
-    return [",".join(f"{n}={setting_text(s.settings()[n])}" for n in names) or "(same settings)"
+    return [",".join(f"{n}={_short(s.settings()[n])}" for n in names) or "(same settings)"
             for s in scenes]
+
+
+def _short(value: Any) -> str:
+    """A value as a label writes it: 500 for 500.0, on/off for a switch."""
+    if isinstance(value, float):
+        return format(value, ".10g")
+    return setting_text(value)
 
 
 def shared_and_own(scenes: Sequence[Scene]) -> tuple[dict[str, Any], list[dict[str, Any]]]:

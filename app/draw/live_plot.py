@@ -56,6 +56,13 @@ def nice_ticks(lo: float, hi: float, most: int = 6) -> list[float]:
     return [0.0 if abs(first + k * step) < step * 1e-9 else first + k * step for k in range(n)]
 
 
+def _decades(lo: float, hi: float, most: int) -> list[float]:
+    """Whole powers of ten (as exponents) between lo and hi, every k-th so at most `most`."""
+    ks = list(range(math.ceil(lo), math.floor(hi) + 1))
+    every = max(1, -(-len(ks) // most))
+    return [float(k) for k in ks[::every]]
+
+
 def y_range(lines: list[Line], t0: float, log: bool) -> tuple[float, float] | None:
     """The y range the visible samples need (with a margin), or None if none is drawable."""
     scaling = [ln for ln in lines if ln.scales] or lines
@@ -78,8 +85,10 @@ def y_range(lines: list[Line], t0: float, log: bool) -> tuple[float, float] | No
 
 
 def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_now: float,
-              window: float, log: bool = False, hint: str = "") -> None:
-    """Draw `lines` over the last `window` seconds before `t_now` in `rect`."""
+              window: float, log: bool = False, hint: str = "") -> dict[str, list]:
+    """Draw `lines` over the last `window` seconds before `t_now` in `rect`; return where the
+    tick labels went ({"x": [rect, ...], "y": [...]}: the tests check they never overlap)."""
+    drawn: dict[str, list] = {"x": [], "y": []}
     surface.fill(BACKGROUND, rect)
     pygame.draw.rect(surface, FRAME, rect, 1)
     f = font(PLOT_SIZE)
@@ -90,14 +99,15 @@ def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_n
     t0 = max(t_now - window, 0.0) if t_now >= window else 0.0
     t1 = max(t0 + window, t_now)
     yr = y_range(lines, t0, log)
-    ticks = nice_ticks(*yr) if yr is not None and not log else \
-        [float(k) for k in range(math.ceil(yr[0]), math.floor(yr[1]) + 1)] if yr else []
+    most = max(2, min(6, int((rect.bottom - top - 2 * pad - lh) // (1.5 * lh))))  # labels
+    ticks = nice_ticks(*yr, most) if yr is not None and not log else \
+        _decades(*yr, most) if yr else []                                          # apart
     labels = [fmt_number(10 ** t if log else t) for t in ticks]
     left = rect.left + pad + max([f.size(s)[0] for s in labels] + [f.size("0")[0]]) + pad
     plot = pygame.Rect(left, top + pad, rect.right - pad - left, rect.bottom - top - 2 * pad - lh)
     _draw_legend(surface, legend_rows, (rect.left + pad, rect.top + pad), f)
     if plot.width < 20 or plot.height < 10:
-        return
+        return drawn
     pygame.draw.rect(surface, FRAME, plot, 1)
 
     def x_of(t: float) -> float:
@@ -107,13 +117,15 @@ def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_n
         x = x_of(t)
         pygame.draw.line(surface, GRID, (x, plot.top + 1), (x, plot.bottom - 2))
         img = f.render(fmt_number(t), True, LABEL)
-        surface.blit(img, (min(max(x - img.get_width() / 2, plot.left), plot.right -
-                               img.get_width()), plot.bottom + 2))
+        at = (min(max(x - img.get_width() / 2, plot.left), plot.right - img.get_width()),
+              plot.bottom + 2)
+        surface.blit(img, at)
+        drawn["x"].append(img.get_rect(topleft=at))
     unit = f.render("t (s)", True, LABEL)
     if yr is None:
         img = f.render("no value yet", True, LABEL)
         surface.blit(img, img.get_rect(center=plot.center))
-        return
+        return drawn
     lo, hi = yr
 
     def y_of(v: float) -> float | None:
@@ -126,7 +138,9 @@ def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_n
         y = plot.bottom - (t - lo) / (hi - lo) * plot.height
         pygame.draw.line(surface, GRID, (plot.left + 1, y), (plot.right - 2, y))
         img = f.render(text, True, LABEL)
-        surface.blit(img, (plot.left - pad - img.get_width(), y - img.get_height() / 2))
+        at = (plot.left - pad - img.get_width(), y - img.get_height() / 2)
+        surface.blit(img, at)
+        drawn["y"].append(img.get_rect(topleft=at))
     surface.blit(unit, (plot.right - unit.get_width() - 2, plot.top + 2))
     old = surface.get_clip()
     surface.set_clip(plot.clip(old))
@@ -147,6 +161,7 @@ def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_n
         img = f.render(hint, True, LABEL)
         if img.get_width() < plot.width - unit.get_width() - 12:
             surface.blit(img, (plot.left + 4, plot.top + 2))
+    return drawn
 
 
 def _polyline(surface: pygame.Surface, color, points: list[tuple[float, float]], dash: int):
