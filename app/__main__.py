@@ -311,7 +311,8 @@ def find_card(label: str, classes: list, overrides: dict):
                          "a click does); drop --set, or give the values as --set without --try")
     card = cls.find_card(label)
     if card is None:
-        labels = ", ".join(repr(c.label) for c in cls.tries) or "none (this scene has no cards)"
+        labels = ", ".join(repr(c.label) for c in cls.tries + cls.comparisons) or \
+            "none (this scene has no cards)"
         raise UsageError(f"--try {shown_text(label)}: scene '{cls.name}' has no such card; "
                          f"accepted: {labels}")
     return card

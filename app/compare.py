@@ -30,6 +30,9 @@ from app.scene import EVENT_SLACK, InputEvent, ParamError, Scene, SceneError, se
 
 MIN_VARIANTS, MAX_VARIANTS = 2, 4
 TAGS = "ABCD"          # the panes' names, in the order given
+HELD_TEXT = ("Blew up at t = {bad:.3f} s (NaN/inf, or past the scene's blow-up bounds): rolled "
+             "back to t = {good:.3f} s and held here while the other panes go on (R restarts "
+             "them all). {advice}")
 
 
 @dataclass(frozen=True)
@@ -98,9 +101,10 @@ def differing(scenes: Sequence[Scene]) -> list[str]:
 
 
 def labels(scenes: Sequence[Scene]) -> list[str]:
-    """Each pane's label: what differs, as --compare writes it ('iterations=2')."""
+    """Each pane's label: what differs ('iterations=2, substeps=1': a space after each comma,
+    so a narrow pane can wrap it)."""
     names = differing(scenes)
-    return [",".join(f"{n}={_short(s.settings()[n])}" for n in names) or "(same settings)"
+    return [", ".join(f"{n}={_short(s.settings()[n])}" for n in names) or "(same settings)"
             for s in scenes]
 
 
@@ -223,7 +227,8 @@ class CompareRunner:
                 rb = self._catch_up(k, runner)
                 if rb is not None:
                     rollbacks[k] = rb
-                    self.held[k] = rb.text()
+                    self.held[k] = HELD_TEXT.format(bad=rb.bad_t, good=rb.good_t,
+                                                    advice=rb.advice)
         return n, rollbacks
 
     def _catch_up(self, k: int, runner: SceneRunner) -> Rollback | None:

@@ -13,7 +13,7 @@ import pygame
 from app.compare import labels
 from app.draw import hud
 from app.draw.layout import Pane
-from app.draw.panes import PANE_COLORS, PaneGrid, pane_lines
+from app.draw.panes import PANE_COLORS, PaneGrid, color_key_line, pane_lines
 from app.draw.text import TEXT
 from app.instruments import Instruments
 from app.runner import SceneRunner, advice
@@ -62,18 +62,18 @@ def picture_size(scene, width: int | None, clean: bool, compare: bool,
 def compare_header(scenes, t: float, status: list = (), notes: list = ()) -> list:
     """The comparison's header: the scene's title and the settings compared, the shared clock,
     then `status` (pause, slow motion, ...) and `notes` (messages)."""
-    compared = sorted({part.split("=")[0] for lab in labels(scenes) for part in lab.split(",")})
+    compared = sorted({part.split("=")[0] for lab in labels(scenes) for part in lab.split(", ")})
     title = scenes[0].title or scenes[0].name
     dts = {s.dt for s in scenes}
     clock = f"t = {t:.2f} s" + (f" | {hud.dt_text(scenes[0])}" if len(dts) == 1 else
                                 " | each pane at its own dt, stepped to the same time")
     return [hud.Line(f"{title}: {len(scenes)} panes compare {', '.join(compared)}",
-                     hud.ACCENT_COLOR), clock, *status, *notes]
+                     hud.ACCENT_COLOR), clock, *color_key_line(scenes[0]), *status, *notes]
 
 
 def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = None,
                        details: bool = False, more: list = (), held: dict | None = None,
-                       extra: list = ()) -> list[list]:
+                       extra: list = (), brief: bool = False) -> list[list]:
     """Every pane's HUD lines: its tag, what differs, its cost and error, the scene's lines,
     its own notes (`notes[k]`; a held pane's reason from `held`)."""
     scenes = [r.scene for r in runners]
@@ -94,7 +94,7 @@ def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = No
         clock = "" if same_dt and not (held and k in held) else \
             f"t = {s.time:.2f} s | {hud.dt_text(s)}"
         out.append(pane_lines(s, "ABCD"[k], label, PANE_COLORS[k], runner.step_ms,
-                              own + list(extra), details, more, clock))
+                              own + list(extra), details, more, clock, brief))
     return out
 
 
@@ -125,8 +125,9 @@ def picture(runners: list[SceneRunner], inst: Instruments | None = None,
             header = None if clean else compare_header([r.scene for r in runners], t, (),
                                                        legend)
             lines = [None] * len(runners) if clean else compare_pane_lines(runners)
+            brief = None if clean else compare_pane_lines(runners, brief=True)
             PaneGrid([r.scene for r in runners]).draw(surface, area, header, lines,
-                                                      overlay=overlay)
+                                                      overlay=overlay, brief=brief)
         else:
             lines = None if clean else hud.scene_lines(
                 scene, [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"], legend)

@@ -20,7 +20,8 @@ from typing import Callable
 import numpy as np
 
 from app.draw import live_plot
-from app.draw.arrows import ArrowScale, draw_arrows, legend_lines
+from app.draw.arrows import (ACCEL_FLOOR, VELOCITY_FLOOR, ArrowScale, draw_arrows,
+                             legend_lines)
 from app.draw.panes import PANE_COLORS
 from app.runner import SceneRunner
 from app.series import CsvLog, History, plottable
@@ -178,19 +179,22 @@ class Instruments:
         """One scale for every pane, from what they show now (call once before drawing)."""
         if not self.arrows:
             return
-        vel, force = [], []
+        vel, force, mass = [], [], []
         for g in self.gauges:
             if g.runner.stopped:        # a wreck's speeds would dwarf every other pane's arrows
                 continue
             arrows, f = g.probe.current(g.runner.scene)
             if arrows is not None:
                 vel.append(arrows.vel)
+                if arrows.mass is not None and len(arrows.mass):
+                    mass.append(float(np.median(arrows.mass)))
                 if f is not None:
                     force.append(f)
         if vel:
-            self.scale.update("velocity", np.concatenate(vel))
+            self.scale.update("velocity", np.concatenate(vel), VELOCITY_FLOOR)
         if force:
-            self.scale.update("force", np.concatenate(force))
+            self.scale.update("force", np.concatenate(force),
+                              ACCEL_FLOOR * (max(mass) if mass else 1.0))
 
     def overlay(self, surface, k: int, layout) -> None:
         """Pane k's arrows over its scene (nothing while the arrows are off)."""

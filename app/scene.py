@@ -147,6 +147,8 @@ class Scene:
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
     tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
+    comparisons: tuple[Try, ...] = ()   # cards that are comparisons (Try.compare): the panel's
+                                        # "Compare side by side"; --try finds them too
     color_key: tuple[tuple[tuple[int, int, int], str], ...] = ()   # (colour, what it means): the
                                                                    # HUD shows it as a key
     color_key_details: bool = False   # True: the key is long (a line per species): it goes on
@@ -251,7 +253,8 @@ class Scene:
     def find_card(cls, label: str) -> Try | None:
         """The "try this" card called `label` (case and surrounding spaces do not matter)."""
         want = " ".join(label.split()).casefold()
-        return next((c for c in cls.tries if " ".join(c.label.split()).casefold() == want), None)
+        return next((c for c in cls.tries + cls.comparisons
+                     if " ".join(c.label.split()).casefold() == want), None)
 
     def apply_card(self, card: Try) -> None:
         """A "try this" card: the scene's defaults plus the card's settings, whatever was set or

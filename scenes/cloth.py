@@ -134,6 +134,8 @@ class ClothScene(Scene):
         Try("Wind and tearing", {"wind": True, "tearing": True},
             "the gusts billow the cloth; yank it with the mouse and rods stretched past "
             "tear_ratio break (torn in the HUD)"),
+    )
+    comparisons = (     # "try this" cards that run variants side by side (--compare)
         Try("2 vs 20 iterations", {},
             "side by side from the same start: ten times the sweeps buy about ten times less "
             "stretch (pane B's colours stay cool) for several times the ms per step",

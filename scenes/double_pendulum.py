@@ -161,12 +161,14 @@ class DoublePendulumScene(PymunkScene):
             "marks where they parted"),
         Try("pymunk's error_bias", {"error_bias": 0.0018},
             "the pins let the rods stretch a little, so energy drift grows (HUD)"),
+        Try("One substep", {"substeps": 1},
+            "bigger steps for pymunk: the energy drift in the HUD grows"),
+    )
+    comparisons = (     # "try this" cards that run variants side by side (--compare)
         Try("1 vs 10 substeps", {},
             "pymunk at 1 substep (A) and 10 (B), each beside the RK4 reference: B stays with its "
             "ghost longer and drifts less in energy, for more ms per step; chaos parts both in "
             "the end", compare=({"substeps": 1}, {"substeps": 10})),
-        Try("One substep", {"substeps": 1},
-            "bigger steps for pymunk: the energy drift in the HUD grows"),
     )
 
     def content_bounds(self) -> tuple[float, float, float, float]:

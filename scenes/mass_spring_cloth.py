@@ -186,6 +186,8 @@ class MassSpringClothScene(Scene):
         Try("Silk in the wind", {"material": "silk", "wind": True},
             "the wind pushes on area, not mass: light silk flows; switch to denim or rubber "
             "(7x and 20x heavier) and it hardly moves"),
+    )
+    comparisons = (     # "try this" cards that run variants side by side (--compare)
         Try("Explicit vs implicit at 60 Hz", {"hertz": 60},
             "h = 16.7 ms is 27x symplectic Euler's limit for cotton at rest: pane A blows up "
             "within a few steps and its pane says why, while pane B's implicit Euler hangs on, "

@@ -100,15 +100,17 @@ class ParticleDanceScene(Scene):
             "the same forces from about 1/50 of the pair tests: compare the ms per step"),
         Try("Like your own kind", {"rules": "like_own", "species": 4},
             "each colour gathers into its own clusters; the RMB breaks them up, they re-form"),
+        Try("No drag", {"drag_coef": 0.0},
+            "nothing takes energy out: the dance never settles (and the step's energy error "
+            "at the rule's kinks slowly heats it)"),
+    )
+    comparisons = (     # "try this" cards that run variants side by side (--compare)
         Try("All pairs vs grid", {"particles": 2000},
             "the same pairs and the same forces, found by testing all pairs (A) or a cell grid "
             "(B): B tests a fraction of the pairs, in a fraction of A's ms per step; the dances "
             "agree to a millionth of a pixel at first, then part within seconds: round-off "
             "from another order of summing, grown by the chaos of thousands of particles",
             compare=({"neighbour_method": "all_pairs"}, {"neighbour_method": "grid"})),
-        Try("No drag", {"drag_coef": 0.0},
-            "nothing takes energy out: the dance never settles (and the step's energy error "
-            "at the rule's kinks slowly heats it)"),
     )
 
     # ----- settings ---------------------------------------------------------------------------

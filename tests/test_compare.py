@@ -98,7 +98,7 @@ def test_labels_say_what_differs_and_variants_keep_their_text():
     v = [parse_variant("substeps=1,iterations=10"), parse_variant("substeps=10, iterations=1")]
     overrides = resolve_variants(ClothScene, {"rows": 8}, v)
     scenes = [ClothScene(o) for o in overrides]
-    assert labels(scenes) == ["iterations=10,substeps=1", "iterations=1,substeps=10"]
+    assert labels(scenes) == ["iterations=10, substeps=1", "iterations=1, substeps=10"]
     assert v[1].text == "substeps=10, iterations=1" and v[1].settings["iterations"] == "1"
     with pytest.raises(ParamError, match="same settings"):   # 'on' and 'true' are one value
         resolve_variants(ClothScene, {}, [parse_variant("shear=on"), parse_variant("shear=true")])
@@ -163,7 +163,7 @@ def test_a_blow_up_is_rolled_back_and_held_in_its_pane_while_the_others_go_on():
     runner = CompareRunner([Dot(), Dot({"blowup_at": 50})], rollback=True)
     ran, rollbacks = runner.run(80)
     assert ran == 80 and list(rollbacks) == [1] and list(runner.held) == [1]
-    assert "rolled back" in runner.held[1]
+    assert "rolled back" in runner.held[1] and "held here" in runner.held[1]
     a, b = (r.scene for r in runner.runners)
     assert a.steps == 80 and b.is_finite() and b.steps < 50
     runner.run(10)
@@ -219,11 +219,12 @@ def test_comparison_cards_run_headless_and_are_in_the_catalogue(capsys):
     assert [o["variant"] for o in out] == ["iterations=2", "iterations=20"]
     assert out[0]["try"]["compare"] == [{"iterations": 2}, {"iterations": 20}]
     assert main(["--list", "--json"]) == 0
-    cards = {c["label"]: c for s in json.loads(capsys.readouterr().out) for c in s["tries"]}
+    cards = {c["label"]: c for s in json.loads(capsys.readouterr().out)
+             for c in s["tries"] + s["comparisons"]}
     assert cards["1x10 vs 10x1"]["compare"] == ["substeps=1,iterations=10",
                                                "substeps=10,iterations=1"]
     compare_cards = [label for label, c in cards.items() if "compare" in c]
-    assert len(compare_cards) >= 5
+    assert len(compare_cards) >= 5 and all(c.compare for s in SCENES for c in s.comparisons)
 
 
 # ----- 5. the window: panes, the same gesture in every pane, the panel ---------------------------
@@ -276,8 +277,8 @@ def test_the_panel_edits_every_pane_or_one():
     assert view.scene is b and "g" in view.panel.entries
     assert view.apply_setting("g", 500) and (a.p["g"], b.p["g"]) == (100.0, 500.0)
     assert view.apply_setting("count", 4) and (a.p["count"], b.p["count"]) == (5, 4)
-    assert a.steps == b.steps == 0 and set(labels(view.scenes)[1].split(",")) == {"count=4",
-                                                                                  "g=500"}
+    assert a.steps == b.steps == 0 and set(labels(view.scenes)[1].split(", ")) == {"count=4",
+                                                                                   "g=500"}
 
 
 def test_a_comparison_card_clicked_in_the_window_opens_its_panes():

@@ -23,6 +23,8 @@ from app.vectors import Arrows
 VELOCITY_COLOR = (90, 225, 120)
 FORCE_COLOR = (255, 140, 60)
 REFERENCE_PX = 36          # the legend's arrow, screen px at text scale 1
+VELOCITY_FLOOR = 20.0      # px/s: a reference arrow stands for at least this speed
+ACCEL_FLOOR = 50.0         # px/s^2 (times the mass): and for at least this net force
 MAX_REFERENCES = 3.0       # arrows are capped at this many reference lengths
 SHRINK = 5.0               # the scale shrinks when the typical magnitude fell this many times
 
@@ -42,15 +44,15 @@ class ArrowScale:
     def __init__(self):
         self.per: dict[str, float | None] = {"velocity": None, "force": None}
 
-    def update(self, kind: str, vectors: np.ndarray) -> None:
+    def update(self, kind: str, vectors: np.ndarray, floor: float) -> None:
+        """Follow the typical magnitude of `vectors`, never below `floor` (what a reference
+        arrow stands for at least: a cloth at rest trembles by 0.01 px/s, which must not
+        become a full arrow)."""
         mags = np.hypot(vectors[:, 0], vectors[:, 1]) if len(vectors) else np.zeros(0)
         mags = mags[np.isfinite(mags)]
         if not len(mags):
             return
-        typical = float(np.percentile(mags, 90))
-        if typical <= 1e-9:
-            return
-        target = nice_up(typical)
+        target = nice_up(max(float(np.percentile(mags, 90)), floor))
         now = self.per[kind]
         if now is None or target > now or target * SHRINK <= now:
             self.per[kind] = target

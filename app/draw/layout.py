@@ -183,14 +183,16 @@ class Pane:
 
 def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | None,
                strip: bool = False, overlay=None) -> None:
-    """Draw the scene's world (clipped to the layout's area), `overlay(surface, layout)` over it
-    (the arrows), then its HUD box and, with `strip`, its metrics strip, unless `lines` is
-    None."""
+    """Draw the scene's world (clipped to the layout's area; a scene that lays itself out in its
+    room, to that room: in a room too small for its charts it is cut, never drawn over the HUD),
+    `overlay(surface, layout)` over it (the arrows), then its HUD box and, with `strip`, its
+    metrics strip, unless `lines` is None."""
     from app.draw import hud
     area = layout.area
     surface.fill(scene.background, area)
     old_clip = surface.get_clip()
-    surface.set_clip(area.clip(old_clip))          # nothing of the world outside its rectangle
+    room = layout.free.inflate(2 * MARGIN, 2 * MARGIN).clip(area) if layout.filled else area
+    surface.set_clip(room.clip(old_clip))          # nothing of the world outside its rectangle
     try:
         scene.draw(surface, layout.view)
         if overlay is not None:

@@ -79,11 +79,12 @@ class CompareView(SceneView):
     def header_lines(self) -> list:
         return compare_header(self.scenes, self.runner.world, self.state_lines(), self.notes())
 
-    def pane_lines(self) -> list[list]:
+    def pane_lines(self, brief: bool = False) -> list[list]:
         details = self.window.hud_details
         more = [f"{self.fps:.0f} frames per second (drawing "
                 f"{1000 * self.window.last_draw_seconds:.1f} ms a frame)"] if details else []
-        return compare_pane_lines(self.runner.runners, None, details, more, self.runner.held)
+        return compare_pane_lines(self.runner.runners, None, details, more, self.runner.held,
+                                  brief=brief)
 
     def fit(self, lines: list | None = None):
         if not self.overlays:
@@ -94,7 +95,7 @@ class CompareView(SceneView):
             self._notes_shown = notes
             self.grid.forget()
         return self.grid.fit(self.scene_area(), header, lines or self.pane_lines(),
-                             self.window.hud_details)
+                             self.window.hud_details, self.pane_lines(brief=True))
 
     def draw(self, screen: pygame.Surface) -> None:
         try:
@@ -108,7 +109,8 @@ class CompareView(SceneView):
         self.inst.update_scale()
         try:
             self.grid.draw(screen, self.scene_area(), header, lines, self.window.hud_details,
-                           self.inst.overlay if self.inst.arrows else None)
+                           self.inst.overlay if self.inst.arrows else None,
+                           self.pane_lines(brief=True) if self.overlays else None, self.target)
         except SceneError as e:
             self._fail_all(e)
         self.draw_plot(screen)

@@ -150,11 +150,11 @@ class ParamPanel:
             for x, w, text in zip(xs, widths, ("Pause", "Reset", "Help")))
         y += row + gap
         # the instruments: the plot's list (P) and the arrows (V), in every scene
-        half = (inner_w - gap) // 2
-        self.plot_button = UIButton(pygame.Rect(pad, y, half, row), "Plot... (P)", manager,
-                                    container=self.container)
-        self.arrows_button = UIButton(pygame.Rect(pad + half + gap, y, inner_w - half - gap, row),
-                                      "", manager, container=self.container)
+        self.plot_button = UIButton(pygame.Rect(pad, y, inner_w, row), "Plot over time (P)",
+                                    manager, container=self.container)
+        y += row + gap
+        self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
+                                      container=self.container)
         y += row + 2 * gap
         # a comparison: whose settings the panel shows and edits (every pane, or one)
         self.target_menu = None
@@ -170,21 +170,26 @@ class ParamPanel:
             y += row + 2 * gap
         self.cards: dict[Any, Try] = {}
         self.watch_box = None
-        if scene.tries:
-            label("Try this", obj="#section")
-            y += row
-            for card in scene.tries:
-                # no tooltip: it covered the cards below; pointing at a card shows what it does
-                # in the box under the cards instead
-                b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
-                             container=self.container, object_id="#card")
-                self.cards[b] = card
-                y += row + gap
+        every_card = scene.tries + scene.comparisons
+        if every_card:
+            for section, cards in (("Try this", scene.tries),
+                                   ("Compare side by side", scene.comparisons)):
+                if not cards:
+                    continue
+                label(section, obj="#section", short=section.split()[0])
+                y += row
+                for card in cards:
+                    # no tooltip: it covered the cards below; pointing at a card shows what it
+                    # does in the box under the cards instead
+                    b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
+                                 container=self.container, object_id="#card")
+                    self.cards[b] = card
+                    y += row + gap
             self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, row),
                                        manager, container=self.container, object_id="#watch")
             # as tall as the longest card's text wrapped (a box that scrolls hides the end)
             watch_font = manager.get_theme().get_font(self.watch_box.combined_element_ids)
-            texts = [WATCH_HINT] + [_watch_text(c) for c in scene.tries]
+            texts = [WATCH_HINT] + [_watch_text(c) for c in every_card]
             lines = max(len(hud.wrap(t, watch_font, inner_w - 16)) for t in texts)
             height = int(lines * watch_font.size("Ay")[1] * 1.25) + 12
             self.watch_box.set_dimensions((inner_w, height))
@@ -294,6 +299,7 @@ class ParamPanel:
         want = f"Arrows (V): {'ON' if arrows else 'OFF'}"
         if self.arrows_button.text != want:
             self.arrows_button.set_text(want)
+            self.arrows_button.change_object_id("#toggle_on" if arrows else "#toggle_off")
 
     def is_typing(self) -> bool:
         """True while a text box of the panel has the keyboard."""
@@ -395,6 +401,9 @@ def _select(dropdown, text: str) -> None:
 
 def _watch_text(card: Try) -> str:
     """The watch box's text for a card: what it sets, then what to watch for."""
+    if card.compare:
+        return (f"{card.label}: side by side, {card.changes()}, the rest at the defaults. "
+                f"Watch: {card.watch}")
     return f"{card.label}: sets {card.changes()}, the rest at the defaults. Watch: {card.watch}"
 
 

@@ -128,6 +128,7 @@ class PlotPicker(ShellView):
         return f"[{'x' if on else ' '}] {item}   {value}", ROW_ON if on else hud.TEXT_COLOR
 
     def draw(self, screen: pygame.Surface) -> None:
+        """The list over the world area's top right, in as many columns as its height needs."""
         self.under.draw(screen)
         f = font(PICKER_SIZE)
         lh = f.get_linesize()
@@ -135,30 +136,35 @@ class PlotPicker(ShellView):
         items = self.items()
         texts = [self.row_text(item, metrics) for item in items]
         area = self.under.world_area()
+        pad = int(12 * TEXT.scale)
         title = "Plot over time: pick what to plot"
         hint = hud.wrap(HINT, f, max(area.width // 2, 200))
-        width = max([f.size(t)[0] for t, _ in texts] + [f.size(title)[0]] +
-                    [f.size(h)[0] for h in hint]) + int(24 * TEXT.scale)
+        room = area.height - 16 - 2 * pad - int(lh * 1.5) - (len(hint) + 1) * lh
+        per_col = max(1, room // lh)
+        cols = -(-len(texts) // per_col)
+        per_col = -(-len(texts) // cols)
+        col_w = max(f.size(t)[0] for t, _ in texts) + pad
+        width = max(cols * col_w, f.size(title)[0], max(f.size(h)[0] for h in hint)) + 2 * pad
         width = min(width, area.width - 16)
-        height = (len(texts) + 2 + len(hint)) * lh + int(16 * TEXT.scale)
-        box = pygame.Rect(area.right - width - 8, area.top + 8, width, min(height,
-                                                                         area.height - 16))
+        height = 2 * pad + int(lh * 1.5) + (per_col + 1 + len(hint)) * lh
+        box = pygame.Rect(area.right - width - 8, area.top + 8, width,
+                          min(height, area.height - 16))
         screen.fill(BOX, box)
         pygame.draw.rect(screen, hud.ACCENT_COLOR, box, 2)
-        pad = int(12 * TEXT.scale)
-        y = box.top + pad // 2
-        screen.blit(f.render(title, True, hud.ACCENT_COLOR), (box.left + pad, y))
-        y += int(lh * 1.5)
+        top = box.top + pad // 2
+        screen.blit(f.render(title, True, hud.ACCENT_COLOR), (box.left + pad, top))
+        top += int(lh * 1.5)
         self.rows = []
         self.selected = min(self.selected, len(items) - 1)
         for k, (item, (text, color)) in enumerate(zip(items, texts)):
-            rect = pygame.Rect(box.left + 4, y, box.width - 8, lh)
+            x = box.left + pad + (k // per_col) * col_w
+            y = top + (k % per_col) * lh
+            rect = pygame.Rect(x - 4, y, col_w, lh)
             if k == self.selected:
                 screen.fill(SELECTED, rect)
-            screen.blit(f.render(text, True, color), (box.left + pad, y))
+            screen.blit(f.render(text, True, color), (x, y))
             self.rows.append((rect, item))
-            y += lh
-        y += lh // 2
+        y = top + (per_col + 0.5) * lh
         for h in hint:
             screen.blit(f.render(h, True, hud.DIM_COLOR), (box.left + pad, y))
             y += lh
