@@ -1,7 +1,8 @@
 """Compare mode: one scene run side by side at two to four settings, in lockstep.
 
     python -m app --scene cloth --compare iterations=2 iterations=20
-    python -m app --headless --scene cloth --compare substeps=1,iterations=10 substeps=10,iterations=1 --json
+    python -m app --headless --scene cloth --json \
+        --compare substeps=1,iterations=10 substeps=10,iterations=1
 
 Each VARIANT is one or more KEY=VALUE joined by commas; the `--set` values are shared by every
 pane, each variant's own go on top (a key may not be in both). The variants are checked as `--set`
@@ -106,6 +107,11 @@ def labels(scenes: Sequence[Scene]) -> list[str]:
     names = differing(scenes)
     return [", ".join(f"{n}={_short(s.settings()[n])}" for n in names) or "(same settings)"
             for s in scenes]
+
+
+def as_variant(settings: Mapping[str, Any]) -> str:
+    """Settings as --compare takes them, numbers short: 'g=500,shear=on'."""
+    return ",".join(f"{k}={_short(v)}" for k, v in settings.items())
 
 
 def _short(value: Any) -> str:
@@ -245,5 +251,5 @@ class CompareRunner:
         return self.runners[k].step_ms
 
 
-__all__ = ["Variant", "parse_variant", "resolve_variants", "differing", "labels",
+__all__ = ["Variant", "parse_variant", "as_variant", "resolve_variants", "differing", "labels",
            "shared_and_own", "CompareRunner", "TAGS", "MIN_VARIANTS", "MAX_VARIANTS"]

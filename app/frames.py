@@ -140,4 +140,5 @@ def picture(runners: list[SceneRunner], inst: Instruments | None = None,
     return surface
 
 
-__all__ = ["picture", "picture_size", "base_size", "compare_header", "compare_pane_lines", "plot_height"]
+__all__ = ["picture", "picture_size", "base_size", "compare_header", "compare_pane_lines",
+           "plot_height"]

@@ -430,7 +430,8 @@ def docstring_help(scene_cls: type[Scene]) -> str:
     return inspect.cleandoc(scene_cls.__doc__ or scene_cls.title)
 
 
-__all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "Arrows", "setting_text", "variant_text", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
+__all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "Arrows", "setting_text",
+           "variant_text", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
            "Unit",
            "COMMON_PARAMS",
            "common",

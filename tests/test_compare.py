@@ -81,7 +81,8 @@ def small_cloth(**kw):
     (["--set", "iterations=3", "--compare", "iterations=2", "iterations=4"], "give it once"),
     (["--compare", "iterations=2,iterations=3", "iterations=4"], "given twice"),
     (["--compare", "shear=maybe", "shear=on"], "on or off"),
-    (["--try", "2 vs 20 iterations", "--compare", "iterations=2", "iterations=4"], "drop --compare"),
+    (["--try", "2 vs 20 iterations", "--compare", "iterations=2", "iterations=4"],
+     "drop --compare"),
 ])
 def test_bad_variants_are_one_line_and_exit_2(args, says, capsys):
     assert main(["--headless", "--scene", "cloth", *args]) == 2
@@ -261,7 +262,9 @@ def test_a_drag_on_one_pane_reaches_every_pane_in_world_coordinates():
     a, b = view.scenes
     assert a.seen[-1][1:] == b.seen[-1][1:] == ("mouse_down", pytest.approx(target, abs=1.0))
     assert np.allclose(a.x[0], b.x[0])
-    assert w.recorded[-1]["type"] == "mouse_down"
+    assert w.recorded[-1]["type"] == "mouse_down"       # --record: replayed with the variants
+    assert w.recorder.session.command("demo.json").startswith(
+        "python -m app --headless --scene dot --compare g=100 g=300 --input demo.json")
 
 
 def test_the_panel_edits_every_pane_or_one():
@@ -337,3 +340,21 @@ def test_double_pendulum_substeps_card_b_stays_with_its_ghost_longer():
     assert a["divergence_time"] is not None
     assert b["divergence_time"] is None or b["divergence_time"] > a["divergence_time"]
     assert b["energy_drift_max"] < a["energy_drift_max"]
+
+
+def test_the_readmes_compare_commands_run_as_written(tmp_path, capsys, monkeypatch):
+    """The commands of the README's 'Compare mode' section run: window ones headless for two
+    steps with a screenshot (same scene, variants, instruments), headless ones as written."""
+    import shlex
+    from pathlib import Path
+    text = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    block = text.split("## Compare mode, live plots, arrows", 1)[1].split("\n## ", 1)[0]
+    commands = [shlex.split(line.strip())[3:] for line in block.splitlines()
+                if line.strip().startswith("python -m app")]
+    assert len(commands) == 4
+    monkeypatch.chdir(tmp_path)
+    for args in commands:
+        if "--headless" not in args:
+            args = args + ["--headless", "--steps", "2", "--screenshot", "shot.png"]
+        assert main(args) == 0, (args, capsys.readouterr().err)
+    assert (tmp_path / "cloth.csv").read_text().startswith("variant,step,t,")

@@ -21,11 +21,11 @@ from typing import Any
 
 import pygame
 
-from app.compare import CompareRunner, Variant, differing, labels, shared_and_own
+from app.compare import CompareRunner, Variant, as_variant, differing, labels, shared_and_own
 from app.draw import hud
 from app.draw.panes import PaneGrid
 from app.frames import compare_header, compare_pane_lines
-from app.scene import InputEvent, ParamError, Scene, SceneError, Try, variant_text
+from app.scene import InputEvent, ParamError, Scene, SceneError, Try
 from app.window.scene_view import PANEL_BACKGROUND, STEP_BUDGET_SECONDS, SceneView
 
 EVERY_PANE = "every pane"
@@ -56,7 +56,7 @@ class CompareView(SceneView):
 
     def start_recording(self) -> None:
         shared, own = shared_and_own(self.scenes)
-        self.window.recorder.start(self.scene.name, shared, [variant_text(o) for o in own])
+        self.window.recorder.start(self.scene.name, shared, [as_variant(o) for o in own])
 
     # --- the panel's target --------------------------------------------------------------------
     def targets(self) -> list[str]:
@@ -276,7 +276,7 @@ class CompareView(SceneView):
                               hud.ERROR_COLOR, topic="card")
             return False
         return self.window.open_compare(type(self.scene), dict(card.settings),
-                                        [Variant(variant_text(o), o) for o in own], card)
+                                        [Variant(as_variant(o), o) for o in own], card)
 
 
 __all__ = ["CompareView", "EVERY_PANE"]

@@ -130,27 +130,35 @@ class PlotPicker(ShellView):
     def draw(self, screen: pygame.Surface) -> None:
         """The list over the world area's top right, in as many columns as its height needs."""
         self.under.draw(screen)
-        f = font(PICKER_SIZE)
-        lh = f.get_linesize()
         metrics = self.scene.metrics()
         items = self.items()
         texts = [self.row_text(item, metrics) for item in items]
         area = self.under.world_area()
         pad = int(12 * TEXT.scale)
         title = "Plot over time: pick what to plot"
-        hint = hud.wrap(HINT, f, max(area.width // 2, 200))
-        room = area.height - 16 - 2 * pad - int(lh * 1.5) - (len(hint) + 1) * lh
-        per_col = max(1, room // lh)
-        cols = -(-len(texts) // per_col)
-        per_col = -(-len(texts) // cols)
-        col_w = max(f.size(t)[0] for t, _ in texts) + pad
-        width = max(cols * col_w, f.size(title)[0], max(f.size(h)[0] for h in hint)) + 2 * pad
+        size = PICKER_SIZE          # large text in a small window: the list gives back some
+        while True:                 # of its growth (never below the normal size)
+            f = font(size)
+            lh = f.get_linesize()
+            hint = hud.wrap(HINT, f, max(area.width // 2, 200))
+            room = area.height - 16 - 2 * pad - int(lh * 1.5) - (len(hint) + 1) * lh
+            per_col = max(1, room // lh)
+            cols = -(-len(texts) // per_col)
+            per_col = -(-len(texts) // cols)
+            col_w = max(f.size(t)[0] for t, _ in texts) + pad
+            width = max(cols * col_w, f.size(title)[0], max(f.size(h)[0] for h in hint)) + \
+                2 * pad
+            if width <= area.width - 16 or size * TEXT.scale <= PICKER_SIZE * 0.75:
+                break
+            size = max(size * 0.9, PICKER_SIZE * 0.75 / TEXT.scale)
         width = min(width, area.width - 16)
         height = 2 * pad + int(lh * 1.5) + (per_col + 1 + len(hint)) * lh
         box = pygame.Rect(area.right - width - 8, area.top + 8, width,
                           min(height, area.height - 16))
         screen.fill(BOX, box)
         pygame.draw.rect(screen, hud.ACCENT_COLOR, box, 2)
+        old_clip = screen.get_clip()
+        screen.set_clip(box.clip(old_clip))
         top = box.top + pad // 2
         screen.blit(f.render(title, True, hud.ACCENT_COLOR), (box.left + pad, top))
         top += int(lh * 1.5)
@@ -168,6 +176,7 @@ class PlotPicker(ShellView):
         for h in hint:
             screen.blit(f.render(h, True, hud.DIM_COLOR), (box.left + pad, y))
             y += lh
+        screen.set_clip(old_clip)
 
 
 __all__ = ["PlotPicker"]
