@@ -24,6 +24,7 @@ that aborts pymunk closes it. `python -m app exercise check` first is the safe o
 
 from __future__ import annotations
 
+import io
 import os
 import sys
 import time
@@ -38,6 +39,7 @@ from app.draw.hud import Line, text_box
 from app.draw.view import View
 from app.exercises import get_exercise, scene_class
 from app.exercises.base import BadAnswer
+from app.exercises.child import refuse_borrowed
 from app.exercises.grade import CHECK_TIMEOUT, import_probe
 from app.exercises.loading import cap_text, lab_frame, load_module, shown, starter_path, \
     student_traceback, their_frames
@@ -59,28 +61,36 @@ STUDENT_ERRORS = (Exception, SystemExit)
 @contextmanager
 def to_stderr() -> Iterator[None]:
     """While the student's code runs: print() and file descriptor 1 both go to stderr (stdout
-    carries --json), and come back after."""
+    carries --json), input() and file descriptor 0 read an empty file (a read would otherwise
+    wait for the terminal, freezing the window), and all come back after."""
     for stream in (sys.stdout, sys.__stdout__):
         try:
             stream.flush()
         except (AttributeError, OSError, ValueError):
             pass
+    saved: dict[int, int] = {}
     try:
-        saved = os.dup(1)
+        saved[1] = os.dup(1)
         os.dup2(2, 1)
-    except OSError:                     # no fd 1 or 2 (a daemon): the Python level only
-        saved = None
+        null = os.open(os.devnull, os.O_RDONLY)
+        saved[0] = os.dup(0)
+        os.dup2(null, 0)
+        os.close(null)
+    except OSError:                     # no fd 0, 1 or 2 (a daemon): what could be done
+        pass
+    stdin, sys.stdin = sys.stdin, io.StringIO()
     try:
         with redirect_stdout(sys.stderr):
             yield
     finally:
-        if saved is not None:
-            try:
-                sys.stderr.flush()
-            except (OSError, ValueError):
-                pass
-            os.dup2(saved, 1)
-            os.close(saved)
+        sys.stdin = stdin
+        try:
+            sys.stderr.flush()
+        except (OSError, ValueError):
+            pass
+        for fd, copy in saved.items():
+            os.dup2(copy, fd)
+            os.close(copy)
 
 
 class StudentCode:
@@ -124,6 +134,8 @@ class StudentCode:
                 if missing:
                     raise BadAnswer(f"{self.student_path} defines no function "
                                     f"{', '.join(missing)}")
+                if self.student is None:
+                    refuse_borrowed(self.impl, self.student_path)
                 self.reference = get_exercise(self.exercise).reference()
                 super().build()
         except STUDENT_ERRORS as e:     # any failure of the student's code
