@@ -8,6 +8,8 @@
                   [--input EVENTS.json] [--screenshot OUT.png] [--json]
                   [--video OUT.gif|OUT.mp4 [--fps N]] [--width PX] [--clean]
     python -m app --headless --scene all   every scene in turn
+    python -m app [--headless] --scene NAME --compare A B [C [D]]   variants side by side
+    python -m app [--headless] ... [--csv FILE] [--plot M1,M2] [--arrows]   the instruments
     python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|all] [--json] [--out DIR] [--quick]
     python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
 
@@ -24,15 +26,12 @@ from typing import NoReturn
 
 from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, MAX_FPS, MAX_WIDTH, MIN_WIDTH, check_video,
                        frame_count)
-from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, InputFileError,
-                          check_output_path, load_events, run_headless, screenshot_path,
-                          steps_for)
+from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras,
+                          InputFileError, check_output_path, load_events, run_headless,
+                          screenshot_path, steps_for)
+from app.cli_checks import UsageError, check_plot, compare_variants, instrument_problem
 from app.scene import plain_number, shown_text
 
-
-
-class UsageError(Exception):
-    """Bad usage: the message is the one line printed on stderr."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -136,6 +135,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--record", metavar="FILE", help="window: save your mouse and key events "
                    "in the --input format")
     p.add_argument("--large-text", action="store_true", help="window: start with large text")
+    p.add_argument("--compare", nargs="+", metavar="KEY=VALUE[,KEY=VALUE]", help="run 2 to 4 "
+                   "variants of the scene side by side in lockstep (--set values are shared)")
+    p.add_argument("--csv", metavar="FILE", help="write every metric over time: a row per step "
+                   "(headless) or per frame (window), with a header")
+    p.add_argument("--plot", metavar="METRIC[,METRIC]", help="plot these metrics over time "
+                   "(window: at start, P picks others; headless: in --screenshot)")
+    p.add_argument("--arrows", action="store_true", help="velocity and force arrows (window: "
+                   "at start, V toggles; headless: in --screenshot)")
     return p
 
 
@@ -215,6 +222,9 @@ def app_main(argv: list[str]) -> int:
     if overrides and not classes:
         raise UsageError("--set needs --scene NAME (parameters belong to a scene)")
     card = find_card(args.card, classes, overrides) if args.card is not None else None
+    shared, variants = overrides, None
+    if args.compare is not None or (card is not None and card.compare):
+        shared, variants = compare_variants(args, classes, overrides, card)
     unknown = [k for k in overrides if not any(k in c.setting_names() for c in classes)]
     if unknown:
         names = sorted({n for c in classes for n in c.setting_names()})
@@ -228,10 +238,12 @@ def app_main(argv: list[str]) -> int:
             values, _ = cls.resolve(cls.own_settings(overrides))   # what the run will build
         except ParamError as e:
             raise UsageError(f"--set: {cls.name} {e}") from None
-        if args.headless and args.seconds is not None and args.seconds * values["hertz"] > MAX_STEPS:
-            raise UsageError(f"--seconds {args.seconds:g} at {values['hertz']} Hz is more than "
+        hertz = max([values["hertz"]] + [cls.resolve({**shared, **v.settings})[0]["hertz"]
+                                         for v in variants or ()])
+        if args.headless and args.seconds is not None and args.seconds * hertz > MAX_STEPS:
+            raise UsageError(f"--seconds {args.seconds:g} at {hertz} Hz is more than "
                              f"{MAX_STEPS:,} steps; accepted: at most "
-                             f"{MAX_STEPS // values['hertz']:,} seconds for {cls.name}")
+                             f"{MAX_STEPS // hertz:,} seconds for {cls.name}")
     if args.headless and args.record:
         raise UsageError("--record records what you do in the window; it needs no --headless")
     clip_problem(args, classes)
@@ -245,7 +257,11 @@ def app_main(argv: list[str]) -> int:
 
     shots = [screenshot_path(args.screenshot, c.name, len(classes) > 1) for c in classes
              if args.headless and args.screenshot]     # the names the run will write
+    tables = [screenshot_path(args.csv, c.name, len(classes) > 1) for c in classes
+              if args.csv and len(classes) > 1]
+    instrument_problem(args, classes)
     for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record"),
+                       (args.csv, "--csv"), *((t, "--csv") for t in tables),
                        *((shot, "--screenshot") for shot in shots if shot != args.screenshot),
                        *((clip, "--video") for clip in clip_paths(args, classes))):
         if path is not None:
@@ -259,20 +275,28 @@ def app_main(argv: list[str]) -> int:
             print(problem, file=sys.stderr)
             return EXIT_NONFINITE      # like their code raising: exit 1 (README)
 
+    plot = check_plot(args.plot, classes, shared)
+    extras = Extras(args.csv, args.arrows, tuple(plot))
     if args.headless:
         if not classes:
             raise UsageError(f"--headless needs --scene NAME or --scene all; accepted: {accepted}")
         use_dummy_video()
+        if variants is not None:
+            from app.headless_compare import run_compare
+            return run_compare(classes[0], shared, variants, args.steps, args.seconds, events,
+                               args.screenshot, args.json, card, extras, video=args.video,
+                               fps=args.fps, width=args.width, clean=args.clean)
         return run_headless(classes, overrides, args.steps, args.seconds, events,
-                            args.screenshot, args.json, card, video=args.video, fps=args.fps,
-                            width=args.width, clean=args.clean)
+                            args.screenshot, args.json, card, extras, video=args.video,
+                            fps=args.fps, width=args.width, clean=args.clean)
 
     if args.steps is not None or args.json:
         raise UsageError("--steps and --json are for --headless runs")
     from app.window import run_window
-    return run_window(classes[0].name if classes else None, overrides, record=args.record,
+    return run_window(classes[0].name if classes else None, shared, record=args.record,
                       screenshot=args.screenshot, seconds=args.seconds,
                       large_text=args.large_text, events=events, card=card,
+                      compare=variants, extras=extras,
                       clips=dict(path=args.video, fps=args.fps, width=args.width))
 
 
@@ -287,7 +311,8 @@ def find_card(label: str, classes: list, overrides: dict):
                          "a click does); drop --set, or give the values as --set without --try")
     card = cls.find_card(label)
     if card is None:
-        labels = ", ".join(repr(c.label) for c in cls.tries) or "none (this scene has no cards)"
+        labels = ", ".join(repr(c.label) for c in cls.tries + cls.comparisons) or \
+            "none (this scene has no cards)"
         raise UsageError(f"--try {shown_text(label)}: scene '{cls.name}' has no such card; "
                          f"accepted: {labels}")
     return card
@@ -420,13 +445,16 @@ def exercise_main(argv: list[str]) -> int:
 
 
 def leave(code: int) -> NoReturn:
-    """Exit with `code`. An exercise scene runs the student's file in this process, and a thread
-    it started (even a non-daemon one, which Python waits for at exit, for ever) must not keep the
-    lab open: with such a thread alive, flush and leave at once."""
+    """Exit with `code`. An exercise scene runs the student's file in this process, and what it
+    left behind must not keep the lab open nor write after the JSON: a thread (even a non-daemon
+    one, which Python waits for at exit, for ever), an atexit handler, a __del__ that runs at
+    shutdown. Once a student's file ran here, or with such a thread alive, flush and leave at
+    once."""
     import threading
     stray = [t for t in threading.enumerate()
              if t is not threading.main_thread() and t.is_alive() and not t.daemon]
-    if not stray:
+    loading = sys.modules.get("app.exercises.loading")
+    if not stray and not getattr(loading, "LOADED", None):
         sys.exit(code)
     for stream in (sys.stdout, sys.stderr):
         try:

@@ -1,6 +1,8 @@
 """The scene catalogue behind `python -m app --list --json`: every scene with what a teacher or a
 script needs to drive it without opening the window: its parameters (name, kind, default, range
-or choices, help), its effects and its "try this" cards (label, settings, what to watch for).
+or choices, help), its effects and its "try this" cards (label, settings, what to watch for;
+`comparisons`: the cards that run variants side by side, each with `compare`, its variants as
+--compare takes them).
 
 It is read from the scene classes themselves (the registry, scenes/__init__.py), so it is never
 out of date. Plain Python: no pygame, no scene is built.
@@ -12,7 +14,7 @@ import inspect
 import shlex
 from typing import Any
 
-from app.scene import Effect, Param, Scene, Try
+from app.scene import Effect, Param, Scene, Try, variant_text
 
 
 def param_entry(prm: Param) -> dict[str, Any]:
@@ -38,20 +40,25 @@ def card_entry(card: Try) -> dict[str, Any]:
     """A try card: its settings as `--set` takes them (on/off for effects and switches)."""
     settings = {k: (("on" if v else "off") if isinstance(v, bool) else v)
                 for k, v in card.settings.items()}
-    return {"label": card.label, "settings": settings, "watch": card.watch}
+    entry = {"label": card.label, "settings": settings, "watch": card.watch}
+    if card.compare:         # a comparison: each pane's own settings, as --compare takes them
+        entry["compare"] = [variant_text(v) for v in card.compare]
+    return entry
 
 
 def scene_entry(cls: type[Scene]) -> dict[str, Any]:
     doc = inspect.cleandoc(cls.__doc__ or "")
     summary = " ".join(doc.split("\n\n")[0].split()) if doc else cls.title
-    tries = [{**card_entry(card),
-              "command": f"python -m app --scene {cls.name} --try {shlex.quote(card.label)}"}
-             for card in cls.tries]
+    def entries(cards):
+        return [{**card_entry(card),
+                 "command": f"python -m app --scene {cls.name} --try {shlex.quote(card.label)}"}
+                for card in cards]
     return {"name": cls.name, "title": cls.title, "category": cls.category,
             "summary": summary,
             "params": [param_entry(p) for p in cls.all_params()],
             "effects": [effect_entry(e) for e in cls.effects],
-            "tries": tries}
+            "tries": entries(cls.tries),
+            "comparisons": entries(cls.comparisons)}   # cards that run variants side by side
 
 
 def catalogue(scenes: list[type[Scene]]) -> list[dict[str, Any]]:

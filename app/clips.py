@@ -320,7 +320,8 @@ def record_run(runner: "SceneRunner", steps: int, fps: int,
     """Run `steps` fixed steps with `runner`, adding `capture()` (a new surface each time) to
     `writer` at each frame's step (frame_steps); stop capturing if the run stops early
     (non-finite, a SceneError). The runner runs exactly the steps it would without a clip."""
-    for at in frame_steps(steps, runner.scene.dt, fps):
+    dt = runner.tick if hasattr(runner, "tick") else runner.scene.dt   # a comparison's clock
+    for at in frame_steps(steps, dt, fps):
         runner.run(at - runner.steps)
         if runner.stopped:
             break

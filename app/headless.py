@@ -13,11 +13,16 @@ import math
 import os
 import sys
 import time
-from typing import Any
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 from app.clips import Clip
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
 from app.scene import InputEvent, Scene, SceneError, Try
+from app.series import MAX_WINDOW, clean
+
+if TYPE_CHECKING:
+    from app.instruments import Instruments
 
 EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
 DEFAULT_SECONDS = 5.0
@@ -157,57 +162,30 @@ def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
     return out
 
 
-def clean(value: Any) -> Any:
-    """Make a value JSON-safe: NumPy scalars to Python numbers, NaN and infinities to None."""
-    if isinstance(value, dict):
-        return {str(k): clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [clean(v) for v in value]
-    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 json_clean = clean    # run_headless's `clean` (a clip without HUD) hides this name there
 
 
-def frame(scene: Scene, size: tuple[int, int] | None = None, clean: bool = False):
-    """What a screenshot shows, as a pygame Surface of `size` (default: the world's size): the
-    scene's current frame, with its own drawing code and the window's HUD (less fps, which a
-    headless run has none of) laid out as the window lays them out (the HUD off the scene's
-    content); `clean` leaves HUD and metrics out. Drawn at `size` (text scaled with the width),
-    not scaled afterwards, so a large frame stays sharp. Screenshots (render) and clips
-    (record_clip) both take their pictures here: a renderer of several panes side by side
-    (--compare) replaces this one function."""
+def frame(runners: list, width: int | None = None, clean: bool = False, inst=None,
+          compare: bool = False):
+    """What a screenshot shows, as a pygame Surface: the scene's current frame (or every pane
+    of a comparison), with its own drawing code and the window's HUD (less fps, which a headless
+    run has none of) laid out as the window lays them out (the HUD off the scene's content), the
+    plot strip and the arrows if `inst` has them on; `clean` leaves HUD and metrics out. Drawn
+    `width` px wide (text scaled with it; default: the world's width), not scaled afterwards, so
+    a large frame stays sharp. Screenshots (render) and clips (record_clip) both take their
+    pictures here (app/frames.py: picture)."""
+    from app.frames import picture
+    return picture(runners, inst, compare, width, clean)
+
+
+def render(runners: list, path: str, width: int | None = None, clean: bool = False, inst=None,
+           compare: bool = False) -> None:
+    """Save frame() as a PNG. Raises OSError if it cannot."""
     import pygame
 
-    from app.draw import hud
-    from app.draw.layout import Pane
-    from app.draw.text import TEXT
-
-    surface = pygame.Surface(size or scene.world_size)
-    saved, TEXT.scale = TEXT.scale, surface.get_width() / scene.world_size[0]
-    try:
-        lines = None if clean else hud.scene_lines(
-            scene, [f"t = {scene.time:.2f} s  |  {hud.dt_text(scene)}"])
-        Pane(scene).draw(surface, surface.get_rect(), lines)
-    finally:
-        TEXT.scale = saved
-    return surface
-
-
-def render(scene: Scene, path: str, width: int | None = None, clean: bool = False) -> None:
-    """Save frame() as a PNG: the world's size, or `width` px wide (with `clean`: cropped to the
-    scene's content). Raises OSError if it cannot."""
-    import pygame
-
-    from app.clips import clip_size
     from app.draw import save_png
-    size = clip_size(scene, width or scene.world_size[0], clean) if width or clean else None
     try:
-        save_png(frame(scene, size, clean), path)
+        save_png(frame(runners, width, clean, inst, compare), path)
     except pygame.error as e:
         raise OSError(str(e)) from None
 
@@ -249,36 +227,60 @@ def screenshot_path(screenshot: str, scene_name: str, several: bool) -> str:
     return f"{root}-{scene_name}{ext}"
 
 
+@dataclass
+class Extras:
+    """The instruments asked for on the command line: --csv FILE, --arrows, --plot M1,M2."""
+    csv: str | None = None
+    arrows: bool = False
+    plot: tuple[str, ...] = ()
+
+    def instruments(self, csv_path: str | None, compare: bool,
+                    seconds: float) -> "Instruments | None":
+        """The run's instruments (None if none is asked for): the plot's window is the whole
+        run, up to its longest; the CSV is opened at `csv_path`."""
+        if not (self.csv or self.arrows or self.plot):
+            return None
+        from app.instruments import Instruments      # pygame: only when drawing is asked for
+        inst = Instruments(self.plot, window=min(max(seconds, 1e-3), MAX_WINDOW),
+                           arrows=self.arrows)
+        if csv_path:
+            inst.open_csv(csv_path, compare, warn=lambda text: print(text, file=sys.stderr))
+        return inst
+
+
 def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], steps: int | None,
                  seconds: float | None, events: list[InputEvent] | None, screenshot: str | None,
-                 as_json: bool, card: Try | None = None, video: str | None = None,
-                 fps: int | None = None, width: int | None = None, clean: bool = False) -> int:
+                 as_json: bool, card: Try | None = None, extras: Extras | None = None,
+                 video: str | None = None, fps: int | None = None, width: int | None = None,
+                 clean: bool = False) -> int:
     """Run each scene in turn; print one JSON object per scene (or a readable summary). With
-    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card). With
-    `video`, record a clip of each run (app/clips.py) at `fps`, `width` px wide."""
+    `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card); with
+    `extras` the CSV, the plot and the arrows (app/instruments.py). With `video`, record a clip
+    of each run (app/clips.py) at `fps`, `width` px wide."""
     nonfinite = unsaved = False
+    extras = extras or Extras()
+    several = len(scene_classes) > 1
     for cls in scene_classes:
         scene = cls(cls.own_settings(overrides))
         if card is not None:
             scene.apply_card(card)
         n = steps if steps is not None else steps_for(seconds, scene.dt)
+        csv_path = screenshot_path(extras.csv, scene.name, several) if extras.csv else None
+        inst = extras.instruments(csv_path, False, n * scene.dt)
         start = time.perf_counter()
+        runner = SceneRunner(scene, events, keep_all_times=True)
+        if inst is not None:
+            inst.attach([runner], per_step=True)
         if video:
-            runner, clip = record_clip(scene, n, events, screenshot_path(
-                video, scene.name, len(scene_classes) > 1), fps, width, clean)
+            clip = record_clip(scene, n, events, screenshot_path(video, scene.name, several),
+                               fps, width, clean, runner=runner, inst=inst)[1]
         else:
-            runner = run_scene(scene, n, events)
+            runner.run(n)
         result = summary(runner, time.perf_counter() - start)
         if card is not None:
-            result["try"] = {"label": card.label, "settings": json_clean(dict(card.settings)),
-                             "watch": card.watch}
+            result["try"] = card_json(card)
         if video:
-            done = isinstance(clip, Clip)
-            result.update(video=clip.path if done else None, video_frames=clip.frames if done
-                          else None, video_bytes=clip.bytes if done else None)
-            if not done:
-                print(f"python -m app: error: {scene.name}: {clip}", file=sys.stderr)
-                unsaved = True
+            unsaved = not note_clip(result, clip, scene.name) or unsaved
         late = runner.events_left
         if late:
             last = max(runner.clock - scene.dt, 0.0)   # an event is delivered before a step
@@ -286,41 +288,81 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
                   f"starts at t = {last:g} s and the first of them is due at t = {late[0].t:g} s; "
                   f"give more --steps or --seconds", file=sys.stderr)
         if screenshot:
-            path = screenshot_path(screenshot, scene.name, len(scene_classes) > 1)
-            try:
-                render(scene, path, width, clean)
-                result["screenshot"] = path
-            except OSError as e:
-                print(f"python -m app: error: {scene.name}: could not save the screenshot "
-                      f"'{path}': {e}", file=sys.stderr)
-                result["screenshot"] = None
-                unsaved = True
+            path = screenshot_path(screenshot, scene.name, several)
+            unsaved = not save_screenshot(path, scene.name, result, [runner], inst, width=width,
+                                          clean=clean) or unsaved
+        if inst is not None and inst.csv is not None:
+            result.update(csv=csv_path, csv_rows=inst.csv.rows)
+            inst.close_csv()
         if as_json:
             print(json.dumps(result, allow_nan=False), flush=True)
         else:
             print(describe(result), flush=True)
-        if runner.error is not None:       # a student's code failed: say where, go on with the
-            print(f"{scene.name}: {runner.error}\n(stopped at step {runner.steps + 1})",
-                  file=sys.stderr)         # next scene, exit 1 (like a run that went non-finite)
-            nonfinite = True
-        elif not runner.finite:
-            print(f"{scene.name}: the simulation went non-finite (NaN or inf, or past the scene's "
-                  f"blow-up bounds) at step "
-                  f"{runner.steps} (t = {runner.steps * scene.dt:.3f} s). {advice(scene)}",
-                  file=sys.stderr)
-            nonfinite = True
+        nonfinite = report_stop(runner, scene.name) or nonfinite
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
 
+def note_clip(result: dict, clip: Any, name: str) -> bool:
+    """Put the clip written (or null) in `result`; False (and a line on stderr) if it was not."""
+    done = isinstance(clip, Clip)
+    result.update(video=clip.path if done else None, video_frames=clip.frames if done
+                  else None, video_bytes=clip.bytes if done else None)
+    if not done:
+        print(f"python -m app: error: {name}: {clip}", file=sys.stderr)
+    return done
+
+
+def card_json(card: Try) -> dict[str, Any]:
+    out = {"label": card.label, "settings": json_clean(dict(card.settings)), "watch": card.watch}
+    if card.compare:
+        out["compare"] = [json_clean(dict(v)) for v in card.compare]
+    return out
+
+
+def save_screenshot(path: str, name: str, result: dict, runners: list, inst,
+                    compare: bool = False, width: int | None = None, clean: bool = False) -> bool:
+    """Render and save the screenshot; note it in `result`; False (and a line on stderr) if it
+    could not be saved."""
+    try:
+        render(runners, path, width, clean, inst, compare)
+        result["screenshot"] = path
+        return True
+    except OSError as e:
+        print(f"python -m app: error: {name}: could not save the screenshot '{path}': {e}",
+              file=sys.stderr)
+        result["screenshot"] = None
+        return False
+
+
+def report_stop(runner: SceneRunner, name: str) -> bool:
+    """Say on stderr why a run stopped early, if it did; True if it did (exit code 1)."""
+    scene = runner.scene
+    if runner.error is not None:       # a student's code failed: say where, go on with the
+        print(f"{name}: {runner.error}\n(stopped at step {runner.steps + 1})",
+              file=sys.stderr)         # next scene, exit 1 (like a run that went non-finite)
+        return True
+    if not runner.finite:
+        print(f"{name}: the simulation went non-finite (NaN or inf, or past the scene's "
+              f"blow-up bounds) at step {runner.steps} (t = {runner.steps * scene.dt:.3f} s). "
+              f"{advice(scene)}", file=sys.stderr)
+        return True
+    return False
+
+
 def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path: str,
-                fps: int | None, width: int | None, clean: bool) -> tuple[SceneRunner, Any]:
-    """Run `steps` steps of `scene` (as run_scene) while recording a clip of frame() to
-    `path`; return the runner and the Clip written, or a one-line message if it was not."""
-    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, clip_size, open_clip, record_run
+                fps: int | None, width: int | None, clean: bool, runner=None, inst=None,
+                compare: bool = False) -> tuple[Any, Any]:
+    """Run `steps` steps of `scene` (as run_scene; or of `runner`, a SceneRunner or a
+    comparison's CompareRunner) while recording a clip of frame() to `path`; return the runner
+    and the Clip written, or a one-line message if it was not."""
+    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, open_clip, record_run
+    from app.frames import picture_size
     fps = fps or DEFAULT_FPS
-    size = clip_size(scene, width or DEFAULT_WIDTH, clean)
-    runner = SceneRunner(scene, events, keep_all_times=True)
+    runner = runner or SceneRunner(scene, events, keep_all_times=True)
+    runners = runner.runners if compare else [runner]
+    plotting = inst is not None and bool(inst.plot)
+    size = picture_size(scene, width or DEFAULT_WIDTH, clean, compare, plotting)
     try:
         writer = open_clip(path, size, fps)
     except (OSError, RuntimeError) as e:
@@ -328,9 +370,11 @@ def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path:
         return runner, f"could not start the clip '{path}': {e}"
     try:
         try:
-            record_run(runner, steps, fps, lambda: frame(scene, size, clean), writer)
+            record_run(runner, steps, fps,
+                       lambda: frame(runners, size[0], clean, inst, compare), writer)
         except SceneError as e:            # a student's drawing code failed: the frames so far
-            runner.fail(e)                 # are the clip, the run stops (exit 1)
+            for r in runners:              # are the clip, the run stops (exit 1)
+                r.fail(e)
         return runner, writer.close()
     except (OSError, RuntimeError, ValueError) as e:
         writer.abandon()
@@ -349,6 +393,8 @@ def describe(summary: dict[str, Any]) -> str:
         lines.append(f"  try: {summary['try']['label']}: watch: {summary['try']['watch']}")
     if summary.get("screenshot"):
         lines.append(f"  screenshot: {summary['screenshot']}")
+    if summary.get("csv"):
+        lines.append(f"  csv: {summary['csv']} ({summary['csv_rows']} rows)")
     if summary.get("video"):
         lines.append(f"  video: {summary['video']} ({summary['video_frames']} frames, "
                      f"{summary['video_bytes'] / 1e6:.2f} MB)")

@@ -40,7 +40,8 @@ KEYS: tuple[ShellKey, ...] = (
              "slow motion x1 -> x1/2 -> x1/4 -> x1/8 (less simulated time per frame; dt never "
              "changes)"),
     ShellKey(("=", "+", "[+]"), "`=`", "faster", "back towards x1"),
-    ShellKey(("r",), "R", "reset", "reset the scene (rebuild it from its parameters)"),
+    ShellKey(("r",), "R", "reset", "reset the scene (rebuild it from its parameters; compare "
+             "mode: every pane, from the same state)"),
     ShellKey(("h", "f1"), "H or F1", "toggle_help",
              "help: the scene's description, its controls and settings"),
     ShellKey(("f2",), "F2", "toggle_large_text",
@@ -49,6 +50,10 @@ KEYS: tuple[ShellKey, ...] = (
     ShellKey(("f4",), "F4", "toggle_details",
              "HUD details: the few lines a class reads <-> every line, the costs and the metrics"),
     ShellKey(("tab",), "Tab", "toggle_panel", "hide / show the parameter panel"),
+    ShellKey(("p",), "P", "toggle_plot",
+             "live plot: a list of the scene's numbers to plot over time (in compare mode one "
+             "line per pane)"),
+    ShellKey(("v",), "V", "toggle_arrows", "velocity and force arrows on / off"),
     ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
              "--video's file; the message gives the full path)"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "

@@ -39,6 +39,7 @@ import pymunk.batch
 from app.draw.pymunk_draw import draw_pivot_joint
 from app.physics.bounds import clamp_point
 from app.scene import Effect, InputEvent, Param, Scene
+from app.vectors import Arrows, sample_every, sample_text
 
 # The fields read for the state hash and the finiteness check, all at once.
 _STATE_FIELDS = (pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
@@ -200,6 +201,30 @@ class PymunkScene(Scene):
         if self.mouse_joint is not None:
             draw_pivot_joint(surface, view, self.mouse_joint)
 
+    # ----- arrows (only while the overlay is on) ------------------------------------------------
+    arrow_name = "body"     # what the legend calls a body ("ball", "bob")
+
+    def arrows(self) -> Arrows:
+        """Every dynamic body (a sample if there are more than MAX_ARROWS): ids, positions,
+        velocities in one batch call, masses by id (read once per new body)."""
+        ids, data = self.body_rows(pymunk.batch.BodyFields.POSITION
+                                   | pymunk.batch.BodyFields.VELOCITY)
+        masses = getattr(self, "_masses", None)
+        if masses is None or not np.isin(ids, masses[0]).all():
+            dynamic = [b for b in self.space.bodies if b.body_type == pymunk.Body.DYNAMIC]
+            masses = (np.array([b.id for b in dynamic], dtype=np.int64),
+                      np.array([b.mass for b in dynamic], dtype=float))
+            self._masses = masses
+        keep = np.isin(ids, masses[0])         # dynamic bodies only (not static, not kinematic)
+        ids, data = ids[keep], data[keep]
+        n_all = len(ids)
+        every = sample_every(n_all)
+        ids, data = ids[::every], data[::every]
+        order = np.argsort(masses[0])
+        mass = masses[1][order][np.searchsorted(masses[0][order], ids)]
+        return Arrows(ids, data[:, 0:2], data[:, 2:4], mass,
+                      sample_text(len(ids), n_all, self.arrow_name))
+
     # ----- state --------------------------------------------------------------------------
     def body_state(self) -> np.ndarray:
         """Position, angle, velocity and angular velocity of every body in the space (dynamic,
@@ -245,6 +270,7 @@ class PymunkScene(Scene):
         for key, value in copy.deepcopy(snap).items():
             setattr(self, key, value)
         self.refresh_static_ids()      # the copies are new bodies with new ids
+        self._masses = None
         self.restored()
 
     def restored(self) -> None:

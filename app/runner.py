@@ -148,6 +148,9 @@ class SceneRunner:
         self.recent_ms: deque[float] = deque(maxlen=RECENT_STEPS)
         self.step_times: StreamingMedian | None = StreamingMedian() if keep_all_times else None
         self.on_reset: Callable[[], None] | None = None   # told when an event reset the scene
+        # called with the runner after every finite step (the CSV, the arrows' force probe);
+        # empty unless one of them is on, so they cost nothing off
+        self.observers: list[Callable[["SceneRunner"], None]] = []
         self._good: deque[tuple[Any, float, int]] = deque(maxlen=SNAPSHOTS_KEPT)
         self.rebuilt()
 
@@ -222,6 +225,8 @@ class SceneRunner:
                 return i + 1, self.roll_back()
             if self.rollback and self.scene.steps % SNAPSHOT_EVERY == 0:
                 self._keep_snapshot()
+            for observe in self.observers:
+                observe(self)
         return n, None
 
     def fail(self, error: SceneError) -> None:

@@ -31,6 +31,8 @@ The order in which the shell calls the hooks:
     a "try this" card:   apply_card(card): the defaults plus the card's settings, then build()
     layout:              content_bounds()          (what draw() covers, world coordinates);
                          fit_to(size) first for a scene whose content_fills its room
+    overlays:            arrows() after every step, only while the arrows overlay is on;
+                         reference_error() for a compare pane's label (app/compare.py)
     non-finite guard:    is_finite(); snapshot() every so often; restore(snap) on a blow-up,
                          then blowup_hint() for the message
     determinism tests:   state_hash()
@@ -51,6 +53,7 @@ from app.params import (COMMON_PARAMS, Effect, Param, ParamError,  # noqa: F401 
                         common, plain_number, shown_text)
 from app.units import PLAIN, Unit
 from app.units import shown as shown_in
+from app.vectors import Arrows
 
 
 class SceneError(RuntimeError):
@@ -72,22 +75,38 @@ EVENT_SLACK = 1e-6
 @dataclass(frozen=True)
 class Try:
     """A one-click experiment from a scene's help text ("try this" card in the panel): a label,
-    the settings it applies (names as `--set` takes them), and one line on what to watch for."""
+    the settings it applies (names as `--set` takes them), and one line on what to watch for.
+    A card with `compare` is a comparison: the scene's defaults plus `settings` in every pane,
+    plus each variant's own settings in its pane (`--compare`, app/compare.py)."""
 
     label: str
     settings: Mapping[str, Any]
     watch: str
+    compare: tuple[Mapping[str, Any], ...] = ()
 
     def changes(self) -> str:
-        """What the card sets, as `--set` writes it: 'material=leather, integrator=...'."""
-        def text(v: Any) -> str:
-            return ("on" if v else "off") if isinstance(v, bool) else f"{v}"
-        return ", ".join(f"{k}={text(v)}" for k, v in self.settings.items())
+        """What the card sets, as `--set` writes it: 'material=leather, integrator=...'; a
+        comparison's variants joined by ' vs '."""
+        shared = ", ".join(f"{k}={setting_text(v)}" for k, v in self.settings.items())
+        if not self.compare:
+            return shared
+        versus = " vs ".join(variant_text(v) for v in self.compare)
+        return versus + (f" (all: {shared})" if shared else "")
 
     def describe(self) -> str:
         """The card's whole promise in one line: what it sets (the rest at the defaults) and
         what to watch for."""
         return f"{self.label}: sets {self.changes()} (the rest at the defaults). {self.watch}"
+
+
+def setting_text(value: Any) -> str:
+    """A setting's value as `--set` writes it (on/off for effects and switches)."""
+    return ("on" if value else "off") if isinstance(value, bool) else f"{value}"
+
+
+def variant_text(settings: Mapping[str, Any]) -> str:
+    """A variant as `--compare` takes it: 'substeps=1,iterations=10'."""
+    return ",".join(f"{k}={setting_text(v)}" for k, v in settings.items())
 
 
 @dataclass
@@ -128,6 +147,8 @@ class Scene:
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
     tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
+    comparisons: tuple[Try, ...] = ()   # cards that are comparisons (Try.compare): the panel's
+                                        # "Compare side by side"; --try finds them too
     color_key: tuple[tuple[tuple[int, int, int], str], ...] = ()   # (colour, what it means): the
                                                                    # HUD shows it as a key
     color_key_details: bool = False   # True: the key is long (a line per species): it goes on
@@ -139,6 +160,8 @@ class Scene:
                                     # so the window adds no message with the same text
     metric_units: Mapping[str, Unit] = {}   # how the HUD and the strip write a metric, e.g.
                                             # {"energy": Unit("J", 1 / 256**2)} (app/units.py)
+    error_metric: str | None = None   # the metric that is the scene's error against its
+    error_label: str = ""             # reference (a compare pane shows it), and what it is
 
     def __init__(self, overrides: Mapping[str, Any] | None = None):
         self.p, self.on = self.resolve(overrides or {})
@@ -230,7 +253,8 @@ class Scene:
     def find_card(cls, label: str) -> Try | None:
         """The "try this" card called `label` (case and surrounding spaces do not matter)."""
         want = " ".join(label.split()).casefold()
-        return next((c for c in cls.tries if " ".join(c.label.split()).casefold() == want), None)
+        return next((c for c in cls.tries + cls.comparisons
+                     if " ".join(c.label.split()).casefold() == want), None)
 
     def apply_card(self, card: Try) -> None:
         """A "try this" card: the scene's defaults plus the card's settings, whatever was set or
@@ -349,6 +373,20 @@ class Scene:
         """Milliseconds per step spent on each active effect, where the scene measures it."""
         return {}
 
+    def reference_error(self) -> tuple[str, str, Any] | None:
+        """(what it is, metric name, value) of the scene's error against its reference, for a
+        compare pane's label: by default the metric `error_metric`; None if the scene has no
+        reference."""
+        if self.error_metric is None:
+            return None
+        return (self.error_label or self.error_metric, self.error_metric,
+                self.metrics().get(self.error_metric))
+
+    def arrows(self) -> Arrows | None:
+        """The bodies or particles that get velocity and force arrows (app/vectors.py), or None:
+        the scene has none. Called only while the arrows overlay is on."""
+        return None
+
     def state_arrays(self) -> Iterable[np.ndarray]:
         """The arrays that make up the physical state (used by state_hash and is_finite)."""
         return ()
@@ -392,7 +430,8 @@ def docstring_help(scene_cls: type[Scene]) -> str:
     return inspect.cleandoc(scene_cls.__doc__ or scene_cls.title)
 
 
-__all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
+__all__ = ["Scene", "Param", "Effect", "Try", "ParamError", "Arrows", "setting_text",
+           "variant_text", "SceneError", "InputEvent", "EVENT_SLACK", "SHELL_KEYS",
            "Unit",
            "COMMON_PARAMS",
            "common",

@@ -51,6 +51,7 @@ from app.physics.cloth import (DRAG, FORCE_NAMES, GRAVITY, ITERATIONS, PIN_CHOIC
                                WIND_FIELDS, WIND_STRENGTH, Cloth)
 from app.physics.rods import SET_NAMES, sweep_size
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
+from app.vectors import Arrows, grid_sample, sample_text
 
 UNLOCK_KEY = "u"
 # Work per step, in rod updates: iterations x substeps x (rods + BATCH_COST x batches), counting
@@ -116,6 +117,7 @@ class ClothScene(Scene):
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),
     )
+    error_metric, error_label = "max_stretch", "largest stretch"
     metric_units = {"max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "pinned_drift": Unit("px", resolution=0.01)}
@@ -132,6 +134,17 @@ class ClothScene(Scene):
         Try("Wind and tearing", {"wind": True, "tearing": True},
             "the gusts billow the cloth; yank it with the mouse and rods stretched past "
             "tear_ratio break (torn in the HUD)"),
+    )
+    comparisons = (     # "try this" cards that run variants side by side (--compare)
+        Try("2 vs 20 iterations", {},
+            "side by side from the same start: ten times the sweeps buy about ten times less "
+            "stretch (pane B's colours stay cool) for several times the ms per step",
+            compare=({"iterations": 2}, {"iterations": 20})),
+        Try("1x10 vs 10x1", {},
+            "the same 10 sweeps a step, spent as 10 iterations of 1 substep (A) or 1 iteration "
+            "in each of 10 substeps (B): B stretches about ten times less for a little more "
+            "time; small steps beat many iterations",
+            compare=({"substeps": 1, "iterations": 10}, {"substeps": 10, "iterations": 1})),
     )
 
     # ----- world --------------------------------------------------------------------------------
@@ -219,6 +232,17 @@ class ClothScene(Scene):
                 c.unlock(*cell)
         elif event.kind == "key_down" and event.key == UNLOCK_KEY:
             c.unlock_all()
+
+    def arrows(self) -> Arrows:
+        """A regular sample of the particles (edges included): position and the Verlet
+        velocity (x - x_prev) / h of the last substep. No masses: the force arrow is the
+        acceleration."""
+        c = self.cloth
+        ids = grid_sample(c.rows, c.cols)
+        x = c.x.reshape(2, -1)[:, ids].T.astype(float)
+        v = (c.x - c.x_prev).reshape(2, -1)[:, ids].T.astype(float) * \
+            (self.p["substeps"] / self.dt)
+        return Arrows(ids, x, v, None, sample_text(len(ids), c.rows * c.cols, "particle"))
 
     # ----- drawing ------------------------------------------------------------------------------
     def draw(self, surface, view) -> None:

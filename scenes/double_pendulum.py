@@ -135,6 +135,8 @@ class DoublePendulumScene(PymunkScene):
     """
 
     name = "double_pendulum"
+    arrow_name = "bob"
+    error_metric, error_label = "reference_divergence", "off the RK4 reference"
     title = "Double pendulum vs. its equations"
     category = "Rigid bodies (pymunk)"
     blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up
@@ -161,6 +163,12 @@ class DoublePendulumScene(PymunkScene):
             "the pins let the rods stretch a little, so energy drift grows (HUD)"),
         Try("One substep", {"substeps": 1},
             "bigger steps for pymunk: the energy drift in the HUD grows"),
+    )
+    comparisons = (     # "try this" cards that run variants side by side (--compare)
+        Try("1 vs 10 substeps", {},
+            "pymunk at 1 substep (A) and 10 (B), each beside the RK4 reference: B stays with its "
+            "ghost longer and drifts less in energy, for more ms per step; chaos parts both in "
+            "the end", compare=({"substeps": 1}, {"substeps": 10})),
     )
 
     def content_bounds(self) -> tuple[float, float, float, float]:

@@ -82,6 +82,7 @@ class FallingBallsScene(PymunkScene):
     """
 
     name = "falling_balls"
+    arrow_name = "ball"
     title = "Falling balls (pymunk)"
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + BALL_PARAMS

@@ -204,6 +204,14 @@ class IntegratorsScene(Scene):
                 m[f"{run.name}_cg_failures"] = run.ps.cg_failures
         return m
 
+    def reference_error(self) -> tuple[str, str, float] | None:
+        """The largest error against the exact solution among the integrators run."""
+        self._refresh()
+        if not self.runs:
+            return None
+        worst = max(self.runs, key=lambda r: r.error)
+        return (f"worst error ({SHORT[worst.name]})", f"{worst.name}_error", float(worst.error))
+
     def effect_costs(self) -> dict[str, float]:
         return {run.name: run.step_us / 1000.0 for run in self.live()}
 

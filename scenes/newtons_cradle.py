@@ -151,6 +151,7 @@ class NewtonsCradleScene(PymunkScene):
     """
 
     name = "newtons_cradle"
+    arrow_name = "ball"
     title = "Newton's cradle (pymunk)"
     category = "Rigid bodies (pymunk)"
     blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up

@@ -85,6 +85,8 @@ class PivotingLScene(FallingBallsScene):
     """
 
     name = "pivoting_l"
+    arrow_name = "body"
+    error_metric, error_label = "pin_error", "largest pin error"
     title = "Pivoting L: pin and slide joints (pymunk)"
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + (SPAWN_2,) \

@@ -173,25 +173,30 @@ class Pane:
         return layout
 
     def draw(self, surface: pygame.Surface, rect: pygame.Rect, lines: list | None,
-             strip: bool = False) -> Layout:
+             strip: bool = False, overlay=None) -> Layout:
         """Fit, then draw the scene, its HUD box and (with `strip`) its metrics strip in
         `rect`; return the layout used."""
         layout = self.fit(rect, lines, strip)
-        draw_scene(surface, layout, self.scene, lines, strip)
+        draw_scene(surface, layout, self.scene, lines, strip, overlay)
         return layout
 
 
 def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | None,
-               strip: bool = False) -> None:
-    """Draw the scene's world (clipped to the layout's area), then its HUD box and, with
-    `strip`, its metrics strip, unless `lines` is None."""
+               strip: bool = False, overlay=None) -> None:
+    """Draw the scene's world (clipped to the layout's area; a scene that lays itself out in its
+    room, to that room: in a room too small for its charts it is cut, never drawn over the HUD),
+    `overlay(surface, layout)` over it (the arrows), then its HUD box and, with `strip`, its
+    metrics strip, unless `lines` is None."""
     from app.draw import hud
     area = layout.area
     surface.fill(scene.background, area)
     old_clip = surface.get_clip()
-    surface.set_clip(area.clip(old_clip))          # nothing of the world outside its rectangle
+    room = layout.free.inflate(2 * MARGIN, 2 * MARGIN).clip(area) if layout.filled else area
+    surface.set_clip(room.clip(old_clip))          # nothing of the world outside its rectangle
     try:
         scene.draw(surface, layout.view)
+        if overlay is not None:
+            overlay(surface, layout)
     finally:
         surface.set_clip(old_clip)
     if lines is None:

@@ -60,6 +60,8 @@ class PanelHost(Protocol):
     def toggle_help(self) -> None: ...
     def apply_setting(self, name: str, value: Any) -> bool: ...
     def apply_try(self, card: Try) -> bool: ...
+    def toggle_plot(self) -> None: ...
+    def toggle_arrows(self) -> None: ...
 
 
 # ----------------------------------------------------------------------------------------------
@@ -146,24 +148,48 @@ class ParamPanel:
         self.pause_button, self.reset_button, self.help_button = (
             UIButton(pygame.Rect(x, y, w, row), text, manager, container=self.container)
             for x, w, text in zip(xs, widths, ("Pause", "Reset", "Help")))
+        y += row + gap
+        # the instruments: the plot's list (P) and the arrows (V), in every scene
+        self.plot_button = UIButton(pygame.Rect(pad, y, inner_w, row), "Plot over time (P)",
+                                    manager, container=self.container)
+        y += row + gap
+        self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
+                                      container=self.container)
         y += row + 2 * gap
+        # a comparison: whose settings the panel shows and edits (every pane, or one)
+        self.target_menu = None
+        targets = host.targets() if hasattr(host, "targets") else None
+        self._targets = list(targets or [])
+        locked = host.locked_settings() if hasattr(host, "locked_settings") else set()
+        if targets:
+            label("Settings of", obj="#section")
+            y += row
+            self.target_menu = UIDropDownMenu(targets, targets[host.target_index()],
+                                              pygame.Rect(pad, y, inner_w, row), manager,
+                                              container=self.container)
+            y += row + 2 * gap
         self.cards: dict[Any, Try] = {}
         self.watch_box = None
-        if scene.tries:
-            label("Try this", obj="#section")
-            y += row
-            for card in scene.tries:
-                # no tooltip: it covered the cards below; pointing at a card shows what it does
-                # in the box under the cards instead
-                b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
-                             container=self.container, object_id="#card")
-                self.cards[b] = card
-                y += row + gap
+        every_card = scene.tries + scene.comparisons
+        if every_card:
+            for section, cards in (("Try this", scene.tries),
+                                   ("Compare side by side", scene.comparisons)):
+                if not cards:
+                    continue
+                label(section, obj="#section", short=section.split()[0])
+                y += row
+                for card in cards:
+                    # no tooltip: it covered the cards below; pointing at a card shows what it
+                    # does in the box under the cards instead
+                    b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
+                                 container=self.container, object_id="#card")
+                    self.cards[b] = card
+                    y += row + gap
             self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, row),
                                        manager, container=self.container, object_id="#watch")
             # as tall as the longest card's text wrapped (a box that scrolls hides the end)
             watch_font = manager.get_theme().get_font(self.watch_box.combined_element_ids)
-            texts = [WATCH_HINT] + [_watch_text(c) for c in scene.tries]
+            texts = [WATCH_HINT] + [_watch_text(c) for c in every_card]
             lines = max(len(hud.wrap(t, watch_font, inner_w - 16)) for t in texts)
             height = int(lines * watch_font.size("Ay")[1] * 1.25) + 12
             self.watch_box.set_dimensions((inner_w, height))
@@ -176,6 +202,10 @@ class ParamPanel:
         for prm in scene.all_params():
             value = scene.p[prm.name]
             tip = prm.help or None
+            if prm.name in locked:
+                label(f"{prm.name}: differs by pane", short=prm.name)
+                y += row + gap
+                continue
             if prm.kind is bool:
                 label(prm.name, width=inner_w // 2)
                 b = UIButton(pygame.Rect(pad + inner_w // 2, y, inner_w - inner_w // 2, row),
@@ -220,6 +250,10 @@ class ParamPanel:
             label("Effects (off = not computed)", obj="#section", short="Effects")
             y += row
             for eff in scene.effects:
+                if eff.name in locked:
+                    label(f"{eff.name}: differs by pane", short=eff.name)
+                    y += row + gap
+                    continue
                 b = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
                              container=self.container, tool_tip_text=eff.help or None)
                 self.toggles[eff.name] = b
@@ -261,6 +295,11 @@ class ParamPanel:
         want = "Resume" if paused else "Pause"
         if self.pause_button.text != want:
             self.pause_button.set_text(want)
+        arrows = bool(getattr(getattr(self.host, "inst", None), "arrows", False))
+        want = f"Arrows (V): {'ON' if arrows else 'OFF'}"
+        if self.arrows_button.text != want:
+            self.arrows_button.set_text(want)
+            self.arrows_button.change_object_id("#toggle_on" if arrows else "#toggle_off")
 
     def is_typing(self) -> bool:
         """True while a text box of the panel has the keyboard."""
@@ -303,6 +342,17 @@ class ParamPanel:
             if element is self.help_button:
                 self.host.toggle_help()
                 return True
+            if element is self.plot_button:
+                self.host.toggle_plot()
+                return True
+            if element is self.arrows_button:
+                self.host.toggle_arrows()
+                self.refresh()
+                return True
+        if ev.type == gui.UI_DROP_DOWN_MENU_CHANGED and element is self.target_menu:
+            if ev.text in self._targets:
+                self.host.set_target(self._targets.index(ev.text))
+            return True
         if ev.type == gui.UI_BUTTON_PRESSED and element in self.cards:
             card = self.cards[element]
             if self.host.apply_try(card):
@@ -351,6 +401,9 @@ def _select(dropdown, text: str) -> None:
 
 def _watch_text(card: Try) -> str:
     """The watch box's text for a card: what it sets, then what to watch for."""
+    if card.compare:
+        return (f"{card.label}: side by side, {card.changes()}, the rest at the defaults. "
+                f"Watch: {card.watch}")
     return f"{card.label}: sets {card.changes()}, the rest at the defaults. Watch: {card.watch}"
 
 

@@ -32,9 +32,11 @@ class Session:
     events: list[dict] = field(default_factory=list)           # --input format
     steps: int = 0
     not_replayed: list[str] = field(default_factory=list)     # panel changes after an event
+    compare: list[str] = field(default_factory=list)          # --compare variants, if any
 
     def command(self, path: str | Path) -> str:
         sets = "".join(f" --set {k}={v}" for k, v in self.settings.items())
+        sets += "".join(f" --compare {' '.join(self.compare)}" if self.compare else "")
         return (f"python -m app --headless --scene {self.scene}{sets} --input {path} "
                 f"--steps {max(self.steps, 1)}")
 
@@ -51,8 +53,10 @@ class Recorder:
     def active(self) -> bool:
         return self.path is not None
 
-    def start(self, scene: str, settings: dict[str, Any]) -> None:
-        self.session = Session(scene, {k: _text(v) for k, v in settings.items()})
+    def start(self, scene: str, settings: dict[str, Any], compare: list[str] | None = None) -> None:
+        """A new session of `scene` with these --set values (and --compare variants)."""
+        self.session = Session(scene, {k: _text(v) for k, v in settings.items()},
+                               compare=list(compare or []))
 
     def add(self, event: InputEvent) -> None:
         if self.session is not None:

@@ -24,6 +24,7 @@ from app.draw.text import TEXT
 from app.loop import FixedStepClock
 from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
+from app.window.instrument_host import InstrumentHost
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
 from app.window.views import HelpView, ShellView, WindowLike
 
@@ -39,7 +40,7 @@ ERROR_LINES = 12            # the HUD shows at most this many lines of an error 
                             # the whole traceback)
 
 
-class SceneView(ShellView):
+class SceneView(InstrumentHost, ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
@@ -48,8 +49,7 @@ class SceneView(ShellView):
         super().__init__(window)
         self.scene = scene
         self.opened_with = dict(opened_with)
-        self.runner = SceneRunner(scene, events, rollback=True)
-        self.runner.on_reset = self._after_rebuild
+        self.runner = self.make_runner(events)
         self.clock = FixedStepClock()
         self.manager = None
         self.panel: ParamPanel | None = None
@@ -63,7 +63,24 @@ class SceneView(ShellView):
         self.speed = SpeedWatch()            # frames per second; why a frame dropped steps
         self._shown_ms: float | None = None          # the HUD's physics figure (physics_ms)
         self._ms_mark = 0                            # runner.steps when it was last read
-        window.recorder.start(scene.name, self.opened_with)
+        self.start_recording()
+        self.setup_instruments(self.runners(), self.variant_texts())
+
+    # --- what a comparison (compare_view.py) does otherwise ------------------------------------
+    def make_runner(self, events: list[InputEvent] | None) -> SceneRunner:
+        runner = SceneRunner(self.scene, events, rollback=True)
+        runner.on_reset = self._after_rebuild
+        return runner
+
+    def runners(self) -> list[SceneRunner]:
+        """Every pane's runner (one here)."""
+        return [self.runner]
+
+    def variant_texts(self) -> list[str] | None:
+        return None
+
+    def start_recording(self) -> None:
+        self.window.recorder.start(self.scene.name, self.opened_with)
 
     # --- lifecycle ---------------------------------------------------------------------------
     def on_show(self) -> None:
@@ -106,8 +123,11 @@ class SceneView(ShellView):
         if notes != self._notes_shown:      # a message came or went: the room is redone
             self._notes_shown = notes
             self.pane.forget()
-        return self.pane.fit(self.world_area(), lines if self.overlays else None,
+        return self.pane.fit(self.scene_area(), lines if self.overlays else None,
                              strip=self.window.hud_details)
+
+    def forget_layout(self) -> None:
+        self.pane.forget()
 
     @property
     def layout(self) -> Layout | None:
@@ -210,6 +230,7 @@ class SceneView(ShellView):
             self.scene.reset()
             self.runner = SceneRunner(self.scene, rollback=True)
             self.runner.on_reset = self._after_rebuild
+            self.setup_instruments([self.runner])
             self.window.recorder.start(self.scene.name, changed_settings(self.scene))
             self.window.flash(f"recording restarted with {name}={value}: the replay starts "
                               "from here (given as --set)", hud.WARN_COLOR, topic="recording")
@@ -223,6 +244,11 @@ class SceneView(ShellView):
         card's settings, whatever ran or was set before (Scene.apply_card, as --headless --try
         does), rebuilt and running; the HUD says what the card set and what to watch for."""
         scene, w = self.scene, self.window
+        if card.compare:                    # a comparison: its panes replace this view
+            from app.compare import Variant
+            from app.scene import variant_text
+            return w.open_compare(type(scene), dict(card.settings),
+                                  [Variant(variant_text(v), dict(v)) for v in card.compare], card)
         before = scene.settings()
         try:
             scene.apply_card(card)
@@ -293,7 +319,7 @@ class SceneView(ShellView):
             self._mouse_event(ev, consumed)
 
     def _mouse_event(self, ev: pygame.event.Event, consumed: bool) -> None:
-        in_world = self.world_area().collidepoint(ev.pos) and not consumed
+        in_world = self.scene_area().collidepoint(ev.pos) and not consumed
         x, y = self.view.to_world(ev.pos)
         world = (round(x, 2), round(y, 2))     # as recorded, so a replay sees the same numbers
         if ev.type == pygame.MOUSEBUTTONDOWN and ev.button in (1, 3) and in_world:
@@ -325,6 +351,7 @@ class SceneView(ShellView):
         t0 = time.perf_counter()
         ran, rollback = self.runner.run(n, STEP_BUDGET_SECONDS)
         physics = time.perf_counter() - t0
+        self.inst.sample()
         if rollback is not None:
             self.clock.paused = True
             self.clock.accumulator = 0.0
@@ -362,10 +389,16 @@ class SceneView(ShellView):
     def status_lines(self) -> list:
         """The shell's lines of the HUD box: one line of time, step, cost and frame rate; then,
         only when they apply, pause and slow motion, recording, slower than real time."""
-        L, scene, clock = hud.Line, self.scene, self.clock
+        scene = self.scene
         self._costs = safe(scene.effect_costs, {})     # read with physics_ms: the same steps
-        lines: list = [f"t = {scene.time:.2f} s | {hud.dt_text(scene)} | "
-                       f"{hud.physics_text(self.physics_ms())}"]
+        return [f"t = {scene.time:.2f} s | {hud.dt_text(scene)} | "
+                f"{hud.physics_text(self.physics_ms())}"] + self.state_lines()
+
+    def state_lines(self) -> list:
+        """The status lines that apply only sometimes: paused, slow motion, recording, slower
+        than real time."""
+        L, clock = hud.Line, self.clock
+        lines: list = []
         state = []
         if clock.paused:
             state.append("PAUSED (Space resumes, . steps)")
@@ -405,7 +438,8 @@ class SceneView(ShellView):
         # a card's promise is in the panel's box under the cards while the panel is shown
         shown_there = self.panel is not None and self.panel.watch_box is not None
         return lines + [hud.Line(m.text, m.color) for m in self.window.messages
-                        if not (shown_there and m.topic == "card" and m.text.startswith("Try: "))]
+                        if not (shown_there and m.topic == "card" and m.text.startswith("Try: "))
+                        ] + self.inst.legend()
 
     def hud_lines(self) -> list:
         """Everything in the HUD box, as drawn."""
@@ -425,12 +459,16 @@ class SceneView(ShellView):
             lines = None
         layout = self.fit(lines)
         screen.fill(PANEL_BACKGROUND)
+        self.inst.update_scale()
+        overlay = (lambda s, lay: self.inst.overlay(s, 0, lay)) if self.inst.arrows else None
         try:
-            draw_scene(screen, layout, scene, lines, strip=self.window.hud_details)
+            draw_scene(screen, layout, scene, lines, strip=self.window.hud_details,
+                       overlay=overlay)
         except SceneError as e:
             self.runner.fail(e)
             self.clock.paused = True
             screen.fill(scene.background, layout.area)
+        self.draw_plot(screen)
         if self.panel is not None:
             screen.fill(PANEL_BACKGROUND, self.panel.rect)
             pygame.draw.line(screen, (60, 66, 76), self.panel.rect.topleft,

@@ -92,6 +92,10 @@ class Window:
         self._replay = list(events or [])
         self._replay_scene: type[Scene] | None = None
         self._pending_shot: Path | None = None
+        self.arrows = False                   # V: the arrows overlay, for every scene
+        self.csv_path: str | None = None      # --csv FILE: the open scene's metrics go there
+        self.plot_start: list[str] = []       # --plot: what the first scene opens plotted
+        self._csv_owner = None                # the view whose metrics the file holds
         self.current_view: ShellView = MenuView(self)
         TEXT.scale = LARGE_TEXT_SCALE if large_text else 1.0
 
@@ -106,7 +110,8 @@ class Window:
     def scene_view(self) -> SceneView | None:
         """The running scene's view (also while its help is shown), or None in the menu."""
         v = self.current_view
-        return v.under if isinstance(v, HelpView) else v if isinstance(v, SceneView) else None
+        v = getattr(v, "under", v)         # the help or the plot's list over a running scene
+        return v if isinstance(v, SceneView) else None
 
     @property
     def scene(self) -> Scene | None:
@@ -147,6 +152,49 @@ class Window:
         if pygame.display.get_init() and pygame.display.get_surface() is not None:
             pygame.display.set_caption(f"Physics lab: {scene_cls.title or scene_cls.name}")
         return True
+
+    def open_compare(self, scene_cls: type[Scene], shared: dict[str, Any], variants: list,
+                     card: Any = None) -> bool:
+        """Open a comparison of scene_cls (app/compare.py): `shared` settings in every pane,
+        each Variant's own in its pane; `card`: the comparison card it comes from. A refused
+        comparison stays where the window is and says why. Return True if it is open."""
+        from app.compare import resolve_variants
+        from app.window.compare_view import CompareView
+        try:
+            overrides = resolve_variants(scene_cls, shared, variants)
+            scenes = [scene_cls(o) for o in overrides]
+        except (ParamError, SceneError) as e:
+            if self.scene_view is None:
+                self._to_menu(f"{scene_cls.name}: {e}")
+            else:
+                self.flash(f"{scene_cls.name}: {e}", hud.ERROR_COLOR, topic="card")
+            return False
+        events = None
+        if self._replay and self._replay_scene in (None, scene_cls):
+            self._replay_scene = scene_cls
+            events, self._replay = self._replay, []
+        self.messages = [m for m in self.messages if not m.topic]
+        self.show_view(CompareView(self, scenes, shared, variants, events))
+        if card is not None:
+            self.flash(f"Try: {card.label} ({card.changes()}): {card.watch}", hud.ACCENT_COLOR,
+                       seconds=12.0, topic="card")
+        if pygame.display.get_init() and pygame.display.get_surface() is not None:
+            pygame.display.set_caption(f"Physics lab: {scene_cls.title or scene_cls.name}, "
+                                       f"{len(scenes)} variants")
+        return True
+
+    def own_csv(self, view: Any) -> None:
+        """`view` opens the --csv file: the view that had it closes it first (the file holds
+        the last scene opened, as --record does)."""
+        if self._csv_owner is not None and self._csv_owner is not view:
+            self._csv_owner.close_instruments()
+        self._csv_owner = view
+
+    def close(self) -> None:
+        """The window closes: the --csv file is flushed and closed."""
+        if self._csv_owner is not None:
+            self._csv_owner.close_instruments()
+            self._csv_owner = None
 
     def open_menu(self) -> None:
         self._to_menu("")
@@ -338,12 +386,13 @@ def _open_display(size: tuple[int, int]) -> pygame.Surface:
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
                large_text: bool = False, events: list | None = None, card=None,
-               clips: dict | None = None) -> int:
+               compare: list | None = None, extras=None, clips: dict | None = None) -> int:
     """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
-    applied as a click applies it) and run it until the user quits, or for `seconds` of wall
-    time. Return the exit code (2 when there is no display). With `record`, the events are
-    written and the replay command printed on every way out; `clips` (path, fps, width) set up
-    F9's clips, saved and named on every way out too."""
+    applied as a click applies it, or a comparison of the `compare` variants with `overrides`
+    shared) and run it until the user quits, or for `seconds` of wall time. Return the exit
+    code (2 when there is no display). With `record`, the events are written and the replay
+    command printed on every way out; `clips` (path, fps, width) set up F9's clips, saved and
+    named on every way out too; `extras` (app.headless.Extras): --csv, --plot, --arrows."""
     try:
         screen = _open_display(DEFAULT_SIZE)
     except pygame.error as e:
@@ -356,8 +405,14 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     from scenes import SCENES, get_scene
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
     window.clips = ClipRecorder(**(clips or {}))
+    if extras is not None:
+        window.csv_path, window.arrows = extras.csv, extras.arrows
+        window.plot_start = list(extras.plot)
     scene_cls = get_scene(scene_name) if scene_name else None
-    if scene_cls is not None:
+    if scene_cls is not None and compare is not None:
+        window.open_compare(scene_cls, overrides, compare, card if card is not None and
+                            card.compare else None)
+    elif scene_cls is not None:
         if window.open_scene(scene_cls, overrides) and card is not None:
             window.scene_view.apply_try(card)
     if screenshot and seconds is None:
@@ -380,6 +435,7 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     except KeyboardInterrupt:
         pass
     finally:
+        window.close()
         line = window.recorder.write()
         if line:
             print(line, flush=True)

@@ -1,0 +1,68 @@
+"""Checks of the command line's compare mode and instruments (--compare, --try with a comparison
+card, --csv, --plot, --arrows), before anything runs: each refusal is one line (UsageError) and
+exit code 2, as every bad usage (app/__main__.py)."""
+
+from __future__ import annotations
+
+import argparse
+
+from app.scene import shown_text
+
+
+class UsageError(Exception):
+    """Bad usage: the message is the one line printed on stderr."""
+
+
+def compare_variants(args: argparse.Namespace, classes: list, overrides: dict, card):
+    """The shared settings and the variants of a comparison (--compare, or a comparison card),
+    checked as --set is; UsageError (one line) if they are refused."""
+    from app.compare import Variant, parse_variant, resolve_variants
+    from app.scene import ParamError, variant_text
+    if len(classes) != 1:
+        raise UsageError("--compare needs --scene NAME (one scene, run side by side at each "
+                         "variant's settings)")
+    cls = classes[0]
+    if card is not None and args.compare is not None:
+        raise UsageError("--try gives the settings itself (a comparison card, its variants too); "
+                         "drop --compare, or give the variants without --try")
+    try:
+        if card is not None:
+            shared = dict(card.settings)
+            variants = [Variant(variant_text(v), dict(v)) for v in card.compare]
+        else:
+            shared, variants = overrides, [parse_variant(t) for t in args.compare]
+        resolve_variants(cls, shared, variants)
+    except ParamError as e:
+        raise UsageError(f"--compare: {cls.name}: {e}") from None
+    return shared, variants
+
+
+def instrument_problem(args: argparse.Namespace, classes: list) -> None:
+    """Refuse (UsageError) instruments that do not fit the run."""
+    if args.headless and (args.arrows or args.plot) and not (args.screenshot or args.video):
+        what = "--arrows" if args.arrows else "--plot"
+        raise UsageError(f"{what} draws into --screenshot and --video when headless; give one "
+                         "(or --csv FILE for the numbers)")
+    if args.plot is not None and len(classes) != 1:
+        raise UsageError("--plot needs --scene NAME (the metrics belong to a scene)")
+    if (args.csv is not None or args.arrows) and not classes:
+        raise UsageError(f"{'--csv' if args.csv is not None else '--arrows'} needs --scene NAME")
+
+
+def check_plot(text: str | None, classes: list, shared: dict) -> list[str]:
+    """The metrics --plot names, checked against what the scene reports (it is built once to
+    ask it); UsageError naming the accepted ones."""
+    if text is None:
+        return []
+    names = [n.strip() for n in text.split(",")]
+    if not all(names):
+        raise UsageError(f"--plot {shown_text(text)}: accepted: METRIC[,METRIC...], e.g. "
+                         "--plot max_stretch,mean_stretch")
+    from app.series import plottable
+    cls = classes[0]
+    accepted = list(plottable(cls(cls.own_settings(shared)).metrics()))
+    unknown = [n for n in names if n not in accepted]
+    if unknown:
+        raise UsageError(f"--plot {shown_text(unknown[0])}: {cls.name} reports no such number; "
+                         f"accepted: {', '.join(accepted)}")
+    return list(dict.fromkeys(names))

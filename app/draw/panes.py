@@ -1,0 +1,187 @@
+"""Compare mode's picture: a header across the top (the scene, the shared clock, the messages)
+and one `Pane` per variant below it, side by side in a wide area and stacked in a tall one (with
+four, two by two if that shows them larger). The window and the headless screenshot draw the same
+picture with the same code.
+
+Each pane's HUD box opens with its tag and what differs ("B: iterations=20") in the pane's colour
+(the live plot draws that variant's lines in it), then its own physics cost and its error against
+the scene's reference, then the scene's own lines (hud_lines) and the pane's messages (a blow-up
+rolled back and held, with its advice).
+
+Which arrangement: the one whose smallest pane shows the most content (scene_layout measures it
+for each candidate, HUD included), decided when the layout is redone (a resize, F2, F3, F4,
+Tab, a message that comes or goes) and kept between frames so the picture does not jump.
+"""
+
+from __future__ import annotations
+
+import pygame
+
+from app.draw import hud
+from app.draw.layout import MARGIN, Layout, Pane, draw_scene, scene_layout
+from app.draw.live_plot import PALETTE
+from app.draw.text import TEXT
+
+PANE_COLORS = PALETTE[:4]     # pane A, B, C, D (their lines in the live plot too)
+GAP = 6                       # pixels between panes
+PANE_BORDER = (60, 66, 76)
+HEADER_SHARE = 0.3            # the header's text shrinks (to the normal size) above this share
+
+
+def grids(n: int) -> list[tuple[int, int]]:
+    """The (columns, rows) arrangements tried for n panes."""
+    out = [(n, 1), (1, n)]
+    if n >= 3:
+        out.append((2, 2))
+    return out
+
+
+def split(area: pygame.Rect, cols: int, rows: int, n: int) -> list[pygame.Rect]:
+    """n cells of a cols x rows grid over `area`, GAP apart, row by row."""
+    w = (area.width - GAP * (cols - 1)) // cols
+    h = (area.height - GAP * (rows - 1)) // rows
+    return [pygame.Rect(area.left + (k % cols) * (w + GAP), area.top + (k // cols) * (h + GAP),
+                        max(w, 1), max(h, 1)) for k in range(n)]
+
+
+def pane_lines(scene, tag: str, label: str, color, step_ms: float | None, notes: list = (),
+               details: bool = False, more: list = (), clock: str = "",
+               brief: bool = False) -> list:
+    """A pane's HUD lines: its tag and label, its cost and its error against the scene's
+    reference, the first of the scene's own lines (its headline: a verdict, the step against
+    its limit), its notes; on the second page (`details`) all the scene's lines and details and
+    `more`. (The colour key is the header's: one for every pane.) `brief`: the tag, the cost and
+    the notes only (a pane too small for more)."""
+    cost = hud.physics_text(step_ms)
+    err = scene.reference_error()
+    if err is not None:
+        what, metric, value = err
+        cost += f" | {what} {scene.shown(metric, value)}"
+    lines: list = [hud.Line(f"{tag}: {label}", color, hint=hud.DETAILS_HINT[int(details)]),
+                   *([clock] if clock else []), cost]
+    own = [x if isinstance(x, hud.Line) else str(x) for x in scene.hud_lines()]
+    lines += [] if brief else own if details else own[:1]
+    lines += list(notes)
+    if details and not brief:
+        lines += [x if isinstance(x, hud.Line) else hud.Line(str(x), hud.DIM_COLOR)
+                  for x in scene.hud_details()]
+        lines += [x if isinstance(x, hud.Line) else hud.Line(str(x), hud.DIM_COLOR) for x in more]
+    return lines
+
+
+def color_key_line(scene) -> list:
+    """The scene's colour key as one header line (empty if it has none)."""
+    key = tuple(getattr(scene, "color_key", ()))
+    return [hud.Line("", hud.DIM_COLOR, keys=key)] if key else []
+
+
+class PaneGrid:
+    """The panes of a comparison and their arrangement in an area."""
+
+    def __init__(self, scenes):
+        self.panes = [Pane(s) for s in scenes]
+        self.cells: list[pygame.Rect] | None = None
+        self._for: tuple | None = None        # (area, header height) the cells were chosen for
+        self.header = pygame.Rect(0, 0, 0, 0)
+        self.header_size = hud.HUD_SIZE
+        self.used: list = []
+
+    def forget(self) -> None:
+        for p in self.panes:
+            p.forget()
+        self.cells = None
+
+    @property
+    def layout(self) -> Layout | None:
+        """Pane A's layout (its view maps the mouse when the pointer is over no pane)."""
+        return self.panes[0].layout
+
+    def fit(self, area: pygame.Rect, header: list | None, lines: list[list | None],
+            strip: bool = False, brief: list[list] | None = None) -> list[Layout]:
+        """Lay out the header box at the top of `area` (None: no header) and the panes below.
+        A pane whose HUD box would run out of it (a small window, large text) takes its
+        `brief` lines instead (`used` holds the lines each pane was laid out with)."""
+        h = 0
+        self.header_size = hud.HUD_SIZE
+        if header:                  # at most HEADER_SHARE of the height: large text gives back
+            width = area.width - 2 * MARGIN                   # some of its growth (not below
+            h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]      # the normal size)
+            while h > HEADER_SHARE * area.height and \
+                    self.header_size * TEXT.scale > hud.HUD_SIZE + 1:
+                self.header_size = max(hud.HUD_SIZE / TEXT.scale, self.header_size * 0.9)
+                h = hud.box_size(header, int(round(self.header_size)), max_width=width)[1]
+        self.header = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN,
+                                  h)
+        top = self.header.bottom + MARGIN if h else area.top
+        rest = pygame.Rect(area.left, top, area.width, max(area.bottom - top, 1))
+        key = (tuple(rest), len(self.panes))
+        if self.cells is None or self._for != key:
+            self.cells = self.choose(rest, lines, strip, brief)
+            self._for = key
+            for p in self.panes:
+                p.forget()
+        layouts, self.used = [], []
+        for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, lines)):
+            layout = p.fit(cell, ln, strip)
+            if brief is not None and ln is not None and layout.hud.bottom > cell.bottom:
+                p.forget()
+                ln = brief[k]
+                layout = p.fit(cell, ln, strip)
+            layouts.append(layout)
+            self.used.append(ln)
+        return layouts
+
+    def choose(self, rest: pygame.Rect, lines: list, strip: bool,
+               brief: list | None = None) -> list[pygame.Rect]:
+        """The arrangement whose HUD boxes fit their panes (or spill least; with the `brief`
+        lines where the full ones spill) and whose smallest pane shows the most content (on a
+        near tie, the first tried: side by side)."""
+        best, best_key = None, (-float("inf"), 0.0)
+        for cols, rows in grids(len(self.panes)):
+            cells = split(rest, cols, rows, len(self.panes))
+            layouts = []
+            for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
+                lay = scene_layout(c, p.scene, ln, strip=strip)
+                if brief is not None and ln is not None and lay.hud.bottom > c.bottom:
+                    lay = scene_layout(c, p.scene, brief[k], strip=strip)
+                layouts.append(lay)
+            spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
+            key = (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
+            if key[0] > best_key[0] or (key[0] == best_key[0] and key[1] > 1.01 * best_key[1]):
+                best, best_key = cells, key
+        return best
+
+    def draw(self, surface: pygame.Surface, area: pygame.Rect, header: list | None,
+             lines: list[list | None], strip: bool = False, overlay=None,
+             brief: list[list] | None = None, picked: int | None = None) -> list[Layout]:
+        """Fit, then draw every pane (its scene, `overlay(surface, k, layout)` over it, its HUD;
+        pane `picked`, the one the panel edits, framed in its colour) and the header; return the
+        panes' layouts."""
+        layouts = self.fit(area, header, lines, strip, brief)
+        surface.fill((21, 24, 29), area)
+        for k, (p, layout, ln) in enumerate(zip(self.panes, layouts, self.used)):
+            draw_scene(surface, layout, p.scene, ln, strip,
+                       overlay=(lambda s, lay, k=k: overlay(s, k, lay)) if overlay else None)
+            if k == picked:
+                pygame.draw.rect(surface, PANE_COLORS[k], layout.area, 3)
+            else:
+                pygame.draw.rect(surface, PANE_BORDER, layout.area.inflate(2, 2), 1)
+        if header:
+            hud.text_box(surface, header, self.header.topleft, int(round(self.header_size)),
+                         max_width=self.header.width)
+        return layouts
+
+    def pane_at(self, pos) -> int | None:
+        """The pane under a screen point, or None."""
+        for k, cell in enumerate(self.cells or ()):
+            if cell.collidepoint(pos):
+                return k
+        return None
+
+
+def _content_area(layout: Layout, cell: pygame.Rect) -> float:
+    r = layout.content_rect().clip(cell)
+    return float(r.width * r.height)
+
+
+__all__ = ["PaneGrid", "pane_lines", "color_key_line", "grids", "split", "PANE_COLORS"]
