@@ -14,7 +14,7 @@ import pytest
 
 from app.__main__ import main
 from app.clips import (MP4_INSTALL, GifWriter, check_video, clip_size, frame_count,
-                       frame_steps, max_gif_frames)
+                       frame_steps)
 
 
 def run_json(capsys, *args) -> dict:

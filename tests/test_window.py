@@ -18,7 +18,7 @@ import pytest
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Effect, InputEvent, Param, Scene
-from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
+from app.runner import NONFINITE_TEXT
 from app.window import Window, run_window
 from app.window.scene_view import SETTLE_FRAMES
 
