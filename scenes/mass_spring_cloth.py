@@ -22,13 +22,13 @@ CPU's BLAS, moves it from -30 to +30 J; CG stops at 1e-2 of the residual, and a 
 amplifies what that leaves). With cg_tolerance 1e-10 (exact: the sparse LU takes over where CG
 cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging lower than it
 started, from 10 s on, on every machine.
-Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16
-cloth, wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit
-integrator at its own measured limit; load ~3, 2026-11-24): for stiff
-cloth by far (leather 35x cheaper at Blender's stiffness, 220x at x10, 2800x at x100; denim at x100
-120x); at the soft presets' own stiffness the margin is small (cotton 2.1x, silk 1.4x, rubber
-2.5x; before CG was warm-started and block-preconditioned, explicit won there, 0.3-1.1x) and noisy on a loaded machine; and an
-explicit step kept in the stable band (half its limit) costs twice as much as at the limit.
+Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16 cloth,
+wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit integrator at
+its own measured limit; load ~3, 2026-11-24): for stiff cloth by far (leather 35x cheaper at
+Blender's stiffness, 220x at x10, 2800x at x100; denim at x100 120x); at the soft presets' own
+stiffness the margin is small (cotton 2.1x, silk 1.4x, rubber 2.5x; before CG was warm-started and
+block-preconditioned, explicit won there, 0.3-1.1x) and noisy on a loaded machine; and an explicit
+step kept in the stable band (half its limit) costs twice as much as at the limit.
 Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
