@@ -800,6 +800,22 @@ def test_help_text_is_wrapped_never_cut():
         TEXT.scale = 1.0
 
 
+def test_a_wrapped_line_keeps_a_number_with_its_unit_and_cuts_a_path_that_is_too_wide():
+    """'physics 6.84' then 'ms/step' on the next row read as a bare number (the 1920x1080
+    mass-spring HUD did), and a clip's path wider than its box ran off the window."""
+    from app.draw.hud import wrap
+    from app.draw.text import font
+    pygame.font.init()
+    f = font(28)
+    text = "t = 3.82 s | dt = 1/60 s | physics 6.84 ms/step"
+    room = f.size(text)[0] - 5                 # the unit no longer fits on the first row
+    assert wrap(text, f, room) == ["t = 3.82 s | dt = 1/60 s | physics", "6.84 ms/step"]
+    path = "/work/a-rather-long-folder/clips/mass_spring_cloth-20261124-075704.gif"
+    rows = wrap(f"clip saved: {path} (93 frames)", f, 250)
+    assert all(f.size(r)[0] <= 250 for r in rows) and path in "".join(rows)
+    assert rows[1].endswith("/") or rows[2].startswith("/")    # cut at a slash where it can
+
+
 def test_fmt_number_shows_a_missing_value_as_a_dash():
     from app.draw.hud import fmt_number
     assert fmt_number(None) == "-"
