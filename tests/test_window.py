@@ -442,6 +442,32 @@ def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_why(windo
     assert window.scene_view.clock.dropped_steps - dropped == 8 - n
     text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
     assert "slower than real time: physics takes" in text
+    assert "iterations" not in text and "fewer substeps or hertz catch up" in text  # its knobs
+
+
+def test_the_frame_that_blew_up_and_was_rolled_back_is_not_slower_than_real_time(window,
+                                                                                monkeypatch):
+    """The mass-spring card "Leather past its limit" said "slower than real time: physics
+    takes 46 ms of a 143 ms frame" over its rollback message: the steps were undone and the
+    scene paused, so no frame was slow."""
+    import time as _time
+    for _ in range(SETTLE_FRAMES):
+        window.update(1 / 60)
+    window.scene_view.apply_setting("blowup", True)
+    slow_step = Tiny.step
+
+    def step(self, h):
+        _time.sleep(0.03)
+        slow_step(self, h)
+
+    monkeypatch.setattr(Tiny, "step", step)
+    for _ in range(60):
+        window.update(8 / 60)
+        if window.scene_view.banner:
+            break
+    assert window.scene_view.banner and window.scene_view.clock.paused
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time" not in text
 
 
 def test_a_slow_first_frame_after_opening_or_f2_is_not_slower_than_real_time(window):
