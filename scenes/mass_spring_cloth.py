@@ -66,13 +66,14 @@ afterwards makes the material `custom`. Integrator and every slider change live.
 
 Metrics (units: px, s, kg): particles, springs, integrator; omega_max (1/s, the top mode's
 frequency); explicit_limit_h (s: symplectic Euler's limit with this damping, which is what the HUD
-compares your step with; undamped it would be 2/omega_max); max_stretch and mean_stretch
+compares your step with; undamped it would be 2/omega_max); step_limit_h (s: the explicit
+integrator in use's limit, the lowest seen; null with implicit Euler) and limit_band; max_stretch and mean_stretch
 (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
 256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
 an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
 answer, whichever solver gave it), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
-in J, the stretches in %, explicit_limit_h in ms (`metric_units`).
+in J, the stretches in %, explicit_limit_h and step_limit_h in ms (`metric_units`).
 """
 
 from __future__ import annotations
@@ -188,6 +189,7 @@ class MassSpringClothScene(Scene):
                     "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "omega_max": Unit("1/s"),
                     "explicit_limit_h": Unit("ms", 1e3),
+                    "step_limit_h": Unit("ms", 1e3),
                     "pinned_drift": Unit("px", resolution=0.01)}
     tries = (
         Try("Leather past its limit", {"material": "leather", "integrator": "symplectic_euler"},
