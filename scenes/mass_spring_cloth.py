@@ -489,7 +489,7 @@ class MassSpringClothScene(Scene):
     def _where(self) -> str:
         """Where the step is against the explicit limit and in which band: 'h = 16.667 ms =
         33x symplectic Euler's limit (...): PAST THE LIMIT ...' (the line a class reads)."""
-        c, p = self.cloth, self.p
+        p = self.p
         h = self.dt / p["substeps"]
         om, limit, name = self.omega_max, self.explicit_limit(), p["integrator"]
         title = INTEGRATORS[name].title
@@ -523,7 +523,7 @@ class MassSpringClothScene(Scene):
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())
-        slow = self._real_time_words()
+        slow = self.real_time_words()
         if slow:
             from app.draw.hud import WARN_COLOR, Line
             lines.append(Line(slow, WARN_COLOR))
@@ -535,7 +535,7 @@ class MassSpringClothScene(Scene):
 
     def hud_details(self) -> list[str]:
         """The controls, the cloth's size, the limit's derivation and the CG residual."""
-        c, m, name = self.cloth, self.metrics(), self.p["integrator"]
+        m, name = self.metrics(), self.p["integrator"]
         om, limit = self.omega_max, self.explicit_limit()
         lines = ["LMB: move+lock | RMB: unlock | U: unlock all",
                  f"{m['particles']} particles, {m['springs']} springs; stretch: mean "
@@ -588,7 +588,7 @@ class MassSpringClothScene(Scene):
         self.effect_costs()
         return sum(self._costs.values())
 
-    def _real_time_words(self) -> str:
+    def real_time_words(self) -> str:
         """'' while the physics keeps up with real time; else in words how far behind it is and
         what would catch up."""
         step, need = self.step_ms(), 1000.0 / self.p["hertz"]

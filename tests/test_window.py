@@ -445,6 +445,30 @@ def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_why(windo
     assert "iterations" not in text and "fewer substeps or hertz catch up" in text  # its knobs
 
 
+def test_a_scene_that_says_it_falls_behind_is_not_echoed_by_the_window(window, monkeypatch):
+    """mass_spring_cloth's 'not real time: ...' and the window's 'slower than real time: physics
+    takes ...' were shown together: where the scene says it in its own terms, the window is
+    silent about the physics (and speaks again when the scene does not)."""
+    import time as _time
+    for _ in range(SETTLE_FRAMES):
+        window.update(1 / 60)
+    slow_step = Tiny.step
+
+    def step(self, h):
+        _time.sleep(0.03)
+        slow_step(self, h)
+
+    monkeypatch.setattr(Tiny, "step", step)
+    monkeypatch.setattr(Tiny, "real_time_words", lambda self: "not real time: Tiny's words")
+    window.update(8 / 60)
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time" not in text
+    monkeypatch.setattr(Tiny, "real_time_words", lambda self: "")
+    window.update(8 / 60)
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time: physics takes" in text
+
+
 def test_the_frame_that_blew_up_and_was_rolled_back_is_not_slower_than_real_time(window,
                                                                                 monkeypatch):
     """The mass-spring card "Leather past its limit" said "slower than real time: physics

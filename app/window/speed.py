@@ -61,6 +61,9 @@ class SpeedWatch:
         # runs; after a long frame it is only the symptom of what made the frame long
         cap_binds = scene.p["hertz"] * clock.slow_motion / FPS_CAP > clock.max_steps_per_frame
         if physics >= draw and physics >= 0.3 * frame:
+            if scene.real_time_words():     # the scene's HUD says it, in its own terms
+                self.slow = None
+                return
             why = f"physics takes {ms(physics)} of a {ms(frame)} frame: {_fewer(scene)} catch up"
         elif capped and cap_binds:
             why = cap_text(clock, scene)
