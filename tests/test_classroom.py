@@ -356,6 +356,22 @@ def test_pointing_at_a_card_shows_what_it_sets_below_the_cards_not_over_them(tmp
     assert card.label not in panel._watch_shown
 
 
+@pytest.mark.parametrize("cls", [c for c in SCENES if c.tries or c.comparisons],
+                         ids=lambda c: c.name)
+def test_no_card_label_is_cut_at_large_text_in_a_small_window(cls, tmp_path):
+    """'Explicit vs implicit at 60 Hz' was cut to '...60 H' at 1024x768 with F2: every card's
+    label fits its button, in the font the button draws it with."""
+    from app.window.panel import _cut
+    w = open_window(cls, tmp_path, size=(1024, 640), large_text=True)
+    try:
+        panel = w.scene_view.panel
+        assert len(panel.cards) == len(cls.tries) + len(cls.comparisons)
+        for button, card in panel.cards.items():
+            assert not _cut(button, card.label), (cls.name, card.label)
+    finally:
+        TEXT.scale = 1.0
+
+
 # ----- 7. smaller -------------------------------------------------------------------------------
 def test_the_cradles_verdict_says_which_setting_breaks_it():
     cls = get_scene("newtons_cradle")

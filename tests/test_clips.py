@@ -248,7 +248,7 @@ def test_the_rec_box_covers_no_text_in_compare_mode(tmp_path, large):
     w = Window(pygame.display.set_mode((1024, 768)), screenshot_dir=tmp_path)
     w.clips = ClipRecorder(fps=30, width=160, folder=tmp_path / "clips")
     assert w.open_scene(MassSpringClothScene, {"rows": 8, "cols": 8})
-    assert w.scene_view.apply_try(MassSpringClothScene.find_card("Explicit vs implicit"))
+    assert w.scene_view.apply_try(MassSpringClothScene.find_card("Explicit vs implicit at 60 Hz"))
     if large:
         TEXT.scale = 1.0
         w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_F2, mod=0,

@@ -183,6 +183,10 @@ class ParamPanel:
                     # does in the box under the cards instead
                     b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
                                  container=self.container, object_id="#card")
+                    if _cut(b, card.label):    # 'Explicit vs implicit at 60 Hz' at F2, 1024
+                        b.kill()               # px: the same card in the theme's smaller font
+                        b = UIButton(pygame.Rect(pad, y, inner_w, row), card.label, manager,
+                                     container=self.container, object_id="#card_small")
                     self.cards[b] = card
                     y += row + gap
             self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, row),
@@ -397,6 +401,12 @@ def _select(dropdown, text: str) -> None:
     closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
     if dropdown.current_state is closed and closed.selected_option_button is not None:
         closed.selected_option_button.set_text(text)
+
+
+def _cut(button, text: str) -> bool:
+    """Would the button's font cut `text` (its padding and border kept)?"""
+    font = button.ui_manager.get_theme().get_font(button.combined_element_ids)
+    return font.size(text)[0] + 20 > button.relative_rect.width
 
 
 def _watch_text(card: Try) -> str:
