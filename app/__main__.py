@@ -453,13 +453,16 @@ def exercise_main(argv: list[str]) -> int:
 
 
 def leave(code: int) -> NoReturn:
-    """Exit with `code`. An exercise scene runs the student's file in this process, and a thread
-    it started (even a non-daemon one, which Python waits for at exit, for ever) must not keep the
-    lab open: with such a thread alive, flush and leave at once."""
+    """Exit with `code`. An exercise scene runs the student's file in this process, and what it
+    left behind must not keep the lab open nor write after the JSON: a thread (even a non-daemon
+    one, which Python waits for at exit, for ever), an atexit handler, a __del__ that runs at
+    shutdown. Once a student's file ran here, or with such a thread alive, flush and leave at
+    once."""
     import threading
     stray = [t for t in threading.enumerate()
              if t is not threading.main_thread() and t.is_alive() and not t.daemon]
-    if not stray:
+    loading = sys.modules.get("app.exercises.loading")
+    if not stray and not getattr(loading, "LOADED", None):
         sys.exit(code)
     for stream in (sys.stdout, sys.stderr):
         try:

@@ -18,6 +18,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 SLOW_MOTION = (1.0, 0.5, 0.25, 0.125)   # x1, x1/2, x1/4, x1/8
+FPS_CAP = 60                # the window draws at most this many frames a second
 
 
 @dataclass

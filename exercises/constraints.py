@@ -19,9 +19,11 @@ Write `satisfy_rods`. x has shape (n, 2); a, b are integer arrays (m,); rest, w 
 Check it:   python -m app exercise check constraints
 Watch it:   python -m app --scene exercise:constraints   (your cloth left, the lab's right)
 
-What the grader measures: pinned particles move by exactly 0; one rod alone is exactly satisfied
-after one sweep; the ends share the correction by inverse mass (the centre of mass stays put); a
-hanging cloth stretches less with more iterations; two particles at one point give no NaN.
+What the grader measures: pinned particles move by exactly 0 (a rod between two of them is
+skipped); one rod alone is exactly satisfied after one sweep, squashed or stretched, and three rods
+of different rest lengths each reach their own; the ends share the correction by inverse mass
+(the centre of mass stays put); a hanging cloth stretches less with more iterations; two
+particles at one point give no NaN.
 
 Hints:
   * A plain Python loop over the rods is fine here (it is what the slide does); the lab's

@@ -19,9 +19,9 @@ Watch it:   python -m app --scene exercise:double_pendulum   (the orange ghost: 
             motion; try --set angle1=10 --set angle2=10: a small release stays with it)
 
 What the grader measures: the bobs start where asked with their masses, in the space with
-both rods; from a small release the
-tip stays within 1 px of the equations' solution for 2 s; released high, the energy drifts less
-than 1% in 20 s; the rods' lengths hold within 1 px.
+both rods, and cannot collide with each other; from a small release the tip stays within 1 px of
+the equations' solution for 2 s; released high, the energy drifts less than 1% in 20 s; the rods'
+lengths hold within 1 px.
 
 Hints:
   * moment: pymunk.moment_for_circle(mass, 0, radius).

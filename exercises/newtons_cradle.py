@@ -21,9 +21,10 @@ order along the row (left to right).
 Check it:   python -m app exercise check newtons_cradle
 Watch it:   python -m app --scene exercise:newtons_cradle --set lifted=2
 
-What the grader measures, with the cradle scene's own verdict (5 balls, 120 Hz x 30 substeps):
-k in, k out for k = 1, 2, 3; the middle balls stay within 2 px of rest over 10 s; more than 95%
-of the energy is left after 10 s.
+What the grader measures: the balls hang as above (angles, string lengths, the anchors on the bar
+and centred on CENTRE_X, mass 1 each); then with the cradle scene's own verdict (5 balls, 120 Hz
+x 30 substeps): k in, k out for k = 1, 2, 3; the middle balls stay within 2 px of rest over 10 s;
+more than 95% of the energy is left after 10 s.
 
 Hints:
   * Leave a hair of space between the balls (gap ~0.02 px): balls pressed together (overlapping

@@ -29,6 +29,20 @@ stiffness, 160x at x10, 1600x at x100; denim at x100 66x), but at the soft prese
 stiffness it is about even or explicit wins (cotton 0.3-1.1x, silk 0.4-0.8x, rubber 1.0-1.6x,
 noisy on a loaded machine); and an explicit step kept in the stable band (half its limit) costs
 twice that again.
+Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
+Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
+cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
+`direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
+every step, and its factors fill in (11x the matrix's non-zeros at 64x64). Measured (`python -m
+app bench mass_spring`, denim): the LU's solve costs {LU32}x CG's at 32x32 and {LU64}x at 64x64,
+and grows as particles^{PLU} against CG's particles^{PCG}. The HUD gives each one's ms a step once
+it has run on this cloth: switch it live to compare.
+The step budget: the window waits for whole steps, so a setting whose one step would take over
+0.1 s is refused, naming what would fit (fewer substeps, a looser cg_tolerance, solver=cg, fewer
+particles). The estimate counts the forces, the matrix, CG's iterations (from the substep against
+the cloth's highest frequency, and the tolerance) or the LU, times the substeps
+(app/physics/mass_spring_cost.py); CG is also capped at the iterations that fit, and a solve
+stopped there says so. When the physics cannot keep up with real time the HUD says so in words.
 Physics: app/physics/mass_spring.py (Blender's units in pixels and seconds: blender_cloth.py);
 drawing: app/draw/cloth_draw.py, the Verlet cloth's strain heat map and legend, so the two cloths
 compare directly.
@@ -55,8 +69,9 @@ frequency); explicit_limit_h (s: symplectic Euler's limit with this damping, whi
 compares your step with; undamped it would be 2/omega_max); max_stretch and mean_stretch
 (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
-256 px); cg_iterations (the last implicit solve's; null before the first solve, 0 with an
-explicit integrator); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
+256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
+an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
+answer, whichever solver gave it), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
 in J, the stretches in %, explicit_limit_h in ms (`metric_units`).
 """
 
@@ -71,26 +86,25 @@ from app.physics.bounds import clamp_point
 from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
 from app.physics.blender_cloth import MATERIAL_KEYS, MATERIALS, PX_PER_M, material_settings
-from app.physics.mass_spring import FORCE_EFFECTS, PINS, MassSpringCloth
+from app.physics.mass_spring import FORCE_EFFECTS, PINS, SOLVERS, MassSpringCloth
+from app.physics.mass_spring_cost import (FRAME_BUDGET_S, frame_cost, iteration_cap, refusal,
+                                          steps_per_frame)
 from app.physics.mass_spring_stability import (ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT,
                                                LimitWatch, marginal)
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 from app.vectors import Arrows, grid_sample, sample_text
 
 UNLOCK_KEY = "u"
-# particles x substeps per step: 32x32 x 39, 64x64 x 9. Measured at 64x64 x 9, implicit Euler:
-# 0.06 s per step (cotton) to 0.4 s (every stiffness 1e5, mass 0.001, shear on); 1.2 s with
-# cg_tolerance 1e-10 on top (CG iterations, not particles, decide the rest)
-STEP_BUDGET = 40_000
 MATERIAL_CHOICES = ("custom",) + tuple(MATERIALS)
 JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (blender_cloth.py)
+SOLVER_WORDS = {"cg": "CG", "direct": "direct LU"}
 BAND_WORDS = {
     "stable": "stable",
     "marginal": "MARGINAL: safe only below {m:g}x of it, the limit falls as the cloth deforms",
     "past the limit": "PAST THE LIMIT: its top mode grows (a shiver, or a blow-up)",
 }
 # settings that change the step or the solver, not the cloth: its limits seen so far still hold
-STEP_SETTINGS = {"integrator", "hertz", "substeps", "cg_tolerance"}
+STEP_SETTINGS = {"integrator", "hertz", "substeps", "cg_tolerance", "solver"}
 
 
 class MassSpringClothScene(Scene):
@@ -150,8 +164,13 @@ class MassSpringClothScene(Scene):
         Param("wind_field", "gust", str, choices=("gust", "lecture"),
               help="gust: travelling gusts; lecture: the slide's (sin(x*y*t), cos(z*t)), z = 1",
               rebuild=False),
+        Param("solver", "cg", str, choices=SOLVERS,
+              help="implicit Euler's linear solve: cg (conjugate gradients, Baraff & Witkin's) "
+                   "or direct (SciPy's sparse LU); the HUD gives the cost of each",
+              rebuild=False),
         Param("cg_tolerance", 1e-2, float, 1e-10, 0.5,
-              help="implicit Euler: CG stops at |residual| <= this x |b|", rebuild=False),
+              help="implicit Euler: CG stops at |residual| <= this x |b| (and a direct solve "
+                   "must reach it too)", rebuild=False),
     )
     effects = (
         Effect("gravity", True, "gravity f = m g", amount="g"),
@@ -198,17 +217,24 @@ class MassSpringClothScene(Scene):
     # ----- settings ---------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:
-        work = values["rows"] * values["cols"] * values["substeps"]
-        if work > STEP_BUDGET:
-            raise ParamError(
-                f"rows x cols x substeps too large: {values['rows']}x{values['cols']} x "
-                f"{values['substeps']} substeps = {work} particle-steps per step; accepted: at "
-                f"most {STEP_BUDGET} (up to ~0.4 s per step with implicit Euler)")
+        """Refuse a setting whose frame of steps would hold the window longer than
+        FRAME_BUDGET_S (app/physics/mass_spring_cost.py: what a step costs, and what would
+        fit), in one line."""
+        text = refusal(values, cls.world_size)
+        if text:
+            raise ParamError(text)
 
     @classmethod
     def resolve(cls, overrides):
         """As Scene.resolve, then a named material fills in the sliders not given explicitly;
-        a slider given with a value other than the material's makes the material 'custom'."""
+        a slider given with a value other than the material's makes the material 'custom'. (The
+        preset's values are filled in before Scene.resolve checks the combination, so the step
+        budget sees the cloth that will be built.)"""
+        named = next((v for k, v in overrides.items() if cls.canonical(k) == "material"), None)
+        if named is not None and cls.check_setting("material", named) != "custom":
+            given = {cls.canonical(k) for k in overrides}
+            preset = material_settings(cls.check_setting("material", named))
+            overrides = {**{k: v for k, v in preset.items() if k not in given}, **overrides}
         values, on = super().resolve(overrides)
         if values["material"] != "custom":
             given = {cls.canonical(k) for k in overrides}
@@ -243,6 +269,8 @@ class MassSpringClothScene(Scene):
         self._energy: collections.deque = collections.deque(maxlen=600)   # (time, energy)
         self.watch = LimitWatch()                # omega_max and the limits, on the moving cloth
         self._cg_failure_t: float | None = None      # when implicit Euler's CG last stopped short
+        self._solve_ms: dict[str, float] = {}        # ms per step of each solver, as measured
+        self._solve_mark = 0.0                       # cloth.spent["solve"] at the last step
         self._sync()
 
     def _sync(self, names: set[str] | None = None) -> None:
@@ -253,7 +281,11 @@ class MassSpringClothScene(Scene):
         c.g, c.wind_field, c.wind_strength = p["g"], p["wind_field"], p["wind_strength"]
         c.on = set(self.on)
         c.configure()
-        c.ps.cg_tolerance = p["cg_tolerance"]
+        c.ps.cg_tolerance, c.ps.solver = p["cg_tolerance"], p["solver"]
+        c.ps.budget_iterations = iteration_cap(        # CG's most in a substep (the budget)
+            p, FRAME_BUDGET_S / steps_per_frame(p["hertz"]))
+        if names is None or names - {"solver"}:
+            self._solve_ms.clear()                   # the costs measured no longer hold
         self._energy.clear()
         if names is None or names - STEP_SETTINGS:
             self.watch.forget()
@@ -315,10 +347,18 @@ class MassSpringClothScene(Scene):
         self._stretch = None
 
     def after_step(self) -> None:
-        # the cloth's limit falls as it shears and stretches: follow it (every ESTIMATE_EVERY
-        # simulated seconds, warm-started) and keep the lowest for the current integrator
         name = self.p["integrator"]
         explicit = INTEGRATORS[name].explicit
+        # what this step's solve cost, kept per solver (smoothed) so the HUD can set them side
+        # by side once both have run on this cloth
+        spent = self.cloth.spent["solve"]
+        if not explicit:
+            ms, solver = (spent - self._solve_mark) * 1e3, self.p["solver"]
+            old = self._solve_ms.get(solver)
+            self._solve_ms[solver] = ms if old is None else 0.8 * old + 0.2 * ms
+        self._solve_mark = spent
+        # the cloth's limit falls as it shears and stretches: follow it (every ESTIMATE_EVERY
+        # simulated seconds, warm-started) and keep the lowest for the current integrator
         every = ESTIMATE_EVERY if explicit else ESTIMATE_EVERY_IMPLICIT
         if self.cloth.is_sane() and self.watch.follow(self.cloth.ps, self.time, every):
             if explicit:
@@ -402,6 +442,7 @@ class MassSpringClothScene(Scene):
             "particles": c.rows * c.cols,
             "springs": c.spring_count(),
             "integrator": self.p["integrator"],
+            "solver": self.p["solver"],
             "omega_max": self.omega_max,
             "explicit_limit_h": self.explicit_limit(),
             # the integrator's own limit the band is judged against (the lowest seen) and the band
@@ -454,8 +495,7 @@ class MassSpringClothScene(Scene):
         pred = self.limit(name)
         band = self.watch.band(name, h)
         if not INTEGRATORS[name].explicit:
-            where += ((f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else "")
-                      + f"; CG {c.ps.cg_iterations} iterations")
+            where += f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else ""
         elif om <= 0:                          # every stiffness 0: no top mode, no limit
             where += ": no stiffness, so no step limit"
         elif pred is None:
@@ -479,6 +519,12 @@ class MassSpringClothScene(Scene):
         lines = [f"{p['material']}, {title}: {self._where()}",
                  f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
+        if not INTEGRATORS[p["integrator"]].explicit:
+            lines.append(self._solve_line())
+        slow = self._real_time_words()
+        if slow:
+            from app.draw.hud import WARN_COLOR, Line
+            lines.append(Line(slow, WARN_COLOR))
         if self._cg_failure_t is not None:          # a solve that stopped short, in words
             n = c.ps.cg_failures
             lines.append(f"t = {self._cg_failure_t:.2f} s ({n} step{'s' if n > 1 else ''} so "
@@ -501,9 +547,61 @@ class MassSpringClothScene(Scene):
                          + (f"; this damping lowers symplectic Euler's to {limit * 1e3:.3f} ms"
                             if self.mode_damping > 0 else ""))
         if not INTEGRATORS[name].explicit:
-            lines.append(f"CG: {c.ps.cg_iterations} iterations, residual {c.ps.cg_residual:.1e} "
-                         f"(stops at {self.p['cg_tolerance']:g} x |b|)")
+            lines.append(self._solve_details())
         return lines
+
+    # ----- the solve's cost, and real time ------------------------------------------------------
+    def _solve_line(self) -> str:
+        """'solve: CG 86 iterations, 9.1 ms a step (direct LU: 58 ms, when last used)': the
+        solver in use and its measured cost, beside the other one's if it ran on this cloth."""
+        solver, report, ms = self.p["solver"], self.cloth.ps.solve, self._solve_ms
+        if not report.method:
+            return f"solve: {SOLVER_WORDS[solver]}, no step yet"
+        cost = f"{ms[solver]:.3g} ms a step" if solver in ms else "-"
+        text = (f"solve: CG {report.iterations} iterations, {cost}" if solver == "cg"
+                else f"solve: {SOLVER_WORDS[solver]} {cost}")
+        other = "direct" if solver == "cg" else "cg"
+        if other in ms:
+            text += f" ({SOLVER_WORDS[other]}: {ms[other]:.3g} ms, when last used)"
+        return text
+
+    def _solve_details(self) -> str:
+        """The second page's line on the solve: CG's residual, its first guess and the cost of
+        an iteration; the direct solve's residual and its factors' size against A's."""
+        c, report = self.cloth, self.cloth.ps.solve
+        nonzeros = c.ps.matrix.nonzeros if c.ps.matrix is not None else 0
+        if report.method == "cg":
+            start = "the last steps' dv" if report.warm else "dv = 0"
+            return (f"CG (block Jacobi, from {start}): residual {report.residual:.1e} (stops "
+                    f"at {self.p['cg_tolerance']:g} |b|); A: {nonzeros:,} non-zeros, never "
+                    "factored")
+        if report.method:
+            fill = (f": L and U hold {report.fill:,} non-zeros, {report.fill / nonzeros:.1f}x "
+                    f"A's {nonzeros:,}" if report.fill and nonzeros else "")
+            return f"direct: SuperLU factors A every step{fill}; residual {report.residual:.1e}"
+        return "solve: no step yet"
+
+    def step_ms(self) -> float:
+        """Measured ms of physics per fixed step: the effects' costs added up (0 before any)."""
+        self.effect_costs()
+        return sum(self._costs.values())
+
+    def _real_time_words(self) -> str:
+        """'' while the physics keeps up with real time; else in words how far behind it is and
+        what would catch up."""
+        step, need = self.step_ms(), 1000.0 / self.p["hertz"]
+        if self.steps < 5 or step <= need:
+            return ""
+        p, ms = self.p, self._solve_ms
+        if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "direct" and (
+                ms.get("cg", frame_cost({**p, "solver": "cg"}, self.world_size)[1] * 1e3)
+                < ms.get("direct", 0.0)):           # CG as measured here, else as estimated
+            way = "solver=cg"
+        else:
+            way = ("fewer particles or substeps" + (" or a looser cg_tolerance"
+                   if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "cg" else ""))
+        return (f"not real time: {step:.3g} ms of physics per {need:.3g} ms step "
+                f"({need / step:.2f}x); {way} would catch up")
 
     # ----- state --------------------------------------------------------------------------------
     def state_arrays(self):

@@ -96,6 +96,48 @@ WRONG = {
     "grid_twice": ("neighbour_grid", "random particles", "a pair comes twice"),
     "grid_all_pairs": ("neighbour_grid", "pair tests", "that is testing all pairs"),
     "grid_big_cells": ("neighbour_grid", "pair tests", "cells larger than the cut-off"),
+    # issue 16, the second pass: wrong answers that passed (*) or got a hint naming another
+    # mistake, now failing with one that names theirs
+    "constraints_rest_of_first": ("constraints", "each rod its rest", "first rod's rest"),  # *
+    "constraints_shares_swapped": ("constraints", "pinned never move", "OTHER end's share"),
+    "constraints_no_pinned_skip": ("constraints", "pinned never move", "w_a + w_b = 0"),
+    "constraints_off_by_one": ("constraints", "one rod, one pass", "range(iterations - 1)"),
+    "constraints_one_sweep": ("constraints", "stretch falls", "`iterations` is not used"),
+    "pendulum_colliding_bobs": ("double_pendulum", "built as asked", "can collide"),  # *
+    "pendulum_radians_twice": ("double_pendulum", "built as asked", "already in radians"),
+    "pendulum_second_from_anchor": ("double_pendulum", "built as asked", "from bob 1"),
+    "cradle_off_centre": ("newtons_cradle", "lifted as asked", "not centred"),  # *
+    "cradle_heavy_balls": ("newtons_cradle", "lifted as asked", "mass is not 1"),  # *
+    "cradle_lifts_last": ("newtons_cradle", "lifted as asked", "the LAST balls are lifted"),
+    "grid_counts_kept": ("neighbour_grid", "pair tests", "count every distance"),  # *
+    "grid_w_h_swapped": ("neighbour_grid", "pair tests", "w and h (or x and y) swapped"),  # *
+    "grid_ceil_cells": ("neighbour_grid", "on the cell borders", "at least a cut-off wide"),  # *
+    "grid_squared_cutoff": ("neighbour_grid", "random particles", "the distance test is off"),
+    "grid_float_indices": ("neighbour_grid", "random particles", "ndarray of float64"),
+    "verlet_lists": ("verlet", "free fall", "a Python list"),  # *
+    "verlet_swapped_pair": ("verlet", "free fall", "you return (x, x_new)"),
+    "verlet_returns_x_prev": ("verlet", "free fall", "you return (x_new, x_prev)"),
+    "verlet_drag_twice": ("verlet", "drag loses energy", "applied twice"),
+    "implicit_kv_sign": ("implicit_spring", "A and rhs", "rhs has - h K v"),
+    "implicit_float32": ("implicit_spring", "A and rhs", "float32"),
+    "implicit_w_tiled": ("implicit_spring", "energy factor per step", "np.tile(w, 2)"),
+    "implicit_w_right": ("implicit_spring", "A and rhs", "W is on the wrong side"),
+    "implicit_offdiag_sign": ("implicit_spring", "A and rhs", "off-diagonal blocks"),
+    "implicit_block_index": ("implicit_spring", "A and rhs", "the particle index doubled"),
+    "implicit_mass_from_w": ("implicit_spring", "free fall", "0 x inf is NaN"),
+    "implicit_returns_dv": ("implicit_spring", "free fall", "the second value is dv"),
+    "implicit_damping_sign": ("implicit_spring", "A and rhs", "D has the wrong sign"),
+    "spring_ks_kd_swapped": ("spring", "Hooke part", "ks and kd are swapped"),
+    "spring_norm_no_axis": ("spring", "Hooke part", "axis=1"),
+    "spring_no_reaction": ("spring", "Hooke part", "only f_a is added"),
+    "rk4_quarter_weights": ("rk4", "RK4 order, spring", "divided by 4"),
+    "rk4_increment": ("rk4", "RK4 order, spring", "the increment"),
+    "rk4_k4_half_time": ("rk4", "RK4 stage times", "k4 is taken at t + h/2"),
+    "rk4_midpoint_time_fixed": ("rk4", "midpoint, not Heun", "taken at time t"),
+    "solver_times_mass": ("solver_interface", "a = f / m", "f * m, not f / m"),
+    "solver_mass_twice": ("solver_interface", "a = f / m", "divided by the mass twice"),
+    "l_limit_dynamic": ("pivoting_l", "the L", "limit body is not STATIC"),
+    "l_limit_at_origin": ("pivoting_l", "the L", "ORIGIN + SLIDE_ANCHOR"),
 }
 
 

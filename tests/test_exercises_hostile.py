@@ -58,6 +58,12 @@ FAILS = {
     "verlet_patches_grader": ("every", ""),
     "verlet_forged_token": ("every", ""),
     "verlet_thread": ("free fall", ""),
+    # the second pass (issue 16)
+    "verlet_reexports_lab": ("imports", "uses the lab's own code: verlet_step (from "
+                             "app.physics.jakobsen)"),
+    "verlet_closes_fds": ("imports", "channel was closed or redirected"),
+    "verlet_dup_over_channel": ("imports", "channel was closed or redirected"),
+    "verlet_segfault": ("every", "killed by signal 11 (SIGSEGV)"),
 }
 
 
@@ -313,3 +319,123 @@ def test_an_unwritten_starter_shows_the_labs_answer_running_beside_the_message()
     scene.draw(surface, View())
     assert demo.time > t0                                    # and it moves
     assert "orange: the lab's answer" in " ".join(scene.hud_lines())
+
+
+# ----- the second pass (issue 16): more hostile files -------------------------------------------
+def pids_in(path: Path) -> list[int]:
+    return [int(p) for p in path.read_text().split()] if path.exists() else []
+
+
+def none_alive(pids: list[int], within: float = 5.0) -> bool:
+    deadline = time.monotonic() + within
+    while time.monotonic() < deadline and any(alive(p) for p in pids):
+        time.sleep(0.05)
+    return not any(alive(p) for p in pids)
+
+
+def test_a_process_that_stops_itself_is_ended_at_the_time_limit():
+    report, seconds = graded("verlet_sigstop", timeout=0.15)
+    assert report.checks[0].measured == "still running after 0.15 s" and seconds < 3.0
+
+
+def test_sleeping_processes_forked_at_import_are_all_ended(tmp_path, monkeypatch):
+    pid_file = tmp_path / "pids"
+    monkeypatch.setenv("LAB_TEST_PID_FILE", str(pid_file))
+    report, seconds = graded("verlet_fork_flood")
+    assert report.passed and seconds < 5.0, report.text()      # its step is right
+    pids = pids_in(pid_file)
+    assert len(pids) == 20 and none_alive(pids)
+
+
+def test_a_chain_of_forks_racing_the_kill_leaves_no_process(tmp_path, monkeypatch):
+    # each process forks the next and leaves: the grader's killpg, atomic with fork, ends the
+    # one alive at the time limit, and no new one is born after
+    pid_file = tmp_path / "pids"
+    monkeypatch.setenv("LAB_TEST_PID_FILE", str(pid_file))
+    report, _ = graded("verlet_fork_race", timeout=0.2)
+    assert report.checks[0].measured == "still running after 0.2 s"
+    pids = pids_in(pid_file)
+    assert pids and none_alive(pids)
+    time.sleep(0.2)
+    assert len(pids_in(pid_file)) == len(pids)          # nobody went on forking
+
+
+def test_a_runaway_allocation_is_a_memory_error_at_the_childs_cap(monkeypatch):
+    import app.exercises.child as child
+    monkeypatch.setattr(child, "MEMORY_ROOM", 64 << 20)    # the forked child reads it
+    start = time.monotonic()
+    report = grade(VERLET, str(HOSTILE / "verlet_memory_creep.py"), timeout=5.0,
+                   only=("free fall",))
+    assert "MemoryError" in report.checks[0].error and time.monotonic() - start < 5.0
+
+
+@pytest.mark.parametrize("name, only", [
+    ("verlet_sys_modules", None),                       # junk in sys.modules: the grader's own
+    ("cradle_chdir", ("lifted as asked", "1 in, 1 out")),   # references hold; cwd is not used
+])
+def test_a_right_answer_with_hostile_side_effects_still_passes(name, only):
+    exercise = get_exercise("newtons_cradle" if name.startswith("cradle") else "verlet")
+    report = grade(exercise, str(HOSTILE / f"{name}.py"), timeout=5.0, only=only)
+    assert report.passed, report.text()
+
+
+def test_what_a_students_file_leaves_at_exit_neither_hangs_the_scene_nor_follows_the_json(
+        tmp_path):
+    # once: an atexit handler wrote after the JSON and slept, a __del__ slept at shutdown (the
+    # lab hung), and input() waited for a terminal that never answers (a pipe kept open here)
+    path = copy_as(tmp_path, "verlet_leaves_traps", "verlet")
+    read, write = os.pipe()
+    try:
+        start = time.monotonic()
+        r = subprocess.run([sys.executable, "-m", "app", "--headless", "--scene",
+                            f"exercise:{path}", "--steps", "5", "--json"], cwd=ROOT,
+                           stdin=read, capture_output=True, text=True, timeout=30,
+                           env=dict(os.environ, SDL_VIDEODRIVER="dummy",
+                                    SDL_AUDIODRIVER="dummy"))
+        seconds = time.monotonic() - start
+    finally:
+        os.close(read)
+        os.close(write)
+    summary = json.loads(r.stdout)                      # the JSON alone: nothing after it
+    assert "EOFError" in summary["error"] and summary["steps"] == 2
+    assert r.returncode == 1 and seconds < 20, (r.returncode, seconds)
+
+
+def test_the_labs_code_failing_on_a_students_build_is_named_as_the_labs():
+    # once: bob 2 placed on bob 1 made the lab's ODE divide by zero, shown as the student's error
+    scene = exercise_scene("double_pendulum", path=str(
+        ROOT / "tests" / "exercise_answers" / "pendulum_second_from_anchor.py"))(
+        {"angle1": 10.0, "angle2": 10.0})
+    assert scene.error and "the lab's code failed on what your code returned" in scene.error
+    assert "ZeroDivisionError" in scene.error
+
+
+def test_a_scene_refuses_the_labs_own_answer_and_names_a_missing_function(tmp_path):
+    scene = exercise_scene("verlet", path=str(HOSTILE / "verlet_reexports_lab.py"))({})
+    assert "uses the lab's own code" in scene.error
+    empty = tmp_path / "verlet.py"
+    empty.write_text("x = 1\n")
+    assert "defines no function verlet_step" in exercise_scene("verlet", path=str(empty))({}).error
+
+
+def test_a_blow_up_in_an_exercise_scene_points_at_the_grader_not_only_at_dt():
+    scene = exercise_scene("constraints", path=str(
+        ROOT / "tests" / "exercise_answers" / "constraints_no_pinned_skip.py"))({})
+    hint = scene.blowup_hint()
+    assert "python -m app exercise check constraints --path" in hint and "raise hertz" in hint
+
+
+def test_grid_indices_outside_the_particles_are_refused_in_the_child(tmp_path):
+    path = tmp_path / "neighbour_grid.py"
+    path.write_text("import numpy as np\n\n\ndef grid_pairs(x, cutoff, box):\n"
+                    "    return np.array([0]), np.array([len(x)]), 1\n")
+    report = grade(get_exercise("neighbour_grid"), str(path), only=("random particles",))
+    assert "indices outside 0..399" in report.checks[0].error
+    scene = exercise_scene("neighbour_grid", path=str(path))({})   # the scene: a message too
+    with pytest.raises(SceneError, match="indices outside"):
+        scene.advance()
+
+
+def test_the_implicit_scenes_hud_shows_a_blown_up_energy_as_a_factor():
+    from app.exercises.implicit_spring.scene import share
+    assert share(0.3656) == "36.6%" and share(2.4e44) == "2.4e+44x" and share(math.nan) == "NaN"

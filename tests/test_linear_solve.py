@@ -8,7 +8,7 @@ import pytest
 from app.physics.linear_solve import dense_solve, preconditioned_cg, solve
 from app.physics.mass_spring import MassSpringCloth, implicit_euler
 from app.physics.blender_cloth import material_settings
-from app.physics.spring_forces import sparse_matrix
+from app.physics.cloth_matrix import ClothMatrix
 from scenes.integrators import IntegratorsScene
 from scenes.mass_spring_cloth import MassSpringClothScene
 
@@ -72,12 +72,20 @@ def test_the_cloths_sparse_matrix_is_its_product():
     ps = c.ps
     ps.x = c.rest_x * 1.02 + np.random.default_rng(1).normal(0, 0.3, ps.x.shape)
     stiff, damp = ps.blocks(ps.x)
-    diagonal = np.random.default_rng(2).uniform(1, 2, (2, ps.n))
-    matrix = sparse_matrix(stiff + damp, diagonal, 4, 5)
+    assert [fam for fam, _ in stiff] == [fam for fam, _ in damp]     # every set damped
+    blocks = [(fam, B + 0.3 * D) for (fam, B), (_, D) in zip(stiff, damp)]
+    mass = np.random.default_rng(2).uniform(1, 2, ps.n)
     w = np.random.default_rng(3).normal(size=(2, ps.n))
     from app.physics.spring_forces import block_product
-    expected = diagonal * w + block_product(stiff + damp, w, 4, 5)
-    assert np.allclose((matrix @ w.ravel()).reshape(2, -1), expected, rtol=1e-12, atol=1e-9)
+    expected = mass * w + block_product(blocks, w, 4, 5)
+    for storage in ("dia", "csr"):
+        matrix = ClothMatrix([fam for fam, _ in blocks], 4, 5, storage)
+        for _ in range(2):                      # refreshed in place: the second time the same
+            matrix.refresh(mass, blocks)
+            assert np.allclose(matrix.product(w), expected, rtol=1e-12, atol=1e-9)
+        dense = matrix.matrix.toarray()
+        assert np.array_equal(dense, dense.T)                 # symmetric, entry for entry
+        assert np.count_nonzero(dense) <= matrix.nonzeros
 
 
 def test_a_cloth_step_whose_cg_stops_short_is_the_direct_solve_and_says_so():

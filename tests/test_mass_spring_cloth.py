@@ -337,7 +337,7 @@ def test_bad_input_is_one_line_and_exit_2(setting, capsys):
 
 
 def test_check_combination_refuses_a_step_over_budget():
-    with pytest.raises(ParamError, match="too large"):
+    with pytest.raises(ParamError, match="too slow for the window"):
         MassSpringClothScene({"rows": 64, "cols": 64, "substeps": 20})
 
 

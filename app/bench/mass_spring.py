@@ -33,6 +33,8 @@ highest mode, which a perfectly symmetric start would not excite).
 4. The CG tolerance: iterations, ms and the largest position error a tolerance leaves after one
    implicit step at 1/60 s against a 1e-10 solve, near rest (20 steps into the hang) and moving
    (5 steps in).
+5.-8. The implicit cloth at classroom scale (issue 19: the targets, the routes to them, CG
+   against the direct solve, the window's slowest accepted settings): app/bench/mass_spring_solve.py.
 Timings are medians within one run; another process may load the machine (see the load line).
 """
 
@@ -273,9 +275,11 @@ def run(report: Report) -> dict[str, Any]:
         charts.append(chart)
     path = save_grid(charts, report.chart_path("mass_spring_large_steps.png"), cols=2,
                      cell=(760, 470))
+    from app.bench import mass_spring_solve
+    classroom = mass_spring_solve.run(report)        # issue 19: targets, routes, solvers, window
     return {"large_steps": rows, "implicit_vs_explicit": ratios, "step_ms": step_ms,
             "cg_tolerance": tolerance, "verdicts": verdicts, "charts": [path], "grid": n,
-            "steps_per_trial": steps}
+            "steps_per_trial": steps, **classroom}
 
 
 def implicit_ratios(rows: list[dict], materials: list[str], scales) -> list[dict[str, Any]]:

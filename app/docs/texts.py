@@ -58,6 +58,8 @@ METRICS: dict[str, dict[str, Entry]] = {
         "mean_stretch": _CLOTH_COMMON["mean_stretch"],
         "energy": ("kg px^2/s^2", "kinetic + spring + gravitational energy, 0 in the start pose "
                                   "(the HUD divides by 256^2 to show joules)"),
+        "solver": ("text", "the implicit step's linear solve: `cg` (conjugate gradients) or "
+                           "`direct` (SciPy's sparse LU); the parameter"),
         "cg_iterations": ("count", "conjugate-gradient iterations of the last implicit solve; 0 "
                                    "with an explicit integrator, null before the first solve"),
         "cg_converged": ("true/false", "whether the last solve reached its tolerance; null "

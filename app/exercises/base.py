@@ -78,6 +78,11 @@ def array_of(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
     if value is None:       # NumPy would make it a NaN of shape (): say what happened instead
         raise BadAnswer(f"{what} returned None; expected an array of shape {shape} (no return "
                         "statement? changing an array in place does not return it)")
+    if isinstance(value, (list, tuple)):    # it converts, but the caller's arithmetic does not
+        raise BadAnswer(f"{what} returned a Python {type(value).__name__}, not a NumPy array: "
+                        "the caller computes with what you return (x - x_prev, 2 * f), and on "
+                        "lists that fails (list - list) or repeats the list (2 * [...]); return "
+                        "the array itself (no .tolist(), np.array(...) around a list)")
     dtype = getattr(value, "dtype", None)
     try:
         arr = np.asarray(value, dtype=float)

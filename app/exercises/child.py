@@ -3,7 +3,8 @@ check on it, and send the raw values back, one frame per check (app/exercises/ch
 
 It runs in a process forked from the grader, in a process group of its own (so the grader can end
 every process the student's code started), with stdin from /dev/null and stdout and stderr on a
-pipe the grader reads and caps. It never decides a verdict: `measure` returns what the student's
+pipe the grader reads and caps, its data capped at MEMORY_ROOM more than it holds. It never
+decides a verdict: `measure` returns what the student's
 functions gave, and the parent judges it (app/exercises/grade.py). When it is done it leaves with
 os._exit: a thread the student started (even a non-daemon one) cannot keep it alive.
 """
@@ -20,9 +21,32 @@ from typing import Any
 from app.exercises import base
 from app.exercises.base import BadAnswer, Check, Exercise, plain
 from app.exercises.channel import encode, write_all
-from app.exercises.loading import NotASourceFile, lab_frame, load_module, student_traceback, \
-    their_frames
+from app.exercises.loading import NotASourceFile, lab_borrowings, lab_frame, load_module, \
+    student_traceback, their_frames
 from app.scene import SceneError
+
+
+CHANNEL_LOST = 86    # the child's exit code when it could not write on its channel
+
+
+MEMORY_ROOM = 2 << 30    # bytes of data a student's code may add to the child (the checks use MBs)
+
+
+def limit_memory(room: int | None = None) -> None:
+    """Cap the child's data (heap and private mappings, RLIMIT_DATA) at what it holds now plus
+    `room`: a runaway allocation is a MemoryError in the student's code, not a machine that
+    swaps until the time limit. Where the limit cannot be read or set, nothing changes."""
+    try:
+        with open("/proc/self/status") as f:
+            held = next(int(line.split()[1]) * 1024 for line in f if line.startswith("VmData:"))
+        soft, hard = resource.getrlimit(resource.RLIMIT_DATA)
+        want = held + (MEMORY_ROOM if room is None else room)
+        if hard != resource.RLIM_INFINITY:
+            want = min(want, hard)
+        if soft == resource.RLIM_INFINITY or soft > want:
+            resource.setrlimit(resource.RLIMIT_DATA, (want, hard))
+    except (OSError, ValueError, StopIteration, AttributeError):
+        pass
 
 
 def fd_limit() -> int:
@@ -39,7 +63,17 @@ def import_answer(path: str | None, exercise: Exercise) -> Any:
     missing = [f for f in exercise.functions if not callable(getattr(module, f, None))]
     if missing:
         raise BadAnswer(f"{path} defines no function {', '.join(missing)}")
+    refuse_borrowed(module, path)
     return module
+
+
+def refuse_borrowed(module: Any, path: str) -> None:
+    """BadAnswer if the file hands in the lab's own code instead of its own."""
+    borrowed = lab_borrowings(module)
+    if borrowed:
+        raise BadAnswer(f"the file uses the lab's own code: {', '.join(borrowed[:4])}. The grader "
+                        "grades the code you write; the lab's answer is there to read, not to "
+                        "import (numpy, math and pymunk are yours to use)")
 
 
 def outcome(exc: BaseException, path: str | None) -> tuple[str, str]:
@@ -116,9 +150,10 @@ def child_main(exercise: Exercise, path: str | None, checks: list[tuple[int, Che
         sys.stderr = io.TextIOWrapper(io.FileIO(2, "w", closefd=False), encoding="utf-8",
                                       errors="backslashreplace", line_buffering=True)
         sys.stdin = io.TextIOWrapper(io.FileIO(0, "r", closefd=False))
+        limit_memory()
         run_child(exercise, path, checks, token, channel)
     except BaseException:                # noqa: BLE001 - e.g. the channel closed by their code
-        code = 3
+        code = CHANNEL_LOST
     finally:
         try:
             sys.stdout.flush()
@@ -128,4 +163,5 @@ def child_main(exercise: Exercise, path: str | None, checks: list[tuple[int, Che
         os._exit(code)
 
 
-__all__ = ["child_main", "run_child", "import_answer", "outcome"]
+__all__ = ["child_main", "run_child", "import_answer", "outcome", "refuse_borrowed",
+           "CHANNEL_LOST", "MEMORY_ROOM", "limit_memory"]

@@ -15,7 +15,11 @@ parent's, computed here from the raw values each check sends back (app/exercises
   * a child that dies (pymunk aborts the process on some values, os._exit) fails the check it was
     in; a new child imports the file again for the checks after it;
   * the child has a process group of its own, and the whole group is killed when the exercise
-    is done: no process the student's code started outlives the check;
+    is done: no process the student's code started outlives the check (the kill is atomic with
+    fork: a process forking as it comes is caught too); its data is capped (child.MEMORY_ROOM:
+    a runaway allocation is a MemoryError in their code);
+  * a file that hands in the lab's own code (a name of app/ or scenes/ in its module) fails the
+    import: the grader grades code the student wrote;
   * the student's output (prints, os.write, subprocesses) is captured and its first OUTPUT_SHOWN
     bytes shown (on stderr, before the report), the rest counted and dropped;
   * the grader's own errors (a judge that raises) are reported as the grader's.
@@ -39,7 +43,7 @@ from typing import Iterator
 from app.exercises import base
 from app.exercises.base import Check, Exercise, plain
 from app.exercises.channel import ChannelError, Frame, FrameReader, parse
-from app.exercises.child import child_main, import_answer, outcome
+from app.exercises.child import CHANNEL_LOST, child_main, import_answer, outcome
 from app.exercises.loading import shown, starter_path
 from app.exercises.report import OUTPUT_SHOWN, CheckReport, Report, not_run, verdict
 
@@ -50,6 +54,8 @@ READ = 1 << 16
 
 DIED = ("the check's process ended without a result: a crash in a library (pymunk aborts on some "
         "values, e.g. a negative radius or mass), os._exit, or a signal")
+NO_CHANNEL = ("the check's process could not send its result: the grader's channel was closed "
+              "or redirected (did your code close or dup2 file descriptors, os.closerange?)")
 ENDLESS = ("stopped after {t:g} s: an endless loop (a while loop whose condition never changes)? "
            "Or a step far too slow: a check calls your function hundreds of times, so a sleep "
            "or a print of whole arrays in it adds up")
@@ -215,13 +221,18 @@ class Session:
             self.take(c, data)
         if self.child is not c:
             return
+        why = DIED
         if os.WIFSIGNALED(status):
             sig = os.WTERMSIG(status)
             how = f"killed by signal {sig} ({signal.Signals(sig).name})"
         else:
             how = f"exit code {os.WEXITSTATUS(status)}"
+            if os.WEXITSTATUS(status) == CHANNEL_LOST:    # the child's own way out
+                why = NO_CHANNEL
+            elif os.WEXITSTATUS(status) == 0:             # a clean exit, and no result
+                why = DIED + "; or its channel was closed or redirected by your code"
         cut = " (in the middle of a frame)" if c.reader.partial() else ""
-        self.broken(DIED + cut, f"the process died ({how})")
+        self.broken(why + cut, f"the process died ({how})")
 
     def tick(self, now: float) -> None:
         c = self.child

@@ -24,6 +24,7 @@ that aborts pymunk closes it. `python -m app exercise check` first is the safe o
 
 from __future__ import annotations
 
+import io
 import os
 import sys
 import time
@@ -37,9 +38,11 @@ import pygame
 from app.draw.hud import Line, text_box
 from app.draw.view import View
 from app.exercises import get_exercise, scene_class
+from app.exercises.base import BadAnswer
+from app.exercises.child import refuse_borrowed
 from app.exercises.grade import CHECK_TIMEOUT, import_probe
 from app.exercises.loading import cap_text, lab_frame, load_module, shown, starter_path, \
-    student_traceback
+    student_traceback, their_frames
 from app.scene import Scene, SceneError
 
 PREFIX = "exercise:"
@@ -58,28 +61,36 @@ STUDENT_ERRORS = (Exception, SystemExit)
 @contextmanager
 def to_stderr() -> Iterator[None]:
     """While the student's code runs: print() and file descriptor 1 both go to stderr (stdout
-    carries --json), and come back after."""
+    carries --json), input() and file descriptor 0 read an empty file (a read would otherwise
+    wait for the terminal, freezing the window), and all come back after."""
     for stream in (sys.stdout, sys.__stdout__):
         try:
             stream.flush()
         except (AttributeError, OSError, ValueError):
             pass
+    saved: dict[int, int] = {}
     try:
-        saved = os.dup(1)
+        saved[1] = os.dup(1)
         os.dup2(2, 1)
-    except OSError:                     # no fd 1 or 2 (a daemon): the Python level only
-        saved = None
+        null = os.open(os.devnull, os.O_RDONLY)
+        saved[0] = os.dup(0)
+        os.dup2(null, 0)
+        os.close(null)
+    except OSError:                     # no fd 0, 1 or 2 (a daemon): what could be done
+        pass
+    stdin, sys.stdin = sys.stdin, io.StringIO()
     try:
         with redirect_stdout(sys.stderr):
             yield
     finally:
-        if saved is not None:
-            try:
-                sys.stderr.flush()
-            except (OSError, ValueError):
-                pass
-            os.dup2(saved, 1)
-            os.close(saved)
+        sys.stdin = stdin
+        try:
+            sys.stderr.flush()
+        except (OSError, ValueError):
+            pass
+        for fd, copy in saved.items():
+            os.dup2(copy, fd)
+            os.close(copy)
 
 
 class StudentCode:
@@ -118,6 +129,13 @@ class StudentCode:
             with to_stderr():
                 self.impl = self.student if self.student is not None else load_module(
                     self.student_path)
+                missing = [f for f in get_exercise(self.exercise).functions
+                           if not callable(getattr(self.impl, f, None))]
+                if missing:
+                    raise BadAnswer(f"{self.student_path} defines no function "
+                                    f"{', '.join(missing)}")
+                if self.student is None:
+                    refuse_borrowed(self.impl, self.student_path)
                 self.reference = get_exercise(self.exercise).reference()
                 super().build()
         except STUDENT_ERRORS as e:     # any failure of the student's code
@@ -127,6 +145,9 @@ class StudentCode:
         """Hold the error (their traceback, or the lab's code failing on their values)."""
         self.error_kind = type(e).__name__[:60]
         message = student_traceback(e, self.student_path)
+        if not lab and not isinstance(e, (SyntaxError, BadAnswer, SceneError, SystemExit)) \
+                and not their_frames(e, self.student_path):
+            lab = "code"          # raised in the lab's code, none of theirs on the way: say so
         if lab:
             message = cap_text(f"the lab's {lab} failed on what your code returned (at "
                                f"{lab_frame(e)}): {message}")
@@ -162,6 +183,17 @@ class StudentCode:
             wide = max(w, 1.33 * 1.6 * h)
             return (x - (wide - w) / 2, y - 0.6 * h, wide, 1.6 * h)
         return super().content_bounds()
+
+    def blowup_hint(self) -> str:
+        """After the state went NaN or inf: their code is the first suspect, and the grader
+        names the likely mistake (a smaller dt is the shell's advice for the lab's scenes)."""
+        own = super().blowup_hint()
+        if self.student is not None:            # the lab's reference itself
+            return own
+        check = f"python -m app exercise check {self.exercise} --path {self.student_path}"
+        return (f"What your code returned went NaN or inf (or past the scene's bounds): "
+                f"`{check}` names the likely mistake. If every check passes: "
+                + (own or "a smaller dt (raise hertz) or more substeps."))
 
     def effect_costs(self) -> dict[str, float]:
         return {} if self.error else super().effect_costs()

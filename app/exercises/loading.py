@@ -69,8 +69,26 @@ def load_module(path: str) -> types.ModuleType:
     module = types.ModuleType(name)
     module.__file__ = path
     sys.modules[name] = module           # dataclasses and pickling look modules up by name
+    LOADED.append(path)                  # app/__main__.py leaves at once after their code ran
     exec(code, module.__dict__)
     return module
+
+
+LAB_PACKAGES = ("app", "scenes")
+LOADED: list[str] = []          # the students' files run in this process
+
+
+def lab_borrowings(module: types.ModuleType) -> list[str]:
+    """The names in a student's module that ARE the lab's own code: a function, class or module
+    of app/ or scenes/ imported into it (`from app.physics.jakobsen import verlet_step`). The
+    grader grades code the student wrote; it says so instead of grading the lab's answer."""
+    found = []
+    for name, value in vars(module).items():
+        owner = value.__name__ if isinstance(value, types.ModuleType) else \
+            getattr(value, "__module__", None) if callable(value) else None
+        if isinstance(owner, str) and owner.split(".")[0] in LAB_PACKAGES:
+            found.append(f"{name} (from {owner})")
+    return found
 
 
 def cap_text(text: str, lines: int = MAX_ERROR_LINES, width: int = MAX_LINE_CHARS) -> str:
@@ -143,4 +161,4 @@ def lab_frame(exc: BaseException) -> str:
 
 __all__ = ["load_module", "read_source", "student_traceback", "their_frames", "lab_frame",
            "starter_path", "shown", "cap_text", "NotASourceFile", "STARTERS", "REPO",
-           "MAX_SOURCE_BYTES"]
+           "MAX_SOURCE_BYTES", "lab_borrowings"]

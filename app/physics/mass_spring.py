@@ -34,10 +34,16 @@ limit** (omega_max, each integrator's largest step): app/physics/mass_spring_sta
     (M - h df/dv - h^2 df/dx) dv = h (f0 + h (df/dx) v0),    v' = v0 + dv,   x' = x0 + h v'
 
 The Jacobians of a spring family are one 2x2 block per spring (df_a/dx_a = -B, df_a/dx_b = +B),
-so the system matrix is M plus, per family, h (damping blocks) + h^2 (stiffness blocks): its
-product with a vector is a handful of slice operations per family (`block_product`). It is solved
-by conjugate gradients with a Jacobi (diagonal) preconditioner; pinned and grabbed particles are
-filtered out of the solve (their rows stay 0: Baraff-Witkin's filter for a fixed particle).
+so the system matrix is M plus, per family, h (damping blocks) + h^2 (stiffness blocks): a sparse
+matrix whose pattern never changes, so it is built once and its numbers refreshed in place each
+step (app/physics/cloth_matrix.py). Pinned and grabbed particles are filtered out of the solve
+(their rows stay 0: Baraff-Witkin's filter for a fixed particle). Two solvers (`solver`):
+
+    cg       conjugate gradients (the lecture's, app/physics/linear_solve.py), handed the matrix's
+             product, a 2x2 block Jacobi preconditioner and a first guess extrapolated from the
+             last two steps' dv; it stops at CG_TOLERANCE of the residual;
+    direct   SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
+             every step, and its factors fill in (`python -m app bench mass_spring` measures both).
 """
 
 from __future__ import annotations
@@ -50,23 +56,51 @@ import numpy as np
 from app.physics.blender_cloth import G_LAB, WIND_DENSITY, material_settings, spring_constants
 from app.physics.forces import Drag, Gravity
 from app.physics.integrators import INTEGRATORS
-from app.physics.linear_solve import solve
+from app.physics.cloth_matrix import ClothMatrix
+from app.physics.linear_solve import solve, solve_directly
 from app.physics.particles import ParticleSystem
 from app.physics.rods import Family, rod_sets
 from app.physics.spring_forces import (Blocks, SpringDamping, SpringSet, Timed, Wind, block_product,
-                                       sparse_matrix, spring_geometry)
+                                       spring_geometry)
 from app.physics.timing import Stopwatch
 
 
 # ----- the linear system of one implicit step ----------------------------------------------------
 class MassSpringSystem(ParticleSystem):
     """A ParticleSystem on a rows x cols grid whose spring forces give their Jacobians as 2x2
-    blocks per family, so implicit Euler's matrix-vector product is a few slice operations."""
+    blocks per family, which implicit Euler writes into a sparse matrix of a fixed pattern."""
 
     def __init__(self, x, v, mass, rows: int, cols: int, forces=(), pinned=()):
         super().__init__(x, v, mass, forces, pinned)
         self.rows, self.cols = rows, cols
         self.cg_tolerance = CG_TOLERANCE
+        self.solver = "cg"                         # or "direct" (SOLVERS)
+        self.budget_iterations: int | None = None  # CG's most that fit the step's time budget
+        self.matrix: ClothMatrix | None = None     # A's pattern, built on the first solve
+        self.last_dv: np.ndarray | None = None     # the last two steps' dv (2, n), for CG's
+        self.dv_before: np.ndarray | None = None   # first guess (next_dv_guess)
+
+    def next_dv_guess(self) -> np.ndarray | None:
+        """CG's first guess for this step's dv: the last two extrapolated, 2 dv_1 - dv_2 (a
+        cloth that moves smoothly changes its velocity smoothly), or the last one alone. CG
+        keeps it only if it beats dv = 0 (preconditioned_cg). Measured on the 64x64 denim cloth
+        over its first 2.5 s: 133 iterations a step from 0, 101 from the last dv, 83 from the
+        extrapolation."""
+        if self.last_dv is None or self.last_dv.shape != (2, self.n):
+            return None
+        if self.dv_before is None:
+            return self.last_dv
+        return 2.0 * self.last_dv - self.dv_before
+
+    def copy_state(self) -> dict:
+        copy = lambda a: None if a is None else a.copy()      # noqa: E731
+        return {**super().copy_state(), "last_dv": copy(self.last_dv),
+                "dv_before": copy(self.dv_before)}
+
+    def restore_state(self, snap: dict) -> None:
+        super().restore_state(snap)
+        copy = lambda a: None if a is None else a.copy()      # noqa: E731
+        self.last_dv, self.dv_before = copy(snap.get("last_dv")), copy(snap.get("dv_before"))
 
     def blocks(self, x: np.ndarray) -> tuple[Blocks, Blocks]:
         """The stiffness blocks (-df/dx) and damping blocks (-df/dv) of forces that have them."""
@@ -85,9 +119,10 @@ class MassSpringSystem(ParticleSystem):
                    if isinstance(getattr(f, "force", f), Drag))
 
     def linear_system(self, x: np.ndarray, h: float) -> "ImplicitSystem":
-        """At x: implicit Euler's A = M - h df/dv - h^2 df/dx and K = df/dx as products on
-        component-major vectors (2, n), 1/diag(A) (the Jacobi preconditioner), (2, n), and a
-        direct solve of A (the fallback where CG stops short)."""
+        """At x: implicit Euler's A = M - h df/dv - h^2 df/dx as a sparse matrix with a fixed
+        pattern, refreshed in place (app/physics/cloth_matrix.py), its product and its block
+        Jacobi preconditioner on component-major vectors (2, n); K = df/dx as a product; and a
+        direct solve of A (solver=direct, or the fallback where CG stops short)."""
         stiff, damp = self.blocks(x)
         combined: dict[int, tuple[Family, np.ndarray]] = {}     # one block per family: h D + h^2 K
         for scale, blocks in ((h * h, stiff), (h, damp)):
@@ -96,62 +131,84 @@ class MassSpringSystem(ParticleSystem):
                 B = combined[key][1] + scale * B if key in combined else scale * B
                 combined[key] = (fam, B)
         system = list(combined.values())
-        M = (self.mass + h * self.air_drag())[None, :]            # f = -k v: -h df/dv = h k I
+        families = [fam for fam, _ in system]
+        if self.matrix is None or not self.matrix.key_matches(families):
+            self.matrix = ClothMatrix(families, self.rows, self.cols)   # a new pattern
+        matrix = self.matrix
+        matrix.refresh(self.mass + h * self.air_drag(), system)   # f = -k v: -h df/dv = h k I
         rows, cols = self.rows, self.cols
 
         def A(w: np.ndarray) -> np.ndarray:
             self.jac_products += 1
-            return M * w + block_product(system, w, rows, cols)
+            return matrix.product(w)
 
         def K(w: np.ndarray) -> np.ndarray:
             return -block_product(stiff, w, rows, cols)
 
-        diagonal = np.repeat(M, 2, axis=0).reshape(2, rows, cols)
-        for fam, B in system:
-            d = np.stack((B[0, 0], B[1, 1]))
-            diagonal[(slice(None),) + fam.a] += d
-            diagonal[(slice(None),) + fam.b] += d
-
-        def direct(b: np.ndarray) -> np.ndarray | None:
-            """A x = b on the free rows by a sparse LU (SuperLU), x = 0 on the fixed ones."""
-            from scipy.sparse.linalg import spsolve
-            free = np.broadcast_to(self.free.T, b.shape).ravel() > 0
-            matrix = sparse_matrix(system, np.repeat(M, 2, axis=0), rows, cols).tocsc()
-            x = np.zeros(b.size)
-            x[free] = spsolve(matrix[free][:, free], b.ravel()[free])
-            return x.reshape(b.shape)
-        return ImplicitSystem(A, K, 1.0 / diagonal.reshape(2, -1), direct)
+        def direct(b: np.ndarray) -> tuple[np.ndarray | None, int | None]:
+            """A x = b on the free rows by SuperLU's sparse LU, x = 0 on the fixed ones."""
+            free = self.free[:, 0] > 0
+            solve_lu, fill = matrix.factorize(free)
+            if solve_lu is None:
+                return None, None
+            return solve_lu(b * free[None, :]), fill
+        return ImplicitSystem(A, K, matrix.block_jacobi(), direct)
 
 
 class ImplicitSystem(NamedTuple):
     """One implicit step's linear system (MassSpringSystem.linear_system)."""
     A: Callable[[np.ndarray], np.ndarray]         # w -> A w
     K: Callable[[np.ndarray], np.ndarray]         # w -> (df/dx) w
-    inv_diagonal: np.ndarray                      # 1 / diag(A)
-    direct: Callable[[np.ndarray], np.ndarray | None]    # b -> A^-1 b (sparse LU)
+    precondition: Callable[[np.ndarray], np.ndarray]    # r -> z, the block Jacobi
+    direct: Callable[[np.ndarray], tuple[np.ndarray | None, int | None]]   # b -> (A^-1 b, fill)
 
 
 # CG stops at |r| <= CG_TOLERANCE |b|: relative to |b|, which grows with the motion, so what it
 # leaves in the positions grows too. Measured after one step at h = 1/60 s against a 1e-10 solve
-# (`python -m app bench mass_spring`, the CG tolerance table): near rest (a 32x32 cloth 20 steps
-# into its hang) 1e-2 leaves under 1e-4 px (leather 3e-9, cotton 4e-6, denim 3e-5, silk 7e-5 px);
-# moving, more: 2.5-3.7e-4 px 5 steps into the hang, 0.003-0.01 px on the scene's default cloth
-# as it falls, 0.7-2.9 px in a step of a fling at ~1900 px/s (a step of 32 px: a few per cent).
-# Below a pixel except in a fling, and smaller than the O(h^2) error of linearising once per step,
-# in ~20-95 iterations; every tenfold tightening costs another 15-25 iterations.
+# (the scene's cloth, corner pins; issue 19's solver: block Jacobi, warm start; the solver before
+# it, Jacobi from dv = 0, left as much): a 32x32 cloth 5 and 20 steps into its fall, 0.003-0.014 px
+# (leather, cotton, denim, silk; before: 0.003-0.012); the scene's default cloth over its first
+# second, at most 0.04 px (0.03); in a fling, the grabbed particle moved 32 px a step (1920 px/s,
+# the cloth up to ~2700 px/s), 0.5-5.7 px (0.7-8.3): a few per cent of a step of 32 px. Below a
+# pixel except in a fling, and smaller than the O(h^2) error of linearising once per step, in
+# 11-53 iterations at 32x32 (to 1e-10: 145-339).
 CG_TOLERANCE = 1e-2
+
+
+SOLVERS = ("cg", "direct")     # how implicit_euler solves its system (MassSpringSystem.solver)
 
 
 def implicit_euler(ps: MassSpringSystem, h: float) -> None:
     """Baraff-Witkin's linearised backward Euler step:
-    (M - h df/dv - h^2 df/dx) dv = h (f0 + h (df/dx) v0);  v' = v0 + dv;  x' = x0 + h v'."""
+    (M - h df/dv - h^2 df/dx) dv = h (f0 + h (df/dx) v0);  v' = v0 + dv;  x' = x0 + h v'.
+    solver "cg": conjugate gradients with the block Jacobi preconditioner, started from the last
+    steps' dv (the sparse LU where it stops short); "direct": the sparse LU (CG where it fails).
+    CG stops after ps.cg_max_iterations (default: the unknowns) or ps.budget_iterations (what
+    fits the scene's time budget, app/physics/mass_spring_cost.py), whichever is fewer; stopped
+    by the budget it takes no direct solve (that would not fit either) and reports "budget"."""
     x0, v0 = ps.x, ps.v
     f0 = ps.force(x0, v0).T                       # component-major (2, n): see block_product
     system = ps.linear_system(x0, h)
     b = h * (f0 + h * system.K(np.ascontiguousarray(v0.T)))
-    dv, report = solve(system.A, b, ps.free.T, system.inv_diagonal, ps.cg_tolerance,
-                       ps.cg_max_iterations, ("sparse LU", lambda: system.direct(b)))
+    free = ps.free.T
+
+    unknowns = 2 * int(ps.free.sum())
+    cap = min(ps.cg_max_iterations or unknowns, ps.budget_iterations or unknowns)
+    budget = cap < (ps.cg_max_iterations or unknowns)   # the time budget caps CG, not the size
+
+    def cg(fallback=None):
+        dv, report = solve(system.A, b, free, system.precondition, ps.cg_tolerance, cap,
+                           None if budget else fallback, x0=ps.next_dv_guess())
+        if budget and report.stop == "iteration cap":
+            report.stop = "budget"                # no direct solve either: it would not fit
+        return dv, report
+    if ps.solver == "direct":
+        dv, report = solve_directly(system.A, b, free, "sparse LU", lambda: system.direct(b),
+                                    ps.cg_tolerance, cg)
+    else:
+        dv, report = cg(("sparse LU", lambda: system.direct(b)[0]))
     ps.record_solve(report)
+    ps.last_dv, ps.dv_before = dv, ps.last_dv
     v = v0 + dv.T
     ps.set_xv(x0 + h * v, v)
 
@@ -386,5 +443,5 @@ class MassSpringCloth:
         self._update_pins()
 
 
-__all__ = ["MassSpringSystem", "implicit_euler", "STEPPERS", "MassSpringCloth", "CG_TOLERANCE",
+__all__ = ["MassSpringSystem", "implicit_euler", "STEPPERS", "MassSpringCloth", "CG_TOLERANCE", "SOLVERS",
            "PINS", "FORCE_EFFECTS", "SET_NAMES"]

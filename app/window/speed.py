@@ -13,10 +13,11 @@ from __future__ import annotations
 import math
 from collections import deque
 
+from app.loop import FPS_CAP      # the window draws at most this many frames a second
+
 SETTLE_FRAMES = 20          # frames after opening a scene or a new layout whose hiccups (the
                             # build, the first draw, font loading) are not "slower than real time"
 SHOWN_SECONDS = 1.0         # how long the HUD keeps saying it after the last slow frame
-FPS_CAP = 60                # the window draws at most this many frames a second
 
 
 class SpeedWatch:

@@ -2,13 +2,16 @@
 
 Reference: app.physics.jakobsen.satisfy_rods. Each measure sends back the positions the
 student's satisfy_rods returned; each judge measures:
-  pinned never move   a chain with both ends pinned (w = 0), stretched at random, 20 sweeps:
-                      the pinned particles move by exactly 0
+  pinned never move   a chain with both ends pinned (w = 0), stretched at random, and a rod
+                      between the two pinned ends (skipped: w_a + w_b = 0), 20 sweeps: the
+                      pinned particles move by exactly 0
   one rod, one pass   one rod of length 50, rest 20: after one sweep its length is 20 (+- 1e-9)
   squashed rod        one rod of length 10, rest 20: after one sweep its length is 20 too (a rod
                       pushes as well as pulls)
   shares by mass      the rod of length 50 with w = 1 and 3: the centre of mass (masses 1/w)
                       stays put
+  each rod its rest   three rods sharing no particle, rests 20, 35, 12: one sweep satisfies
+                      each exactly
   stretch falls       a hanging 6 x 6 cloth (top row pinned) for 1/3 s at 60 Hz, stepped by the
                       lab's Verlet: the mean stretch after 1, 5, 25 sweeps per step falls
   coincident          two particles at one point, rest 10: the result is finite (no 0/0)
@@ -33,6 +36,31 @@ def relax(m: Student, x, a, b, rest, w, iterations) -> np.ndarray:
     return array_of(out, x.shape, "satisfy_rods")
 
 
+SWAPPED_HINT = ("each end moved by the OTHER end's share: x_a moves by w_a / (w_a + w_b) of the "
+                "correction, x_b by w_b / (w_a + w_b) (the light end, large w, moves most; a "
+                "pinned end, w = 0, not at all).")
+
+
+def relax_with(kind: str, x, a, b, rest, w, iterations) -> np.ndarray:
+    """The slide's sweeps with one of the usual mistakes in the shares (in the parent)."""
+    x = np.array(x, dtype=float)
+    for _ in range(iterations):
+        for k in range(len(a)):
+            i, j = a[k], b[k]
+            total = w[i] + w[j]
+            if total == 0:
+                continue
+            delta = x[j] - x[i]
+            d = max(float(np.linalg.norm(delta)), 1e-9)
+            c = delta * (d - rest[k]) / d
+            si, sj = ((0.5, 0.5) if kind == "equal shares" else
+                      (w[j] / total, w[i] / total) if kind == "swapped shares" else
+                      (w[i] / total, w[j] / total))
+            x[i] += c * si
+            x[j] -= c * sj
+    return x
+
+
 WEIGHT_HINT = ("move each end by its share w_a / (w_a + w_b) of the correction (w = 0: pinned, "
                "it never moves). Did you split it 50/50?")
 
@@ -44,7 +72,8 @@ def chain() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     x = np.stack([np.arange(n) * 15.0, np.zeros(n)], axis=1) + rng.normal(0, 4, (n, 2))
     w = np.ones(n)
     w[[0, n - 1]] = 0.0
-    return x, np.arange(n - 1), np.arange(1, n), w
+    # the chain's rods, and one between the two pinned ends: both w = 0, so it is skipped
+    return x, np.append(np.arange(n - 1), 0), np.append(np.arange(1, n), n - 1), w
 
 
 def measure_pinned(m: Student) -> dict:
@@ -53,10 +82,21 @@ def measure_pinned(m: Student) -> dict:
 
 
 def judge_pinned(raw: Raw) -> Result:
-    x, _, _, w = chain()
+    x, a, b, w = chain()
     out = raw.array("x", x.shape)
     moved = float(np.abs(out[w == 0] - x[w == 0]).max())
-    return Result(moved == 0.0, f"pinned particles moved {fmt(moved)} px", "0 px", WEIGHT_HINT)
+    hint = WEIGHT_HINT
+    if np.allclose(out, relax_with("swapped shares", x, a, b, np.full(len(a), 10.0), w, 20),
+                   atol=1e-9):
+        hint = SWAPPED_HINT
+    elif np.allclose(out, relax_with("equal shares", x, a, b, np.full(len(a), 10.0), w, 20),
+                     atol=1e-9):
+        hint = "the ends share each correction 50/50, pinned or not: " + WEIGHT_HINT
+    if not np.isfinite(out[w == 0]).all():
+        hint = ("NaN at the pinned particles: a rod whose two ends are both pinned has "
+                "w_a + w_b = 0, and its shares 0 / 0 are NaN. Skip such a rod (if w_a + w_b == 0: "
+                "continue). " + hint)
+    return Result(moved == 0.0, f"pinned particles moved {fmt(moved)} px", "0 px", hint)
 
 
 # ----- one rod -----------------------------------------------------------------------------------
@@ -68,7 +108,11 @@ REST = 20.0
 
 def measure_rod(x0: np.ndarray):
     def measure(m: Student) -> dict:
-        return {"x": relax(m, x0, np.array([0]), np.array([1]), np.array([REST]), ROD_W, 1)}
+        out = {"x": relax(m, x0, np.array([0]), np.array([1]), np.array([REST]), ROD_W, 1)}
+        if x0 is SQUASHED:              # and the stretched one: did one pass move anything?
+            out["stretched"] = relax(m, STRETCHED, np.array([0]), np.array([1]),
+                                     np.array([REST]), ROD_W, 1)
+        return out
     return measure
 
 
@@ -83,7 +127,10 @@ def judge_one_rod(raw: Raw) -> Result:
     along = STRETCHED[1] - STRETCHED[0]
     length = float((out[1] - out[0]) @ along / np.linalg.norm(along))   # < 0: ends crossed
     hint = ONE_ROD_HINT
-    if length > 50.0 + 1e-9:
+    if np.array_equal(out, STRETCHED):
+        hint = ("the rod did not move in one pass (iterations = 1): does the sweep run "
+                "`iterations` times? range(iterations), not range(iterations - 1).")
+    elif length > 50.0 + 1e-9:
         hint = "the rod got LONGER (50 -> " + f"{length:.3g}): a sign is flipped. " + hint
     elif length < REST - 1e-9:
         hint = (f"the ends moved too far (50 px -> {length:.3g} along the old rod, rest 20; "
@@ -99,7 +146,11 @@ def judge_squashed(raw: Raw) -> Result:
     hint = ("a rod is a distance constraint both ways: diff = (|delta| - rest) / |delta| is "
             "negative for a squashed rod, and the same correction pushes its ends apart. " +
             ONE_ROD_HINT)
-    if within(length, 10.0, 1e-9):
+    stretched = raw.array("stretched", (2, 2))
+    if within(length, 10.0, 1e-9) and np.array_equal(stretched, STRETCHED):
+        hint = ("nothing moved in one pass (iterations = 1), stretched or squashed: does the "
+                "sweep run `iterations` times? range(iterations), not range(iterations - 1).")
+    elif within(length, 10.0, 1e-9):
         hint = ("a squashed rod stays squashed (10 px, rest 20): the correction must push apart "
                 "too (no `if |delta| <= rest: continue`; that is a rope, not a rod). " + hint)
     return Result(within(err, 0.0, 1e-9), f"length {length:.6g} px after one pass (was 10)",
@@ -112,8 +163,36 @@ def judge_shares(raw: Raw) -> Result:
     before = (mass[:, None] * STRETCHED).sum(0) / mass.sum()
     after = (mass[:, None] * out).sum(0) / mass.sum()
     moved = float(np.linalg.norm(after - before))
+    hint = "the heavier end (smaller w) moves less: " + WEIGHT_HINT
+    delta = STRETCHED[1] - STRETCHED[0]
+    correction = delta * (np.linalg.norm(delta) - REST) / np.linalg.norm(delta)
+    other = STRETCHED + np.array([1.0, -1.0])[:, None] * ROD_W[::-1, None] / ROD_W.sum() * \
+        correction                                    # each end moved by the other's share
+    if np.allclose(out, other, atol=1e-9):
+        hint = SWAPPED_HINT
     return Result(within(moved, 0.0, 1e-9), f"centre of mass moved {fmt(moved)} px",
-                  "< 1e-09 px", "the heavier end (smaller w) moves less: " + WEIGHT_HINT)
+                  "< 1e-09 px", hint)
+
+
+# ----- each rod its own rest length ------------------------------------------------------------
+RODS_X = np.array([[0.0, 0.0], [30.0, 40.0], [100.0, 0.0], [106.0, 8.0], [0.0, 100.0],
+                   [0.0, 130.0]])                      # lengths 50, 10, 30
+RODS_A, RODS_B, RODS_REST = np.array([0, 2, 4]), np.array([1, 3, 5]), np.array([20.0, 35.0, 12.0])
+
+
+def measure_rests(m: Student) -> dict:
+    return {"x": relax(m, RODS_X, RODS_A, RODS_B, RODS_REST, np.ones(6), 1)}
+
+
+def judge_rests(raw: Raw) -> Result:
+    out = raw.array("x", RODS_X.shape)
+    lengths = np.linalg.norm(out[RODS_B] - out[RODS_A], axis=1)
+    err = float(np.abs(lengths - RODS_REST).max())
+    hint = "rod k wants its own rest length rest[k]: diff = (|delta| - rest[k]) / |delta|."
+    if np.allclose(lengths, RODS_REST[0], atol=1e-9):
+        hint = "every rod was given the first rod's rest length (rest[0]). " + hint
+    return Result(within(err, 0.0, 1e-9), "lengths " + ", ".join(f"{v:.6g}" for v in lengths)
+                  + " after one pass (rests 20, 35, 12)", "each its rest, +- 1e-09 px", hint)
 
 
 # ----- a hanging cloth ---------------------------------------------------------------------------
@@ -156,6 +235,10 @@ def judge_stretch(raw: Raw) -> Result:
     if not np.all(np.isfinite(s)) or max(s) > 1.0:
         hint = ("the cloth blows up: the corrections push the ends the wrong way or too far "
                 "(see 'one rod, one pass').")
+    elif np.allclose(s, s[0], rtol=1e-12, atol=0.0):
+        hint = ("the same stretch after 1, 5 and 25 sweeps: `iterations` is not used. The sweep "
+                "over all rods runs `iterations` times, each starting from the last one's "
+                "positions.")
     elif min(s) < 1e-12:
         hint = ("the stretch is already 0, so it cannot fall: does the cloth still hang from "
                 "its pinned top row? Fix the other checks first ('pinned never move', 'one rod, "
@@ -188,6 +271,7 @@ EXERCISE = Exercise(
             Check("one rod, one pass", measure_rod(STRETCHED), judge_one_rod),
             Check("a squashed rod pushes", measure_rod(SQUASHED), judge_squashed),
             Check("shares by inverse mass", measure_rod(STRETCHED), judge_shares),
+            Check("each rod its rest", measure_rests, judge_rests),
             Check("stretch falls", measure_stretch, judge_stretch),
             Check("coincident particles", measure_coincident, judge_coincident)),
 )

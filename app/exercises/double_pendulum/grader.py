@@ -5,7 +5,9 @@ is the lab's RK4 solution of Lagrange's equations (app/physics/double_pendulum_o
 student's builder builds `python -m app --scene exercise:double_pendulum`. The measures send back
 where the bodies are and what the scene measured; the judges decide:
   built as asked   bob positions at the given angles and lengths (1e-6 px), masses as given,
-                   both bodies and both rods (PinJoints) added to the space
+                   both bodies and both rods (PinJoints) added to the space, the bobs' shapes
+                   kept from colliding with each other (a rod shorter than two radii would
+                   otherwise push the bobs apart)
   agrees           released low (10 and 10 degrees), the tip stays within 1 px of the ghost for
                    2 s (the largest `reference_divergence` seen)
   energy kept      released high (the scene's 120 and 150 degrees), 20 s: |energy drift| < 1%
@@ -18,7 +20,7 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
-from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student, fmt
+from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student, fmt, within
 from app.exercises.pymunk_run import run_scene
 
 SOFT_HINT = ("pymunk's joints are soft by default: they correct only part of the length error "
@@ -45,7 +47,32 @@ def measure_built(m: Student) -> dict:
             "in_space": [b.space is space for b in pair],
             "rod_to_static": any(pair[0] in r and any(b.body_type == pymunk.Body.STATIC
                                                       for b in r) for r in rods),
-            "rod_between": {pair[0], pair[1]} in rods}
+            "rod_between": {pair[0], pair[1]} in rods,
+            "bobs_collide": any(not (sa.sensor or sb.sensor or sa.filter.rejects_collision(
+                sb.filter)) for sa in pair[0].shapes for sb in pair[1].shapes)}
+
+
+def placements() -> dict[tuple, str]:
+    """Where the usual slips put the two bobs, and what to say."""
+    def bobs(angles, lengths, trig, second_from_anchor=False):
+        (a1, a2), (l1, l2) = angles, lengths
+        p1 = (ANCHOR[0] + l1 * trig[0](a1), ANCHOR[1] + l1 * trig[1](a1))
+        base = ANCHOR if second_from_anchor else p1
+        return p1, (base[0] + l2 * trig[0](a2), base[1] + l2 * trig[1](a2))
+    down, side = (math.sin, math.cos), (math.cos, math.sin)
+    return {
+        bobs([math.radians(t) for t in ANGLES], LENGTHS, down):
+            "the angles are already in radians: math.radians() converts them a second time "
+            "(the bobs hang almost straight down).",
+        bobs(ANGLES, LENGTHS, side): "(cos, sin) measures the angle from the horizontal: from "
+                                     "straight down it is (sin theta, cos theta).",
+        bobs(ANGLES, LENGTHS[::-1], down): "the lengths are swapped: rod 1 (anchor to bob 1) "
+                                           "is l1, rod 2 (bob 1 to bob 2) is l2.",
+        bobs(ANGLES, LENGTHS, down, True): "bob 2 hangs from the anchor: p2 = p1 + l2 (sin "
+                                           "theta2, cos theta2), from bob 1.",
+        bobs(ANGLES, LENGTHS, (math.sin, lambda t: -math.cos(t))):
+            "the bobs hang UP: y points down here, so below the anchor is + l cos theta.",
+    }
 
 
 def judge_built(raw: Raw) -> Result:
@@ -62,11 +89,26 @@ def judge_built(raw: Raw) -> Result:
         missing.append("no rod (PinJoint) from a static body to body1 in the space")
     if not raw.flag("rod_between"):
         missing.append("no rod (PinJoint) between body1 and body2 in the space")
+    if raw.flag("bobs_collide"):
+        missing.append("the two bobs' shapes can collide (shape.filter = "
+                       "pymunk.ShapeFilter(group=1) on both)")
     ok = err < 1e-6 and mass_err < 1e-9 and not missing
     hint = ("angles are radians from straight DOWN and y points down: p1 = anchor + l1 "
             "(sin t1, cos t1), p2 = p1 + l2 (sin t2, cos t2); Body(mass, moment).")
-    if missing:
+    swapped = within(masses[0], MASSES[1], 1e-9) and within(masses[1], MASSES[0], 1e-9)
+    if missing and raw.flag("bobs_collide") and len(missing) == 1:
+        hint = ("keep the bobs from colliding with each other: the same ShapeFilter group on "
+                "both shapes, shape.filter = pymunk.ShapeFilter(group=1). " + hint)
+    elif missing:
         hint = "space.add(...) every body, shape and joint you make. " + hint
+    elif swapped:
+        hint = "the masses are swapped: body1 has masses[0], body2 masses[1]. " + hint
+    else:                               # where the usual slips put the bobs
+        got = (raw.array("p1", (2,)), raw.array("p2", (2,)))
+        for (c1, c2), text in placements().items():
+            if max(math.dist(got[0], c1), math.dist(got[1], c2)) < 1e-6:
+                hint = text + " " + hint
+                break
     return Result(ok, f"bobs {fmt(err)} px from where asked, masses off by {fmt(mass_err)}"
                   + "".join(f"; {m}" for m in missing),
                   "< 1e-06 px, masses exact, both bodies and rods in the space", hint)

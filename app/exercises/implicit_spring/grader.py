@@ -75,7 +75,7 @@ def reference() -> SimpleNamespace:
 # ----- the usual mistakes, for the hints (the parent computes them on the check's inputs) -------
 def _springs(x, v, a, b, ks, kd, rest, transverse="clamped"):
     """f0 and the dense K, D of the springs (the starter's formulas: the transverse part clamped
-    at 0 for a squashed spring; "none" or "unclamped" for the mistakes)."""
+    at 0 for a squashed spring; the other values of `transverse` make the mistakes' K)."""
     n = len(x)
     f = np.zeros((n, 2))
     K, D = np.zeros((2 * n, 2 * n)), np.zeros((2 * n, 2 * n))
@@ -89,11 +89,12 @@ def _springs(x, v, a, b, ks, kd, rest, transverse="clamped"):
     np.add.at(f, b, -fa)
     uu = u[:, :, None] * u[:, None, :]
     t = 1.0 - rest / np.maximum(length, 1e-12)
-    t = np.maximum(t, 0.0) if transverse == "clamped" else t if transverse == "unclamped" \
-        else np.zeros(len(a))
+    t = {"clamped": np.maximum(t, 0.0), "K_ab = +K_aa": np.maximum(t, 0.0), "unclamped": t,
+         "inverted": np.maximum(1.0 - length / rest, 0.0)}.get(transverse, np.zeros(len(a)))
     blocks = {"K": -ks * (uu + t[:, None, None] * (np.eye(2) - uu)), "D": -kd * uu}
+    off = 1 if transverse == "K_ab = +K_aa" else -1
     for M, blk in ((K, blocks["K"]), (D, blocks["D"])):
-        for p, q, s in ((a, a, 1), (b, b, 1), (a, b, -1), (b, a, -1)):
+        for p, q, s in ((a, a, 1), (b, b, 1), (a, b, off), (b, a, off)):
             rows = (2 * p[:, None] + np.arange(2))[:, :, None]
             cols = (2 * q[:, None] + np.arange(2))[:, None, :]
             np.add.at(M, (rows, cols), s * blk)
@@ -107,24 +108,30 @@ def mistaken_step(kind: str, x, v, w, a, b, ks, kd, rest, g, h):
     if kind == "pinned not held":
         w = np.where(w > 0, w, 1.0)
     f, K, D = _springs(x, v, a, b, ks, kd, rest, transverse={
-        "no transverse part": "none", "transverse part not clamped": "unclamped"}.get(kind,
-                                                                                 "clamped"))
+        "no transverse part": "none", "transverse part not clamped": "unclamped",
+        "transverse 1 - |l|/rest": "inverted", "K_ab = +K_aa": "K_ab = +K_aa"}.get(kind,
+                                                                                "clamped"))
     grav = np.where(w[:, None] > 0, g, 0.0) * (kind != "no gravity")
     acc = w[:, None] * f + grav
     if kind == "explicit Euler":
         return x + h * v, v + h * acc
     if kind == "symplectic Euler":
         return x + h * (v + h * acc), v + h * acc
-    W = np.diag(np.repeat(w, 2))
+    W = np.diag(np.tile(w, 2) if kind == "W tiled" else np.repeat(w, 2))
     k2 = h if kind == "h K for h^2 K" else h * h
     sign = -1.0 if kind == "K's sign flipped" else 1.0
-    damp = 0.0 if kind == "no damping in A" else h
-    A = np.eye(2 * n) - damp * W @ D - sign * k2 * W @ K
-    kv = 0.0 if kind == "no h K v in rhs" else h
-    rhs = h * W @ (f.ravel() + kv * K @ v.ravel()) + h * grav.ravel()
+    damp = 0.0 if kind == "no damping in A" else -h if kind == "D's sign flipped" else h
+    if kind == "W on the right":
+        A = np.eye(2 * n) - damp * D @ W - sign * k2 * K @ W
+    else:
+        A = np.eye(2 * n) - damp * W @ D - sign * k2 * W @ K
+    kv = {"no h K v in rhs": 0.0, "h K v with a minus": -h}.get(kind, h)
+    rhs = (np.eye(2 * n) if kind == "no W in rhs" else W) @ (f.ravel() + kv * K @ v.ravel())
+    rhs = h * rhs + h * grav.ravel()
     dv = np.linalg.solve(A, rhs).reshape(n, 2)
     v_new = v + dv
-    return (x + h * v if kind == "x' from the old v" else x + h * v_new), v_new
+    x_new = x + h * {"x' from the old v": v, "x' from dv": dv}.get(kind, v_new)
+    return x_new, (dv if kind == "dv returned as v'" else v_new)
 
 
 MISTAKES = {
@@ -152,22 +159,47 @@ MISTAKES = {
     "no gravity": "gravity is missing: it adds h g to dv of every free particle",
     "pinned not held": "the pinned particle moved: w = 0 (mass infinite) makes its rows of W, "
                        "and so its dv, zero",
+    "K_ab = +K_aa": "the off-diagonal blocks have the wrong sign: K_ab = K_ba = -K_aa (the "
+                    "force on a pulls against b's displacement)",
+    "W tiled": "W's diagonal is in the wrong order: np.repeat(w, 2) = (w1, w1, w2, w2, ...), "
+               "one pair per particle; np.tile(w, 2) gives (w1, w2, ..., w1, w2, ...)",
+    "x' from dv": "x' moves by h dv: it moves by h v' = h (v + dv), the new velocity",
+    "dv returned as v'": "the second value is dv, the change: return v' = v + dv",
+    "D's sign flipped": "D has the wrong sign: D = df/dv = -kd u u^T (damping opposes the "
+                        "motion): A = I - h W D - h^2 W K has + h kd/m on its diagonal",
+    "h K v with a minus": "rhs has - h K v: b = h W (f0 + h K v), a plus",
+    "no W in rhs": "rhs is missing W: b = h W (f0 + h K v) (+ h g for each free particle), the "
+                   "inverse masses on the right too (and a pinned particle's rows are 0)",
+    "W on the right": "W is on the wrong side: A = I - h W D - h^2 W K (W times D and K: the "
+                      "rows of a particle are divided by its mass, not the columns)",
+    "transverse 1 - |l|/rest": "the transverse factor is upside down: max(1 - rest/|l|, 0), "
+                               "not 1 - |l|/rest",
 }
 
 
 def name_mistake(xv: tuple[np.ndarray, np.ndarray], inputs: tuple) -> str:
     """The hint of the usual mistake these (x', v') match, or ''."""
-    x_s, v_s = xv
+    def same(p: tuple, q: tuple) -> bool:
+        scale = max(float(np.abs(q[1] - inputs[1]).max()), 1e-300)
+        return bool(float(np.abs(p[1] - q[1]).max()) <= 1e-7 * scale and
+                    float(np.abs(p[0] - q[0]).max()) <= 1e-7 * max(float(np.abs(q[0]).max()),
+                                                                   1.0))
+    right = mistaken_step("", *inputs)
+    if same(xv, right):
+        return ""
+    found = []
     for kind, hint in MISTAKES.items():
         try:
-            x_m, v_m = mistaken_step(kind, *inputs)
+            with np.errstate(all="ignore"):
+                wrong = mistaken_step(kind, *inputs)
         except np.linalg.LinAlgError:
             continue
-        scale = max(float(np.abs(v_m - inputs[1]).max()), 1e-300)
-        if float(np.abs(v_s - v_m).max()) <= 1e-7 * scale and \
-                float(np.abs(x_s - x_m).max()) <= 1e-7 * max(float(np.abs(x_m).max()), 1.0):
-            return hint
-    return ""
+        if not same(wrong, right) and same(xv, wrong):     # told apart on these inputs
+            found.append(hint)
+    if len(found) > 1:       # several mistakes give the same numbers on a small system
+        return ("this matches more than one usual mistake here (the five-particle checks 'A and "
+                "rhs' and 'the step' tell them apart): " + "; or ".join(found[:3]))
+    return found[0] if found else ""
 
 
 # ----- the systems the checks use ----------------------------------------------------------------
@@ -271,6 +303,11 @@ def judge_free_fall(raw: Raw) -> Result:
     got_x, got_v = raw.array("x", x.shape), raw.array("v", v.shape)
     err = max(float(np.abs(got_x - x_want).max()), float(np.abs(got_v - v_want).max()))
     hint = name_mistake((got_x, got_v), inputs) or STEP_HINT
+    pinned = w == 0
+    if not (np.isfinite(got_x[pinned]).all() and np.isfinite(got_v[pinned]).all()):
+        hint = ("NaN at the pinned particle (w = 0): a mass 1/w is infinite there, and 0 x inf "
+                "is NaN. Add h g only where w > 0 (np.where(w > 0, ...)); never divide by w. "
+                + STEP_HINT)
     return Result(within(err, 0.0, 1e-9), f"{fmt(err)} off v + h g and x + h v'",
                   "< 1e-09 (exact)", hint)
 
@@ -294,11 +331,17 @@ def judge_energy(raw: Raw) -> Result:
     ratios = [e1 / e0 if e0 > 0 else math.nan for e0, e1 in zip(energies, energies[1:])]
     z = OMEGA * h
     want = 1.0 / (1.0 + z * z)
-    ok = all(within(r, want, 1e-6 * want) for r in ratios)
-    hint = name_mistake((xs[0], vs[0]), inputs) or STEP_HINT
-    if not ok and all(r > 1.0 for r in ratios if r == r):
-        hint = ("the energy GROWS: a step that uses the forces at the start blows up here. "
-                + hint[0].upper() + hint[1:])
+    good = [within(r, want, 1e-6 * want) for r in ratios]
+    ok = all(good)
+    hint = STEP_HINT
+    if not ok:                          # name the mistake from the first step that is off
+        k = good.index(False)
+        before = (x0, v0) if k == 0 else (xs[k - 1], vs[k - 1])
+        hint = name_mistake((xs[k], vs[k]), (*before, *inputs[2:])) or STEP_HINT
+        finite = [r for r in ratios if math.isfinite(r)]
+        if finite and all(r > 1.0 for r in finite):
+            hint = ("the energy GROWS (backward Euler only ever takes energy out of a spring): "
+                    + hint)
     return Result(ok, f"energy x {', '.join(f'{r:.6g}' for r in ratios)} per step at omega h = "
                   f"{z:g}", f"{want:.6g} = 1/(1 + (omega h)^2) each, +- 1e-6 relative", hint)
 
@@ -330,7 +373,18 @@ def judge_system(raw: Raw) -> Result:
     err = float(np.abs(dv - dv_ref).max() / np.abs(dv_ref).max())
     v_new = v + dv.reshape(v.shape)
     hint = name_mistake((x + h * v_new, v_new), inputs)
-    if not hint and within(float(np.abs(A - A_ref).max()), 0.0, 1e-9 * np.abs(A_ref).max()):
+    def blocks(M: np.ndarray) -> np.ndarray:     # which 2 x 2 blocks (particle pairs) hold values
+        return np.abs(M).reshape(n2 // 2, 2, n2 // 2, 2).max(axis=(1, 3)) > \
+            1e-12 * np.abs(A_ref).max()
+    misplaced = np.argwhere(blocks(A) != blocks(A_ref))
+    if not hint and len(misplaced):
+        i, j = misplaced[0]
+        mine, lab = ("empty", "filled") if blocks(A_ref)[i, j] else ("filled", "empty")
+        hint = (f"A's block for particles ({i}, {j}) is {mine} where the lab's is {lab}: "
+                "block (i, j) is rows 2i, 2i+1 and columns 2j, 2j+1 (the particle index doubled), "
+                "K[2*i:2*i+2, 2*j:2*j+2]; a pinned particle's rows are those of I.")
+    elif not hint and within(float(np.abs(A - A_ref).max()), 0.0,
+                             1e-9 * np.abs(A_ref).max()):
         hint = "A is right; rhs is not: rhs = h W (f0 + h K v), plus h g for each free particle."
     elif not hint and within(float(np.abs(rhs - rhs_ref).max()), 0.0, 1e-9 * np.abs(rhs_ref).max()):
         hint = ("rhs is right; A is not: A = I - h W D - h^2 W K, block (i, j) in rows 2i, 2i+1 "

@@ -140,7 +140,14 @@ class ImplicitSpringExercise(StudentCode, ParticleExercise):
         return (f"h = {m['h_ms']:.1f} ms: {m['h_over_limit']:.1f}x the explicit limit "
                 f"2/omega_max = {m['explicit_limit_ms']:.1f} ms\n"
                 f"yours vs the lab's: {m['apart_px']:.3g} px apart; swing energy left: yours "
-                f"{100 * m['energy_left']:.1f}%, the lab's {100 * m['energy_left_lab']:.1f}%")
+                f"{share(m['energy_left'])}, the lab's {share(m['energy_left_lab'])}")
+
+
+def share(value: float) -> str:
+    """A fraction of the start as the HUD shows it: 36.6%, or 2.4e+44x once it has blown up."""
+    if value is None or not math.isfinite(value):
+        return "NaN"
+    return f"{100 * value:.1f}%" if abs(value) < 100 else f"{value:.3g}x"
 
 
 SCENE = ImplicitSpringExercise

@@ -11,10 +11,12 @@ sets of unordered pairs, with all pairs closer than the cut-off:
                    (x = 0, x = w, y = h included), and pairs exactly one cut-off apart (not
                    pairs: |d| < cut-off)
   few particles    0, 1 and 2 particles: no pairs, no error
-  pair tests       2000 particles over the particle dance's box (960 x 720), cut-off 40: the
-                   distances computed are at least the pairs found and at most the particles of
-                   the 9 cells around each particle, summed (about 80 000, 4% of all pairs' 2
-                   million): the grid's reason to exist
+  pair tests       2000 particles at the particle dance's density (its box's area, 960 x 720,
+                   stretched to 1440 x 480: a grid cut with w and h swapped shows), cut-off 40:
+                   the distances computed are more than the pairs found (a grid also tests
+                   candidates that are too far) and at most the particles of the 9 cells around
+                   each particle, summed (about 79 000, 4% of all pairs' 2 million): the grid's
+                   reason to exist
 A miss or an extra is named: pairs across a cell border missed, a particle on the far edge, a
 distance test with <= or none at all, a pair given twice or a particle paired with itself.
 """
@@ -59,11 +61,14 @@ def border_case() -> tuple[np.ndarray, float, tuple[float, float]]:
     lattice = np.stack(np.meshgrid(gx, gy), axis=-1).reshape(-1, 2)
     cells = np.array([[k * box[0] / 15, m * box[1] / 10] for k in range(16) for m in range(11)])
     exact = np.array([[5.0, 200.0], [45.0, 200.0], [300.0, 5.0], [300.0, 45.0]])  # |d| = 40
-    x = np.concatenate([lattice, cells + (0.3, 0.7), exact])
+    # pairs 39.5 apart that span a whole cell of a grid whose cells are narrower than the
+    # cut-off (nx = ceil(w / R): 38.1 x 37.3) but only a border of the right one (40.7 x 41)
+    narrow = np.array([[38.0, 380.0], [77.5, 380.0], [590.0, 37.0], [590.0, 76.5]])
+    x = np.concatenate([lattice, cells + (0.3, 0.7), exact, narrow])
     return np.clip(x, 0.0, box), CUTOFF, box
 
 
-PAIR_N, PAIR_BOX = 2000, (960.0, 720.0)
+PAIR_N, PAIR_BOX = 2000, (1440.0, 480.0)     # the dance's area (960 x 720), but 3:1
 
 
 def tests_case() -> tuple[np.ndarray, float, tuple[float, float]]:
@@ -97,9 +102,22 @@ def pairs_of(m: Student, x: np.ndarray, cutoff: float, box) -> dict:
     except (TypeError, ValueError, OverflowError):
         raise BadAnswer("grid_pairs must return (i, j, tests): two integer arrays of the same "
                         f"length (the pairs' particle indices) and an integer; got "
-                        f"{type(i).__name__} {np.shape(i)}, {type(j).__name__} {np.shape(j)}, "
-                        f"{type(tests).__name__}") from None
+                        f"{described(i)}, {described(j)}, {type(tests).__name__}") from None
+    n = len(x)
+    if len(ia) and (min(ia.min(), ja.min()) < 0 or max(ia.max(), ja.max()) >= n):
+        raise BadAnswer(f"grid_pairs returned particle indices outside 0..{n - 1} (from "
+                        f"{min(ia.min(), ja.min())} to {max(ia.max(), ja.max())}): i and j are "
+                        "rows of x, not cell numbers or coordinates")
     return {"i": ia.astype(np.int64), "j": ja.astype(np.int64), "tests": count}
+
+
+def described(value) -> str:
+    """What a returned value is, for a message: 'ndarray of float64 (12,)', 'list (3,)'."""
+    try:
+        arr = np.asarray(value)
+        return f"{type(value).__name__} of {arr.dtype} {arr.shape}"
+    except (TypeError, ValueError):
+        return type(value).__name__
 
 
 def measure_case(case):
@@ -135,10 +153,13 @@ def compare(raw: Raw, x: np.ndarray, cutoff: float, box) -> tuple[bool, str, str
                 f"{len(missed)} missed, {len(extra)} too many, {twice} twice, {self_pairs} with "
                 "itself")
     ok = not missed and not extra and not twice and not self_pairs
-    return ok, measured, "" if ok else hint_for(x, cutoff, box, missed, extra, twice, self_pairs)
+    kept = [math.dist(x[p], x[q]) for p, q in seen & want]
+    reach = max(kept, default=0.0)           # the farthest pair found within the cut-off
+    return ok, measured, "" if ok else hint_for(x, cutoff, box, missed, extra, twice, self_pairs,
+                                                reach)
 
 
-def hint_for(x, cutoff, box, missed, extra, twice, self_pairs) -> str:
+def hint_for(x, cutoff, box, missed, extra, twice, self_pairs, reach=math.inf) -> str:
     hints = []
     if self_pairs:
         hints.append("a particle is paired with itself: in its own cell, pair it only with the "
@@ -166,7 +187,11 @@ def hint_for(x, cutoff, box, missed, extra, twice, self_pairs) -> str:
         if all(edge(p) or edge(q) for p, q in missed):
             hints.append("a particle on the far edge (x = w or y = h) falls in cell number "
                          "nx (or ny), one past the last: clamp the cell index into 0..nx-1")
-        if steps <= {(0, 0)}:
+        if (0, 0) in steps and reach < 0.9 * cutoff:
+            hints.append(f"no pair farther apart than {reach:.3g} was kept, even in one cell: "
+                         "the distance test is off. Keep |x_j - x_i| < cutoff (or d . d < "
+                         "cutoff^2: the square on both sides)")
+        elif steps <= {(0, 0)}:
             hints.append("pairs in the same cell were missed: pair each particle with every "
                          "other particle of its own cell")
         elif steps <= {(1, 1)}:
@@ -226,23 +251,27 @@ def judge_tests(raw: Raw) -> Result:
     found = len(set(zip(raw.array("i", (None,), np.int64).tolist(),
                         raw.array("j", (None,), np.int64).tolist())))
     every = all_pair_tests(len(x))
-    ok = ok_pairs and found <= tests <= most
+    ok = ok_pairs and found < tests <= most
     text = f"{tests:,} pair tests ({100 * tests / every:.1f}% of all {every:,} pairs)"
     if not ok_pairs:
         return Result(False, f"{text}; {measured}", f"the right pairs, and at most {most:,} tests",
                       hint)
     nx, ny = grid_shape(box, cutoff)
-    if tests < found:
-        hint = (f"fewer tests than pairs found ({found:,}): count every distance you compute "
-                "(the candidates from the cells), not only the pairs kept")
+    if tests <= found:
+        hint = (f"{'as few' if tests == found else 'fewer'} tests than pairs found ({found:,}): "
+                "count every distance you compute (every candidate from the cells, also those "
+                "too far apart), not only the pairs kept")
     elif tests >= 0.5 * every:
         hint = ("that is testing all pairs: the grid's point is to test only the particles of "
                 "the 3 x 3 cells around each particle's cell")
     elif tests > most:
         hint = (f"more tests than the 9 cells around each particle hold: are the cells larger "
-                f"than the cut-off? nx = floor(w / cutoff) = {nx} cells across, {ny} down")
-    return Result(bool(ok), text, f"{found:,} (the pairs) to {most:,} (the 9 cells around each "
-                  "particle)", hint)
+                f"than the cut-off? nx = floor(w / cutoff) = {nx} cells across, {ny} down, with "
+                f"box = (w, h) = ({box[0]:g}, {box[1]:g}): a particle's cell is (floor(x nx / w), "
+                "floor(y ny / h)); w and h (or x and y) swapped make cells far wider than the "
+                "cut-off on one side")
+    return Result(bool(ok), text, f"more than {found:,} (the pairs) and at most {most:,} (the 9 "
+                  "cells around each particle)", hint)
 
 
 EXERCISE = Exercise(

@@ -5,7 +5,10 @@ builds the scene (`python -m app --scene exercise:newtons_cradle`), at its defau
 hertz 120 x 30 substeps). The measures run it in the child and send back what the scene measured
 (or, for 'lifted as asked', where the balls and their strings' anchors are); the judges decide:
   lifted as asked  5 balls, 2 lifted: each hangs STRING px from its anchor, the lifted ones at
-                   LIFT_ANGLE (30 degrees) to the left, the others straight down (1e-6)
+                   LIFT_ANGLE (30 degrees) to the left, the others straight down (1e-6); the
+                   anchors on the bar (y = BAR_Y), evenly spaced and centred on CENTRE_X; every
+                   ball of mass 1 (equal masses swap velocities whatever they are, so only this
+                   check sees the mass)
   k in, k out      lift k = 1, 2, 3 and release: k balls swing out at the far end (the scene's
                    `balls_out`, counted in the half swing after the first impact)
   middle still     2 lifted, 10 s: the balls between stay within 2 px of rest (`middle_max_drift`)
@@ -24,6 +27,7 @@ from app.exercises.pymunk_run import run_scene
 
 GRADED = {"reference": "off"}       # the grader reads the scene's verdict; no ghost needed
 LIFT_DEG, STRING_PX, BALLS, LIFTED = 30.0, 280.0, 5, 2
+CENTRE_X, BAR_Y = 480.0, 230.0            # the starter's bar: its middle and its height, px
 
 SPACING_HINT = ("balls pressed together at rest (overlapping) are solved as one lump, and balls "
                 "that touch exactly pass only by rounding: leave a hair of space between them "
@@ -51,7 +55,8 @@ def measure_lifted(m: Student) -> dict:
             anchors.append(string_of(space, b)[1])
         except ValueError:
             anchors.append(None)
-    return {"positions": [tuple(b.position) for b in bodies], "anchors": anchors}
+    return {"positions": [tuple(b.position) for b in bodies], "anchors": anchors,
+            "masses": [float(b.mass) for b in bodies]}
 
 
 def judge_lifted(raw: Raw) -> Result:
@@ -73,18 +78,37 @@ def judge_lifted(raw: Raw) -> Result:
     want = np.array([-LIFT_DEG if i < LIFTED else 0.0 for i in range(BALLS)])
     angle_err = float(np.abs(angles - want).max())
     length_err = float(np.abs(lengths - STRING_PX).max())
-    ok = angle_err < 1e-6 and length_err < 1e-6
+    masses = raw.array("masses", (BALLS,))
+    pitch = np.diff(anchor[:, 0])
+    bar = {"the anchors are not on the bar (y = BAR_Y)": bool(np.abs(anchor[:, 1] - BAR_Y).max()
+                                                              > 1e-6),
+           "the anchors are not evenly spaced": bool(np.ptp(pitch) > 1e-6),
+           "the row is not centred on CENTRE_X": bool(abs(anchor[:, 0].mean() - CENTRE_X)
+                                                      > 1e-6),
+           "a ball's mass is not 1": bool(np.abs(masses - 1.0).max() > 1e-9)}
+    wrong = [text for text, bad in bar.items() if bad]
+    ok = angle_err < 1e-6 and length_err < 1e-6 and not wrong
     hint = ("ball i = anchor i + STRING (sin th, cos th), th = -LIFT_ANGLE for the first `lifted` "
             "balls (to the left; y is down), 0 for the others. LIFT_ANGLE is already in radians.")
+    if wrong and angle_err < 1e-6 and length_err < 1e-6:
+        hint = ("anchor i = (CENTRE_X + (i - (balls - 1) / 2) pitch, BAR_Y): the middle of the "
+                "row at CENTRE_X, pitch = 2 radius + gap; each ball pymunk.Body(1, moment) "
+                "(mass 1).")
     lifted = angles[:LIFTED]
     if np.all(np.abs(lifted + math.radians(LIFT_DEG)) < 1e-6):
         hint = ("the lifted balls hang at -0.52 degrees, not -30: LIFT_ANGLE is already in "
                 "radians, and math.radians(LIFT_ANGLE) converts it twice. " + hint)
     elif np.all(np.abs(lifted - LIFT_DEG) < 1e-6):
         hint = "the lifted balls are pulled out to the RIGHT: the first balls go left (-x). " + hint
+    elif np.all(np.abs(angles[-LIFTED:] + LIFT_DEG) < 1e-6) and np.all(np.abs(lifted) < 1e-6):
+        hint = ("the LAST balls are lifted: lift the first `lifted` balls (i < lifted, the left "
+                "end), the ones the scene releases into the row. " + hint)
     shown = ", ".join(f"{a:.3g}" for a in angles)
-    return Result(ok, f"angles {shown} deg; strings {fmt(length_err)} px off {STRING_PX:g}",
-                  f"-30, -30, 0, 0, 0 deg and {STRING_PX:g} px, +- 1e-06", hint)
+    return Result(ok, f"angles {shown} deg; strings {fmt(length_err)} px off {STRING_PX:g}"
+                  + "".join(f"; {w}" for w in wrong) + (f" (their mean x {fmt(anchor[:, 0].mean())}"
+                  ")" if "the row is not centred on CENTRE_X" in wrong else ""),
+                  f"-30, -30, 0, 0, 0 deg and {STRING_PX:g} px, +- 1e-06; anchors on the bar, "
+                  "centred; masses 1", hint)
 
 
 def measure_k_out(k: int):

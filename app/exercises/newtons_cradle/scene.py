@@ -45,11 +45,14 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
     def add_balls(self, space: pymunk.Space) -> list[pymunk.Body]:
         n, k = self.p["balls"], self.p["lifted"]
         bodies = bodies_of(self.impl.build_cradle(space, n, RADIUS, k), n, "build_cradle")
-        xs = [b.position.x for b in bodies]
+        try:                 # the order along the row is the strings' (lifted balls move)
+            xs, where = [string_of(space, b)[1][0] for b in bodies], "their strings' anchors"
+        except ValueError:   # a ball on no string: 'lifted as asked' says so; its x, here
+            xs, where = [b.position.x for b in bodies], "their x"
         if any(not left < right for left, right in zip(xs, xs[1:])):
             # the verdict counts the LAST k balls as the far end: another order miscounts it
             raise ValueError("build_cradle must return the balls in order along the row, left "
-                             f"to right; their x: {', '.join(f'{x:.1f}' for x in xs)}")
+                             f"to right; {where}: {', '.join(f'{x:.1f}' for x in xs)}")
         self.ghost, self.ghost_bodies, self.ghost_anchors = None, [], []
         if "reference" not in self.on:          # off: not built, not stepped
             return bodies

@@ -6,7 +6,8 @@ The measures send back the L's geometry and what the scene measured; the judges 
   the L            one dynamic body at the rotation centre L_ORIGIN, of mass MASS and moment
                    MOMENT, with the two segments LONG and LIP (long arm to the right, lip up) of
                    radius RADIUS; a pin whose anchors meet there; a slide joint from 0 to
-                   SLIDE_MAX anchored at SLIDE_ANCHOR on the L
+                   SLIDE_MAX anchored at SLIDE_ANCHOR on the L and, at its other end, at
+                   ORIGIN + SLIDE_ANCHOR on a static body (the pin's other body static too)
   turns on its pin 10 s of balls: the L turns (more than 2 degrees) and its pin error (the
                    scene's largest `pin_error`) stays under 1 px
   stops at max     the same run: the slide joint's largest distance reaches its max (within 1 px)
@@ -56,13 +57,20 @@ def measure_L(m: Student) -> dict:
     slide = None
     if slides:
         s = slides[0]
+        other, other_anchor = (s.b, s.anchor_b) if s.a is body else (s.a, s.anchor_a)
         slide = {"min": s.min, "max": s.max,
-                 "anchor": tuple(s.anchor_a if s.a is body else s.anchor_b)}
+                 "anchor": tuple(s.anchor_a if s.a is body else s.anchor_b),
+                 "limit_static": other.body_type == pymunk.Body.STATIC,
+                 "limit_at": tuple(other.local_to_world(other_anchor))}
+    pin_static = None
+    if pins:
+        other = pins[0].b if pins[0].a is body else pins[0].a
+        pin_static = other.body_type == pymunk.Body.STATIC
     return {"dynamic": body.body_type == pymunk.Body.DYNAMIC, "position": tuple(body.position),
             "mass": body.mass, "moment": body.moment,
             "segments": [[*s.a, *s.b, s.radius] for s in body.shapes
                          if isinstance(s, pymunk.Segment)],
-            "pin_gap": pin_gap, "slide": slide}
+            "pin_gap": pin_gap, "pin_static": pin_static, "slide": slide}
 
 
 def _same_segment(seg: np.ndarray, want: tuple) -> bool:
@@ -105,6 +113,9 @@ def judge_L(raw: Raw) -> Result:
         problems.append("no PinJoint on the L")
     elif not gap < 1e-6:
         problems.append("the pin's anchors do not meet")
+    elif raw.values.get("pin_static") is False:
+        problems.append("the pin holds the L to a body that is not STATIC (the rotation centre "
+                        "body: pymunk.Body(body_type=pymunk.Body.STATIC))")
     slide = raw.values.get("slide")
     if slide is None:
         problems.append("no SlideJoint on the L")
@@ -115,8 +126,17 @@ def judge_L(raw: Raw) -> Result:
             problems.append(f"slide joint from {lo:g} to {hi:g}, not 0 to {SLIDE_MAX:g}")
         anchor = s.array("anchor", (2,))
         if math.dist(anchor, SLIDE_ANCHOR) > 1e-6:
-            problems.append(f"slide joint's anchor on the L at {tuple(anchor)}, not "
-                            f"{SLIDE_ANCHOR}")
+            problems.append(f"slide joint's anchor on the L at ({anchor[0]:g}, {anchor[1]:g}), "
+                            f"not ({SLIDE_ANCHOR[0]:g}, {SLIDE_ANCHOR[1]:g})")
+        if not s.flag("limit_static"):
+            problems.append("the slide joint's limit body is not STATIC (rotation_limit_body = "
+                            "pymunk.Body(body_type=pymunk.Body.STATIC)): it falls away")
+        limit_at = s.array("limit_at", (2,))
+        want = (ORIGIN[0] + SLIDE_ANCHOR[0], ORIGIN[1] + SLIDE_ANCHOR[1])
+        if math.dist(limit_at, want) > 1e-6:
+            problems.append(f"the slide joint's other end is at ({limit_at[0]:g}, "
+                            f"{limit_at[1]:g}), not ORIGIN + SLIDE_ANCHOR = ({want[0]:g}, "
+                            f"{want[1]:g}) (the limit body's position)")
     return Result(not problems, "; ".join(problems) or "as the tutorial builds it",
                   "the tutorial's L, pin and slide joint",
                   "follow the tutorial's add_L (scaled by 1.5): the L body (MASS, MOMENT) at the "

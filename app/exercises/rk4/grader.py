@@ -52,11 +52,97 @@ def integrate(step, f, y0, t_end: float, n: int, what: str) -> np.ndarray:
     return y
 
 
+# ----- one step on a probe, to name the usual mistakes ---------------------------------------
+def probe_f(t: float, y: np.ndarray) -> np.ndarray:
+    """Depends on t and on y (every mistake in the stages or their times shows)."""
+    return np.array([y[1] + t * t, -2.0 * y[0] + t])
+
+
+PROBE = (0.3, np.array([1.0, -0.5]), 0.1)        # t, y, h
+
+RK4_MISTAKES = {
+    "increment": "you return the increment h/6 (k1 + 2 k2 + 2 k3 + k4) without y: y_new = y + "
+                 "that.",
+    "no h": "the h is missing in y + h/6 (k1 + 2 k2 + 2 k3 + k4).",
+    "quarter": "the weights are divided by 4: y + h/6 (k1 + 2 k2 + 2 k3 + k4), 1 + 2 + 2 + 1 = "
+               "6.",
+    "equal": "equal weights (k1 + k2 + k3 + k4)/4 give order 2: y + h/6 (k1 + 2 k2 + 2 k3 + "
+             "k4).",
+    "k3 from k1": "k3 starts from k1: k3 = f(t + h/2, y + h/2 k2), from k2.",
+    "full h stages": "k2 and k3 go half a step (h/2), not a whole h.",
+    "h^2 stage": "h squared in a stage: k4 = f(t + h, y + h k3), one h.",
+    "k4 at h/2": "k4 is taken at t + h/2: k4 = f(t + h, y + h k3), at the END of the step.",
+    "times fixed": "every stage is taken at time t: k2 and k3 at t + h/2, k4 at t + h.",
+}
+MIDPOINT_MISTAKES = {
+    "increment": "you return the increment h k2 without y: y_new = y + h k2.",
+    "half step": "y + h/2 k2 goes only half a step: y_new = y + h k2 (the slope from the "
+                 "midpoint, over the whole step).",
+    "full to midpoint": "the 'midpoint' is a whole Euler step away: k2 = f(t + h/2, y + h/2 "
+                        "k1), half a step.",
+    "heun": "that is Heun's method (y + h/2 (k1 + k2), k2 at t + h): the midpoint method takes "
+            "one slope, at the midpoint.",
+    "time fixed": "the midpoint's slope is taken at time t: k2 = f(t + h/2, y + h/2 k1).",
+    "euler": "that is Euler's step, y + h f(t, y): the midpoint method takes the slope at the "
+             "midpoint, k2 = f(t + h/2, y + h/2 k1).",
+}
+
+
+def rk4_with(kind: str, f, t, y, h):
+    half = h if kind == "full h stages" else h / 2
+    t2, t4 = (t, t) if kind == "times fixed" else (t + h / 2, t + (h / 2 if kind == "k4 at h/2"
+                                                                    else h))
+    k1 = f(t, y)
+    k2 = f(t2, y + half * k1)
+    k3 = f(t2, y + half * (k1 if kind == "k3 from k1" else k2))
+    k4 = f(t4, y + (h * h if kind == "h^2 stage" else h) * k3)
+    if kind == "equal":
+        return y + h / 4 * (k1 + k2 + k3 + k4)
+    step = {"no h": 1.0 / 6, "quarter": h / 4}.get(kind, h / 6) * (k1 + 2 * k2 + 2 * k3 + k4)
+    return step if kind == "increment" else y + step
+
+
+def midpoint_with(kind: str, f, t, y, h):
+    k1 = f(t, y)
+    if kind == "euler":
+        return y + h * k1
+    if kind == "heun":
+        return y + h / 2 * (k1 + f(t + h, y + h * k1))
+    if kind == "full to midpoint":     # a whole Euler step, and its end's slope
+        k2 = f(t + h, y + h * k1)
+    else:
+        k2 = f(t if kind == "time fixed" else t + h / 2, y + h / 2 * k1)
+    step = (h / 2 if kind == "half step" else h) * k2
+    return step if kind == "increment" else y + step
+
+
+def measure_probe(m: Student, fname: str) -> list:
+    t, y, h = PROBE
+    return array_of(getattr(m, fname)(probe_f, t, y.copy(), h), (2,), fname)
+
+
+def probe_mistake(fname: str, raw: Raw) -> str:
+    """The usual mistake that one step on the probe matches ('' if none, or if it is right)."""
+    if not raw.has("probe"):
+        return ""
+    got = raw.array("probe", (2,))
+    table, step = ((RK4_MISTAKES, rk4_with) if fname == "rk4_step"
+                   else (MIDPOINT_MISTAKES, midpoint_with))
+    right = step("", probe_f, *PROBE)
+    if np.allclose(got, right, rtol=1e-12, atol=1e-14):
+        return ""
+    for kind, text in table.items():
+        if np.allclose(got, step(kind, probe_f, *PROBE), rtol=1e-12, atol=1e-14):
+            return text + " "
+    return ""
+
+
 # ----- orders ------------------------------------------------------------------------------------
 def measure_order(fname: str, f):
     def measure(m: Student) -> dict:
         step = getattr(m, fname)
-        return {"y": [integrate(step, f, Y0, T_END, n, fname) for n in STEPS]}
+        return {"y": [integrate(step, f, Y0, T_END, n, fname) for n in STEPS],
+                "probe": measure_probe(m, fname)}
     return measure
 
 
@@ -81,6 +167,7 @@ def judge_order(fname: str, f, target: float):
             if within(p, 1.0, 0.3):
                 hint = ("first order: " + hint + " A full step to the 'midpoint' takes the slope "
                         "at the end of an Euler step: first order, like Euler.")
+        hint = probe_mistake(fname, raw) + hint
         return Result(within(p, target, 0.2), f"order {fmt(p)} (errors "
                       f"{', '.join(map(fmt, errors))})", f"{target:g} +- 0.2", hint)
     return judge
@@ -91,15 +178,16 @@ def measure_quadrature(fname: str, power: int):
     def measure(m: Student) -> dict:
         y = integrate(getattr(m, fname), lambda t, y: np.array([t ** power]), np.array([0.0]),
                       1.0, 4, fname)
-        return {"y": float(y[0])}
+        return {"y": float(y[0]), "probe": measure_probe(m, fname)}
     return measure
 
 
 def judge_rk4_times(raw: Raw) -> Result:
     err = abs(raw.number("y") - 0.25)
+    named = probe_mistake("rk4_step", raw)
     return Result(within(err, 0.0, 1e-12), f"error {fmt(err)} on dy/dt = t^3", "< 1e-12 (exact)",
-                  "f(t, y) depends on t: evaluate the stages at their own times (k2 and k3 at "
-                  "t + h/2, k4 at t + h).")
+                  named or "f(t, y) depends on t: evaluate the stages at their own times (k2 "
+                  "and k3 at t + h/2, k4 at t + h).")
 
 
 MIDPOINT_RULE = 0.25 * sum((t + 0.125) ** 2 for t in (0.0, 0.25, 0.5, 0.75))     # 0.328125
@@ -108,8 +196,9 @@ TRAPEZOID = 0.25 * sum((t * t + (t + 0.25) ** 2) / 2 for t in (0.0, 0.25, 0.5, 0
 
 def judge_midpoint_times(raw: Raw) -> Result:
     y = raw.number("y")
-    hint = ("the midpoint method takes the slope at the midpoint, once: y + h f(t + h/2, "
-            "y + h/2 f(t, y)). On dy/dt = t^2 that is the midpoint rule.")
+    hint = probe_mistake("midpoint_step", raw) + (
+        "the midpoint method takes the slope at the midpoint, once: y + h f(t + h/2, "
+        "y + h/2 f(t, y)). On dy/dt = t^2 that is the midpoint rule.")
     if within(y, TRAPEZOID, 1e-12):
         hint = ("that is Heun's method (the trapezoid: y + h/2 (k1 + k2) with k2 at t + h): also "
                 "second order, but not the midpoint method the slide means (and a different "
@@ -140,7 +229,7 @@ def measure_stability(m: Student) -> dict:
         while hi - lo > 1e-3:
             mid = (lo + hi) / 2
             lo, hi = (mid, hi) if growth(m.rk4_step, mid) <= 2 else (lo, mid)
-    return {"limit": (lo + hi) / 2}
+    return {"limit": (lo + hi) / 2, "probe": measure_probe(m, "rk4_step")}
 
 
 def judge_stability(raw: Raw) -> Result:
@@ -150,6 +239,7 @@ def judge_stability(raw: Raw) -> Result:
         hint = ("unstable even at small steps, as the midpoint method and forward Euler are on a "
                 "spring (they gain energy at every h; midpoint by 1 + (omega h)^4/4 per step): "
                 + hint)
+    hint = probe_mistake("rk4_step", raw) + hint
     return Result(within(limit, exact, 0.02 * exact), f"omega*h = {limit:.3f}",
                   f"{exact:.3f} +- 2%", hint)
 
@@ -168,7 +258,8 @@ def measure_shape(m: Student) -> dict:
         y = getattr(m, fname)(decay, 0.0, Y_2D.copy(), 0.1)
         shape = list(np.shape(y)) if y is not None else None
         out[fname] = {"shape": shape,
-                      "y": array_of(y, Y_2D.shape, fname) if shape == [3, 2] else None}
+                      "y": array_of(y, Y_2D.shape, fname) if shape == [3, 2] else None,
+                "probe": measure_probe(m, fname)}
     return out
 
 
@@ -187,6 +278,9 @@ def judge_shape(raw: Raw) -> Result:
                            ).max())
         if not within(err, 0.0, 1e-12):
             problems.append(f"{fname} is {fmt(err)} off the lab's")
+            named = probe_mistake(fname, got)
+            if named:
+                problems[-1] += f" ({named.strip()})"
     return Result(not problems, "; ".join(problems) or "shape (3, 2), as the lab's",
                   "shape (3, 2), within 1e-12 of the lab's",
                   "y may have any shape (here 3 particles x 2 coordinates): work with y and "

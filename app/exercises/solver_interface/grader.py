@@ -9,6 +9,7 @@ On 4 particles with gravity, drag and two springs:
   clears forces       two calls on the same state give the same result
   a = f / m           doubling every mass halves the accelerations (springs only)
   any number          3 and 6 particles (a chain of springs): agrees with the lab's, as above
+                      (and 4, to tell a count written in from a derivative wrong for all)
   state kept          the state vector passed in is not changed
 """
 
@@ -137,8 +138,15 @@ def judge_masses(raw: Raw) -> Result:
     light = raw.array("light", (4 * N,))[2 * N:]
     heavy = raw.array("heavy", (4 * N,))[2 * N:]
     ratio = float(np.abs(heavy).sum() / np.abs(light).sum())
+    hint = "the gather returns f / m (Newton's second law), not f."
+    if within(ratio, 2.0, 1e-9):
+        hint = "the accelerations grow with the mass: f * m, not f / m. " + hint
+    elif within(ratio, 0.25, 1e-9):
+        hint = "the forces are divided by the mass twice (f / m / m, or m^2). " + hint
+    elif within(ratio, 1.0, 1e-9):
+        hint = "the masses change nothing: the forces are not divided by them. " + hint
     return Result(within(ratio, 0.5, 1e-12), f"accelerations x {fmt(ratio)} when the masses "
-                  "double", "0.5", "the gather returns f / m (Newton's second law), not f.")
+                  "double", "0.5", hint)
 
 
 OTHER_N = (3, 6)
@@ -148,7 +156,7 @@ def measure_counts(m: Student) -> dict:
     """The derivative for each number of particles, or what went wrong (a code written for four
     particles raises or returns the wrong length: the hint names that)."""
     out = {}
-    for n in OTHER_N:
+    for n in (N,) + OTHER_N:
         masses = masses_of(n)
         try:
             out[str(n)] = deriv(m, state(7 + n, n), masses, forces_for(masses))
@@ -160,18 +168,21 @@ def measure_counts(m: Student) -> dict:
 
 
 def judge_counts(raw: Raw) -> Result:
-    parts, ok = [], True
-    for n in OTHER_N:
+    parts, right = [], {}
+    for n in (N,) + OTHER_N:
         if isinstance(raw.values.get(str(n)), str):
             parts.append(f"{n} particles: {raw.text(str(n))}")
-            ok = False
+            right[n] = False
             continue
         e = relative(raw.array(str(n), (4 * n,)), lab(state(7 + n, n), masses_of(n)))
         parts.append(f"{n} particles: {fmt(e)} off")
-        ok = ok and within(e, 0.0, 1e-12)
-    return Result(ok, "; ".join(parts), "< 1e-12 (relative) for each",
-                  "the number of particles is n = len(masses) (or len(state) // 4): a fixed 4 "
-                  "(state[:8], reshape(4, 2)) works only for four. " + LAYOUT)
+        right[n] = within(e, 0.0, 1e-12)
+    ok = all(right.values())
+    hint = ("the number of particles is n = len(masses) (or len(state) // 4): a fixed 4 "
+            "(state[:8], reshape(4, 2)) works only for four. " + LAYOUT)
+    if not right[N]:                  # wrong for four as well: not a matter of the count
+        hint = "wrong for 4 particles too: see 'matches the lab'. " + LAYOUT
+    return Result(ok, "; ".join(parts), "< 1e-12 (relative) for each", hint)
 
 
 def measure_state_kept(m: Student) -> dict:

@@ -61,27 +61,71 @@ def measure_forces(ks: float, kd: float):
     return measure
 
 
+SPRING_MISTAKES = {
+    "sign flipped": "your forces are the lab's with the sign flipped: f_a = -[...] l/|l| with "
+                    "l = x_a - x_b (a stretched spring pulls a towards b), f_b = -f_a.",
+    "f[a] += fa": "a particle in several springs gets only one of them: f[a] += fa keeps the "
+                  "last write for a repeated index. Use np.add.at(f, a, fa) (or a loop over "
+                  "springs).",
+    "no reaction": "only f_a is added: each spring also pushes b with f_b = -f_a "
+                   "(np.add.at(f, b, -fa)).",
+    "no rest": "Hooke's law on the whole length, ks |l|: it is ks (|l| - rest), the stretch.",
+    "ks kd swapped": "ks and kd are swapped: ks multiplies the stretch (|l| - rest), kd the "
+                     "relative speed along the spring.",
+    "one length": "one length for all springs: np.linalg.norm(l) without axis=1 is the norm of "
+                  "the whole array; each spring needs its own |l| (axis=1, keepdims=True).",
+    "not unit": "the direction is l, not the unit vector l/|l|: the force then grows with the "
+                "length twice.",
+    "v_a only": "the damping uses v_a alone: it damps the RELATIVE velocity, (v_a - v_b) . u.",
+    "unprojected": "the damping is kd (v_a - v_b), not projected: only the relative speed ALONG "
+                   "the spring is damped, kd ((v_a - v_b) . u) u.",
+}
+
+
+def spring_with(kind: str, x, v, a, b, ks, kd, rest) -> np.ndarray:
+    """The forces with one of the usual mistakes (computed here, in the parent)."""
+    if kind == "ks kd swapped":
+        ks, kd = kd, ks
+    l = x[a] - x[b]
+    length = (np.full((len(a), 1), np.linalg.norm(l)) if kind == "one length"
+              else np.linalg.norm(l, axis=1, keepdims=True))
+    u = l if kind == "not unit" else l / length
+    dv = v[a] if kind == "v_a only" else v[a] - v[b]
+    stretch = length if kind == "no rest" else length - rest[:, None]
+    if kind == "unprojected":
+        fa = -ks * stretch * u - kd * dv
+    else:
+        fa = -(ks * stretch + kd * np.sum(dv * u, axis=1, keepdims=True)) * u
+    f = np.zeros_like(x)
+    if kind == "f[a] += fa":
+        f[a] += fa
+        f[b] -= fa
+    else:
+        np.add.at(f, a, fa)
+        if kind != "no reaction":
+            np.add.at(f, b, -fa)
+    return -f if kind == "sign flipped" else f
+
+
+def named_spring_mistake(f, x, v, a, b, ks, kd, rest) -> str:
+    """The hint of the usual mistake these forces match ('' if none, or if it is the right
+    answer on these inputs too)."""
+    right = spring_with("", x, v, a, b, ks, kd, rest)
+    for kind, text in SPRING_MISTAKES.items():
+        with np.errstate(all="ignore"):
+            other = spring_with(kind, x, v, a, b, ks, kd, rest)
+        if rel_error(other, right) > 1e-6 and rel_error(f, other) < 1e-9:
+            return text
+    return ""
+
+
 def judge_forces(ks: float, kd: float, hint: str):
     def judge(raw: Raw) -> Result:
         x, v, rest = system()
-        spring_force = reference().spring_forces
-        ref = spring_force(x, v, A, B, ks, kd, rest)
+        ref = reference().spring_forces(x, v, A, B, ks, kd, rest)
         f = raw.array("f", x.shape)
         err = rel_error(f, ref)
-        # a common slip: f[a] += fa with repeated indices keeps one write per particle
-        fa = np.array([spring_force(x, v, A[k:k + 1], B[k:k + 1], ks, kd, rest[k:k + 1])[A[k]]
-                       for k in range(len(A))])
-        lost = np.zeros_like(x)
-        lost[A] += fa
-        lost[B] -= fa
-        text = hint
-        if rel_error(f, -ref) < 1e-9:
-            text = ("your forces are the lab's with the sign flipped: f_a = -[...] l/|l| with "
-                    "l = x_a - x_b (a stretched spring pulls a towards b), f_b = -f_a.")
-        elif rel_error(f, lost) < 1e-9:
-            text = ("a particle in several springs gets only one of them: f[a] += fa keeps the "
-                    "last write for a repeated index. Use np.add.at(f, a, fa) (or a loop over "
-                    "springs).")
+        text = named_spring_mistake(f, x, v, A, B, ks, kd, rest) or hint
         return Result(within(err, 0.0, 1e-9), f"largest difference {fmt(err)} of the largest "
                       "force", "< 1e-09 (relative)", text)
     return judge
@@ -129,6 +173,10 @@ def judge_alone(raw: Raw) -> Result:
     f = raw.array("f", (6, 2))
     ref = reference().spring_forces(x, v, ALONE_A, ALONE_B, 50.0, 2.0, rest)
     err = rel_error(f, ref)
+    if np.all(f[5] == 0.0):             # the lone row is right: the mistake is elsewhere
+        hint = (named_spring_mistake(f, x, v, ALONE_A, ALONE_B, 50.0, 2.0, rest) or
+                "the lone particle's row is right (0); the springs' forces are not: see 'Hooke "
+                "part' and 'damping part'.")
     return Result(within(err, 0.0, 1e-9), f"largest difference {fmt(err)} of the largest force "
                   f"(the lone particle: {fmt(float(np.abs(f[5]).max()))})",
                   "< 1e-09 (relative), 0 on the lone particle", hint)
@@ -145,9 +193,14 @@ def damping_run(m: Student) -> tuple[np.ndarray, np.ndarray]:
     return x, v
 
 
+DAMPING_START = (np.array([[0.0, 0.0], [80.0, 0.0]]), np.array([[0.0, 0.0], [0.0, 30.0]]))
+
+
 def measure_damping_removes(m: Student) -> dict:
     x, v = damping_run(m)
-    return {"x": x, "v": v}
+    x0, v0 = DAMPING_START             # and one call, moving, for naming a mistake
+    return {"x": x, "v": v, "f": forces(m, x0, v0, np.array([0]), np.array([1]), 50.0, 1.0,
+                                        np.array([50.0]))}
 
 
 def judge_damping_removes(raw: Raw) -> Result:
@@ -156,10 +209,15 @@ def judge_damping_removes(raw: Raw) -> Result:
     def energy(x, v):
         return 0.5 * float((v * v).sum()) + 0.5 * ks * (np.linalg.norm(x[1] - x[0]) - 50.0) ** 2
     e0 = energy(np.array([[0.0, 0.0], [80.0, 0.0]]), np.zeros((2, 2)))
-    ratio = energy(raw.array("x", (2, 2)), raw.array("v", (2, 2))) / e0
-    return Result(bool(ratio < 0.5), f"energy ratio {fmt(ratio)} after 2 s", "< 0.5",
-                  "the damping force must oppose the relative velocity along the spring: "
-                  "-kd ((v_a - v_b) . u) u on a, with u = (x_a - x_b)/|x_a - x_b| (check signs).")
+    x, v = raw.array("x", (2, 2)), raw.array("v", (2, 2))
+    ratio = energy(x, v) / e0
+    hint = ("the damping force must oppose the relative velocity along the spring: "
+            "-kd ((v_a - v_b) . u) u on a, with u = (x_a - x_b)/|x_a - x_b| (check signs).")
+    if not ratio < 0.5:                 # which usual mistake gives their force?
+        x0, v0 = DAMPING_START
+        hint = named_spring_mistake(raw.array("f", (2, 2)), x0, v0, np.array([0]),
+                                    np.array([1]), 50.0, 1.0, np.array([50.0])) or hint
+    return Result(bool(ratio < 0.5), f"energy ratio {fmt(ratio)} after 2 s", "< 0.5", hint)
 
 
 def measure_inputs(m: Student) -> dict:

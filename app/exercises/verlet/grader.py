@@ -81,6 +81,29 @@ def measure_free_fall(m: Student) -> dict:
     return {"x": x}
 
 
+FALL_MISTAKES = {
+    "swapped": "you return (x, x_new): the pair in the wrong order, so the particles step back "
+               "and forth. Return (x_new, x): the new positions first, then the old x (the next "
+               "x_prev).",
+    "old prev": "you return (x_new, x_prev): the second value must be the old x (it becomes the "
+                "next step's x_prev, the slide's pointer swap), not x_prev.",
+    "reversed": "the travel is backwards: x + (x - x_prev), not x + (x_prev - x).",
+    "a h": "a h, not a h^2: the acceleration moves the position by a h^2 in Verlet.",
+}
+
+
+def fall_with(kind: str) -> np.ndarray:
+    """Where the free fall ends with one of the usual mistakes (computed here, in the parent)."""
+    h = FALL_H
+    x, x_prev = FALL_X0.copy(), FALL_X0 - FALL_V0 * h + G * h ** 2 / 2
+    with np.errstate(all="ignore"):
+        for _ in range(FALL_N):
+            travel = (x_prev - x) if kind == "reversed" else (x - x_prev)
+            new = x + travel + G * (h if kind == "a h" else h * h)
+            x, x_prev = {"swapped": (x, new), "old prev": (new, x_prev)}.get(kind, (new, x))
+    return x
+
+
 def judge_free_fall(raw: Raw) -> Result:
     x = raw.array("x", (3, 2))
     t = FALL_N * FALL_H
@@ -88,7 +111,11 @@ def judge_free_fall(raw: Raw) -> Result:
     err = float(np.abs(x - exact).max())
     drop = float((x[:, 1] - FALL_X0[:, 1] - FALL_V0[:, 1] * t).mean()) / (G[1] * t * t / 2)
     hint = "x' = x + (x - x_prev) + a h^2: check each term."
-    if abs(drop) < 0.05:
+    named = [text for kind, text in FALL_MISTAKES.items()
+             if np.allclose(x, fall_with(kind), rtol=1e-9, atol=1e-6)]
+    if named:
+        hint = named[0]
+    elif abs(drop) < 0.05:
         hint = ("the particles do not fall: the acceleration never reaches the positions. Did "
                 "you move with the old velocity only (Euler's x + h v) and add a h to a velocity "
                 "afterwards? In Verlet a h^2 goes into the position.")
@@ -132,8 +159,9 @@ def judge_energy(raw: Raw) -> Result:
     hint = ("with drag 0 the energy must not drift: x' = x + (x - x_prev) + a h^2 exactly "
             "(1 - drag multiplies only (x - x_prev)).")
     if ratio > 1.01:
-        hint = "the energy grows: that is forward Euler's spiral, not Verlet."
-    return Result(within(ratio, 1.0, 0.01), f"energy ratio {ratio:.4f} after 20 s",
+        hint = ("the energy grows: forward Euler's spiral does that, and so does any wrong "
+                "term (see 'free fall'). " + hint)
+    return Result(within(ratio, 1.0, 0.01), f"energy ratio {fmt(ratio)} after 20 s",
                   "1 +- 0.01", hint)
 
 
@@ -151,11 +179,18 @@ def judge_drag(raw: Raw) -> Result:
     expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
     hint = (DRAG_HINT + " Lowering only the 2 (1.99 x - x_prev) is no drag: it pulls every "
             "particle towards x = 0.")
-    if ratio > 1.05:
+    if not math.isfinite(ratio) or ratio > 3.0:
+        hint = ("the energy grows without bound, with drag or without: fix 'free fall' and "
+                "'energy kept' first. " + hint)
+    elif ratio > 1.05:
         hint = "the energy GROWS: (1 - drag), not (1 + drag). " + hint
     elif ratio > 0.99:
         hint = "almost no energy lost: did you ignore drag? " + hint
-    return Result(within(ratio, expected, 0.05), f"energy ratio {ratio:.3f} over 1 s at drag 0.01",
+    elif within(ratio, expected ** 2, 0.02):
+        hint = ("twice the loss of (1 - drag): the drag is applied twice ((1 - drag)^2, or to "
+                "both x and x_prev). " + hint)
+    return Result(within(ratio, expected, 0.05),
+                  f"energy ratio {fmt(ratio)} over 1 s at drag 0.01",
                   f"{expected:.2f} +- 0.05 (x (1 - drag) per step)", hint)
 
 

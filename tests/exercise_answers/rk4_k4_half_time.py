@@ -1,0 +1,16 @@
+"""Wrong (fails 'RK4 stage times'): k4 at t + h/2, not t + h."""
+import numpy as np
+
+
+def midpoint_step(f, t: float, y: np.ndarray, h: float) -> np.ndarray:
+    k1 = f(t, y)
+    k2 = f(t + h / 2, y + h / 2 * k1)
+    return y + h * k2
+
+
+def rk4_step(f, t: float, y: np.ndarray, h: float) -> np.ndarray:
+    k1 = f(t, y)
+    k2 = f(t + h / 2, y + h / 2 * k1)
+    k3 = f(t + h / 2, y + h / 2 * k2)
+    k4 = f(t + h / 2, y + h * k3)
+    return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
