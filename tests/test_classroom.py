@@ -302,7 +302,7 @@ SHARE_SIZES = ((1024, 768), (1920, 1080))
 @pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])
 def test_the_scene_gets_most_of_the_world_area_and_the_first_page_is_short(cls, tmp_path,
                                                                              capsys):
-    """The share of the window the scene's content gets on screen (README's table), at
+    """The share of the window the scene's content gets on screen (docs/instructors.md's table), at
     1024x768 and 1920x1080, both text sizes: never less than a fifth, at least 45 % in a
     projector window at normal text; the HUD's first page is a few lines."""
     w = open_window(cls, tmp_path, size=(1024, 768), frames=5)
