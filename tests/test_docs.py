@@ -35,6 +35,19 @@ def test_the_readme_is_short_and_links_into_docs():
         assert f"(docs/{page}" in readme, page
 
 
+def test_the_readmes_counts_are_the_codes():
+    """'ten graded exercises', 'Up to 5000 particles', a table row per scene."""
+    from app.exercises import exercise_names
+    from scenes import SCENES
+    from scenes.particle_dance import ParticleDanceScene
+    readme = text_of("README.md")
+    assert "ten graded exercises" in readme and len(exercise_names()) == 10
+    assert "Up to 5000 particles" in readme
+    assert next(p for p in ParticleDanceScene.all_params() if p.name == "particles").hi == 5000
+    tour = readme.split("## A tour of the scenes", 1)[1].split("\n## ", 1)[0]
+    assert [c.name for c in SCENES] == re.findall(r"^\| `(\w+)` \|", tour, re.M)
+
+
 def test_the_readmes_test_command_is_the_one_ci_runs():
     """The README's two commands; .ci/run runs the test one (pip quiet) on a clean checkout."""
     readme = text_of("README.md")

@@ -2,7 +2,7 @@
 
     python -m app.docs            rewrite every generated block in place
     python -m app.docs --check    say which blocks differ from what the code generates (exit 1)
-    python -m app.docs --images   remake the pictures in docs/images/ (headless runs, ~1 min)
+    python -m app.docs --images   remake the pictures in docs/images/ (headless runs, a few seconds)
 
 A generated block sits between two markers that name it:
 
