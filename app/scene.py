@@ -364,6 +364,12 @@ class Scene:
         frame (the mouse controls, counts, the derivation of a limit)."""
         return []
 
+    def real_time_words(self) -> str:
+        """'' while this scene's physics alone keeps up with real time; else, in its own terms,
+        how far behind it is and what would catch up (a HUD line; the window then leaves out its
+        own 'slower than real time: physics takes ...', which would say it twice)."""
+        return ""
+
     def shown(self, name: str, value: Any) -> str:
         """Metric `name` with this value as the screen writes it, in the unit `metric_units`
         declares (the HUD and the metrics strip both use it: one unit per quantity)."""

@@ -43,7 +43,7 @@ PLAIN = Unit()
 
 def fmt_number(x: Any, digits: int = 4) -> str:
     """A compact form of a number: integers as they are, floats with `digits` significant
-    digits, "-" for a value that does not exist yet (None; null in JSON), yes/no for a truth
+    digits (whole numbers below 1e5 in full, never in powers of ten), "-" for a value that does not exist yet (None; null in JSON), yes/no for a truth
     value."""
     if x is None:
         return "-"
@@ -61,6 +61,8 @@ def fmt_number(x: Any, digits: int = 4) -> str:
         return str(int(v))
     if abs(v) >= 1e5 or abs(v) < 1e-3:
         return f"{v:.{min(digits, 3)}g}"
+    if abs(v) >= 10 ** (digits - 1):     # 1680.4 at 3 digits: '1680', not '1.68e+03'
+        return str(round(v))
     return f"{v:.{digits}g}"
 
 

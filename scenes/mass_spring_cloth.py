@@ -22,20 +22,20 @@ CPU's BLAS, moves it from -30 to +30 J; CG stops at 1e-2 of the residual, and a 
 amplifies what that leaves). With cg_tolerance 1e-10 (exact: the sparse LU takes over where CG
 cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging lower than it
 started, from 10 s on, on every machine.
-Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16
-cloth, wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit
-integrator at its own measured limit): for stiff cloth by far (leather 19x cheaper at Blender's
-stiffness, 160x at x10, 1600x at x100; denim at x100 66x), but at the soft presets' own
-stiffness it is about even or explicit wins (cotton 0.3-1.1x, silk 0.4-0.8x, rubber 1.0-1.6x,
-noisy on a loaded machine); and an explicit step kept in the stable band (half its limit) costs
-twice that again.
+Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16 cloth,
+wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit integrator at
+its own measured limit; load ~3, 2026-11-24): for stiff cloth by far (leather 35x cheaper at
+Blender's stiffness, 220x at x10, 2800x at x100; denim at x100 120x); at the soft presets' own
+stiffness the margin is small (cotton 2.1x, silk 1.4x, rubber 2.5x; before CG was warm-started and
+block-preconditioned, explicit won there, 0.3-1.1x) and noisy on a loaded machine; and an explicit
+step kept in the stable band (half its limit) costs twice as much as at the limit.
 Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
 `direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
 every step, and its factors fill in (11x the matrix's non-zeros at 64x64). Measured (`python -m
-app bench mass_spring`, denim): the LU's solve costs {LU32}x CG's at 32x32 and {LU64}x at 64x64,
-and grows as particles^{PLU} against CG's particles^{PCG}. The HUD gives each one's ms a step once
+app bench mass_spring`, denim): the LU's solve costs 5x CG's at 32x32 and 9x at 64x64 (load ~3),
+and grows as particles^1.1 against CG's particles^0.7. The HUD gives each one's ms a step once
 it has run on this cloth: switch it live to compare.
 The step budget: the window waits for whole steps, so a setting whose one step would take over
 0.1 s is refused, naming what would fit (fewer substeps, a looser cg_tolerance, solver=cg, fewer
@@ -66,13 +66,14 @@ afterwards makes the material `custom`. Integrator and every slider change live.
 
 Metrics (units: px, s, kg): particles, springs, integrator; omega_max (1/s, the top mode's
 frequency); explicit_limit_h (s: symplectic Euler's limit with this damping, which is what the HUD
-compares your step with; undamped it would be 2/omega_max); max_stretch and mean_stretch
+compares your step with; undamped it would be 2/omega_max); step_limit_h (s: the explicit
+integrator in use's limit, the lowest seen; null with implicit Euler) and limit_band; max_stretch and mean_stretch
 (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
 256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
 an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
 answer, whichever solver gave it), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
-in J, the stretches in %, explicit_limit_h in ms (`metric_units`).
+in J, the stretches in %, explicit_limit_h and step_limit_h in ms (`metric_units`).
 """
 
 from __future__ import annotations
@@ -188,6 +189,7 @@ class MassSpringClothScene(Scene):
                     "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "omega_max": Unit("1/s"),
                     "explicit_limit_h": Unit("ms", 1e3),
+                    "step_limit_h": Unit("ms", 1e3),
                     "pinned_drift": Unit("px", resolution=0.01)}
     tries = (
         Try("Leather past its limit", {"material": "leather", "integrator": "symplectic_euler"},
@@ -207,7 +209,7 @@ class MassSpringClothScene(Scene):
             "(7x and 20x heavier) and it hardly moves"),
     )
     comparisons = (     # "try this" cards that run variants side by side (--compare)
-        Try("Explicit vs implicit at 60 Hz", {"hertz": 60},
+        Try("Explicit vs implicit", {"hertz": 60},
             "h = 16.7 ms is 27x symplectic Euler's limit for cotton at rest: pane A blows up "
             "within a few steps and its pane says why, while pane B's implicit Euler hangs on, "
             "paying in artificial damping and in ms per step (its CG)",
@@ -487,7 +489,7 @@ class MassSpringClothScene(Scene):
     def _where(self) -> str:
         """Where the step is against the explicit limit and in which band: 'h = 16.667 ms =
         33x symplectic Euler's limit (...): PAST THE LIMIT ...' (the line a class reads)."""
-        c, p = self.cloth, self.p
+        p = self.p
         h = self.dt / p["substeps"]
         om, limit, name = self.omega_max, self.explicit_limit(), p["integrator"]
         title = INTEGRATORS[name].title
@@ -521,7 +523,7 @@ class MassSpringClothScene(Scene):
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())
-        slow = self._real_time_words()
+        slow = self.real_time_words()
         if slow:
             from app.draw.hud import WARN_COLOR, Line
             lines.append(Line(slow, WARN_COLOR))
@@ -533,7 +535,7 @@ class MassSpringClothScene(Scene):
 
     def hud_details(self) -> list[str]:
         """The controls, the cloth's size, the limit's derivation and the CG residual."""
-        c, m, name = self.cloth, self.metrics(), self.p["integrator"]
+        m, name = self.metrics(), self.p["integrator"]
         om, limit = self.omega_max, self.explicit_limit()
         lines = ["LMB: move+lock | RMB: unlock | U: unlock all",
                  f"{m['particles']} particles, {m['springs']} springs; stretch: mean "
@@ -586,7 +588,7 @@ class MassSpringClothScene(Scene):
         self.effect_costs()
         return sum(self._costs.values())
 
-    def _real_time_words(self) -> str:
+    def real_time_words(self) -> str:
         """'' while the physics keeps up with real time; else in words how far behind it is and
         what would catch up."""
         step, need = self.step_ms(), 1000.0 / self.p["hertz"]

@@ -270,8 +270,10 @@ class ParticleDanceScene(Scene):
         d, p = self.dance, self.p
         pf, n = d.pair_force, d.ps.n
         lines: list = []
+        slow = self.real_time_words()
         if "interaction" not in self.on:
-            return lines + [f"{n} particles, interaction off: no pairs to find"]
+            lines.append(f"{n} particles, interaction off: no pairs to find")
+            return lines + ([Line(slow, WARN_COLOR)] if slow else [])
         method, every = p["neighbour_method"], all_pair_tests(n)
         of_all = (f"{crowded_share(pf.tests, n):.0%} of all {every:,}" if method == "grid" and every
                   else "every pair")
@@ -280,13 +282,19 @@ class ParticleDanceScene(Scene):
         total = self._costs.get("interaction", 0.0)
         lines.append(f"find pairs {search:.2f} + forces {max(total - search, 0.0):.2f} = "
                      f"{total:.2f} ms/step, {pf.pairs:,} pairs < R")
-        step, need = self.step_ms(), 1000.0 / p["hertz"]
-        if step > need:                  # physics alone needs more than the time it simulates
-            partners = 2.0 * pf.pairs / n                   # each pair has two particles
-            crowd = f"; crowded: {partners:.0f} neighbours within R each" if partners > CROWD else ""
-            lines.append(Line(f"too slow for real time: {step:.0f} ms per {need:.1f} ms step "
-                              f"(x{need / step:.2f}){crowd}", WARN_COLOR))
+        if slow:
+            lines.append(Line(slow, WARN_COLOR))
         return lines
+
+    def real_time_words(self) -> str:
+        step, need = self.step_ms(), 1000.0 / self.p["hertz"]
+        if step <= need:                 # physics alone keeps up with the time it simulates
+            return ""
+        pairs = self.dance.pair_force.pairs if "interaction" in self.on else 0
+        partners = 2.0 * pairs / max(self.dance.ps.n, 1)     # each pair has two particles
+        crowd = f"; crowded: {partners:.0f} neighbours within R each" if partners > CROWD else ""
+        return (f"too slow for real time: {step:.0f} ms per {need:.1f} ms step "
+                f"(x{need / step:.2f}){crowd}")
 
     # ----- state ------------------------------------------------------------------------------
     def state_arrays(self):

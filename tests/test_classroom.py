@@ -17,6 +17,7 @@ from app.__main__ import main
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Try
+from app.units import fmt_number
 from scenes import SCENES, get_scene
 from tests.test_window import Tiny, open_window, type_into
 
@@ -253,6 +254,16 @@ def test_the_hud_and_the_strip_write_a_quantity_in_one_unit_and_noise_as_zero():
     assert scene.shown("max_stretch", 3.55e-15) == "0%"
     scene.restore(cls().snapshot())                # rolled back to the start: nothing moves
     assert scene.shown("energy", scene.metrics()["energy"]) == "0 J"
+
+
+def test_a_large_reading_is_written_in_full_not_in_powers_of_ten():
+    """The Verlet cloth yanked hard showed 'max 1.68e+03%' in its HUD: below 1e5 a number is
+    written out whole ('1680%'), its digits kept as far as the unit asks."""
+    cloth = get_scene("cloth")()
+    assert cloth.shown("max_stretch", 16.804) == "1680%"
+    assert cloth.shown("max_stretch", 0.16804) == "16.8%"
+    assert fmt_number(12345.6) == "12346" and fmt_number(123456.0) == "123456"
+    assert fmt_number(2.5e5 + 0.5) == "2.5e+05" and fmt_number(0.000123) == "0.000123"
 
 
 @pytest.mark.parametrize("cls", SCENES, ids=[c.name for c in SCENES])

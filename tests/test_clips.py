@@ -14,7 +14,7 @@ import pytest
 
 from app.__main__ import main
 from app.clips import (MP4_INSTALL, GifWriter, check_video, clip_size, frame_count,
-                       frame_steps, max_gif_frames)
+                       frame_steps)
 
 
 def run_json(capsys, *args) -> dict:
@@ -234,3 +234,38 @@ def test_f9_clips_go_to_the_videos_name_then_numbered_ones(tmp_path):
     assert first.parent == tmp_path and first.name.startswith("cloth-") and first.suffix == ".gif"
     first.write_bytes(b"")                      # never over an existing file
     assert dated.next_path("cloth") != first
+
+
+@pytest.mark.parametrize("large", [False, True])
+def test_the_rec_box_covers_no_text_in_compare_mode(tmp_path, large):
+    """F9 in compare mode at 1024x768: the REC box goes below the header and the panes' HUDs
+    it would cover (it was drawn over the header's title and clock)."""
+    from app.draw.text import TEXT
+    from app.window import Window
+    from app.window.clip_recorder import ClipRecorder, _text_boxes
+    from scenes.mass_spring_cloth import MassSpringClothScene
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1024, 768)), screenshot_dir=tmp_path)
+    w.clips = ClipRecorder(fps=30, width=160, folder=tmp_path / "clips")
+    assert w.open_scene(MassSpringClothScene, {"rows": 8, "cols": 8})
+    assert w.scene_view.apply_try(MassSpringClothScene.find_card("Explicit vs implicit"))
+    if large:
+        TEXT.scale = 1.0
+        w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=pygame.K_F2, mod=0,
+                                                 scancode=0, unicode=""))
+    for k in (pygame.K_F9, None, None, None):
+        if k:
+            w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
+                                                     unicode=""))
+        w.update(1 / 60)
+        w.render()
+    view = w.scene_view
+    boxes = _text_boxes(view)
+    assert w.clips.active and len(boxes) == 3 and view.pane.header.height > 0
+    assert w.clips.box.collidelist(boxes) == -1, (w.clips.box, boxes)
+    assert view.world_area().contains(w.clips.box)
+    w.clips.stop(w)
+    w.clips.finish(w)
+    TEXT.scale = 1.0
+    pygame.display.quit()

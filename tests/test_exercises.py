@@ -8,7 +8,6 @@ them without crashing. Hostile files: tests/test_exercises_hostile.py."""
 from __future__ import annotations
 
 import json
-import os
 import shutil
 from pathlib import Path
 

@@ -6,7 +6,6 @@ import math
 
 import numpy as np
 import pygame
-import pymunk
 import pytest
 
 from app.draw.view import View

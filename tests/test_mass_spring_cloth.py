@@ -611,3 +611,17 @@ def test_rubber_falling_at_half_its_limit_is_stable_and_at_four_fifths_is_not():
     assert band == "stable" and s.is_finite() and max(energy) <= 1e-9
     s, band, energy = run_from("rubber", "symplectic_euler", 0.8, False, seconds=0.6)
     assert band == "marginal" and (not s.is_finite() or max(energy) > 1.0)
+
+
+def test_both_step_limits_are_written_in_ms_on_screen():
+    """The plot picker and the strip showed step_limit_h as a bare '0.000619' beside
+    explicit_limit_h's '0.6191 ms': a step on screen is in ms, both of them."""
+    s = MassSpringClothScene({"rows": 6, "cols": 6, "integrator": "symplectic_euler",
+                              "hertz": 1000})
+    s.step(s.dt)
+    m = s.metrics()
+    assert m["step_limit_h"] is not None and m["step_limit_h"] < 0.01          # seconds in JSON
+    for name in ("explicit_limit_h", "step_limit_h"):
+        text = s.shown(name, m[name])
+        assert text.endswith(" ms") and abs(float(text.split()[0]) - m[name] * 1e3) \
+            <= 1e-3 * m[name] * 1e3, (name, text)

@@ -121,3 +121,14 @@ def test_a_step_too_coarse_for_the_pin_is_flagged_in_the_metrics():
     for _ in range(120):
         fine.advance()
     assert fine.metrics()["pin_let_go"] is False
+
+
+def test_the_hud_says_why_the_slide_reads_past_its_max():
+    """'slide 37.7 px (range 0..37.5)' puzzled a class: past its max, the line says by how much
+    and why; within its range it says nothing more."""
+    scene = PivotingLScene()
+    top = scene.slide.max
+    scene.slide_distance = lambda: top + 0.2
+    assert scene.hud_lines()[0].endswith(f"(range 0..{top:g}, 0.2 px past: a soft joint)")
+    scene.slide_distance = lambda: top - 1.0
+    assert scene.hud_lines()[0].endswith(f"(range 0..{top:g})")

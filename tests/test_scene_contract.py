@@ -95,11 +95,14 @@ def test_content_bounds_are_a_finite_rectangle_that_meets_the_world():
 
 
 def test_every_try_card_is_valid_and_its_label_fits_a_card():
-    """A card's settings pass the scene's own validation, and its label fits the panel's card
-    button at large text in the smallest window (25 characters: the longest that did, measured
-    at 1024x640 with F2)."""
+    """A card's settings (and a comparison card's every variant) pass the scene's own validation,
+    and its label fits the panel's card button at large text in the smallest window (25
+    characters: the longest that did, measured at 1024x640 with F2; a 29-character comparison
+    label was cut to '...60 H' at 1024x768 with F2)."""
     for cls in SCENES:
-        for card in cls.tries:
+        for card in (*cls.tries, *cls.comparisons):
             cls.resolve(card.settings)
+            for variant in card.compare:
+                cls.resolve({**card.settings, **variant})
             assert 0 < len(card.label) <= 25, (cls.name, card.label)
             assert card.watch.strip(), (cls.name, card.label)

@@ -18,7 +18,7 @@ import pytest
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Effect, InputEvent, Param, Scene
-from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
+from app.runner import NONFINITE_TEXT
 from app.window import Window, run_window
 from app.window.scene_view import SETTLE_FRAMES
 
@@ -442,6 +442,56 @@ def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_why(windo
     assert window.scene_view.clock.dropped_steps - dropped == 8 - n
     text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
     assert "slower than real time: physics takes" in text
+    assert "iterations" not in text and "fewer substeps or hertz catch up" in text  # its knobs
+
+
+def test_a_scene_that_says_it_falls_behind_is_not_echoed_by_the_window(window, monkeypatch):
+    """mass_spring_cloth's 'not real time: ...' and the window's 'slower than real time: physics
+    takes ...' were shown together: where the scene says it in its own terms, the window is
+    silent about the physics (and speaks again when the scene does not)."""
+    import time as _time
+    for _ in range(SETTLE_FRAMES):
+        window.update(1 / 60)
+    slow_step = Tiny.step
+
+    def step(self, h):
+        _time.sleep(0.03)
+        slow_step(self, h)
+
+    monkeypatch.setattr(Tiny, "step", step)
+    monkeypatch.setattr(Tiny, "real_time_words", lambda self: "not real time: Tiny's words")
+    window.update(8 / 60)
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time" not in text
+    monkeypatch.setattr(Tiny, "real_time_words", lambda self: "")
+    window.update(8 / 60)
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time: physics takes" in text
+
+
+def test_the_frame_that_blew_up_and_was_rolled_back_is_not_slower_than_real_time(window,
+                                                                                monkeypatch):
+    """The mass-spring card "Leather past its limit" said "slower than real time: physics
+    takes 46 ms of a 143 ms frame" over its rollback message: the steps were undone and the
+    scene paused, so no frame was slow."""
+    import time as _time
+    for _ in range(SETTLE_FRAMES):
+        window.update(1 / 60)
+    window.scene_view.apply_setting("blowup", True)
+    slow_step = Tiny.step
+
+    def step(self, h):
+        _time.sleep(0.03)
+        slow_step(self, h)
+
+    monkeypatch.setattr(Tiny, "step", step)
+    for _ in range(60):
+        window.update(8 / 60)
+        if window.scene_view.banner:
+            break
+    assert window.scene_view.banner and window.scene_view.clock.paused
+    text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
+    assert "slower than real time" not in text
 
 
 def test_a_slow_first_frame_after_opening_or_f2_is_not_slower_than_real_time(window):
@@ -798,6 +848,22 @@ def test_help_text_is_wrapped_never_cut():
         assert all(img.get_width() <= 400 for _, _, img in page.items)
     finally:
         TEXT.scale = 1.0
+
+
+def test_a_wrapped_line_keeps_a_number_with_its_unit_and_cuts_a_path_that_is_too_wide():
+    """'physics 6.84' then 'ms/step' on the next row read as a bare number (the 1920x1080
+    mass-spring HUD did), and a clip's path wider than its box ran off the window."""
+    from app.draw.hud import wrap
+    from app.draw.text import font
+    pygame.font.init()
+    f = font(28)
+    text = "t = 3.82 s | dt = 1/60 s | physics 6.84 ms/step"
+    room = f.size(text)[0] - 5                 # the unit no longer fits on the first row
+    assert wrap(text, f, room) == ["t = 3.82 s | dt = 1/60 s | physics", "6.84 ms/step"]
+    path = "/work/a-rather-long-folder/clips/mass_spring_cloth-20261124-075704.gif"
+    rows = wrap(f"clip saved: {path} (93 frames)", f, 250)
+    assert all(f.size(r)[0] <= 250 for r in rows) and path in "".join(rows)
+    assert rows[1].endswith("/") or rows[2].startswith("/")    # cut at a slash where it can
 
 
 def test_fmt_number_shows_a_missing_value_as_a_dash():

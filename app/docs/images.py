@@ -51,8 +51,8 @@ PICTURES: tuple[Picture, ...] = (
     Picture("cloth-1x10-vs-10x1.png",
             "python -m app --headless --scene cloth --try '1x10 vs 10x1' --seconds 2 --width 960"),
     Picture("explicit-vs-implicit.png",
-            "python -m app --headless --scene mass_spring_cloth --try 'Explicit vs implicit at "
-            "60 Hz' --seconds 1 --width 960", code=1),
+            "python -m app --headless --scene mass_spring_cloth --try 'Explicit vs implicit' "
+            "--seconds 1 --width 960", code=1),
     Picture("integrators-hertz-4.png",
             "python -m app --headless --scene integrators --try 'hertz 4: past Verlet' "
             "--seconds 4 --width 960"),

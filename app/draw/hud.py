@@ -29,17 +29,51 @@ ERROR_COLOR = (255, 120, 110)
 ACCENT_COLOR = (120, 190, 255)
 
 
+# units the wrap keeps on the line of the number before them ('6.84 ms/step', never '6.84' then
+# 'ms/step' on the next line)
+UNITS = {"ms", "s", "ms/step", "J", "px", "px/s", "Hz", "%", "kg", "1/s", "MB", "us",
+         "frames", "steps"}
+
+
+def _is_unit(word: str) -> bool:
+    return word.rstrip(",;:.)") in UNITS
+
+
+def _cut(text: str, f: pygame.font.Font, width: int) -> tuple[str, str]:
+    """Split a line holding one word wider than `width` (a file's path): the longest head that
+    fits, cut after its last '/' if there is one in its second half."""
+    n = 1
+    while n < len(text) and f.size(text[: n + 1])[0] <= width:
+        n += 1
+    slash = max(text.rfind("/", 0, n), text.rfind("\\", 0, n))
+    if slash + 1 > n // 2:
+        n = slash + 1
+    return text[:n], text[n:]
+
+
 def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
-    """Split `text` into lines no wider than `width` pixels (paragraph breaks kept)."""
+    """Split `text` into lines no wider than `width` pixels (paragraph breaks kept). A number
+    keeps its unit on its line; a word wider than the line (a file's path) is cut, after a '/'
+    where it can be."""
     lines: list[str] = []
     for para in text.split("\n"):
         indent = para[: len(para) - len(para.lstrip())]
-        words = para.split()
+        words: list[str] = []
+        for w in para.split():
+            if words and _is_unit(w) and words[-1][-1:].isdigit():
+                words[-1] += " " + w
+            else:
+                words.append(w)
         if not words:
             lines.append("")
             continue
         line = indent + words[0]
-        for w in words[1:]:
+        for w in words[1:] + [None]:
+            while f.size(line)[0] > width and len(line) > 1:
+                head, line = _cut(line, f, width)
+                lines.append(head)
+            if w is None:
+                break
             candidate = line + " " + w
             if f.size(candidate)[0] <= width:
                 line = candidate

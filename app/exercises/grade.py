@@ -117,8 +117,8 @@ class Session:
             pidfd = os.pidfd_open(pid)    # readable when the child ends (Linux 5.3+)
         except (AttributeError, OSError):
             pidfd = None
-        self.child = c = Child(pid, token, chan_r, out_r, pidfd, -1, first,
-                               time.monotonic() + self.timeout)
+        self.child = Child(pid, token, chan_r, out_r, pidfd, -1, first,
+                           time.monotonic() + self.timeout)
         sel.register(chan_r, selectors.EVENT_READ, self.on_channel)
         sel.register(out_r, selectors.EVENT_READ, self.on_output)
         if pidfd is not None:

@@ -50,7 +50,7 @@ from app.physics.forces import Drag
 from app.physics.integrators import symplectic_euler
 from app.physics.neighbours import (NEIGHBOUR_METHODS, PairBlock, all_pair_blocks, all_pair_tests,
                                     find_pairs, grid_pair_blocks, sort_into_cells)
-from app.physics.particles import ParticleSystem, scatter_add
+from app.physics.particles import ParticleSystem
 from app.physics.timing import Stopwatch
 
 CORE = 0.3            # the repulsive core is the inner 30 % of the cut-off radius

@@ -163,7 +163,7 @@ class ClipRecorder:
             self.stop(window, f"a GIF of this size holds at most {most} frames (for longer "
                       "clips: --video OUT.mp4): ")
             return
-        self._draw_box(screen, view.layout.hud)
+        self._draw_box(screen, _text_boxes(view))
 
     def _fitted(self, area: pygame.Surface, background) -> pygame.Surface:
         """The scene area as a frame of the clip's size: as it is if its shape is the clip's
@@ -181,9 +181,10 @@ class ClipRecorder:
         frame.blit(scaled, ((w - scaled.get_width()) // 2, (h - scaled.get_height()) // 2))
         return frame
 
-    def _draw_box(self, screen: pygame.Surface, hud_box: pygame.Rect) -> None:
-        """The REC box at the top right of the scene area, or below the HUD box where it would
-        cover it (a narrow window, large text)."""
+    def _draw_box(self, screen: pygame.Surface, text_boxes: list[pygame.Rect]) -> None:
+        """The REC box at the top right of the scene area, moved down below any text box it
+        would cover (the HUD, compare mode's header and panes' HUDs: a narrow window, large
+        text); at the bottom right if no room is left under them."""
         seconds = self.writer.frames / self.fps
         lines = [hud.Line(f"REC clip {seconds:.1f} s ({self.writer.frames} frames): F9 stops",
                           hud.ERROR_COLOR),
@@ -191,8 +192,13 @@ class ClipRecorder:
         width = max(1, min(self._area.width - 16, 620))
         w, h = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
         box = pygame.Rect(self._area.right - w - 8, self._area.top + 8, w, h)
-        if box.colliderect(hud_box):
-            box.top = hud_box.bottom + 8
+        hit = box.collidelist(text_boxes)
+        while hit >= 0:
+            box.top = text_boxes[hit].bottom + 8
+            hit = box.collidelist(text_boxes)
+        if box.bottom > self._area.bottom:
+            box.bottom = self._area.bottom - 8
+        self.box = box                              # where it went (the tests look)
         hud.text_box(screen, lines, box.topleft, hud.HUD_SIZE, max_width=width)
 
     def _report(self, window: "Window") -> None:
@@ -215,6 +221,15 @@ class ClipRecorder:
             lines.append(_saved_text(result))
         self._saving.clear()
         return lines
+
+
+def _text_boxes(view) -> list[pygame.Rect]:
+    """The text boxes on the scene area: the HUD, or compare mode's header and panes' HUDs."""
+    grid = view.pane
+    layouts = [p.layout for p in grid.panes] if hasattr(grid, "panes") else [view.layout]
+    boxes = [lay.hud for lay in layouts if lay is not None]
+    header = getattr(grid, "header", None)
+    return boxes + ([header] if header is not None else [])
 
 
 def _saved_text(result: dict) -> str:

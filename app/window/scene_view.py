@@ -357,6 +357,7 @@ class SceneView(InstrumentHost, ShellView):
             self.clock.accumulator = 0.0
             self.dragging.clear()
             self.banner = rollback.text()
+            self.speed.restart(forget=True)    # undone steps: not "slower than real time"
             self._refresh_panel()
         elif self.runner.error is not None:
             self.clock.paused = True

@@ -28,9 +28,12 @@ class SpeedWatch:
         self.slow: tuple[float, str] | None = None   # (wall time, why) of the last slow frame
         self.settle = SETTLE_FRAMES
 
-    def restart(self) -> None:
-        """A new layout or scene: its first frames' hiccups do not count."""
+    def restart(self, forget: bool = False) -> None:
+        """A new layout or scene: its first frames' hiccups do not count; `forget`: nor does
+        the slow frame said before (a rollback: the steps it spoke of were undone)."""
         self.settle = SETTLE_FRAMES
+        if forget:
+            self.slow = None
 
     def frame(self, wall: float) -> None:
         self.frames.append(wall)
@@ -58,8 +61,10 @@ class SpeedWatch:
         # runs; after a long frame it is only the symptom of what made the frame long
         cap_binds = scene.p["hertz"] * clock.slow_motion / FPS_CAP > clock.max_steps_per_frame
         if physics >= draw and physics >= 0.3 * frame:
-            why = (f"physics takes {ms(physics)} of a {ms(frame)} frame: fewer iterations, "
-                   "substeps or hertz catch up")
+            if scene.real_time_words():     # the scene's HUD says it, in its own terms
+                self.slow = None
+                return
+            why = f"physics takes {ms(physics)} of a {ms(frame)} frame: {_fewer(scene)} catch up"
         elif capped and cap_binds:
             why = cap_text(clock, scene)
         elif draw >= 0.3 * frame:
@@ -75,6 +80,14 @@ class SpeedWatch:
         if self.slow is not None and wall - self.slow[0] < SHOWN_SECONDS:
             return "slower than real time: " + self.slow[1]
         return None
+
+
+def _fewer(scene) -> str:
+    """'fewer iterations, substeps or hertz': the knobs of this scene that cut the physics."""
+    knobs = [k for k in ("particles", "iterations", "substeps", "hertz") if k in scene.p]
+    if not knobs:
+        return "a lighter setting would"
+    return "fewer " + (", ".join(knobs[:-1]) + " or " if len(knobs) > 1 else "") + knobs[-1]
 
 
 def cap_text(clock, scene) -> str:
