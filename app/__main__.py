@@ -1,4 +1,4 @@
-"""The command line: `python -m app ...` (see README.md, "Command line").
+"""The command line: `python -m app ...` (see docs/reference.md).
 
     python -m app                          window, scene menu
     python -m app --scene cloth            window, open one scene
@@ -44,7 +44,7 @@ class _Parser(argparse.ArgumentParser):
 
 def _positive_float(text: str) -> float:
     try:
-        if not plain_number(text):      # '1_0' and '١' too: numbers are plain ASCII (README)
+        if not plain_number(text):      # '1_0', '١': plain ASCII only (docs/reference.md)
             raise ValueError(text)
         value = float(text)
     except ValueError:
@@ -104,7 +104,7 @@ def _positive_int(text: str) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    # allow_abbrev=False: --scen is not --scene (a stable command line; README, "Command line")
+    # allow_abbrev=False: --scen is not --scene (a stable command line; docs/reference.md)
     p = _Parser(prog="python -m app", allow_abbrev=False, description="A classroom lab for "
                 "physics in computer animation and games. Without options: a window with the "
                 "scene menu.")
@@ -273,7 +273,7 @@ def app_main(argv: list[str]) -> int:
         problem = cls.import_problem() if hasattr(cls, "import_problem") else None
         if problem:
             print(problem, file=sys.stderr)
-            return EXIT_NONFINITE      # like their code raising: exit 1 (README)
+            return EXIT_NONFINITE      # like their code raising: exit 1 (docs/reference.md)
 
     plot = check_plot(args.plot, classes, shared)
     extras = Extras(args.csv, args.arrows, tuple(plot))
@@ -367,9 +367,7 @@ def writable_folder(path: str, what: str, example: str, probe: str) -> None:
         raise UsageError(problem)
 
 
-def bench_main(argv: list[str]) -> int:
-    from app.bench import BENCHMARKS, run_benchmarks
-    choices = list(BENCHMARKS) + ["all"]
+def build_bench_parser(choices: list[str]) -> argparse.ArgumentParser:
     p = _Parser(prog="python -m app bench", allow_abbrev=False,
                 description="benchmark tables and PNG charts")
     p.add_argument("which", nargs="?", default="all",
@@ -377,7 +375,13 @@ def bench_main(argv: list[str]) -> int:
     p.add_argument("--json", action="store_true", help="print the numbers as JSON on stdout")
     p.add_argument("--out", default="bench-results", help="folder for the PNG charts")
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats (a smoke run)")
-    args = p.parse_args(argv)
+    return p
+
+
+def bench_main(argv: list[str]) -> int:
+    from app.bench import BENCHMARKS, run_benchmarks
+    choices = list(BENCHMARKS) + ["all"]
+    args = build_bench_parser(choices).parse_args(argv)
     if args.which not in choices:
         raise UsageError(f"unknown benchmark {shown_text(args.which)}; accepted: "
                          f"{', '.join(choices)}")
@@ -386,13 +390,9 @@ def bench_main(argv: list[str]) -> int:
     return run_benchmarks(args.which, args.json, args.out, args.quick)
 
 
-def exercise_main(argv: list[str]) -> int:
-    """`exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`."""
-    from app.exercises import cli, exercise_names, get_exercise
+def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
     from app.exercises.grade import CHECK_TIMEOUT
-    from app.exercises.loading import shown, starter_path
-    names = exercise_names()
-    # allow_abbrev=False on every level: --ref is not --reference (README, "Command line")
+    # allow_abbrev=False on every level: --ref is not --reference (docs/reference.md)
     p = _Parser(prog="python -m app exercise", allow_abbrev=False, description="student "
                 "exercises: list them, grade an answer, copy the starters")
     sub = p.add_subparsers(dest="command", metavar="list|check|copy", parser_class=_Parser)
@@ -408,7 +408,15 @@ def exercise_main(argv: list[str]) -> int:
     k = sub.add_parser("copy", help="copy the starters into a folder of your own",
                        allow_abbrev=False)
     k.add_argument("folder")
-    args = p.parse_args(argv)
+    return p
+
+
+def exercise_main(argv: list[str]) -> int:
+    """`exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`."""
+    from app.exercises import cli, exercise_names, get_exercise
+    from app.exercises.loading import shown, starter_path
+    names = exercise_names()
+    args = build_exercise_parser(names).parse_args(argv)
     if args.command is None:
         raise UsageError("exercise needs a command; accepted: list, check NAME|all, copy DIR")
     if args.command == "list":

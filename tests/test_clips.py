@@ -201,11 +201,12 @@ def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
     pygame.display.quit()
 
 
-def test_the_readmes_clip_commands_run(tmp_path, monkeypatch, capsys):
-    """The headless --video commands of README's "Clips and charts for slides", shortened to
+def test_the_docs_clip_commands_run(tmp_path, monkeypatch, capsys):
+    """The headless --video commands of docs/instructors.md's "Clips and charts for slides"
+    (the README's until issue 18 moved it), shortened to
     0.2 s at 160 px (the same scenes, settings and file names)."""
     import shlex
-    text = (Path(__file__).resolve().parent.parent / "README.md").read_text()
+    text = (Path(__file__).resolve().parent.parent / "docs" / "instructors.md").read_text()
     block = text.split("## Clips and charts for slides", 1)[1].split("## ", 1)[0]
     commands = [shlex.split(line.split("#", 1)[0])[3:] for line in block.splitlines()
                 if line.strip().startswith("python -m app --headless") and "--video" in line]
