@@ -204,3 +204,22 @@ def test_the_hud_says_in_words_when_the_physics_cannot_keep_up_with_real_time():
     s.advance()
     line = next(str(x) for x in s.hud_lines() if "not real time" in str(x))
     assert "ms of physics per 16.7 ms step" in line and "would catch up" in line
+
+
+def test_the_scene_caps_cg_at_what_is_left_of_a_frame_after_the_rest_of_its_step():
+    """The cap the scene hands CG (budget_iterations) is what fits a frame: hertz/60 steps of
+    `substeps` substeps, each paying its set-up and, with solver=direct, the LU it tried first
+    (CG is then the fallback, and LU + CG must fit together)."""
+    from app.physics.mass_spring_cost import (LU_POWER, LU_SECONDS, SETUP_FIXED,
+                                              SETUP_PER_PARTICLE, iteration_seconds,
+                                              steps_per_frame)
+    for settings in ({"rows": 40, "cols": 40}, {"rows": 20, "cols": 20, "substeps": 8},
+                     {"rows": 24, "cols": 24, "hertz": 480, "substeps": 2},
+                     {"rows": 52, "cols": 52, "solver": "direct"}):
+        s = MassSpringClothScene({"material": "denim", **settings})
+        p, n = s.p, s.p["rows"] * s.p["cols"]
+        lu = LU_SECONDS * n ** LU_POWER if p["solver"] == "direct" else 0.0
+        substep = (SETUP_FIXED + SETUP_PER_PARTICLE * n + lu
+                   + s.cloth.ps.budget_iterations * iteration_seconds(n))
+        frame = steps_per_frame(p["hertz"]) * p["substeps"] * substep
+        assert 0.8 * FRAME_BUDGET_S <= frame <= FRAME_BUDGET_S, settings
