@@ -277,3 +277,17 @@ def test_the_first_guess_from_the_last_two_steps_saves_iterations_over_the_last_
             s.advance()
             totals[mode] += ps.cg_iterations
     assert totals["extrapolated"] <= 0.9 * totals["last"] <= 0.9 * 0.85 * totals["cold"], totals
+
+
+def test_cg_whose_running_residual_alone_meets_the_tolerance_is_not_converged():
+    """Near the rounding floor CG's running residual keeps falling while the true one stalls
+    (a condition number of 1e8: the true one stays ~1e-9): the report checks the true one."""
+    rng = np.random.default_rng(0)
+    Q, _ = np.linalg.qr(rng.normal(size=(40, 40)))
+    matrix = Q @ np.diag(np.logspace(0, 8, 40)) @ Q.T
+    matrix = 0.5 * (matrix + matrix.T)
+    A = lambda w: (matrix @ w.ravel()).reshape(w.shape)              # noqa: E731
+    b = rng.normal(size=(40, 1))
+    x, report = preconditioned_cg(A, b, np.ones((40, 1)), tolerance=1e-14, max_iterations=4000)
+    assert report.stop == "rounding" and not report.converged and report.residual > 1e-12
+    assert "running residual only" in report.words()
