@@ -37,9 +37,10 @@ every step, and its factors fill in (11x the matrix's non-zeros at 64x64). Measu
 app bench mass_spring`, denim): the LU's solve costs 5x CG's at 32x32 and 9x at 64x64 (load ~3),
 and grows as particles^1.1 against CG's particles^0.7. The HUD gives each one's ms a step once
 it has run on this cloth: switch it live to compare.
-The step budget: the window waits for whole steps, so a setting whose one step would take over
-0.1 s is refused, naming what would fit (fewer substeps, a looser cg_tolerance, solver=cg, fewer
-particles). The estimate counts the forces, the matrix, CG's iterations (from the substep against
+The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most
+8), so a setting whose frame of steps would take over 0.1 s is refused, naming what would fit
+(fewer substeps, a lower hertz, a looser cg_tolerance, solver=cg, fewer particles, or this cloth
+at 60 Hz, 1 substep, CG to 0.01). The estimate counts the forces, the matrix, CG's iterations (from the substep against
 the cloth's highest frequency, and the tolerance) or the LU, times the substeps
 (app/physics/mass_spring_cost.py); CG is also capped at the iterations that fit, and a solve
 stopped there says so. When the physics cannot keep up with real time the HUD says so in words.
@@ -72,7 +73,8 @@ integrator in use's limit, the lowest seen; null with implicit Euler) and limit_
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
 256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
 an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
-answer, whichever solver gave it), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
+solver's answer: CG's, or the LU's with solver=direct; where it stopped short and the other solve
+gave the step, the HUD says so with that one's residual), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
 in J, the stretches in %, explicit_limit_h and step_limit_h in ms (`metric_units`).
 """
 
