@@ -576,9 +576,10 @@ class MassSpringClothScene(Scene):
         nonzeros = c.ps.matrix.nonzeros if c.ps.matrix is not None else 0
         if report.method == "cg":
             start = "the last steps' dv" if report.warm else "dv = 0"
+            factored = ("factored this step for the sparse LU that took it" if report.fallback
+                        else "never factored")
             return (f"CG (block Jacobi, from {start}): residual {report.residual:.1e} (stops "
-                    f"at {self.p['cg_tolerance']:g} |b|); A: {nonzeros:,} non-zeros, never "
-                    "factored")
+                    f"at {self.p['cg_tolerance']:g} |b|); A: {nonzeros:,} non-zeros, {factored}")
         if report.method:
             fill = (f": L and U hold {report.fill:,} non-zeros, {report.fill / nonzeros:.1f}x "
                     f"A's {nonzeros:,}" if report.fill and nonzeros else "")

@@ -291,3 +291,16 @@ def test_cg_whose_running_residual_alone_meets_the_tolerance_is_not_converged():
     x, report = preconditioned_cg(A, b, np.ones((40, 1)), tolerance=1e-14, max_iterations=4000)
     assert report.stop == "rounding" and not report.converged and report.residual > 1e-12
     assert "running residual only" in report.words()
+
+
+def test_the_solve_details_do_not_say_never_factored_when_the_sparse_lu_took_the_step():
+    s = MassSpringClothScene({"rows": 6, "cols": 6, "hertz": 1, "cg_tolerance": 1e-10})
+    s.cloth.ps.cg_max_iterations = 3                    # CG stops short: the sparse LU steps
+    s.advance()
+    assert s.cloth.ps.solve.fallback == "sparse LU"
+    line = next(x for x in s.hud_details() if x.startswith("CG (block Jacobi"))
+    assert "never factored" not in line and "sparse LU" in line
+    s.cloth.ps.cg_max_iterations = None
+    s.advance()
+    assert s.cloth.ps.solve.fallback is None
+    assert "never factored" in next(x for x in s.hud_details() if x.startswith("CG (block"))
