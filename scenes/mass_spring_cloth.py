@@ -33,8 +33,9 @@ Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
 `direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
-every step, and its factors fill in (11x the matrix's non-zeros at 64x64). Measured (`python -m
-app bench mass_spring`, denim): the LU's solve costs 5x CG's at 32x32 and 9x at 64x64 (load ~3),
+every step, and its factors fill in (11x the matrix's non-zeros at 64x64; 8x with shear on,
+whose springs add more to the matrix than to its factors). Measured (`python -m app bench
+mass_spring`, denim): the LU's solve costs 5x CG's at 32x32 and 9x at 64x64 (load ~3),
 and grows as particles^1.1 against CG's particles^0.7. The HUD gives each one's ms a step once
 it has run on this cloth: switch it live to compare.
 The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most
