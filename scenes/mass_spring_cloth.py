@@ -24,19 +24,20 @@ cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging l
 started, from 10 s on, on every machine.
 Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16 cloth,
 wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit integrator at
-its own measured limit; load ~3, 2026-11-24): for stiff cloth by far (leather 35x cheaper at
-Blender's stiffness, 220x at x10, 2800x at x100; denim at x100 120x); at the soft presets' own
-stiffness the margin is small (cotton 2.1x, silk 1.4x, rubber 2.5x; before CG was warm-started and
-block-preconditioned, explicit won there, 0.3-1.1x) and noisy on a loaded machine; and an explicit
-step kept in the stable band (half its limit) costs twice as much as at the limit.
+its own measured limit; two runs, load ~3 and ~1, 2026-11-24): for stiff cloth by far (leather
+33-35x cheaper at Blender's stiffness, 220-305x at x10, 2800-2960x at x100; denim at x100
+66-120x); at the soft presets' own stiffness the margin is small or none (cotton 2.1x, rubber
+2.5-3.3x, silk 0.74-1.4x: explicit won once; before CG was warm-started and block-preconditioned,
+mostly explicit won, 0.3-1.1x) and noisy; and an explicit step kept in the stable band
+(half its limit) costs twice as much as at the limit.
 Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
 `direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
 every step, and its factors fill in (11x the matrix's non-zeros at 64x64; 8x with shear on,
 whose springs add more to the matrix than to its factors). Measured (`python -m app bench
-mass_spring`, denim): the LU's solve costs 5x CG's at 32x32 and 9x at 64x64 (load ~3),
-and grows as particles^1.1 against CG's particles^0.7. The HUD gives each one's ms a step once
+mass_spring`, denim; load ~3 and ~1): the LU's solve costs 4.6-5x CG's at 32x32 and 9-10x at
+64x64, and grows as particles^1.1-1.2 against CG's particles^0.7. The HUD gives each one's ms a step once
 it has run on this cloth: switch it live to compare.
 The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most
 8), so a setting whose frame of steps would take over 0.1 s is refused, naming what would fit
