@@ -24,22 +24,25 @@ cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging l
 started, from 10 s on, on every machine.
 Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16 cloth,
 wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit integrator at
-its own measured limit; load ~3, 2026-11-24): for stiff cloth by far (leather 35x cheaper at
-Blender's stiffness, 220x at x10, 2800x at x100; denim at x100 120x); at the soft presets' own
-stiffness the margin is small (cotton 2.1x, silk 1.4x, rubber 2.5x; before CG was warm-started and
-block-preconditioned, explicit won there, 0.3-1.1x) and noisy on a loaded machine; and an explicit
-step kept in the stable band (half its limit) costs twice as much as at the limit.
+its own measured limit; two runs, load ~3 and ~1, 2026-11-24): for stiff cloth by far (leather
+33-35x cheaper at Blender's stiffness, 220-305x at x10, 2800-2960x at x100; denim at x100
+66-120x); at the soft presets' own stiffness the margin is small or none (cotton 2.1x, rubber
+2.5-3.3x, silk 0.74-1.4x: explicit won once; before CG was warm-started and block-preconditioned,
+mostly explicit won, 0.3-1.1x) and noisy; and an explicit step kept in the stable band
+(half its limit) costs twice as much as at the limit.
 Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
 `direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
-every step, and its factors fill in (11x the matrix's non-zeros at 64x64). Measured (`python -m
-app bench mass_spring`, denim): the LU's solve costs 5x CG's at 32x32 and 9x at 64x64 (load ~3),
-and grows as particles^1.1 against CG's particles^0.7. The HUD gives each one's ms a step once
+every step, and its factors fill in (11x the matrix's non-zeros at 64x64; 8x with shear on,
+whose springs add more to the matrix than to its factors). Measured (`python -m app bench
+mass_spring`, denim; load ~3 and ~1): the LU's solve costs 4.6-5x CG's at 32x32 and 9-10x at
+64x64, and grows as particles^1.1-1.2 against CG's particles^0.7. The HUD gives each one's ms a step once
 it has run on this cloth: switch it live to compare.
-The step budget: the window waits for whole steps, so a setting whose one step would take over
-0.1 s is refused, naming what would fit (fewer substeps, a looser cg_tolerance, solver=cg, fewer
-particles). The estimate counts the forces, the matrix, CG's iterations (from the substep against
+The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most
+8), so a setting whose frame of steps would take over 0.1 s is refused, naming what would fit
+(fewer substeps, a lower hertz, a looser cg_tolerance, solver=cg, fewer particles, or this cloth
+at 60 Hz, 1 substep, CG to 0.01). The estimate counts the forces, the matrix, CG's iterations (from the substep against
 the cloth's highest frequency, and the tolerance) or the LU, times the substeps
 (app/physics/mass_spring_cost.py); CG is also capped at the iterations that fit, and a solve
 stopped there says so. When the physics cannot keep up with real time the HUD says so in words.
@@ -72,7 +75,8 @@ integrator in use's limit, the lowest seen; null with implicit Euler) and limit_
 start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
 256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
 an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
-answer, whichever solver gave it), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
+solver's answer: CG's, or the LU's with solver=direct; where it stopped short and the other solve
+gave the step, the HUD says so with that one's residual), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
 in J, the stretches in %, explicit_limit_h and step_limit_h in ms (`metric_units`).
 """
 
@@ -574,9 +578,10 @@ class MassSpringClothScene(Scene):
         nonzeros = c.ps.matrix.nonzeros if c.ps.matrix is not None else 0
         if report.method == "cg":
             start = "the last steps' dv" if report.warm else "dv = 0"
+            factored = ("factored this step for the sparse LU that took it" if report.fallback
+                        else "never factored")
             return (f"CG (block Jacobi, from {start}): residual {report.residual:.1e} (stops "
-                    f"at {self.p['cg_tolerance']:g} |b|); A: {nonzeros:,} non-zeros, never "
-                    "factored")
+                    f"at {self.p['cg_tolerance']:g} |b|); A: {nonzeros:,} non-zeros, {factored}")
         if report.method:
             fill = (f": L and U hold {report.fill:,} non-zeros, {report.fill / nonzeros:.1f}x "
                     f"A's {nonzeros:,}" if report.fill and nonzeros else "")

@@ -125,9 +125,12 @@ def step_estimate(values, world: tuple[float, float]) -> tuple[float, int]:
 
 def iteration_cap(values, step_budget: float) -> int:
     """The most CG iterations a substep may take for the step to stay within `step_budget`
-    seconds (at least 1): the solver's cap (MassSpringSystem.budget_iterations)."""
+    seconds (at least 1): the solver's cap (MassSpringSystem.budget_iterations). With
+    solver=direct CG is the fallback, run after the LU: it gets what the LU leaves."""
     n = values["rows"] * values["cols"]
     room = step_budget / values["substeps"] - SETUP_FIXED - SETUP_PER_PARTICLE * n
+    if values["solver"] == "direct":
+        room -= LU_SECONDS * n ** LU_POWER
     return max(1, int(room / iteration_seconds(n)))
 
 
