@@ -1,6 +1,8 @@
 """Hostile (bounded): forks 10 children at import, each forking one more, all sleeping for a
-minute; each appends its pid to LAB_TEST_PID_FILE. Its step is right: every check passes, and
-the grader must leave none of the 20 processes behind."""
+minute; each appends its pid to LAB_TEST_PID_FILE (and the import waits, up to 5 s, until all 20
+have: on a loaded machine the grader could otherwise end one before it wrote, and the test would
+count 19). Its step is right: every check passes, and the grader must leave none of the 20
+processes behind."""
 import os
 import time
 
@@ -17,6 +19,11 @@ for _ in range(10):
         _note()
         time.sleep(60)
         os._exit(0)
+
+_file, _wait = os.environ.get("LAB_TEST_PID_FILE"), time.monotonic() + 5.0
+while _file and time.monotonic() < _wait and (
+        not os.path.exists(_file) or len(open(_file).read().split()) < 20):
+    time.sleep(0.01)
 
 
 def verlet_step(x, x_prev, a, h, drag):
