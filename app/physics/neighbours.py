@@ -30,11 +30,15 @@ The grid in three steps, as on the slide:
    neighbours, so no cell needs a special case.
 
 When the particles crowd together, the grid saves less and less: with everyone within one cell
-and its neighbours it tests every pair, as all pairs does. It needs no fallback even then: its
-blocks of candidates cost no more than all pairs' blocks of rows (`python -m app bench
-particles`, table "Crowds": 0.68-0.93 of all pairs' time with every particle at one point, 0.82-
-0.99 in its worst case, every pair a candidate and a quarter of them within R), so falling back
-would only make a crowd slower; `crowded_share` says how much of the grid's advantage is gone.
+and its neighbours it tests every pair, as all pairs does, and each of its candidates costs more
+than an all-pairs test (13-15 ns against 5 ns at 5,000 particles). Yet it needs no fallback: its
+smaller blocks of candidates keep a crowd at or under all pairs' time (`python -m app bench
+particles`, table "Crowds", runs of 2026-11-24: 0.74-0.91 of all pairs' time with every particle
+at one point; 0.82-1.02 with four clusters whose every pair is a candidate, 1.02 once: the noise
+of two timings). A fallback to all pairs for crowds (90 % of all pairs or more as candidates) was
+tried and measured at 2,000 particles: 0.99-1.01 of all pairs' time in the same crowds where the
+grid alone took 0.81-0.99, so it would only make a crowd slower. `crowded_share` says how much of
+the grid's advantage is gone.
 
 Both methods hand out their pairs in blocks (`PairBlock`) of some tens of thousands, with the
 separation d = x_j - x_i and |d|^2 they already computed: a force summed block by block keeps
