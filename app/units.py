@@ -42,9 +42,9 @@ PLAIN = Unit()
 
 
 def fmt_number(x: Any, digits: int = 4) -> str:
-    """A compact form of a number: integers as they are, floats with `digits` significant
-    digits (whole numbers below 1e5 in full, never in powers of ten), "-" for a value that does not exist yet (None; null in JSON), yes/no for a truth
-    value."""
+    """A compact form of a number: integers as they are, floats with `digits` significant digits
+    (whole numbers below 1e5 in full, never in powers of ten), "-" for a value that does not exist
+    yet (None; null in JSON), yes/no for a truth value."""
     if x is None:
         return "-"
     if isinstance(x, bool):

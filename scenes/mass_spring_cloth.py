@@ -33,19 +33,19 @@ mostly explicit won, 0.3-1.1x) and noisy; and an explicit step kept in the stabl
 Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
-`direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew
-every step, and its factors fill in (11x the matrix's non-zeros at 64x64; 8x with shear on,
-whose springs add more to the matrix than to its factors). Measured (`python -m app bench
-mass_spring`, denim; load ~3 and ~1): the LU's solve costs 4.6-5x CG's at 32x32 and 9-10x at
-64x64, and grows as particles^1.1-1.2 against CG's particles^0.7. The HUD gives each one's ms a step once
-it has run on this cloth: switch it live to compare.
-The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most
-8), so a setting whose frame of steps would take over 0.1 s is refused, naming what would fit
-(fewer substeps, a lower hertz, a looser cg_tolerance, solver=cg, fewer particles, or this cloth
-at 60 Hz, 1 substep, CG to 0.01). The estimate counts the forces, the matrix, CG's iterations (from the substep against
-the cloth's highest frequency, and the tolerance) or the LU, times the substeps
-(app/physics/mass_spring_cost.py); CG is also capped at the iterations that fit, and a solve
-stopped there says so. When the physics cannot keep up with real time the HUD says so in words.
+`direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew every
+step, and its factors fill in (11x the matrix's non-zeros at 64x64; 8x with shear on, whose springs
+add more to the matrix than to its factors). Measured (`python -m app bench mass_spring`, denim;
+load ~3 and ~1): the LU's solve costs 4.6-5x CG's at 32x32 and 9-10x at 64x64, and grows as
+particles^1.1-1.2 against CG's particles^0.7. The HUD gives each one's ms a step once it has run on
+this cloth: switch it live to compare.
+The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most 8), so
+a setting whose frame of steps would take over 0.1 s is refused, naming what would fit (fewer
+substeps, a lower hertz, a looser cg_tolerance, solver=cg, fewer particles, or this cloth at 60 Hz,
+1 substep, CG to 0.01). The estimate counts the forces, the matrix, CG's iterations (from the
+substep against the cloth's highest frequency, and the tolerance) or the LU, times the substeps
+(app/physics/mass_spring_cost.py); CG is also capped at the iterations that fit, and a solve stopped
+there says so. When the physics cannot keep up with real time the HUD says so in words.
 Physics: app/physics/mass_spring.py (Blender's units in pixels and seconds: blender_cloth.py);
 drawing: app/draw/cloth_draw.py, the Verlet cloth's strain heat map and legend, so the two cloths
 compare directly.
@@ -69,15 +69,16 @@ afterwards makes the material `custom`. Integrator and every slider change live.
 
 Metrics (units: px, s, kg): particles, springs, integrator; omega_max (1/s, the top mode's
 frequency); explicit_limit_h (s: symplectic Euler's limit with this damping, which is what the HUD
-compares your step with; undamped it would be 2/omega_max); step_limit_h (s: the explicit
-integrator in use's limit, the lowest seen; null with implicit Euler) and limit_band; max_stretch and mean_stretch
-(|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0 in the
-start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
-256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with
-an explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the
-solver's answer: CG's, or the LU's with solver=direct; where it stopped short and the other solve
-gave the step, the HUD says so with that one's residual), cg_failures (solves that stopped short); pinned_drift (px). The HUD and the metrics strip (F4) both write the energy
-in J, the stretches in %, explicit_limit_h and step_limit_h in ms (`metric_units`).
+compares your step with; undamped it would be 2/omega_max); step_limit_h (s: the explicit integrator
+in use's limit, the lowest seen; null with implicit Euler) and limit_band; max_stretch and
+mean_stretch (|length/rest - 1| of the structural springs); energy (kinetic + springs + gravity, 0
+in the start pose, in kg px^2/s^2: the HUD divides by 256^2 to show joules, Blender's metre being
+256 px); solver; cg_iterations (the last implicit solve's; null before the first solve, 0 with an
+explicit integrator or solver=direct); cg_converged, cg_residual (|b - A dv| / |b| of the solver's
+answer: CG's, or the LU's with solver=direct; where it stopped short and the other solve gave the
+step, the HUD says so with that one's residual), cg_failures (solves that stopped short);
+pinned_drift (px). The HUD and the metrics strip (F4) both write the energy in J, the stretches in
+%, explicit_limit_h and step_limit_h in ms (`metric_units`).
 """
 
 from __future__ import annotations
