@@ -24,21 +24,22 @@ cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging l
 started, from 10 s on, on every machine.
 Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16 cloth,
 wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit integrator at
-its own measured limit; two runs, load ~3 and ~1, 2026-11-24): for stiff cloth by far (leather
-33-35x cheaper at Blender's stiffness, 220-305x at x10, 2800-2960x at x100; denim at x100
-66-120x); at the soft presets' own stiffness the margin is small or none (cotton 2.1x, rubber
-2.5-3.3x, silk 0.74-1.4x: explicit won once; before CG was warm-started and block-preconditioned,
-mostly explicit won, 0.3-1.1x) and noisy; and an explicit step kept in the stable band
-(half its limit) costs twice as much as at the limit.
+its own measured limit; four runs at load 1-3, 2026-11-24): for stiff cloth by far (leather 33-38x
+cheaper at Blender's stiffness, 220-310x at x10, 2800-3000x at x100; denim at x100 66-124x); at the
+soft presets' own stiffness the margin is small or none (cotton 2.1x, rubber 2.5-3.3x, silk
+0.74-1.4x: explicit won once; before CG was warm-started and block-preconditioned, mostly explicit
+won, 0.3-1.1x) and noisy; and an explicit step kept in the stable band (half its limit) costs twice
+as much as at the limit.
 Which solver (`solver`)? Each implicit step solves one sparse linear system. `cg` is Baraff &
 Witkin's choice and the lecture's: conjugate gradients only multiply by the matrix, stop at
 cg_tolerance and start from the last steps' answer (with a 2x2 block Jacobi preconditioner);
 `direct` is SciPy's sparse LU (SuperLU): exact up to rounding, but it factors the matrix anew every
 step, and its factors fill in (11x the matrix's non-zeros at 64x64; 8x with shear on, whose springs
 add more to the matrix than to its factors). Measured (`python -m app bench mass_spring`, denim;
-load ~3 and ~1): the LU's solve costs 4.6-5x CG's at 32x32 and 9-10x at 64x64, and grows as
-particles^1.1-1.2 against CG's particles^0.7. The HUD gives each one's ms a step once it has run on
-this cloth: switch it live to compare.
+four runs at load 1-3): the LU's solve costs 4.6-7.9x CG's at 32x32 and 6.4-10x at 64x64 (the ratio
+swings from run to run), and grows faster with the cloth: as particles^1.1-1.3 against CG's
+particles^0.7-1.1. The HUD gives each one's ms a step once it has run on this cloth: switch it live
+to compare.
 The step budget: the window waits for whole steps, and a frame runs hertz/60 of them (at most 8), so
 a setting whose frame of steps would take over 0.1 s is refused, naming what would fit (fewer
 substeps, a lower hertz, a looser cg_tolerance, solver=cg, fewer particles, or this cloth at 60 Hz,
@@ -88,6 +89,7 @@ import math
 
 import numpy as np
 
+from app.loop import FPS_CAP, FixedStepClock
 from app.physics.bounds import clamp_point
 from app.physics.grid_shared import nearest_cell
 from app.physics.integrators import INTEGRATORS
@@ -596,20 +598,34 @@ class MassSpringClothScene(Scene):
 
     def real_time_words(self) -> str:
         """'' while the physics keeps up with real time; else in words how far behind it is and
-        what would catch up."""
+        what would catch up. An explicit step is not offered fewer substeps (a larger h, nearer
+        its limit: 'Leather inside its limit' would step past it); a hertz whose frame asks for
+        more steps than the loop runs (app/loop.py) is named, since there no cheaper step can
+        catch up."""
         step, need = self.step_ms(), 1000.0 / self.p["hertz"]
         if self.steps < 5 or step <= need:
             return ""
         p, ms = self.p, self._solve_ms
-        if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "direct" and (
+        explicit = INTEGRATORS[p["integrator"]].explicit
+        if not explicit and p["solver"] == "direct" and (
                 ms.get("cg", frame_cost({**p, "solver": "cg"}, self.world_size)[1] * 1e3)
                 < ms.get("direct", 0.0)):           # CG as measured here, else as estimated
             way = "solver=cg"
+        elif explicit:
+            way = "a smaller cloth, or implicit_euler at 60 Hz,"
         else:
-            way = ("fewer particles or substeps" + (" or a looser cg_tolerance"
-                   if not INTEGRATORS[p["integrator"]].explicit and p["solver"] == "cg" else ""))
-        return (f"not real time: {step:.3g} ms of physics per {need:.3g} ms step "
-                f"({need / step:.2f}x); {way} would catch up")
+            way = "fewer particles or substeps" + (" or a looser cg_tolerance"
+                                                  if p["solver"] == "cg" else "")
+        text = f"not real time: {step:.3g} ms of physics per {need:.3g} ms step ({need / step:.2f}x)"
+        cap, asked = FixedStepClock.max_steps_per_frame, p["hertz"] / FPS_CAP
+        if asked <= cap:
+            return f"{text}; {way} would catch up"
+        most = cap * FPS_CAP                        # the highest hertz the loop runs in real time
+        way = ("implicit_euler at 60 Hz would" if explicit
+               else f"hertz {most} or less, and {way}, would")
+        text += (f", and at hertz {p['hertz']} the loop runs at most {cap} steps a frame "
+                 f"(app/loop.py): {cap / asked:.2f}x at best on any machine; {way} keep up")
+        return text
 
     # ----- state --------------------------------------------------------------------------------
     def state_arrays(self):

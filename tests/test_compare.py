@@ -359,3 +359,29 @@ def test_the_docs_compare_commands_run_as_written(tmp_path, capsys, monkeypatch)
             args = args + ["--headless", "--steps", "2", "--screenshot", "shot.png"]
         assert main(args) == 0, (args, capsys.readouterr().err)
     assert (tmp_path / "cloth.csv").read_text().startswith("variant,step,t,")
+
+
+def test_a_slow_comparison_says_so_in_its_header_even_when_a_pane_has_its_own_words(monkeypatch):
+    """The window left out its 'slower than real time' line whenever the scene says it in its
+    own HUD; but a pane's first page shows only its headline, so in compare mode a slow pane
+    (48x48 denim with solver=direct beside solver=cg) went unsaid: the header says it."""
+    import time as _time
+    from app.window.scene_view import SETTLE_FRAMES
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1280, 800)), [ClothScene])
+    assert w.open_scene(ClothScene, small_cloth())
+    assert w.scene_view.apply_try(ClothScene.find_card("1x10 vs 10x1"))
+    for _ in range(SETTLE_FRAMES):
+        w.update(1 / 60)
+    slow_step = ClothScene.step
+
+    def step(self, h):
+        _time.sleep(0.02)
+        slow_step(self, h)
+
+    monkeypatch.setattr(ClothScene, "step", step)
+    monkeypatch.setattr(ClothScene, "real_time_words", lambda self: "not real time: its words")
+    w.update(8 / 60)
+    header = " ".join(str(getattr(x, "text", x)) for x in w.scene_view.header_lines())
+    assert "slower than real time: physics takes" in header

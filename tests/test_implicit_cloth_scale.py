@@ -206,6 +206,28 @@ def test_the_hud_says_in_words_when_the_physics_cannot_keep_up_with_real_time():
     assert "ms of physics per 16.7 ms step" in line and "would catch up" in line
 
 
+def test_the_real_time_advice_never_steps_past_the_limit_and_names_the_loops_cap(monkeypatch):
+    """'Leather inside its limit' (symplectic Euler at h = 0.05 ms, hertz 1000) said 'fewer
+    particles or substeps would catch up': fewer substeps step past leather's 0.064 ms limit, and
+    at hertz 1000 the loop's 8 steps a frame hold time to 0.48x real time however cheap a step."""
+    monkeypatch.setattr(MassSpringClothScene, "step_ms", lambda self: 3.3)   # as measured
+    s = MassSpringClothScene()
+    s.apply_card(MassSpringClothScene.find_card("Leather inside its limit"))
+    for _ in range(5):
+        s.advance()
+    words = s.real_time_words()
+    assert "substeps" not in words and "implicit_euler at 60 Hz would keep up" in words
+    assert "at most 8 steps a frame" in words and "0.48x at best" in words
+    s = MassSpringClothScene({"integrator": "symplectic_euler", "substeps": 50, "hertz": 60})
+    for _ in range(5):
+        s.advance()
+    words = s.real_time_words()                    # 3.3 ms per 16.7 ms step: real time
+    assert words == ""
+    monkeypatch.setattr(MassSpringClothScene, "step_ms", lambda self: 30.0)
+    words = s.real_time_words()
+    assert "substeps" not in words and "loop" not in words and "would catch up" in words
+
+
 def test_the_scene_caps_cg_at_what_is_left_of_a_frame_after_the_rest_of_its_step():
     """The cap the scene hands CG (budget_iterations) is what fits a frame: hertz/60 steps of
     `substeps` substeps, each paying its set-up and, with solver=direct, the LU it tried first

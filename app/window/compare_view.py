@@ -159,7 +159,8 @@ class CompareView(SceneView):
             self.clock.dropped_steps += n - ran
         self.window.recorder.steps_run(self.runner.steps)
         self.speed.watch(self.window.wall, frame_seconds, physics, self.window.last_draw_seconds,
-                         self.clock.dropped_steps > dropped_before, capped, self.clock, self.scene)
+                         self.clock.dropped_steps > dropped_before, capped, self.clock, self.scene,
+                         scene_speaks=False)
         return ran
 
     def toggle_pause(self) -> None:

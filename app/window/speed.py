@@ -48,9 +48,11 @@ class SpeedWatch:
         return (len(self.frames) - 1) / span if span > 0 else 0.0
 
     def watch(self, wall: float, frame: float, physics: float, draw: float, dropped: bool,
-              capped: bool, clock, scene) -> None:
+              capped: bool, clock, scene, scene_speaks: bool = True) -> None:
         """Look at a frame of `frame` seconds (physics and drawing seconds of it) that dropped
-        steps (`capped`: the loop's cap dropped some) and remember why it was slow."""
+        steps (`capped`: the loop's cap dropped some) and remember why it was slow.
+        `scene_speaks`: the scene's HUD shows its own real_time_words() (one scene: yes; compare
+        mode's panes show a line each, and `scene` is one of several: no, the window says it)."""
         if self.settle > 0:
             self.settle -= 1
             return
@@ -61,7 +63,7 @@ class SpeedWatch:
         # runs; after a long frame it is only the symptom of what made the frame long
         cap_binds = scene.p["hertz"] * clock.slow_motion / FPS_CAP > clock.max_steps_per_frame
         if physics >= draw and physics >= 0.3 * frame:
-            if scene.real_time_words():     # the scene's HUD says it, in its own terms
+            if scene_speaks and scene.real_time_words():   # the HUD says it, in its terms
                 self.slow = None
                 return
             why = f"physics takes {ms(physics)} of a {ms(frame)} frame: {_fewer(scene)} catch up"
