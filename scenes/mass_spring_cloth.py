@@ -205,8 +205,9 @@ class MassSpringClothScene(Scene):
         Try("Leather inside its limit",
             {"material": "leather", "integrator": "symplectic_euler", "hertz": 1000,
              "substeps": 20},
-            "h = 0.05 ms, below the HUD's damped limit (~0.07 ms; leather's strong spring "
-            "damping cuts 2/omega_max's 0.66 ms tenfold): stable, but 20000 steps per second"),
+            "h = 0.05 ms, below the HUD's damped limit (0.06-0.07 ms; leather's strong spring "
+            "damping cuts 2/omega_max's 0.66 ms tenfold), in its marginal band (0.8x): it "
+            "holds, at 20000 steps per second, far from real time"),
         Try("Implicit Euler at 30 Hz", {"material": "denim", "integrator": "implicit_euler",
                                          "hertz": 30},
             "h = 33 ms: 70x symplectic Euler's limit at rest, ~90x once the cloth hangs (22-25x "

@@ -383,6 +383,7 @@ def test_the_try_cards_limits_are_what_they_say():
     for _ in range(20):                 # 400 substeps: at 1.7x the limit it blew up in 24
         inside.advance()
     assert inside.is_finite() and np.abs(inside.cloth.ps.v).max() < 1000.0
+    assert inside.metrics()["limit_band"] == "marginal"          # as the card says (0.8x)
     past = MassSpringClothScene(dict(cards["Leather past its limit"].settings))
     assert past.dt > 100 * past.limit("symplectic_euler")
     implicit = MassSpringClothScene(dict(cards["Implicit Euler at 30 Hz"].settings))
