@@ -90,17 +90,7 @@ def _width(text: str) -> int:
 
 
 def _positive_int(text: str) -> int:
-    try:
-        if not plain_number(text):
-            raise ValueError(text)
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not an integer in plain ASCII; "
-                                         "accepted: steps >= 1")
-    if not 1 <= value <= MAX_STEPS:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: steps "
-                                         f"from 1 to {MAX_STEPS:,}")
-    return value
+    return _int_in(text, 1, MAX_STEPS, "steps")
 
 
 def build_parser() -> argparse.ArgumentParser:

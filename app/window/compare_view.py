@@ -113,13 +113,7 @@ class CompareView(SceneView):
                            self.pane_lines(brief=True) if self.overlays else None, self.target)
         except SceneError as e:
             self._fail_all(e)
-        self.draw_plot(screen)
-        if self.panel is not None:
-            screen.fill(PANEL_BACKGROUND, self.panel.rect)
-            pygame.draw.line(screen, (60, 66, 76), self.panel.rect.topleft,
-                             self.panel.rect.bottomleft, 2)
-        if self.manager is not None:
-            self.manager.draw_ui(screen)
+        self.draw_chrome(screen)
 
     def _fail_all(self, error: SceneError) -> None:
         for r in self.runner.runners:

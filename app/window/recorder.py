@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from app.scene import InputEvent
+from app.scene import InputEvent, Scene
 
 
 @dataclass
@@ -100,3 +100,11 @@ def _text(value: Any) -> str:
     if isinstance(value, bool):
         return "on" if value else "off"
     return str(value)
+
+
+def changed_settings(scene: Scene) -> dict[str, Any]:
+    """The scene's settings that differ from their defaults (the --set of a replay)."""
+    defaults, on = type(scene).resolve({})
+    now = scene.settings()
+    base = {**defaults, **{e.name: e.name in on for e in scene.effects}}
+    return {k: v for k, v in now.items() if base.get(k) != v}

@@ -25,6 +25,7 @@ from app.loop import FixedStepClock
 from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
 from app.window.instrument_host import InstrumentHost
+from app.window.recorder import changed_settings
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
 from app.window.views import HelpView, ShellView, WindowLike
 
@@ -469,6 +470,11 @@ class SceneView(InstrumentHost, ShellView):
             self.runner.fail(e)
             self.clock.paused = True
             screen.fill(scene.background, layout.area)
+        self.draw_chrome(screen)
+
+    def draw_chrome(self, screen: pygame.Surface) -> None:
+        """What every view draws over its scene area: the live plot, the panel's background and
+        edge, the panel's widgets."""
         self.draw_plot(screen)
         if self.panel is not None:
             screen.fill(PANEL_BACKGROUND, self.panel.rect)
@@ -476,14 +482,6 @@ class SceneView(InstrumentHost, ShellView):
                              self.panel.rect.bottomleft, 2)
         if self.manager is not None:
             self.manager.draw_ui(screen)
-
-
-def changed_settings(scene: Scene) -> dict[str, Any]:
-    """The scene's settings that differ from their defaults (the --set of a replay)."""
-    defaults, on = type(scene).resolve({})
-    now = scene.settings()
-    base = {**defaults, **{e.name: e.name in on for e in scene.effects}}
-    return {k: v for k, v in now.items() if base.get(k) != v}
 
 
 def safe(fn, default):
