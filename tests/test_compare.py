@@ -365,8 +365,8 @@ def test_a_slow_comparison_says_so_in_its_header_even_when_a_pane_has_its_own_wo
     """The window left out its 'slower than real time' line whenever the scene says it in its
     own HUD; but a pane's first page shows only its headline, so in compare mode a slow pane
     (48x48 denim with solver=direct beside solver=cg) went unsaid: the header says it."""
-    import time as _time
     from app.window.scene_view import SETTLE_FRAMES
+    from tests.test_window import slow_steps
     pygame.display.init()
     pygame.font.init()
     w = Window(pygame.display.set_mode((1280, 800)), [ClothScene])
@@ -374,13 +374,7 @@ def test_a_slow_comparison_says_so_in_its_header_even_when_a_pane_has_its_own_wo
     assert w.scene_view.apply_try(ClothScene.find_card("1x10 vs 10x1"))
     for _ in range(SETTLE_FRAMES):
         w.update(1 / 60)
-    slow_step = ClothScene.step
-
-    def step(self, h):
-        _time.sleep(0.02)
-        slow_step(self, h)
-
-    monkeypatch.setattr(ClothScene, "step", step)
+    slow_steps(monkeypatch, ClothScene, 0.02)
     monkeypatch.setattr(ClothScene, "real_time_words", lambda self: "not real time: its words")
     w.update(8 / 60)
     header = " ".join(str(getattr(x, "text", x)) for x in w.scene_view.header_lines())

@@ -99,6 +99,19 @@ def open_window(cls, tmp_path, size=(1024, 640), frames: int = 0, **kwargs) -> W
     return w
 
 
+def slow_steps(monkeypatch, cls, seconds: float) -> None:
+    """Make every step of `cls` take `seconds` more wall time (a slow machine, as the window
+    sees it)."""
+    import time
+    step = cls.step
+
+    def slow(self, h):
+        time.sleep(seconds)
+        step(self, h)
+
+    monkeypatch.setattr(cls, "step", slow)
+
+
 @pytest.fixture
 def window(tmp_path):
     pygame.display.init()
@@ -425,17 +438,10 @@ def test_a_demo_recorded_frame_by_frame_on_the_cloth_replays_to_the_same_state(t
 
 
 def test_steps_that_do_not_fit_in_a_frame_are_dropped_and_the_hud_says_why(window, monkeypatch):
-    import time as _time
     for _ in range(SETTLE_FRAMES):           # the first frames after opening do not count
         window.update(1 / 60)
     assert not any("slower" in str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
-    slow_step = Tiny.step
-
-    def step(self, h):
-        _time.sleep(0.03)
-        slow_step(self, h)
-
-    monkeypatch.setattr(Tiny, "step", step)
+    slow_steps(monkeypatch, Tiny, 0.03)
     dropped = window.scene_view.clock.dropped_steps
     n = window.update(8 / 60)                # asks for 8 steps of 30 ms: the budget is 100 ms
     assert 1 <= n <= 5
@@ -449,16 +455,9 @@ def test_a_scene_that_says_it_falls_behind_is_not_echoed_by_the_window(window, m
     """mass_spring_cloth's 'not real time: ...' and the window's 'slower than real time: physics
     takes ...' were shown together: where the scene says it in its own terms, the window is
     silent about the physics (and speaks again when the scene does not)."""
-    import time as _time
     for _ in range(SETTLE_FRAMES):
         window.update(1 / 60)
-    slow_step = Tiny.step
-
-    def step(self, h):
-        _time.sleep(0.03)
-        slow_step(self, h)
-
-    monkeypatch.setattr(Tiny, "step", step)
+    slow_steps(monkeypatch, Tiny, 0.03)
     monkeypatch.setattr(Tiny, "real_time_words", lambda self: "not real time: Tiny's words")
     window.update(8 / 60)
     text = " ".join(str(getattr(x, "text", x)) for x in window.scene_view.hud_lines())
@@ -474,17 +473,10 @@ def test_the_frame_that_blew_up_and_was_rolled_back_is_not_slower_than_real_time
     """The mass-spring card "Leather past its limit" said "slower than real time: physics
     takes 46 ms of a 143 ms frame" over its rollback message: the steps were undone and the
     scene paused, so no frame was slow."""
-    import time as _time
     for _ in range(SETTLE_FRAMES):
         window.update(1 / 60)
     window.scene_view.apply_setting("blowup", True)
-    slow_step = Tiny.step
-
-    def step(self, h):
-        _time.sleep(0.03)
-        slow_step(self, h)
-
-    monkeypatch.setattr(Tiny, "step", step)
+    slow_steps(monkeypatch, Tiny, 0.03)
     for _ in range(60):
         window.update(8 / 60)
         if window.scene_view.banner:
