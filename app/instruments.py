@@ -127,11 +127,6 @@ class Instruments:
             g.csv_step = g.runner.steps
             self.csv.row(g.runner.steps, scene.time, metrics, g.variant)
 
-    def forget_history(self) -> None:
-        for g in self.gauges:
-            g.history.clear()
-            g.probe.forget()
-
     # --- the plot ----------------------------------------------------------------------------
     def choices(self) -> list[str]:
         """The metrics a plot can draw (the first pane's numbers, in the scene's order)."""

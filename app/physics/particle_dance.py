@@ -142,12 +142,6 @@ class PairForce:
         scale = self.rule.magnitude(r, likes) / np.maximum(r, 1e-12)   # r = 0: d = 0, no NaN
         return scale * dx, scale * dy
 
-    def pair_forces(self, x: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-        """f_i of each pair (i, j) of the positions x (f_j = -f_i), shape (pairs, 2)."""
-        x0, x1 = x[:, 0], x[:, 1]
-        dx, dy = x0.take(j) - x0.take(i), x1.take(j) - x1.take(i)   # d = x_j - x_i, per axis
-        return np.column_stack(self.forces_of(dx, dy, np.sqrt(dx * dx + dy * dy), i, j))
-
     def accumulate(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray, f: np.ndarray) -> None:
         n = len(x)
         fx_sum, fy_sum = np.zeros(n), np.zeros(n)
