@@ -600,20 +600,25 @@ class MassSpringClothScene(Scene):
     def real_time_words(self) -> str:
         """'' while the physics keeps up with real time; else in words how far behind it is and
         what would catch up. An explicit step is not offered fewer substeps (a larger h, nearer
-        its limit: 'Leather inside its limit' would step past it); a hertz whose frame asks for
-        more steps than the loop runs (app/loop.py) is named, since there no cheaper step can
-        catch up."""
+        its limit: 'Leather inside its limit' would step past it), and implicit Euler at 60 Hz
+        only where its estimated step (mass_spring_cost, which errs high) fits 1/60 s; a hertz
+        whose frame asks for more steps than the loop runs (app/loop.py) is named, since there
+        no cheaper step can catch up."""
         step, need = self.step_ms(), 1000.0 / self.p["hertz"]
         if self.steps < 5 or step <= need:
             return ""
         p, ms = self.p, self._solve_ms
         explicit = INTEGRATORS[p["integrator"]].explicit
+        implicit_ms = frame_cost({**p, "integrator": "implicit_euler", "hertz": 60,
+                                  "substeps": 1, "solver": "cg"}, self.world_size)[1] * 1e3
+        implicit = (f"implicit_euler at 60 Hz (~{implicit_ms:.2g} ms a step, estimated)"
+                    if implicit_ms < 1000.0 / 60 else "")
         if not explicit and p["solver"] == "direct" and (
                 ms.get("cg", frame_cost({**p, "solver": "cg"}, self.world_size)[1] * 1e3)
                 < ms.get("direct", 0.0)):           # CG as measured here, else as estimated
             way = "solver=cg"
         elif explicit:
-            way = "a smaller cloth, or implicit_euler at 60 Hz,"
+            way = "a smaller cloth" + (f", or {implicit}," if implicit else "")
         else:
             way = "fewer particles or substeps" + (" or a looser cg_tolerance"
                                                   if p["solver"] == "cg" else "")
@@ -622,7 +627,7 @@ class MassSpringClothScene(Scene):
         if asked <= cap:
             return f"{text}; {way} would catch up"
         most = cap * FPS_CAP                        # the highest hertz the loop runs in real time
-        way = ("implicit_euler at 60 Hz would" if explicit
+        way = (f"{implicit} would" if explicit and implicit
                else f"hertz {most} or less, and {way}, would")
         text += (f", and at hertz {p['hertz']} the loop runs at most {cap} steps a frame "
                  f"(app/loop.py): {cap / asked:.2f}x at best on any machine; {way} keep up")
