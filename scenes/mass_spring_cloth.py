@@ -629,8 +629,8 @@ class MassSpringClothScene(Scene):
         most = cap * FPS_CAP                        # the highest hertz the loop runs in real time
         way = (f"{implicit} would" if explicit and implicit
                else f"hertz {most} or less, and {way}, would")
-        text += (f", and at hertz {p['hertz']} the loop runs at most {cap} steps a frame "
-                 f"(app/loop.py): {cap / asked:.2f}x at best on any machine; {way} keep up")
+        text += (f", and the loop's {cap} steps a frame (app/loop.py) hold hertz {p['hertz']} "
+                 f"to {cap / asked:.2f}x on any machine; {way} keep up")
         return text
 
     # ----- state --------------------------------------------------------------------------------
