@@ -162,6 +162,8 @@ def main(argv: list[str] | None = None) -> int:
             return bench_main(argv[1:])
         if argv and argv[0] == "exercise":
             return exercise_main(argv[1:])
+        if argv and argv[0] == "scene":
+            return scene_main(argv[1:])
         return app_main(argv)
     except UsageError as e:
         print(f"python -m app: error: {e}", file=sys.stderr)
@@ -174,7 +176,8 @@ def main(argv: list[str] | None = None) -> int:
 def app_main(argv: list[str]) -> int:
     args = build_parser().parse_args(argv)
     from app.scene import ParamError
-    from scenes import FINDERS, SCENES, get_scene, scene_names
+    from scenes import FINDERS, SCENES, get_scene, menu_scenes, scene_names
+    from app.scenefile.load import SceneFileError
     if args.scene and args.scene.startswith("exercise:"):
         from app.exercises.live import exercise_scene    # the exercises' scenes, by name
         FINDERS["exercise"] = exercise_scene
@@ -183,13 +186,13 @@ def app_main(argv: list[str]) -> int:
         if args.json:
             import json
             from app.catalogue import catalogue
-            print(json.dumps(catalogue(list(SCENES)), indent=1))
+            print(json.dumps(catalogue(menu_scenes()), indent=1))
             return EXIT_OK
-        for cls in SCENES:
+        for cls in menu_scenes():       # the registry, then the shipped scene files (by path)
             print(f"{cls.name:18} {cls.title}")
         return EXIT_OK
 
-    accepted = ", ".join(scene_names()) + ", exercise:NAME"
+    accepted = ", ".join(scene_names()) + ", exercise:NAME, PATH/FILE.toml"
     if args.scene is None:
         classes = []
     elif args.scene == "all":
@@ -202,7 +205,10 @@ def app_main(argv: list[str]) -> int:
                 student_file):
             raise UsageError(f"--scene {args.scene}: no such file '{student_file}'; accepted: "
                              "exercise:NAME, or exercise:PATH/NAME.py of a file that exists")
-        cls = get_scene(args.scene)
+        try:
+            cls = get_scene(args.scene)
+        except SceneFileError as e:      # a scene file that is not accepted: one line, exit 2
+            raise UsageError(str(e)) from None
         if cls is None:
             raise UsageError(f"unknown scene {shown_text(args.scene)}; accepted: {accepted}"
                              + (", all" if args.headless else ""))
@@ -440,6 +446,43 @@ def exercise_main(argv: list[str]) -> int:
             raise UsageError(f"--path '{paths[0]}': no such file; accepted: a .py file, e.g. "
                              f"exercises/{args.name}.py")
     return cli.check(chosen, paths, args.json, args.timeout)
+
+
+def build_scene_parser() -> argparse.ArgumentParser:
+    p = _Parser(prog="python -m app scene", allow_abbrev=False,
+                description="scene files (TOML): check one without running it")
+    sub = p.add_subparsers(dest="command", metavar="check", parser_class=_Parser)
+    c = sub.add_parser("check", help="check scene files against the format (docs/experiments.md)",
+                       allow_abbrev=False)
+    c.add_argument("files", nargs="+", metavar="FILE.toml")
+    return p
+
+
+def scene_main(argv: list[str]) -> int:
+    """`scene check FILE...`: read and check each file and build its world once (no step):
+    one line per file, 'FILE: ok ...' or the first thing wrong with it (exit 2)."""
+    args = build_scene_parser().parse_args(argv)
+    if args.command is None:
+        raise UsageError("scene needs a command; accepted: check FILE.toml")
+    from app.scenefile.load import SceneFileError
+    from scenes import get_scene
+    for path in args.files:
+        if not path.endswith(".toml"):
+            raise UsageError(f"{shown_text(path)}: a scene file's name ends in .toml")
+        try:
+            cls = get_scene(path)
+        except SceneFileError as e:
+            raise UsageError(str(e)) from None
+        use_dummy_video()
+        scene = cls()
+        spec = cls.spec
+        words = {"body": "bodies", "joint": "joints", "spawner": "spawners",
+                 "slider": "sliders", "metric": "metrics", "try": "cards"}
+        counts = ", ".join(f"{len(spec[k])} {words[k]}" for k in words if spec[k])
+        cloth = ", a cloth" if spec["cloth"] is not None else ""
+        print(f"{path}: ok: '{cls.title}': {counts}{cloth}; metrics "
+              f"{', '.join(scene.metrics()) or 'none'}")
+    return EXIT_OK
 
 
 def leave(code: int) -> NoReturn:

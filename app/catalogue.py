@@ -53,7 +53,9 @@ def scene_entry(cls: type[Scene]) -> dict[str, Any]:
         return [{**card_entry(card),
                  "command": f"python -m app --scene {cls.name} --try {shlex.quote(card.label)}"}
                 for card in cards]
+    path = getattr(cls, "path", "")       # a scene file (app/scenefile): where it is
     return {"name": cls.name, "title": cls.title, "category": cls.category,
+            **({"path": path} if path else {}),
             "summary": summary,
             "params": [param_entry(p) for p in cls.all_params()],
             "effects": [effect_entry(e) for e in cls.effects],

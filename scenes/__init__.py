@@ -6,6 +6,7 @@ the smoke tests and the benchmarks all read this list.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Callable
 
 from app.scene import Scene
@@ -36,6 +37,30 @@ SCENES: list[type[Scene]] = [
 FINDERS: dict[str, Callable[[str], "type[Scene] | None"]] = {}
 
 
+# The shipped scene files (a teacher's own experiments are files like these: docs/experiments.md),
+# in menu order, by their path from the repository's root. They are read when first asked for
+# (file_scenes), not at import.
+ROOT = Path(__file__).resolve().parent.parent
+SCENE_FILES: list[str] = [
+    "scenes/files/seesaw.toml",
+]
+_file_classes: list[type[Scene]] | None = None
+
+
+def file_scenes() -> list[type[Scene]]:
+    """The shipped scene files as Scene classes (read once), named by their paths."""
+    global _file_classes
+    if _file_classes is None:
+        from app.scenefile.scene import scene_class
+        _file_classes = [scene_class(str(ROOT / rel), name=rel) for rel in SCENE_FILES]
+    return list(_file_classes)
+
+
+def menu_scenes() -> list[type[Scene]]:
+    """What the window's menu and --list show: the registry, then the shipped scene files."""
+    return SCENES + file_scenes()
+
+
 def scene_names() -> list[str]:
     return [s.name for s in SCENES]
 
@@ -48,4 +73,15 @@ def get_scene(name: str) -> type[Scene] | None:
     if sep:
         finder = FINDERS.get(prefix)
         return finder(spec) if finder is not None else None
+    if name.endswith(".toml"):
+        return file_scene(name)
     return next((s for s in SCENES if s.name == name), None)
+
+
+def file_scene(path: str) -> type[Scene]:
+    """The scene in the file at `path` (a shipped one also by its path from the repository's
+    root, from any folder). Raises app.scenefile.load.SceneFileError if it is not accepted."""
+    from app.scenefile.scene import scene_class
+    if path in SCENE_FILES and not Path(path).is_file():
+        return next(c for c in file_scenes() if c.name == path)
+    return scene_class(path)

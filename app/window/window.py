@@ -402,8 +402,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.font.init()
     pygame.display.set_caption("Physics lab")
     pygame.key.set_repeat()
-    from scenes import SCENES, get_scene
-    window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
+    from scenes import get_scene, menu_scenes
+    window = Window(screen, menu_scenes(), large_text=large_text, events=events, record=record)
     window.clips = ClipRecorder(**(clips or {}))
     if extras is not None:
         window.csv_path, window.arrows = extras.csv, extras.arrows

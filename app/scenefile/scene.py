@@ -1,0 +1,520 @@
+"""A scene file as a Scene: the checked data (app/scenefile/load.py) becomes a PymunkScene
+subclass made at run time, so a file runs through the same contract as a scene written in
+Python: window and headless, --json, compare mode, plots, clips, record and replay, try cards.
+
+    cls = scene_class("scenes/files/seesaw.toml")     # SceneFileError if it is not accepted
+    scene = cls({"stiffness": 800})                   # its sliders are ordinary params
+
+What a file turns into:
+  * [world] gives the defaults of the lab's own settings g, iterations, hertz, substeps and seed;
+    the effect `gravity` turns gravity off as in every pymunk scene;
+  * each [[slider]] is a Param (rebuild=True): build() reads the file's data with every slider's
+    value written into the fields it points at, so a change rebuilds the world from the file;
+  * [[body]], [[body.shape]], [[joint]] and [[spawner]] become pymunk objects in build_space;
+    a body with `mass` spreads it over its shapes by area, and pymunk finds the centre of gravity
+    and the moment from them (a `moment` given keeps the centre at the body's origin);
+  * [[metric]] are computed from the bodies each time metrics() is called (`over` max or min:
+    after every step); [[try]] are the cards; [cloth] is a Verlet cloth stepped beside the space.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from pathlib import Path
+from typing import Any, Iterable
+
+import numpy as np
+import pygame
+import pymunk
+
+from app.draw import pymunk_draw as D
+from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
+from app.scene import Param, ParamError, Try, common
+from app.scenefile.load import (WORLD, SceneFileError, _targets, field_key, load_spec, matches,
+                                slider_start)
+from app.scenefile.schema import METRIC_HELP
+
+KINEMATIC_COLOR = (200, 130, 255)
+SPRING_COLOR = (150, 210, 255)
+MOTOR_COLOR = (255, 160, 90)
+ENERGY_KINDS = ("kinetic_energy", "potential_energy", "energy", "energy_ratio", "energy_drift")
+SUMMED = ENERGY_KINDS + ("momentum_x", "momentum_y", "momentum", "count")
+
+
+def applied(spec: dict, values: dict[str, Any]) -> dict:
+    """A copy of the file's data with every slider's value written into its fields."""
+    out = copy.deepcopy(spec)
+    for s in out["slider"]:
+        if s["name"] not in values:
+            continue
+        sec, key, part = field_key(s["field"])
+        value = values[s["name"]]
+        for item in _targets(out, sec.name, s["target"]):
+            if part is None:
+                item[key.name] = value
+            else:
+                item[key.name] = list(item[key.name] or [0.0, 0.0])
+                item[key.name][part] = float(value)
+            if sec.name == "body" and key.name in ("mass", "density"):
+                item["density" if key.name == "mass" else "mass"] = None
+    return out
+
+
+class FileScene(PymunkScene):
+    """Base of every scene made from a file (scene_class sets spec, path and the declarations)."""
+
+    spec: dict = {}
+    path: str = ""
+    world_keys = ("space", "named", "joints", "spawners", "cloth", "track")
+    arrow_name = "body"
+
+    # ----- declarations ---------------------------------------------------------------------------
+    @classmethod
+    def check_combination(cls, values) -> None:
+        """Slider values each in range can still not fit together: a slide or rotary limit's min
+        above its max."""
+        spec = applied(cls.spec, values)
+        for j in spec["joint"]:
+            if j["kind"] in ("slide", "rotary_limit") and j["min"] > j["max"]:
+                raise ParamError(f"joint '{j['name'] or j['kind']}': min {j['min']:g} above max "
+                                 f"{j['max']:g}; accepted: min <= max")
+
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        return (0.0, 0.0, float(self.world_size[0]), float(self.world_size[1]))
+
+    # ----- building -------------------------------------------------------------------------------
+    def build_space(self, space: pymunk.Space) -> None:
+        spec = applied(self.spec, self.p)
+        self.data = spec
+        world = spec["world"]
+        space.damping = world["damping"]
+        space.collision_slop = world["collision_slop"]
+        if world["sleep_time"] is not None:
+            space.sleep_time_threshold = world["sleep_time"]
+        self.named: dict[str, pymunk.Body] = {}
+        self.colors: dict[str, tuple[int, int, int]] = {}
+        for b in spec["body"]:
+            self.add_body(space, b)
+        self.joints: list[tuple[dict, pymunk.Constraint]] = [
+            (j, self.add_joint(space, j)) for j in spec["joint"]]
+        self.spawners = [{"spec": s, "due": s["start"], "spawned": 0, "removed": 0,
+                          "alive": []} for s in spec["spawner"]]
+        self.cloth = self.make_cloth(spec["cloth"])
+        self.track: dict[str, Any] = {"start": {}, "seen": {}}
+        self.rebaseline()
+
+    def add_body(self, space: pymunk.Space, b: dict) -> pymunk.Body:
+        kind = b["type"]
+        if kind == "static":
+            body = pymunk.Body(body_type=pymunk.Body.STATIC)
+        elif kind == "kinematic":
+            body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
+        elif b["moment"] is not None:
+            mass = b["mass"] if b["mass"] is not None else b["density"] * area_of(b["shape"])
+            body = pymunk.Body(mass, b["moment"])
+        else:
+            body = pymunk.Body()           # mass, moment and centre from the shapes' masses
+        body.position = tuple(b["position"])
+        body.angle = math.radians(b["angle"])
+        body.velocity = tuple(b["velocity"])
+        body.angular_velocity = math.radians(b["angular_velocity"])
+        shapes = [make_shape(body, s) for s in b["shape"]]
+        if kind == "dynamic" and b["moment"] is None:
+            areas = [shape_area(s) for s in b["shape"]]
+            total = sum(areas)
+            for shape, area in zip(shapes, areas):
+                if b["density"] is not None:
+                    shape.density = b["density"]
+                else:
+                    shape.mass = b["mass"] * area / total
+        space.add(body, *shapes)
+        self.named[b["name"]] = body
+        self.colors[b["name"]] = tuple(b["color"]) if b["color"] else (
+            D.STATIC if kind == "static" else KINEMATIC_COLOR if kind == "kinematic" else D.BALL)
+        return body
+
+    def end(self, name: str) -> pymunk.Body:
+        return self.space.static_body if name == WORLD else self.named[name]
+
+    def add_joint(self, space: pymunk.Space, j: dict) -> pymunk.Constraint:
+        a, b = self.end(j["a"]), self.end(j["b"])
+        aa, ab = tuple(j["anchor_a"]), tuple(j["anchor_b"])
+        kind = j["kind"]
+        if kind == "pin":
+            c = pymunk.PinJoint(a, b, aa, ab)
+        elif kind == "pivot":
+            c = (pymunk.PivotJoint(a, b, tuple(j["pivot"])) if j["pivot"] is not None
+                 else pymunk.PivotJoint(a, b, aa, ab))
+        elif kind == "slide":
+            c = pymunk.SlideJoint(a, b, aa, ab, j["min"], j["max"])
+        elif kind == "groove":
+            c = pymunk.GrooveJoint(a, b, tuple(j["groove_a"]), tuple(j["groove_b"]), ab)
+        elif kind == "damped_spring":
+            rest = j["rest_length"]
+            if rest is None:
+                rest = (a.local_to_world(aa) - b.local_to_world(ab)).length
+            c = pymunk.DampedSpring(a, b, aa, ab, rest, j["stiffness"], j["damping"])
+        elif kind == "damped_rotary_spring":
+            c = pymunk.DampedRotarySpring(a, b, math.radians(j["rest_angle"]), j["stiffness"],
+                                          j["damping"])
+        elif kind == "rotary_limit":
+            c = pymunk.RotaryLimitJoint(a, b, math.radians(j["min"]), math.radians(j["max"]))
+        else:
+            c = pymunk.SimpleMotor(a, b, math.radians(j["rate"]))
+        if j["max_force"] is not None:
+            c.max_force = j["max_force"]
+        c.collide_bodies = j["collide"]
+        if j["error_bias"] is not None:
+            c.error_bias = j["error_bias"]
+        space.add(c)
+        return c
+
+    def make_cloth(self, spec: dict | None):
+        if spec is None:
+            return None
+        from app.physics.cloth import Cloth
+        cloth = Cloth(spec["rows"], spec["cols"], spec["spacing"], tuple(spec["origin"]),
+                      spec["pins"], self.cloth_effects(spec))
+        cloth.iterations = spec["iterations"]
+        cloth.drag = spec["drag"]
+        cloth.gravity = self.gravity()
+        cloth.world = (float(self.world_size[0]), float(self.world_size[1]))
+        return cloth
+
+    def cloth_effects(self, spec: dict) -> set[str]:
+        """The cloth's rod sets and forces: what is off is left out (it costs nothing)."""
+        on = {"structural", "drag"}
+        on |= {n for n in ("shear", "bending") if spec[n]}
+        if "gravity" in self.on:
+            on.add("gravity")
+        return on
+
+    # ----- stepping -------------------------------------------------------------------------------
+    def step(self, h: float) -> None:
+        for sp in self.spawners:
+            self.spawn(sp, h)
+        super().step(h)
+        if self.cloth is not None:
+            self.cloth.gravity = self.gravity()
+            self.cloth.step(h)
+        for sp in self.spawners:
+            if sp["spec"]["remove_outside"] and sp["alive"]:
+                self.remove_outside(sp)
+
+    def spawn(self, sp: dict, h: float) -> None:
+        """The spawner's clock: a ball every `every` seconds while fewer than max_alive of its
+        balls are in the world, at a random place within +-spread/2 (seeded)."""
+        s = sp["spec"]
+        sp["due"] -= h
+        while sp["due"] <= 0:
+            sp["due"] += s["every"]
+            if len(sp["alive"]) >= s["max_alive"]:
+                continue
+            x = s["position"][0] + self.random.uniform(-0.5, 0.5) * s["spread"][0]
+            y = s["position"][1] + self.random.uniform(-0.5, 0.5) * s["spread"][1]
+            r, m = s["radius"], s["mass"]
+            body = pymunk.Body(m, pymunk.moment_for_circle(m, 0, r))
+            body.position = (x, y)
+            body.velocity = tuple(s["velocity"])
+            shape = pymunk.Circle(body, r)
+            shape.friction, shape.elasticity = s["friction"], s["elasticity"]
+            self.space.add(body, shape)
+            sp["spawned"] += 1
+            name = f"{s['name']}{sp['spawned']}"
+            self.named[name] = body
+            self.colors[name] = tuple(s["color"]) if s["color"] else D.BALL
+            sp["alive"].append(name)
+
+    def remove_outside(self, sp: dict) -> None:
+        """Remove the spawner's balls whose centre left the world: below it, to a side, or more
+        than a world's height above it (a non-finite centre counts as out)."""
+        w, h = self.world_size
+        r = sp["spec"]["radius"]
+        keep = []
+        for name in sp["alive"]:
+            x, y = self.named[name].position
+            if (y <= h + 2 * r) and (y >= -h) and (x >= -2 * r) and (x <= w + 2 * r):
+                keep.append(name)
+                continue
+            body = self.named.pop(name)
+            if self.mouse_joint is not None and body in (self.mouse_joint.a, self.mouse_joint.b):
+                self.release()
+            self.space.remove(body, *body.shapes)
+            sp["removed"] += 1
+        sp["alive"] = keep
+
+    def after_step(self) -> None:
+        seen = self.track["seen"]
+        for m in self.data["metric"]:
+            if m["over"] == "now":
+                continue
+            v = self.measure(m)
+            if v is None:
+                continue
+            old = seen.get(m["name"])
+            seen[m["name"]] = v if old is None else (max if m["over"] == "max" else min)(old, v)
+
+    def settings_changed(self, names: set[str]) -> None:
+        super().settings_changed(names)
+        if "gravity" in names and self.cloth is not None:
+            self.cloth.set_effects(self.cloth_effects(self.data["cloth"]))
+
+    def gravity_changed(self) -> None:
+        self.rebaseline()
+
+    def rebaseline(self) -> None:
+        """The energies at the start (energy_ratio, energy_drift), measured now."""
+        for m in self.data["metric"]:
+            if m["kind"] in ("energy_ratio", "energy_drift"):
+                self.track["start"][m["name"]] = self.energy(self.bodies(m["target"]), m)
+
+    # ----- measuring ------------------------------------------------------------------------------
+    def bodies(self, target: str) -> list[pymunk.Body]:
+        """The dynamic bodies a metric's target names ("*": all, spawned balls included)."""
+        return [b for n, b in self.named.items()
+                if matches(target, n) and b.body_type == pymunk.Body.DYNAMIC]
+
+    def joint(self, name: str) -> pymunk.Constraint:
+        return next(c for j, c in self.joints if j["name"] == name)
+
+    def energy(self, bodies: list[pymunk.Body], m: dict, part: str = "energy") -> float:
+        zero = m["zero_y"] if m["zero_y"] is not None else float(self.world_size[1])
+        g = self.gravity()
+        total = 0.0
+        for b in bodies:
+            if part in ("energy", "kinetic_energy"):
+                v = b.velocity
+                spin = 0.5 * b.moment * b.angular_velocity ** 2 if math.isfinite(b.moment) else 0
+                total += 0.5 * b.mass * (v.x * v.x + v.y * v.y) + spin
+            if part in ("energy", "potential_energy"):
+                total += b.mass * g * (zero - b.local_to_world(b.center_of_gravity).y)
+        return total
+
+    def measure(self, m: dict) -> float | None:
+        kind, target = m["kind"], m["target"]
+        owner = METRIC_HELP[kind][1]
+        if owner == "spawner":
+            sp = next(s for s in self.spawners if s["spec"]["name"] == target)
+            return sp[kind]
+        if owner == "cloth":
+            c = self.cloth
+            if kind == "pinned_drift":
+                return c.pinned_drift()
+            s = np.concatenate([c.stretch(f).ravel() for f in c.sets["structural"].families])
+            return float(s.max() if kind == "max_stretch" else s.mean())
+        if owner == "joint":
+            return joint_measure(kind, self.joint(target), self.dt / self.p["substeps"])
+        bodies = self.bodies(target)
+        if kind == "count":
+            return len(bodies)
+        if kind in ("kinetic_energy", "potential_energy", "energy"):
+            return self.energy(bodies, m, kind)
+        if kind in ("energy_ratio", "energy_drift"):
+            e0, e = self.track["start"].get(m["name"]), self.energy(bodies, m)
+            if e0 is None or abs(e0) < 1e-12:
+                return None
+            return e / e0 if kind == "energy_ratio" else (e - e0) / abs(e0)
+        if kind.startswith("momentum"):
+            px = sum(b.mass * b.velocity.x for b in bodies)
+            py = sum(b.mass * b.velocity.y for b in bodies)
+            return {"momentum_x": px, "momentum_y": py, "momentum": math.hypot(px, py)}[kind]
+        if not bodies:
+            return None
+        values = [body_measure(kind, b) for b in bodies]
+        how = m["combine"] or ("sum" if kind in SUMMED else "mean")
+        return float({"sum": np.sum, "mean": np.mean, "max": np.max, "min": np.min}[how](values))
+
+    def metrics(self) -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        for m in self.data["metric"]:
+            if m["over"] == "now":
+                out[m["name"]] = self.measure(m)
+            else:
+                now = self.measure(m)
+                seen = self.track["seen"].get(m["name"])
+                both = [v for v in (seen, now) if v is not None]
+                out[m["name"]] = ((max if m["over"] == "max" else min)(both) if both else None)
+        return out
+
+    def state_arrays(self) -> Iterable[np.ndarray]:
+        arrays = [self.body_state()]
+        if self.cloth is not None:
+            arrays += self.cloth.state_arrays()
+        return arrays
+
+    def restored(self) -> None:
+        super().restored()
+
+    # ----- drawing --------------------------------------------------------------------------------
+    def draw(self, surface: pygame.Surface, view) -> None:
+        if self.cloth is not None:
+            from app.draw.cloth_draw import draw_cloth
+            draw_cloth(surface, view, self.cloth)
+        for name, body in self.named.items():
+            D.draw_shapes(surface, view, body.shapes, self.colors[name])
+        for j, c in self.joints:
+            draw_joint(surface, view, j["kind"], c)
+        self.draw_mouse(surface, view)
+
+    def hud_lines(self) -> list[str]:
+        return [f"file: {self.path}"]
+
+
+def joint_measure(kind: str, c: pymunk.Constraint, h: float) -> float:
+    if kind == "joint_impulse":
+        return float(c.impulse)
+    a, b = D.anchors(c) if hasattr(c, "anchor_a") else (c.a.position, c.b.position)
+    d = float((a - b).length)
+    if kind == "joint_distance":
+        return d
+    if isinstance(c, pymunk.PinJoint):
+        return abs(d - c.distance)
+    if isinstance(c, pymunk.PivotJoint):
+        return d
+    if isinstance(c, pymunk.SlideJoint):
+        return max(0.0, c.min - d, d - c.max)
+    if isinstance(c, pymunk.GrooveJoint):
+        ga, gb = c.a.local_to_world(c.groove_a), c.a.local_to_world(c.groove_b)
+        p = c.b.local_to_world(c.anchor_b)
+        u = gb - ga
+        t = min(1.0, max(0.0, (p - ga).dot(u) / u.dot(u)))
+        return float((p - (ga + u * t)).length)
+    return 0.0
+
+
+def body_measure(kind: str, b: pymunk.Body) -> float:
+    if kind == "x":
+        return float(b.local_to_world(b.center_of_gravity).x)
+    if kind == "y":
+        return float(b.local_to_world(b.center_of_gravity).y)
+    if kind == "angle":
+        return math.degrees(b.angle)
+    if kind == "speed":
+        return float(b.velocity.length)
+    return math.degrees(b.angular_velocity)
+
+
+def shape_area(s: dict) -> float:
+    if s["kind"] == "circle":
+        return math.pi * s["radius"] ** 2
+    if s["kind"] == "box":
+        return s["size"][0] * s["size"][1]
+    if s["kind"] == "polygon":
+        return pymunk.area_for_poly([tuple(p) for p in s["points"]], s["radius"])
+    return pymunk.area_for_segment(tuple(s["a"]), tuple(s["b"]), s["radius"])
+
+
+def area_of(shapes: list[dict]) -> float:
+    return sum(shape_area(s) for s in shapes)
+
+
+def make_shape(body: pymunk.Body, s: dict) -> pymunk.Shape:
+    kind = s["kind"]
+    if kind == "circle":
+        shape = pymunk.Circle(body, s["radius"], tuple(s["offset"]))
+    elif kind == "box":
+        w, h = s["size"]
+        ox, oy = s["offset"]
+        pts = [(ox - w / 2, oy - h / 2), (ox + w / 2, oy - h / 2), (ox + w / 2, oy + h / 2),
+               (ox - w / 2, oy + h / 2)]
+        shape = pymunk.Poly(body, pts, radius=s["radius"])
+    elif kind == "polygon":
+        shape = pymunk.Poly(body, [tuple(p) for p in s["points"]], radius=s["radius"])
+    else:
+        shape = pymunk.Segment(body, tuple(s["a"]), tuple(s["b"]), s["radius"])
+    shape.friction = s["friction"]
+    shape.elasticity = s["elasticity"]
+    if s["group"]:
+        shape.filter = pymunk.ShapeFilter(group=s["group"])
+    return shape
+
+
+def draw_joint(surface: pygame.Surface, view, kind: str, c: pymunk.Constraint) -> None:
+    if kind == "pin":
+        D.draw_pin_joint(surface, view, c, dot=3)
+    elif kind == "slide":
+        D.draw_slide_joint(surface, view, c)
+    elif kind == "pivot":
+        D.draw_pivot_joint(surface, view, c, D.PIN)
+    elif kind == "damped_spring":
+        draw_spring(surface, view, *D.anchors(c))
+    elif kind == "groove":
+        ga, gb = c.a.local_to_world(c.groove_a), c.a.local_to_world(c.groove_b)
+        pygame.draw.line(surface, D.SLIDE, view.pt(ga), view.pt(gb), 3)
+    elif kind in ("motor", "damped_rotary_spring", "rotary_limit"):
+        color = MOTOR_COLOR if kind == "motor" else SPRING_COLOR
+        centre = view.pt(c.b.local_to_world(c.b.center_of_gravity))
+        pygame.draw.circle(surface, color, centre, max(3.0, view.len(6)), 2)
+
+
+def draw_spring(surface: pygame.Surface, view, a, b, coils: int = 8) -> None:
+    """A zigzag from a to b (its width does not change with the length)."""
+    pa, pb = np.array(view.pt(a), float), np.array(view.pt(b), float)
+    d = pb - pa
+    n = float(np.hypot(*d))
+    if n < 1e-6:
+        return
+    normal = np.array([-d[1], d[0]]) / n * max(4.0, view.len(6))
+    t = np.linspace(0, 1, 2 * coils + 1)
+    side = np.zeros(len(t))
+    side[1:-1:2], side[2:-1:2] = 1, -1
+    pts = pa + t[:, None] * d + side[:, None] * normal
+    pygame.draw.lines(surface, SPRING_COLOR, False, pts.tolist(), 2)
+
+
+# ----- the class ------------------------------------------------------------------------------
+def scene_class(path: str, name: str | None = None) -> type[FileScene]:
+    """The Scene subclass that runs the file at `path` (its CLI name: `name`, default the path
+    as given). Raises SceneFileError (one line) if the file is not accepted, a try card's
+    settings included."""
+    spec = load_spec(path)
+    world = spec["world"]
+    params: list[Param] = [
+        common("hertz", default=world["hertz"]),
+        common("substeps", default=world["substeps"]),
+        common("seed", default=world["seed"]),
+    ]
+    for prm in PYMUNK_PARAMS:
+        default = world["gravity"] if prm.name == "g" else world["iterations"]
+        params.append(Param(prm.name, prm.kind(default), prm.kind, prm.lo, prm.hi,
+                            help=prm.help, rebuild=prm.rebuild))
+    for s in spec["slider"]:
+        _, key, _ = field_key(s["field"])
+        kind = int if key.kind == "int" else float
+        start = slider_start(spec, s)
+        params.append(Param(s["name"], kind(start), kind, kind(s["lo"]), kind(s["hi"]),
+                            help=s["help"] or f"{s['field']} of {s['target']}"))
+    tries, comparisons = [], []
+    for t in spec["try"]:
+        card = Try(t["label"], dict(t["settings"]), t["watch"],
+                   tuple(dict(v) for v in t["compare"] or ()))
+        (comparisons if card.compare else tries).append(card)
+    scene = spec["scene"]
+    about = scene["about"].strip() or scene["title"]
+    attrs = {
+        "name": name or path, "title": scene["title"], "category": scene["category"],
+        "__doc__": about + f"\n\nFile: {name or path} (a scene file: edit it in any text "
+                           "editor; python -m app scene check FILE checks it).",
+        "params": tuple(params), "effects": PYMUNK_EFFECTS,
+        "world_size": (int(scene["world_size"][0]), int(scene["world_size"][1])),
+        "spec": spec, "path": name or path, "tries": tuple(tries),
+        "comparisons": tuple(comparisons),
+    }
+    cls = type(f"FileScene[{Path(path).stem}]", (FileScene,), attrs)
+    _check_cards(cls, spec, path)
+    return cls
+
+
+def _check_cards(cls: type[FileScene], spec: dict, path: str) -> None:
+    """Every card's settings (and each variant's) as the panel and --try will apply them."""
+    from app.scenefile.load import Checker, read_text
+    for i, t in enumerate(spec["try"]):
+        for what, settings in [("settings", t["settings"])] + [
+                ("compare", {**t["settings"], **v}) for v in t["compare"] or ()]:
+            try:
+                cls.resolve(settings)
+            except ParamError as e:
+                checker = Checker(path, read_text(path))
+                raise SceneFileError(path, checker.line(("try", i, what)),
+                                     f"try card '{t['label']}': {e}") from None
