@@ -43,6 +43,15 @@ FINDERS: dict[str, Callable[[str], "type[Scene] | None"]] = {}
 ROOT = Path(__file__).resolve().parent.parent
 SCENE_FILES: list[str] = [
     "scenes/files/seesaw.toml",
+    "scenes/files/pendulum_wave.toml",
+    "scenes/files/galton_board.toml",
+    "scenes/files/chain_bridge.toml",
+    "scenes/files/car_on_slope.toml",
+    "scenes/files/cradle_unequal.toml",
+    "scenes/files/falling_balls.toml",
+    "scenes/files/pivoting_l.toml",
+    "scenes/files/newtons_cradle.toml",
+    "scenes/files/double_pendulum.toml",
 ]
 _file_classes: list[type[Scene]] | None = None
 

@@ -565,7 +565,7 @@ def _check_metrics(c: Checker, spec: dict) -> None:
     for i, m in enumerate(spec["metric"]):
         where, what = ("metric", i), f"metric '{m['name']}'"
         owner = METRIC_HELP[m["kind"]][1]
-        if owner == "joint" and m["target"] not in joints:
+        if owner == "joint" and not any(matches(m["target"], n) for n in joints):
             c.fail(where + ("target",), f"{what}: target \"{m['target']}\" names no joint; "
                    "accepted: " + (", ".join(f"\"{n}\"" for n in joints) or
                                    "a joint's name (give the joint a name = \"...\")"))

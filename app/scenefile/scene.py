@@ -92,6 +92,8 @@ class FileScene(PymunkScene):
         space.collision_slop = world["collision_slop"]
         if world["sleep_time"] is not None:
             space.sleep_time_threshold = world["sleep_time"]
+        if world["idle_speed"] is not None:
+            space.idle_speed_threshold = world["idle_speed"]
         self.named: dict[str, pymunk.Body] = {}
         self.colors: dict[str, tuple[int, int, int]] = {}
         for b in spec["body"]:
@@ -161,7 +163,8 @@ class FileScene(PymunkScene):
         elif kind == "rotary_limit":
             c = pymunk.RotaryLimitJoint(a, b, math.radians(j["min"]), math.radians(j["max"]))
         else:
-            c = pymunk.SimpleMotor(a, b, math.radians(j["rate"]))
+            # Chipmunk drives b.w - a.w towards -rate; the file's rate is b's turn relative to a
+            c = pymunk.SimpleMotor(a, b, -math.radians(j["rate"]))
         if j["max_force"] is not None:
             c.max_force = j["max_force"]
         c.collide_bodies = j["collide"]
@@ -192,15 +195,19 @@ class FileScene(PymunkScene):
 
     # ----- stepping -------------------------------------------------------------------------------
     def step(self, h: float) -> None:
-        for sp in self.spawners:
-            self.spawn(sp, h)
+        sleep = self.data["world"]["sleep_time"]
+        if sleep is not None:
+            # at rest for sleep_time and at least 4 substeps (as falling_balls: at hertz 1 a
+            # ball spawned at rest fell asleep in mid-air)
+            self.space.sleep_time_threshold = max(sleep, 4 * h)
         super().step(h)
         if self.cloth is not None:
             self.cloth.gravity = self.gravity()
             self.cloth.step(h)
-        for sp in self.spawners:
+        for sp in self.spawners:        # as falling_balls: remove, then spawn, after the step
             if sp["spec"]["remove_outside"] and sp["alive"]:
                 self.remove_outside(sp)
+            self.spawn(sp, h)
 
     def spawn(self, sp: dict, h: float) -> None:
         """The spawner's clock: a ball every `every` seconds while fewer than max_alive of its
@@ -275,9 +282,6 @@ class FileScene(PymunkScene):
         return [b for n, b in self.named.items()
                 if matches(target, n) and b.body_type == pymunk.Body.DYNAMIC]
 
-    def joint(self, name: str) -> pymunk.Constraint:
-        return next(c for j, c in self.joints if j["name"] == name)
-
     def energy(self, bodies: list[pymunk.Body], m: dict, part: str = "energy") -> float:
         zero = m["zero_y"] if m["zero_y"] is not None else float(self.world_size[1])
         g = self.gravity()
@@ -304,7 +308,11 @@ class FileScene(PymunkScene):
             s = np.concatenate([c.stretch(f).ravel() for f in c.sets["structural"].families])
             return float(s.max() if kind == "max_stretch" else s.mean())
         if owner == "joint":
-            return joint_measure(kind, self.joint(target), self.dt / self.p["substeps"])
+            values = [joint_measure(kind, c) for j, c in self.joints
+                      if j["name"] and matches(target, j["name"])]
+            how = m["combine"] or "max"
+            return float({"sum": np.sum, "mean": np.mean, "max": np.max, "min": np.min}[how](
+                values))
         bodies = self.bodies(target)
         if kind == "count":
             return len(bodies)
@@ -361,7 +369,7 @@ class FileScene(PymunkScene):
         return [f"file: {self.path}"]
 
 
-def joint_measure(kind: str, c: pymunk.Constraint, h: float) -> float:
+def joint_measure(kind: str, c: pymunk.Constraint) -> float:
     if kind == "joint_impulse":
         return float(c.impulse)
     a, b = D.anchors(c) if hasattr(c, "anchor_a") else (c.a.position, c.b.position)

@@ -193,6 +193,8 @@ SCHEMA: tuple[Section, ...] = (
         Key("substeps", "int", 1, "substeps per step (the slider `substeps`)", 1, 50),
         Key("sleep_time", "float", None, "seconds at rest before bodies fall asleep (none: "
             "nothing sleeps)", 0.01, 60.0, unit="s"),
+        Key("idle_speed", "float", None, "bodies slower than this count as at rest for sleeping "
+            "(none: pymunk's guess, gravity x the step)", 0.0, SPEED, unit="px/s"),
         Key("collision_slop", "float", 0.1, "overlap pymunk allows between resting shapes", 0.0,
             10.0, unit="px"),
         Key("seed", "int", 0, "seed of the spawners' random positions (the slider `seed`)", 0,
@@ -319,9 +321,9 @@ SCHEMA: tuple[Section, ...] = (
         Key("kind", "choice", REQUIRED, "what it measures (the table below)",
             choices=METRIC_KINDS),
         Key("target", "str", "*", "bodies: a name, \"ball*\" or \"*\" (every dynamic body); "
-            "joint: a joint's name; spawner: a spawner's name; cloth: unused"),
-        Key("combine", "choice", "", "several bodies: sum, mean, max or min (default: sum for "
-            "energies, momenta and count, mean for the rest)",
+            "joint: a joint's name or \"link*\"; spawner: a spawner's name; cloth: unused"),
+        Key("combine", "choice", "", "several bodies or joints: sum, mean, max or min (default: "
+            "sum for energies, momenta and count, max for joints, mean for the rest)",
             choices=("", "sum", "mean", "max", "min")),
         Key("over", "choice", "now", "now, or the largest or least seen since the start",
             choices=("now", "max", "min")),
