@@ -19,7 +19,7 @@ from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Try
 from app.units import fmt_number
-from scenes import SCENES, get_scene
+from scenes import SCENES, get_scene, menu_scenes
 from tests.test_window import Tiny, open_window, type_into
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -159,8 +159,10 @@ def test_a_card_from_the_command_line_opens_the_window_with_it(tmp_path, capsys)
 def test_the_catalogue_lists_every_scene_param_effect_and_card(capsys):
     assert main(["--list", "--json"]) == 0
     catalogue = json.loads(capsys.readouterr().out)
-    assert [s["name"] for s in catalogue] == [c.name for c in SCENES]
-    for entry, cls in zip(catalogue, SCENES):
+    listed = menu_scenes()          # the registry, then the shipped scene files
+    assert [s["name"] for s in catalogue] == [c.name for c in listed]
+    assert [s.get("path") for s in catalogue] == [getattr(c, "path", None) for c in listed]
+    for entry, cls in zip(catalogue, listed):
         assert entry["title"] == cls.title and entry["category"] == cls.category
         assert [p["name"] for p in entry["params"]] == [p.name for p in cls.all_params()]
         for p in entry["params"]:
@@ -395,6 +397,7 @@ FLOORS = {"app.keys": 0, "app.units": 0, "app.loop": 0, "app.physics": 0, "app.p
           "app.vectors": 0, "app.series": 0, "app.compare": 3, "app.instruments": 3,
           "app.frames": 3, "app.headless_compare": 3, "app.cli_checks": 3,
           "app.pymunk_scene": 3, "app.headless": 3, "scenes": 4, "app.bench": 5,
+          "app.scenefile": 3,      # scene files: a pymunk scene made from data
           "app.window": 5, "app.clips": 3, "app.exercises": 5, "app.__main__": 6,
           "app.docs": 7}                    # the docs' generator reads the command line itself
 

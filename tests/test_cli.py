@@ -36,7 +36,7 @@ def test_list_names_every_registered_scene():
     r = run_cli("--list")
     assert r.returncode == 0, r.stderr
     lines = r.stdout.strip().splitlines()
-    assert [line.split()[0] for line in lines] == scenes.scene_names()
+    assert [line.split()[0] for line in lines] == [c.name for c in scenes.menu_scenes()]
     assert r.stderr == ""
 
 

@@ -395,9 +395,13 @@ def _check_bodies(c: Checker, spec: dict) -> None:
             kind = shape["kind"]
             for k in SHAPE_NEEDS[kind]:
                 if shape[k] is None or (k == "radius" and shape[k] <= 0):
-                    c.fail(sw, f"{what}, shape {j + 1}: a {kind} needs {k}"
-                           + (" above 0" if k == "radius" else "")
-                           + f"; accepted: {SECTIONS['body.shape'].key(k).accepted()}")
+                    key = SECTIONS["body.shape"].key(k)
+                    if k == "radius":
+                        key = Key(k, "float", lo=key.lo, hi=key.hi, above=True, unit=key.unit)
+                    c.fail(sw + ((k,) if shape[k] is not None else ()),
+                           f"{what}, shape {j + 1}: a {kind} needs {k}"
+                           + (" above 0" if k == "radius" else "") + f"; accepted: "
+                           f"{key.accepted()}")
             for k in _given(c, sw) - COMMON_SHAPE - SHAPE_TAKES[kind]:
                 c.fail(sw + (k,), f"{what}, shape {j + 1}: a {kind} has no '{k}'; accepted: "
                        + ", ".join(sorted(COMMON_SHAPE | SHAPE_TAKES[kind])))
@@ -497,8 +501,12 @@ def _check_sliders(c: Checker, spec: dict) -> None:
                    "a name other than " + ", ".join(sorted(taken)))
         found = field_key(s["field"])
         if found is None:
+            prefix = s["field"].split(".")[0]
+            fields = [f for f in slider_fields() if f.startswith(prefix + ".")]
             c.fail(where + ("field",), f"{what}: field \"{s['field']}\" is no number a slider "
-                   "can set; accepted: " + ", ".join(slider_fields()))
+                   "can set; accepted: " + (", ".join(fields) if fields else
+                                            "SECTION.KEY, SECTION one of world, body, shape, "
+                                            "joint, spawner, cloth (e.g. joint.stiffness)"))
         sec, key, part = found
         if s["lo"] >= s["hi"]:
             c.fail(where + ("hi",), f"{what}: lo {s['lo']:g} is not below hi {s['hi']:g}")

@@ -72,13 +72,15 @@ class FileScene(PymunkScene):
     # ----- declarations ---------------------------------------------------------------------------
     @classmethod
     def check_combination(cls, values) -> None:
-        """Slider values each in range can still not fit together: a slide or rotary limit's min
-        above its max."""
-        spec = applied(cls.spec, values)
-        for j in spec["joint"]:
-            if j["kind"] in ("slide", "rotary_limit") and j["min"] > j["max"]:
-                raise ParamError(f"joint '{j['name'] or j['kind']}': min {j['min']:g} above max "
-                                 f"{j['max']:g}; accepted: min <= max")
+        """Slider values each in range can still make a file the loader would refuse (a slide
+        joint's min above its max, a circle of radius 0): the data with the values written in
+        goes through the loader's checks again, before anything reaches pymunk."""
+        from app.scenefile.load import check_spec
+        from app.scenefile.write import to_data
+        try:
+            check_spec(to_data(applied(cls.spec, values)), "", cls.path)
+        except SceneFileError as e:
+            raise ParamError(f"these slider values do not fit the file: {e.message}") from None
 
     def content_bounds(self) -> tuple[float, float, float, float]:
         return (0.0, 0.0, float(self.world_size[0]), float(self.world_size[1]))
