@@ -209,6 +209,12 @@ def test_every_command_in_the_docs_parses_and_runs(tmp_path, monkeypatch, capsys
             parsed = build_bench_parser(list(BENCHMARKS) + ["all"]).parse_args(args[1:])
             assert parsed.which in list(BENCHMARKS) + ["all"], where
             continue
+        if args and args[0] == "scene":          # scene check FILE: run as written
+            from app.__main__ import build_scene_parser
+            build_scene_parser().parse_args(args[1:])
+            assert main(args) == code, where
+            ran += 1
+            continue
         if args and args[0] == "exercise":
             from app.exercises import exercise_names
             parsed = build_exercise_parser(exercise_names()).parse_args(args[1:])

@@ -314,3 +314,12 @@ def test_the_pendulum_wave_lines_up_again_after_a_minute():
         swing = 480.0 - x0
         assert abs(scene.named[name].position.x - x0) < 0.1 * swing, name
     assert scene.metrics()["energy_ratio"] == pytest.approx(1.0, abs=1e-3)
+
+
+def test_the_pendulum_waves_heavy_bobs_card_is_true():
+    """'a pendulum's period does not depend on its mass': ten times the mass, the same motion
+    (to round-off) after 5 s."""
+    cls = get_scene("scenes/files/pendulum_wave.toml")
+    light, heavy = run(cls, 5.0), run(cls, 5.0, cls.find_card("Heavy bobs").settings)
+    for name in light.named:
+        assert abs(light.named[name].position.x - heavy.named[name].position.x) < 1e-6

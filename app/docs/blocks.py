@@ -266,6 +266,40 @@ def benchmarks() -> str:
     return table(["benchmark", "what it measures"], rows)
 
 
+# ----- scene files ---------------------------------------------------------------------------
+def scene_format() -> str:
+    """The scene-file format: every section and key from the one schema the loader checks files
+    against (app/scenefile/schema.py), the metric kinds and the fields a slider may set."""
+    from app.scenefile.schema import METRIC_HELP, SCHEMA, slider_fields
+    parts = []
+    for sec in SCHEMA:
+        head = f"[[{sec.name}]]" if sec.many else f"[{sec.name}]"
+        how = ("required" if sec.required else "as many as you like" if sec.many
+               else "optional")
+        parts.append(f"#### `{head}`\n\n{sec.help[:1].upper() + sec.help[1:]} ({how}).")
+        parts.append(table(["key", "default", "accepted", "what it sets"],
+                           [(f"`{k.name}`", k.default_text(), k.accepted(), k.help)
+                            for k in sec.keys]))
+    parts.append("#### Metric kinds (`kind` of a `[[metric]]`)")
+    parts.append(table(["kind", "JSON unit", "`target` names", "what it measures"],
+                       [(f"`{kind}`", unit, owner, what)
+                        for kind, (unit, owner, what) in METRIC_HELP.items()]))
+    parts.append("#### What a slider's `field` may point at\n\n"
+                 + ", ".join(f"`{f}`" for f in slider_fields()) + ".")
+    return "\n\n".join(parts)
+
+
+def scene_files() -> str:
+    """The shipped scene files (scenes/__init__.py SCENE_FILES): path, title, sliders, cards."""
+    from scenes import file_scenes
+    rows = []
+    for cls in file_scenes():
+        sliders = ", ".join(f"`{s['name']}`" for s in cls.spec["slider"]) or "-"
+        cards = ", ".join(c.label for c in cls.tries + cls.comparisons) or "-"
+        rows.append((f"[{cls.name}](../{cls.name})", cls.title, sliders, cards))
+    return table(["file", "title", "its own sliders", "try cards"], rows)
+
+
 BLOCKS: dict[str, Callable[[], str]] = {
     "keys": keys,
     "options": options,
@@ -274,4 +308,6 @@ BLOCKS: dict[str, Callable[[], str]] = {
     "metrics": metrics,
     "exercises": exercises,
     "benchmarks": benchmarks,
+    "scene-format": scene_format,
+    "scene-files": scene_files,
 }

@@ -353,9 +353,6 @@ class FileScene(PymunkScene):
             arrays += self.cloth.state_arrays()
         return arrays
 
-    def restored(self) -> None:
-        super().restored()
-
     # ----- drawing --------------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, view) -> None:
         if self.cloth is not None:
@@ -367,8 +364,8 @@ class FileScene(PymunkScene):
             draw_joint(surface, view, j["kind"], c)
         self.draw_mouse(surface, view)
 
-    def hud_lines(self) -> list[str]:
-        return [f"file: {self.path}"]
+    def hud_details(self) -> list[str]:
+        return [f"file: {self.path}", "LMB: drag a dynamic body"]
 
 
 def joint_measure(kind: str, c: pymunk.Constraint) -> float:
