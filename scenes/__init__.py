@@ -48,6 +48,7 @@ SCENE_FILES: list[str] = [
     "scenes/files/chain_bridge.toml",
     "scenes/files/car_on_slope.toml",
     "scenes/files/cradle_unequal.toml",
+    "scenes/files/curtain.toml",
     "scenes/files/falling_balls.toml",
     "scenes/files/pivoting_l.toml",
     "scenes/files/newtons_cradle.toml",

@@ -323,3 +323,19 @@ def test_the_pendulum_waves_heavy_bobs_card_is_true():
     light, heavy = run(cls, 5.0), run(cls, 5.0, cls.find_card("Heavy bobs").settings)
     for name in light.named:
         assert abs(light.named[name].position.x - heavy.named[name].position.x) < 1e-6
+
+
+def test_the_curtain_stretches_several_fold_with_two_sweeps_and_can_be_grabbed():
+    cls = get_scene("scenes/files/curtain.toml")
+    two = run(cls, 2.0, cls.find_card("Two sweeps").settings).metrics()
+    ten = run(cls, 2.0).metrics()
+    assert two["max_stretch"] > 3 * ten["max_stretch"]
+    from app.scene import InputEvent
+    scene = cls()
+    corner = tuple(float(v) for v in scene.cloth.x[:, -1, 0])      # the bottom-left particle
+    scene.handle_event(InputEvent("mouse_down", pos=corner, button=1))
+    assert scene.cloth.grabbed == (scene.cloth.rows - 1, 0)
+    scene.handle_event(InputEvent("mouse_move", pos=(100.0, 600.0)))
+    scene.advance()
+    scene.handle_event(InputEvent("mouse_up", pos=(100.0, 600.0), button=1))
+    assert scene.cloth.grabbed is None and scene.cloth.locked[-1, 0]

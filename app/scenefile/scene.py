@@ -364,8 +364,31 @@ class FileScene(PymunkScene):
             draw_joint(surface, view, j["kind"], c)
         self.draw_mouse(surface, view)
 
+    def handle_event(self, event) -> None:
+        """The mouse drags a dynamic body (PymunkScene); with a cloth and no body under the
+        mouse, it drags the nearest particle as the cloth scene does (dropped, it stays pinned
+        where it was let go)."""
+        c = self.cloth
+        if c is not None and event.kind.startswith("mouse") and (
+                c.grabbed is not None or (event.kind == "mouse_down" and event.button == 1
+                                          and self.space.point_query_nearest(
+                                              event.pos, 5.0, pymunk.ShapeFilter()) is None)):
+            if event.kind == "mouse_down":
+                cell = c.nearest(event.pos, max(14.0, 1.2 * c.spacing))
+                if cell is not None:
+                    c.grab(cell, event.pos)
+                    return
+            elif event.kind == "mouse_move":
+                c.move_grab(event.pos)
+                return
+            elif event.kind == "mouse_up" and event.button == 1:
+                c.release(event.pos)
+                return
+        super().handle_event(event)
+
     def hud_details(self) -> list[str]:
-        return [f"file: {self.path}", "LMB: drag a dynamic body"]
+        return [f"file: {self.path}", "LMB: drag a dynamic body"
+                + (" or a particle of the cloth" if self.cloth is not None else "")]
 
 
 def joint_measure(kind: str, c: pymunk.Constraint) -> float:
