@@ -18,6 +18,7 @@ from scenes.mass_spring_cloth import MassSpringClothScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.particle_dance import ParticleDanceScene
 from scenes.pivoting_l import PivotingLScene
+from scenes.sandbox import SandboxScene
 
 SCENES: list[type[Scene]] = [
     ClothScene,
@@ -66,9 +67,15 @@ def file_scenes() -> list[type[Scene]]:
     return list(_file_classes)
 
 
+# Beside the registry in the menu and --list, before the files: the sandbox, where a scene file
+# is drawn with the mouse (not in SCENES: it is a tool, not a lecture scene; its own tests are
+# tests/test_scenefiles.py's).
+TOOLS: list[type[Scene]] = [SandboxScene]
+
+
 def menu_scenes() -> list[type[Scene]]:
-    """What the window's menu and --list show: the registry, then the shipped scene files."""
-    return SCENES + file_scenes()
+    """What the window's menu and --list show: the registry, the sandbox, the shipped files."""
+    return SCENES + TOOLS + file_scenes()
 
 
 def scene_names() -> list[str]:
@@ -85,7 +92,7 @@ def get_scene(name: str) -> type[Scene] | None:
         return finder(spec) if finder is not None else None
     if name.endswith(".toml"):
         return file_scene(name)
-    return next((s for s in SCENES if s.name == name), None)
+    return next((s for s in SCENES + TOOLS if s.name == name), None)
 
 
 def file_scene(path: str) -> type[Scene]:

@@ -339,3 +339,55 @@ def test_the_curtain_stretches_several_fold_with_two_sweeps_and_can_be_grabbed()
     scene.advance()
     scene.handle_event(InputEvent("mouse_up", pos=(100.0, 600.0), button=1))
     assert scene.cloth.grabbed is None and scene.cloth.locked[-1, 0]
+
+
+# ----- the sandbox: drawn with the mouse, saved as a file ---------------------------------------
+def draw(scene, *events):
+    from app.scene import InputEvent
+    for kind, *rest in events:
+        if kind.startswith("key"):
+            scene.handle_event(InputEvent(kind, key=rest[0]))
+        else:
+            scene.handle_event(InputEvent(kind, pos=rest[0], button=1 if kind != "mouse_move"
+                                          else 0))
+
+
+def test_the_sandbox_draws_saves_and_the_file_plays_the_same_world(tmp_path, monkeypatch):
+    from scenes.sandbox import SandboxScene
+    monkeypatch.chdir(tmp_path)
+    s = SandboxScene()
+    draw(s, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_move", (420, 200)),
+         ("mouse_up", (425, 200)), ("key_down", "b"), ("mouse_down", (500, 300)),
+         ("mouse_up", (560, 340)), ("key_down", "l"), ("mouse_down", (300, 500)),
+         ("mouse_up", (700, 600)), ("key_down", "left ctrl"), ("key_down", "s"),
+         ("key_up", "left ctrl"))
+    assert s.metrics() == {"bodies": 4, "dynamic_bodies": 2, "playing": False}
+    before = s.state_hash()
+    s.advance()
+    assert s.state_hash() == before              # drawing: nothing moves
+    saved = tmp_path / "sandbox-1.toml"
+    assert saved.is_file() and "saved to" in s.message
+    draw(s, ("key_down", "return"))
+    assert s.metrics()["playing"]
+    played = scene_class(str(saved))()
+    for _ in range(90):
+        s.advance()
+        played.advance()
+    assert s.state_hash() == played.state_hash() and s.named["ball1"].position.y > 300
+
+
+def test_the_sandbox_moves_deletes_undoes_and_refuses_what_the_format_refuses(tmp_path):
+    from scenes.sandbox import SandboxScene
+    s = SandboxScene()
+    draw(s, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (420, 200)))
+    draw(s, ("key_down", "m"), ("mouse_down", (400, 200)), ("mouse_move", (450, 250)),
+         ("mouse_move", (500, 300)), ("mouse_up", (500, 300)))
+    assert s.named["ball1"].position == (500, 300)
+    draw(s, ("key_down", "left ctrl"), ("key_down", "z"))
+    assert s.named["ball1"].position == (400, 200)           # one undo per drag
+    draw(s, ("key_down", "y"), ("key_up", "left ctrl"))
+    assert s.named["ball1"].position == (500, 300)
+    draw(s, ("key_down", "delete"))
+    assert "ball1" not in s.named and s.metrics()["bodies"] == 1
+    draw(s, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (400 + 2e4, 200)))
+    assert s.metrics()["bodies"] == 1 and "not drawn" in s.message   # radius past 1e4 px

@@ -1,0 +1,284 @@
+"""Sandbox: build a scene with the mouse, play it, and save it as a scene file.
+
+What it shows. The scene-file format (docs/experiments.md) from the other side: every circle,
+box or line drawn here is a [[body]] of a file, and Ctrl+S writes that file, which the lab then
+runs like any other (`python -m app --scene sandbox-1.toml`). While you draw, nothing moves;
+Enter plays the world from what was drawn, Enter again (or R) goes back to the drawing.
+
+Every action is a mouse or key event of the kind `--record` writes, so a scene drawn by hand
+replays headless (`--input`) into the same world and the same file.
+
+Controls (keys the lab's shell does not use):
+  C circle: drag from the centre out to the radius (a dynamic ball)
+  B box: drag from one corner to the other (a dynamic box)
+  L line: drag from one end to the other (a static line, the ground)
+  M move: drag a body to move it; click one to select it
+  Delete or Backspace: delete the selected body
+  Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo      Ctrl+S save to sandbox-N.toml
+While playing, the left button drags bodies as in every pymunk scene.
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+import os
+from typing import Any
+
+import pygame
+import pymunk
+
+from app.draw import pymunk_draw as D
+from app.physics.bounds import clamp_point
+from app.scene import InputEvent
+from app.scenefile.load import check_spec, SceneFileError
+from app.scenefile.scene import FileScene
+from app.scenefile.write import save, to_data
+
+TOOLS = {"c": "circle", "b": "box", "l": "line", "m": "move"}
+CTRL = ("left ctrl", "right ctrl")
+DENSITY = 0.01            # kg per px^2 of what is drawn: a ball of radius 20 is 12.6 kg
+MIN_SIZE = 4.0            # px: a click without a drag draws nothing smaller than this
+PREVIEW = (255, 255, 255)
+SELECTED = (255, 120, 200)
+
+
+def empty_spec(world_size: tuple[int, int]) -> dict[str, Any]:
+    """A drawing's data: a floor line, and nothing else (every other key at its default)."""
+    w, h = world_size
+    data = {"scene": {"title": "My sandbox scene", "about": "Drawn in the sandbox."},
+            "body": [{"name": "floor", "type": "static", "shape": [
+                {"kind": "segment", "a": [40.0, h - 40.0], "b": [w - 40.0, h - 40.0],
+                 "radius": 4.0}]}]}
+    return check_spec(data, "", "sandbox")
+
+
+class SandboxScene(FileScene):
+    """Sandbox: draw circles, boxes and lines with the mouse, play them, save them as a scene
+    file (Ctrl+S) that the lab runs like its own.
+
+    C circle, B box, L line (static), M move/select; Delete removes the selected body; Enter
+    plays / goes back to the drawing; Ctrl+Z / Ctrl+Y undo / redo; Ctrl+S saves sandbox-N.toml
+    in the current folder.
+    """
+
+    name = "sandbox"
+    title = "Sandbox: draw a scene, play it, save it"
+    category = "Scene files"
+    path = ""                 # no file behind it (Ctrl+S makes one)
+    world_keys = FileScene.world_keys + ("playing",)
+
+    def __init__(self, overrides=None):
+        self.drawing = empty_spec(self.world_size)
+        self.undo: list[dict] = []
+        self.redo: list[dict] = []
+        self.tool = "circle"
+        self.ctrl = False
+        self.press: tuple[float, float] | None = None    # where the drag started
+        self.mouse = (0.0, 0.0)
+        self.selected: str | None = None
+        self.moving: tuple[float, float] | None = None   # grab offset of the body moved
+        self._moving_undo = False
+        self.message = ""
+        self.counter = 0
+        super().__init__(overrides)
+
+    @property
+    def spec(self) -> dict:          # the file's data is what was drawn
+        return self.drawing
+
+    @classmethod
+    def check_combination(cls, values) -> None:
+        """No slider points into the drawing: nothing to check beyond each value's range."""
+
+    def build_space(self, space: pymunk.Space) -> None:
+        self.playing = False
+        super().build_space(space)
+
+    # ----- stepping: only while playing ---------------------------------------------------------
+    def step(self, h: float) -> None:
+        if self.playing:
+            super().step(h)
+
+    def after_step(self) -> None:
+        if self.playing:
+            super().after_step()
+
+    # ----- editing ------------------------------------------------------------------------------
+    def edit(self, change) -> bool:
+        """Apply `change` to a copy of the drawing; keep it only if the loader accepts the
+        result (every value checked before it reaches pymunk), then rebuild the world. True if
+        it was kept."""
+        new = copy.deepcopy(self.drawing)
+        change(new)
+        try:
+            new = check_spec(to_data(new), "", "sandbox")
+        except SceneFileError as e:
+            self.message = f"not drawn: {e.message}"
+            return False
+        self.undo.append(self.drawing)
+        self.redo.clear()
+        self.drawing = new
+        self.reset()
+        return True
+
+    def new_name(self, kind: str) -> str:
+        taken = {b["name"] for b in self.drawing["body"]}
+        while True:
+            self.counter += 1
+            if f"{kind}{self.counter}" not in taken:
+                return f"{kind}{self.counter}"
+
+    def add(self, a: tuple[float, float], b: tuple[float, float]) -> None:
+        """A body from the drag a -> b with the tool in hand."""
+        (ax, ay), (bx, by) = a, b
+        if self.tool == "circle":
+            r = math.hypot(bx - ax, by - ay)
+            if r < MIN_SIZE:
+                return
+            body = {"name": self.new_name("ball"), "position": [ax, ay], "density": DENSITY,
+                    "shape": [{"kind": "circle", "radius": r}]}
+        elif self.tool == "box":
+            w, h = abs(bx - ax), abs(by - ay)
+            if min(w, h) < MIN_SIZE:
+                return
+            body = {"name": self.new_name("box"), "position": [(ax + bx) / 2, (ay + by) / 2],
+                    "density": DENSITY, "shape": [{"kind": "box", "size": [w, h]}]}
+        else:
+            if math.hypot(bx - ax, by - ay) < MIN_SIZE:
+                return
+            body = {"name": self.new_name("line"), "type": "static",
+                    "shape": [{"kind": "segment", "a": [ax, ay], "b": [bx, by], "radius": 4.0}]}
+        self.edit(lambda d: d["body"].append(body))
+        self.selected = body["name"]
+
+    def body_at(self, pos: tuple[float, float]) -> str | None:
+        hit = self.space.point_query_nearest(pos, 5.0, pymunk.ShapeFilter())
+        if hit is None or hit.shape is None:
+            return None
+        return next((n for n, b in self.named.items() if b is hit.shape.body), None)
+
+    def move_to(self, name: str, pos: tuple[float, float]) -> None:
+        """Move a drawn body so that its grab point follows the mouse (a static line's ends
+        move with it)."""
+        ox, oy = self.moving
+        body = next(b for b in self.drawing["body"] if b["name"] == name)
+        dx, dy = pos[0] - ox - body["position"][0], pos[1] - oy - body["position"][1]
+
+        def change(d: dict) -> None:
+            b = next(b for b in d["body"] if b["name"] == name)
+            b["position"] = [b["position"][0] + dx, b["position"][1] + dy]
+        if self.edit(change):
+            if self._moving_undo:
+                self.undo.pop()        # one undo step per drag, not one per mouse move
+            self._moving_undo = True
+
+    def delete(self) -> None:
+        name = self.selected
+        if name is None:
+            return
+        self.edit(lambda d: d.update(body=[b for b in d["body"] if b["name"] != name]))
+        self.selected = None
+
+    def save(self) -> None:
+        """Write the drawing as sandbox-N.toml (the first N free) in the current folder."""
+        n = 1
+        while os.path.exists(f"sandbox-{n}.toml"):
+            n += 1
+        path = f"sandbox-{n}.toml"
+        try:
+            save(self.drawing, path)
+        except OSError as e:
+            self.message = f"not saved: {e.strerror or e}"
+            return
+        self.message = f"saved to {os.path.abspath(path)}"
+
+    # ----- events -------------------------------------------------------------------------------
+    def handle_event(self, event: InputEvent) -> None:
+        if event.kind.startswith("mouse"):
+            event = InputEvent(event.kind, clamp_point(event.pos, self.world_size),
+                               event.button, event.key, event.t)
+            self.mouse = event.pos
+        if event.kind == "key_up" and event.key in CTRL:
+            self.ctrl = False
+        elif event.kind == "key_down":
+            self.key(event.key)
+        elif self.playing:
+            super().handle_event(event)         # play: drag bodies as in every pymunk scene
+        elif event.kind == "mouse_down" and event.button == 1:
+            self.press = event.pos
+            if self.tool == "move":
+                self.selected = self.body_at(event.pos)
+                if self.selected is not None:
+                    body = next(b for b in self.drawing["body"] if b["name"] == self.selected)
+                    self.moving = (event.pos[0] - body["position"][0],
+                                   event.pos[1] - body["position"][1])
+                    self._moving_undo = False
+        elif event.kind == "mouse_move" and self.moving is not None:
+            self.move_to(self.selected, event.pos)
+        elif event.kind == "mouse_up" and event.button == 1 and self.press is not None:
+            if self.tool != "move":
+                self.add(self.press, event.pos)
+            self.press, self.moving = None, None
+
+    def key(self, key: str) -> None:
+        if key in CTRL:
+            self.ctrl = True
+        elif self.ctrl and key == "s":
+            self.save()
+        elif self.ctrl and key == "z" and self.undo:
+            self.redo.append(self.drawing)
+            self.drawing = self.undo.pop()
+            self.reset()
+        elif self.ctrl and key == "y" and self.redo:
+            self.undo.append(self.drawing)
+            self.drawing = self.redo.pop()
+            self.reset()
+        elif key in ("return", "enter", "[enter]"):
+            playing = not self.playing
+            self.reset()                        # from what was drawn, either way
+            self.playing = playing
+        elif key in ("delete", "backspace") and not self.playing:
+            self.delete()
+        elif key in TOOLS and not self.ctrl:
+            self.tool = TOOLS[key]
+            self.press = None
+
+    # ----- reporting ----------------------------------------------------------------------------
+    def metrics(self) -> dict[str, Any]:
+        bodies = [b for b in self.drawing["body"]]
+        return {"bodies": len(bodies),
+                "dynamic_bodies": sum(b["type"] == "dynamic" for b in bodies),
+                "playing": self.playing}
+
+    def hud_details(self) -> list[str]:
+        return ["drawing: nothing moves; Enter plays from the drawing, R goes back to it",
+                "saved files run as: python -m app --scene sandbox-N.toml"]
+
+    def hud_lines(self) -> list[str]:
+        mode = ("PLAYING (Enter: back to the drawing)" if self.playing else
+                f"DRAWING with the {self.tool} tool (Enter: play)")
+        lines = [mode, "C circle, B box, L line, M move; Del delete; Ctrl+Z/Y undo/redo; "
+                       "Ctrl+S save"]
+        if self.message:
+            lines.append(self.message)
+        return lines
+
+    def draw(self, surface: pygame.Surface, view) -> None:
+        super().draw(surface, view)
+        if self.selected in self.named and not self.playing:
+            body = self.named[self.selected]
+            for shape in body.shapes:
+                bb = shape.cache_bb()
+                a, b = view.pt((bb.left - 4, bb.top - 4)), view.pt((bb.right + 4, bb.bottom + 4))
+                pygame.draw.rect(surface, SELECTED, pygame.Rect(a, (b[0] - a[0], b[1] - a[1])), 1)
+        if self.press is not None and self.tool != "move" and not self.playing:
+            (ax, ay), (bx, by) = self.press, self.mouse
+            if self.tool == "circle":
+                pygame.draw.circle(surface, PREVIEW, view.pt((ax, ay)),
+                                   max(1.0, view.len(math.hypot(bx - ax, by - ay))), 1)
+            elif self.tool == "box":
+                a, b = view.pt((min(ax, bx), min(ay, by))), view.pt((max(ax, bx), max(ay, by)))
+                pygame.draw.rect(surface, PREVIEW, pygame.Rect(a, (b[0] - a[0], b[1] - a[1])), 1)
+            else:
+                pygame.draw.line(surface, PREVIEW, view.pt((ax, ay)), view.pt((bx, by)), 2)
