@@ -12,8 +12,10 @@ Controls (keys the lab's shell does not use):
   C circle: drag from the centre out to the radius (a dynamic ball)
   B box: drag from one corner to the other (a dynamic box)
   L line: drag from one end to the other (a static line, the ground)
-  M move: drag a body to move it; click one to select it
-  Delete or Backspace: delete the selected body
+  M move: drag a body to move it; click one to select it; Q and E turn it by 15 degrees
+  J pin joint, S spring, O pivot: drag from a point on one body to a point on another (or to
+    empty space: a fixed point of the world); a pivot joins them at the point you pressed
+  Delete or Backspace: delete the selected body (and its joints)
   Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo      Ctrl+S save to sandbox-N.toml
 While playing, the left button drags bodies as in every pymunk scene.
 """
@@ -35,7 +37,11 @@ from app.scenefile.load import check_spec, SceneFileError
 from app.scenefile.scene import FileScene
 from app.scenefile.write import save, to_data
 
-TOOLS = {"c": "circle", "b": "box", "l": "line", "m": "move"}
+TOOLS = {"c": "circle", "b": "box", "l": "line", "m": "move", "j": "pin", "s": "spring",
+         "o": "pivot"}
+JOINT_TOOLS = {"pin": "pin", "spring": "damped_spring", "pivot": "pivot"}
+SPRING_STIFFNESS, SPRING_DAMPING = 50.0, 1.0     # a soft spring: it visibly swings
+TURN = 15.0               # degrees Q and E turn the selected body
 CTRL = ("left ctrl", "right ctrl")
 DENSITY = 0.01            # kg per px^2 of what is drawn: a ball of radius 20 is 12.6 kg
 MIN_SIZE = 4.0            # px: a click without a drag draws nothing smaller than this
@@ -57,7 +63,8 @@ class SandboxScene(FileScene):
     """Sandbox: draw circles, boxes and lines with the mouse, play them, save them as a scene
     file (Ctrl+S) that the lab runs like its own.
 
-    C circle, B box, L line (static), M move/select; Delete removes the selected body; Enter
+    C circle, B box, L line (static), M move/select (Q, E turn it); J pin, S spring, O pivot
+    joints (drag from one body to another or to the world); Delete removes the selected body; Enter
     plays / goes back to the drawing; Ctrl+Z / Ctrl+Y undo / redo; Ctrl+S saves sandbox-N.toml
     in the current folder.
     """
@@ -130,8 +137,11 @@ class SandboxScene(FileScene):
                 return f"{kind}{self.counter}"
 
     def add(self, a: tuple[float, float], b: tuple[float, float]) -> None:
-        """A body from the drag a -> b with the tool in hand."""
+        """A body (or a joint) from the drag a -> b with the tool in hand."""
         (ax, ay), (bx, by) = a, b
+        if self.tool in JOINT_TOOLS:
+            self.join(a, b)
+            return
         if self.tool == "circle":
             r = math.hypot(bx - ax, by - ay)
             if r < MIN_SIZE:
@@ -151,6 +161,40 @@ class SandboxScene(FileScene):
                     "shape": [{"kind": "segment", "a": [ax, ay], "b": [bx, by], "radius": 4.0}]}
         self.edit(lambda d: d["body"].append(body))
         self.selected = body["name"]
+
+    def join(self, a: tuple[float, float], b: tuple[float, float]) -> None:
+        """A joint from the body under a (or the world) to the body under b (or the world),
+        anchored where the drag started and ended (a pivot: at a)."""
+        name_a, name_b = self.body_at(a) or "world", self.body_at(b) or "world"
+        kind = JOINT_TOOLS[self.tool]
+        if kind == "pivot" and name_b == name_a:
+            name_b = "world"          # a click on a body: it turns about that point
+
+        def local(name: str, p: tuple[float, float]) -> list[float]:
+            if name == "world":
+                return [float(p[0]), float(p[1])]
+            q = self.named[name].world_to_local(p)
+            return [float(q.x), float(q.y)]
+        joint: dict[str, Any] = {"kind": kind, "name": f"{self.tool}{len(self.drawing['joint']) + 1}",
+                                 "a": name_a, "b": name_b}
+        if kind == "pivot":
+            joint["pivot"] = [float(a[0]), float(a[1])]
+            joint["collide"] = False
+        else:
+            joint["anchor_a"], joint["anchor_b"] = local(name_a, a), local(name_b, b)
+        if kind == "damped_spring":
+            joint["stiffness"], joint["damping"] = SPRING_STIFFNESS, SPRING_DAMPING
+        self.edit(lambda d: d["joint"].append(joint))
+
+    def turn(self, degrees: float) -> None:
+        name = self.selected
+        if name is None or name not in self.named:
+            return
+
+        def change(d: dict) -> None:
+            b = next(b for b in d["body"] if b["name"] == name)
+            b["angle"] = (b["angle"] + degrees + 180.0) % 360.0 - 180.0
+        self.edit(change)
 
     def body_at(self, pos: tuple[float, float]) -> str | None:
         hit = self.space.point_query_nearest(pos, 5.0, pymunk.ShapeFilter())
@@ -177,7 +221,9 @@ class SandboxScene(FileScene):
         name = self.selected
         if name is None:
             return
-        self.edit(lambda d: d.update(body=[b for b in d["body"] if b["name"] != name]))
+        self.edit(lambda d: d.update(body=[b for b in d["body"] if b["name"] != name],
+                                     joint=[j for j in d["joint"] if name not in (j["a"],
+                                                                                  j["b"])]))
         self.selected = None
 
     def save(self) -> None:
@@ -240,6 +286,8 @@ class SandboxScene(FileScene):
             self.playing = playing
         elif key in ("delete", "backspace") and not self.playing:
             self.delete()
+        elif key in ("q", "e") and not self.playing and not self.ctrl:
+            self.turn(-TURN if key == "q" else TURN)
         elif key in TOOLS and not self.ctrl:
             self.tool = TOOLS[key]
             self.press = None
@@ -249,6 +297,7 @@ class SandboxScene(FileScene):
         bodies = [b for b in self.drawing["body"]]
         return {"bodies": len(bodies),
                 "dynamic_bodies": sum(b["type"] == "dynamic" for b in bodies),
+                "joints": len(self.drawing["joint"]),
                 "playing": self.playing}
 
     def hud_details(self) -> list[str]:
@@ -258,8 +307,8 @@ class SandboxScene(FileScene):
     def hud_lines(self) -> list[str]:
         mode = ("PLAYING (Enter: back to the drawing)" if self.playing else
                 f"DRAWING with the {self.tool} tool (Enter: play)")
-        lines = [mode, "C circle, B box, L line, M move; Del delete; Ctrl+Z/Y undo/redo; "
-                       "Ctrl+S save"]
+        lines = [mode, "C circle, B box, L line, M move (Q/E turn), J pin, S spring, O pivot; "
+                       "Del delete; Ctrl+Z/Y undo/redo; Ctrl+S save"]
         if self.message:
             lines.append(self.message)
         return lines
@@ -274,7 +323,9 @@ class SandboxScene(FileScene):
                 pygame.draw.rect(surface, SELECTED, pygame.Rect(a, (b[0] - a[0], b[1] - a[1])), 1)
         if self.press is not None and self.tool != "move" and not self.playing:
             (ax, ay), (bx, by) = self.press, self.mouse
-            if self.tool == "circle":
+            if self.tool in JOINT_TOOLS:
+                pygame.draw.line(surface, SELECTED, view.pt((ax, ay)), view.pt((bx, by)), 2)
+            elif self.tool == "circle":
                 pygame.draw.circle(surface, PREVIEW, view.pt((ax, ay)),
                                    max(1.0, view.len(math.hypot(bx - ax, by - ay))), 1)
             elif self.tool == "box":

@@ -361,7 +361,7 @@ def test_the_sandbox_draws_saves_and_the_file_plays_the_same_world(tmp_path, mon
          ("mouse_up", (560, 340)), ("key_down", "l"), ("mouse_down", (300, 500)),
          ("mouse_up", (700, 600)), ("key_down", "left ctrl"), ("key_down", "s"),
          ("key_up", "left ctrl"))
-    assert s.metrics() == {"bodies": 4, "dynamic_bodies": 2, "playing": False}
+    assert s.metrics() == {"bodies": 4, "dynamic_bodies": 2, "joints": 0, "playing": False}
     before = s.state_hash()
     s.advance()
     assert s.state_hash() == before              # drawing: nothing moves
@@ -391,3 +391,31 @@ def test_the_sandbox_moves_deletes_undoes_and_refuses_what_the_format_refuses(tm
     assert "ball1" not in s.named and s.metrics()["bodies"] == 1
     draw(s, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (400 + 2e4, 200)))
     assert s.metrics()["bodies"] == 1 and "not drawn" in s.message   # radius past 1e4 px
+
+
+def test_the_sandbox_joins_bodies_and_deleting_a_body_takes_its_joints(tmp_path, monkeypatch):
+    """A plank on a pivot (a click), a spring from its end to the floor, a ball on a pin to the
+    world; the file saved plays the same world as the sandbox."""
+    from scenes.sandbox import SandboxScene
+    monkeypatch.chdir(tmp_path)
+    s = SandboxScene()
+    draw(s, ("key_down", "b"), ("mouse_down", (300, 300)), ("mouse_up", (500, 320)),
+         ("key_down", "o"), ("mouse_down", (400, 310)), ("mouse_up", (400, 310)),
+         ("key_down", "s"), ("mouse_down", (310, 310)), ("mouse_up", (310, 500)),
+         ("key_down", "c"), ("mouse_down", (480, 200)), ("mouse_up", (495, 200)),
+         ("key_down", "j"), ("mouse_down", (480, 200)), ("mouse_up", (600, 100)))
+    kinds = [(j["kind"], j["a"], j["b"]) for j in s.drawing["joint"]]
+    assert kinds == [("pivot", "box1", "world"), ("damped_spring", "box1", "world"),
+                     ("pin", "ball2", "world")]
+    draw(s, ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl"),
+         ("key_down", "return"))
+    played = scene_class(str(tmp_path / "sandbox-1.toml"))()
+    for _ in range(60):
+        s.advance()
+        played.advance()
+    assert s.state_hash() == played.state_hash()
+    pivot = s.joints[0][1]
+    assert (pivot.a.local_to_world(pivot.anchor_a) - (400, 310)).length < 1.0   # it held
+    draw(s, ("key_down", "return"), ("key_down", "m"), ("mouse_down", (400, 310)),
+         ("mouse_up", (400, 310)), ("key_down", "delete"))
+    assert s.metrics()["joints"] == 1 and s.metrics()["bodies"] == 2     # the pin is left
