@@ -100,7 +100,7 @@ BASE = Path(SEESAW).read_text()
 
 # (what to change in the see-saw, the line the error names (the changed line), words in it)
 BAD = [
-    ("mass = 4.0", "mass = -4.0", "out of range; accepted: a number above 0"),
+    ("mass = 4.0", "mass = -4.0", "out of range; accepted: a number from 1e-06"),
     ("mass = 4.0", "mass = nan", "not finite"),
     ("mass = 4.0", "mass = inf", "not finite"),
     ("mass = 4.0", 'mass = "heavy"', "is not a number"),
@@ -110,7 +110,7 @@ BAD = [
     ("iterations = 20", "iterations = 2.5", "not an integer"),
     ('b = "world"\npivot', 'b = "wrold"\npivot', 'names no body; accepted: "world" or one of'),
     ("size = [600.0, 14.0]", "size = [600.0, 14.0", "not valid TOML"),
-    ("radius = 32.0", "radius = 0.0", "a circle needs radius above 0"),
+    ("radius = 32.0", "radius = 0.0", "a circle needs radius of at least 0.01"),
     ("[world]", "[wrld]", "unknown section 'wrld'; accepted: [scene], [world]"),
     ('field = "joint.stiffness"', 'field = "joint.stifness"', "accepted: joint.anchor_a.x"),
     ("settings = { stiffness = 4000 }", "settings = { stiffness = 40000 }",
@@ -419,3 +419,13 @@ def test_the_sandbox_joins_bodies_and_deleting_a_body_takes_its_joints(tmp_path,
     draw(s, ("key_down", "return"), ("key_down", "m"), ("mouse_down", (400, 310)),
          ("mouse_up", (400, 310)), ("key_down", "delete"))
     assert s.metrics()["joints"] == 1 and s.metrics()["bodies"] == 2     # the pin is left
+
+
+def test_the_refusal_shown_in_experiments_md_is_the_one_the_lab_prints(tmp_path):
+    shown = next(line.strip() for line in (ROOT / "docs/experiments.md").read_text().splitlines()
+                 if line.strip().startswith("my_seesaw.toml:"))
+    path = tmp_path / "my_seesaw.toml"
+    path.write_text(BASE.replace("mass = 4.0", "mass = -4.0", 1))
+    with pytest.raises(SceneFileError) as e:
+        load_spec(str(path))
+    assert str(e.value) == str(path.parent / shown)

@@ -20,8 +20,8 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from app.scenefile.schema import (COORD, SCHEMA, SECTIONS, Key, Section, field_key,
-                                  slider_fields)
+from app.scenefile.schema import (COORD, MIN_AREA, MIN_SIZE, SCHEMA, SECTIONS, Key, Section,
+                                  field_key, slider_fields)
 
 MAX_FILE_BYTES = 1_000_000      # a scene file is a page of text; a bigger one is no scene
 MAX_ITEMS = 2000                # bodies, joints, ... per section (a step must stay cheap)
@@ -365,7 +365,13 @@ def _given(c: Checker, where: tuple) -> set[str]:
     return {p[-1] for p in c.lines if len(p) == len(where) + 1 and p[:-1] == where}
 
 
+MAX_SHAPES = 5000              # shapes in all: a step of a few ms, not of seconds
+
+
 def _check_bodies(c: Checker, spec: dict) -> None:
+    shapes = sum(len(b["shape"]) for b in spec["body"])
+    if shapes > MAX_SHAPES:
+        c.fail(("body",), f"{shapes:,} shapes in all; accepted: at most {MAX_SHAPES:,}")
     seen: dict[str, int] = {}
     for i, body in enumerate(spec["body"]):
         where, what = ("body", i), f"body '{body['name']}'"
@@ -394,20 +400,21 @@ def _check_bodies(c: Checker, spec: dict) -> None:
             sw = where + ("shape", j)
             kind = shape["kind"]
             for k in SHAPE_NEEDS[kind]:
-                if shape[k] is None or (k == "radius" and shape[k] <= 0):
+                if shape[k] is None or (k == "radius" and shape[k] < MIN_SIZE):
                     key = SECTIONS["body.shape"].key(k)
                     if k == "radius":
-                        key = Key(k, "float", lo=key.lo, hi=key.hi, above=True, unit=key.unit)
+                        key = Key(k, "float", lo=MIN_SIZE, hi=key.hi, unit=key.unit)
                     c.fail(sw + ((k,) if shape[k] is not None else ()),
                            f"{what}, shape {j + 1}: a {kind} needs {k}"
-                           + (" above 0" if k == "radius" else "") + f"; accepted: "
-                           f"{key.accepted()}")
+                           + (f" of at least {MIN_SIZE:g}" if k == "radius" else "")
+                           + f"; accepted: {key.accepted()}")
             for k in _given(c, sw) - COMMON_SHAPE - SHAPE_TAKES[kind]:
                 c.fail(sw + (k,), f"{what}, shape {j + 1}: a {kind} has no '{k}'; accepted: "
                        + ", ".join(sorted(COMMON_SHAPE | SHAPE_TAKES[kind])))
-            if kind == "box" and min(shape["size"]) <= 0:
-                c.fail(sw + ("size",), f"{what}, shape {j + 1}: a box's size is above 0 each way")
-        if dynamic and body["moment"] is None and body["shape"] and _area(body) <= 0:
+        if body["density"] is not None and _area(body) < MIN_AREA:
+            c.fail(where + ("density",), f"{what}: its shapes have no area, so a density gives "
+                   "no mass; accepted: mass = NUMBER, or shapes with an area")
+        if dynamic and body["moment"] is None and body["shape"] and _area(body) < MIN_AREA:
             c.fail(where, f"{what}: its shapes have no area to spread the mass over (segments "
                    "of radius 0); accepted: moment = NUMBER, or a segment radius above 0")
 

@@ -26,6 +26,8 @@ COORD = 1e5              # px: positions and anchors within +-COORD (app/physics
 SPEED = 1e5              # px/s
 SPIN = 1e5               # deg/s
 BIG = 1e9                # stiffness, force, moment: finite and below overflow in a step
+MIN_SIZE = 0.01          # px: a circle's radius, a box's side (smaller: pymunk's moment is NaN)
+MIN_AREA = 1e-4          # px^2: the least area a dynamic body's mass is spread over
 
 
 @dataclass(frozen=True)
@@ -211,19 +213,20 @@ SCHEMA: tuple[Section, ...] = (
         Key("velocity", "vec2", [0.0, 0.0], "its starting velocity", -SPEED, SPEED, unit="px/s"),
         Key("angular_velocity", "float", 0.0, "its starting rate of turn", -SPIN, SPIN,
             unit="deg/s"),
-        Key("mass", "float", None, "a dynamic body's mass: give `mass` or `density`", 0.0, BIG,
-            above=True, unit="kg"),
+        Key("mass", "float", None, "a dynamic body's mass: give `mass` or `density`", 1e-6, BIG,
+            unit="kg"),
         Key("density", "float", None, "mass per px^2 of its shapes' area, instead of `mass`",
-            0.0, 1e6, above=True, unit="kg/px^2"),
+            1e-9, 1e6, unit="kg/px^2"),
         Key("moment", "float", None, "moment of inertia (default: computed from the shapes, "
-            "the mass spread by area)", 0.0, 1e15, above=True, unit="kg px^2"),
+            "the mass spread by area)", 1e-6, 1e15, unit="kg px^2"),
         _color(),
     ), "a rigid body with its shapes (`[[body.shape]]` below it); static bodies need no mass"),
     Section("body.shape", True, (
         Key("kind", "choice", REQUIRED, "the shape", choices=SHAPE_KINDS),
-        Key("radius", "float", 0.0, "circle: its radius (above 0); segment: its thickness / 2; "
+        Key("radius", "float", 0.0, f"circle: its radius (at least {MIN_SIZE:g}); segment: its "
+            "thickness / 2; "
             "box and polygon: rounded corners", 0.0, 1e4, unit="px"),
-        Key("size", "vec2", None, "box: width and height (above 0)", 0.0, 2 * COORD, unit="px"),
+        Key("size", "vec2", None, "box: width and height", MIN_SIZE, 2 * COORD, unit="px"),
         Key("offset", "vec2", [0.0, 0.0], "circle and box: centre relative to the body's "
             "origin", -COORD, COORD, unit="px"),
         Key("points", "points", None, "polygon: its corners relative to the body's origin",
@@ -285,7 +288,7 @@ SCHEMA: tuple[Section, ...] = (
         Key("max_alive", "int", 100, "no new ball while this many of its balls are in the world",
             1, 2000),
         Key("radius", "float", 10.0, "ball radius", 1.0, 1000.0, unit="px"),
-        Key("mass", "float", 1.0, "ball mass", 0.0, BIG, above=True, unit="kg"),
+        Key("mass", "float", 1.0, "ball mass", 1e-6, BIG, unit="kg"),
         _friction(),
         _elasticity(),
         Key("velocity", "vec2", [0.0, 0.0], "velocity of a new ball", -SPEED, SPEED,
