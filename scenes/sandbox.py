@@ -30,7 +30,6 @@ from typing import Any
 import pygame
 import pymunk
 
-from app.draw import pymunk_draw as D
 from app.physics.bounds import clamp_point
 from app.scene import InputEvent
 from app.scenefile.load import check_spec, SceneFileError
@@ -175,8 +174,9 @@ class SandboxScene(FileScene):
                 return [float(p[0]), float(p[1])]
             q = self.named[name].world_to_local(p)
             return [float(q.x), float(q.y)]
-        joint: dict[str, Any] = {"kind": kind, "name": f"{self.tool}{len(self.drawing['joint']) + 1}",
-                                 "a": name_a, "b": name_b}
+        number = len(self.drawing["joint"]) + 1
+        joint: dict[str, Any] = {"kind": kind, "name": f"{self.tool}{number}", "a": name_a,
+                                 "b": name_b}
         if kind == "pivot":
             joint["pivot"] = [float(a[0]), float(a[1])]
             joint["collide"] = False

@@ -5,12 +5,10 @@ the lecture's scenes written as files reproduce the built-in scenes' metrics."""
 from __future__ import annotations
 
 import json
-import math
 import random
 import re
 from pathlib import Path
 
-import numpy as np
 import pygame
 import pytest
 
@@ -32,7 +30,7 @@ def run(cls, seconds: float, overrides=None):
     return scene
 
 
-# ----- the shipped files -------------------------------------------------------------------------
+# ----- the shipped files --------------------------------------------------------------------------
 def test_at_least_six_files_are_shipped_and_listed_with_their_paths(capsys):
     assert len(SCENE_FILES) >= 6 and all((ROOT / f).is_file() for f in SCENE_FILES)
     assert main(["--list"]) == 0
@@ -95,7 +93,7 @@ def test_scene_check_says_ok_and_builds_nothing_it_should_not(capsys):
     assert len(lines) == len(SCENE_FILES) and all(": ok: " in line for line in lines)
 
 
-# ----- bad files: one line, the line number, exit 2 ------------------------------------------------
+# ----- bad files: one line, the line number, exit 2 -----------------------------------------------
 BASE = Path(SEESAW).read_text()
 
 # (what to change in the see-saw, the line the error names (the changed line), words in it)
@@ -219,7 +217,7 @@ def test_key_lines_find_tables_of_tables():
     assert BASE.splitlines()[lines[("joint", 1, "stiffness")] - 1] == "stiffness = 400.0"
 
 
-# ----- round trip -----------------------------------------------------------------------------
+# ----- round trip ---------------------------------------------------------------------------------
 @pytest.mark.parametrize("rel", SCENE_FILES, ids=lambda f: Path(f).stem)
 def test_saving_what_was_loaded_gives_the_same_data_and_world(tmp_path, rel):
     spec = load_spec(str(ROOT / rel))
@@ -243,7 +241,7 @@ def test_save_is_whole_or_nothing(tmp_path):
     assert target.read_text() == "old" and [p.name for p in tmp_path.iterdir()] == ["keep.toml"]
 
 
-# ----- the lecture's scenes as files reproduce the built-in ones ------------------------------------
+# ----- the lecture's scenes as files reproduce the built-in ones ----------------------------------
 def test_falling_balls_file_counts_like_the_scene():
     """20 s: the same spawn schedule (80 balls), alive within 15% of the spawned (the piles
     part ways by chaos, not by the format)."""
@@ -284,7 +282,7 @@ def test_double_pendulum_file_drifts_like_the_scene():
     assert abs(max(mine["rod1_error"], mine["rod2_error"]) - builtin["pin_error"]) < 0.01
 
 
-# ----- the shipped demos say what they show --------------------------------------------------------
+# ----- the shipped demos say what they show -------------------------------------------------------
 def test_the_unequal_cradle_sends_more_than_one_ball_out():
     heavy = run(get_scene("scenes/files/cradle_unequal.toml"), 2.0).metrics()
     equal = run(get_scene("scenes/files/cradle_unequal.toml"), 2.0, {"first_mass": 1}).metrics()
@@ -341,7 +339,7 @@ def test_the_curtain_stretches_several_fold_with_two_sweeps_and_can_be_grabbed()
     assert scene.cloth.grabbed is None and scene.cloth.locked[-1, 0]
 
 
-# ----- the sandbox: drawn with the mouse, saved as a file ---------------------------------------
+# ----- the sandbox: drawn with the mouse, saved as a file -----------------------------------------
 def draw(scene, *events):
     from app.scene import InputEvent
     for kind, *rest in events:

@@ -19,7 +19,8 @@ import tomli_w
 
 from app.scenefile.schema import SCHEMA, Section
 
-HEADER = "# A scene file of the physics lab: python -m app --scene THIS.toml (docs/experiments.md)\n"
+HEADER = ("# A scene file of the physics lab: python -m app --scene THIS.toml "
+          "(docs/experiments.md)\n")
 
 
 def _table(sec: Section, data: dict[str, Any]) -> dict[str, Any]:
