@@ -270,6 +270,12 @@ class IntegratorsScene(Scene):
         """The table's glyph height in the last frame drawn (px)."""
         return self.drawing.table_text
 
+    def formula_room(self) -> pygame.Rect | None:
+        """Where the F4 page puts the six updates: over the phase portrait, beside the table
+        (None before the first frame)."""
+        rects = getattr(getattr(self, "drawing", None), "rects", None)
+        return rects.phase if rects is not None else None
+
     def draw(self, surface: pygame.Surface, view: View) -> None:
         from app.draw.integrator_lab import LabDrawing
         self._refresh()

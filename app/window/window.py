@@ -402,6 +402,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.font.init()
     pygame.display.set_caption("Physics lab")
     pygame.key.set_repeat()
+    from app.draw import formula
+    formula.BACKGROUND = screenshot is None      # F4's formulas drawn by a worker: no frame waits
     from scenes import SCENES, get_scene
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
     window.clips = ClipRecorder(**(clips or {}))
