@@ -54,6 +54,8 @@ KEYS: tuple[ShellKey, ...] = (
              "live plot: a list of the scene's numbers to plot over time (in compare mode one "
              "line per pane)"),
     ShellKey(("v",), "V", "toggle_arrows", "velocity and force arrows on / off"),
+    ShellKey(("e",), "E", "toggle_energy", "energy bars: kinetic, potential, elastic, lost and "
+             "the total against its start, with the zero of each (scenes with an energy)"),
     ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
              "--video's file; the message gives the full path)"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "

@@ -95,6 +95,7 @@ class IntegratorsScene(Scene):
     __doc__ = __doc__
     name = "integrators"
     title = "Integrator lab: what accuracy costs"
+    no_energy_words = "its energy chart shows each integrator's |E/E0 - 1| instead"
     category = "Particle systems"
     metrics_box = False          # the scene draws its own table of the metrics
     params = (

@@ -404,6 +404,15 @@ class MassSpringClothScene(MassSpringWords, Scene):
         estimate): 2/omega_max undamped, less with damping."""
         return self.watch.limit("symplectic_euler")
 
+    def energies(self):
+        """Energy bars: the parts of `energy` (the metric), 0 at rest in the start pose."""
+        from app.energy import Energies
+        kinetic, springs, gravity = self.cloth.energy_parts()
+        return Energies((("kinetic", kinetic), ("springs", springs), ("gravity", gravity)), 0.0,
+                        zero="the start pose, at rest, every spring at its rest length",
+                        losses="spring damping, air, implicit Euler's artificial damping; the "
+                               "mouse and the wind put energy in", unit="J", scale=JOULE)
+
     def metrics(self) -> dict:
         c = self.cloth
         s = np.concatenate([st.ravel() for st in self.stretches()])

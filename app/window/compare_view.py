@@ -23,6 +23,7 @@ import pygame
 
 from app.compare import CompareRunner, Variant, as_variant, differing, labels, shared_and_own
 from app.draw import hud
+from app.draw.energy_bars import draw_energy
 from app.draw.panes import PaneGrid
 from app.frames import compare_header, compare_pane_lines
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
@@ -108,9 +109,14 @@ class CompareView(SceneView):
         screen.fill(PANEL_BACKGROUND)
         self.inst.update_scale()
         try:
-            self.grid.draw(screen, self.scene_area(), header, lines, self.window.hud_details,
-                           self.inst.overlay if self.inst.arrows else None,
-                           self.pane_lines(brief=True) if self.overlays else None, self.target)
+            layouts = self.grid.draw(screen, self.scene_area(), header, lines,
+                                     self.window.hud_details,
+                                     self.inst.overlay if self.inst.arrows else None,
+                                     self.pane_lines(brief=True) if self.overlays else None,
+                                     self.target)
+            if self.window.energy_bars:
+                for scene, layout in zip(self.scenes, layouts):
+                    draw_energy(screen, scene, layout, 20)
         except SceneError as e:
             self._fail_all(e)
         self.draw_chrome(screen)

@@ -19,6 +19,7 @@ import pygame
 
 from app import keys
 from app.draw import hud
+from app.draw.energy_bars import draw_energy
 from app.draw.layout import Layout, Pane, draw_scene
 from app.draw.text import TEXT
 from app.loop import FixedStepClock
@@ -470,6 +471,8 @@ class SceneView(InstrumentHost, ShellView):
             self.runner.fail(e)
             self.clock.paused = True
             screen.fill(scene.background, layout.area)
+        if self.window.energy_bars:
+            draw_energy(screen, scene, layout)
         self.draw_chrome(screen)
 
     def draw_chrome(self, screen: pygame.Surface) -> None:

@@ -93,6 +93,7 @@ class Window:
         self._replay_scene: type[Scene] | None = None
         self._pending_shot: Path | None = None
         self.arrows = False                   # V: the arrows overlay, for every scene
+        self.energy_bars = False              # E: the energy bars, for every scene
         self.csv_path: str | None = None      # --csv FILE: the open scene's metrics go there
         self.plot_start: list[str] = []       # --plot: what the first scene opens plotted
         self._csv_owner = None                # the view whose metrics the file holds
@@ -245,6 +246,15 @@ class Window:
         its first (what a class reads every frame); it stays so for the next scene."""
         self.hud_details = not self.hud_details
         self.relayout()
+
+    def toggle_energy(self) -> None:
+        """E: the energy bars on or off (every scene that has an energy; it stays so for the
+        next scene). A scene without one says why."""
+        self.energy_bars = not self.energy_bars
+        scene = getattr(self.current_view, "scene", None)
+        if self.energy_bars and scene is not None and scene.energies() is None:
+            self.flash(f"{scene.title or scene.name} has no energy bars: "
+                       f"{scene.no_energy_words}", topic="energy")
 
     def resize(self, surface: pygame.Surface | None = None) -> None:
         self.screen = surface or pygame.display.get_surface() or self.screen
