@@ -94,6 +94,7 @@ class Window:
         self._pending_shot: Path | None = None
         self.arrows = False                   # V: the arrows overlay, for every scene
         self.energy_bars = False              # E: the energy bars, for every scene
+        self.watch_blowups = False            # B: a blow-up goes on for a second before rollback
         self.csv_path: str | None = None      # --csv FILE: the open scene's metrics go there
         self.plot_start: list[str] = []       # --plot: what the first scene opens plotted
         self._csv_owner = None                # the view whose metrics the file holds
@@ -255,6 +256,14 @@ class Window:
         if self.energy_bars and scene is not None and scene.energies() is None:
             self.flash(f"{scene.title or scene.name} has no energy bars: "
                        f"{scene.no_energy_words}", topic="energy")
+
+    def toggle_watch(self) -> None:
+        """B: watch blow-ups (a diverging run goes on, drawn clipped to the window, for up to a
+        second before the rollback; N then replays its last second) or roll back at once."""
+        self.watch_blowups = not self.watch_blowups
+        self.flash("B: blow-ups are " + ("watched for up to a second, then rolled back; N "
+                                         "replays the last second" if self.watch_blowups
+                                         else "rolled back at once"), topic="watch")
 
     def resize(self, surface: pygame.Surface | None = None) -> None:
         self.screen = surface or pygame.display.get_surface() or self.screen
