@@ -125,3 +125,15 @@ def test_a_watched_blow_up_goes_on_for_a_second_and_replays_the_same():
         if rb is not None:
             break
     assert rb.bad_t < bad_t                     # off: rolled back as soon as it left its bounds
+
+
+def test_the_f4_page_gives_the_timelines_span_memory_and_cost(tmp_path):
+    import pygame
+    from app.window import Window
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1024, 768)), scenes.SCENES, screenshot_dir=tmp_path)
+    assert w.open_scene(BY_NAME["cloth"])
+    w.scene_view.runner.run(80)
+    line = w.scene_view.detail_lines()[-1]
+    assert line.startswith("timeline: ") and "snapshots" in line and "MB" in line

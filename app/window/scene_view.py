@@ -424,11 +424,11 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
 
     def detail_lines(self) -> list:
         """The shell's lines on the HUD's second page: the physics cost by effect, the frame
-        rate."""
-        costs = getattr(self, "_costs", {})
+        rate, the timeline's span and cost."""
+        costs, tl = getattr(self, "_costs", {}), self.runner.timeline
         return ([hud.physics_line(self._shown_ms, costs)] if costs else []) + [
             f"{self.fps:.0f} frames per second (drawing {1000 * self.window.last_draw_seconds:.1f}"
-            " ms a frame)"]
+            " ms a frame)"] + ([tl.text()] if tl is not None else [])
 
     def notes(self) -> list:
         """The messages, as HUD lines: the scene's error, the rollback's advice, then the
