@@ -142,7 +142,8 @@ class CompareRunner:
 
     def __init__(self, scenes: Sequence[Scene], events: list[InputEvent] | None = None,
                  rollback: bool = False, keep_all_times: bool = False):
-        self.runners = [SceneRunner(s, None, rollback=rollback, keep_all_times=keep_all_times)
+        self.runners = [SceneRunner(s, None, rollback=rollback, keep_all_times=keep_all_times,
+                                    timeline=False)     # the timeline is one scene's: no cost
                         for s in scenes]
         self.events = sorted(events or [], key=lambda e: e.t)
         self.next_event = 0

@@ -53,7 +53,17 @@ KEYS: tuple[ShellKey, ...] = (
     ShellKey(("p",), "P", "toggle_plot",
              "live plot: a list of the scene's numbers to plot over time (in compare mode one "
              "line per pane)"),
+    ShellKey(("[",), "[", "scrub_back", "timeline: one snapshot (0.5 s) back; the last 30 s "
+             "are kept, the bar under the scene jumps with a click; Space goes on from there"),
+    ShellKey(("]",), "]", "scrub_forward", "timeline: one snapshot forward (after a blow-up's "
+             "rollback: its last second, frame by frame)"),
+    ShellKey(("b",), "B", "toggle_watch", "watch blow-ups: a diverging run goes on, drawn "
+             "clipped to the window, for up to a second before the rollback (off: at once)"),
+    ShellKey(("n",), "N", "replay_blowup", "after a watched blow-up's rollback: its last second "
+             "again, at x1/4"),
     ShellKey(("v",), "V", "toggle_arrows", "velocity and force arrows on / off"),
+    ShellKey(("e",), "E", "toggle_energy", "energy bars: kinetic, potential, elastic, lost and "
+             "the total against its start, with the zero of each (scenes with an energy)"),
     ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
              "--video's file; the message gives the full path)"),
     ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "

@@ -30,8 +30,12 @@ from collections import deque
 from dataclasses import dataclass, replace
 from typing import Any, Callable
 
-from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
+import numpy as np
 
+from app.scene import EVENT_SLACK, SHELL_KEYS, InputEvent, Scene, SceneError
+from app.timeline import SCRUB_KEYS, Timeline
+
+WATCH_SECONDS = 1.0          # B: a blow-up goes on for up to this long before the rollback
 SNAPSHOT_EVERY = 30          # steps between last-good snapshots (window rollback)
 SNAPSHOTS_KEPT = 3           # a rollback goes to the oldest: 60 to 90 steps before the blow-up
 RECENT_STEPS = 60            # steps in the HUD's mean of the physics time
@@ -136,7 +140,8 @@ class SceneRunner:
     and rolls back on a non-finite state instead of stopping (the window)."""
 
     def __init__(self, scene: Scene, events: list[InputEvent] | None = None,
-                 rollback: bool = False, keep_all_times: bool = False):
+                 rollback: bool = False, keep_all_times: bool = False,
+                 timeline: bool | None = None):
         self.scene = scene
         self.events = sorted(events or [], key=lambda e: e.t)   # stable: ties keep file order
         self.next_event = 0
@@ -152,6 +157,19 @@ class SceneRunner:
         # empty unless one of them is on, so they cost nothing off
         self.observers: list[Callable[["SceneRunner"], None]] = []
         self._good: deque[tuple[Any, float, int]] = deque(maxlen=SNAPSHOTS_KEPT)
+        # the last 30 s as snapshots ([ and ]): the window's; headless only for a replay that
+        # scrubs (a recording made in the window), so it costs nothing otherwise
+        if timeline is None:
+            timeline = rollback or any(e.kind == "key_down" and e.key in SCRUB_KEYS
+                                       for e in self.events)
+        self.timeline: Timeline | None = Timeline() if timeline else None
+        self.resumed_copy = False   # went on from a timeline snapshot of a pymunk world
+        # B (the window): let a blow-up go on, drawn, for up to WATCH_SECONDS before the rollback;
+        # the last WATCH_SECONDS of steps are kept meanwhile, so N can replay them
+        self.watch_blowups = False
+        self.shiver_start: float | None = None
+        self.replay_from: tuple[Any, float, int] | None = None
+        self._recent: deque[tuple[Any, float, int]] = deque()
         self.rebuilt()
 
     # --- events ----------------------------------------------------------------------------
@@ -159,6 +177,10 @@ class SceneRunner:
         """Deliver one event now, stamped with the session time (what a recording writes).
         Returns True if it reset the scene."""
         event.t = self.clock
+        if event.key in SCRUB_KEYS and event.kind.startswith("key"):
+            if event.kind == "key_down" and self.timeline is not None:
+                self.scrub(SCRUB_KEYS[event.key])
+            return False
         try:
             reset = deliver(self.scene, event)
         except SceneError as e:
@@ -208,7 +230,11 @@ class SceneRunner:
                 return i, None
             t0 = time.perf_counter()
             try:
-                self.scene.advance()
+                if self.shiver_start is None:
+                    self.scene.advance()
+                else:                                  # B: a watched blow-up overflows on purpose
+                    with np.errstate(all="ignore"):
+                        self.scene.advance()
             except SceneError as e:
                 self.fail(e)
                 return i, None
@@ -222,9 +248,16 @@ class SceneRunner:
                 if not self.rollback:
                     self.finite = False
                     return i + 1, None
+                if self._shivers():
+                    continue                      # B: the class watches it blow up
                 return i + 1, self.roll_back()
+            self.shiver_start = None
+            if self.watch_blowups:
+                self._keep_recent()
             if self.rollback and self.scene.steps % SNAPSHOT_EVERY == 0:
                 self._keep_snapshot()
+            if self.timeline is not None and self.timeline.due(self.scene):
+                self.timeline.keep(self.scene)
             for observe in self.observers:
                 observe(self)
         return n, None
@@ -244,6 +277,56 @@ class SceneRunner:
         self._good.clear()
         if self.rollback:
             self._keep_snapshot()
+        if self.timeline is not None:
+            self.timeline.clear()
+            self.timeline.keep(self.scene)
+        self.resumed_copy = False
+        self._recent.clear()                 # the old world's last second is not this one's
+        self.replay_from, self.shiver_start = None, None
+
+    # --- B: watching a blow-up, N: its last second again -------------------------------------
+    def _shivers(self) -> bool:
+        """With watch_blowups: True while a blow-up may go on (every value still finite, so it
+        can be drawn, and less than WATCH_SECONDS since it began)."""
+        if not self.watch_blowups:
+            return False
+        if self.shiver_start is None:
+            self.shiver_start = self.scene.time - self.scene.dt
+        finite = all(bool(np.isfinite(a).all()) for a in self.scene.state_arrays())
+        return finite and self.scene.time - self.shiver_start < WATCH_SECONDS
+
+    def _keep_recent(self) -> None:
+        """One step's snapshot into the last WATCH_SECONDS (only while B is on)."""
+        keep = max(1, math.ceil(WATCH_SECONDS / self.scene.dt))
+        self._recent.append((self.scene.snapshot(), self.scene.time, self.scene.steps))
+        while len(self._recent) > keep:
+            self._recent.popleft()
+
+    def replay_blowup(self) -> bool:
+        """N: back to WATCH_SECONDS before the last rollback, to run into the blow-up again (the
+        same steps: the hand-written physics repeats it bit for bit). False if there is none."""
+        if self.replay_from is None:
+            return False
+        snap, t, steps = self.replay_from
+        self.scene.restore(snap)
+        self.scene.time, self.scene.steps = t, steps
+        self._good.clear()
+        self._keep_snapshot()
+        self._recent.clear()
+        self.finite, self.shiver_start = True, None
+        return True
+
+    def scrub(self, direction: int) -> bool:
+        """One timeline snapshot back (-1) or forward (+1); the rollback's snapshots start again
+        from there. True if the scene moved."""
+        if self.timeline is None or not self.timeline.step(self.scene, direction):
+            return False
+        self._good.clear()
+        if self.rollback:
+            self._keep_snapshot()
+        self.finite = True
+        self.resumed_copy = bool(getattr(self.scene, "space", None) is not None)
+        return True
 
     def _keep_snapshot(self) -> None:
         self._good.append((self.scene.snapshot(), self.scene.time, self.scene.steps))
@@ -252,6 +335,10 @@ class SceneRunner:
         """The state went NaN/inf: go back to the oldest snapshot kept (or rebuild)."""
         scene = self.scene
         bad_t = scene.time
+        if self._recent:                       # what N replays: the last second before it
+            self.replay_from = self._recent[0]
+        self._recent.clear()
+        self.shiver_start = None
         snap, t, steps = self._good[0] if self._good else (None, 0.0, 0)
         scene.restore(snap)
         if snap is not None:
@@ -262,6 +349,8 @@ class SceneRunner:
         else:                         # the restored state is the one to come back to next time
             self._good.clear()
             self._keep_snapshot()
+            if self.timeline is not None:   # its snapshots after here: the blow-up, to replay
+                self.timeline.point_at(scene)
         return Rollback(bad_t, scene.time, advice(scene))
 
     # --- what the HUD and the summary read ---------------------------------------------------

@@ -388,6 +388,13 @@ class Scene:
         return (self.error_label or self.error_metric, self.error_metric,
                 self.metrics().get(self.error_metric))
 
+    no_energy_words = "it keeps no energy account"   # why, when a scene has no energy bars
+
+    def energies(self):
+        """The energy bars (app.energy.Energies: the parts, the start, the zero of each, where
+        energy goes), or None for a scene that keeps no energy account."""
+        return None
+
     def arrows(self) -> Arrows | None:
         """The bodies or particles that get velocity and force arrows (app/vectors.py), or None:
         the scene has none. Called only while the arrows overlay is on."""

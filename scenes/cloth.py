@@ -266,6 +266,23 @@ class ClothScene(Scene):
         return (ox - 0.3 * cw, oy - 0.1 * ch, 1.6 * cw, 1.35 * ch)
 
     # ----- reports ------------------------------------------------------------------------------
+    def energies(self):
+        """Energy bars: kinetic (mass 1 a particle, v = (x - x_prev)/h) and gravity's potential,
+        both 0 at rest in the start pose; rigid rods store none, and their projection, drag and
+        tearing take energy out."""
+        from app.energy import Energies
+        c = self.cloth
+        h = self.dt / self.p["substeps"]
+        free = c.w > 0
+        v = (c.x - c.x_prev) / h
+        kinetic = 0.5 * float(np.sum(free * (v[0] * v[0] + v[1] * v[1])))
+        gravity = (-c.gravity * float(np.sum(free * (c.x[1] - c.rest_x[1])))
+                   if "gravity" in self.on else 0.0)
+        return Energies((("kinetic", kinetic), ("gravity", gravity)), 0.0,
+                        zero="the start pose, at rest (every particle of mass 1)",
+                        losses="the rods' projection, drag, tearing; the mouse and the wind put "
+                               "energy in", unit="px^2/s^2")
+
     def metrics(self) -> dict[str, float]:
         c = self.cloth
         s = np.concatenate([st[f.alive > 0] for st, f in

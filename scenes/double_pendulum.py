@@ -297,6 +297,18 @@ class DoublePendulumScene(PymunkScene):
         return (self.body_state(), np.array(self.ode.state))
 
     # ----- reporting ------------------------------------------------------------------------
+    def energies(self):
+        """Energy bars: kinetic (with spin) and potential of the bobs, as `energy()`, against
+        the energy at release."""
+        from app.energy import Energies
+        g, l1, l2 = self.gravity(), self.p["length1"], self.p["length2"]
+        lowest = (PIVOT[1] + l1, PIVOT[1] + l1 + l2)
+        potential = sum(b.mass * g * (y0 - b.position.y) for b, y0 in zip(self.bobs, lowest))
+        return Energies((("kinetic", self.energy() - potential), ("gravity", potential)),
+                        self.track["energy0"], zero="both bobs hanging straight down, at rest",
+                        losses="pymunk's joints and step (the exact pendulum loses none); a drag "
+                               "with the mouse puts energy in", unit="kg px^2/s^2")
+
     def metrics(self) -> dict[str, float | None]:
         on = "reference" in self.on
         t = self.track

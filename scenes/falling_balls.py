@@ -84,6 +84,7 @@ class FallingBallsScene(PymunkScene):
     name = "falling_balls"
     arrow_name = "ball"
     title = "Falling balls (pymunk)"
+    no_energy_words = "balls appear and leave, so its energy has no start to hold to"
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + BALL_PARAMS
     effects = PYMUNK_EFFECTS + (

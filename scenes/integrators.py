@@ -95,6 +95,7 @@ class IntegratorsScene(Scene):
     __doc__ = __doc__
     name = "integrators"
     title = "Integrator lab: what accuracy costs"
+    no_energy_words = "its energy chart shows each integrator's |E/E0 - 1| instead"
     category = "Particle systems"
     metrics_box = False          # the scene draws its own table of the metrics
     params = (
@@ -269,6 +270,12 @@ class IntegratorsScene(Scene):
     def table_text(self) -> int:
         """The table's glyph height in the last frame drawn (px)."""
         return self.drawing.table_text
+
+    def formula_room(self) -> pygame.Rect | None:
+        """Where the F4 page puts the six updates: over the phase portrait, beside the table
+        (None before the first frame)."""
+        rects = getattr(getattr(self, "drawing", None), "rects", None)
+        return rects.phase if rects is not None else None
 
     def draw(self, surface: pygame.Surface, view: View) -> None:
         from app.draw.integrator_lab import LabDrawing

@@ -324,6 +324,18 @@ class NewtonsCradleScene(PymunkScene):
         return (self.body_state(),)      # positions, angles, velocities and spins, in one read
 
     # ----- reporting ------------------------------------------------------------------------
+    def energies(self):
+        """Energy bars: kinetic (with spin) and potential of the balls, as `energy()`, against
+        the energy at release."""
+        from app.energy import Energies
+        total = self.energy()
+        xy, _ = self.xv()
+        potential = MASS * self.gravity() * float((self.rest[:, 1] - xy[:, 1]).sum())
+        return Energies((("kinetic", total - potential), ("gravity", potential)),
+                        self.track["energy0"], zero="every ball hanging at rest",
+                        losses="impacts (elasticity below 1), damping; a drag with the mouse "
+                               "puts energy in", unit="kg px^2/s^2")
+
     def metrics(self) -> dict[str, float]:
         t = self.track
         k = t["lifted"]

@@ -178,9 +178,11 @@ class ParticleDanceScene(Scene):
         self.mouse_button = 0
         self._costs: dict[str, float] = {}
         self._cost_mark = (0, dict(self.dance.spent), 0.0)
+        self._energy0 = None            # the energy bars' start: taken when first shown
 
     def settings_changed(self, names: set[str]) -> None:
         d, p = self.dance, self.p
+        self._energy0 = None            # a new rule: a new potential, a new start
         d.pair_force.rule = self._rule()
         d.pair_force.method = p["neighbour_method"]
         d.drag.kd = p["drag_coef"]
@@ -221,6 +223,21 @@ class ParticleDanceScene(Scene):
                       sample_text(len(ids), ps.n, "particle"))
 
     # ----- reports ----------------------------------------------------------------------------
+    def energies(self):
+        """Energy bars: kinetic and the pair potentials (0 beyond the cut-off), against the total
+        when the bars were first shown since the dance was built or its settings changed (the
+        dance starts in motion; taking it at every build would cost a pair search the bars may
+        never need)."""
+        from app.energy import Energies
+        d = self.dance
+        kinetic, pairs = d.kinetic_energy(), d.potential_energy()
+        if self._energy0 is None:
+            self._energy0 = kinetic + pairs
+        return Energies((("kinetic", kinetic), ("pairs", pairs)), self._energy0,
+                        zero="at rest, no two particles within the cut-off (every mass 1)",
+                        losses="drag, symplectic Euler at the rule's kinks (it gains too); the "
+                               "mouse puts energy in", unit="px^2/s^2")
+
     def metrics(self) -> dict[str, float | str | None]:
         d = self.dance
         # before the first step no search has run: None; with interaction off, 0 tests is a count

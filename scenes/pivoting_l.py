@@ -88,6 +88,7 @@ class PivotingLScene(FallingBallsScene):
     arrow_name = "body"
     error_metric, error_label = "pin_error", "largest pin error"
     title = "Pivoting L: pin and slide joints (pymunk)"
+    no_energy_words = "balls appear, land and leave, so its energy has no start to hold to"
     category = "Rigid bodies (pymunk)"
     params = PYMUNK_PARAMS + (SPAWN_2,) \
         + tuple(p for p in BALL_PARAMS if p.name not in ("container", "spawn_rate")) \

@@ -22,6 +22,7 @@ HELP_SIZE = 28
 TITLE_SIZE = 44
 MENU_SIZE = 32
 BOX_COLOR = (8, 10, 14, 160)     # see-through enough to show the world behind the HUD
+FORMULA_BOX_COLOR = (8, 10, 14, 235)   # formulas: nearly opaque, nothing shows through them
 TEXT_COLOR = (235, 235, 235)
 DIM_COLOR = (170, 178, 190)
 WARN_COLOR = (255, 200, 90)
@@ -105,6 +106,8 @@ class Line:
     swatch: tuple[int, int, int] | None = None
     keys: tuple = ()      # a colour key packed into rows: (colour or None, text) items
     hint: str = ""
+    tex: str = ""         # a formula (mathtext "$...$"): drawn as a picture at the text's size
+    image: pygame.Surface | None = None   # the formula drawn (made by _box_lines)
 
 
 def _as_line(item) -> Line:
@@ -117,6 +120,8 @@ def _key_width(f: pygame.font.Font, key: tuple) -> int:
 
 
 def _line_width(f: pygame.font.Font, it: Line) -> int:
+    if it.image is not None:
+        return it.image.get_width()
     if it.keys:
         return sum(_key_width(f, k) for k in it.keys)
     hint = f.size("   " + it.hint)[0] if it.hint else 0
@@ -126,9 +131,18 @@ def _line_width(f: pygame.font.Font, it: Line) -> int:
 def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int) -> list[Line]:
     items = [_as_line(x) for x in lines]
     if max_width is None:
-        return items
+        return items if not any(it.tex and it.image is None for it in items) else \
+            _box_lines(items, f, 10 ** 6, pad)
     wrapped: list[Line] = []
     for item in items:
+        if item.tex:              # a formula: as wide as it is at this text size, or shrunk
+            from app.draw.formula import fitted
+            image = fitted(item.tex, max(6, f.get_height()), item.color, max_width - 2 * pad)
+            if image is not None:
+                wrapped.append(Line("", item.color, tex=item.tex, image=image))
+            else:                 # still being drawn (the window's worker): its TeX meanwhile
+                wrapped += _box_lines([Line(item.tex.strip("$"), DIM_COLOR)], f, max_width, pad)
+            continue
         if item.keys and max(_key_width(f, k) for k in item.keys) > max_width - 2 * pad:
             # a key wider than the box: one wrapped line per key instead
             items_ = [Line(text, item.color, swatch=color) for color, text in item.keys]
@@ -165,11 +179,17 @@ def box_size(lines: list, size: int = HUD_SIZE, pad: int = 8,
     if not items:
         return (0, 0)
     w = max(_line_width(f, it) for it in items)
-    return (w + 2 * pad, len(items) * f.get_linesize() + 2 * pad)
+    return (w + 2 * pad, sum(_line_height(f, it) for it in items) + 2 * pad)
+
+
+def _line_height(f: pygame.font.Font, it: Line) -> int:
+    """A text row's height, or a formula's with a little air below it."""
+    return f.get_linesize() if it.image is None else it.image.get_height() + f.get_linesize() // 4
 
 
 def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: int = HUD_SIZE,
-             pad: int = 8, max_width: int | None = None, from_bottom: bool = False) -> pygame.Rect:
+             pad: int = 8, max_width: int | None = None, from_bottom: bool = False,
+             color: tuple = BOX_COLOR) -> pygame.Rect:
     """Draw lines on a dark backing box whose top-left is `pos` (bottom-left if `from_bottom`);
     return the box's rectangle. Lines wider than `max_width` are wrapped."""
     f = font(size)
@@ -178,13 +198,17 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
         return pygame.Rect(pos, (0, 0))
     w, h = box_size(items, size, pad)
     box = pygame.Surface((w, h), pygame.SRCALPHA)
-    box.fill(BOX_COLOR)
+    box.fill(color)
     if from_bottom:
         pos = (pos[0], pos[1] - h)
     surface.blit(box, pos)
     y = pos[1] + pad
     for it in items:
         x = pos[0] + pad
+        if it.image is not None:
+            surface.blit(it.image, (x, y))
+            y += _line_height(f, it)
+            continue
         for color, text in it.keys:
             if color is not None:
                 side = f.get_height() * 3 // 4
@@ -262,6 +286,42 @@ def scene_lines(scene, status: list, notes: list = (), details: bool = False,
             lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
         lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR) for x in more]
     return lines
+
+
+def formula_lines(scene) -> list[Line]:
+    """The scene's governing formulas (app/equations.py), each a caption and its picture."""
+    from app.equations import equations_for
+    lines: list[Line] = []
+    for eq in equations_for(scene):
+        if eq.caption:
+            lines.append(Line(eq.caption, DIM_COLOR))
+        lines.append(Line("", TEXT_COLOR, tex=eq.tex))
+    return lines
+
+
+def formula_box(surface: pygame.Surface, area: pygame.Rect, avoid: pygame.Rect, bottom: int,
+                scene, size: int = HUD_SIZE) -> pygame.Rect:
+    """The second page's formulas (app/equations.py) in a box at the bottom right of `area`,
+    ending at `bottom`, beside the HUD box `avoid` where there is room for them (else across the
+    area's width, over the HUD's foot); nothing for a scene without formulas."""
+    lines = formula_lines(scene)
+    if not lines:
+        return pygame.Rect(area.right, bottom, 0, 0)
+    room = scene.formula_room() if hasattr(scene, "formula_room") else None
+    if room is not None and room.width > 80 and room.height > 40:   # the scene's own place
+        surface.fill(FORMULA_BOX_COLOR[:3], room)
+        clip = surface.get_clip()
+        surface.set_clip(room.clip(clip))       # one size (no size is tried and thrown away)
+        try:
+            return text_box(surface, lines, room.topleft, int(size * 0.8), max_width=room.width,
+                            color=FORMULA_BOX_COLOR).clip(room)
+        finally:
+            surface.set_clip(clip)
+    beside = area.right - max(avoid.right, area.left) - 24
+    width = beside if beside >= 0.45 * area.width else area.width - 16
+    w, h = box_size(lines, size, max_width=width)
+    return text_box(surface, lines, (area.right - 8 - w, bottom), size, max_width=width,
+                    from_bottom=True, color=FORMULA_BOX_COLOR)
 
 
 def ms_text(ms: float | None) -> str:

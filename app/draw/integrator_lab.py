@@ -149,7 +149,7 @@ class LabDrawing:
     # ----- the frame ----------------------------------------------------------------------------
     def draw(self, surface: pygame.Surface, rect: pygame.Rect, scene) -> None:
         self.labels = []
-        r = self.layout(rect, table_rows(scene))
+        r = self.rects = self.layout(rect, table_rows(scene))
         self.draw_systems(surface, r.systems, scene)
         self.draw_phase(surface, r.phase, scene)
         self.draw_energy(surface, r.energy, scene)

@@ -201,6 +201,8 @@ def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | Non
         surface.set_clip(old_clip)
     if lines is None:
         return
-    hud.text_box(surface, lines, layout.hud.topleft, layout.hud_text, max_width=layout.hud_width)
+    box = hud.text_box(surface, lines, layout.hud.topleft, layout.hud_text,
+                       max_width=layout.hud_width)
     if strip:
-        hud.draw_metrics(surface, area, scene, layout.hud_text)
+        top = hud.draw_metrics(surface, area, scene, layout.hud_text).top
+        hud.formula_box(surface, area, box, min(top, area.bottom) - 6, scene, layout.hud_text)

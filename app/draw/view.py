@@ -15,7 +15,10 @@ from __future__ import annotations
 
 import numpy as np
 
-SCREEN_LIMIT = 1e6     # px: screen coordinates are clamped to +-this (far off any screen)
+# px: screen coordinates are clamped to +-this (far off any screen). Not more: pygame's line
+# drawing takes time in proportion to a line's length (a line to 1e7 px takes ~50 ms, to 1e9 px
+# ~5 s), and a blow-up watched with B hands over cloths thousands of screens wide.
+SCREEN_LIMIT = 2e4
 
 
 def _safe(v: float) -> float:

@@ -31,13 +31,14 @@ import pymunk
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Param, ParamError, Try, common
-from app.scenefile.load import (WORLD, SceneFileError, _targets, field_key, load_spec, matches,
-                                slider_start)
+from app.draw.scenefile_draw import draw_joint
+from app.scenefile.checks import WORLD, _targets, matches, slider_start
+from app.scenefile.load import SceneFileError, load_spec
+from app.scenefile.parts import area_of, body_measure, joint_measure, make_shape, shape_area
+from app.scenefile.schema import field_key
 from app.scenefile.schema import METRIC_HELP
 
 KINEMATIC_COLOR = (200, 130, 255)
-SPRING_COLOR = (150, 210, 255)
-MOTOR_COLOR = (255, 160, 90)
 ENERGY_KINDS = ("kinetic_energy", "potential_energy", "energy", "energy_ratio", "energy_drift")
 SUMMED = ENERGY_KINDS + ("momentum_x", "momentum_y", "momentum", "count")
 
@@ -391,108 +392,6 @@ class FileScene(PymunkScene):
                 + (" or a particle of the cloth" if self.cloth is not None else "")]
 
 
-def joint_measure(kind: str, c: pymunk.Constraint) -> float:
-    if kind == "joint_impulse":
-        return float(c.impulse)
-    a, b = D.anchors(c) if hasattr(c, "anchor_a") else (c.a.position, c.b.position)
-    d = float((a - b).length)
-    if kind == "joint_distance":
-        return d
-    if isinstance(c, pymunk.PinJoint):
-        return abs(d - c.distance)
-    if isinstance(c, pymunk.PivotJoint):
-        return d
-    if isinstance(c, pymunk.SlideJoint):
-        return max(0.0, c.min - d, d - c.max)
-    if isinstance(c, pymunk.GrooveJoint):
-        ga, gb = c.a.local_to_world(c.groove_a), c.a.local_to_world(c.groove_b)
-        p = c.b.local_to_world(c.anchor_b)
-        u = gb - ga
-        t = min(1.0, max(0.0, (p - ga).dot(u) / u.dot(u)))
-        return float((p - (ga + u * t)).length)
-    return 0.0
-
-
-def body_measure(kind: str, b: pymunk.Body) -> float:
-    if kind == "x":
-        return float(b.local_to_world(b.center_of_gravity).x)
-    if kind == "y":
-        return float(b.local_to_world(b.center_of_gravity).y)
-    if kind == "angle":
-        return math.degrees(b.angle)
-    if kind == "speed":
-        return float(b.velocity.length)
-    return math.degrees(b.angular_velocity)
-
-
-def shape_area(s: dict) -> float:
-    if s["kind"] == "circle":
-        return math.pi * s["radius"] ** 2
-    if s["kind"] == "box":
-        return s["size"][0] * s["size"][1]
-    if s["kind"] == "polygon":
-        return pymunk.area_for_poly([tuple(p) for p in s["points"]], s["radius"])
-    return pymunk.area_for_segment(tuple(s["a"]), tuple(s["b"]), s["radius"])
-
-
-def area_of(shapes: list[dict]) -> float:
-    return sum(shape_area(s) for s in shapes)
-
-
-def make_shape(body: pymunk.Body, s: dict) -> pymunk.Shape:
-    kind = s["kind"]
-    if kind == "circle":
-        shape = pymunk.Circle(body, s["radius"], tuple(s["offset"]))
-    elif kind == "box":
-        w, h = s["size"]
-        ox, oy = s["offset"]
-        pts = [(ox - w / 2, oy - h / 2), (ox + w / 2, oy - h / 2), (ox + w / 2, oy + h / 2),
-               (ox - w / 2, oy + h / 2)]
-        shape = pymunk.Poly(body, pts, radius=s["radius"])
-    elif kind == "polygon":
-        shape = pymunk.Poly(body, [tuple(p) for p in s["points"]], radius=s["radius"])
-    else:
-        shape = pymunk.Segment(body, tuple(s["a"]), tuple(s["b"]), s["radius"])
-    shape.friction = s["friction"]
-    shape.elasticity = s["elasticity"]
-    if s["group"]:
-        shape.filter = pymunk.ShapeFilter(group=s["group"])
-    return shape
-
-
-def draw_joint(surface: pygame.Surface, view, kind: str, c: pymunk.Constraint) -> None:
-    if kind == "pin":
-        D.draw_pin_joint(surface, view, c, dot=3)
-    elif kind == "slide":
-        D.draw_slide_joint(surface, view, c)
-    elif kind == "pivot":
-        D.draw_pivot_joint(surface, view, c, D.PIN)
-    elif kind == "damped_spring":
-        draw_spring(surface, view, *D.anchors(c))
-    elif kind == "groove":
-        ga, gb = c.a.local_to_world(c.groove_a), c.a.local_to_world(c.groove_b)
-        pygame.draw.line(surface, D.SLIDE, view.pt(ga), view.pt(gb), 3)
-    elif kind in ("motor", "damped_rotary_spring", "rotary_limit"):
-        color = MOTOR_COLOR if kind == "motor" else SPRING_COLOR
-        centre = view.pt(c.b.local_to_world(c.b.center_of_gravity))
-        pygame.draw.circle(surface, color, centre, max(3.0, view.len(6)), 2)
-
-
-def draw_spring(surface: pygame.Surface, view, a, b, coils: int = 8) -> None:
-    """A zigzag from a to b (its width does not change with the length)."""
-    pa, pb = np.array(view.pt(a), float), np.array(view.pt(b), float)
-    d = pb - pa
-    n = float(np.hypot(*d))
-    if n < 1e-6:
-        return
-    normal = np.array([-d[1], d[0]]) / n * max(4.0, view.len(6))
-    t = np.linspace(0, 1, 2 * coils + 1)
-    side = np.zeros(len(t))
-    side[1:-1:2], side[2:-1:2] = 1, -1
-    pts = pa + t[:, None] * d + side[:, None] * normal
-    pygame.draw.lines(surface, SPRING_COLOR, False, pts.tolist(), 2)
-
-
 # ----- the class ------------------------------------------------------------------------------
 def scene_class(path: str, name: str | None = None) -> type[FileScene]:
     """The Scene subclass that runs the file at `path` (its CLI name: `name`, default the path
@@ -534,6 +433,20 @@ def scene_class(path: str, name: str | None = None) -> type[FileScene]:
     cls = type(f"FileScene[{Path(path).stem}]", (FileScene,), attrs)
     _check_cards(cls, spec, path)
     return cls
+
+
+def checked_line(path: str, cls: type[FileScene] | None) -> str:
+    """What `scene check` prints for a file that is accepted: its title, what it holds and its
+    metrics (the world is built once, not stepped). SceneFileError for a name that is no file."""
+    if cls is None or not path.endswith(".toml"):
+        raise SceneFileError(path, None, "a scene file's name ends in .toml")
+    scene, spec = cls(), cls.spec
+    words = {"body": "bodies", "joint": "joints", "spawner": "spawners", "slider": "sliders",
+             "metric": "metrics", "try": "cards"}
+    counts = ", ".join(f"{len(spec[k])} {words[k]}" for k in words if spec[k])
+    cloth = ", a cloth" if spec["cloth"] is not None else ""
+    return (f"{path}: ok: '{cls.title}': {counts}{cloth}; metrics "
+            f"{', '.join(scene.metrics()) or 'none'}")
 
 
 def _check_cards(cls: type[FileScene], spec: dict, path: str) -> None:

@@ -23,6 +23,7 @@ import pygame
 
 from app.compare import CompareRunner, Variant, as_variant, differing, labels, shared_and_own
 from app.draw import hud
+from app.draw.energy_bars import draw_energy
 from app.draw.panes import PaneGrid
 from app.frames import compare_header, compare_pane_lines
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
@@ -105,12 +106,18 @@ class CompareView(SceneView):
             self._fail_all(e)
             header, lines = None, [None] * len(self.scenes)
         self.fit(lines if self.overlays else None)
+        self.sync_watch()                      # B: a pane's blow-up goes on for a second too
         screen.fill(PANEL_BACKGROUND)
         self.inst.update_scale()
         try:
-            self.grid.draw(screen, self.scene_area(), header, lines, self.window.hud_details,
-                           self.inst.overlay if self.inst.arrows else None,
-                           self.pane_lines(brief=True) if self.overlays else None, self.target)
+            layouts = self.grid.draw(screen, self.scene_area(), header, lines,
+                                     self.window.hud_details,
+                                     self.inst.overlay if self.inst.arrows else None,
+                                     self.pane_lines(brief=True) if self.overlays else None,
+                                     self.target)
+            if self.window.energy_bars:
+                for scene, layout in zip(self.scenes, layouts):
+                    draw_energy(screen, scene, layout, 20)
         except SceneError as e:
             self._fail_all(e)
         self.draw_chrome(screen)
@@ -156,6 +163,17 @@ class CompareView(SceneView):
                          self.clock.dropped_steps > dropped_before, capped, self.clock, self.scene,
                          scene_speaks=False)
         return ran
+
+    def replay_blowup(self) -> None:
+        """N: a pane's blow-up is held in its pane; the replay is one scene's (say so)."""
+        self.window.flash("N (a blow-up's last second again) is for one scene at a time",
+                          topic="timeline")
+
+    def _scrub(self, key: str, times: int = 1) -> None:
+        """[ and ]: the timeline keeps one scene's run, not a comparison's (it would cost every
+        pane its snapshots): say so."""
+        self.window.flash("the timeline ([ ]) is for one scene at a time; compare mode keeps "
+                          "none", topic="timeline")
 
     def toggle_pause(self) -> None:
         self.clock.toggle_pause()

@@ -26,6 +26,7 @@ from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
 from app.window.instrument_host import InstrumentHost
 from app.window.recorder import changed_settings
+from app.window.timeline_host import TimelineHost
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
 from app.window.views import HelpView, ShellView, WindowLike
 
@@ -41,7 +42,7 @@ ERROR_LINES = 12            # the HUD shows at most this many lines of an error 
                             # the whole traceback)
 
 
-class SceneView(InstrumentHost, ShellView):
+class SceneView(InstrumentHost, TimelineHost, ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
@@ -320,6 +321,10 @@ class SceneView(InstrumentHost, ShellView):
             self._mouse_event(ev, consumed)
 
     def _mouse_event(self, ev: pygame.event.Event, consumed: bool) -> None:
+        if consumed or not self.timeline_mouse(ev):      # a click on the scrub bar is its own
+            self._world_mouse(ev, consumed)
+
+    def _world_mouse(self, ev: pygame.event.Event, consumed: bool) -> None:
         in_world = self.scene_area().collidepoint(ev.pos) and not consumed
         x, y = self.view.to_world(ev.pos)
         world = (round(x, 2), round(y, 2))     # as recorded, so a replay sees the same numbers
@@ -405,7 +410,8 @@ class SceneView(InstrumentHost, ShellView):
         if clock.paused:
             state.append("PAUSED (Space resumes, . steps)")
         if clock.slow_motion != 1.0:
-            state.append(f"speed x{_slow_text(clock.slow_motion)} (- slower, = faster)")
+            slow = "1" if clock.slow_motion == 1.0 else f"1/{int(round(1 / clock.slow_motion))}"
+            state.append(f"speed x{slow} (- slower, = faster)")
         if state:
             lines.append(L("  |  ".join(state), hud.WARN_COLOR))
         if self.window.recorder.active:
@@ -418,11 +424,11 @@ class SceneView(InstrumentHost, ShellView):
 
     def detail_lines(self) -> list:
         """The shell's lines on the HUD's second page: the physics cost by effect, the frame
-        rate."""
-        costs = getattr(self, "_costs", {})
+        rate, the timeline's span and cost."""
+        costs, tl = getattr(self, "_costs", {}), self.runner.timeline
         return ([hud.physics_line(self._shown_ms, costs)] if costs else []) + [
             f"{self.fps:.0f} frames per second (drawing {1000 * self.window.last_draw_seconds:.1f}"
-            " ms a frame)"]
+            " ms a frame)"] + ([tl.text()] if tl is not None else [])
 
     def notes(self) -> list:
         """The messages, as HUD lines: the scene's error, the rollback's advice, then the
@@ -437,6 +443,7 @@ class SceneView(InstrumentHost, ShellView):
             lines.append(hud.Line("\n".join(text), hud.ERROR_COLOR))
         if self.banner:
             lines.append(hud.Line(self.banner, hud.WARN_COLOR))
+        lines += self.timeline_notes()
         # a card's promise is in the panel's box under the cards while the panel is shown
         shown_there = self.panel is not None and self.panel.watch_box is not None
         return lines + [hud.Line(m.text, m.color) for m in self.window.messages
@@ -470,6 +477,7 @@ class SceneView(InstrumentHost, ShellView):
             self.runner.fail(e)
             self.clock.paused = True
             screen.fill(scene.background, layout.area)
+        self.draw_over(screen, layout)
         self.draw_chrome(screen)
 
     def draw_chrome(self, screen: pygame.Surface) -> None:
@@ -490,7 +498,3 @@ def safe(fn, default):
         return fn()
     except SceneError:
         return default
-
-
-def _slow_text(factor: float) -> str:
-    return "1" if factor == 1.0 else f"1/{int(round(1 / factor))}"

@@ -93,6 +93,8 @@ class Window:
         self._replay_scene: type[Scene] | None = None
         self._pending_shot: Path | None = None
         self.arrows = False                   # V: the arrows overlay, for every scene
+        self.energy_bars = False              # E: the energy bars, for every scene
+        self.watch_blowups = False            # B: a blow-up goes on for a second before rollback
         self.csv_path: str | None = None      # --csv FILE: the open scene's metrics go there
         self.plot_start: list[str] = []       # --plot: what the first scene opens plotted
         self._csv_owner = None                # the view whose metrics the file holds
@@ -245,6 +247,23 @@ class Window:
         its first (what a class reads every frame); it stays so for the next scene."""
         self.hud_details = not self.hud_details
         self.relayout()
+
+    def toggle_energy(self) -> None:
+        """E: the energy bars on or off (every scene that has an energy; it stays so for the
+        next scene). A scene without one says why."""
+        self.energy_bars = not self.energy_bars
+        scene = getattr(self.current_view, "scene", None)
+        if self.energy_bars and scene is not None and scene.energies() is None:
+            self.flash(f"{scene.title or scene.name} has no energy bars: "
+                       f"{scene.no_energy_words}", topic="energy")
+
+    def toggle_watch(self) -> None:
+        """B: watch blow-ups (a diverging run goes on, drawn clipped to the window, for up to a
+        second before the rollback; N then replays its last second) or roll back at once."""
+        self.watch_blowups = not self.watch_blowups
+        self.flash("B: blow-ups are " + ("watched for up to a second, then rolled back; N "
+                                         "replays the last second" if self.watch_blowups
+                                         else "rolled back at once"), topic="watch")
 
     def resize(self, surface: pygame.Surface | None = None) -> None:
         self.screen = surface or pygame.display.get_surface() or self.screen
@@ -402,6 +421,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.font.init()
     pygame.display.set_caption("Physics lab")
     pygame.key.set_repeat()
+    from app.draw import formula
+    formula.BACKGROUND = screenshot is None      # F4's formulas drawn by a worker: no frame waits
     from scenes import get_scene, menu_scenes
     window = Window(screen, menu_scenes(), large_text=large_text, events=events, record=record)
     window.clips = ClipRecorder(**(clips or {}))
