@@ -427,3 +427,28 @@ def test_the_refusal_shown_in_experiments_md_is_the_one_the_lab_prints(tmp_path)
     with pytest.raises(SceneFileError) as e:
         load_spec(str(path))
     assert str(e.value) == str(path.parent / shown)
+
+
+def test_a_drawing_replayed_headless_saves_the_same_file(tmp_path, monkeypatch, capsys):
+    """The sandbox's actions are --input events: replayed headless they draw the same bodies
+    and Ctrl+S writes the same file as the same events handed to the scene directly."""
+    from scenes.sandbox import SandboxScene
+    events = [("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (425, 200)),
+              ("key_down", "l"), ("mouse_down", (300, 500)), ("mouse_up", (700, 600)),
+              ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl")]
+    rows = []
+    for k, (kind, what) in enumerate(events):
+        row = {"t": round(0.05 * k, 2), "type": kind}
+        row.update({"key": what} if kind.startswith("key") else {"pos": list(what), "button": 1})
+        rows.append(row)
+    (tmp_path / "draw.json").write_text(json.dumps(rows))
+    (tmp_path / "a").mkdir()
+    (tmp_path / "b").mkdir()
+    monkeypatch.chdir(tmp_path / "a")
+    assert main(["--headless", "--scene", "sandbox", "--input", "../draw.json", "--steps",
+                 "40", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["metrics"]["bodies"] == 3
+    monkeypatch.chdir(tmp_path / "b")
+    draw(SandboxScene(), *events)
+    saved = [(tmp_path / d / "sandbox-1.toml").read_text() for d in ("a", "b")]
+    assert saved[0] == saved[1]
