@@ -259,12 +259,14 @@ class Bounce(Problem):
     in and come back out in t2 = 2 V / (push/m - g) (38 ms at the defaults, 4.9 px deep), rise
     for t1. Energy is conserved, so E/E0 keeps its meaning.
 
-    Why a jump and not a Hooke penalty spring k d: a spring's force starts from zero at the
-    surface (only its slope jumps), the error of the step that straddles the touch-down is then
-    O(h^3) and the global order falls only to 2. With a jump in the force itself, the step that
-    straddles it evaluates the wrong force for a fraction of h: an O(h) error per contact,
-    whatever the method's order, so every integrator's global order falls to about 1 (the lab
-    measures it: `bounce_orders` and `python -m app bench integrators`).
+    Why a jump and not a Hooke penalty spring k d: a step is a quadrature of the force over h,
+    and a quadrature rule misses a kink or a jump inside its interval by a fixed fraction of it.
+    A spring's force starts from zero at the surface (only its slope jumps): the step that
+    straddles the touch-down errs by O(h^2), and since that happens once per contact, not every
+    step, the global order falls only to 2. With a jump in the force itself, that step evaluates
+    the wrong force for a fraction of h: an O(h) error per contact, whatever the method's order,
+    so every integrator's global order falls to about 1 (measured: measured_orders and
+    `python -m app bench integrators`).
     """
 
     name = "bounce"
