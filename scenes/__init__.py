@@ -17,10 +17,12 @@ from scenes.mass_spring_cloth import MassSpringClothScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.particle_dance import ParticleDanceScene
 from scenes.pivoting_l import PivotingLScene
+from scenes.trampoline import TrampolineScene
 
 SCENES: list[type[Scene]] = [
     ClothScene,
     MassSpringClothScene,
+    TrampolineScene,
     FallingBallsScene,
     PivotingLScene,
     NewtonsCradleScene,

@@ -42,6 +42,20 @@ METRICS: dict[str, dict[str, Entry]] = {
         "torn": ("count", "rods torn so far (the `tearing` effect)"),
         "locked": ("count", "particles locked now: the pins and those dropped with the mouse"),
     },
+    "trampoline": {
+        "coupling_impulse": ("kg px/s", "|J|, the momentum the cloth gave the body in the last "
+                                        "step (summed over its substeps); the cloth got -J. A "
+                                        "body resting on the cloth: its weight times dt"),
+        "contacts": ("count", "cloth particles found inside the body at the last substep"),
+        "penetration_max": ("px", "deepest movable particle inside the body after the step; 0 "
+                                  "with `collisions` off"),
+        "momentum_x": ("kg px/s", "total momentum, cloth + body, x (changes only by gravity, "
+                                  "pins and the floor)"),
+        "momentum_y": ("kg px/s", "total momentum, cloth + body, y (down)"),
+        "body_vy": ("px/s", "the body's vertical velocity (y down: negative is up)"),
+        "body_y": ("px", "the body's centre, y (down); the pins are at 440"),
+        "max_stretch": _CLOTH_COMMON["max_stretch"],
+    },
     "mass_spring_cloth": {
         "particles": _CLOTH_COMMON["particles"],
         "springs": ("count", "springs in the active sets (structural, shear, bending)"),
