@@ -24,6 +24,9 @@ no pins it stays constant through every bounce (a test checks it to 1e-4 of the 
 `coupling` = one-way shows the other half: the cloth is pushed out of the body but the body feels
 nothing, so nothing stops it.
 
+Only particles collide, never the rods between them: a heavy body on a stiff band pushes the
+particles aside and slips between them (card "Stiff band: ball slips through").
+
 The trampoline's spring is the cloth's stretch: Jakobsen's rods are rigid only after enough
 sweeps, and at a few iterations per substep the band stretches under the ball and snaps back.
 More iterations, a stiffer band, a harder bounce (and more ms a step).
@@ -111,7 +114,12 @@ class TrampolineScene(PymunkScene):
         Try("Stiff band: 40 iterations", {"iterations": 40},
             "the rods barely stretch: a hard, short bounce, and more ms a step"),
         Try("Heavy ball, light cloth", {"body_mass": 20.0, "cloth_mass": 0.5},
-            "the ball ploughs deep into the band before it stops"),
+            "the soft band stretches to twice its length and cannot stop the ball: the floor "
+            "does"),
+        Try("Stiff band: ball slips through", {"body_mass": 5.0, "cloth_mass": 0.5,
+                                               "iterations": 20},
+            "the rods cannot stretch, so the particles are pushed aside and the ball slips "
+            "between them: only particles collide, never the rods between them"),
         Try("One-way: the cloth cannot push", {"coupling": "one-way"},
             "the cloth is shoved aside but the ball feels nothing: it falls through to the floor"),
         Try("Zero g: momentum kept", {"gravity": False, "pins": "none", "drag": False,

@@ -138,3 +138,17 @@ def test_snapshot_and_restore_give_the_same_run():
         scene.advance()
     assert scene.state_hash() == first
     assert math.isfinite(scene.metrics()["coupling_impulse"])
+
+
+def test_heavy_ball_cards_say_what_happens():
+    """'Heavy ball, light cloth': the band stretches past 50% and the ball ends on the floor,
+    above the cloth; 'Stiff band: ball slips through': it ends below the whole band."""
+    cards = {t.label: t for t in TrampolineScene.tries}
+    soft = TrampolineScene(dict(cards["Heavy ball, light cloth"].settings))
+    stiff = TrampolineScene(dict(cards["Stiff band: ball slips through"].settings))
+    for _ in range(150):
+        soft.advance()
+        stiff.advance()
+    assert soft.metrics()["max_stretch"] > 0.5
+    assert soft.body.position.y < soft.cloth.x[1].max()       # the cloth is under it
+    assert stiff.body.position.y > stiff.cloth.x[1].max() + 30    # through the band
