@@ -128,7 +128,7 @@ class IntegratorsScene(Scene):
             "omega*h = 3: RK4 blows up as well; only implicit Euler stays bounded (it spirals in)"),
         Try("Orbit at hertz 60", {"problem": "orbit", "hertz": 60},
             "implicit Euler's damping makes the bodies spiral in: stable is not accurate"),
-        Try("Bounce: contact costs order", {"problem": "bounce", "hertz": 240},
+        Try("Bounce on a floor", {"problem": "bounce", "hertz": 240},
             "the floor's force jumps at touch-down: RK4's error is as large as Verlet's and "
             "falls only like h (measured order 0.87, 4 on the spring)"),
     )

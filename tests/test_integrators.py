@@ -331,7 +331,7 @@ def test_bounce_scene_says_the_orders():
 
 
 def test_bounce_card_rk4_is_no_better_than_verlet_where_on_the_spring_it_is_far_better():
-    """The card 'Bounce: contact costs order' and the lesson plan: at hertz 240 after 2 s,
+    """The card 'Bounce on a floor' and the lesson plan: at hertz 240 after 2 s,
     RK4's error on bounce is about Verlet's (0.10 and 0.08), on the spring ~2800x smaller."""
     errors = {}
     for problem in ("bounce", "spring"):

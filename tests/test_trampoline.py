@@ -142,10 +142,10 @@ def test_snapshot_and_restore_give_the_same_run():
 
 def test_heavy_ball_cards_say_what_happens():
     """'Heavy ball, light cloth': the band stretches past 50% and the ball ends on the floor,
-    above the cloth; 'Stiff band: ball slips through': it ends below the whole band."""
+    above the cloth; 'Stiff band lets it through': it ends below the whole band."""
     cards = {t.label: t for t in TrampolineScene.tries}
     soft = TrampolineScene(dict(cards["Heavy ball, light cloth"].settings))
-    stiff = TrampolineScene(dict(cards["Stiff band: ball slips through"].settings))
+    stiff = TrampolineScene(dict(cards["Stiff band lets it through"].settings))
     for _ in range(150):
         soft.advance()
         stiff.advance()

@@ -59,7 +59,7 @@ def sweep(problem, name: str, quick: bool) -> list[dict[str, float]]:
     T = problem.horizon
     top, halvings = (QUICK_SWEEP if quick else SWEEP)[INTEGRATORS[name].order]
     if problem.sweep is not None:                 # bounce: one sweep for every integrator
-        top, halvings = problem.sweep[0], problem.sweep[1] - (2 if quick else 0)
+        top, halvings = problem.sweep[0], problem.sweep[1] - (3 if quick else 0)
     points = []
     for steps in sweep_steps(problem, top, halvings):
         h = T / steps
