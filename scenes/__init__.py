@@ -10,6 +10,7 @@ from typing import Callable
 
 from app.scene import Scene
 from scenes.cloth import ClothScene
+from scenes.cloth_collisions import ClothCollisionsScene
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
 from scenes.integrators import IntegratorsScene
@@ -21,6 +22,7 @@ from scenes.trampoline import TrampolineScene
 
 SCENES: list[type[Scene]] = [
     ClothScene,
+    ClothCollisionsScene,
     MassSpringClothScene,
     TrampolineScene,
     FallingBallsScene,

@@ -185,3 +185,20 @@ def test_an_obstacle_moves_and_reports_its_centre():
         assert ob.center == pytest.approx((cx + 10.0, cy - 5.0))
     with pytest.raises(ValueError):
         HalfPlane(0.0, 0.0, 0.0, 0.0)
+
+
+@pytest.mark.parametrize("k", [0, 1, 2, 5])
+def test_the_exact_path_tests_agree_with_the_golden_section_search(k):
+    from app.physics.tunnelling import dips_below
+    ob = shapes()[k]
+    rng = np.random.default_rng(k)
+    cx, cy = ob.center
+    p0 = rng.uniform([cx - 150, cy - 150], [cx + 150, cy + 150], (3000, 2))
+    p1 = p0 + rng.normal(0, 80, (3000, 2))
+    dmin, _ = path_min_distance(ob, p0, p1)
+    for depth in (0.5, 3.0):
+        mask, t = dips_below(ob, p0, p1, depth)
+        clear = np.abs(dmin + depth) > 1e-6
+        assert np.array_equal(mask[clear], (dmin < -depth)[clear])
+        q = p0[mask] + t[mask, None] * (p1 - p0)[mask]
+        assert np.all(ob.signed_distance(q)[0] < -depth + 1e-9)      # t is a place that deep

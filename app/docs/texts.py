@@ -41,6 +41,14 @@ METRICS: dict[str, dict[str, Entry]] = {
         "pinned_drift": _CLOTH_COMMON["pinned_drift"],
         "torn": ("count", "rods torn so far (the `tearing` effect)"),
         "locked": ("count", "particles locked now: the pins and those dropped with the mouse"),
+        "contacts": ("count", "particles that touched an obstacle in the last substep (pushed "
+                              "out by the projection; 0 with `collisions` off)"),
+        "penetration_max": ("px", "how deep the deepest free particle lies inside an obstacle "
+                                  "after the step (0 when the projection left none inside)"),
+        "tunneled": ("count", "particle paths that passed through an obstacle within a substep, "
+                              "since the start: each was caught and put back where it entered"),
+        "self_overlaps": ("count", "pairs of particles closer than 95% of self_distance after "
+                                   "the step (neighbours of one grid cell and rod ends left out)"),
     },
     "trampoline": {
         "coupling_impulse": ("kg px/s", "|J|, the momentum the cloth gave the body in the last "
@@ -144,6 +152,7 @@ METRICS: dict[str, dict[str, Entry]] = {
                                        "for both methods); null before the first step"),
     },
 }
+METRICS["cloth_collisions"] = METRICS["cloth"]      # the same cloth, with its contact cards
 
 # the --json summary of one run (and what --compare and --video add)
 SUMMARY_FIELDS: dict[str, str] = {

@@ -44,15 +44,19 @@ What a step does with them (the Verlet cloth; the mass-spring cloth uses the sam
    the second (and may end inside the first: where two obstacles crush the cloth between them
    there is no place outside both, and `penetration_max` says how deep the trapped ones are).
 2. `verlet_friction(x, x_prev, contacts, mu)`: Coulomb friction on the Verlet cloth. For a
-   particle in contact, the distance travelled in the last step is v = x - x_prev. Its part along
+   particle in contact, the distance travelled in this step is v = x - x_prev (x: projected, x_prev:
+   where it started). Its part along
    the surface, v_t = v - (v . n) n, is reduced by at most mu times the normal correction that
    the projection made (the "normal force" of a position-based step is its normal correction):
 
        |v_t| <= mu * depth:   v_t = 0                  (static friction: it sticks)
        otherwise:             v_t shrinks by mu * depth (kinetic friction: it slides, slower)
 
-   It does so by moving x_prev, so the next Verlet step carries the slower velocity. Friction
-   only ever slows the sliding: it never reverses it (a test checks). A moving obstacle (its
+   It does so by moving x back along the surface (friction on positions, as Macklin et al.'s
+   position-based friction does): the particle travels less in this step, and since the next
+   Verlet step reads its velocity from x - x_prev, it carries the slower velocity on. (Moving
+   x_prev instead would slow the velocity but keep this step's travel: a cloth on a slope that
+   should stick creeps down by g h^2 sin(slope) every step.) Friction only ever slows the sliding: it never reverses it (a test checks). A moving obstacle (its
    `velocity`, px/s) drags what touches it: the sliding is measured relative to the surface.
    `coulomb_friction` is the same rule for any motion array, e.g. velocities (mass-spring cloth:
    reduce the tangential velocity by mu times the normal velocity the contact removed).
@@ -85,9 +89,11 @@ def _xy(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _unit_or(nx: np.ndarray, ny: np.ndarray, length: np.ndarray, fallback: tuple[float, float]
              ) -> tuple[np.ndarray, np.ndarray]:
     """(nx, ny) / length, or `fallback` where the length is 0 (a point at a circle's centre)."""
-    ok = length > TINY
-    safe = np.where(ok, length, 1.0)
-    return np.where(ok, nx / safe, fallback[0]), np.where(ok, ny / safe, fallback[1])
+    ux, uy = nx / np.maximum(length, TINY), ny / np.maximum(length, TINY)
+    zero = length <= TINY
+    if zero.any():                      # rare: fix those few, not every element
+        ux[zero], uy[zero] = fallback
+    return ux, uy
 
 
 # ----- the shapes ---------------------------------------------------------------------------------
@@ -106,6 +112,11 @@ class Obstacle:
 
     def move_by(self, dx: float, dy: float) -> None:
         raise NotImplementedError
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(x_min, y_min, x_max, y_max) of the obstacle (infinite for a half-plane): points
+        outside it, grown by a margin, need no distance (project() skips them)."""
+        return (-math.inf, -math.inf, math.inf, math.inf)
 
     @property
     def center(self) -> tuple[float, float]:
@@ -144,6 +155,10 @@ class Circle(Obstacle):
     @property
     def center(self):
         return (self.cx, self.cy)
+
+    def bounds(self):
+        r = self.radius
+        return (self.cx - r, self.cy - r, self.cx + r, self.cy + r)
 
 
 @dataclass
@@ -197,6 +212,10 @@ class Box(Obstacle):
     @property
     def center(self):
         return (self.cx, self.cy)
+
+    def bounds(self):
+        c = self.corners()
+        return (c[:, 0].min(), c[:, 1].min(), c[:, 0].max(), c[:, 1].max())
 
 
 @dataclass
@@ -277,6 +296,11 @@ class Segment(Obstacle):
     def center(self):
         return ((self.ax + self.bx) / 2, (self.ay + self.by) / 2)
 
+    def bounds(self):
+        t = self.thickness
+        return (min(self.ax, self.bx) - t, min(self.ay, self.by) - t,
+                max(self.ax, self.bx) + t, max(self.ay, self.by) + t)
+
 
 # ----- distances to several obstacles -------------------------------------------------------------
 def nearest(obstacles, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -337,21 +361,36 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
     normal = np.zeros((n, 2))
     index = np.full(n, -1)
     hit = np.zeros(n, bool)
+    px, py = points[:, 0], points[:, 1]
     for k, ob in enumerate(obstacles):
-        d, nrm = ob.signed_distance(points)
-        inside = d < margin
-        if movable is not None:
-            inside &= movable
-        ids = np.flatnonzero(inside)           # usually few: correct only those
+        ids = near_bounds(ob, px, py, margin, movable)     # the cheap test first
         if ids.size == 0:
             continue
-        push = margin - d[ids]
-        points[ids] += (push[:, None] * nrm[ids]).astype(points.dtype, copy=False)
+        d, nrm = ob.signed_distance(points[ids])
+        inside = d < margin
+        ids, d, nrm = ids[inside], d[inside], nrm[inside]    # usually few: correct only those
+        if ids.size == 0:
+            continue
+        push = margin - d
+        points[ids] += (push[:, None] * nrm).astype(points.dtype, copy=False)
         depth[ids] += push
-        normal[ids] = nrm[ids]
+        normal[ids] = nrm
         index[ids] = k
         hit[ids] = True
     return Contacts(hit, depth, normal, index)
+
+
+def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.0,
+                movable: np.ndarray | None = None) -> np.ndarray:
+    """Indices of the points (x and y columns) within `margin` of the obstacle's bounds (and
+    `movable`, if given): the only ones that can be inside or within the margin."""
+    x0, y0, x1, y1 = ob.bounds()
+    if math.isinf(x0) and movable is None:
+        return np.arange(len(px))
+    near = (px > x0 - margin) & (px < x1 + margin) & (py > y0 - margin) & (py < y1 + margin)
+    if movable is not None:
+        near &= movable
+    return np.flatnonzero(near)
 
 
 # ----- friction -----------------------------------------------------------------------------------
@@ -381,8 +420,8 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
                     obstacles=(), h: float = 0.0) -> None:
     """Coulomb friction for the Verlet cloth (see the module docstring, step 2): for each
     particle in contact, the sliding x - x_prev (minus the surface's own motion, velocity * h,
-    of the obstacle it touches) loses at most mu * depth along the surface. Writes into x_prev
-    ((n, 2) arrays, views welcome)."""
+    of the obstacle it touches) loses at most mu * depth along the surface, by moving x back
+    along it. Writes into x ((n, 2) arrays, views welcome)."""
     ids = np.flatnonzero(contacts.mask)
     if ids.size == 0 or mu <= 0:
         return
@@ -392,9 +431,9 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
         motion -= carry[contacts.index[ids]]
     sub = np.ones(len(ids), bool)
     change = coulomb_friction(motion, contacts.normal[ids], contacts.depth[ids], sub, mu)
-    x_prev[ids] -= change.astype(x_prev.dtype, copy=False)   # less motion: x_prev moves towards x
+    x[ids] += change.astype(x.dtype, copy=False)      # less travel: x moves back along the surface
 
 
 __all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
-           "nearest", "penetration_max", "Contacts", "project", "coulomb_friction",
+           "nearest", "penetration_max", "Contacts", "project", "near_bounds", "coulomb_friction",
            "verlet_friction"]

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.physics.obstacles import Obstacle
+from app.physics.obstacles import Box, Circle, HalfPlane, Obstacle, Segment
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0       # 0.618...: golden-section search's shrink factor
 
@@ -78,47 +78,118 @@ class Sweep:
         return int(np.count_nonzero(self.mask))
 
 
+def _cross(ax, ay, bx, by):
+    return ax * by - ay * bx
+
+
+def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
+               ) -> tuple[np.ndarray, np.ndarray]:
+    """(mask, t): whether each path p0 -> p1 reaches more than `depth` px inside the obstacle,
+    and a place t (0..1) on it where it does. The points deeper than `depth` in a circle, box or
+    capsule form the same shape shrunk by `depth`, so this is one exact intersection test per
+    shape (closest point of the path to the centre; slab clipping; segment against segment);
+    other shapes fall back on path_min_distance."""
+    e = p1 - p0
+    e2 = np.maximum((e * e).sum(1), 1e-300)
+    if isinstance(ob, Circle):
+        t = np.clip(((ob.cx - p0[:, 0]) * e[:, 0] + (ob.cy - p0[:, 1]) * e[:, 1]) / e2, 0, 1)
+        q = p0 + t[:, None] * e
+        return np.hypot(q[:, 0] - ob.cx, q[:, 1] - ob.cy) < ob.radius - depth, t
+    if isinstance(ob, HalfPlane):
+        d0, d1 = ob.signed_distance(p0)[0], ob.signed_distance(p1)[0]
+        return np.minimum(d0, d1) < -depth, np.where(d0 < d1, 0.0, 1.0)
+    if isinstance(ob, Box):
+        (ux, uy), (vx, vy) = ob.axes()
+        lo, hi = np.zeros(len(p0)), np.ones(len(p0))
+        ok = np.ones(len(p0), bool)
+        for (ax, ay), half in (((ux, uy), ob.half_w - depth), ((vx, vy), ob.half_h - depth)):
+            if half <= 0:
+                return np.zeros(len(p0), bool), lo
+            s0 = (p0[:, 0] - ob.cx) * ax + (p0[:, 1] - ob.cy) * ay    # along this axis
+            ds = e[:, 0] * ax + e[:, 1] * ay
+            flat = np.abs(ds) < 1e-12
+            ok &= ~flat | (np.abs(s0) < half)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t1, t2 = (-half - s0) / ds, (half - s0) / ds
+            lo = np.where(flat, lo, np.maximum(lo, np.minimum(t1, t2)))
+            hi = np.where(flat, hi, np.minimum(hi, np.maximum(t1, t2)))
+        return ok & (lo < hi), np.clip((lo + hi) / 2, 0, 1)
+    if isinstance(ob, Segment):
+        a = np.array([ob.ax, ob.ay])
+        f = np.array([ob.bx - ob.ax, ob.by - ob.ay])
+        cands_d, cands_t = [], []
+        for t in (np.zeros(len(p0)), np.ones(len(p0))):      # the path's ends to the core
+            cx, cy = ob.closest(p0 + t[:, None] * e)
+            q = p0 + t[:, None] * e
+            cands_d.append(np.hypot(q[:, 0] - cx, q[:, 1] - cy))
+            cands_t.append(t)
+        for end in (a, a + f):                               # the core's ends to the path
+            t = np.clip(((end[0] - p0[:, 0]) * e[:, 0] + (end[1] - p0[:, 1]) * e[:, 1]) / e2, 0, 1)
+            q = p0 + t[:, None] * e
+            cands_d.append(np.hypot(q[:, 0] - end[0], q[:, 1] - end[1]))
+            cands_t.append(t)
+        denom = _cross(e[:, 0], e[:, 1], f[0], f[1])          # the two segments cross: 0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = _cross(a[0] - p0[:, 0], a[1] - p0[:, 1], f[0], f[1]) / denom
+            u = _cross(a[0] - p0[:, 0], a[1] - p0[:, 1], e[:, 0], e[:, 1]) / denom
+        cross = (denom != 0) & (t >= 0) & (t <= 1) & (u >= 0) & (u <= 1)
+        cands_d.append(np.where(cross, 0.0, np.inf))
+        cands_t.append(np.where(cross, t, 0.0))
+        d, ts = np.stack(cands_d), np.stack(cands_t)
+        pick = d.argmin(0)
+        cols = np.arange(len(p0))
+        return d[pick, cols] < ob.thickness - depth, ts[pick, cols]
+    dmin, t = path_min_distance(ob, p0, p1)
+    return dmin < -depth, t
+
+
 def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
           movable: np.ndarray | None = None) -> Sweep:
-    """Which paths p0 -> p1 ((n, 2)) start outside every obstacle's tolerance, end outside, and
-    pass more than `tolerance` px deep through an obstacle on the way: tunnelling, which a
-    projection at the end of the step cannot see. Only paths failing the bound (d0 + d1 - L)/2
-    >= -tolerance are searched (see the module docstring), so resting and slow particles cost a
-    distance each. Returns a Sweep with each such path's entry point (where it first reached
-    the surface)."""
+    """Which paths p0 -> p1 ((n, 2)) start and end no more than `tolerance` inside every
+    obstacle, and pass more than `tolerance` px deep through one on the way: tunnelling, which
+    a projection at the end of the step cannot see. Only paths whose bounding box meets the
+    obstacle's and that fail the bound (d0 + d1 - L)/2 >= -tolerance are tested (see the module
+    docstring), so resting and slow particles cost almost nothing. Returns a Sweep with each
+    such path's entry point (where it first reached the surface, by bisection)."""
     p0 = np.asarray(p0, np.float64)
     p1 = np.asarray(p1, np.float64)
     n = len(p0)
     mask = np.zeros(n, bool)
     entry = np.full((n, 2), np.nan)
     index = np.full(n, -1)
-    length = np.hypot(*(p1 - p0).T)
+    lo_x, hi_x = np.minimum(p0[:, 0], p1[:, 0]), np.maximum(p0[:, 0], p1[:, 0])
+    lo_y, hi_y = np.minimum(p0[:, 1], p1[:, 1]), np.maximum(p0[:, 1], p1[:, 1])
     for k, ob in enumerate(obstacles):
-        d0, d1 = ob.signed_distance(p0)[0], ob.signed_distance(p1)[0]
-        suspect = (d0 >= -tolerance) & (d1 >= -tolerance) & \
-                  ((d0 + d1 - length) / 2 < -tolerance) & ~mask
+        x0, y0, x1, y1 = ob.bounds()
+        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1) & ~mask
         if movable is not None:
-            suspect &= movable
-        ids = np.flatnonzero(suspect)
+            near &= movable
+        ids = np.flatnonzero(near)
         if ids.size == 0:
             continue
-        dmin, tmin = path_min_distance(ob, p0[ids], p1[ids])
-        through = dmin < -tolerance
-        ids, tmin = ids[through], tmin[through]
+        a, b = p0[ids], p1[ids]
+        d0, d1 = ob.signed_distance(a)[0], ob.signed_distance(b)[0]
+        length = np.hypot(*(b - a).T)
+        suspect = (d0 >= -tolerance) & (d1 >= -tolerance) & ((d0 + d1 - length) / 2 < -tolerance)
+        ids, a, b = ids[suspect], a[suspect], b[suspect]
         if ids.size == 0:
             continue
-        # the entry: where d first reaches 0 on [0, t_min] (d decreases there), by bisection
-        lo, hi = np.zeros(ids.size), tmin.copy()
-        step = p1[ids] - p0[ids]
+        through, t_in = dips_below(ob, a, b, tolerance)
+        ids, a, b, t_in = ids[through], a[through], b[through], t_in[through]
+        if ids.size == 0:
+            continue
+        # the entry: where d first reaches 0 on [0, t_in] (d < 0 at t_in), by bisection
+        lo, hi = np.zeros(ids.size), t_in
+        step = b - a
         for _ in range(40):
             mid = (lo + hi) / 2
-            outside = ob.signed_distance(p0[ids] + mid[:, None] * step)[0] >= 0
+            outside = ob.signed_distance(a + mid[:, None] * step)[0] >= 0
             lo = np.where(outside, mid, lo)
             hi = np.where(outside, hi, mid)
         mask[ids] = True
-        entry[ids] = p0[ids] + lo[:, None] * step
+        entry[ids] = a + lo[:, None] * step
         index[ids] = k
     return Sweep(mask, entry, index)
 
 
-__all__ = ["path_min_distance", "Sweep", "swept", "GOLDEN"]
+__all__ = ["path_min_distance", "dips_below", "Sweep", "swept", "GOLDEN"]
