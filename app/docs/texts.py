@@ -90,6 +90,14 @@ METRICS: dict[str, dict[str, Entry]] = {
         "cg_failures": ("count", "implicit steps whose CG stopped short (each then solved by the "
                                  "sparse LU)"),
         "pinned_drift": _CLOTH_COMMON["pinned_drift"],
+        "contacts": ("count", "free particles touching an obstacle: moved out of one in the "
+                              "last step (projection) or inside one now (penalty); 0 with "
+                              "`collisions` off"),
+        "penetration_max": ("px", "deepest free particle inside an obstacle after the step "
+                                  "(projection: 0 but where obstacles overlap; penalty: how far "
+                                  "its spring lets the cloth in)"),
+        "contact_limit_h": ("s", "contact=penalty: its own step limit 2 sqrt(m/k_c) for the "
+                                 "lightest free particle; null with projection"),
     },
     "falling_balls": dict(_BALLS),
     "pivoting_l": {
