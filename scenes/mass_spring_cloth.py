@@ -324,6 +324,7 @@ class MassSpringClothScene(MassSpringContact, MassSpringWords, Scene):
 
     def step(self, h: float) -> None:
         failures = self.cloth.ps.cg_failures
+        self.contact_start()                         # where the particles start (contact)
         self.cloth.step(h, self.p["integrator"])
         self.contact_step(h)                         # projection and friction, if on
         if self.cloth.ps.cg_failures > failures:

@@ -112,6 +112,10 @@ class MassSpringContact:
             force = PenaltyContact(self.obstacles, self.p["contact_stiffness"])
             c.ps.forces.append(Timed("collisions", force, c.watch, c.calls))
 
+    def contact_start(self) -> None:
+        """Before the integrator's step: where the particles start (for back_to_entry)."""
+        self.start = self.cloth.ps.x.copy() if self.colliding and not self.penalty else None
+
     def contact_step(self, h: float) -> None:
         """After the integrator's step: drag the obstacle; projection (and its friction), or the
         penalty's friction. Nothing at all with collisions off or no obstacles."""
@@ -126,7 +130,8 @@ class MassSpringContact:
                 if mu is not None:
                     penalty_friction(c.ps, self.obstacles, self.p["contact_stiffness"], h, mu)
             else:
-                self.last_contacts = project_and_filter(c.ps, self.obstacles, h, mu).count
+                self.last_contacts = project_and_filter(c.ps, self.obstacles, h, mu,
+                                                        self.start).count
 
     # ----- the mouse ----------------------------------------------------------------------------
     def obstacle_at(self, pos) -> int | None:

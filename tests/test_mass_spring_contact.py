@@ -140,3 +140,18 @@ def test_an_obstacle_is_dragged_with_the_mouse():
     scene.handle_event(InputEvent("mouse_up", pos=(x0 + 40.0, y0 - 20.0), button=1))
     assert (ball.cx, ball.cy) == pytest.approx((x0 + 40.0, y0 - 20.0))
     assert scene.cloth.grabbed is None                # the press took the ball, not a particle
+
+
+def test_a_fast_particle_leaves_a_thin_plate_by_the_side_it_came_in():
+    """A step from 3 px above a plate 8 px thick to 1 px past its middle: projected from where
+    it ends, it would come out below; put back where it entered first, it rests on top, its
+    velocity into the plate filtered out."""
+    from app.physics.mass_spring_contact import project_and_filter
+    from app.physics.obstacles import Box
+    plate = Box(0.0, 0.0, 50.0, 4.0)
+    ps = ParticleSystem([[0.0, 1.0]], [[30.0, 400.0]], 1.0, [])
+    start = np.array([[-0.5, -7.0]])
+    contacts = project_and_filter(ps, [plate], 1 / 60, None, start)
+    assert contacts.count == 1
+    assert ps.x[0, 1] == pytest.approx(-4.0, abs=1e-6)     # on top, not at +4 below
+    assert ps.v[0].tolist() == pytest.approx([30.0, 0.0])  # sliding on, not into it
