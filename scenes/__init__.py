@@ -15,6 +15,7 @@ from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
 from scenes.integrators import IntegratorsScene
 from scenes.mass_spring_cloth import MassSpringClothScene
+from scenes.mass_spring_collisions import MassSpringCollisionsScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.particle_dance import ParticleDanceScene
 from scenes.pivoting_l import PivotingLScene
@@ -24,6 +25,7 @@ SCENES: list[type[Scene]] = [
     ClothScene,
     ClothCollisionsScene,
     MassSpringClothScene,
+    MassSpringCollisionsScene,
     TrampolineScene,
     FallingBallsScene,
     PivotingLScene,

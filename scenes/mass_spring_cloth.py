@@ -67,7 +67,8 @@ denim and rubber hang.
 Obstacles (`obstacles`: the Verlet cloth's ball, box, table, floor, bar; drag one with LMB):
 `contact` = projection (moved out, velocity filtered as Baraff & Witkin constrain a particle) or
 penalty (a spring of contact_stiffness, which lowers the step limit); Coulomb friction `mu`.
-scenes/mass_spring_contact.py. Settings: material sets the sliders below it (mass, tension, compression, shear_stiffness,
+scenes/mass_spring_contact.py; their cards: the scene mass_spring_collisions. Settings: material
+sets the sliders below it (mass, tension, compression, shear_stiffness,
 bending_stiffness, spring_damping, air_damping: Blender's names and units); moving one of them
 afterwards makes the material `custom`. Integrator and every slider change live.
 
@@ -101,8 +102,7 @@ from app.physics.mass_spring_cost import FRAME_BUDGET_S, iteration_cap, refusal,
 from app.physics.mass_spring_stability import ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT, LimitWatch
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 from app.vectors import Arrows, grid_sample, sample_text
-from scenes.mass_spring_contact import (MS_CONTACT_COMPARISONS, MS_CONTACT_EFFECTS,
-                                        MS_CONTACT_PARAMS, MS_CONTACT_TRIES, MS_CONTACT_UNITS,
+from scenes.mass_spring_contact import (MS_CONTACT_EFFECTS, MS_CONTACT_PARAMS, MS_CONTACT_UNITS,
                                         MassSpringContact)
 from scenes.mass_spring_words import MassSpringWords
 
@@ -213,14 +213,14 @@ class MassSpringClothScene(MassSpringContact, MassSpringWords, Scene):
         Try("Silk in the wind", {"material": "silk", "wind": True},
             "the wind pushes on area, not mass: light silk flows; switch to denim or rubber "
             "(7x and 20x heavier) and it hardly moves"),
-    ) + MS_CONTACT_TRIES
+    )
     comparisons = (     # "try this" cards that run variants side by side (--compare)
         Try("Explicit vs implicit at 60 Hz", {"hertz": 60},
             "h = 16.7 ms is 27x symplectic Euler's limit for cotton at rest: pane A blows up "
             "within a few steps and its pane says why, while pane B's implicit Euler hangs on, "
             "paying in artificial damping and in ms per step (its CG)",
             compare=({"integrator": "symplectic_euler"}, {"integrator": "implicit_euler"})),
-    ) + MS_CONTACT_COMPARISONS
+    )
 
     # ----- settings ---------------------------------------------------------------------------
     @classmethod

@@ -13,6 +13,7 @@ from app.physics.obstacles import Circle, floor, nearest
 from app.physics.particles import ParticleSystem
 from app.scene import InputEvent, ParamError
 from scenes.mass_spring_cloth import MassSpringClothScene
+from scenes.mass_spring_collisions import MassSpringCollisionsScene
 
 STRIP = {"pins": "none", "rows": 2, "spacing": 10.0}
 DRAPE = {"obstacles": "ball", **STRIP, "cols": 60}
@@ -96,7 +97,7 @@ def test_friction_holds_a_strip_on_the_tilted_box():
     """The comparison card: the strip lands on a box tilted 20 deg; with mu 0.5 (> tan 20 deg)
     it stays where it landed (no creep: under 5 px from 2 s to 5 s), without friction it slides
     off along the slope (over 100 px). Projection and penalty alike."""
-    card = next(t for t in MassSpringClothScene.comparisons if t.label.startswith("Slope"))
+    card = next(t for t in MassSpringCollisionsScene.comparisons if t.label.startswith("Slope"))
     for contact in ("projection", "penalty"):
         moved = {}
         for variant in card.compare:
@@ -155,3 +156,19 @@ def test_a_fast_particle_leaves_a_thin_plate_by_the_side_it_came_in():
     assert contacts.count == 1
     assert ps.x[0, 1] == pytest.approx(-4.0, abs=1e-6)     # on top, not at +4 below
     assert ps.v[0].tolist() == pytest.approx([30.0, 0.0])  # sliding on, not into it
+
+
+def test_the_collisions_scene_is_the_strip_over_the_ball_and_projection_beats_penalty():
+    """mass_spring_collisions' defaults are the drape card's; its comparison 'Projection vs
+    penalty': the projected strip has nothing inside, the penalty one sinks in."""
+    card = next(t for t in MassSpringCollisionsScene.comparisons if t.label.startswith("Proj"))
+    deepest = {}
+    for variant in card.compare:
+        scene = MassSpringCollisionsScene({**card.settings, **variant})
+        assert scene.p["obstacles"] == "ball" and scene.p["rows"] == 2
+        deep = 0.0
+        for _ in range(120):
+            scene.advance()
+            deep = max(deep, scene.metrics()["penetration_max"])
+        deepest[variant["contact"]] = deep
+    assert deepest["projection"] < 0.01 < 0.5 < deepest["penalty"], deepest

@@ -161,6 +161,7 @@ METRICS: dict[str, dict[str, Entry]] = {
     },
 }
 METRICS["cloth_collisions"] = METRICS["cloth"]      # the same cloth, with its contact cards
+METRICS["mass_spring_collisions"] = METRICS["mass_spring_cloth"]   # the same cloth, on obstacles
 
 # the --json summary of one run (and what --compare and --video add)
 SUMMARY_FIELDS: dict[str, str] = {
