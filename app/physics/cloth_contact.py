@@ -5,20 +5,20 @@ contact passes sit around the sweeps, each a separate function, chosen once by t
 are on (`contact_passes`): an effect that is off is not in the lists, so the step never calls it.
 
     Verlet step
-    collisions  (before)  tunnelling caught: a particle whose path went through an obstacle is
-                          put back where it entered (app/physics/tunnelling.py); then every
-                          particle inside an obstacle is moved to its surface (Jakobsen)
+    collisions  (before)  every particle inside an obstacle is moved to its surface (Jakobsen)
     friction    (before)  Coulomb: the sliding x - x_prev loses at most mu x the correction
     rod sweeps            (the rods now see particles outside the obstacles)
     self_collision        pairs of particles closer than `self_distance` (not joined by a rod)
                           are pushed apart to that distance: Breen's repulsion written as a
                           constraint, projected like a rod that may only grow
-    collisions  (after)   tunnelling caught over the whole substep, then projection again: the
-                          sweeps (and the self-collision) may have pulled particles back in;
+    collisions  (after)   tunnelling caught: a particle whose path in this substep went through
+                          an obstacle is put back where it entered it
+                          (app/physics/tunnelling.py); then projection again: the sweeps (and
+                          the self-collision) may have pulled particles back in;
                           after this pass no free particle is inside an obstacle, unless two
                           obstacles overlap around it (then `penetration_max` says how deep)
-    friction    (after)   on the second correction (then the touching particles are projected
-                          once more: sliding back along a box's face can cross its corner)
+    friction    (after)   on the second correction (then, where two obstacles meet, the
+                          touching particles are projected once more)
 
 Why project twice: once before the sweeps, so that the rods are relaxed around particles that
 are already outside (the cloth drapes, the rods near the contact stay at their length), and once
@@ -48,12 +48,14 @@ from typing import Callable
 import numpy as np
 
 from app.physics.neighbours import all_pair_blocks, grid_pair_blocks, sort_into_cells
-from app.physics.obstacles import Contacts, Obstacle, project, verlet_friction
+from app.physics.obstacles import (Contacts, Obstacle, obstacles_may_touch, project,
+                                   verlet_friction)
 from app.physics.tunnelling import swept
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
-TOLERANCE = 0.5        # px: a path deeper than this through an obstacle counts as tunnelling
+TOLERANCE = 1.0        # px: a path deeper than this through an obstacle counts as tunnelling
+                       # (only paths over 2 px long can: slow particles cost nothing)
 OVERLAP_SLACK = 0.05   # self_overlaps counts pairs closer than 95% of self_distance
 SELF_SWEEPS = 2        # Jacobi passes over the self-collision pairs per substep
 SELF_DISTANCE = 0.8    # default minimum distance between particles, in rod lengths (spacings):
@@ -82,7 +84,8 @@ class ContactState:
     tunneled: int = 0                     # paths caught passing through an obstacle, since build
     self_pairs: int = 0                   # pairs pushed apart in the last self-collision pass
     self_tests: int = 0                   # pair tests the last search took
-    start: np.ndarray | None = None       # positions at the start of the substep, (n, 2)
+    start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
+    crowded: bool = False                 # two obstacles meet (then corners are settled)
 
 
 Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
@@ -112,15 +115,13 @@ def _points(a: np.ndarray) -> np.ndarray:
 
 # ----- obstacles --------------------------------------------------------------------------------
 def collide_before(c, h: float) -> None:
-    """Right after the Verlet step: catch paths through an obstacle, then project."""
+    """Right after the Verlet step: project (and remember where each particle started)."""
     st, x = c.contact, _points(c.x)
-    start = _points(c.x_prev)                   # where each particle began this substep
+    start = c.x_prev.reshape(2, -1)             # where each particle began this substep
     if st.start is None or st.start.shape != start.shape:
         st.start = np.empty(start.shape, start.dtype)
     st.start[...] = start
-    movable = c.free.ravel() > 0
-    _catch_tunnelling(st, st.start, x, movable)
-    st.contacts = project(st.obstacles, x, st.margin, movable)
+    st.contacts = project(st.obstacles, x, st.margin, c.free.ravel() > 0)
     st.touching = st.contacts.mask
 
 
@@ -131,7 +132,8 @@ def collide_after(c, h: float) -> None:
     _catch_tunnelling(st, st.start, x, movable)
     st.contacts = project(st.obstacles, x, st.margin, movable)
     st.touching = st.touching | st.contacts.mask
-    if len(st.obstacles) > 1:
+    st.crowded = len(st.obstacles) > 1 and obstacles_may_touch(st.obstacles, st.margin)
+    if st.crowded:
         _settle_corners(st, x)
 
 
@@ -150,10 +152,21 @@ def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:
 
 def _catch_tunnelling(st: ContactState, start: np.ndarray, x: np.ndarray,
                       movable: np.ndarray) -> None:
-    """Paths start -> x through an obstacle: put the particle back at its entry point."""
-    sw = swept(st.obstacles, start, x, st.tolerance, movable)
+    """Paths start -> x through an obstacle: put the particle back where its path entered the
+    obstacle (on the surface, on the side it came from: then projected out, it rests there).
+    (Putting it back where it started the substep instead leaves it hovering: the next step's
+    g h^2 carries it through again, for ever, a bar's width above the bar.)
+    start: (2, n); x: (n, 2). Only particles that moved more than 2 x tolerance can have gone
+    through (tunnelling.py): they are found first, on the float32 columns, and only they are
+    handed to the sweep test."""
+    dx, dy = x[:, 0] - start[0], x[:, 1] - start[1]
+    fast = np.flatnonzero((dx * dx + dy * dy > (2 * st.tolerance) ** 2) & movable)
+    if fast.size == 0:
+        return
+    s0 = start[:, fast].T
+    sw = swept(st.obstacles, s0, x[fast], st.tolerance)
     if sw.count:
-        x[sw.mask] = sw.entry[sw.mask].astype(x.dtype)
+        x[fast[sw.mask]] = sw.entry[sw.mask]
         st.tunneled += sw.count
 
 
@@ -164,12 +177,14 @@ def rub(c, h: float) -> None:
 
 
 def rub_and_settle(c, h: float) -> None:
-    """Friction after the last projection, then the touching particles projected once more:
-    moving a particle back along a box's face near its corner can move it into the box."""
+    """Friction after the last projection, then, where obstacles meet, the touching particles
+    projected once more. (Moving along the surface of one convex obstacle never enters it: the
+    obstacle lies behind the tangent line. But it can enter a neighbouring one: a table top
+    and its leg.)"""
     rub(c, h)
     st = c.contact
     ids = np.flatnonzero(st.contacts.mask)
-    if ids.size:
+    if ids.size and st.crowded:
         x = _points(c.x)
         sub = x[ids].copy()
         project(st.obstacles, sub, st.margin)

@@ -86,6 +86,14 @@ def _xy(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return p[:, 0].astype(np.float64, copy=False), p[:, 1].astype(np.float64, copy=False)
 
 
+def _pairs(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Two (n,) arrays as the columns of one (n, 2) array (np.stack's work, less overhead)."""
+    out = np.empty((len(a), 2))
+    out[:, 0] = a
+    out[:, 1] = b
+    return out
+
+
 def _unit_or(nx: np.ndarray, ny: np.ndarray, length: np.ndarray, fallback: tuple[float, float]
              ) -> tuple[np.ndarray, np.ndarray]:
     """(nx, ny) / length, or `fallback` where the length is 0 (a point at a circle's centre)."""
@@ -108,6 +116,12 @@ class Obstacle:
 
     def signed_distance(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(d, normal): d (n,) signed distance in px (negative inside), normal (n, 2) outward unit."""
+        d, nx, ny = self.distance_xy(*_xy(points))
+        return d, _pairs(nx, ny)
+
+    def distance_xy(self, x: np.ndarray, y: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The same from the points' x and y columns: (d, normal x, normal y), each (n,)."""
         raise NotImplementedError
 
     def move_by(self, dx: float, dy: float) -> None:
@@ -141,12 +155,11 @@ class Circle(Obstacle):
     radius: float
     kind = "circle"
 
-    def signed_distance(self, points):
-        x, y = _xy(points)
+    def distance_xy(self, x, y):
         dx, dy = x - self.cx, y - self.cy
         r = np.hypot(dx, dy)
         nx, ny = _unit_or(dx, dy, r, (0.0, -1.0))        # at the centre: out through the top
-        return r - self.radius, np.stack([nx, ny], axis=1)
+        return r - self.radius, nx, ny
 
     def move_by(self, dx, dy):
         self.cx += dx
@@ -186,24 +199,21 @@ class Box(Obstacle):
                           self.cy + a * self.half_w * uy + b * self.half_h * vy)
                          for a, b in signs])
 
-    def signed_distance(self, points):
-        x, y = _xy(points)
+    def distance_xy(self, x, y):
         (ux, uy), (vx, vy) = self.axes()
         dx, dy = x - self.cx, y - self.cy
         lx, ly = dx * ux + dy * uy, dx * vx + dy * vy     # the point in the box's frame
-        sx, sy = np.where(lx < 0, -1.0, 1.0), np.where(ly < 0, -1.0, 1.0)
         qx, qy = np.abs(lx) - self.half_w, np.abs(ly) - self.half_h
-        # outside: distance to the nearest point of the rectangle (a face or a corner)
         ox, oy = np.maximum(qx, 0.0), np.maximum(qy, 0.0)
-        out = np.hypot(ox, oy)
-        # inside: the nearest face, -(distance to it); its normal is that face's
-        inside = np.maximum(qx, qy)
-        d = np.where(out > 0, out, np.minimum(inside, 0.0))
-        gx, gy = _unit_or(ox * sx, oy * sy, out, (0.0, 0.0))
+        out = np.hypot(ox, oy)          # outside: distance to the nearest face or corner
+        d = out + np.minimum(np.maximum(qx, qy), 0.0)     # inside: -(distance to nearest face)
+        # the normal in the box's frame: towards the nearest point outside, else the nearest
+        # face's; the signs of lx, ly say which side (+1 on an axis: either side will do)
         face_x = qx >= qy
-        gx = np.where(out > 0, gx, np.where(face_x, sx, 0.0))
-        gy = np.where(out > 0, gy, np.where(face_x, 0.0, sy))
-        return d, np.stack([gx * ux + gy * vx, gx * uy + gy * vy], axis=1)
+        safe = np.maximum(out, TINY)
+        gx = np.where(out > 0, ox / safe, face_x) * np.copysign(1.0, lx)
+        gy = np.where(out > 0, oy / safe, ~face_x) * np.copysign(1.0, ly)
+        return d, gx * ux + gy * vx, gx * uy + gy * vy
 
     def move_by(self, dx, dy):
         self.cx += dx
@@ -214,8 +224,9 @@ class Box(Obstacle):
         return (self.cx, self.cy)
 
     def bounds(self):
-        c = self.corners()
-        return (c[:, 0].min(), c[:, 1].min(), c[:, 0].max(), c[:, 1].max())
+        c, s = abs(math.cos(self.angle)), abs(math.sin(self.angle))
+        ex, ey = self.half_w * c + self.half_h * s, self.half_w * s + self.half_h * c
+        return (self.cx - ex, self.cy - ey, self.cx + ex, self.cy + ey)
 
 
 @dataclass
@@ -235,10 +246,9 @@ class HalfPlane(Obstacle):
             raise ValueError("a half-plane needs a non-zero normal")
         self.nx, self.ny = self.nx / length, self.ny / length
 
-    def signed_distance(self, points):
-        x, y = _xy(points)
+    def distance_xy(self, x, y):
         d = (x - self.px) * self.nx + (y - self.py) * self.ny
-        return d, np.broadcast_to(np.array([self.nx, self.ny]), (len(d), 2))
+        return d, np.full(len(d), self.nx), np.full(len(d), self.ny)
 
     def move_by(self, dx, dy):
         self.px += dx
@@ -268,23 +278,24 @@ class Segment(Obstacle):
 
     def closest(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The nearest point of the segment a-b to each point: (x, y) arrays."""
-        x, y = _xy(points)
+        return self._closest(*_xy(points))
+
+    def _closest(self, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         ex, ey = self.bx - self.ax, self.by - self.ay
         e2 = ex * ex + ey * ey
         t = ((x - self.ax) * ex + (y - self.ay) * ey) / e2 if e2 > 0 else np.zeros_like(x)
         t = np.clip(t, 0.0, 1.0)
         return self.ax + t * ex, self.ay + t * ey
 
-    def signed_distance(self, points):
-        x, y = _xy(points)
-        cx, cy = self.closest(points)
+    def distance_xy(self, x, y):
+        cx, cy = self._closest(x, y)
         dx, dy = x - cx, y - cy
         r = np.hypot(dx, dy)
         ex, ey = self.bx - self.ax, self.by - self.ay
         e = math.hypot(ex, ey)
         up = (ey / e, -ex / e) if e > 0 else (0.0, -1.0)    # on the core line: one side's normal
         nx, ny = _unit_or(dx, dy, r, up)
-        return r - self.thickness, np.stack([nx, ny], axis=1)
+        return r - self.thickness, nx, ny
 
     def move_by(self, dx, dy):
         self.ax += dx
@@ -361,20 +372,22 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
     normal = np.zeros((n, 2))
     index = np.full(n, -1)
     hit = np.zeros(n, bool)
-    px, py = points[:, 0], points[:, 1]
+    px, py = points[:, 0], points[:, 1]        # views: writing into them moves the points
     for k, ob in enumerate(obstacles):
         ids = near_bounds(ob, px, py, margin, movable)     # the cheap test first
         if ids.size == 0:
             continue
-        d, nrm = ob.signed_distance(points[ids])
+        d, nx, ny = ob.distance_xy(px[ids].astype(np.float64), py[ids].astype(np.float64))
         inside = d < margin
-        ids, d, nrm = ids[inside], d[inside], nrm[inside]    # usually few: correct only those
-        if ids.size == 0:
+        if not inside.any():
             continue
-        push = margin - d
-        points[ids] += (push[:, None] * nrm).astype(points.dtype, copy=False)
+        ids, push = ids[inside], margin - d[inside]          # usually few: correct only those
+        nx, ny = nx[inside], ny[inside]
+        px[ids] += (push * nx).astype(points.dtype, copy=False)
+        py[ids] += (push * ny).astype(points.dtype, copy=False)
         depth[ids] += push
-        normal[ids] = nrm
+        normal[ids, 0] = nx
+        normal[ids, 1] = ny
         index[ids] = k
         hit[ids] = True
     return Contacts(hit, depth, normal, index)
@@ -391,6 +404,29 @@ def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.
     if movable is not None:
         near &= movable
     return np.flatnonzero(near)
+
+
+def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
+    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
+    bounds reach it): only then can a particle pushed out of one land in another."""
+    grown = [ob.bounds() for ob in obstacles]
+    for a in range(len(obstacles)):
+        for b in range(a + 1, len(obstacles)):
+            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
+            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
+                         None)
+            if plane is not None:
+                other = grown[b] if plane is obstacles[a] else grown[a]
+                if math.isinf(other[0]):
+                    return True                                 # two half-planes
+                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
+                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
+                if lowest < 2 * margin:
+                    return True
+            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
+                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
+                return True
+    return False
 
 
 # ----- friction -----------------------------------------------------------------------------------
@@ -425,15 +461,24 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     ids = np.flatnonzero(contacts.mask)
     if ids.size == 0 or mu <= 0:
         return
-    motion = (x[ids] - x_prev[ids]).astype(np.float64)
-    if h and len(obstacles):
+    xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
+    mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
+    my = ys[ids].astype(np.float64) - x_prev[ids, 1]
+    if h and len(obstacles):                   # ...relative to the surface it touches
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
-        motion -= carry[contacts.index[ids]]
-    sub = np.ones(len(ids), bool)
-    change = coulomb_friction(motion, contacts.normal[ids], contacts.depth[ids], sub, mu)
-    x[ids] += change.astype(x.dtype, copy=False)      # less travel: x moves back along the surface
+        mx -= carry[contacts.index[ids], 0]
+        my -= carry[contacts.index[ids], 1]
+    nx, ny = contacts.normal[ids, 0], contacts.normal[ids, 1]
+    along = mx * nx + my * ny
+    tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
+    speed = np.hypot(tx, ty)
+    removable = mu * contacts.depth[ids]
+    # the share of the tangential travel removed: all of it (sticks) or mu * depth of it
+    gone = np.where(speed > removable, removable / np.maximum(speed, TINY), 1.0)
+    xs[ids] -= (gone * tx).astype(x.dtype, copy=False)        # less travel: x moves back
+    ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
 
 
 __all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
            "nearest", "penetration_max", "Contacts", "project", "near_bounds", "coulomb_friction",
-           "verlet_friction"]
+           "verlet_friction", "obstacles_may_touch"]

@@ -30,6 +30,7 @@ import numpy as np
 from app.physics.obstacles import Box, Circle, HalfPlane, Obstacle, Segment
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0       # 0.618...: golden-section search's shrink factor
+BISECTIONS = 20     # halvings that find a path's entry point: to 1e-6 of the path
 
 
 def path_min_distance(obstacle: Obstacle, p0: np.ndarray, p1: np.ndarray,
@@ -144,31 +145,40 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
 
 
 def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
-          movable: np.ndarray | None = None) -> Sweep:
+          movable: np.ndarray | None = None, find_entry: bool = True) -> Sweep:
     """Which paths p0 -> p1 ((n, 2)) start and end no more than `tolerance` inside every
     obstacle, and pass more than `tolerance` px deep through one on the way: tunnelling, which
     a projection at the end of the step cannot see. Only paths whose bounding box meets the
     obstacle's and that fail the bound (d0 + d1 - L)/2 >= -tolerance are tested (see the module
     docstring), so resting and slow particles cost almost nothing. Returns a Sweep with each
-    such path's entry point (where it first reached the surface, by bisection)."""
+    such path's entry point (where it first reached the surface, by bisection; NaN with
+    find_entry=False, for a caller that only needs which paths went through)."""
     p0 = np.asarray(p0, np.float64)
     p1 = np.asarray(p1, np.float64)
     n = len(p0)
     mask = np.zeros(n, bool)
     entry = np.full((n, 2), np.nan)
     index = np.full(n, -1)
-    lo_x, hi_x = np.minimum(p0[:, 0], p1[:, 0]), np.maximum(p0[:, 0], p1[:, 0])
-    lo_y, hi_y = np.minimum(p0[:, 1], p1[:, 1]), np.maximum(p0[:, 1], p1[:, 1])
+    # a path that ends outside yet dips `tolerance` deep is at least 2 x tolerance long (|grad d|
+    # = 1: it must go down and come back up): the short ones, nearly all, are done at once
+    step = p1 - p0
+    moving = step[:, 0] ** 2 + step[:, 1] ** 2 > (2 * tolerance) ** 2
+    if movable is not None:
+        moving &= movable
+    fast = np.flatnonzero(moving)
+    if fast.size == 0:
+        return Sweep(mask, entry, index)
+    q0, q1 = p0[fast], p1[fast]
+    lo_x, hi_x = np.minimum(q0[:, 0], q1[:, 0]), np.maximum(q0[:, 0], q1[:, 0])
+    lo_y, hi_y = np.minimum(q0[:, 1], q1[:, 1]), np.maximum(q0[:, 1], q1[:, 1])
     for k, ob in enumerate(obstacles):
         x0, y0, x1, y1 = ob.bounds()
-        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1) & ~mask
-        if movable is not None:
-            near &= movable
-        ids = np.flatnonzero(near)
+        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1) & ~mask[fast]
+        ids = fast[near]
         if ids.size == 0:
             continue
         a, b = p0[ids], p1[ids]
-        d0, d1 = ob.signed_distance(a)[0], ob.signed_distance(b)[0]
+        d0, d1 = ob.distance_xy(a[:, 0], a[:, 1])[0], ob.distance_xy(b[:, 0], b[:, 1])[0]
         length = np.hypot(*(b - a).T)
         suspect = (d0 >= -tolerance) & (d1 >= -tolerance) & ((d0 + d1 - length) / 2 < -tolerance)
         ids, a, b = ids[suspect], a[suspect], b[suspect]
@@ -178,17 +188,19 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         ids, a, b, t_in = ids[through], a[through], b[through], t_in[through]
         if ids.size == 0:
             continue
+        mask[ids] = True
+        index[ids] = k
+        if not find_entry:
+            continue
         # the entry: where d first reaches 0 on [0, t_in] (d < 0 at t_in), by bisection
         lo, hi = np.zeros(ids.size), t_in
         step = b - a
-        for _ in range(40):
+        for _ in range(BISECTIONS):
             mid = (lo + hi) / 2
-            outside = ob.signed_distance(a + mid[:, None] * step)[0] >= 0
+            outside = ob.distance_xy(a[:, 0] + mid * step[:, 0], a[:, 1] + mid * step[:, 1])[0] >= 0
             lo = np.where(outside, mid, lo)
             hi = np.where(outside, hi, mid)
-        mask[ids] = True
         entry[ids] = a + lo[:, None] * step
-        index[ids] = k
     return Sweep(mask, entry, index)
 
 
