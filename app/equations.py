@@ -101,8 +101,46 @@ PAIR_FORCE = Equation(
 
 DRAG = Equation("drag (every particle on its own)", r"$f = -k_d\,v$")
 
+PROJECTION = Equation(
+    "contact by projection (obstacles.py): a particle inside (d < 0) moves to the surface; "
+    "for a ball d = |p - c| - r",
+    r"$\mathrm{if}\ d(p) < 0:\quad p \leftarrow p - d(p)\,n(p)$")
+
+VERLET_FRICTION = Equation(
+    "Coulomb friction (cloth_contact.py): the sliding along the surface loses at most mu times "
+    "the push, and stops if that is more",
+    r"$|\Delta x_t| \leftarrow \max\left(0,\ |\Delta x_t| - \mu\,|\Delta x_n|\right)$")
+
+SELF_COLLISION = Equation(
+    "self-collision: two particles closer than s (not joined by a rod) pushed apart to s, a rod "
+    "that may only grow",
+    r"$|x_j - x_i| < s:\quad x_i \leftarrow x_i - \frac{1}{2}\,(s - |\delta|)\,"
+    r"\frac{\delta}{|\delta|},\ x_j \leftarrow x_j + \frac{1}{2}\,(s - |\delta|)\,"
+    r"\frac{\delta}{|\delta|}$")
+
+VELOCITY_FILTER = Equation(
+    "projection (the default): to the surface, and the velocity into the obstacle removed, as "
+    "Baraff & Witkin constrain a particle",
+    r"$p \leftarrow p - d\,n,\quad v \leftarrow v - \min(v\cdot n,\,0)\,n$")
+
+PENALTY = Equation(
+    "penalty: a stiff spring pushes back; an explicit step must then stay below",
+    r"$f = k_c\,(-d)\,n\ \ (d < 0),\qquad h < \frac{2}{\sqrt{\omega_{max}^2 + k_c/m}}$")
+
+COUPLING = Equation(
+    "the coupling (coupling.py): particle i, d_i px inside a body, moves its share out; "
+    "w = 1/m, k particles inside",
+    r"$\Delta x_i = -d_i\,\frac{w_p}{w_p + k\,w_{body}}\,n_i,\quad "
+    r"w_{body} = \frac{1}{M} + \frac{(r_i \times n_i)^2}{I}$")
+
+COUPLING_IMPULSE = Equation(
+    "the body takes the opposite of the momentum the particles gained",
+    r"$J = -\sum_i \frac{m_p\,\Delta x_i}{h},\quad "
+    r"\Delta v = \frac{J}{M},\quad \Delta\omega = -\frac{1}{I}\sum_i r_i \times "
+    r"\frac{m_p\,\Delta x_i}{h}$")
+
 _SCENES: dict[str, list[Equation]] = {
-    "cloth": [VERLET_CLOTH, ROD_PROJECTION, STRAIN],
+    "trampoline": [VERLET_CLOTH, COUPLING, COUPLING_IMPULSE],
     "falling_balls": [PYMUNK_STEP, CONTACT],
     "pivoting_l": [PYMUNK_STEP, NEWTON_EULER, PIN_SLIDE],
     "newtons_cradle": [COLLISION_1D, PYMUNK_STEP],
@@ -114,12 +152,24 @@ _SCENES: dict[str, list[Equation]] = {
 def equations_for(scene) -> list[Equation]:
     """The formulas of `scene` as it is set now ([] for a scene that has none here)."""
     name = scene.name
-    if name == "mass_spring_cloth":
+    if name in ("mass_spring_cloth", "mass_spring_collisions"):
         integrator = scene.p.get("integrator", "implicit_euler")
         update = INTEGRATOR_UPDATES.get(integrator)
         eqs = [HOOKE] + ([update] if update else [])
-        if integrator != "implicit_euler":
+        if scene.p.get("obstacles", "none") != "none":
+            eqs.append(PENALTY if scene.p.get("contact") == "penalty" else VELOCITY_FILTER)
+        elif integrator != "implicit_euler":
             eqs.append(EXPLICIT_LIMIT)
+        return eqs
+    if name in ("cloth", "cloth_collisions"):
+        eqs = [VERLET_CLOTH, ROD_PROJECTION, STRAIN]
+        on = getattr(scene, "on", set())
+        if scene.p.get("obstacles", "none") != "none" and "collisions" in on:
+            eqs.append(PROJECTION)
+            if "friction" in on:
+                eqs.append(VERLET_FRICTION)
+        if "self_collision" in on:
+            eqs.append(SELF_COLLISION)
         return eqs
     if name == "integrators":
         return list(INTEGRATOR_UPDATES.values())

@@ -11,18 +11,24 @@ from typing import Callable
 
 from app.scene import Scene
 from scenes.cloth import ClothScene
+from scenes.cloth_collisions import ClothCollisionsScene
 from scenes.double_pendulum import DoublePendulumScene
 from scenes.falling_balls import FallingBallsScene
 from scenes.integrators import IntegratorsScene
 from scenes.mass_spring_cloth import MassSpringClothScene
+from scenes.mass_spring_collisions import MassSpringCollisionsScene
 from scenes.newtons_cradle import NewtonsCradleScene
 from scenes.particle_dance import ParticleDanceScene
 from scenes.pivoting_l import PivotingLScene
 from scenes.sandbox import SandboxScene
+from scenes.trampoline import TrampolineScene
 
 SCENES: list[type[Scene]] = [
     ClothScene,
+    ClothCollisionsScene,
     MassSpringClothScene,
+    MassSpringCollisionsScene,
+    TrampolineScene,
     FallingBallsScene,
     PivotingLScene,
     NewtonsCradleScene,

@@ -11,8 +11,10 @@ Controls:
             the mouse at most 1e5 px beyond the world's edges, so no drag can tear it to inf)
   RMB       unlock a locked particle (a pin, or one you dropped)
   U         unlock everything and restore the default pins
+  LMB inside an obstacle (obstacles=ball, box, table, floor, bar): drag the obstacle instead
 Settings: iterations and substeps change live; try --set shear=on, --set tearing=on,
---set pins=corners, --set wind=on.
+--set pins=corners, --set wind=on, --set obstacles=ball. Obstacles, friction and
+self-collision, with their cards: the scene cloth_collisions (scenes/cloth_collisions.py).
 
 Why shear is off by default: the slide's cloth has structural rods only, and in 2D shear rods turn
 the cloth into a rigid truss. Yanked hard (say ten cloth widths in one frame) such a truss can come
@@ -49,9 +51,11 @@ import numpy as np
 
 from app.physics.cloth import (DRAG, FORCE_NAMES, GRAVITY, ITERATIONS, PIN_CHOICES, TEAR_RATIO,
                                WIND_FIELDS, WIND_STRENGTH, Cloth)
+from app.physics.cloth_contact import CONTACT_EFFECTS as CONTACT_NAMES
 from app.physics.rods import SET_NAMES, sweep_size
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 from app.vectors import Arrows, grid_sample, sample_text
+from scenes.cloth_contact import CONTACT_EFFECTS, CONTACT_PARAMS, CONTACT_UNITS, ClothContact
 
 UNLOCK_KEY = "u"
 # Work per step, in rod updates: iterations x substeps x (rods + BATCH_COST x batches), counting
@@ -69,7 +73,7 @@ def _sci(x: float) -> str:
     return f"{mantissa.removesuffix('.0')}e{int(exponent)}"
 
 
-class ClothScene(Scene):
+class ClothScene(ClothContact, Scene):
     """Verlet cloth (Jakobsen's rods relaxed by local iteration), strain shown as a heat map.
 
     LMB: grab a particle, drag it, drop it: it stays locked where you drop it.
@@ -108,7 +112,7 @@ class ClothScene(Scene):
               help="what holds the cloth: the whole top row, its two corners, or nothing"),
         Param("precision", "float32", str, choices=("float32", "float64"),
               help="float type of the positions (float32: about twice as fast)"),
-    )
+    ) + CONTACT_PARAMS
     effects = (
         Effect("gravity", True, "gravity pulls every particle down", amount="g"),
         Effect("drag", True, "velocity-proportional damping (Verlet 2 -> 1.99)", amount="drag_coef"),
@@ -116,11 +120,11 @@ class ClothScene(Scene):
         Effect("shear", False, "diagonal rods: resist shearing (a stiff 2D truss: see the docstring)"),
         Effect("bending", False, "skip-one rods: resist folding"),
         Effect("tearing", False, "rods stretched beyond tear_ratio break"),
-    )
+    ) + CONTACT_EFFECTS
     error_metric, error_label = "max_stretch", "largest stretch"
     metric_units = {"max_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
                     "mean_stretch": Unit("%", 100.0, resolution=0.01, digits=3),
-                    "pinned_drift": Unit("px", resolution=0.01)}
+                    "pinned_drift": Unit("px", resolution=0.01), **CONTACT_UNITS}
     tries = (
         Try("Stretchy: 2 iterations", {"iterations": 2, "substeps": 1},
             "the rods cannot relax in 2 sweeps: the cloth sags, warm colours, the stretch in the "
@@ -183,6 +187,7 @@ class ClothScene(Scene):
         self._costs: dict[str, float] = {}
         self._cost_mark = (0, dict(self.cloth.spent))
         self._stretch: tuple[np.ndarray, np.ndarray] | None = None   # see stretches()
+        self.build_contact((origin[0], origin[1], spacing * (cols - 1), spacing * (rows - 1)))
         self._sync()
 
     def _sync(self) -> None:
@@ -194,12 +199,16 @@ class ClothScene(Scene):
         c.wind_strength = p["wind_strength"]
         c.wind_field = p["wind_field"]
         c.tear_ratio = p["tear_ratio"]
+        self.sync_contact()
 
     def settings_changed(self, names: set[str]) -> None:
         self.cloth.set_effects(self.on)
+        self.contact_settings_changed(names)
 
     def step(self, h: float) -> None:
         self._sync()
+        if self.obstacles:
+            self.move_obstacles(h)
         self.cloth.step(h)
         self._stretch = None
 
@@ -215,9 +224,11 @@ class ClothScene(Scene):
     # ----- the mouse ----------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
         c = self.cloth
-        self._stretch = None                    # a grab, drop or unlock may move particles
+        self._stretch = self._contact_cache = None   # a grab, drop or unlock may move particles
         if event.kind.startswith("mouse"):
             self.mouse = c.clamp(event.pos)     # any finite double: kept within 1e5 px of the world
+        if c.grabbed is None and self.contact_event(event):
+            return                              # a press inside an obstacle drags the obstacle
         if event.kind == "mouse_down" and event.button == 1:
             cell = c.nearest(event.pos, self.grab_radius)
             if cell is not None:
@@ -247,9 +258,13 @@ class ClothScene(Scene):
     # ----- drawing ------------------------------------------------------------------------------
     def draw(self, surface, view) -> None:
         from app.draw.cloth_draw import draw_cloth
-        hover = None
+        from app.draw.obstacle_draw import draw_obstacles
+        hover = active = None
         if self.mouse is not None and self.cloth.grabbed is None:
-            hover = self.cloth.nearest(self.mouse, self.grab_radius)
+            active = self.dragged if self.dragged is not None else self.obstacle_at(self.mouse)
+            if active is None:
+                hover = self.cloth.nearest(self.mouse, self.grab_radius)
+        draw_obstacles(surface, view, self.obstacles, active)
         draw_cloth(surface, view, self.cloth, hover, self.stretches())
 
     @property
@@ -263,7 +278,7 @@ class ClothScene(Scene):
         c = self.cloth
         cw, ch = c.spacing * (c.cols - 1), c.spacing * (c.rows - 1)
         ox, oy = self.origin
-        return (ox - 0.3 * cw, oy - 0.1 * ch, 1.6 * cw, 1.35 * ch)
+        return self.contact_bounds((ox - 0.3 * cw, oy - 0.1 * ch, 1.6 * cw, 1.35 * ch))
 
     # ----- reports ------------------------------------------------------------------------------
     def energies(self):
@@ -280,8 +295,9 @@ class ClothScene(Scene):
                    if "gravity" in self.on else 0.0)
         return Energies((("kinetic", kinetic), ("gravity", gravity)), 0.0,
                         zero="the start pose, at rest (every particle of mass 1)",
-                        losses="the rods' projection, drag, tearing; the mouse and the wind put "
-                               "energy in", unit="px^2/s^2")
+                        losses="the rods' projection, drag, tearing, contacts and friction; the "
+                               "mouse, the wind and a dragged obstacle put energy in",
+                        unit="px^2/s^2")
 
     def metrics(self) -> dict[str, float]:
         c = self.cloth
@@ -297,6 +313,7 @@ class ClothScene(Scene):
             "pinned_drift": c.pinned_drift(),
             "torn": c.torn_count(),
             "locked": int(np.count_nonzero(c.locked)),
+            **self.contact_metrics(),
         }
 
     def effect_costs(self) -> dict[str, float]:
@@ -310,8 +327,11 @@ class ClothScene(Scene):
                 now = (spent[k] - spent0.get(k, 0.0)) * 1000.0 / n
                 self._costs[k] = now if k not in self._costs else 0.7 * self._costs[k] + 0.3 * now
             self._cost_mark = (self.steps, dict(spent))
-        shown = [k for k in FORCE_NAMES + SET_NAMES + ("tearing",)
-                 if k in self.on or k == "structural"]
+        c = self.cloth
+        running = {k for k, _ in c.before_sweeps + c.after_sweeps}   # contact: only with work
+        shown = [k for k in FORCE_NAMES + SET_NAMES + ("tearing",) + CONTACT_NAMES
+                 if (k in self.on and k not in CONTACT_NAMES) or k in running
+                 or k == "structural"]
         return {k: self._costs.get(k, 0.0) for k in shown}
 
     def time_shares(self) -> dict[str, float]:
@@ -328,7 +348,7 @@ class ClothScene(Scene):
         torn = f"  |  {m['torn']} rods torn" if m["torn"] else ""
         return [f"{it} iterations x {sub} substeps = {it * sub} sweeps/step",
                 f"stretch: mean {self.shown('mean_stretch', m['mean_stretch'])}  max "
-                f"{self.shown('max_stretch', m['max_stretch'])}{torn}"]
+                f"{self.shown('max_stretch', m['max_stretch'])}{torn}"] + self.contact_hud(m)
 
     def hud_details(self) -> list[str]:
         c, m = self.cloth, self.metrics()
@@ -347,14 +367,15 @@ class ClothScene(Scene):
 
     # ----- state --------------------------------------------------------------------------------
     def state_arrays(self):
-        return self.cloth.state_arrays()
+        return self.cloth.state_arrays() + [self.obstacle_state()]
 
     def snapshot(self):
-        return self.cloth.snapshot()
+        return {"cloth": self.cloth.snapshot(), **self.contact_snapshot()}
 
     def restore(self, snap) -> None:
         if snap is None:
             self.reset()
         else:
-            self.cloth.restore(snap)
+            self.cloth.restore(snap["cloth"])
+            self.contact_restore(snap)
             self._stretch = None

@@ -1,6 +1,7 @@
 """The integrator lab: one system, six integrators at once, and what accuracy costs.
 
-What it shows: the same problem (a mass on a spring, a pendulum, or a two-body orbit) run side
+What it shows: the same problem (a mass on a spring, a pendulum, a two-body orbit, or a ball
+bouncing on a floor) run side
 by side by forward Euler, symplectic Euler, Verlet, midpoint (RK2), RK4 and implicit Euler, each in
 its own colour, with the exact (or reference) solution as a white ghost. At the top: the systems
 and the phase portrait (position against velocity; the exact solution is the white loop and its
@@ -27,6 +28,15 @@ Orders: the error after a fixed time falls like h^order; the benchmark measures 
 Verlet's position error per step is O(h^4) (the slides call it "4th order accurate", counting
 that), but the T/h steps add up to an O(h^2) error at time T: the measured order 2.00
 contradicts the slides as a global order.
+What a contact does to accuracy (`problem=bounce`): a ball dropped onto a floor that pushes back
+with a constant 30 m g while the ball is in it (app/physics/problems.py, Bounce). The force jumps
+the instant the ball touches: the step that straddles the touch-down evaluates the wrong force
+for part of h, an O(h) error whatever the method, and every order falls to about 1. Measured over
+a sweep of h from 18 ms to 1.1 ms (the error averaged over 8 start times within a step):
+forward Euler 0.89, symplectic Euler 0.92, Verlet 0.93, midpoint 1.03, RK4 0.87, implicit Euler
+0.92 (BOUNCE_ORDERS; tests/test_integrators.py measures them again). RK4 pays four evaluations a
+step for the order of forward Euler. Implicit Euler takes exactly symplectic Euler's steps here:
+the floor's Jacobian is zero off its surface, so its linear solve sees gravity only.
 An integrator that blows up (non-finite, or 1000x the problem's size away) is frozen and marked
 "blew up at t = ..."; the others run on.
 
@@ -37,7 +47,7 @@ makes implicit Euler's linear system indefinite: its conjugate gradients break d
 direction along which A is positive), the HUD says so, and that step takes a dense LU solve of
 the same system instead, the true linearised step (E/E0 about -6: flung apart, unbound).
 
-Controls: `problem` chooses the system; `hertz` sets dt = 1/hertz (1..1000); each integrator is an
+Controls: `problem` chooses the system (spring, pendulum, orbit, bounce); `hertz` sets dt = 1/hertz (1..1000); each integrator is an
 effect you can switch off (only the ones shown are computed; switching restarts the race);
 R restarts. From the command line: --set problem=orbit --set hertz=8 --set euler=off.
 """
@@ -67,6 +77,10 @@ BLOWUP_SIZE = 1000.0        # a run farther than this many problem scales away h
 SAMPLE_DT = 1.0 / 120.0     # plots keep at most 120 samples per simulated second
 PLOT_SECONDS = 10.0         # the energy plot shows the last 10 s
 TIMING_WINDOW = 61          # us/step is the median of this many recent steps
+# Each integrator's order on `bounce`, measured (problems.measured_orders: the slope over the
+# problem's own sweep, omega*h 0.1 to 0.00625); tests/test_integrators.py measures them again.
+BOUNCE_ORDERS = {"euler": 0.89, "symplectic_euler": 0.92, "verlet": 0.93, "midpoint": 1.03,
+                 "rk4": 0.87, "implicit_euler": 0.92}
 
 
 @dataclass
@@ -100,7 +114,8 @@ class IntegratorsScene(Scene):
     metrics_box = False          # the scene draws its own table of the metrics
     params = (
         Param("problem", "spring", str, choices=tuple(PROBLEMS),
-              help="the system every integrator runs: mass on a spring, pendulum, two-body orbit"),
+              help="the system every integrator runs: mass on a spring, pendulum, two-body orbit, "
+                   "ball bouncing on a floor (a contact: every order falls to ~1)"),
         Param("hertz", 60, int, 1, 1000, rebuild=False,
               help="steps per simulated second (dt = 1/hertz); the HUD shows omega*h"),
     )
@@ -114,6 +129,9 @@ class IntegratorsScene(Scene):
             "omega*h = 3: RK4 blows up as well; only implicit Euler stays bounded (it spirals in)"),
         Try("Orbit at hertz 60", {"problem": "orbit", "hertz": 60},
             "implicit Euler's damping makes the bodies spiral in: stable is not accurate"),
+        Try("Bounce on a floor", {"problem": "bounce", "hertz": 240},
+            "the floor's force jumps at touch-down: RK4's error is as large as Verlet's and "
+            "falls only like h (measured order 0.87, 4 on the spring)"),
     )
 
     # ----- world ---------------------------------------------------------------------------------
@@ -222,6 +240,8 @@ class IntegratorsScene(Scene):
         limits = ("spring's limits: 2, RK4 2.83" if self.problem.name == "spring" else
                   "the spring's limits do not apply")
         lines = [f"omega*h = {self.omega_h:.3f}; {limits}"]
+        if self.problem.name == "bounce":       # omega*h says nothing about a contact
+            lines = self.bounce_words()
         dead = sorted((r for r in self.runs if r.blew_up_t is not None), key=lambda r: r.blew_up_t)
         if dead:
             more = f"  (+{len(dead) - 1} more)" if len(dead) > 1 else ""
@@ -233,7 +253,20 @@ class IntegratorsScene(Scene):
                              f"{'s' if n > 1 else ''} so far): {run.ps.last_cg_failure.words()}")
         return lines
 
+    def bounce_words(self) -> list[str]:
+        """The bounce problem in two lines: how many steps a contact lasts, and the orders."""
+        h = self.dt / self.p["substeps"]
+        orders = ", ".join(f"{SHORT[n]} {o:.2f}" for n, o in BOUNCE_ORDERS.items())
+        return [f"contact {self.problem.t_contact * 1000:.0f} ms = {self.problem.t_contact / h:.1f}"
+                " steps; the floor's force jumps at touch-down",
+                f"orders measured here: {orders} (smooth: 1, 1, 2, 2, 4, 1)"]
+
     def hud_details(self) -> list[str]:
+        if self.problem.name == "bounce":
+            return ["bounce: orders measured over a sweep of h from 18 ms to 1.1 ms (error "
+                    "averaged over 8 start times within a step); on the smooth problems "
+                    "1, 1, 2, 2, 4, 1. The step that straddles a touch-down sees the wrong "
+                    "force for part of h: an O(h) error, whatever the method"]
         return ["h = dt/substeps: the step each integrator takes; omega: the problem's "
                 "angular frequency (on the orbit its mean motion)"]
 

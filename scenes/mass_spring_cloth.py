@@ -64,7 +64,11 @@ about half the sag of silk, cotton or denim (some 33 px against 55-61 px), and r
 stiffness 15) sags most, stretches up to ~60 % as it drops and bounces; silk has no spring damping
 at all and is the lightest, and the wind pushes on area, not mass: in the wind silk flows while
 denim and rubber hang.
-Settings: material sets the sliders below it (mass, tension, compression, shear_stiffness,
+Obstacles (`obstacles`: the Verlet cloth's ball, box, table, floor, bar; drag one with LMB):
+`contact` = projection (moved out, velocity filtered as Baraff & Witkin constrain a particle) or
+penalty (a spring of contact_stiffness, which lowers the step limit); Coulomb friction `mu`.
+scenes/mass_spring_contact.py; their cards: the scene mass_spring_collisions. Settings: material
+sets the sliders below it (mass, tension, compression, shear_stiffness,
 bending_stiffness, spring_damping, air_damping: Blender's names and units); moving one of them
 afterwards makes the material `custom`. Integrator and every slider change live.
 
@@ -98,6 +102,8 @@ from app.physics.mass_spring_cost import FRAME_BUDGET_S, iteration_cap, refusal,
 from app.physics.mass_spring_stability import ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT, LimitWatch
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
 from app.vectors import Arrows, grid_sample, sample_text
+from scenes.mass_spring_contact import (MS_CONTACT_EFFECTS, MS_CONTACT_PARAMS, MS_CONTACT_UNITS,
+                                        MassSpringContact)
 from scenes.mass_spring_words import MassSpringWords
 
 UNLOCK_KEY = "u"
@@ -107,7 +113,7 @@ JOULE = PX_PER_M ** 2       # kg px^2/s^2 per J, with Blender's metre = 256 px (
 STEP_SETTINGS = {"integrator", "hertz", "substeps", "cg_tolerance", "solver"}
 
 
-class MassSpringClothScene(MassSpringWords, Scene):
+class MassSpringClothScene(MassSpringContact, MassSpringWords, Scene):
     """Mass-spring cloth: damped springs, Blender's materials, six integrators.
 
     LMB: grab a particle and drag it (a moving pin); drop it: it stays locked there.
@@ -171,7 +177,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         Param("cg_tolerance", 1e-2, float, 1e-10, 0.5,
               help="implicit Euler: CG stops at |residual| <= this x |b| (and a direct solve "
                    "must reach it too)", rebuild=False),
-    )
+    ) + MS_CONTACT_PARAMS
     effects = (
         Effect("gravity", True, "gravity f = m g", amount="g"),
         Effect("air", True, "air resistance f = -k v", amount="air_damping"),
@@ -180,7 +186,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         Effect("shear", False, "diagonal springs resist shearing (in 2D: a rigid truss, see the "
                "docstring)", amount="shear_stiffness"),
         Effect("bending", True, "skip-one springs resist folding", amount="bending_stiffness"),
-    )
+    ) + MS_CONTACT_EFFECTS
     error_metric, error_label = "max_stretch", "largest stretch"
     # the HUD and the metrics strip write these alike (the JSON keeps px, s, kg and fractions)
     metric_units = {"energy": Unit("J", 1.0 / JOULE, resolution=1e-3),
@@ -189,7 +195,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
                     "omega_max": Unit("1/s"),
                     "explicit_limit_h": Unit("ms", 1e3),
                     "step_limit_h": Unit("ms", 1e3),
-                    "pinned_drift": Unit("px", resolution=0.01)}
+                    "pinned_drift": Unit("px", resolution=0.01), **MS_CONTACT_UNITS}
     tries = (
         Try("Leather past its limit", {"material": "leather", "integrator": "symplectic_euler"},
             "symplectic Euler at h = 16.7 ms, far past the predicted limit: it blows up, the "
@@ -273,6 +279,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         self._cg_failure_t: float | None = None      # when implicit Euler's CG last stopped short
         self._solve_ms: dict[str, float] = {}        # ms per step of each solver, as measured
         self._solve_mark = 0.0                       # cloth.spent["solve"] at the last step
+        self.build_contact()
         self._sync()
 
     def _sync(self, names: set[str] | None = None) -> None:
@@ -283,6 +290,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         c.g, c.wind_field, c.wind_strength = p["g"], p["wind_field"], p["wind_strength"]
         c.on = set(self.on)
         c.configure()
+        self.sync_contact()                          # the penalty joins the force list
         c.ps.cg_tolerance, c.ps.solver = p["cg_tolerance"], p["solver"]
         c.ps.budget_iterations = iteration_cap(        # CG's most in a substep (the budget)
             p, FRAME_BUDGET_S / steps_per_frame(p["hertz"]))
@@ -316,7 +324,9 @@ class MassSpringClothScene(MassSpringWords, Scene):
 
     def step(self, h: float) -> None:
         failures = self.cloth.ps.cg_failures
+        self.contact_start()                         # where the particles start (contact)
         self.cloth.step(h, self.p["integrator"])
+        self.contact_step(h)                         # projection and friction, if on
         if self.cloth.ps.cg_failures > failures:
             self._cg_failure_t = self.cloth.t         # the end of the step that failed
         self._stretch = None
@@ -345,6 +355,8 @@ class MassSpringClothScene(MassSpringWords, Scene):
         self._stretch = None
         if event.kind.startswith("mouse"):
             self.mouse = clamp_point(event.pos, c.world)
+        if self.contact_event(event):                # a press inside an obstacle drags it
+            return
         if event.kind == "mouse_down" and event.button == 1:
             cell = nearest_cell(c.x, self.mouse, self.grab_radius)
             if cell is not None:
@@ -382,6 +394,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         hover = None
         if self.mouse is not None and self.cloth.grabbed is None:
             hover = nearest_cell(self.cloth.x, self.mouse, self.grab_radius)
+        self.draw_contact(surface, view)
         draw_cloth(surface, view, self.cloth, hover, self.stretches())
 
     @property
@@ -396,22 +409,13 @@ class MassSpringClothScene(MassSpringWords, Scene):
         cw, ch = c.spacing * (c.cols - 1), c.spacing * (c.rows - 1)
         ox, oy = c.rest_x[0]                                    # the top-left particle at rest
         x0, y0 = max(0.0, ox - 0.3 * cw), max(0.0, oy - 0.1 * ch)
-        return (x0, y0, min(w - x0, 1.6 * cw), min(h - y0, 1.6 * ch))
+        return self.contact_bounds((x0, y0, min(w - x0, 1.6 * cw), min(h - y0, 1.6 * ch)))
 
     # ----- reports ------------------------------------------------------------------------------
     def explicit_limit(self) -> float:
         """Symplectic Euler's predicted largest step on the cloth as it is now (the latest
         estimate): 2/omega_max undamped, less with damping."""
         return self.watch.limit("symplectic_euler")
-
-    def energies(self):
-        """Energy bars: the parts of `energy` (the metric), 0 at rest in the start pose."""
-        from app.energy import Energies
-        kinetic, springs, gravity = self.cloth.energy_parts()
-        return Energies((("kinetic", kinetic), ("springs", springs), ("gravity", gravity)), 0.0,
-                        zero="the start pose, at rest, every spring at its rest length",
-                        losses="spring damping, air, implicit Euler's artificial damping; the "
-                               "mouse and the wind put energy in", unit="J", scale=JOULE)
 
     def metrics(self) -> dict:
         c = self.cloth
@@ -442,6 +446,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
             "cg_residual": c.ps.solve.residual if solved else None,
             "cg_failures": c.ps.cg_failures,          # implicit steps whose CG stopped short
             "pinned_drift": c.pinned_drift(),
+            **self.contact_metrics(),
         }
 
     def effect_costs(self) -> dict[str, float]:
@@ -454,7 +459,8 @@ class MassSpringClothScene(MassSpringWords, Scene):
                 now = (spent[k] - spent0.get(k, 0.0)) * 1000.0 / n
                 self._costs[k] = now if k not in self._costs else 0.7 * self._costs[k] + 0.3 * now
             self._cost_mark = (self.steps, dict(spent))
-        shown = [k for k in FORCE_EFFECTS if k in self.on] + ["structural", "solve"]
+        shown = [k for k in FORCE_EFFECTS if k in self.on] + ["structural", "solve"] + \
+            (["collisions"] if self.colliding else [])
         return {k: self._costs.get(k, 0.0) for k in shown}
 
     def step_ms(self) -> float:

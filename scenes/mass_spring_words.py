@@ -1,5 +1,5 @@
-"""What the mass-spring cloth says: its HUD lines, the second page (F4), the blow-up hint and the
-real-time advice. The scene (scenes/mass_spring_cloth.py) holds the cloth and its state; this
+"""What the mass-spring cloth says: its HUD lines, the second page (F4), the blow-up hint, the
+real-time advice and its energy bars (E). The scene (scenes/mass_spring_cloth.py) holds the cloth and its state; this
 mixin turns that state into the sentences a class reads, so a reader looking for a sentence on
 screen finds it here, and one looking for the physics finds it there.
 """
@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 from app.loop import FPS_CAP, FixedStepClock
+from app.physics.blender_cloth import PX_PER_M
 from app.physics.integrators import INTEGRATORS
 from app.physics.mass_spring_cost import frame_cost
 from app.physics.mass_spring_stability import ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT, marginal
@@ -195,6 +196,16 @@ class MassSpringWords:
         text += (f", and the loop's {cap} steps a frame (app/loop.py) hold hertz {p['hertz']} "
                  f"to {cap / asked:.2f}x on any machine; {way} keep up")
         return text
+
+
+    def energies(self):
+        """Energy bars: the parts of `energy` (the metric), 0 at rest in the start pose."""
+        from app.energy import Energies
+        kinetic, springs, gravity = self.cloth.energy_parts()
+        return Energies((("kinetic", kinetic), ("springs", springs), ("gravity", gravity)), 0.0,
+                        zero="the start pose, at rest, every spring at its rest length",
+                        losses="spring damping, air, implicit Euler's artificial damping; the "
+                               "mouse and the wind put energy in", unit="J", scale=PX_PER_M ** 2)
 
 
 def _times(ratio: float) -> str:

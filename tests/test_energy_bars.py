@@ -13,7 +13,8 @@ from app.draw.text import TEXT
 from app.energy import Energies
 
 BY_NAME = {c.name: c for c in scenes.SCENES}
-WITH_BARS = ("cloth", "mass_spring_cloth", "newtons_cradle", "double_pendulum", "particle_dance")
+WITH_BARS = ("cloth", "cloth_collisions", "mass_spring_cloth", "mass_spring_collisions",
+             "newtons_cradle", "double_pendulum", "particle_dance")
 
 
 def _run(scene, seconds: float) -> None:

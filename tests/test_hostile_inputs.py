@@ -141,7 +141,7 @@ def test_drawing_never_raises_or_warns_on_an_extreme_state(cls):
                 body.position = [(1.797e308, 0.0), (-1e300, 1e300), (math.nan, 5.0)][k % 3]
                 body.angle = [math.inf, math.nan, 1e300][k % 3]
     elif hasattr(scene, "cloth"):
-        scene.cloth.x[:, 3, 3] = (math.nan, math.inf)
+        scene.cloth.x[:, 1, 3] = (math.nan, math.inf)     # row 1: a strip has 2 rows
     surface = pygame.Surface(cls.world_size)
     with warnings.catch_warnings():
         warnings.simplefilter("error")                  # a RuntimeWarning fails the test

@@ -14,7 +14,8 @@ from app.draw.ring import Ring
 from app.physics.forces import Attraction, Drag, Gravity, PendulumGravity, Springs
 from app.physics.integrators import INTEGRATORS, get_integrator, integrate
 from app.physics.particles import ParticleSystem
-from app.physics.problems import (convergence_order, make_problem, oscillator, run,
+from app.physics.problems import (convergence_order, make_problem, measured_orders,
+                                  oscillator, run, sweep_steps,
                                   stability_limit)
 from app.scene import ParamError
 from scenes.integrators import IntegratorsScene
@@ -200,7 +201,7 @@ def test_scene_reports_each_integrator_at_the_default_step():
 def test_benchmark_quick_run(tmp_path):
     result = run_bench(Report(out_dir=str(tmp_path), quick=True))
     json.dumps(result, allow_nan=False)                   # --json must be valid JSON
-    assert set(result["problems"]) == {"spring", "pendulum", "orbit"}
+    assert set(result["problems"]) == {"spring", "pendulum", "orbit", "bounce"}
     assert result["stability"]["implicit_euler"]["measured_text"] == "unconditional"
     assert result["stability"]["euler"]["measured_text"] == "none"
     assert abs(result["order"]["rk4"]["spring"] - 4) < 0.3
@@ -278,3 +279,66 @@ def test_verlet_local_error_is_fourth_order_its_global_error_second():
         errors.append(float(np.abs(ps.x - problem.exact(h)[0]).max()))
     local = np.polyfit(np.log(hs), np.log(errors), 1)[0]
     assert local == pytest.approx(4.0, abs=0.1)
+
+
+# ----- bounce: what a contact does to the order --------------------------------------------------
+def test_rk4_order_falls_to_about_one_on_bounce_and_is_four_on_the_spring():
+    """The floor's force jumps at touch-down: RK4's observed order over a sweep of h (error
+    averaged over 8 start times within a step) is ~1 on bounce, ~4 on the smooth spring."""
+    bounce = make_problem("bounce")
+    order, errors = convergence_order(bounce, "rk4", sweep_steps(bounce, 0.1, 3))
+    assert 0.5 < order < 1.5, (order, errors)
+    spring = make_problem("spring")
+    n0 = math.ceil(spring.omega * 0.9 / 0.2)
+    smooth, _ = convergence_order(spring, "rk4", [n0, 2 * n0, 4 * n0], 0.9)
+    assert 3.5 < smooth < 4.5, smooth
+
+
+def test_bounce_exact_solution_is_a_conserving_bounce():
+    """The exact solution: continuous, energy conserved, back at the drop height after a period,
+    sunk in by the stated depth; and a tiny-step run follows it."""
+    p = make_problem("bounce")
+    e0 = p.energy(*p.exact(0.0))
+    ts = np.linspace(0.0, 2 * p.period, 2001)
+    ys = np.array([p.exact(float(t))[0][0, 1] for t in ts])
+    for t in ts[::50]:
+        assert p.energy(*p.exact(float(t))) == pytest.approx(e0, rel=1e-9)
+    assert ys.max() == pytest.approx(p.depth, rel=1e-2)
+    assert p.exact(p.period)[0][0, 1] == pytest.approx(-p.height)
+    assert np.abs(np.diff(ys)).max() < 5.0                     # no jump in the position
+    fine = run(p, "rk4", 1e-4, 13000)               # through a bounce, 381 steps in contact
+    assert p.error(fine, 1.3) < 0.02                # O(h): not 1e-13 as on the spring
+
+
+@pytest.mark.slow
+def test_bounce_orders_in_the_hud_are_measured():
+    """Every integrator's order on bounce, as the scene's HUD states it (BOUNCE_ORDERS), within
+    0.1 of a new measurement, and each between 0.5 and 1.5."""
+    from scenes.integrators import BOUNCE_ORDERS
+    measured = measured_orders(make_problem("bounce"))
+    for name, order in measured.items():
+        assert abs(order - BOUNCE_ORDERS[name]) < 0.1, (name, order)
+        assert 0.5 < order < 1.5, (name, order)
+
+
+def test_bounce_scene_says_the_orders():
+    scene = IntegratorsScene({"problem": "bounce", "hertz": 240})
+    for _ in range(240):
+        scene.advance()
+    words = " ".join(scene.hud_lines())
+    assert "RK4 0.87" in words and "contact 38 ms" in words
+    assert all(r.blew_up_t is None for r in scene.runs)
+
+
+def test_bounce_card_rk4_is_no_better_than_verlet_where_on_the_spring_it_is_far_better():
+    """The card 'Bounce on a floor' and the lesson plan: at hertz 240 after 2 s,
+    RK4's error on bounce is about Verlet's (0.10 and 0.08), on the spring ~2800x smaller."""
+    errors = {}
+    for problem in ("bounce", "spring"):
+        scene = IntegratorsScene({"problem": problem, "hertz": 240})
+        for _ in range(480):
+            scene.advance()
+        m = scene.metrics()
+        errors[problem] = m["rk4_error"] / m["verlet_error"]
+    assert errors["bounce"] > 0.5
+    assert errors["spring"] < 1e-3

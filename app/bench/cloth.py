@@ -11,7 +11,9 @@ has settled by then (the stretch is a state, not a phase of an oscillation). Big
 2. equal work, 10 sweeps per step split as substeps x iterations (1x10, 2x5, 5x2, 10x1);
 3. the same cloth written the slide's way (app/physics/cloth_naive.py: an object per particle,
    nested loops), timed in the same run: the ratio is what vectorising buys;
-4. drawing: ms to draw a 64 x 64 cloth (strain heat map) on a 960 x 720 surface.
+4. drawing: ms to draw a 64 x 64 cloth (strain heat map) on a 960 x 720 surface;
+5. contact (app/bench/cloth_contact.py): collisions with three obstacles and self-collision
+   (grid against all pairs) on a 64 x 64 cloth, each beside the step without it.
 """
 
 from __future__ import annotations
@@ -151,6 +153,10 @@ def run(report: Report) -> dict:
     c_eqms = LineChart(f"Same work (10 sweeps per step), {n_eq}x{n_eq}: time vs substeps",
                        "substeps (x iterations = 10)", "time per step (ms)", logx=True)
     c_eqms.add("time per step", [e["substeps"] for e in eq], [e["ms"] for e in eq])
+    # 5. contact: collisions and self-collision at 64 x 64 (app/bench/cloth_contact.py)
+    from app.bench import cloth_contact
+    out["contact"] = cloth_contact.run(report)
+
     out["chart"] = save_grid([c_ms, c_st, c_eq, c_eqms], report.chart_path("cloth.png"),
                              title="Verlet cloth: what accuracy costs (structural + shear rods, "
                                    "hanging from its top row)")

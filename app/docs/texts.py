@@ -41,6 +41,28 @@ METRICS: dict[str, dict[str, Entry]] = {
         "pinned_drift": _CLOTH_COMMON["pinned_drift"],
         "torn": ("count", "rods torn so far (the `tearing` effect)"),
         "locked": ("count", "particles locked now: the pins and those dropped with the mouse"),
+        "contacts": ("count", "particles that touched an obstacle in the last substep (pushed "
+                              "out by the projection; 0 with `collisions` off)"),
+        "penetration_max": ("px", "how deep the deepest free particle lies inside an obstacle "
+                                  "after the step (0 when the projection left none inside)"),
+        "tunneled": ("count", "particle paths that passed through an obstacle within a substep, "
+                              "since the start: each was caught and put back where it entered"),
+        "self_overlaps": ("count", "pairs of particles closer than 95% of self_distance after "
+                                   "the step (neighbours of one grid cell and rod ends left out)"),
+    },
+    "trampoline": {
+        "coupling_impulse": ("kg px/s", "|J|, the momentum the cloth gave the body in the last "
+                                        "step (summed over its substeps); the cloth got -J. A "
+                                        "body resting on the cloth: its weight times dt"),
+        "contacts": ("count", "cloth particles found inside the body at the last substep"),
+        "penetration_max": ("px", "deepest movable particle inside the body after the step; 0 "
+                                  "with `collisions` off"),
+        "momentum_x": ("kg px/s", "total momentum, cloth + body, x (changes only by gravity, "
+                                  "pins and the floor)"),
+        "momentum_y": ("kg px/s", "total momentum, cloth + body, y (down)"),
+        "body_vy": ("px/s", "the body's vertical velocity (y down: negative is up)"),
+        "body_y": ("px", "the body's centre, y (down); the pins are at 440"),
+        "max_stretch": _CLOTH_COMMON["max_stretch"],
     },
     "mass_spring_cloth": {
         "particles": _CLOTH_COMMON["particles"],
@@ -68,6 +90,14 @@ METRICS: dict[str, dict[str, Entry]] = {
         "cg_failures": ("count", "implicit steps whose CG stopped short (each then solved by the "
                                  "sparse LU)"),
         "pinned_drift": _CLOTH_COMMON["pinned_drift"],
+        "contacts": ("count", "free particles touching an obstacle: moved out of one in the "
+                              "last step (projection) or inside one now (penalty); 0 with "
+                              "`collisions` off"),
+        "penetration_max": ("px", "deepest free particle inside an obstacle after the step "
+                                  "(projection: 0 but where obstacles overlap; penalty: how far "
+                                  "its spring lets the cloth in)"),
+        "contact_limit_h": ("s", "contact=penalty: its own step limit 2 sqrt(m/k_c) for the "
+                                 "lightest free particle; null with projection"),
     },
     "falling_balls": dict(_BALLS),
     "pivoting_l": {
@@ -130,6 +160,8 @@ METRICS: dict[str, dict[str, Entry]] = {
                                        "for both methods); null before the first step"),
     },
 }
+METRICS["cloth_collisions"] = METRICS["cloth"]      # the same cloth, with its contact cards
+METRICS["mass_spring_collisions"] = METRICS["mass_spring_cloth"]   # the same cloth, on obstacles
 
 # the --json summary of one run (and what --compare and --video add)
 SUMMARY_FIELDS: dict[str, str] = {

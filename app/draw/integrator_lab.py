@@ -40,6 +40,8 @@ GAP = 8                  # px between panels
 # the systems' own coordinates (px of the problem, the lab's units): the panel shows this box
 SYSTEM_BOX = (0.0, 0.0, 480.0, 300.0)
 SPRING_DRAW_SCALE = 0.8  # the spring column is drawn at 80 % so the bobs fit the box
+BOUNCE_FLOOR = 270.0     # bounce: where the floor is drawn in SYSTEM_BOX
+BALL_RADIUS = 10.0       # bounce: the ball's radius (its lowest point is the problem's y)
 PLOT_SECONDS = 10.0
 TABLE_TEMPLATES = ("9999.9", "-8.88e+88", "-8.888e+88")   # widest us/step, error, E/E0
 HEADS = ("integrator", "f evals", "us/step", "error", "E/E0")
@@ -179,20 +181,24 @@ class LabDrawing:
     def draw_systems(self, surface, r: pygame.Rect, scene) -> None:
         problem = scene.problem
         inner = self.frame(surface, r, f"{problem.title}  (white ring: exact)", bottom=True)
-        names_h = 2 * font(SMALL_SIZE).get_linesize() + 4 if problem.name == "spring" else 0
+        columns = problem.name in ("spring", "bounce")      # one column per integrator
+        names_h = 2 * font(SMALL_SIZE).get_linesize() + 4 if columns else 0
         box = pygame.Rect(inner.x, inner.y, inner.width, max(inner.height - names_h, 1))
         view = View.fit_bounds(SYSTEM_BOX, box)      # (centred: the names go right under)
         old_clip = surface.get_clip()
         surface.set_clip(inner.clip(old_clip))
         x_ref, _ = scene.exact()
-        if problem.name == "spring":
+        if columns:
             self._springs(surface, view, scene, x_ref, box, names_h)
         else:
             self._bodies(surface, view, scene, x_ref)
         surface.set_clip(old_clip)
 
     def _springs(self, surface, view: View, scene, x_ref, box: pygame.Rect, names_h: int) -> None:
-        k = SPRING_DRAW_SCALE
+        """One column per integrator: a bob on its spring from the ceiling, or (bounce) a ball
+        over the floor, with the exact solution as a white ring in every column."""
+        bounce = scene.problem.name == "bounce"
+        k = 1.0 if bounce else SPRING_DRAW_SCALE
         drawn = pygame.Rect(view.pt(SYSTEM_BOX[:2]), (round(view.len(SYSTEM_BOX[2])),
                                                        round(view.len(SYSTEM_BOX[3]))))
         names_row = pygame.Rect(box.left, drawn.bottom, box.width, names_h)
@@ -206,29 +212,33 @@ class LabDrawing:
         if not named:                # for any name (the table has them): none
             names_row = pygame.Rect(0, 0, 0, 0)
         for i, name in enumerate(INTEGRATORS):
-            origin = np.array([40.0 + 80.0 * i, 22.0])
+            origin = np.array([40.0 + 80.0 * i, BOUNCE_FLOOR if bounce else 22.0])
             run = next((r for r in scene.runs if r.name == name), None)
             color = run.color if run else OFF
             cx = view.pt(origin)[0]
             y = names_row.top + 2 + (font(size).get_linesize() if staggered and i % 2 else 0)
             self.text(surface, (cx, y), SHORT[name], color, size, "midtop", within=names_row)
-            pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (18, 0)),
-                             view.pt(origin + (18, 0)), px(2))
-            ghost = origin + k * scene.problem.points(x_ref)[-1]
+            half = 40 if bounce else 18                  # the floor runs under every column
+            pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (half, 0)),
+                             view.pt(origin + (half, 0)), px(2))
+            lift = np.array([0.0, -BALL_RADIUS if bounce else 0.0])  # bounce: its lowest point
+            ghost = origin + k * scene.problem.points(x_ref)[-1] + lift
             pygame.draw.circle(surface, GHOST, view.pt(ghost), max(2, round(view.len(12))), 1)
             if run is None:
                 continue
             if run.blew_up_t is not None:     # two lines, every other column lower if narrow
                 line = font(size).get_linesize()
-                top = view.pt(origin)[1] + 6 + (2 * line if staggered and i % 2 else 0)
+                top = (view.pt(origin)[1] + 6 - (3 * line if bounce else 0)
+                       + (2 * line if staggered and i % 2 else 0))
                 if named:
                     self.text(surface, (cx, top), "blew up", run.color, size, "midtop",
                               within=box)
                     self.text(surface, (cx, top + line), f"t={run.blew_up_t:.2f}s", run.color,
                               size, "midtop", within=box)
                 continue
-            bob = np.clip(origin + k * scene.problem.points(run.ps.x)[-1], -1e4, 1e4)
-            _spring(surface, view, origin, bob, run.color)
+            bob = np.clip(origin + k * scene.problem.points(run.ps.x)[-1] + lift, -1e4, 1e4)
+            if not bounce:
+                _spring(surface, view, origin, bob, run.color)
             pygame.draw.circle(surface, run.color, view.pt(bob), max(2, round(view.len(10))))
 
     def _bodies(self, surface, view: View, scene, x_ref) -> None:

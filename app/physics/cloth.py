@@ -42,6 +42,7 @@ from typing import Callable
 import numpy as np
 
 from app.physics.bounds import REACH, clamp_point
+from app.physics.cloth_contact import ContactState, contact_passes
 from app.physics.grid_shared import nearest_cell, wind_field
 from app.physics.rods import SET_NAMES, Family, RodSet, rod_lengths, rod_sets, solve_batch
 from app.physics.timing import Stopwatch
@@ -116,6 +117,7 @@ class Cloth:
         self.active_sets: list[RodSet] = []
         self.tearing = False
         self.ease_end = -math.inf                # rods switched on mid-run ease in until then
+        self.contact = ContactState()           # obstacles and self-collision (cloth_contact.py)
         self.lock_cells(self.default_pins)
         self.set_effects(set(effects))
 
@@ -152,6 +154,17 @@ class Cloth:
                         fam.rest_now = rod_lengths(self.x, fam).astype(self.dtype)
                     self.ease_end = self.t + EASE_TIME
         self._make_plan()
+        self._make_contact_plan()
+
+    def set_obstacles(self, obstacles: list) -> None:
+        """The obstacles the `collisions` effect keeps the cloth out of (app/physics/obstacles.py)."""
+        self.contact.obstacles = list(obstacles)
+        self._make_contact_plan()
+
+    def _make_contact_plan(self) -> None:
+        """The contact passes before and after the sweeps: only those of the effects that are on
+        (app/physics/cloth_contact.py); none at all without contact effects."""
+        self.before_sweeps, self.after_sweeps = contact_passes(self.on, self.contact.obstacles)
 
     def _make_plan(self) -> None:
         """The sweep's plan: every batch of every active set, with its rest length(s)."""
@@ -272,10 +285,16 @@ class Cloth:
             self.x, self.x_prev = self.x_prev, self.x        # swap: the old x becomes x_prev
             if self.grabbed is not None:
                 self._follow_mouse()
+        for name, run in self.before_sweeps:                 # collisions, friction
+            with timed(name):
+                run(self, h)
         if self.tearing:
             with timed("tearing"):
                 self.tear()
         self.relax(self.iterations)
+        for name, run in self.after_sweeps:                  # self-collision, collisions, friction
+            with timed(name):
+                run(self, h)
         if self.ease_end > -math.inf:
             self.ease_rest_lengths(h)
         self.t += h

@@ -74,6 +74,26 @@ class PendulumGravity:
         return dfdx, None
 
 
+class FloorPush:
+    """Unary, a contact: a floor at y = level (y down) that pushes every particle below its surface
+    up with a constant force `push` (N, i.e. px kg / s^2), and nothing above it:
+    f_y = -push if y > level else 0. The force *jumps* from 0 to push at the surface, as a contact
+    switches on: that jump is what the integrator lab's `bounce` problem shows to cost every
+    integrator its order. Conservative (potential push * max(0, y - level)), so a ball bounces
+    back to the height it fell from. Its Jacobian is zero everywhere but at the surface (a delta
+    there, which no Jacobian-vector product can carry): implicit Euler does not see the floor
+    coming either."""
+
+    def __init__(self, level: float, push: float):
+        self.level, self.push = float(level), float(push)
+
+    def accumulate(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray, f: np.ndarray) -> None:
+        f[:, 1] -= self.push * (x[:, 1] > self.level)    # push up (-y) on every particle in it
+
+    def jacobian(self, ps: ParticleSystem, x: np.ndarray, v: np.ndarray) -> Jacobians:
+        return None, None                          # piecewise constant: zero off the surface
+
+
 class Springs:
     """n-ary: damped Hooke springs between particle pairs (a[k], b[k]).
 

@@ -29,8 +29,8 @@ from typing import Callable
 
 import numpy as np
 
-from app.physics.forces import Attraction, Gravity, PendulumGravity, Springs
-from app.physics.integrators import check_step, get_integrator, rk4_tuple
+from app.physics.forces import Attraction, FloorPush, Gravity, PendulumGravity, Springs
+from app.physics.integrators import INTEGRATORS, check_step, get_integrator, rk4_tuple
 from app.physics.particles import ParticleSystem
 
 
@@ -44,6 +44,9 @@ class Problem:
     scale = 1.0        # characteristic length (px): errors are relative to it
     horizon = 1.0      # the benchmark's end time T (s)
     phase_labels = ("x", "v")
+    start_offsets = 1  # error_at averages over this many start times spread over one step
+    sweep: tuple[float, int] | None = None   # the order sweep (largest omega*h, halvings), if
+    #                                          not the benchmark's per-order default
 
     def make_system(self) -> ParticleSystem:
         """A fresh particle system in the initial state."""
@@ -68,6 +71,14 @@ class Problem:
     def phase_curve(self, samples: int = 200) -> np.ndarray:
         """The exact trajectory in the phase portrait: a closed curve, shape (samples, 2)."""
         raise NotImplementedError
+
+    def make_system_at(self, t: float) -> ParticleSystem:
+        """A fresh system in the exact state at time t (t = 0: make_system())."""
+        ps = self.make_system()
+        if t:
+            x, v = self.exact(t)
+            ps.x, ps.v = x.copy(), v.copy()
+        return ps
 
     def error(self, ps: ParticleSystem, t: float) -> float:
         """Relative phase-space error of ps against the exact solution at time t."""
@@ -238,8 +249,87 @@ class TwoBodyOrbit(Problem):
         return np.stack((self.a * (1 - self.e * np.cos(E)), self.a * self.e * np.sin(E) * rate), 1)
 
 
+class Bounce(Problem):
+    """A ball dropped onto a stiff floor: what a contact does to an integrator's order.
+
+    The floor (forces.FloorPush) pushes the ball up with a constant force `stiffness` times its
+    weight while the ball's lowest point is below the surface (y > 0, y down), and not at all
+    above it: the force jumps from 0 to 30 m g the instant the ball touches. The motion is exact
+    and periodic, piecewise parabolas: fall for t1 = sqrt(2 H / g) to the speed V = g t1, sink
+    in and come back out in t2 = 2 V / (push/m - g) (38 ms at the defaults, 4.9 px deep), rise
+    for t1. Energy is conserved, so E/E0 keeps its meaning.
+
+    Why a jump and not a Hooke penalty spring k d: a step is a quadrature of the force over h,
+    and a quadrature rule misses a kink or a jump inside its interval by a fixed fraction of it.
+    A spring's force starts from zero at the surface (only its slope jumps): the step that
+    straddles the touch-down errs by O(h^2), and since that happens once per contact, not every
+    step, the global order falls only to 2. With a jump in the force itself, that step evaluates
+    the wrong force for a fraction of h: an O(h) error per contact, whatever the method's order,
+    so every integrator's global order falls to about 1 (measured: measured_orders and
+    `python -m app bench integrators`).
+    """
+
+    name = "bounce"
+    title = "ball bouncing on a floor"
+    phase_labels = ("height above the floor (px)", "velocity (px/s)")
+
+    def __init__(self, height: float = 150.0, gravity: float = 980.0, stiffness: float = 30.0,
+                 mass: float = 1.0):
+        if not stiffness > 1.0:
+            raise ValueError(f"the floor must push harder than gravity pulls: stiffness > 1, "
+                             f"got {stiffness!r}")
+        self.height, self.g, self.mass = height, gravity, mass
+        self.push = stiffness * mass * gravity
+        self.t_fall = math.sqrt(2 * height / gravity)
+        self.speed = gravity * self.t_fall                 # V at the surface
+        self.inside = self.push / mass - gravity           # deceleration in the floor
+        self.t_contact = 2 * self.speed / self.inside
+        self.depth = self.speed ** 2 / (2 * self.inside)
+        self.period = 2 * self.t_fall + self.t_contact
+        self.omega = 2 * math.pi / self.period
+        self.scale = height
+        self.horizon = 2.0                                 # two bounces, not a whole period
+        # Where the touch-down falls within a step decides the size (and sign) of its error: the
+        # error of one run swings by 100x between neighbouring step sizes. The order is measured
+        # on the root mean square over 8 start times spread over one step, and over a sweep of
+        # steps from 18 ms to 1.1 ms (omega*h 0.1 down to 0.00625), not only its smallest steps.
+        self.start_offsets = 8
+        self.sweep = (0.1, 4)
+
+    def make_system(self) -> ParticleSystem:
+        return ParticleSystem([[0.0, -self.height]], [[0.0, 0.0]], self.mass,
+                              [Gravity((0.0, self.g)), FloorPush(0.0, self.push)])
+
+    def exact(self, t: float) -> tuple[np.ndarray, np.ndarray]:
+        """Fall, sink into the floor, rise: three parabolas, repeated every period."""
+        tau = math.fmod(t, self.period)
+        g, V = self.g, self.speed
+        if tau < self.t_fall:                               # falling
+            y, v = -self.height + g * tau * tau / 2, g * tau
+        elif tau < self.t_fall + self.t_contact:            # in the floor, pushed back
+            s = tau - self.t_fall
+            y, v = V * s - self.inside * s * s / 2, V - self.inside * s
+        else:                                               # rising
+            s = tau - self.t_fall - self.t_contact
+            y, v = -V * s + g * s * s / 2, -V + g * s
+        return np.array([[0.0, y]]), np.array([[0.0, v]])
+
+    def energy(self, x: np.ndarray, v: np.ndarray) -> float:
+        """Kinetic + gravity (zero at the floor's surface; y down) + the floor's potential."""
+        y = float(x[0, 1])
+        return (0.5 * self.mass * float(v[0] @ v[0]) - self.mass * self.g * y
+                + self.push * max(y, 0.0))
+
+    def phase(self, x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+        return -float(x[0, 1]), -float(v[0, 1])             # height and upward velocity
+
+    def phase_curve(self, samples: int = 200) -> np.ndarray:
+        ts = np.linspace(0.0, self.period, samples, endpoint=False)
+        return np.array([self.phase(*self.exact(float(t))) for t in ts])
+
+
 PROBLEMS: dict[str, Callable[[], Problem]] = {
-    "spring": MassOnSpring, "pendulum": Pendulum, "orbit": TwoBodyOrbit}
+    "spring": MassOnSpring, "pendulum": Pendulum, "orbit": TwoBodyOrbit, "bounce": Bounce}
 
 
 def make_problem(name: str) -> Problem:
@@ -266,10 +356,22 @@ def run(problem: Problem, integrator: str, h: float, steps: int) -> ParticleSyst
 
 def error_at(problem: Problem, integrator: str, T: float, steps: int) -> tuple[float, int]:
     """(relative error at time T, derivative evaluations + Jacobian products) for `steps` steps;
-    the error is inf if the run went non-finite."""
-    ps = run(problem, integrator, T / steps, steps)
-    error = problem.error(ps, T) if ps.is_finite() else math.inf
-    return error, ps.evals + ps.jac_products
+    the error is inf if the run went non-finite. A problem with start_offsets = k > 1 (bounce)
+    is run k times from the exact state at t0 = j h / k (j = 0 .. k-1) to t0 + T: the error is
+    the root mean square of the k errors, the evaluations those of one run."""
+    step, h = get_integrator(integrator).step, check_step(T / steps)
+    k = problem.start_offsets
+    squares, evals = 0.0, 0
+    for j in range(k):
+        t0 = j * h / k
+        ps = problem.make_system_at(t0)
+        for _ in range(steps):
+            step(ps, h)
+        if not ps.is_finite():
+            return math.inf, ps.evals + ps.jac_products
+        squares += problem.error(ps, t0 + T) ** 2
+        evals = ps.evals + ps.jac_products
+    return math.sqrt(squares / k), evals
 
 
 def fitted_order(hs: list[float], errors: list[float], asymptotic: bool = False) -> float | None:
@@ -291,6 +393,22 @@ def convergence_order(problem: Problem, integrator: str, steps: list[int],
     T = problem.horizon if T is None else T
     errors = [error_at(problem, integrator, T, n)[0] for n in steps]
     return fitted_order([T / n for n in steps], errors), errors
+
+
+def sweep_steps(problem: Problem, top: float, halvings: int, T: float | None = None) -> list[int]:
+    """Step counts to time T for omega*h = top, top/2, ... (halvings + 1 runs)."""
+    T = problem.horizon if T is None else T
+    return [math.ceil(problem.omega * T / (top / 2 ** k)) for k in range(halvings + 1)]
+
+
+def measured_orders(problem: Problem, integrators: list[str] | None = None) -> dict[str, float]:
+    """Each integrator's order on a problem with its own sweep (bounce): the least-squares slope
+    of log(error) against log(h) over the whole sweep (convergence_order)."""
+    if problem.sweep is None:
+        raise ValueError(f"problem {problem.name!r} has no sweep of its own")
+    steps = sweep_steps(problem, *problem.sweep)
+    return {name: convergence_order(problem, name, steps)[0]
+            for name in (integrators or list(INTEGRATORS))}
 
 
 def energy_growth(integrator: str, omega_h: float, steps: int = 2000) -> float:
@@ -333,6 +451,6 @@ def stability_limit(integrator: str, lo: float = 0.1, hi: float = 20.0, steps: i
     return math.sqrt(lo * hi)
 
 
-__all__ = ["Problem", "MassOnSpring", "Pendulum", "TwoBodyOrbit", "PROBLEMS", "make_problem",
-           "oscillator", "run", "error_at", "convergence_order", "energy_growth", "is_stable",
+__all__ = ["Problem", "MassOnSpring", "Pendulum", "TwoBodyOrbit", "Bounce", "PROBLEMS", "make_problem",
+           "oscillator", "run", "error_at", "convergence_order", "sweep_steps", "measured_orders", "energy_growth", "is_stable",
            "stability_limit"]

@@ -1,0 +1,271 @@
+"""Contact for the Verlet cloth: obstacles, friction, tunnelling and self-collision, as passes.
+
+The cloth's step (app/physics/cloth.py) is: Verlet, then `iterations` sweeps over the rods. The
+contact passes sit around the sweeps, each a separate function, chosen once by the effects that
+are on (`contact_passes`): an effect that is off is not in the lists, so the step never calls it.
+
+    Verlet step
+    collisions  (before)  every particle inside an obstacle is moved to its surface (Jakobsen)
+    friction    (before)  Coulomb: the sliding x - x_prev loses at most mu x the correction
+    rod sweeps            (the rods now see particles outside the obstacles)
+    self_collision        pairs of particles closer than `self_distance` (not joined by a rod)
+                          are pushed apart to that distance: Breen's repulsion written as a
+                          constraint, projected like a rod that may only grow
+    collisions  (after)   tunnelling caught: a particle whose path in this substep went through
+                          an obstacle is put back where it entered it
+                          (app/physics/tunnelling.py); then projection again: the sweeps (and
+                          the self-collision) may have pulled particles back in;
+                          after this pass no free particle is inside an obstacle, unless two
+                          obstacles overlap around it (then `penetration_max` says how deep)
+    friction    (after)   on the second correction (then, where two obstacles meet, the
+                          touching particles are projected once more)
+
+Why project twice: once before the sweeps, so that the rods are relaxed around particles that
+are already outside (the cloth drapes, the rods near the contact stay at their length), and once
+after, so that the step ends with nothing inside. Jakobsen projects inside every sweep; that
+costs one projection per sweep (10 at the defaults) for a difference of well under a pixel.
+
+Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
+grid finds them (app/physics/neighbours.py, cells `self_distance` wide), or all pairs, the O(n^2)
+reference (`self_method`). Pairs of one grid cell (its sides and diagonals) and pairs joined by
+a rod of an active set are left out: the rods keep them apart, and a cell may shear freely (as
+it does without self-collision). Between sweeps the obstacles are projected again (if on), so a
+pair resting on a floor is parted by moving the upper particle, not by pushing the lower one in. All pairs found are pushed apart at once (Jacobi: each particle
+moves by the average of its pairs' corrections, times OVER_RELAX, so a particle in many pairs is
+not thrown out), SELF_SWEEPS times, reusing the pairs found.
+
+Self-collision is discrete, like the projection without the sweep test: a particle that moves
+more than about self_distance in one substep can pass between two particles of another layer
+without ever being seen closer than the minimum. Raise substeps (or lower the drop) for fast
+folds.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from app.physics.neighbours import all_pair_blocks, grid_pair_blocks, sort_into_cells
+from app.physics.obstacles import (Contacts, Obstacle, obstacles_may_touch, project,
+                                   verlet_friction)
+from app.physics.tunnelling import swept
+
+CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
+MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
+TOLERANCE = 1.0        # px: a path deeper than this through an obstacle counts as tunnelling
+                       # (only paths over 2 px long can: slow particles cost nothing)
+OVERLAP_SLACK = 0.05   # self_overlaps counts pairs closer than 95% of self_distance
+SELF_SWEEPS = 2        # Jacobi passes over the self-collision pairs per substep
+SELF_DISTANCE = 0.8    # default minimum distance between particles, in rod lengths (spacings):
+                       # below ~0.7 the weight of a layer presses it into the gaps of the one below
+SELF_METHODS = ("grid", "all_pairs")
+OVER_RELAX = 1.5       # Jacobi's averaged corrections times this (successive over-relaxation):
+                       # a layer resting on another is held at 0.98 of self_distance, not 0.955
+MAX_CELLS = 400        # at most this many grid cells across (a flung cloth: cells grow instead)
+# rod offsets (|dr|, |dc|) of each set: such pairs are joined by a rod, never pushed apart
+ROD_OFFSETS = {"structural": ((0, 1), (1, 0)), "shear": ((1, 1),), "bending": ((0, 2), (2, 0))}
+
+
+@dataclass
+class ContactState:
+    """What the contact passes read and keep: the settings (obstacles, mu, self_distance in px,
+    self_method) and what they found (contacts now, tunnelled paths so far, self pairs)."""
+
+    obstacles: list[Obstacle] = field(default_factory=list)
+    mu: float = 0.5
+    self_distance: float = 8.0
+    self_method: str = "grid"
+    margin: float = MARGIN
+    tolerance: float = TOLERANCE
+    contacts: Contacts | None = None      # the last projection's contacts
+    touching: np.ndarray | None = None    # particles that touched an obstacle in the last substep
+    tunneled: int = 0                     # paths caught passing through an obstacle, since build
+    self_pairs: int = 0                   # pairs pushed apart in the last self-collision pass
+    self_tests: int = 0                   # pair tests the last search took
+    start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
+    crowded: bool = False                 # two obstacles meet (then corners are settled)
+
+
+Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
+
+
+def contact_passes(on: set[str], obstacles: list) -> tuple[list[tuple[str, Pass]],
+                                                            list[tuple[str, Pass]]]:
+    """(before the sweeps, after the sweeps): the passes the effects that are on need, with the
+    names their cost is measured under. Collisions without obstacles are no pass at all."""
+    before: list[tuple[str, Pass]] = []
+    after: list[tuple[str, Pass]] = []
+    if "self_collision" in on:
+        after.append(("self_collision", self_collide))
+    if "collisions" in on and obstacles:
+        before.append(("collisions", collide_before))
+        after.append(("collisions", collide_after))
+        if "friction" in on:
+            before.append(("friction", rub))
+            after.append(("friction", rub_and_settle))
+    return before, after
+
+
+def _points(a: np.ndarray) -> np.ndarray:
+    """The (n, 2) view of a (2, rows, cols) array: writing into it moves the cloth."""
+    return a.reshape(2, -1).T
+
+
+# ----- obstacles --------------------------------------------------------------------------------
+def collide_before(c, h: float) -> None:
+    """Right after the Verlet step: project (and remember where each particle started)."""
+    st, x = c.contact, _points(c.x)
+    start = c.x_prev.reshape(2, -1)             # where each particle began this substep
+    if st.start is None or st.start.shape != start.shape:
+        st.start = np.empty(start.shape, start.dtype)
+    st.start[...] = start
+    st.contacts = project(st.obstacles, x, st.margin, c.free.ravel() > 0)
+    st.touching = st.contacts.mask
+
+
+def collide_after(c, h: float) -> None:
+    """After the sweeps: catch paths through an obstacle over the whole substep, project again."""
+    st, x = c.contact, _points(c.x)
+    movable = c.free.ravel() > 0
+    _catch_tunnelling(st, st.start, x, movable)
+    st.contacts = project(st.obstacles, x, st.margin, movable)
+    st.touching = st.touching | st.contacts.mask
+    st.crowded = len(st.obstacles) > 1 and obstacles_may_touch(st.obstacles, st.margin)
+    if st.crowded:
+        _settle_corners(st, x)
+
+
+def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:
+    """Where obstacles meet (a table's leg on the floor), a particle pushed out of one may sit
+    in the next: project the touching particles again, a few passes (only those: cheap)."""
+    ids = np.flatnonzero(st.contacts.mask)
+    for _ in range(passes):
+        if ids.size == 0:
+            return
+        sub = x[ids].copy()
+        again = project(st.obstacles, sub, st.margin)
+        x[ids] = sub
+        ids = ids[again.mask]
+
+
+def _catch_tunnelling(st: ContactState, start: np.ndarray, x: np.ndarray,
+                      movable: np.ndarray) -> None:
+    """Paths start -> x through an obstacle: put the particle back where its path entered the
+    obstacle (on the surface, on the side it came from: then projected out, it rests there).
+    (Putting it back where it started the substep instead leaves it hovering: the next step's
+    g h^2 carries it through again, for ever, a bar's width above the bar.)
+    start: (2, n); x: (n, 2). Only particles that moved more than 2 x tolerance can have gone
+    through (tunnelling.py): they are found first, on the float32 columns, and only they are
+    handed to the sweep test."""
+    dx, dy = x[:, 0] - start[0], x[:, 1] - start[1]
+    fast = np.flatnonzero((dx * dx + dy * dy > (2 * st.tolerance) ** 2) & movable)
+    if fast.size == 0:
+        return
+    s0 = start[:, fast].T
+    sw = swept(st.obstacles, s0, x[fast], st.tolerance)
+    if sw.count:
+        x[fast[sw.mask]] = sw.entry[sw.mask]
+        st.tunneled += sw.count
+
+
+def rub(c, h: float) -> None:
+    """Coulomb friction on the last projection's contacts (app/physics/obstacles.py)."""
+    st = c.contact
+    verlet_friction(_points(c.x), _points(c.x_prev), st.contacts, st.mu, st.obstacles, h)
+
+
+def rub_and_settle(c, h: float) -> None:
+    """Friction after the last projection, then, where obstacles meet, the touching particles
+    projected once more. (Moving along the surface of one convex obstacle never enters it: the
+    obstacle lies behind the tangent line. But it can enter a neighbouring one: a table top
+    and its leg.)"""
+    rub(c, h)
+    st = c.contact
+    ids = np.flatnonzero(st.contacts.mask)
+    if ids.size and st.crowded:
+        x = _points(c.x)
+        sub = x[ids].copy()
+        project(st.obstacles, sub, st.margin)
+        x[ids] = sub
+
+
+# ----- self-collision ---------------------------------------------------------------------------
+def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
+    """(i, j, dx, dy, r2, tests): pairs of particles closer than `distance` (flat indices, each
+    pair once), not joined by a rod of an active set, with d = x_j - x_i and |d|^2."""
+    pts = _points(c.x).astype(np.float64)
+    if method == "all_pairs":
+        blocks = list(all_pair_blocks(pts, distance))
+        tests = len(pts) * (len(pts) - 1) // 2
+    else:
+        lo = pts.min(0)
+        local = pts - lo                                # the grid covers the cloth's own box
+        box = tuple(np.maximum(local.max(0), distance) * (1 + 1e-9) + 1e-9)
+        cell = max(distance, max(box) / MAX_CELLS)      # a flung cloth: bigger cells, not more
+        cells = sort_into_cells(local, cell, box)
+        blocks = list(grid_pair_blocks(local, cell, box, cells))
+        tests = cells.tests
+    if blocks:
+        i, j, dx, dy, r2 = (np.concatenate([getattr(b, k) for b in blocks])
+                            for k in ("i", "j", "dx", "dy", "r2"))
+    else:
+        i = j = np.zeros(0, np.intp)
+        dx = dy = r2 = np.zeros(0)
+    near = r2 < distance * distance
+    i, j, dx, dy, r2 = i[near], j[near], dx[near], dy[near], r2[near]
+    ri, ci = np.divmod(i, c.cols)
+    rj, cj = np.divmod(j, c.cols)
+    dr, dc = np.abs(ri - rj), np.abs(ci - cj)
+    joined = dr + dc == 1                   # a cell's sides and its diagonals: always left out
+    joined |= (dr == 1) & (dc == 1)
+    for rs in c.active_sets:
+        for a, b in ROD_OFFSETS[rs.name]:
+            joined |= (dr == a) & (dc == b)
+    keep = ~joined
+    return i[keep], j[keep], dx[keep], dy[keep], r2[keep], tests
+
+
+def self_collide(c, h: float) -> None:
+    """Push every pair closer than self_distance apart to that distance, each end by its share
+    w_i / (w_i + w_j) of the overlap (a pinned end does not move), averaged per particle."""
+    st = c.contact
+    i, j, _, _, _, st.self_tests = close_pairs(c, st.self_distance, st.self_method)
+    st.self_pairs = len(i)
+    if len(i) == 0:
+        return
+    x = c.x.reshape(2, -1)
+    w = c.w.ravel().astype(np.float64)
+    total = w[i] + w[j]
+    ok = total > 0
+    i, j, total = i[ok], j[ok], total[ok]
+    si, sj = w[i] / total, w[j] / total
+    n = x.shape[1]
+    count = np.maximum(np.bincount(i, minlength=n) + np.bincount(j, minlength=n), 1)
+    dmin = st.self_distance
+    floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
+    movable = c.free.ravel() > 0
+    for sweep in range(SELF_SWEEPS):
+        if floor_too and sweep:
+            # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
+            # between the sweeps lets the upper one take the whole correction, as on a floor
+            project(st.obstacles, x.T, st.margin, movable)
+        d = (x[:, j] - x[:, i]).astype(np.float64)      # (2, pairs): x_j - x_i
+        r = np.sqrt(d[0] * d[0] + d[1] * d[1])
+        same = r < 1e-6 * dmin                          # at one point: part them along x
+        d[0] = np.where(same, 1.0, d[0])
+        r = np.where(same, 1.0, r)
+        push = np.maximum(dmin - r, 0.0) / r            # the overlap, per unit of d
+        for axis in (0, 1):
+            move = d[axis] * push
+            x[axis] += ((np.bincount(j, move * sj, n) - np.bincount(i, move * si, n))
+                        * (OVER_RELAX / count)).astype(x.dtype)
+
+
+def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERLAP_SLACK) -> int:
+    """Pairs closer than (1 - slack) x distance, cell and rod neighbours left out (95% of it by
+    default: a layer resting under the weight of another sits at about 98%): what self-collision
+    did not (yet) resolve, or, with it off, how much the cloth lies on itself."""
+    r2 = close_pairs(c, distance * (1 - slack), method)[4]
+    return int(len(r2))

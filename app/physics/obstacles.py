@@ -1,0 +1,484 @@
+"""Obstacles for particles: how far a point is from a solid, and how to push it back out.
+
+The lecture's cloth collides by *projection* (Jakobsen, "Advanced Character Physics", 2001):
+after the Verlet step, a particle found inside an obstacle is simply moved to the obstacle's
+surface, along the shortest way out. No force, no stiffness, nothing to make the step unstable;
+the rods then pull the rest of the cloth along. This module gives both cloths (the Verlet cloth,
+app/physics/cloth.py, and the mass-spring cloth) the same four obstacles and the same tools.
+
+The one idea all of it rests on is the **signed distance** d(p) of a point p to an obstacle:
+
+    d > 0   p is outside, d px from the surface
+    d = 0   p is on the surface
+    d < 0   p is inside, -d px deep
+
+and its **outward normal** n(p), the unit direction in which d grows fastest (the shortest way
+out for a point inside). Then "move a particle inside to the surface" is one line for any shape:
+
+    if d < 0:   p += -d * n            (Jakobsen's projection)
+
+The four shapes, in the lab's coordinates (px, y points DOWN):
+
+    Circle(cx, cy, radius)                 a ball:     d = |p - c| - r,   n = (p - c) / |p - c|
+    Box(cx, cy, half_w, half_h, angle)     a rotated box (angle in radians, turning x towards
+                                           +y): in the box's own frame q = |p_local| - half,
+                                           d = |max(q, 0)| outside, max(qx, qy) inside
+    HalfPlane(px, py, nx, ny)              everything behind the line through (px, py) with
+                                           outward normal (nx, ny): d = (p - point) . n.
+                                           floor(y) is the half-plane below y (n = (0, -1))
+    Segment(ax, ay, bx, by, thickness)     a static rod: a capsule, every point within
+                                           `thickness` px of the segment a-b:
+                                           d = |p - closest point of a-b| - thickness
+
+Every function takes points as an (n, 2) array (a view is fine: the Verlet cloth hands over
+x.reshape(2, -1).T, so writing into it moves the cloth) and works on all n points at once, one
+obstacle at a time: no Python loop over particles.
+
+What a step does with them (the Verlet cloth; the mass-spring cloth uses the same pieces):
+
+1. `project(obstacles, points)`: every particle inside an obstacle is moved to its surface (plus
+   an optional `margin`); returns a `Contacts` record: which particles touch (`mask`), how far
+   each was moved along the normal (`depth`, px), that normal, and which obstacle it touched.
+   Obstacles are handled one after the other, as Jakobsen's loop over constraints does: a
+   particle pushed out of one obstacle into a second one that overlaps it is then pushed out of
+   the second (and may end inside the first: where two obstacles crush the cloth between them
+   there is no place outside both, and `penetration_max` says how deep the trapped ones are).
+2. `verlet_friction(x, x_prev, contacts, mu)`: Coulomb friction on the Verlet cloth. For a
+   particle in contact, the distance travelled in this step is v = x - x_prev (x: projected, x_prev:
+   where it started). Its part along
+   the surface, v_t = v - (v . n) n, is reduced by at most mu times the normal correction that
+   the projection made (the "normal force" of a position-based step is its normal correction):
+
+       |v_t| <= mu * depth:   v_t = 0                  (static friction: it sticks)
+       otherwise:             v_t shrinks by mu * depth (kinetic friction: it slides, slower)
+
+   It does so by moving x back along the surface (friction on positions, as Macklin et al.'s
+   position-based friction does): the particle travels less in this step, and since the next
+   Verlet step reads its velocity from x - x_prev, it carries the slower velocity on. (Moving
+   x_prev instead would slow the velocity but keep this step's travel: a cloth on a slope that
+   should stick creeps down by g h^2 sin(slope) every step.) Friction only ever slows the sliding: it never reverses it (a test checks). A moving obstacle (its
+   `velocity`, px/s) drags what touches it: the sliding is measured relative to the surface.
+   `coulomb_friction` is the same rule for any motion array, e.g. velocities (mass-spring cloth:
+   reduce the tangential velocity by mu times the normal velocity the contact removed).
+3. `penetration_max(obstacles, points)`: the deepest point inside any obstacle, px (0 if none):
+   after a step with projection, a measure of what the projection did not fix.
+4. Tunnelling: projection only sees where a particle ends, so a fast particle can pass right
+   through a thin obstacle in one step. app/physics/tunnelling.py finds such paths (`swept`).
+
+Obstacles are small mutable objects: a scene drags one by `move_by(dx, dy)` (or `move_to`) and
+sets its `velocity` (px/s) so that friction carries what rests on it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+OBSTACLE_KINDS = ("circle", "box", "half_plane", "segment")
+TINY = 1e-12                                 # shortest length we divide by (no 0/0)
+
+
+def _xy(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The x and y columns of an (n, 2) array, as float64 (what the distances are computed in)."""
+    p = np.asarray(points)
+    return p[:, 0].astype(np.float64, copy=False), p[:, 1].astype(np.float64, copy=False)
+
+
+def _pairs(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Two (n,) arrays as the columns of one (n, 2) array (np.stack's work, less overhead)."""
+    out = np.empty((len(a), 2))
+    out[:, 0] = a
+    out[:, 1] = b
+    return out
+
+
+def _unit_or(nx: np.ndarray, ny: np.ndarray, length: np.ndarray, fallback: tuple[float, float]
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """(nx, ny) / length, or `fallback` where the length is 0 (a point at a circle's centre)."""
+    ux, uy = nx / np.maximum(length, TINY), ny / np.maximum(length, TINY)
+    zero = length <= TINY
+    if zero.any():                      # rare: fix those few, not every element
+        ux[zero], uy[zero] = fallback
+    return ux, uy
+
+
+# ----- the shapes ---------------------------------------------------------------------------------
+@dataclass
+class Obstacle:
+    """What every obstacle has: a velocity (px/s, set by whoever moves it; friction measures
+    sliding relative to it) and a name for the HUD."""
+
+    velocity: tuple[float, float] = field(default=(0.0, 0.0), kw_only=True)
+    label: str = field(default="", kw_only=True)
+    kind = "obstacle"
+
+    def signed_distance(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(d, normal): d (n,) signed distance in px (negative inside), normal (n, 2) outward unit."""
+        d, nx, ny = self.distance_xy(*_xy(points))
+        return d, _pairs(nx, ny)
+
+    def distance_xy(self, x: np.ndarray, y: np.ndarray
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The same from the points' x and y columns: (d, normal x, normal y), each (n,)."""
+        raise NotImplementedError
+
+    def move_by(self, dx: float, dy: float) -> None:
+        raise NotImplementedError
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(x_min, y_min, x_max, y_max) of the obstacle (infinite for a half-plane): points
+        outside it, grown by a margin, need no distance (project() skips them)."""
+        return (-math.inf, -math.inf, math.inf, math.inf)
+
+    @property
+    def center(self) -> tuple[float, float]:
+        raise NotImplementedError
+
+    def move_to(self, x: float, y: float) -> None:
+        """Move the obstacle so that its `center` is at (x, y)."""
+        cx, cy = self.center
+        self.move_by(x - cx, y - cy)
+
+    def contains(self, points: np.ndarray) -> np.ndarray:
+        """True where a point is strictly inside (d < 0)."""
+        return self.signed_distance(points)[0] < 0
+
+
+@dataclass
+class Circle(Obstacle):
+    """A ball of `radius` px centred at (cx, cy)."""
+
+    cx: float
+    cy: float
+    radius: float
+    kind = "circle"
+
+    def distance_xy(self, x, y):
+        dx, dy = x - self.cx, y - self.cy
+        r = np.hypot(dx, dy)
+        nx, ny = _unit_or(dx, dy, r, (0.0, -1.0))        # at the centre: out through the top
+        return r - self.radius, nx, ny
+
+    def move_by(self, dx, dy):
+        self.cx += dx
+        self.cy += dy
+
+    @property
+    def center(self):
+        return (self.cx, self.cy)
+
+    def bounds(self):
+        r = self.radius
+        return (self.cx - r, self.cy - r, self.cx + r, self.cy + r)
+
+
+@dataclass
+class Box(Obstacle):
+    """A rectangle of half sizes (half_w, half_h) centred at (cx, cy), turned by `angle` radians
+    (positive turns +x towards +y: clockwise on screen, since y points down)."""
+
+    cx: float
+    cy: float
+    half_w: float
+    half_h: float
+    angle: float = 0.0
+    kind = "box"
+
+    def axes(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The box's own x and y axes in the world (unit vectors)."""
+        c, s = math.cos(self.angle), math.sin(self.angle)
+        return (c, s), (-s, c)
+
+    def corners(self) -> np.ndarray:
+        """The four corners (4, 2), in order around the box."""
+        (ux, uy), (vx, vy) = self.axes()
+        signs = ((-1, -1), (1, -1), (1, 1), (-1, 1))
+        return np.array([(self.cx + a * self.half_w * ux + b * self.half_h * vx,
+                          self.cy + a * self.half_w * uy + b * self.half_h * vy)
+                         for a, b in signs])
+
+    def distance_xy(self, x, y):
+        (ux, uy), (vx, vy) = self.axes()
+        dx, dy = x - self.cx, y - self.cy
+        lx, ly = dx * ux + dy * uy, dx * vx + dy * vy     # the point in the box's frame
+        qx, qy = np.abs(lx) - self.half_w, np.abs(ly) - self.half_h
+        ox, oy = np.maximum(qx, 0.0), np.maximum(qy, 0.0)
+        out = np.hypot(ox, oy)          # outside: distance to the nearest face or corner
+        d = out + np.minimum(np.maximum(qx, qy), 0.0)     # inside: -(distance to nearest face)
+        # the normal in the box's frame: towards the nearest point outside, else the nearest
+        # face's; the signs of lx, ly say which side (+1 on an axis: either side will do)
+        face_x = qx >= qy
+        safe = np.maximum(out, TINY)
+        gx = np.where(out > 0, ox / safe, face_x) * np.copysign(1.0, lx)
+        gy = np.where(out > 0, oy / safe, ~face_x) * np.copysign(1.0, ly)
+        return d, gx * ux + gy * vx, gx * uy + gy * vy
+
+    def move_by(self, dx, dy):
+        self.cx += dx
+        self.cy += dy
+
+    @property
+    def center(self):
+        return (self.cx, self.cy)
+
+    def bounds(self):
+        c, s = abs(math.cos(self.angle)), abs(math.sin(self.angle))
+        ex, ey = self.half_w * c + self.half_h * s, self.half_w * s + self.half_h * c
+        return (self.cx - ex, self.cy - ey, self.cx + ex, self.cy + ey)
+
+
+@dataclass
+class HalfPlane(Obstacle):
+    """Everything behind the line through (px, py) whose outward normal is (nx, ny) (normalised
+    on creation). floor(y) makes the ground: solid below y, its normal pointing up (0, -1)."""
+
+    px: float
+    py: float
+    nx: float
+    ny: float
+    kind = "half_plane"
+
+    def __post_init__(self):
+        length = math.hypot(self.nx, self.ny)
+        if not length > 0:
+            raise ValueError("a half-plane needs a non-zero normal")
+        self.nx, self.ny = self.nx / length, self.ny / length
+
+    def distance_xy(self, x, y):
+        d = (x - self.px) * self.nx + (y - self.py) * self.ny
+        return d, np.full(len(d), self.nx), np.full(len(d), self.ny)
+
+    def move_by(self, dx, dy):
+        self.px += dx
+        self.py += dy
+
+    @property
+    def center(self):
+        return (self.px, self.py)
+
+
+def floor(y: float, x: float = 0.0, **kw) -> HalfPlane:
+    """The ground at height y: solid below (y grows downwards), normal (0, -1)."""
+    return HalfPlane(x, y, 0.0, -1.0, **kw)
+
+
+@dataclass
+class Segment(Obstacle):
+    """A static rod from (ax, ay) to (bx, by), `thickness` px thick on every side: a capsule (a
+    rectangle with round ends). Thin ones (a few px) are where fast particles tunnel."""
+
+    ax: float
+    ay: float
+    bx: float
+    by: float
+    thickness: float
+    kind = "segment"
+
+    def closest(self, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The nearest point of the segment a-b to each point: (x, y) arrays."""
+        return self._closest(*_xy(points))
+
+    def _closest(self, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        ex, ey = self.bx - self.ax, self.by - self.ay
+        e2 = ex * ex + ey * ey
+        t = ((x - self.ax) * ex + (y - self.ay) * ey) / e2 if e2 > 0 else np.zeros_like(x)
+        t = np.clip(t, 0.0, 1.0)
+        return self.ax + t * ex, self.ay + t * ey
+
+    def distance_xy(self, x, y):
+        cx, cy = self._closest(x, y)
+        dx, dy = x - cx, y - cy
+        r = np.hypot(dx, dy)
+        ex, ey = self.bx - self.ax, self.by - self.ay
+        e = math.hypot(ex, ey)
+        up = (ey / e, -ex / e) if e > 0 else (0.0, -1.0)    # on the core line: one side's normal
+        nx, ny = _unit_or(dx, dy, r, up)
+        return r - self.thickness, nx, ny
+
+    def move_by(self, dx, dy):
+        self.ax += dx
+        self.bx += dx
+        self.ay += dy
+        self.by += dy
+
+    @property
+    def center(self):
+        return ((self.ax + self.bx) / 2, (self.ay + self.by) / 2)
+
+    def bounds(self):
+        t = self.thickness
+        return (min(self.ax, self.bx) - t, min(self.ay, self.by) - t,
+                max(self.ax, self.bx) + t, max(self.ay, self.by) + t)
+
+
+# ----- distances to several obstacles -------------------------------------------------------------
+def nearest(obstacles, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(d, normal, index): for each point, the smallest signed distance over all obstacles (the
+    nearest surface outside, the deepest obstacle inside), its outward normal (n, 2) and the
+    obstacle's index in `obstacles` (-1, d = +inf, normal 0 if there are none)."""
+    n = len(points)
+    best = np.full(n, np.inf)
+    normal = np.zeros((n, 2))
+    index = np.full(n, -1)
+    for k, ob in enumerate(obstacles):
+        d, nrm = ob.signed_distance(points)
+        closer = d < best
+        best = np.where(closer, d, best)
+        normal[closer] = nrm[closer]
+        index[closer] = k
+    return best, normal, index
+
+
+def penetration_max(obstacles, points: np.ndarray, mask: np.ndarray | None = None) -> float:
+    """How deep the deepest point (among `mask`, if given) lies inside any obstacle, px; 0.0 if
+    none is inside."""
+    if len(obstacles) == 0 or len(points) == 0:
+        return 0.0
+    d = nearest(obstacles, points)[0]
+    if mask is not None:
+        d = d[np.asarray(mask, bool)]
+    return float(max(0.0, -d.min())) if d.size else 0.0
+
+
+# ----- projection ---------------------------------------------------------------------------------
+@dataclass
+class Contacts:
+    """What a projection did, per point: `mask` True where the point touched an obstacle (was
+    found within `margin` of it and moved); `depth` the distance it was moved along the normal
+    (px, 0 where no contact: the normal correction friction is measured against); `normal` (n, 2)
+    the outward normal of the obstacle it was pushed out of (the last one, if several);
+    `index` that obstacle's position in the list (-1: none)."""
+
+    mask: np.ndarray
+    depth: np.ndarray
+    normal: np.ndarray
+    index: np.ndarray
+
+    @property
+    def count(self) -> int:
+        return int(np.count_nonzero(self.mask))
+
+
+def project(obstacles, points: np.ndarray, margin: float = 0.0,
+            movable: np.ndarray | None = None) -> Contacts:
+    """Move every point found closer than `margin` to an obstacle (inside it, for margin 0) out
+    along the normal to distance `margin`: p += (margin - d) * n. Writes into `points` (n, 2);
+    points where `movable` is False (pinned, grabbed) are left where they are. Obstacles are
+    handled in order (see the module docstring). Returns the Contacts."""
+    n = len(points)
+    depth = np.zeros(n)
+    normal = np.zeros((n, 2))
+    index = np.full(n, -1)
+    hit = np.zeros(n, bool)
+    px, py = points[:, 0], points[:, 1]        # views: writing into them moves the points
+    for k, ob in enumerate(obstacles):
+        ids = near_bounds(ob, px, py, margin, movable)     # the cheap test first
+        if ids.size == 0:
+            continue
+        d, nx, ny = ob.distance_xy(px[ids].astype(np.float64), py[ids].astype(np.float64))
+        inside = d < margin
+        if not inside.any():
+            continue
+        ids, push = ids[inside], margin - d[inside]          # usually few: correct only those
+        nx, ny = nx[inside], ny[inside]
+        px[ids] += (push * nx).astype(points.dtype, copy=False)
+        py[ids] += (push * ny).astype(points.dtype, copy=False)
+        depth[ids] += push
+        normal[ids, 0] = nx
+        normal[ids, 1] = ny
+        index[ids] = k
+        hit[ids] = True
+    return Contacts(hit, depth, normal, index)
+
+
+def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.0,
+                movable: np.ndarray | None = None) -> np.ndarray:
+    """Indices of the points (x and y columns) within `margin` of the obstacle's bounds (and
+    `movable`, if given): the only ones that can be inside or within the margin."""
+    x0, y0, x1, y1 = ob.bounds()
+    if math.isinf(x0) and movable is None:
+        return np.arange(len(px))
+    near = (px > x0 - margin) & (px < x1 + margin) & (py > y0 - margin) & (py < y1 + margin)
+    if movable is not None:
+        near &= movable
+    return np.flatnonzero(near)
+
+
+def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
+    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
+    bounds reach it): only then can a particle pushed out of one land in another."""
+    grown = [ob.bounds() for ob in obstacles]
+    for a in range(len(obstacles)):
+        for b in range(a + 1, len(obstacles)):
+            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
+            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
+                         None)
+            if plane is not None:
+                other = grown[b] if plane is obstacles[a] else grown[a]
+                if math.isinf(other[0]):
+                    return True                                 # two half-planes
+                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
+                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
+                if lowest < 2 * margin:
+                    return True
+            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
+                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
+                return True
+    return False
+
+
+# ----- friction -----------------------------------------------------------------------------------
+def coulomb_friction(motion: np.ndarray, normal: np.ndarray, normal_change: np.ndarray,
+                     mask: np.ndarray, mu: float) -> np.ndarray:
+    """Coulomb's law on a motion (a displacement per step, or a velocity), for the points in
+    `mask`: the tangential part m_t = m - (m . n) n shrinks by mu * normal_change (what the
+    contact removed along the normal, >= 0), and to zero if it is smaller (static friction).
+    Returns the change to add to `motion` (n, 2): minus the removed tangential part; zero
+    outside the mask. It never reverses the sliding: the factor applied to m_t is in [0, 1]."""
+    change = np.zeros(motion.shape, np.float64)
+    ids = np.flatnonzero(mask)
+    if ids.size == 0 or mu <= 0:
+        return change
+    m = motion[ids].astype(np.float64)
+    nrm = normal[ids]
+    along = (m * nrm).sum(1, keepdims=True)
+    tangent = m - along * nrm
+    speed = np.hypot(tangent[:, 0], tangent[:, 1])
+    removable = mu * np.maximum(normal_change[ids], 0.0)
+    keep = np.where(speed > removable, 1.0 - removable / np.maximum(speed, TINY), 0.0)
+    change[ids] = -(1.0 - keep)[:, None] * tangent
+    return change
+
+
+def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: float,
+                    obstacles=(), h: float = 0.0) -> None:
+    """Coulomb friction for the Verlet cloth (see the module docstring, step 2): for each
+    particle in contact, the sliding x - x_prev (minus the surface's own motion, velocity * h,
+    of the obstacle it touches) loses at most mu * depth along the surface, by moving x back
+    along it. Writes into x ((n, 2) arrays, views welcome)."""
+    ids = np.flatnonzero(contacts.mask)
+    if ids.size == 0 or mu <= 0:
+        return
+    xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
+    mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
+    my = ys[ids].astype(np.float64) - x_prev[ids, 1]
+    if h and len(obstacles):                   # ...relative to the surface it touches
+        carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
+        mx -= carry[contacts.index[ids], 0]
+        my -= carry[contacts.index[ids], 1]
+    nx, ny = contacts.normal[ids, 0], contacts.normal[ids, 1]
+    along = mx * nx + my * ny
+    tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
+    speed = np.hypot(tx, ty)
+    removable = mu * contacts.depth[ids]
+    # the share of the tangential travel removed: all of it (sticks) or mu * depth of it
+    gone = np.where(speed > removable, removable / np.maximum(speed, TINY), 1.0)
+    xs[ids] -= (gone * tx).astype(x.dtype, copy=False)        # less travel: x moves back
+    ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
+
+
+__all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
+           "nearest", "penetration_max", "Contacts", "project", "near_bounds", "coulomb_friction",
+           "verlet_friction", "obstacles_may_touch"]

@@ -1,0 +1,269 @@
+"""The Verlet cloth on obstacles and on itself (issue 24): penetration at the defaults, Coulomb's
+slope, tunnelling at the sliders' extremes, crushing, fast drags, the fold's two layers, a
+crumpled 64x64 cloth, effects that are off cost nothing. Nothing here measures time."""
+
+import math
+
+import numpy as np
+import pytest
+
+from app.physics.cloth import Cloth
+from app.physics.cloth_contact import close_pairs
+from app.physics.obstacles import Box, Circle, floor, penetration_max
+from app.scene import InputEvent
+from scenes.cloth import ClothScene
+from scenes.cloth_collisions import FOLD, STRIP, ClothCollisionsScene
+
+OBSTACLE_SETS = ("ball", "box", "table", "floor", "bar")
+
+
+def run(scene, steps):
+    for _ in range(steps):
+        scene.advance()
+    return scene
+
+
+def points(scene):
+    return scene.cloth.x.reshape(2, -1).T.astype(float)
+
+
+def lmb(scene, kind, pos):
+    scene.handle_event(InputEvent(kind, tuple(map(float, pos)), 1))
+
+
+# ----- obstacles ----------------------------------------------------------------------------------
+@pytest.mark.parametrize("obstacles", OBSTACLE_SETS)
+def test_at_the_defaults_no_particle_ends_a_step_half_a_pixel_inside(obstacles):
+    """The defaults with each obstacle set, the cloth let go (pins=none) so that it falls onto
+    them: penetration_max <= 0.5 px after every step, and the cloth touches."""
+    for scene in (ClothScene({"obstacles": obstacles, "pins": "none"}),
+                  ClothCollisionsScene({"obstacles": obstacles})):
+        worst, touched = 0.0, 0
+        for _ in range(100):
+            scene.advance()
+            m = scene.metrics()
+            worst = max(worst, m["penetration_max"])
+            touched = max(touched, m["contacts"])
+        assert worst <= 0.5 and touched > 0 and scene.is_finite(), scene.name
+
+
+def test_collisions_off_or_without_obstacles_cost_nothing():
+    off = ClothScene({"obstacles": "ball", "pins": "none", "collisions": False, "rows": 8,
+                      "cols": 8})
+    run(off, 60)
+    c = off.cloth
+    assert c.before_sweeps == [] and c.after_sweeps == []
+    assert "collisions" not in c.spent and "friction" not in c.spent
+    assert off.metrics()["contacts"] == 0
+    none = run(ClothScene({"rows": 8, "cols": 8}), 5)     # collisions on, nothing to collide
+    assert none.cloth.before_sweeps == [] and none.cloth.after_sweeps == []
+    assert set(none.effect_costs()) == {"drag", "gravity", "structural"}
+    nofric = run(ClothScene({"obstacles": "ball", "friction": False, "rows": 8, "cols": 8}), 5)
+    assert "friction" not in nofric.cloth.spent and "collisions" in nofric.cloth.spent
+    assert "self_collision" not in nofric.cloth.spent
+
+
+def strip_on_box(angle, friction=True, mu=0.5, steps=240):
+    scene = ClothCollisionsScene({"obstacles": "box", "cols": 30, "box_angle": angle,
+                        "mu": mu, "friction": friction})
+    run(scene, 60)                                   # it lands (about 0.3 s) and settles
+    x0 = scene.cloth.x[0].mean()
+    run(scene, steps)
+    return scene, abs(scene.cloth.x[0].mean() - x0)
+
+
+@pytest.mark.parametrize("angle, mu, sticks", [(20, 0.5, True), (24, 0.5, True),
+                                               (30, 0.5, False), (20, 0.3, False),
+                                               (-20, 0.5, True)])
+def test_coulomb_a_strip_on_a_slope_sticks_exactly_when_mu_exceeds_the_tangent(angle, mu, sticks):
+    _, moved = strip_on_box(angle, mu=mu)
+    assert (moved < 1.0) if sticks else (moved > 30.0), (angle, mu, moved)
+    assert (math.tan(math.radians(abs(angle))) < mu) == sticks
+
+
+def test_without_friction_the_strip_slides_off_the_slope():
+    scene, moved = strip_on_box(20, friction=False, steps=120)
+    assert moved > 100 and scene.metrics()["contacts"] == 0       # gone
+
+
+def test_the_scenes_defaults_are_the_strip_above_the_ball():
+    assert ClothCollisionsScene().p == {**ClothScene().p, "obstacles": "ball", **STRIP,
+                                        "cols": 60}
+
+
+def test_the_strip_drapes_over_the_ball_on_both_sides():
+    scene = run(ClothCollisionsScene(), 240)
+    ball = scene.obstacles[0]
+    x = scene.cloth.x
+    assert scene.metrics()["contacts"] > 20
+    ends_y = x[1][:, [0, -1]]
+    assert np.all(ends_y > ball.cy)                   # both ends hang below the ball's centre
+    assert x[1].min() < ball.cy - 0.9 * ball.radius   # the middle lies on top
+    assert x[0, :, 0].mean() < ball.cx < x[0, :, -1].mean()
+
+
+def test_tablecloth_pulled_off_by_one_end():
+    scene = run(ClothCollisionsScene({"obstacles": "table", "cols": 70}), 120)
+    top = scene.obstacles[0]
+    assert scene.metrics()["contacts"] > 20          # it lies on the table
+    end = scene.cloth.x[:, 0, -1].astype(float)
+    lmb(scene, "mouse_down", end)
+    for k in range(1, 121):                          # pull right and down, 300 px/s
+        lmb(scene, "mouse_move", end + np.array([5.0, 2.0]) * k)
+        scene.advance()
+    x = scene.cloth.x
+    assert x[0].min() > top.cx - top.half_w or scene.metrics()["contacts"] < 5
+    assert scene.is_finite() and scene.metrics()["penetration_max"] <= 0.5
+
+
+# ----- hard cases -------------------------------------------------------------------------------
+@pytest.mark.parametrize("hertz, iterations", [(1, 1), (1, 100), (1000, 1), (15, 10),
+                                               pytest.param(1000, 100, marks=pytest.mark.slow)])
+def test_a_strip_dropped_onto_a_thin_bar_never_ends_beyond_it(hertz, iterations):
+    """The sliders' extremes of hertz and iterations, gravity at its maximum (5000 px/s^2: the
+    strip hits the 4 px bar at ~1300 px/s): no particle ends a step more than the tolerance
+    below the bar within its span, and the paths that went through are counted."""
+    scene = ClothCollisionsScene({"obstacles": "bar", "cols": 16, "g": 5000.0,
+                        "hertz": hertz, "iterations": iterations})
+    bar = scene.obstacles[0]
+    for _ in range(max(3, int(0.6 * hertz))):
+        scene.advance()
+        x, y = scene.cloth.x[0], scene.cloth.x[1]
+        over = (x > bar.ax) & (x < bar.bx)
+        assert np.all(y[over] < bar.ay + bar.thickness + 0.5), scene.metrics()
+    m = scene.metrics()
+    assert m["contacts"] > 0 and scene.is_finite()
+    if hertz <= 15:
+        assert m["tunneled"] > 0          # at ~90+ px a step the paths went through: caught
+
+
+def test_a_cloth_crushed_between_two_obstacles_stays_finite():
+    cloth = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"gravity", "collisions", "friction"})
+    ground = floor(230.0)
+    press = Box(155.0, 60.0, 120.0, 20.0, 0.2)
+    cloth.set_obstacles([ground, press])
+    for k in range(240):
+        press.move_by(0.0, 1.0 if press.cy < 228.0 else 0.0)    # down into the floor, then held
+        press.velocity = (0.0, 60.0)
+        cloth.step(1 / 60)
+        assert np.all(np.isfinite(cloth.x))
+    assert np.all(np.abs(cloth.x) < 2000)
+
+
+def test_an_obstacle_dragged_into_the_cloth_at_speed_does_not_blow_it_up():
+    scene = ClothScene({"obstacles": "ball"})           # the hanging cloth, the ball below it
+    ball = scene.obstacles[0]
+    lmb(scene, "mouse_down", ball.center)
+    assert scene.dragged == 0 and scene.cloth.grabbed is None
+    start = np.array(ball.center)
+    for k in range(90):                                 # 600 px up and down, 3000 px/s
+        lmb(scene, "mouse_move", start + (0.0, -600.0 if (k // 12) % 2 == 0 else 0.0))
+        scene.advance()
+        assert scene.is_finite()
+    lmb(scene, "mouse_up", ball.center)
+    run(scene, 60)
+    m = scene.metrics()
+    assert scene.is_finite() and m["penetration_max"] <= 0.5 and m["max_stretch"] < 1.0
+    assert scene.cloth.pinned_drift() < 1e-3
+
+
+def test_a_press_outside_every_obstacle_grabs_a_particle_as_before():
+    scene = ClothScene({"obstacles": "ball", "rows": 10, "cols": 10})
+    lmb(scene, "mouse_down", scene.cloth.x[:, 5, 5])
+    assert scene.cloth.grabbed == (5, 5) and scene.dragged is None
+    lmb(scene, "mouse_up", scene.cloth.x[:, 5, 5])
+    ball = scene.obstacles[0]
+    c0 = ball.center
+    lmb(scene, "mouse_down", c0)
+    lmb(scene, "mouse_move", (c0[0] + 30.0, c0[1]))
+    run(scene, 3)
+    assert ball.center == pytest.approx((c0[0] + 30.0, c0[1]))
+    assert scene.cloth.grabbed is None
+
+
+def test_friction_carries_a_strip_resting_on_a_moving_box():
+    scene = run(ClothCollisionsScene({"obstacles": "box", "cols": 20, "box_angle": 0.0}), 90)
+    box = scene.obstacles[0]
+    x0 = scene.cloth.x[0].mean()
+    lmb(scene, "mouse_down", box.center)
+    for k in range(1, 61):                             # 60 px/s to the right
+        lmb(scene, "mouse_move", (box.cx + 1.0, box.cy))
+        scene.advance()
+    moved = scene.cloth.x[0].mean() - x0
+    assert 40 < moved < 70, moved                      # ~60 px: it rode along
+
+
+def test_snapshot_and_restore_bring_the_obstacles_back():
+    scene = ClothScene({"obstacles": "ball", "rows": 10, "cols": 10})
+    snap = scene.snapshot()
+    h0 = scene.state_hash()
+    ball = scene.obstacles[0]
+    lmb(scene, "mouse_down", ball.center)
+    lmb(scene, "mouse_move", (ball.cx, ball.cy - 100))
+    run(scene, 10)
+    assert scene.state_hash() != h0
+    scene.restore(snap)
+    assert scene.state_hash() == h0
+
+
+# ----- self-collision -------------------------------------------------------------------------------
+def layer_crossings(scene) -> int:
+    """Columns of the folded strip's top half (past the fold) that do not lie above the column
+    of the bottom half that started under them by at least half the self-collision distance:
+    where one layer has passed through (or into) the other."""
+    y = scene.cloth.x[1].astype(float).mean(0)              # each column's height
+    cols = len(y)
+    below = np.arange(0, cols // 2 - 6)                      # the straight part, away from the fold
+    above = cols - 1 - below                                 # the column folded over each one
+    gap = 0.5 * scene.p["self_distance"] * scene.cloth.spacing
+    return int(np.count_nonzero(y[above] > y[below] - gap))
+
+
+def test_the_fold_stays_in_two_layers_with_self_collision_and_passes_through_without():
+    on = run(ClothCollisionsScene({**FOLD, "self_collision": True}), 180)
+    off = run(ClothCollisionsScene({**FOLD, "self_collision": False}), 180)
+    assert layer_crossings(on) == 0
+    assert layer_crossings(off) > 20
+    assert on.metrics()["self_overlaps"] < off.metrics()["self_overlaps"]
+    assert on.is_finite() and on.metrics()["penetration_max"] <= 0.5
+
+
+def test_a_crumpled_64x64_cloth_with_self_collision_stays_finite():
+    scene = ClothScene({"rows": 64, "cols": 64, "start": "crumpled", "pins": "none",
+                        "obstacles": "floor", "self_collision": True})
+    spread0 = np.ptp(points(scene), axis=0)
+    for _ in range(45):
+        scene.advance()
+        assert scene.is_finite()
+    spread = np.ptp(points(scene), axis=0)
+    assert np.all(spread < 4 * 64 * scene.cloth.spacing) and np.all(spread > spread0)
+    assert scene.cloth.contact.self_pairs > 0
+
+
+def test_the_grid_finds_the_same_close_pairs_as_all_pairs():
+    scene = run(ClothScene({"rows": 24, "cols": 24, "start": "crumpled", "pins": "none"}), 2)
+    d = 0.6 * scene.cloth.spacing
+    a = close_pairs(scene.cloth, d, "grid")
+    b = close_pairs(scene.cloth, d, "all_pairs")
+    pa = {tuple(sorted(p)) for p in zip(a[0].tolist(), a[1].tolist())}
+    pb = {tuple(sorted(p)) for p in zip(b[0].tolist(), b[1].tolist())}
+    assert pa == pb and len(pa) > 50
+    assert a[5] < b[5]                                  # fewer tests
+
+
+def test_self_collision_off_costs_nothing_and_on_shows_its_cost():
+    off = run(ClothScene({"rows": 10, "cols": 10}), 5)
+    assert "self_collision" not in off.cloth.spent
+    on = run(ClothScene({"rows": 10, "cols": 10, "self_collision": True}), 5)
+    assert on.cloth.spent["self_collision"] > 0 and "self_collision" in on.effect_costs()
+
+
+def test_penetration_is_measured_against_the_free_particles_only():
+    scene = ClothScene({"obstacles": "ball", "rows": 10, "cols": 10})
+    ball = scene.obstacles[0]
+    ball.move_to(*scene.cloth.x[:, 0, 5])             # over the pinned top row
+    run(scene, 2)
+    free = scene.cloth.free.ravel() > 0
+    assert penetration_max([ball], points(scene), free) <= 0.5
+    assert penetration_max([ball], points(scene)) > 5                # the pins are inside
+    assert scene.metrics()["penetration_max"] <= 0.5

@@ -1,0 +1,155 @@
+"""The two-way coupling of a Verlet cloth with pymunk bodies (app/physics/coupling.py,
+scenes/trampoline.py): momentum exchanged equal and opposite, conserved in a free cloth with
+gravity off, the ball thrown back up, a resting box carried by M g dt a step, and the switches."""
+
+import math
+
+import numpy as np
+import pytest
+
+from app.physics.coupling import Body, cloth_momentum, couple, cross
+from app.physics.obstacles import Box, Circle
+from app.scene import ParamError
+from scenes.trampoline import PIN_Y, TrampolineScene
+
+
+def _points_inside(shape, n, rng):
+    pts = rng.uniform(-80, 80, (n, 2)) + np.array(shape.center)
+    return pts[shape.signed_distance(pts)[0] < 0]
+
+
+@pytest.mark.parametrize("shape", [Circle(100.0, 50.0, 40.0),
+                                   Box(100.0, 50.0, 60.0, 25.0, angle=0.7)])
+@pytest.mark.parametrize("mass", [0.05, 1.0, 1e6])
+def test_coupling_exchange_is_equal_and_opposite(shape, mass):
+    """The momentum and the angular momentum the particles gain (m_p dx / h, about the body's
+    centre) are exactly what the body loses; a heavy body pushes them all the way out."""
+    rng = np.random.default_rng(3)
+    pts = _points_inside(shape, 400, rng)
+    assert len(pts) > 20
+    before = pts.copy()
+    m_p, h = 0.01, 1 / 240
+    body = Body(shape, mass, mass * 500.0, shape.center)
+    ex = couple(pts, np.ones(len(pts), bool), m_p, body, h)
+    j = m_p * (pts - before) / h
+    assert ex.contacts == len(pts)
+    np.testing.assert_allclose(ex.impulse, -j.sum(0), rtol=1e-12, atol=1e-9)
+    r = before - np.array(shape.center)
+    assert ex.angular == pytest.approx(-cross(r, j).sum(), rel=1e-12, abs=1e-9)
+    np.testing.assert_allclose(ex.dv, ex.impulse / mass)
+    d_after = shape.signed_distance(pts)[0]
+    moved_in = (d_after - shape.signed_distance(before)[0]).min()
+    assert moved_in >= -1e-9                      # nobody is pushed deeper
+    if mass == 1e6:                               # an immovable body: all the way out
+        assert d_after.min() > -1e-3
+
+
+def test_pinned_particles_neither_move_nor_push():
+    shape = Circle(0.0, 0.0, 10.0)
+    pts = np.array([[1.0, 1.0], [2.0, -3.0]])
+    ex = couple(pts, np.array([False, False]), 0.1, Body(shape, 1.0, 50.0, (0.0, 0.0)), 0.01)
+    assert ex.contacts == 0 and np.all(ex.impulse == 0)
+    assert pts.tolist() == [[1.0, 1.0], [2.0, -3.0]]
+
+
+def test_momentum_is_conserved_with_gravity_off_and_no_pins():
+    """A ball thrown into a free cloth, no gravity, no drag: the total momentum (cloth + ball)
+    stays what the ball brought, through the whole contact, to the float32 cloth's rounding."""
+    scene = TrampolineScene({"gravity": False, "pins": "none", "drag": False,
+                             "drop_height": 120, "throw_speed": 400})
+    p0 = scene.momentum()
+    exchanged, worst = 0.0, 0.0
+    for _ in range(60):                            # 1 s: contact from ~0.45 s, before the floor
+        scene.advance()
+        exchanged += scene.metrics()["coupling_impulse"]
+        worst = max(worst, float(np.abs(scene.momentum() - p0).max()))
+    assert exchanged > 50                          # the cloth really pushed back...
+    assert scene.body.velocity.y < 0.8 * 400       # ...and slowed the ball
+    assert worst < 1e-4 * 400, worst
+
+
+def test_trampoline_catches_the_ball_and_throws_it_up():
+    scene = TrampolineScene({})
+    impact, thrown = 0.0, 0.0
+    for _ in range(90):                           # 1.5 s: down, caught, thrown
+        scene.advance()
+        m = scene.metrics()
+        if m["contacts"] and not impact:
+            impact = m["body_vy"]
+        thrown = min(thrown, m["body_vy"])
+    assert impact > 400                           # it fell onto the band...
+    assert thrown < -0.4 * impact                 # ...and left it upwards, fast
+
+
+def test_a_box_resting_in_the_hammock_is_carried_by_its_weight_times_dt():
+    card = next(t for t in TrampolineScene.tries if t.label == "A box in a hammock")
+    scene = TrampolineScene(dict(card.settings))
+    impulses = []
+    for k in range(600):                          # 10 s: settle, then one second measured
+        scene.advance()
+        if k >= 540:
+            impulses.append(scene.metrics()["coupling_impulse"])
+    weight_dt = scene.p["body_mass"] * scene.p["g"] * scene.dt
+    assert np.mean(impulses) == pytest.approx(weight_dt, rel=0.1)
+    assert scene.body.position.y < PIN_Y + 300     # held above the floor
+
+
+def test_penetration_stays_under_half_a_pixel_at_the_defaults():
+    scene = TrampolineScene({})
+    deepest = 0.0
+    for _ in range(180):
+        scene.advance()
+        deepest = max(deepest, scene.metrics()["penetration_max"])
+    assert deepest < 0.5
+
+
+def test_one_way_coupling_lets_the_ball_fall_through(monkeypatch):
+    """One-way (the comparison 'Two-way vs one-way'): particles are pushed but the ball feels
+    nothing and lands on the floor. With collisions off the coupling is never computed at all."""
+    one_way = TrampolineScene({"coupling": "one-way"})
+    for _ in range(120):
+        one_way.advance()
+    assert one_way.body.position.y > PIN_Y + 150
+    import scenes.trampoline as mod
+    monkeypatch.setattr(mod, "couple", lambda *a, **k: pytest.fail("coupling computed"))
+    off = TrampolineScene({"collisions": False})
+    for _ in range(120):
+        off.advance()
+    assert off.metrics()["contacts"] == 0 and off.body.position.y > PIN_Y + 150
+
+
+@pytest.mark.parametrize("bad", [{"body_mass": 0}, {"body_mass": "nan"}, {"cloth_mass": -1},
+                                 {"size": "inf"}, {"body": "sphere"}, {"coupling": "both"}])
+def test_bad_values_are_refused_before_pymunk(bad):
+    with pytest.raises(ParamError):
+        TrampolineScene(bad)
+
+
+def test_snapshot_and_restore_give_the_same_run():
+    scene = TrampolineScene({})
+    for _ in range(50):
+        scene.advance()
+    snap = scene.snapshot()
+    for _ in range(20):
+        scene.advance()
+    first = scene.state_hash()
+    scene.restore(snap)
+    for _ in range(20):
+        scene.advance()
+    assert scene.state_hash() == first
+    assert math.isfinite(scene.metrics()["coupling_impulse"])
+
+
+def test_heavy_ball_comparison_says_what_happens():
+    """'Heavy ball: soft vs stiff': at 4 iterations the band stretches past 50% and the ball
+    ends on the floor, above the cloth; at 20 it slips through and ends below the whole band."""
+    card = next(t for t in TrampolineScene.comparisons if t.label == "Heavy ball: soft vs stiff")
+    soft, stiff = (TrampolineScene({**card.settings, **v}) for v in card.compare)
+    stretch = 0.0
+    for _ in range(150):
+        soft.advance()
+        stiff.advance()
+        stretch = max(stretch, soft.metrics()["max_stretch"])
+    assert stretch > 0.5
+    assert soft.body.position.y < soft.cloth.x[1].max()          # the cloth is under it
+    assert stiff.body.position.y > stiff.cloth.x[1].max() + 30    # through the band
