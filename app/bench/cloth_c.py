@@ -144,7 +144,7 @@ def interleaved(fns: dict[str, callable], number: int, rounds: int) -> dict[str,
 
 def run(report: Report) -> dict:
     sizes = [32, 64] if report.quick else [32, 64, 128]
-    rounds = 3 if report.quick else 9
+    rounds = 2 if report.quick else 9
     cc = compiler()
     h = 1 / 60
     result: dict = {"compiler": cc, "numba": rods_compiled.available(), "sizes": []}
@@ -164,7 +164,7 @@ def run(report: Report) -> dict:
                 fns[f"cloth ({k})"] = (lambda c=cloth: c.step(h))
             for label, lib in libs.items():
                 fns[label] = c_stepper(lib, make_cloth(n), h)
-            number = max(1, int(2000 / (n * n / 16)))
+            number = max(1, int((200 if report.quick else 2000) / (n * n / 16)))
             times = interleaved(fns, number, rounds)
             ms = {k: statistics.median(v) * 1e3 for k, v in times.items()}
             spread = {k: (max(v) - min(v)) * 1e3 for k, v in times.items()}

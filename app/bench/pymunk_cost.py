@@ -49,10 +49,12 @@ def cases(quick: bool) -> list[tuple[str, Callable[[], Scene]]]:
                 scene.advance()
             return scene
         return build
-    out = [("falling_balls (default, after 10 s)", warmed("falling_balls", 600)),
-           ("a settled pile of 250, asleep", lambda: _pile(250, True)),
+    warm = 60 if quick else 600               # (--quick: 1 s, for the tests)
+    pile = 60 if quick else 250
+    out = [(f"falling_balls (default, after {warm // 60} s)", warmed("falling_balls", warm)),
+           (f"a settled pile of {pile}, asleep", lambda: _pile(pile, True)),
            ("newtons_cradle (default)", warmed("newtons_cradle", 30)),
-           ("pivoting_l (default, after 10 s)", warmed("pivoting_l", 600)),
+           (f"pivoting_l (default, after {warm // 60} s)", warmed("pivoting_l", warm)),
            ("double_pendulum (reference off)", warmed("double_pendulum", 30,
                                                       reference=False)),
            ("double_pendulum (default: + RK4 ghost)", warmed("double_pendulum", 30))]
@@ -96,7 +98,7 @@ def lab_and_bare(build: Callable[[], Scene], steps: int, rounds: int) -> tuple[l
 
 def run(report: Report) -> dict:
     quick = report.quick
-    steps, rounds = (20, 3) if quick else (60, 7)
+    steps, rounds = (10, 2) if quick else (60, 7)
     rows, out = [], []
     for label, build in cases(quick):
         report.progress(f"lab vs bare pymunk: {label}")
