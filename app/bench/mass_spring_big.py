@@ -20,8 +20,14 @@ H = 1 / 60
 
 
 def _cloth(n: int):
-    from app.bench.mass_spring import make_cloth
-    c = make_cloth("denim", 1.0, n)
+    """An n x n denim cloth as bench mass_spring builds it (all springs, damping, air), hung
+    for 3 steps."""
+    from app.physics.blender_cloth import material_settings
+    from app.physics.mass_spring import MassSpringCloth
+    c = MassSpringCloth(n, n, 16.0, (100.0, 100.0), "top")
+    c.material = material_settings("denim")
+    c.on = {"gravity", "air", "damping", "shear", "bending"}
+    c.configure()
     for _ in range(3):
         c.step(H, "implicit_euler")
     return c
