@@ -73,13 +73,13 @@ BALL_PARAMS: tuple[Param, ...] = (
 
 class FallingBallsScene(PymunkScene):
     """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
-    world. Asleep, a settled pile steps 6-13x faster; `tunneled` counts balls that passed through
-    the L.
+    world. Asleep, a settled pile costs about pymunk's own step; `tunneled` counts balls that
+    passed through the L.
 
     Mouse: drag a ball with the left button; left click on empty space drops a ball there.
     Effect `sleeping`: resting balls fall asleep (drawn dimmer; `python -m app bench pymunk`
-    measures the pile asleep and awake: 6-13x at 250 to 1000 balls). Param `container`: a box that
-    catches every ball, to build a pile and watch it fall asleep.
+    measures the pile asleep and awake, and against a bare pymunk loop). Param `container`: a
+    box that catches every ball, to build a pile and watch it fall asleep.
     """
 
     name = "falling_balls"

@@ -7,7 +7,7 @@ falling_balls with balls packed into its container, radius 6 px:
   2. the project's drawing (one batch read, sprites, one fblits) against pymunk's
      `space.debug_draw` (pymunk.pygame_util.DrawOptions) of the very same space, side by side;
   3. a settled pile that sleeps against the same pile awake (sleeping switched off): the solver
-     skips sleeping bodies, so a resting pile costs almost nothing;
+     skips sleeping bodies (and the lab reads none), so a resting pile costs almost nothing;
   4. ms per step against the number of balls, awake and asleep (chart pymunk_step.png), and the
      drawing cost against the number of balls (chart pymunk_draw.png).
 Every figure is a median (app.bench.median_time); ratios compare runs made in the same process.
