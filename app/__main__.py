@@ -10,7 +10,7 @@
     python -m app --headless --scene all   every scene in turn
     python -m app [--headless] --scene NAME --compare A B [C [D]]   variants side by side
     python -m app [--headless] ... [--csv FILE] [--plot M1,M2] [--arrows]   the instruments
-    python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|all] [--json] [--out DIR] [--quick]
+    python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|frames|all] [--json] [--out DIR] [--quick]
     python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
 
 Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.

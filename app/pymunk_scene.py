@@ -44,6 +44,7 @@ from app.vectors import Arrows, sample_every, sample_text
 # The fields read for the state hash and the finiteness check, all at once.
 _STATE_FIELDS = (pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
                  | pymunk.batch.BodyFields.VELOCITY | pymunk.batch.BodyFields.ANGULAR_VELOCITY)
+_STATE_ID = _STATE_FIELDS | pymunk.batch.BodyFields.BODY_ID   # (an enum's | costs a few us)
 
 # The same names as the cloth's: the number is the param `g`, the on/off switch the effect `gravity`
 # (so `--scene all --set g=...` means one thing everywhere).
@@ -70,6 +71,7 @@ class PymunkScene(Scene):
         self.space = pymunk.Space()
         self.space.iterations = self.p["iterations"]
         self.space.gravity = (0.0, self.gravity())
+        self.wake()
         self.mouse_body = pymunk.Body(body_type=pymunk.Body.KINEMATIC)
         self.mouse_joint: pymunk.PivotJoint | None = None
         self._buffer = pymunk.batch.Buffer()
@@ -78,14 +80,34 @@ class PymunkScene(Scene):
         self.space.add(pymunk.Body(body_type=pymunk.Body.STATIC))
         self.build_space(self.space)
         self.refresh_static_ids()
+        self.apply_settings()
 
     def build_space(self, space: pymunk.Space) -> None:
         """Add the scene's bodies, shapes and joints."""
 
     def step(self, h: float) -> None:
-        self.space.iterations = self.p["iterations"]
-        self.sync_gravity()
+        # The space's settings are given to it when they change (settings_changed, restore), not
+        # here: a step is the engine's step and nothing else.
         self.space.step(h)
+
+    def apply_settings(self) -> None:
+        """Give the space the settings in use (called on build's end, on a change from the panel
+        and after a restore; subclasses add their own, e.g. damping)."""
+        if self.space.iterations != self.p["iterations"]:
+            self.space.iterations = self.p["iterations"]
+        self.sync_gravity()
+
+    # ----- a world at rest --------------------------------------------------------------------
+    # `resting` is True once a read found every body of the space asleep (a settled pile). Then
+    # nothing moves until something wakes a body, and only the lab can: a sleeping body is woken
+    # by an awake one (there is none), or by a change made to the space (adding or removing a
+    # body, the mouse joint, a new gravity or setting, a restore), and every such change here
+    # goes through wake(). While resting, a scene's step reads and tests nothing (its cost is
+    # the engine's own). Code that changes a body directly (a test's kick) calls wake() too.
+    def wake(self) -> None:
+        """Forget that the world was at rest: the next step reads the bodies again."""
+        self.resting = False
+        self._finite_at_rest: bool | None = None
 
     # ----- gravity ----------------------------------------------------------------------------
     def gravity(self) -> float:
@@ -106,11 +128,13 @@ class PymunkScene(Scene):
         one (an energy at release: its potential part depends on g)."""
 
     def settings_changed(self, names: set[str]) -> None:
-        self.sync_gravity()      # if g or gravity changed: now, so metrics read before the next
+        self.wake()
+        self.apply_settings()    # if g or gravity changed: now, so metrics read before the next
                                  # step are right
 
     # ----- mouse --------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
+        self.wake()              # a drag or a click may wake a body (or add one)
         if event.kind.startswith("mouse"):
             event = replace(event, pos=clamp_point(event.pos, self.world_size))
         if event.kind == "mouse_move":
@@ -167,6 +191,7 @@ class PymunkScene(Scene):
         call it again if a scene adds static bodies later)."""
         ids = [b.id for b in self.space.bodies if b.body_type == pymunk.Body.STATIC]
         self._static_ids = np.array(sorted(ids + [self.space.static_body.id]), dtype=np.int64)
+        self._static_set = frozenset(self._static_ids.tolist())
 
     def body_rows(self, fields: pymunk.batch.BodyFields) -> tuple[np.ndarray, np.ndarray]:
         """(ids, data) of every body in the space (awake, static and sleeping), in one batch call:
@@ -179,11 +204,25 @@ class PymunkScene(Scene):
         data = np.frombuffer(self._buffer.float_buf(), dtype=np.float64)
         return ids, data.reshape(len(ids), -1).copy()
 
+    def read_rows(self, fields: pymunk.batch.BodyFields) -> tuple[np.ndarray, np.ndarray]:
+        """Like body_rows, without copying: (ids, data) are views of the batch buffer, good
+        until the next read. `fields` must include BODY_ID."""
+        self._buffer.clear()
+        pymunk.batch.get_space_bodies(self.space, fields, self._buffer)
+        ids = np.frombuffer(self._buffer.int_buf(), dtype=np.int64)
+        return ids, np.frombuffer(self._buffer.float_buf(), dtype=np.float64).reshape(len(ids), -1)
+
     def static_rows(self, ids: np.ndarray) -> np.ndarray:
         """Bool mask of the rows (from body_rows) that are static bodies."""
         if len(self._static_ids) <= 16:      # a few static bodies: compare with each at once
             return (ids[:, None] == self._static_ids).any(axis=1)
         return np.isin(ids, self._static_ids)
+
+    def awake_count(self, ids: np.ndarray) -> int:
+        """How many rows (from body_rows) are awake bodies: those before the first static row,
+        by the batch's order awake | static | sleeping."""
+        static = self.static_rows(ids)
+        return int(np.argmax(static)) if static.any() else len(ids)
 
     def sleeping_rows(self, ids: np.ndarray) -> np.ndarray:
         """Bool mask of the rows (from body_rows) that are sleeping bodies: the rows after the
@@ -241,7 +280,14 @@ class PymunkScene(Scene):
     blowup_reach: float | None = None
 
     def is_finite(self) -> bool:
-        state = self.body_state()
+        if self.resting:         # nothing moved since the world came to rest: checked once
+            if self._finite_at_rest is None:
+                self._finite_at_rest = self._state_is_finite()
+            return self._finite_at_rest
+        return self._state_is_finite()
+
+    def _state_is_finite(self) -> bool:
+        state = self.read_rows(_STATE_ID)[1]
         if not np.isfinite(state).all():
             return False
         if self.blowup_reach is None or not len(state):
@@ -271,7 +317,9 @@ class PymunkScene(Scene):
             setattr(self, key, value)
         self.refresh_static_ids()      # the copies are new bodies with new ids
         self._masses = None
+        self.wake()
         self.restored()
+        self.apply_settings()          # the copy holds the settings of its time
 
     def restored(self) -> None:
         """Called after restore() put copied objects in place: rebuild anything keyed by body

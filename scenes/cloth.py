@@ -51,6 +51,7 @@ import numpy as np
 
 from app.physics.cloth import (DRAG, FORCE_NAMES, GRAVITY, ITERATIONS, PIN_CHOICES, TEAR_RATIO,
                                WIND_FIELDS, WIND_STRENGTH, Cloth)
+from app.physics import rods_compiled
 from app.physics.cloth_contact import CONTACT_EFFECTS as CONTACT_NAMES
 from app.physics.rods import SET_NAMES, sweep_size
 from app.scene import Effect, InputEvent, Param, ParamError, Scene, Try, Unit, common
@@ -112,6 +113,10 @@ class ClothScene(ClothContact, Scene):
               help="what holds the cloth: the whole top row, its two corners, or nothing"),
         Param("precision", "float32", str, choices=("float32", "float64"),
               help="float type of the positions (float32: about twice as fast)"),
+        Param("kernel", "numpy", str, choices=rods_compiled.KERNELS,
+              help="who solves the rods: numpy (batches of array operations, the default) or "
+                   "numba (the same loop compiled: needs numba; the first step compiles it)",
+              rebuild=False),
     ) + CONTACT_PARAMS
     effects = (
         Effect("gravity", True, "gravity pulls every particle down", amount="g"),
@@ -162,6 +167,8 @@ class ClothScene(ClothContact, Scene):
     def check_combination(cls, values) -> None:
         # Every param is in range alone, but 256x256 x 100 iterations x 50 substeps would take
         # half a minute per step: refuse what a step cannot do in about 0.5 s.
+        if values.get("kernel") == "numba" and not rods_compiled.available():
+            raise ParamError(rods_compiled.why_not())
         work = cls.step_work(values)
         if work > WORK_BUDGET:
             r, c, it, sub = (values[k] for k in ("rows", "cols", "iterations", "substeps"))
@@ -199,6 +206,7 @@ class ClothScene(ClothContact, Scene):
         c.wind_strength = p["wind_strength"]
         c.wind_field = p["wind_field"]
         c.tear_ratio = p["tear_ratio"]
+        c.kernel = p["kernel"]
         self.sync_contact()
 
     def settings_changed(self, names: set[str]) -> None:
@@ -346,7 +354,8 @@ class ClothScene(ClothContact, Scene):
         m = self.metrics()
         it, sub = self.p["iterations"], self.p["substeps"]
         torn = f"  |  {m['torn']} rods torn" if m["torn"] else ""
-        return [f"{it} iterations x {sub} substeps = {it * sub} sweeps/step",
+        kernel = ", numba kernel" if self.p["kernel"] == "numba" else ""
+        return [f"{it} iterations x {sub} substeps = {it * sub} sweeps/step{kernel}",
                 f"stretch: mean {self.shown('mean_stretch', m['mean_stretch'])}  max "
                 f"{self.shown('max_stretch', m['max_stretch'])}{torn}"] + self.contact_hud(m)
 

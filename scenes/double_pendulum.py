@@ -210,10 +210,10 @@ class DoublePendulumScene(PymunkScene):
         self.ghost_trail.clear()
 
     # ----- stepping -------------------------------------------------------------------------
-    def step(self, h: float) -> None:
+    def apply_settings(self) -> None:
+        super().apply_settings()
         for joint in self.joints:
             joint.error_bias = self.p["error_bias"]
-        super().step(h)
 
     def after_step(self) -> None:
         if self.mouse_joint is not None:       # held by the mouse: nothing to compare yet

@@ -58,6 +58,7 @@ STEP_BUDGET = 2_500_000
 
 
 _POS_ANGLE = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
+_POS_ID = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.BODY_ID
 
 BALL_PARAMS: tuple[Param, ...] = (
     Param("spawn_rate", 4.0, float, 0.0, 200.0, help="balls dropped per simulated second",
@@ -72,13 +73,13 @@ BALL_PARAMS: tuple[Param, ...] = (
 
 class FallingBallsScene(PymunkScene):
     """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
-    world. Asleep, a settled pile steps 6-13x faster; `tunneled` counts balls that passed through
-    the L.
+    world. Asleep, a settled pile costs about pymunk's own step; `tunneled` counts balls that
+    passed through the L.
 
     Mouse: drag a ball with the left button; left click on empty space drops a ball there.
     Effect `sleeping`: resting balls fall asleep (drawn dimmer; `python -m app bench pymunk`
-    measures the pile asleep and awake: 6-13x at 250 to 1000 balls). Param `container`: a box that
-    catches every ball, to build a pile and watch it fall asleep.
+    measures the pile asleep and awake, and against a bare pymunk loop). Param `container`: a
+    box that catches every ball, to build a pile and watch it fall asleep.
     """
 
     name = "falling_balls"
@@ -164,6 +165,9 @@ class FallingBallsScene(PymunkScene):
     def _tables_changed(self) -> None:
         self._sorted = None                       # (sorted ids, ball index of each), lazily
         self._last = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))
+        self._awake = None          # (ids, ball rows, ball indices) of the awake bodies
+        self._sleep_h = None        # the substep the sleep threshold was set for
+        self.wake()
 
     def ball_index(self, ids: np.ndarray) -> np.ndarray:
         """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
@@ -181,7 +185,7 @@ class FallingBallsScene(PymunkScene):
         else:
             at = np.searchsorted(sorted_ids, ids).clip(0, len(sorted_ids) - 1)
             k = np.where(sorted_ids[at] == ids, order[at], -1)
-        self._last = (ids, k)
+        self._last = (ids.copy(), k)      # (ids may be a view of the batch buffer)
         return k
 
     def set_sleeping(self, on: bool) -> None:
@@ -190,6 +194,7 @@ class FallingBallsScene(PymunkScene):
         so Chipmunk never counts idle time for sleeping, and sleepers are woken."""
         self.space.sleep_time_threshold = SLEEP_TIME if on else math.inf
         self.space.idle_speed_threshold = IDLE_SPEED
+        self._sleep_h = None
         if not on:
             for body in self.space.bodies:
                 if body.body_type == pymunk.Body.DYNAMIC and body.is_sleeping:
@@ -209,6 +214,7 @@ class FallingBallsScene(PymunkScene):
         shape = pymunk.Circle(body, radius, (0, 0))
         shape.friction = self.p["friction"]
         self.space.add(body, shape)
+        self.wake()
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
             self._ids = np.append(self._ids, body.id)
@@ -269,18 +275,50 @@ class FallingBallsScene(PymunkScene):
 
     # ----- stepping -------------------------------------------------------------------------
     def step(self, h: float) -> None:
-        L0 = self.L_pose()
-        if "sleeping" in self.on:
+        if self.resting and h == self._sleep_h:   # every body sleeps: nothing moves, nothing
+            self.space.step(h)                    # to read or test
+            if self.p["spawn_rate"] > 0:
+                self.spawn(h)
+            return
+        if h != self._sleep_h and "sleeping" in self.on:
             # at rest for SLEEP_TIME, and for at least 4 substeps: at hertz 1 one substep is as
             # long as SLEEP_TIME, and a ball spawned at rest fell asleep in mid-air
             self.space.sleep_time_threshold = max(SLEEP_TIME, 4 * h)
+            self._sleep_h = h
+        if self.resting:          # every body sleeps: nothing moves, nothing to read or test
+            super().step(h)
+            self.spawn(h)
+            return
+        L0 = self.L_pose()
         super().step(h)
-        k, xy, _ = self.read_balls(sleeping=False)
+        self.check_balls(L0, self.L_pose())
+        self.spawn(h)
+
+    def check_balls(self, L0: tuple[float, float, float],
+                    L1: tuple[float, float, float]) -> None:
+        """After a step: count the balls that tunneled through the L, remove those that left the
+        world, remember every ball's centre (self._xy). Only a body awake before or after the
+        step can have moved: while the same bodies stay awake (and the L stays put), only they
+        are looked at; otherwise every ball is."""
+        ids, data = self.read_rows(_POS_ID)
+        awake = self._awake
+        n = 0 if awake is None else len(awake[0])
+        if (awake is not None and L0 == L1 and n < len(ids)
+                and int(ids[n]) in self._static_set and (ids[:n] == awake[0]).all()):
+            _, rows, k = awake            # the same bodies awake as after the last step
+            xy = data[:n][rows]
+        else:
+            n = self.awake_count(ids)
+            k = self.ball_index(ids)
+            ball = k >= 0
+            xy, k = data[ball], k[ball]       # every ball, awake or asleep
+            rows = ball[:n]
+            self._awake = (ids[:n].copy(), rows, k[:np.count_nonzero(rows)])
+            self.resting = n == 0
         # self._xy holds every ball's centre after the previous step (or where it was added)
-        self.count_tunneled(self._xy[k], xy, L0, self.L_pose())
+        self.count_tunneled(self._xy[k], xy, L0, L1)
         self._xy[k] = xy
         self.remove_fallen(k, xy)
-        self.spawn(h)
 
     def L_pose(self) -> tuple[float, float, float]:
         x, y = self.L_body.position
@@ -291,14 +329,11 @@ class FallingBallsScene(PymunkScene):
         """Count balls whose centre crossed the L's long arm from above to below in this step
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order."""
-        moved = (xy0 != xy1).any(axis=1)               # sleeping balls did not
-        if L0 == L1:
-            xy0, xy1 = xy0[moved], xy1[moved]
-        if len(xy1) == 0:
-            return
         p0, p1 = _to_local(xy0, L0), _to_local(xy1, L1)
-        (ax, _), (bx, _) = L_LONG
         crossed = (p0[:, 1] < 0) & (p1[:, 1] >= 0)           # above the arm, then on/below it
+        if not crossed.any():        # (a ball at rest, asleep or not, never crossed)
+            return
+        (ax, _), (bx, _) = L_LONG
         inside = (p0[:, 0] >= ax) & (p0[:, 0] <= bx) & (p1[:, 0] >= ax) & (p1[:, 0] <= bx)
         self.counts["tunneled"] += int(np.count_nonzero(crossed & inside))
 
@@ -308,11 +343,9 @@ class FallingBallsScene(PymunkScene):
         so "above" needs the margin). A non-finite centre counts as out."""
         w, h = self.world_size
         r = self.p["radius"]
-        x, y = xy[:, 0], xy[:, 1]
-        inside = (y <= h + 2 * r) & (y >= -h) & (x >= -2 * r) & (x <= w + 2 * r)   # NaN: False
-        out = ~inside
-        if out.any():
-            self.remove_balls(k[out])
+        inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
+        if not inside.all():
+            self.remove_balls(k[~inside])
 
     def spawn(self, h: float) -> None:
         """Drop balls at a steady rate at random x above the L, from above the world (seeded:
@@ -389,5 +422,5 @@ def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
     """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""
     x, y, a = pose
     c, s = math.cos(a), math.sin(a)
-    d = xy - (x, y)
-    return np.column_stack((c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1]))
+    # (x', y') = (c dx + s dy, -s dx + c dy) for every row at once: one 2x2 product
+    return (xy - (x, y)) @ np.array(((c, -s), (s, c)))

@@ -237,9 +237,9 @@ class NewtonsCradleScene(PymunkScene):
         return math.pi * math.sqrt(STRING / g) if g > 0 else math.inf
 
     # ----- stepping -------------------------------------------------------------------------
-    def step(self, h: float) -> None:
+    def apply_settings(self) -> None:
+        super().apply_settings()
         self.space.damping = self.p["damping"]
-        super().step(h)
 
     def after_step(self) -> None:
         self.observe()

@@ -1,4 +1,4 @@
-"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|all] [--json] [--out DIR] [--quick]`.
+"""Benchmarks: `python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|frames|all] [--json] [--out DIR] [--quick]`.
 
 Speed is measured here, never asserted in tests. Every figure is a median over repeated runs, and
 every comparison is a ratio against a baseline run in the same process, so the numbers mean the
@@ -26,6 +26,7 @@ BENCHMARKS = {           # name -> module (imported only when run)
     "mass_spring": "app.bench.mass_spring",
     "particles": "app.bench.particles",
     "clips": "app.bench.clips",
+    "frames": "app.bench.frames",
 }
 
 

@@ -14,6 +14,8 @@ has settled by then (the stretch is a state, not a phase of an oscillation). Big
 4. drawing: ms to draw a 64 x 64 cloth (strain heat map) on a 960 x 720 surface;
 5. contact (app/bench/cloth_contact.py): collisions with three obstacles and self-collision
    (grid against all pairs) on a 64 x 64 cloth, each beside the step without it.
+And first, the step against the same step in C, scalar and SIMD, compiled here when a compiler
+is present (app/bench/cloth_c.py), with the optional numba kernel beside NumPy.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import statistics
 
 import pygame
 
-from app.bench import Report, median_time
+from app.bench import Report, cloth_c, median_time
 from app.draw.plot import LineChart, save_grid
 from app.draw.view import View
 from app.physics.cloth_naive import NaiveCloth
@@ -60,6 +62,8 @@ def run(report: Report) -> dict:
     hang, avg = (20, 5) if quick else (150, 30)
     repeats, number = (3, 1) if quick else (7, 3)
     out: dict = {"sizes": sizes, "iterations": iters, "hang_steps": hang}
+    # 0. the step against compiled C (scalar and SIMD) and the numba kernel (app/bench/cloth_c.py)
+    out["vs_c"] = cloth_c.run(report)
 
     # 1. sizes x iterations
     rows, grid = [], {}

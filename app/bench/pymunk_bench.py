@@ -1,11 +1,13 @@
 """Benchmark of the pymunk scenes: `python -m app bench pymunk`.
 
-What it shows (falling_balls with balls packed into its container, radius 6 px):
+What it shows: first, the lab's step in every pymunk scene against a bare pymunk loop over the
+same bodies (app/bench/pymunk_cost.py: the ratio lab / bare, goal at most 1.5); then, for
+falling_balls with balls packed into its container, radius 6 px:
   1. step + draw of 2000 awake balls against the 16.7 ms of a 60 fps frame;
   2. the project's drawing (one batch read, sprites, one fblits) against pymunk's
      `space.debug_draw` (pymunk.pygame_util.DrawOptions) of the very same space, side by side;
   3. a settled pile that sleeps against the same pile awake (sleeping switched off): the solver
-     skips sleeping bodies, so a resting pile costs almost nothing;
+     skips sleeping bodies (and the lab reads none), so a resting pile costs almost nothing;
   4. ms per step against the number of balls, awake and asleep (chart pymunk_step.png), and the
      drawing cost against the number of balls (chart pymunk_draw.png).
 Every figure is a median (app.bench.median_time); ratios compare runs made in the same process.
@@ -16,7 +18,7 @@ from __future__ import annotations
 import pygame
 import pymunk.pygame_util
 
-from app.bench import Report, median_time
+from app.bench import Report, median_time, pymunk_cost
 from app.draw.plot import LineChart
 from app.draw.view import View
 from app.scene import Scene
@@ -58,6 +60,8 @@ def run(report: Report) -> dict:
     view = View()
     options = pymunk.pygame_util.DrawOptions(surface)
     results: dict = {"radius": RADIUS, "by_count": []}
+    # 0: the lab's step against a bare pymunk loop over the same bodies (app/bench/pymunk_cost.py)
+    results["engine_cost"] = pymunk_cost.run(report)
 
     # 1 + 2: many awake balls, stepping and drawing, ours vs debug_draw
     draw_own, draw_debug, step_awake, step_asleep = [], [], [], []

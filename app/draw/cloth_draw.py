@@ -9,6 +9,8 @@ Speed matters: a 64 x 64 cloth has 8000 rods and must draw in a couple of millis
     solver), and then a column is many short runs;
   * raster: all rods at once in NumPy, one dot per pixel along each rod (a DDA line), written into
     the surface's pixel array (pygame.surfarray). Cost grows with the pixels drawn, not the calls.
+The cheaper is estimated frame by frame (DOTS_PER_CALL): small rods on screen rasterise, long
+ones (a small cloth on a big window) draw as runs.
 Torn rods are not drawn.
 """
 
@@ -57,7 +59,10 @@ def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: 
         draw_lines(surface, STRAIN_COLORS[b], False, lines[line][j0:j1 + 1], width)
 
 
-RUNS_LIMIT = 600        # more colour runs than this: rasterise instead of pygame.draw.lines
+# One pygame.draw.lines call (a run) costs about as much as writing this many raster dots
+# (measured with `bench frames`: ~7 us a call, ~0.06 us a dot, a 1920x1080 surface): the
+# cheaper of the two ways is chosen by this estimate, frame by frame.
+DOTS_PER_CALL = 120
 MAX_RASTER_DOTS = 40    # rods longer than this on screen are drawn with pygame.draw.line
 
 
@@ -87,7 +92,18 @@ def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: 
         colour = np.repeat(palette[buckets], len(t))
         clip = surface.get_clip()
         rows_first = pixels.T                                    # (h, w): writes go row-wise
-        for ox, oy in ([(0, 0)] if width < 2 else [(0, 0), (1, 0), (0, 1)]):
+        offsets = [(0, 0)] if width < 2 else [(0, 0), (1, 0), (0, 1)]
+        if (len(px) and rows_first.flags.c_contiguous and px.min() >= clip.left
+                and px.max() < clip.right - 1 and py.min() >= clip.top
+                and py.max() < clip.bottom - 1):
+            # every dot (and its neighbours right and below) inside: one flat index per dot,
+            # no mask (the common case: the cloth on screen)
+            flat, pitch = rows_first.reshape(-1), rows_first.shape[1]
+            at = py * pitch + px
+            for ox, oy in offsets:
+                flat[at + (ox + oy * pitch)] = colour
+            return True
+        for ox, oy in offsets:
             x, y = px + ox, py + oy
             inside = (x >= clip.left) & (x < clip.right) & (y >= clip.top) & (y < clip.bottom)
             rows_first[y[inside], x[inside]] = colour[inside]
@@ -111,8 +127,11 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     b_h = strain_buckets(stretch[0], horizontal.alive)
     b_v = strain_buckets(stretch[1], vertical.alive)
     runs = int((b_h[:, 1:] != b_h[:, :-1]).sum() + (b_v[1:] != b_v[:-1]).sum())
+    # dots the raster would write: a dot per pixel along each rod (about its rest length on
+    # screen), three per dot for 2 px lines
+    dots = (b_h.size + b_v.size) * (view.len(cloth.spacing) + 1) * (3 if width >= 2 else 1)
     drawn = False
-    if runs > RUNS_LIMIT:
+    if dots < DOTS_PER_CALL * runs:
         a = np.concatenate([pts[:, :-1].reshape(-1, 2), pts[:-1].reshape(-1, 2)])
         b = np.concatenate([pts[:, 1:].reshape(-1, 2), pts[1:].reshape(-1, 2)])
         k = np.concatenate([b_h.ravel(), b_v.ravel()])

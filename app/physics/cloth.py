@@ -112,6 +112,8 @@ class Cloth:
                     bt.length = np.empty(shape, dtype)
                     bt.ka = np.empty(shape, dtype)
                     bt.kb = np.empty(shape, dtype)
+        self.kernel = "numpy"                   # or "numba": rods_compiled (an option)
+        self._weights_version = 0               # counts weight changes (the kernel re-reads)
         self.timed = Stopwatch()                # what each part of the step costs (wall s)
         self.spent = self.timed.spent
         self.active_sets: list[RodSet] = []
@@ -170,6 +172,7 @@ class Cloth:
         """The sweep's plan: every batch of every active set, with its rest length(s)."""
         self._plan = [(rs, [(bt, fam.rest_of(bt.cells)) for fam in rs.families
                             for bt in fam.batches]) for rs in self.active_sets]
+        self._compiled: tuple[int, object] | None = None    # (weights version, CompiledPlan)
 
     def ease_rest_lengths(self, h: float) -> None:
         """Move the easing rods' rest lengths a step h closer to their true rest length, linearly,
@@ -193,6 +196,7 @@ class Cloth:
                 self._update_family(fam)
 
     def _update_family(self, fam: Family) -> None:
+        self._weights_version += 1
         for bt in fam.batches:
             wa, wb = self.w[bt.a], self.w[bt.b]
             total = wa + wb
@@ -302,6 +306,12 @@ class Cloth:
     def relax(self, iterations: int) -> None:
         """`iterations` Gauss-Seidel sweeps over every active rod set, batch after batch."""
         x, timed = self.x, self.timed
+        if self.kernel == "numba" and self.ease_end == -math.inf:   # (easing: per-rod rests)
+            with timed("rods (numba)"):
+                self.compiled_plan().relax(x, iterations)
+            for rs, _ in self._plan:
+                rs.sweeps += iterations
+            return
         for _ in range(iterations):
             for rs, batches in self._plan:
                 with timed(rs.name):
@@ -309,6 +319,19 @@ class Cloth:
                         solve_batch(x, bt, rest)
         for rs, _ in self._plan:
             rs.sweeps += iterations
+
+    def compiled_plan(self):
+        """The plan packed for the numba kernel (app/physics/rods_compiled.py), its weights
+        refreshed after any change."""
+        from app.physics.rods_compiled import CompiledPlan
+        if self._compiled is None:
+            plan = [pair for _, batches in self._plan for pair in batches]
+            self._compiled = (self._weights_version, CompiledPlan(plan, self.dtype))
+        version, packed = self._compiled
+        if version != self._weights_version:
+            packed.refresh()
+            self._compiled = (self._weights_version, packed)
+        return packed
 
     def tear(self) -> int:
         """Break every rod of the active sets stretched beyond tear_ratio x rest; return how many

@@ -53,6 +53,7 @@ from typing import Callable, Iterable, NamedTuple
 
 import numpy as np
 
+from app.physics.blas_threads import one_blas_thread
 from app.physics.blender_cloth import G_LAB, WIND_DENSITY, material_settings, spring_constants
 from app.physics.forces import Drag, Gravity
 from app.physics.integrators import INTEGRATORS
@@ -371,7 +372,8 @@ class MassSpringCloth:
         self._verlet_back = (ps.x_prev if integrator == "verlet" and ps.x_prev is not None
                              and ps.h_prev == h else None)
         t0 = time.perf_counter()
-        STEPPERS[integrator](self.ps, h)
+        with one_blas_thread(self.ps.x.size):     # (BLAS's threads hurt on long vectors)
+            STEPPERS[integrator](self.ps, h)
         elapsed = time.perf_counter() - t0
         # what the integrator itself spent (its vector arithmetic and, implicit, the CG solve)
         self.spent["solve"] += elapsed - (self._force_seconds() - forces_before)

@@ -33,8 +33,8 @@ class DoublePendulumExercise(StudentCode, DoublePendulumScene):
             "build_double_pendulum")
         return pair[0], pair[1]
 
-    def step(self, h: float) -> None:
-        PymunkScene.step(self, h)       # the scene would set every joint's error_bias: keep yours
+    def apply_settings(self) -> None:
+        PymunkScene.apply_settings(self)   # the scene would set every joint's error_bias: keep yours
 
 
 SCENE = DoublePendulumExercise

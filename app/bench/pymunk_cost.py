@@ -1,0 +1,115 @@
+"""The lab's cost on top of pymunk's own: part of `python -m app bench pymunk`.
+
+For each pymunk scene (and a settled pile, asleep and awake) two copies of the very same scene
+are built and stepped to the same state; then one runs the lab's steps (`scene.advance()` and the
+runner's non-finite check, `scene.is_finite()`), the other a bare pymunk loop over the same space
+(`space.step(h)`, substeps times, nothing else). Blocks of steps alternate between the two, each
+round from a fresh pair (so both start with the same bodies, awake or asleep: pymunk's copy of a
+space wakes every body, so copies are no bare loop for a sleeping pile). The ratio lab / bare is
+the lab's per-step cost in units of the engine's: 1.0 means the lab adds nothing.
+"""
+
+from __future__ import annotations
+
+import statistics
+import time
+from typing import Callable
+
+from app.bench import Report
+from app.scene import Scene
+
+GOAL = 1.5          # the lab's step at most this many times the bare loop's (issue 28)
+
+
+def scene_class(name: str) -> type[Scene]:
+    from scenes import get_scene
+    return get_scene(name)
+
+
+def _pile(n: int, sleeping: bool) -> Scene:
+    """falling_balls with n balls packed into its container, stepped until they all sleep (or
+    4 s with sleeping off)."""
+    scene = scene_class("falling_balls")({"container": True, "spawn_rate": 0, "radius": 6.0,
+                                          "max_balls": n, "sleeping": sleeping})
+    scene.add_balls(n)
+    for i in range(900):
+        scene.advance()
+        if i >= 240 and (not sleeping or (i % 30 == 29 and scene.asleep_count() == n)):
+            break
+    return scene
+
+
+def cases(quick: bool) -> list[tuple[str, Callable[[], Scene]]]:
+    """(label, build) of the scenes compared; build returns the scene in the state measured
+    (deterministic: two calls give the same state)."""
+    def warmed(name: str, steps: int, **overrides) -> Callable[[], Scene]:
+        def build() -> Scene:
+            scene = scene_class(name)(overrides)
+            for _ in range(steps):
+                scene.advance()
+            return scene
+        return build
+    warm = 60 if quick else 600               # (--quick: 1 s, for the tests)
+    pile = 60 if quick else 250
+    out = [(f"falling_balls (default, after {warm // 60} s)", warmed("falling_balls", warm)),
+           (f"a settled pile of {pile}, asleep", lambda: _pile(pile, True)),
+           ("newtons_cradle (default)", warmed("newtons_cradle", 30)),
+           (f"pivoting_l (default, after {warm // 60} s)", warmed("pivoting_l", warm)),
+           ("double_pendulum (reference off)", warmed("double_pendulum", 30,
+                                                      reference=False)),
+           ("double_pendulum (default: + RK4 ghost)", warmed("double_pendulum", 30))]
+    if not quick:
+        out[2:2] = [("a settled pile of 1000, asleep", lambda: _pile(1000, True)),
+                    ("a pile of 1000, awake (sleeping off)", lambda: _pile(1000, False))]
+    return out
+
+
+def lab_and_bare(build: Callable[[], Scene], steps: int, rounds: int) -> tuple[list, list]:
+    """Seconds per step of the lab (advance + is_finite) and of a bare loop over a twin of the
+    same scene, `rounds` times each, alternating which goes first."""
+    lab, bare = [], []
+    for r in range(rounds):
+        a, b = build(), build()
+        space, n = b.space, b.p["substeps"]
+        h = b.dt / n
+
+        def run_lab() -> float:
+            t0 = time.perf_counter()
+            for _ in range(steps):
+                a.advance()
+                a.is_finite()
+            return (time.perf_counter() - t0) / steps
+
+        def run_bare() -> float:
+            t0 = time.perf_counter()
+            for _ in range(steps):
+                for _ in range(n):
+                    space.step(h)
+            return (time.perf_counter() - t0) / steps
+
+        if r % 2:
+            bare.append(run_bare())
+            lab.append(run_lab())
+        else:
+            lab.append(run_lab())
+            bare.append(run_bare())
+    return lab, bare
+
+
+def run(report: Report) -> dict:
+    quick = report.quick
+    steps, rounds = (10, 2) if quick else (60, 7)
+    rows, out = [], []
+    for label, build in cases(quick):
+        report.progress(f"lab vs bare pymunk: {label}")
+        lab, bare = lab_and_bare(build, steps, rounds)
+        lab_ms, bare_ms = statistics.median(lab) * 1e3, statistics.median(bare) * 1e3
+        ratio = lab_ms / bare_ms
+        spread = (max(lab) - min(lab)) * 1e3
+        out.append({"scene": label, "lab_ms": lab_ms, "bare_ms": bare_ms, "ratio": ratio,
+                    "lab_spread_ms": spread})
+        rows.append([label, lab_ms, spread, bare_ms, ratio, "yes" if ratio <= GOAL else "NO"])
+    report.table(f"the lab's step against a bare pymunk loop over the same bodies (ms per step,"
+                 f" median of {rounds} rounds of {steps} steps; goal: lab/bare <= {GOAL})",
+                 ["scene", "lab", "lab spread", "bare pymunk", "lab/bare", "within?"], rows)
+    return {"goal": GOAL, "scenes": out}

@@ -1,0 +1,65 @@
+"""The benchmarks of issue 28 run quickly and report what they promise (no timing is asserted:
+speed belongs to `python -m app bench`)."""
+
+import math
+
+from app.bench import Report
+
+
+def test_bench_frames_times_physics_drawing_and_the_whole_frame(tmp_path):
+    from app.bench.frames import BUDGET_MS, run
+    result = run(Report(str(tmp_path), quick=True))
+    assert len(result["cases"]) == 6 and result["size"] == [1920, 1080]
+    for case in result["cases"]:
+        assert case["budget_ms"] == BUDGET_MS[case["panes"]]
+        parts = case["physics_ms"] + case["draw_ms"]
+        assert all(math.isfinite(case[k]) and case[k] >= 0 for k in
+                   ("physics_ms", "draw_ms", "frame_ms", "frame_spread_ms"))
+        assert case["frame_ms"] >= 0.5 * parts          # medians of sums, roughly the sum
+        assert case["in_time"] == (case["frame_ms"] <= case["budget_ms"])
+
+
+def test_the_pymunk_cost_table_compares_every_pymunk_scene_with_a_bare_loop(tmp_path):
+    from app.bench.pymunk_cost import run
+    result = run(Report(str(tmp_path), quick=True))
+    names = " ".join(s["scene"] for s in result["scenes"])
+    for scene in ("falling_balls", "newtons_cradle", "pivoting_l", "double_pendulum", "asleep"):
+        assert scene in names
+    assert all(s["ratio"] == s["lab_ms"] / s["bare_ms"] > 0 for s in result["scenes"])
+
+
+def test_the_cloth_is_compared_with_c_when_a_compiler_is_there(tmp_path):
+    from app.bench import cloth_c
+    result = cloth_c.run(Report(str(tmp_path), quick=True))
+    assert [e["n"] for e in result["sizes"]] == [32, 64]
+    if cloth_c.compiler() is None:
+        assert "numpy_vs_scalar_32" not in result
+    else:
+        assert result["numpy_vs_scalar_32"] > 0 and result["numpy_vs_simd_64"] > 0
+
+
+def test_the_c_step_is_the_cloths_step():
+    """The C reference solves the same rods: one step from the same state lands where the
+    cloth's own step does (to float32 rounding)."""
+    import numpy as np
+    import tempfile
+    from app.bench import cloth_c
+    cc = cloth_c.compiler()
+    if cc is None:
+        return
+    with tempfile.TemporaryDirectory() as tmp:
+        libs = cloth_c.build(cc, tmp)
+        for lib in libs.values():
+            cloth = cloth_c.make_cloth(16)
+            step = cloth_c.c_stepper(lib, cloth, 1 / 60)
+            step()
+            cloth.step(1 / 60)
+            x_c = step.keep[0]
+            assert np.allclose(x_c, cloth.x, atol=1e-2)
+
+
+def test_the_largest_mass_spring_cloth_table_runs(tmp_path):
+    from app.bench.mass_spring_big import run
+    result = run(Report(str(tmp_path), quick=True))
+    assert [e["n"] for e in result["sizes"]] == [32, 64]
+    assert result["limited_by"] in ("the CG solve", "the forces and the matrix")
