@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import pygame
 
-from app.draw.view import View
+from app.draw.view import Camera, View
 
 MARGIN = 8          # pixels between the content and the HUD, strip and edges
 HUD_SHARE = 0.5     # the HUD may take this much of the height before its text shrinks (never
@@ -37,6 +37,7 @@ class Layout:
     hud_text: int = 28    # the HUD's text size (as font() takes it)
     hud_width: int = 0    # the width the HUD's lines are wrapped to
     filled: bool = False  # the content fills the free room 1:1 (Scene.content_fills)
+    fitted: View | None = None   # the view before the camera's zoom and pan (None: the same)
 
     def content_rect(self, bounds: tuple[float, float, float, float] | None = None
                      ) -> pygame.Rect:
@@ -103,18 +104,21 @@ def _scale(bounds, rect: pygame.Rect) -> float:
 
 
 def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, int] = (0, 0),
-                 strip: bool = True, hud_width: int | None = None) -> Layout:
+                 strip: bool = True, hud_width: int | None = None,
+                 bounds: tuple[float, float, float, float] | None = None) -> Layout:
     """The layout of `scene` in `area` with these HUD lines (None: HUD and strip hidden; `strip`
     False: no metrics strip); the HUD's room is at least `room` (what was reserved before), its
     lines wrapped to `hud_width` if given, else to whichever of HUD_WIDTHS shows the content
-    largest (the widest on a tie)."""
+    largest (the widest on a tie); `bounds`: the content's world rectangle if not the scene's
+    content_bounds() now (a view held still while the mouse drags the content)."""
     from app.draw import hud
     from app.draw.text import TEXT
     place = (lambda a, b, hud_size, strip_h: fill(a, scene, hud_size, strip_h)) \
         if getattr(scene, "content_fills", False) else fit
+    if bounds is None or getattr(scene, "content_fills", False):
+        bounds = scene.content_bounds()
     if lines is None:
-        return place(area, scene.content_bounds(), (0, 0), 0)
-    bounds = scene.content_bounds()
+        return place(area, bounds, (0, 0), 0)
     widest = hud.hud_width(area)
     widths = [hud_width] if hud_width else \
         sorted({max(1, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
@@ -147,13 +151,23 @@ def _better(a: Layout, b: Layout) -> bool:
 
 class Pane:
     """One scene drawn with its HUD (and, on the second page, its metrics strip) into a
-    rectangle of a surface. `forget()` redoes the HUD's room on the next frame."""
+    rectangle of a surface. `forget()` redoes the HUD's room on the next frame. `camera`: the
+    zoom and pan applied on top of the fitted view (app/draw/view.py; shared by the panes of a
+    comparison). `hold(True)` keeps the content's bounds as they are (while the mouse drags the
+    content, the view must not re-fit under the pointer); `hold(False)` lets them follow the
+    scene again."""
 
-    def __init__(self, scene):
+    def __init__(self, scene, camera: Camera | None = None):
         self.scene = scene
+        self.camera = camera if camera is not None else Camera()
         self.room = (0, 0)                 # the HUD box reserved so far
         self.hud_width: int | None = None  # chosen when the room is redone
         self.layout: Layout | None = None
+        self.held: tuple[float, float, float, float] | None = None
+
+    def hold(self, on: bool) -> None:
+        self.held = (self.layout.bounds if on and self.layout is not None and
+                     not self.layout.filled else None)
 
     def forget(self) -> None:
         """Redo the HUD's room and width on the next fit (a new size, text size, page, ...)."""
@@ -163,12 +177,14 @@ class Pane:
         """The layout in `rect` with these HUD lines (None: HUD and strip hidden). Lines that
         no longer fit the room reserved redo it (its width chosen again): the picture moves
         then, and only then."""
-        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width)
+        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width, self.held)
         if lines is not None and self.hud_width is not None and \
                 layout.hud.size != tuple(self.room):
-            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None)
+            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None, self.held)
         if lines is not None:
             self.room, self.hud_width = layout.hud.size, layout.hud_width
+        layout.fitted = layout.view
+        layout.view = self.camera.apply(layout.view, layout.free)
         self.layout = layout
         return layout
 

@@ -78,8 +78,8 @@ def color_key_line(scene) -> list:
 class PaneGrid:
     """The panes of a comparison and their arrangement in an area."""
 
-    def __init__(self, scenes):
-        self.panes = [Pane(s) for s in scenes]
+    def __init__(self, scenes, camera=None):
+        self.panes = [Pane(s, camera) for s in scenes]     # one camera: every pane alike
         self.cells: list[pygame.Rect] | None = None
         self._for: tuple | None = None        # (area, header height) the cells were chosen for
         self.header = pygame.Rect(0, 0, 0, 0)

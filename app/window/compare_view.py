@@ -41,7 +41,7 @@ class CompareView(SceneView):
         self.target: int | None = None          # the panel edits every pane (None) or pane k
         self.drag_pane: int | None = None        # the pane a drag began in
         super().__init__(window, scenes[0], shared, events)
-        self.grid = PaneGrid(self.scenes)
+        self.grid = PaneGrid(self.scenes, self.camera)
         self.pane = self.grid                    # forget() and layout, as the view uses them
 
     # --- the hooks of SceneView --------------------------------------------------------------
@@ -175,6 +175,11 @@ class CompareView(SceneView):
         self._refresh_panel()
 
     # --- the mouse -----------------------------------------------------------------------------
+    def layout_at(self, pos):
+        """The layout of the pane under `pos` (its view zooms and pans every pane alike)."""
+        k = self.grid.pane_at(pos) if self.scene_area().collidepoint(pos) else None
+        return self.grid.panes[k].layout if k is not None else None
+
     def _mouse_event(self, ev: pygame.event.Event, consumed: bool) -> None:
         """A press on any pane, in that pane's world coordinates, to every pane."""
         k = self.grid.pane_at(ev.pos) if not consumed else None

@@ -172,7 +172,8 @@ class HelpView(ShellView):
 
     def shell_key(self, key: int) -> bool:
         action = keys.action_for(pygame.key.name(key))
-        if action in ("toggle_help", "escape", "toggle_large_text", "screenshot"):
+        if action in ("toggle_help", "escape", "toggle_large_text", "screenshot",
+                      "toggle_fullscreen"):
             return super().shell_key(key)
         return action is not None           # the other shell keys wait until the help closes
 

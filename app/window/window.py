@@ -22,6 +22,7 @@ render); `run_window` is the loop the command line calls.
 
 from __future__ import annotations
 
+import asyncio
 import os
 import sys
 import time
@@ -47,7 +48,7 @@ MESSAGE_SECONDS = 4.0
 NO_DISPLAY = ("python -m app: error: no display for the window: {}; use --headless, or run under "
               "xvfb-run")
 
-__all__ = ["Window", "Message", "run_window", "NONFINITE_TEXT", "SNAPSHOT_EVERY",
+__all__ = ["Window", "Message", "run_window", "window_main", "NONFINITE_TEXT", "SNAPSHOT_EVERY",
            "LARGE_TEXT_SCALE"]
 
 class Message(NamedTuple):
@@ -96,6 +97,8 @@ class Window:
         self.csv_path: str | None = None      # --csv FILE: the open scene's metrics go there
         self.plot_start: list[str] = []       # --plot: what the first scene opens plotted
         self._csv_owner = None                # the view whose metrics the file holds
+        self.fullscreen = False               # F11 (--fullscreen)
+        self.windowed_size: tuple[int, int] = tuple(screen.get_size())   # F11 comes back to it
         self.current_view: ShellView = MenuView(self)
         TEXT.scale = LARGE_TEXT_SCALE if large_text else 1.0
 
@@ -250,6 +253,23 @@ class Window:
         self.screen = surface or pygame.display.get_surface() or self.screen
         self.relayout()
 
+    def toggle_fullscreen(self) -> None:
+        """F11: full screen at the desktop's size, or back to the window's size (--size)."""
+        self.set_fullscreen(not self.fullscreen)
+
+    def set_fullscreen(self, on: bool) -> None:
+        if not (pygame.display.get_init() and pygame.display.get_surface() is not None):
+            return                                  # drawing off-screen: nothing to resize
+        if on == self.fullscreen:
+            return
+        if on:
+            self.windowed_size = self.screen.get_size()
+            surface = pygame.display.set_mode((0, 0), pygame.FULLSCREEN)
+        else:
+            surface = pygame.display.set_mode(self.windowed_size, pygame.RESIZABLE)
+        self.fullscreen = on
+        self.resize(surface)
+
     # --- messages ------------------------------------------------------------------------------
     def flash(self, text: str, color=hud.WARN_COLOR, seconds: float = MESSAGE_SECONDS,
               topic: str = "scene") -> None:
@@ -366,8 +386,9 @@ class _quiet_stderr:
         return False
 
 
-def _open_display(size: tuple[int, int]) -> pygame.Surface:
-    """Open the window; raise pygame.error if there is no usable display."""
+def _open_display(size: tuple[int, int], fullscreen: bool = False) -> pygame.Surface:
+    """Open the window (full screen at the desktop's size with `fullscreen`); raise
+    pygame.error if there is no usable display."""
     if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY")
                                                  or os.environ.get("WAYLAND_DISPLAY")):
         with _quiet_stderr():     # SDL's own probing prints "XDG_RUNTIME_DIR is invalid" lines
@@ -380,21 +401,44 @@ def _open_display(size: tuple[int, int]) -> pygame.Surface:
     if driver in ("offscreen", "dummy") and os.environ.get("SDL_VIDEODRIVER", "") != driver:
         raise pygame.error(f"SDL found no display (it fell back to the '{driver}' driver; "
                            "is DISPLAY set?)")
+    if fullscreen:
+        return pygame.display.set_mode((0, 0), pygame.FULLSCREEN)
     return pygame.display.set_mode(size, pygame.RESIZABLE)
 
 
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
                large_text: bool = False, events: list | None = None, card=None,
-               compare: list | None = None, extras=None, clips: dict | None = None) -> int:
+               compare: list | None = None, extras=None, clips: dict | None = None,
+               size: tuple[int, int] | None = None, fullscreen: bool = False) -> int:
     """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
     applied as a click applies it, or a comparison of the `compare` variants with `overrides`
     shared) and run it until the user quits, or for `seconds` of wall time. Return the exit
     code (2 when there is no display). With `record`, the events are written and the replay
     command printed on every way out; `clips` (path, fps, width) set up F9's clips, saved and
-    named on every way out too; `extras` (app.headless.Extras): --csv, --plot, --arrows."""
+    named on every way out too; `extras` (app.headless.Extras): --csv, --plot, --arrows;
+    `size` (--size WxH): the window's size (default DEFAULT_SIZE), `fullscreen` (--fullscreen):
+    start full screen (F11 toggles).
+
+    The loop itself is `window_main`, a coroutine that yields once a frame (what a browser
+    build through pygbag needs: docs/developers.md); here asyncio runs it."""
+    return asyncio.run(window_main(scene_name, overrides, record, screenshot, seconds,
+                                   large_text, events, card, compare, extras, clips, size,
+                                   fullscreen))
+
+
+async def window_main(scene_name: str | None, overrides: dict[str, str],
+                      record: str | None = None, screenshot: str | None = None,
+                      seconds: float | None = None, large_text: bool = False,
+                      events: list | None = None, card=None, compare: list | None = None,
+                      extras=None, clips: dict | None = None,
+                      size: tuple[int, int] | None = None, fullscreen: bool = False) -> int:
+    """The window's main loop as one coroutine (run_window's arguments): each frame reads the
+    events, advances the view, draws, flips, and then awaits asyncio.sleep(0) once, so that a
+    browser's event loop (pygbag) gets control back between frames; on the desktop that await
+    costs nothing and the frame rate is pygame's clock's, as before."""
     try:
-        screen = _open_display(DEFAULT_SIZE)
+        screen = _open_display(size or DEFAULT_SIZE, fullscreen)
     except pygame.error as e:
         print(NO_DISPLAY.format(str(e).strip() or "unknown SDL error"), file=sys.stderr)
         pygame.display.quit()
@@ -404,6 +448,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     pygame.key.set_repeat()
     from scenes import SCENES, get_scene
     window = Window(screen, SCENES, large_text=large_text, events=events, record=record)
+    window.windowed_size = tuple(size or DEFAULT_SIZE)
+    window.fullscreen = fullscreen
     window.clips = ClipRecorder(**(clips or {}))
     if extras is not None:
         window.csv_path, window.arrows = extras.csv, extras.arrows
@@ -429,6 +475,7 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
             pygame.display.flip()
             if seconds is not None and time.perf_counter() - start >= seconds:
                 break
+            await asyncio.sleep(0)      # the one yield a frame (a browser's loop runs here)
         if screenshot:
             window.render()
             window.save_screenshot(screenshot)

@@ -1,0 +1,265 @@
+"""The projector's controls (issue 26): --size and --fullscreen, F11, zoom with the wheel, pan
+with the middle button, 0 to fit again, the view held still under a drag, and the window's loop
+as one coroutine (what a browser build needs). Headless, with SDL's dummy driver (conftest.py).
+"""
+
+from __future__ import annotations
+
+import asyncio
+
+import pygame
+import pytest
+
+from app.__main__ import main
+from app.draw.view import Camera, View
+from app.window import Window, run_window
+from tests.test_window import Tiny, key, mouse, open_window
+
+
+# --- the command line -----------------------------------------------------------------------
+@pytest.mark.parametrize("bad", ["1920", "1920x", "x1080", "axb", "1920x1080x2", "-1920x1080",
+                                 "100x100", "99999x1080", "1920 x 1080", "１９２０x1080"])
+def test_a_bad_size_is_one_line_and_exit_2(bad, capsys):
+    assert main([f"--size={bad}"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--size" in err and "accepted: WIDTHxHEIGHT" in err
+
+
+@pytest.mark.parametrize("opt", [["--size", "1024x768"], ["--fullscreen"]])
+def test_size_and_fullscreen_are_the_windows_only(opt, capsys):
+    assert main(["--headless", "--scene", "cloth", "--steps", "2", *opt]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and opt[0] in err and "--width" in err
+
+
+def test_run_window_opens_the_size_asked_for(monkeypatch, tmp_path):
+    import scenes
+    monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    shot = tmp_path / "w.png"
+    assert run_window("tiny", {}, screenshot=str(shot), seconds=0.1, size=(1024, 768)) == 0
+    assert pygame.image.load(str(shot)).get_size() == (1024, 768)
+
+
+# --- F11 ------------------------------------------------------------------------------------
+def test_f11_goes_full_screen_and_back_to_the_window_size(tmp_path):
+    w = open_window(Tiny, tmp_path, size=(800, 600), frames=1)
+    desktop = pygame.display.get_desktop_sizes()[0]
+    key(w, pygame.K_F11)
+    assert w.fullscreen and w.screen.get_size() == tuple(desktop)
+    w.update(1 / 60)
+    w.render()                                  # laid out again for the new size
+    assert w.scene_view.panel.rect.right == desktop[0]
+    key(w, pygame.K_F11)
+    assert not w.fullscreen and w.screen.get_size() == (800, 600)
+
+
+def test_f11_works_in_the_menu_and_over_the_help(tmp_path):
+    w = open_window(Tiny, tmp_path, size=(800, 600), frames=1)
+    key(w, pygame.K_h)                         # the help
+    key(w, pygame.K_F11)
+    assert w.fullscreen and w.show_help
+    key(w, pygame.K_F11)
+    w.open_menu()
+    key(w, pygame.K_F11)
+    assert w.fullscreen
+    key(w, pygame.K_F11)
+
+
+# --- the camera -----------------------------------------------------------------------------
+def test_camera_zoom_keeps_the_point_under_the_pointer_and_reset_fits_again():
+    fitted = View.fit_bounds((0, 0, 400, 300), (10, 20, 800, 600))
+    rect, cam = (10, 20, 800, 600), Camera()
+    assert cam.apply(fitted, rect) is fitted
+    p = (300, 250)
+    under = fitted.to_world(p)
+    cam.zoom_at(fitted, rect, p, 2.0)
+    v = cam.apply(fitted, rect)
+    assert v.scale == pytest.approx(2 * fitted.scale)
+    assert v.to_world(p) == pytest.approx(under)
+    cam.pan(fitted, (40, -10))                 # the world follows the pointer
+    v2 = cam.apply(fitted, rect)
+    assert v2.pt(under) == (p[0] + 40, p[1] - 10)
+    cam.zoom_at(fitted, rect, p, 1e6)
+    assert cam.zoom == 40.0                    # clamped
+    cam.reset()
+    assert cam.fitted and cam.apply(fitted, rect) is fitted
+
+
+def wheel(w: Window, pos, y: int) -> None:
+    w.handle_pygame_event(pygame.event.Event(pygame.MOUSEWHEEL, x=0, y=y, flipped=False,
+                                             precise_x=0.0, precise_y=float(y), pos=pos))
+
+
+def test_wheel_zooms_middle_drag_pans_and_0_fits_the_view_again(tmp_path):
+    w = open_window(Tiny, tmp_path, size=(1024, 768), frames=2)
+    sv = w.scene_view
+    fitted = sv.layout.view
+    p = sv.layout.free.center
+    under = fitted.to_world(p)
+    seen = len(sv.scene.seen)
+    wheel(w, p, 1)
+    w.update(1 / 60)
+    w.render()                  # the HUD's new line "zoom x1.2" may re-fit the picture once
+    fitted, under = sv.layout.fitted, sv.view.to_world(p)
+    wheel(w, p, 2)
+    w.update(1 / 60)
+    w.render()
+    assert sv.view.scale == pytest.approx(fitted.scale * 1.2 ** 3)
+    assert sv.view.to_world(p) == pytest.approx(under, abs=1e-6)
+    assert any("zoom x1.7" in str(getattr(x, "text", x)) for x in sv.hud_lines())
+    mouse(w, pygame.MOUSEBUTTONDOWN, p, button=2)
+    mouse(w, pygame.MOUSEMOTION, (p[0] + 50, p[1] + 30))
+    mouse(w, pygame.MOUSEBUTTONUP, (p[0] + 50, p[1] + 30), button=2)
+    w.update(1 / 60)
+    w.render()
+    assert sv.view.pt(under) == (p[0] + 50, p[1] + 30)
+    assert len(sv.scene.seen) == seen          # zoom and pan never reach the scene
+    key(w, pygame.K_0)
+    w.update(1 / 60)
+    w.render()
+    assert sv.view.scale == pytest.approx(fitted.scale) and sv.camera.fitted
+    # a click after zooming lands where the pointer is, in world coordinates
+    wheel(w, p, 2)
+    w.update(1 / 60)
+    w.render()
+    mouse(w, pygame.MOUSEBUTTONDOWN, (p[0] + 20, p[1]))
+    assert sv.scene.seen[-1].pos == pytest.approx(sv.view.to_world((p[0] + 20, p[1])), abs=0.01)
+
+
+def test_the_wheel_over_the_panel_scrolls_the_panel_not_the_view(tmp_path):
+    w = open_window(Tiny, tmp_path, size=(1024, 768), frames=1)
+    sv = w.scene_view
+    wheel(w, (sv.panel.rect.centerx, 300), 3)
+    assert sv.camera.fitted
+
+
+def test_compare_zooms_every_pane_alike(tmp_path):
+    from app.compare import Variant
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1280, 800)), [Tiny], screenshot_dir=tmp_path)
+    assert w.open_compare(Tiny, {}, [Variant("g=10", {"g": "10"}), Variant("g=500",
+                                                                             {"g": "500"})])
+    for _ in range(2):
+        w.update(1 / 60)
+        w.render()
+    cv = w.scene_view
+    scales = [p.layout.view.scale for p in cv.grid.panes]
+    b = cv.grid.panes[1].layout
+    wheel(w, b.free.center, 2)
+    w.update(1 / 60)
+    w.render()
+    assert [p.layout.view.scale for p in cv.grid.panes] == pytest.approx(
+        [s * 1.44 for s in scales])
+
+
+def test_the_view_holds_still_while_a_drag_moves_the_content(tmp_path):
+    """The content's bounds follow the scene, except under a drag: the pinned row must not jump
+    under the pointer (issue 26, defect 11)."""
+    w = open_window(Tiny, tmp_path, size=(1024, 768), frames=2)
+    sv = w.scene_view
+    moving = {"b": (0.0, 0.0, 200.0, 200.0)}
+    sv.scene.content_bounds = lambda: moving["b"]
+    w.update(1 / 60)
+    w.render()
+    p = sv.layout.free.center
+    mouse(w, pygame.MOUSEBUTTONDOWN, p)
+    before = sv.view.scale
+    moving["b"] = (0.0, 0.0, 400.0, 400.0)      # the content grows while dragged
+    w.update(1 / 60)
+    w.render()
+    assert sv.view.scale == before
+    mouse(w, pygame.MOUSEBUTTONUP, p)
+    w.update(1 / 60)
+    w.render()
+    assert sv.view.scale == pytest.approx(before / 2, rel=0.05)
+
+
+# --- the loop -------------------------------------------------------------------------------
+def test_the_window_loop_is_one_coroutine_that_yields_once_a_frame(monkeypatch, tmp_path):
+    import scenes
+    from app.window import window as win
+    monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    assert asyncio.iscoroutinefunction(win.window_main)
+    yields, frames = [], []
+    real_sleep, real_flip = asyncio.sleep, pygame.display.flip
+
+    async def counted_sleep(delay, *a):
+        yields.append(delay)
+        return await real_sleep(0)
+
+    def counted_flip():
+        frames.append(1)
+        real_flip()
+        if len(frames) == 4:                   # the user closes the window (Ctrl+C here)
+            raise KeyboardInterrupt
+    monkeypatch.setattr(win.asyncio, "sleep", counted_sleep)
+    monkeypatch.setattr(pygame.display, "flip", counted_flip)
+    assert run_window("tiny", {}) == 0
+    assert len(frames) == 4 and len(yields) == 3 and set(yields) == {0}
+
+
+# --- ready for the browser: SciPy only where it is needed -----------------------------------
+def _run_python(code: str) -> str:
+    import os
+    import subprocess
+    import sys
+    env = {**os.environ, "SDL_VIDEODRIVER": "dummy", "SDL_AUDIODRIVER": "dummy"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env,
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    return out.stdout
+
+
+def test_no_scene_but_the_implicit_cloth_imports_scipy():
+    out = _run_python("""
+import sys, pygame
+pygame.display.init(); pygame.font.init()
+from app.window import Window
+from scenes import SCENES
+w = Window(pygame.display.set_mode((1024, 768)), SCENES)
+for cls in SCENES:
+    if cls.name == 'mass_spring_cloth':
+        continue
+    assert w.open_scene(cls)
+    for _ in range(3):
+        w.update(1 / 60); w.render()
+print('scipy' in sys.modules)
+""")
+    assert out.strip().splitlines()[-1] == "False"
+
+
+def test_the_implicit_cloth_runs_without_scipy_and_the_direct_solve_says_it_needs_it():
+    out = _run_python("""
+import sys
+sys.modules['scipy'] = None          # as in a browser build: not installed
+import numpy as np
+from scenes import get_scene
+cls = get_scene('mass_spring_cloth')
+s = cls({'rows': '12', 'cols': '12'})
+for _ in range(30):
+    s.step(s.dt)
+m = s.metrics()
+assert m['cg_failures'] == 0 and 0 < m['max_stretch'] < 0.5, m
+from app.physics.cloth_matrix import ClothMatrix, DiagonalMatrix
+import gc
+cm = [o for o in gc.get_objects() if isinstance(o, ClothMatrix)][0]
+assert isinstance(cm.matrix, DiagonalMatrix)
+try:
+    cm.factorize(np.ones(cm.n, bool))
+except ImportError as e:
+    print('refused:', e)
+""")
+    assert "refused: the direct solve (solver=direct, and CG's fallback) needs SciPy" in out
+
+
+def test_the_numpy_diagonals_multiply_as_scipy_does():
+    import numpy as np
+    from scipy import sparse
+    from app.physics.cloth_matrix import DiagonalMatrix
+    rng = np.random.default_rng(26)
+    n, offsets = 50, np.array([-7, -1, 0, 2, 9])
+    data = rng.normal(size=(offsets.size, n))
+    x = rng.normal(size=n)
+    expected = sparse.dia_matrix((data, offsets), shape=(n, n)) @ x
+    assert np.allclose(DiagonalMatrix(data, offsets, (n, n)) @ x, expected, rtol=1e-13)
