@@ -125,6 +125,7 @@ class Rollback:
     bad_t: float
     good_t: float
     advice: str = ""
+    headline: str = ""      # the scene's few words on why (Scene.blowup_headline)
 
     def text(self) -> str:
         return NONFINITE_TEXT.format(bad=self.bad_t, good=self.good_t, advice=self.advice)
@@ -262,7 +263,7 @@ class SceneRunner:
         else:                         # the restored state is the one to come back to next time
             self._good.clear()
             self._keep_snapshot()
-        return Rollback(bad_t, scene.time, advice(scene))
+        return Rollback(bad_t, scene.time, advice(scene), scene.blowup_headline())
 
     # --- what the HUD and the summary read ---------------------------------------------------
     @property

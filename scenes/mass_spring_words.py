@@ -52,6 +52,16 @@ class MassSpringWords:
                       f"deforming cloth can pass it")
         return f"h = {h * 1e3:.3g} ms was {where}. {way}"
 
+    def blowup_headline(self) -> str:
+        """The blow-up in a few words: '27x past its limit' (the pane's tag names the
+        integrator)."""
+        name = self.p["integrator"]
+        pred = self.limit(name) if INTEGRATORS[name].explicit else None
+        if pred is None or pred <= 0 or not math.isfinite(pred):
+            return ""
+        h = self.dt / self.p["substeps"]
+        return f"{_times(h / pred)}x past its limit"
+
     def _energy_change(self) -> str:
         """The energy's change over the last simulated second, in the HUD's unit."""
         if len(self._energy) < 2:

@@ -263,3 +263,63 @@ def test_the_numpy_diagonals_multiply_as_scipy_does():
     x = rng.normal(size=n)
     expected = sparse.dia_matrix((data, offsets), shape=(n, n)) @ x
     assert np.allclose(DiagonalMatrix(data, offsets, (n, n)) @ x, expected, rtol=1e-13)
+
+
+# --- issue 26, defect 1 and 3: F2 kept where the class reads ----------------------------------
+def _compare_window(tmp_path, scene, variants, size, large_text=True, frames=40):
+    from app.compare import Variant
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode(size), [scene], screenshot_dir=tmp_path,
+               large_text=large_text)
+    assert w.open_compare(scene, {}, [Variant(v, dict([v.split("=")])) for v in variants])
+    for _ in range(frames):
+        w.update(1 / 60)
+        w.render()
+    return w
+
+
+def _texts(lines) -> list[str]:
+    return [getattr(x, "text", str(x)) for x in lines or ()]
+
+
+@pytest.mark.parametrize("size", [(1024, 768), (1920, 1080)])
+def test_a_held_pane_says_one_headline_and_its_text_is_the_size_of_its_neighbours(tmp_path,
+                                                                                   size):
+    from app.draw.text import TEXT
+    from scenes import get_scene
+    cls = get_scene("mass_spring_cloth")
+    w = _compare_window(tmp_path, cls, ["integrator=symplectic_euler",
+                                        "integrator=implicit_euler"], size)
+    try:
+        cv = w.scene_view
+        assert 0 in cv.runner.held
+        a = _texts(cv.grid.used[0])
+        headline = cv.runner.held_headline[0]
+        assert headline in a and cv.runner.held[0] not in a
+        assert headline.startswith("Blew up at 0.0") and "x past its limit; held (F4: why)" in \
+            headline
+        sizes = {p.layout.hud_text for p in cv.grid.panes}
+        assert len(sizes) == 1                   # one text size in every pane
+        w.toggle_details()                       # F4: the whole paragraph
+        w.update(1 / 60)
+        w.render()
+        assert cv.runner.held[0] in _texts(cv.grid.used[0])
+    finally:
+        TEXT.scale = 1.0
+
+
+def test_four_panes_share_one_text_size_and_a_tag_breaks_at_its_equals_sign(tmp_path):
+    from app.draw import hud
+    from app.draw.text import TEXT, font
+    from scenes import get_scene
+    w = _compare_window(tmp_path, get_scene("cloth"), ["iterations=2", "iterations=5",
+                                                       "iterations=10", "iterations=20"],
+                        (1024, 768), frames=3)
+    try:
+        cv = w.scene_view
+        assert len({p.layout.hud_text for p in cv.grid.panes}) == 1
+    finally:
+        TEXT.scale = 1.0
+    rows = hud.wrap("B: integrator=implicit_euler", font(28), font(28).size("B: integrator=impl")[0])
+    assert rows == ["B:", "integrator=", "implicit_euler"]

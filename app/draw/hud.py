@@ -40,14 +40,20 @@ def _is_unit(word: str) -> bool:
 
 
 def _cut(text: str, f: pygame.font.Font, width: int) -> tuple[str, str]:
-    """Split a line holding one word wider than `width` (a file's path): the longest head that
-    fits, cut after its last '/' if there is one in its second half."""
+    """Split a line holding one word wider than `width` (a file's path, a setting): the longest
+    head that fits, cut after its last '/' if there is one in its second half, else after its
+    last ',' or '=' ("integrator=" / "implicit_euler", never "implicit_eul" / "er")."""
     n = 1
     while n < len(text) and f.size(text[: n + 1])[0] <= width:
         n += 1
+    if n >= len(text):
+        return text, ""
     slash = max(text.rfind("/", 0, n), text.rfind("\\", 0, n))
+    joint = max(text.rfind(",", 0, n), text.rfind("=", 0, n))
     if slash + 1 > n // 2:
         n = slash + 1
+    elif joint > 0:
+        n = joint + 1
     return text[:n], text[n:]
 
 

@@ -84,7 +84,7 @@ class CompareView(SceneView):
         more = [f"{self.fps:.0f} frames per second (drawing "
                 f"{1000 * self.window.last_draw_seconds:.1f} ms a frame)"] if details else []
         return compare_pane_lines(self.runner.runners, None, details, more, self.runner.held,
-                                  brief=brief)
+                                  brief=brief, headlines=self.runner.held_headline)
 
     def fit(self, lines: list | None = None):
         if not self.overlays:

@@ -58,6 +58,7 @@ class SceneView(InstrumentHost, ShellView):
         self.panel_visible = window.panel_visible
         self.overlays = True                # F3 hides HUD and metrics
         self.banner = ""                    # the non-finite rollback's message (in the HUD)
+        self.banner_short = ""              # the same in one line (the first page; F4: all)
         self.dragging: set[int] = set()     # mouse buttons pressed in the world area
         self.typed_keys: set[int] = set()   # keys pressed while typing into the panel
         self.camera = Camera()              # wheel zoom, middle-button pan (0 fits again)
@@ -412,6 +413,9 @@ class SceneView(InstrumentHost, ShellView):
             self.clock.accumulator = 0.0
             self.dragging.clear()
             self.banner = rollback.text()
+            why = f": {rollback.headline}" if rollback.headline else ""
+            self.banner_short = (f"Blew up at {rollback.bad_t:.3f} s{why}; rolled back to "
+                                 f"{rollback.good_t:.3f} s and paused (F4: why and what to try)")
             self.speed.restart(forget=True)    # undone steps: not "slower than real time"
             self._refresh_panel()
         elif self.runner.error is not None:
@@ -492,7 +496,8 @@ class SceneView(InstrumentHost, ShellView):
                                                  "in the terminal)"]
             lines.append(hud.Line("\n".join(text), hud.ERROR_COLOR))
         if self.banner:
-            lines.append(hud.Line(self.banner, hud.WARN_COLOR))
+            short = getattr(self, "banner_short", "") if not self.window.hud_details else ""
+            lines.append(hud.Line(short or self.banner, hud.WARN_COLOR))
         # a card's promise is in the panel's box under the cards while the panel is shown
         shown_there = self.panel is not None and self.panel.watch_box is not None
         return lines + [hud.Line(m.text, m.color) for m in self.window.messages
