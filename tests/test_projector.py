@@ -323,3 +323,20 @@ def test_four_panes_share_one_text_size_and_a_tag_breaks_at_its_equals_sign(tmp_
         TEXT.scale = 1.0
     rows = hud.wrap("B: integrator=implicit_euler", font(28), font(28).size("B: integrator=impl")[0])
     assert rows == ["B:", "integrator=", "implicit_euler"]
+
+
+def test_a_gif_of_repeated_frames_says_how_many_it_stores(tmp_path):
+    """Issue 26, defect 7: '37 frames, 1.2 s' for a GIF that holds 9 (a still scene)."""
+    from PIL import Image
+    from app.clips import open_clip
+    still = pygame.Surface((64, 48))
+    still.fill((30, 60, 90))
+    writer = open_clip(str(tmp_path / "still.gif"), (64, 48), 30)
+    for k in range(37):
+        if k == 20:
+            still.fill((200, 10, 10))
+        writer.add_surface(still)
+    clip = writer.close()
+    with Image.open(tmp_path / "still.gif") as gif:
+        assert gif.n_frames == clip.stored == 2
+    assert clip.frames_text() == "37 frames (2 stored: repeated frames are held longer)"
