@@ -340,3 +340,52 @@ def test_a_gif_of_repeated_frames_says_how_many_it_stores(tmp_path):
     with Image.open(tmp_path / "still.gif") as gif:
         assert gif.n_frames == clip.stored == 2
     assert clip.frames_text() == "37 frames (2 stored: repeated frames are held longer)"
+
+
+# --- issue 26, defect 4: the panel ------------------------------------------------------------
+def _pump(w: Window, n: int = 2) -> None:
+    for _ in range(n):
+        w.update(1 / 60)
+        w.render()
+        for ev in pygame.event.get():
+            w.handle_pygame_event(ev)
+
+
+@pytest.mark.parametrize("size", [(1024, 768), (1920, 1080)])
+def test_a_drop_down_opens_inside_the_window_and_no_gap_sits_above_parameters(tmp_path, size):
+    from scenes import get_scene
+    w = open_window(get_scene("mass_spring_cloth"), tmp_path, size=size, frames=2)
+    panel = w.scene_view.panel
+    d = panel.dropdowns["material"]
+    for kind in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP):
+        w.handle_pygame_event(pygame.event.Event(kind, pos=d.rect.center, button=1))
+        _pump(w)
+    shown = d.current_state.options_selection_list
+    assert pygame.Rect((0, 0), size).contains(shown.rect)        # every material visible
+    assert len(shown.item_list) == 6 and shown.rect.height >= 6 * 20
+    # the box under the cards is as tall as its text: no 200-300 px gap above "Parameters"
+    box = panel.watch_box.rect
+    assert box.height <= panel._watch_height(panel._watch_shown) + 1
+    assert d.rect.top - box.bottom < 100
+
+
+def test_the_watch_box_grows_with_a_cards_text_and_moves_the_rest(tmp_path):
+    from scenes import get_scene
+    cls = get_scene("mass_spring_cloth")
+    w = open_window(cls, tmp_path, size=(1024, 768), frames=1)
+    panel = w.scene_view.panel
+    d = panel.dropdowns["material"]
+    gap, before = d.rect.top - panel.watch_box.rect.bottom, panel.watch_box.rect.height
+    card = max(cls.tries, key=lambda c: len(c.watch))
+    panel.show_watch(card)
+    w.render()
+    assert panel.watch_box.rect.height > before
+    assert d.rect.top - panel.watch_box.rect.bottom == gap      # moved with it
+    panel.show_watch(None, clicked=True)
+
+
+def test_a_wheel_notch_scrolls_the_panel_three_rows(tmp_path):
+    from scenes import get_scene
+    w = open_window(get_scene("mass_spring_cloth"), tmp_path, size=(1024, 768), frames=1)
+    panel = w.scene_view.panel
+    assert panel.container.vert_scroll_bar.scroll_wheel_speed == 3.0 * panel._row_step >= 100
