@@ -272,7 +272,8 @@ def _compare_window(tmp_path, scene, variants, size, large_text=True, frames=40)
     pygame.font.init()
     w = Window(pygame.display.set_mode(size), [scene], screenshot_dir=tmp_path,
                large_text=large_text)
-    assert w.open_compare(scene, {}, [Variant(v, dict([v.split("=")])) for v in variants])
+    assert w.open_compare(scene, {}, [Variant(v, dict(kv.split("=") for kv in v.split(",")))
+                                        for v in variants])
     for _ in range(frames):
         w.update(1 / 60)
         w.render()
@@ -389,3 +390,30 @@ def test_a_wheel_notch_scrolls_the_panel_three_rows(tmp_path):
     w = open_window(get_scene("mass_spring_cloth"), tmp_path, size=(1024, 768), frames=1)
     panel = w.scene_view.panel
     assert panel.container.vert_scroll_bar.scroll_wheel_speed == 3.0 * panel._row_step >= 100
+
+
+# --- issue 26, defect 6: a shared press that misses a pane says so ---------------------------
+def test_a_press_that_misses_a_panes_cloth_says_which_panes_caught_it(tmp_path):
+    from scenes import get_scene
+    w = _compare_window(tmp_path, get_scene("cloth"), ["iterations=1,g=5000", "g=0"], (1280, 800),
+                        large_text=False, frames=60)
+    cv = w.scene_view
+    a, b = cv.scenes
+    import numpy as np
+    view, free = cv.grid.panes[0].layout.view, cv.grid.panes[0].layout.free
+    xa, xb = a.cloth.x.reshape(2, -1).T, b.cloth.x.reshape(2, -1).T
+    seen = [i for i, p in enumerate(xa) if free.collidepoint(view.pt(p))]
+    i = max(seen, key=lambda i: np.hypot(*(xa[i] - xb[i])))   # A's particle farthest from B's
+    assert np.hypot(*(xa[i] - xb[i])) > 3 * a.grab_radius
+    assert np.hypot(*(xb - xa[i]).T).min() > a.grab_radius     # nothing of B's under it
+    pos = view.pt(xa[i])
+    mouse(w, pygame.MOUSEBUTTONDOWN, pos)
+    assert a.cloth.grabbed is not None and b.cloth.grabbed is None
+    said = [m.text for m in w.messages if m.topic == "drag"]
+    assert said == ["the press caught the cloth in A only: in B it is not under that point "
+                    "(every pane gets the same world point)"]
+    mouse(w, pygame.MOUSEBUTTONUP, pos)
+    # a press that catches both says nothing
+    top = a.cloth.x[:, 0, 5]
+    mouse(w, pygame.MOUSEBUTTONDOWN, cv.grid.panes[0].layout.view.pt(top))
+    assert a.cloth.grabbed is not None and b.cloth.grabbed is not None
