@@ -84,7 +84,13 @@ class MassSpringWords:
         pred = self.limit(name)
         band = self.watch.band(name, h)
         if not INTEGRATORS[name].explicit:
-            where += f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else ""
+            # the limit of the cloth as it is now: draped, it is stiffer than at rest (a held
+            # explicit pane beside, rolled back to its start, reads the one at rest): say both
+            rest = self.watch.rest("symplectic_euler")
+            then = (f", {_times(h / rest)}x at rest" if rest and
+                    _times(h / rest) != _times(h / limit) else "")
+            where += (f" = {_times(h / limit)}x symplectic Euler's limit (now{then})"
+                      if om > 0 else "")
         elif om <= 0:                          # every stiffness 0: no top mode, no limit
             where += ": no stiffness, so no step limit"
         elif pred is None:

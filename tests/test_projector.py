@@ -417,3 +417,17 @@ def test_a_press_that_misses_a_panes_cloth_says_which_panes_caught_it(tmp_path):
     top = a.cloth.x[:, 0, 5]
     mouse(w, pygame.MOUSEBUTTONDOWN, cv.grid.panes[0].layout.view.pt(top))
     assert a.cloth.grabbed is not None and b.cloth.grabbed is not None
+
+
+def test_the_implicit_cloths_ratio_says_now_and_at_rest_when_they_differ():
+    """Issue 26, defect 9: '27x' (a held explicit pane, at rest) beside '33x' (the implicit
+    pane, draped) with nothing saying why."""
+    from app.runner import SceneRunner
+    from scenes import get_scene
+    s = get_scene("mass_spring_cloth")({})
+    SceneRunner(s).run(150)                     # draped: stiffer than at rest
+    line = s.hud_lines()[0]
+    h, now, rest = s.dt, s.explicit_limit(), s.watch.rest("symplectic_euler")
+    assert now < rest
+    assert (f"= {round(h / now)}x symplectic Euler's limit (now, {round(h / rest)}x at rest)"
+            in line), line
