@@ -111,8 +111,10 @@ class MassSpringWords:
         short (in words)."""
         c, m, p = self.cloth, self.metrics(), self.p
         title = INTEGRATORS[p["integrator"]].title
+        change = self._energy_change().strip()[1:-1]    # '-0.53 J in 0.93 s' (its zero named)
         lines = [f"{p['material']}, {title}: {self._where()}",
-                 f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
+                 f"energy {self.shown('energy', m['energy'])} "
+                 f"(0 = at rest as built{'; ' + change if change else ''})  |  "
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())
