@@ -431,3 +431,33 @@ def test_the_implicit_cloths_ratio_says_now_and_at_rest_when_they_differ():
     assert now < rest
     assert (f"= {round(h / now)}x symplectic Euler's limit (now, {round(h / rest)}x at rest)"
             in line), line
+
+
+# --- issue 26, defect 10: the live plot -------------------------------------------------------
+def test_the_live_plot_gives_a_second_unit_its_own_axis_and_names_a_line_out_of_view():
+    from app.draw import live_plot as lp
+    surface = pygame.Surface((700, 300))
+    ts = [k / 10 for k in range(50)]
+    energy = lp.Line("energy (J)", (200, 200, 200), ts, [-800.0 + k for k in range(50)],
+                     unit="J")
+    stretch = lp.Line("max_stretch (%)", (100, 200, 100), ts, [5 + 0.1 * k for k in range(50)],
+                      unit="%")
+    held = lp.Line("A energy (J)", (100, 100, 250), [0.0, 0.1], [1.0, 2.0], unit="J")
+    drawn = lp.draw_plot(surface, surface.get_rect(), [energy, stretch, held], 12.0, 10.0)
+    assert drawn["y"] and drawn["y2"]                      # J on the left, % on the right
+    assert all(r.left > max(q.right for q in drawn["y"]) for r in drawn["y2"])
+    # the stretch spans its own axis: its line is not flat at the bottom of the energy's scale
+    pixels = pygame.PixelArray(surface)
+    rows = {y for x in range(surface.get_width()) for y in range(surface.get_height())
+            if surface.unmap_rgb(pixels[x, y]) == (100, 200, 100, 255)}
+    del pixels
+    assert max(rows) - min(rows) > 50
+    # the held pane's line, which ended before the view: the legend says so
+    lines_drawn = []
+    real = lp._draw_legend
+    lp._draw_legend = lambda s, rows, pos, f: lines_drawn.extend(ln.label for r in rows for ln in r)
+    try:
+        lp.draw_plot(surface, surface.get_rect(), [energy, held], 12.0, 10.0)
+    finally:
+        lp._draw_legend = real
+    assert "A energy (J) (none in view)" in lines_drawn
