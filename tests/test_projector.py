@@ -431,6 +431,7 @@ def test_the_implicit_cloths_ratio_says_now_and_at_rest_when_they_differ():
     assert now < rest
     assert (f"= {round(h / now)}x symplectic Euler's limit (now, {round(h / rest)}x at rest)"
             in line), line
+    assert "J (0 = at the start" in s.hud_lines()[1]         # the energy names its zero
 
 
 # --- issue 26, defect 10: the live plot -------------------------------------------------------

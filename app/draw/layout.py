@@ -23,8 +23,8 @@ from app.draw.view import Camera, View
 MARGIN = 8          # pixels between the content and the HUD, strip and edges
 HUD_SHARE = 0.5     # the HUD may take this much of the height before its text shrinks (never
                     # below the normal size)
-HUD_SHARE_DETAILS = 0.6  # on the second page (F4), where the text is what is read: this much (more
-                         # leaves the content a stamp at 1024x640 with F2)
+HUD_SHARE_DETAILS = 0.6  # on the second page (F4), where the text is what is read, in a window
+DETAILS_TALL = 700       # at least this tall: this much (in a shorter one the content is a stamp)
 HUD_WIDTHS = (1.0, 0.75, 0.55)   # the HUD box's widths tried, as fractions of the widest
 DETAILS_WIDTH = 0.7              # the second page's widest: this share of the area's width
 
@@ -139,7 +139,7 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
     for width in widths:
         size = min(hud.HUD_SIZE, text_size or hud.HUD_SIZE)   # large text in a small window:
         w, h = hud.box_size(lines, int(round(size)), max_width=width)   # the HUD gives back some
-        share = HUD_SHARE_DETAILS if strip else HUD_SHARE
+        share = HUD_SHARE_DETAILS if strip and area.height >= DETAILS_TALL else HUD_SHARE
         while h > share * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
             size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
             w, h = hud.box_size(lines, int(round(size)), max_width=width)
