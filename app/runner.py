@@ -130,6 +130,12 @@ class Rollback:
     def text(self) -> str:
         return NONFINITE_TEXT.format(bad=self.bad_t, good=self.good_t, advice=self.advice)
 
+    def short_text(self) -> str:
+        """The same in one line a class reads (the window's first page; F4: text())."""
+        why = f": {self.headline}" if self.headline else ""
+        return (f"Blew up at {self.bad_t:.3f} s{why}; rolled back to {self.good_t:.3f} s and "
+                "paused (F4: why and what to try)")
+
 
 class SceneRunner:
     """Steps one scene; see the module docstring. `keep_all_times` keeps the median of every

@@ -21,14 +21,14 @@ from app import keys
 from app.draw import hud
 from app.draw.layout import Layout, Pane, draw_scene
 from app.draw.text import TEXT
-from app.draw.view import ZOOM_STEP, Camera
 from app.loop import FixedStepClock
 from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
+from app.window.camera_host import CameraHost
 from app.window.instrument_host import InstrumentHost
 from app.window.recorder import changed_settings
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
-from app.window.views import HelpView, ShellView, WindowLike
+from app.window.views import HelpView, ShellView, WindowLike, safe, slow_text
 
 if TYPE_CHECKING:
     from app.window.panel import ParamPanel
@@ -42,7 +42,7 @@ ERROR_LINES = 12            # the HUD shows at most this many lines of an error 
                             # the whole traceback)
 
 
-class SceneView(InstrumentHost, ShellView):
+class SceneView(CameraHost, InstrumentHost, ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
@@ -61,10 +61,7 @@ class SceneView(InstrumentHost, ShellView):
         self.banner_short = ""              # the same in one line (the first page; F4: all)
         self.dragging: set[int] = set()     # mouse buttons pressed in the world area
         self.typed_keys: set[int] = set()   # keys pressed while typing into the panel
-        self.camera = Camera()              # wheel zoom, middle-button pan (0 fits again)
-        self.panning: tuple[int, int] | None = None    # where the middle-button drag is now
-        self._pan_layout = None             # the layout of the pane the drag began in
-        self.pointer = (0, 0)               # the mouse's last position (the wheel has none)
+        self.setup_camera()                 # wheel zoom, middle-button pan (0 fits again)
         self.pane = Pane(scene, self.camera)   # the scene and its HUD in the world area
         self._notes_shown: tuple = ()       # the messages the HUD's room was made for
         self.speed = SpeedWatch()            # frames per second; why a frame dropped steps
@@ -190,45 +187,6 @@ class SceneView(InstrumentHost, ShellView):
 
     def escape(self) -> None:
         self.window.open_menu()
-
-    def fit_view(self) -> None:
-        """0: undo the zoom and the pan (the content fitted to its room again)."""
-        self.camera.reset()
-        self.panning = None
-
-    # --- zoom and pan (the camera: app/draw/view.py) --------------------------------------------
-    def layout_at(self, pos) -> Any:
-        """The layout of the pane under the screen point `pos` (None: none there)."""
-        layout = self.pane.layout
-        return layout if layout is not None and self.scene_area().collidepoint(pos) else None
-
-    def camera_event(self, ev: pygame.event.Event, consumed: bool) -> bool:
-        """The mouse wheel zooms about the pointer, a middle-button drag pans: True if `ev`
-        was one of those (it never reaches the scene, nor the recording: the world coordinates
-        a scene receives are the same at any zoom)."""
-        if ev.type == pygame.MOUSEMOTION:
-            self.pointer = ev.pos
-            if self.panning is not None:
-                layout = self._pan_layout
-                if layout is not None:
-                    self.camera.pan(layout.fitted or layout.view,
-                                    (ev.pos[0] - self.panning[0], ev.pos[1] - self.panning[1]))
-                self.panning = ev.pos
-                return True
-            return False
-        if ev.type == pygame.MOUSEWHEEL:
-            pos = getattr(ev, "pos", None) or self.pointer
-            layout = None if consumed else self.layout_at(pos)
-            if layout is not None and ev.y:
-                self.camera.zoom_at(layout.fitted or layout.view, layout.free, pos,
-                                    ZOOM_STEP ** ev.y)
-            return True
-        if ev.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP) and ev.button == 2:
-            down = ev.type == pygame.MOUSEBUTTONDOWN
-            self._pan_layout = self.layout_at(ev.pos) if down and not consumed else None
-            self.panning = ev.pos if self._pan_layout is not None else None
-            return True
-        return False
 
     # --- settings ------------------------------------------------------------------------------
     def apply_setting(self, name: str, value: Any) -> bool:
@@ -381,13 +339,6 @@ class SceneView(InstrumentHost, ShellView):
         elif ev.type == pygame.MOUSEMOTION and (in_world or self.dragging):
             self.deliver(InputEvent("mouse_move", pos=world))
 
-    def pane_hold(self) -> None:
-        """While a button drags the content, its view holds still (no re-fit under the
-        pointer as the cloth swings); it follows the content again on release."""
-        for p in getattr(self.pane, "panes", [self.pane]):
-            if bool(self.dragging) != (p.held is not None):
-                p.hold(bool(self.dragging))
-
     def deliver(self, event: InputEvent) -> None:
         """Hand a live event to the scene now (before the next step) and record it."""
         if self.runner.deliver(event):
@@ -412,10 +363,7 @@ class SceneView(InstrumentHost, ShellView):
             self.clock.paused = True
             self.clock.accumulator = 0.0
             self.dragging.clear()
-            self.banner = rollback.text()
-            why = f": {rollback.headline}" if rollback.headline else ""
-            self.banner_short = (f"Blew up at {rollback.bad_t:.3f} s{why}; rolled back to "
-                                 f"{rollback.good_t:.3f} s and paused (F4: why and what to try)")
+            self.banner, self.banner_short = rollback.text(), rollback.short_text()
             self.speed.restart(forget=True)    # undone steps: not "slower than real time"
             self._refresh_panel()
         elif self.runner.error is not None:
@@ -463,9 +411,8 @@ class SceneView(InstrumentHost, ShellView):
         if clock.paused:
             state.append("PAUSED (Space resumes, . steps)")
         if clock.slow_motion != 1.0:
-            state.append(f"speed x{_slow_text(clock.slow_motion)} (- slower, = faster)")
-        if not self.camera.fitted:
-            state.append(f"zoom x{self.camera.zoom:.2g} (0 fits the view again)")
+            state.append(f"speed x{slow_text(clock.slow_motion)} (- slower, = faster)")
+        state += self.zoom_state()
         if state:
             lines.append(L("  |  ".join(state), hud.WARN_COLOR))
         if self.window.recorder.active:
@@ -544,14 +491,3 @@ class SceneView(InstrumentHost, ShellView):
         if self.manager is not None:
             self.manager.draw_ui(screen)
 
-
-def safe(fn, default):
-    """fn(), or `default` if the scene raised SceneError (its message is shown elsewhere)."""
-    try:
-        return fn()
-    except SceneError:
-        return default
-
-
-def _slow_text(factor: float) -> str:
-    return "1" if factor == 1.0 else f"1/{int(round(1 / factor))}"
