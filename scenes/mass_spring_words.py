@@ -114,7 +114,7 @@ class MassSpringWords:
         change = self._energy_change().strip()[1:-1]    # '-0.53 J in 0.93 s' (its zero named)
         lines = [f"{p['material']}, {title}: {self._where()}",
                  f"energy {self.shown('energy', m['energy'])} "
-                 f"(0 = at the start{'; ' + change if change else ''})  |  "
+                 f"(0 at the start{'; ' + change if change else ''})  |  "
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())

@@ -431,7 +431,7 @@ def test_the_implicit_cloths_ratio_says_now_and_at_rest_when_they_differ():
     assert now < rest
     assert (f"= {round(h / now)}x symplectic Euler's limit (now, {round(h / rest)}x at rest)"
             in line), line
-    assert "J (0 = at the start" in s.hud_lines()[1]         # the energy names its zero
+    assert "J (0 at the start" in s.hud_lines()[1]         # the energy names its zero
 
 
 # --- issue 26, defect 10: the live plot -------------------------------------------------------
@@ -462,3 +462,17 @@ def test_the_live_plot_gives_a_second_unit_its_own_axis_and_names_a_line_out_of_
     finally:
         lp._draw_legend = real
     assert "A energy (J) (none in view)" in lines_drawn
+
+
+def test_a_colour_key_wraps_into_even_rows_never_one_item_alone():
+    """Issue 26, defect 11: the stretch legend wrapped '>20%' alone onto a second row."""
+    from app.draw import hud
+    from app.draw.text import font
+    keys = tuple(((0, 0, 200), t) for t in ("<0.2%", "<0.5", "<1", "<2", "<5", "<10", "<20",
+                                             ">20%"))
+    f = font(hud.HUD_SIZE)
+    full = sum(hud._key_width(f, k) for k in keys)
+    rows = hud._key_rows(keys, f, int(full * 0.9))        # just too narrow for one row
+    assert len(rows) == 2 and min(len(r) for r in rows) >= 3
+    assert all(sum(hud._key_width(f, k) for k in r) <= int(full * 0.9) for r in rows)
+    assert hud._key_rows(keys, f, full + 1) == [list(keys)]

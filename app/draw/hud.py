@@ -140,12 +140,8 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
             items_ = [Line(text, item.color, swatch=color) for color, text in item.keys]
             wrapped += _box_lines(items_, f, max_width, pad)
             continue
-        if item.keys:             # as many key items per row as fit
-            rows: list[list] = [[]]
-            for k in item.keys:
-                if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > max_width - 2 * pad:
-                    rows.append([])
-                rows[-1].append(k)
+        if item.keys:             # the fewest rows that hold the key, evenly filled
+            rows = _key_rows(item.keys, f, max_width - 2 * pad)
             wrapped += [Line("", item.color, keys=tuple(r)) for r in rows]
             continue
         room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
@@ -157,6 +153,28 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
             wrapped.append(Line(t, item.color, item.swatch if i == 0 else None,
                                 hint=hint if i == len(rows) - 1 else ""))
     return wrapped
+
+
+def _key_rows(keys: tuple, f: pygame.font.Font, width: int) -> list[list]:
+    """Key items in rows no wider than `width`: as few rows as fit, then as even as can be
+    (never '>20%' alone on a second row under eight items)."""
+    def pack(limit: float) -> list[list]:
+        rows: list[list] = [[]]
+        for k in keys:
+            if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > limit:
+                rows.append([])
+            rows[-1].append(k)
+        return rows
+    rows = pack(width)
+    if len(rows) > 1:
+        total = sum(_key_width(f, k) for k in keys)
+        limit = total / len(rows)
+        while limit < width:              # the narrowest limit that needs no more rows
+            even = pack(limit)
+            if len(even) == len(rows):
+                return even
+            limit += max(1.0, 0.02 * width)
+    return rows
 
 
 def _swatch_w(f: pygame.font.Font) -> int:

@@ -132,7 +132,7 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
     f = font(min(hud.HUD_SIZE, text_size or hud.HUD_SIZE))
     head = max((f.size(getattr(x, "text", str(x)))[0] + 2 * 8 + 2 for x in lines[:2]
                 if "\n" not in getattr(x, "text", str(x))), default=1)
-    narrowest = head if head <= widest else 1     # (else it breaks at any width tried)
+    narrowest = head if head <= widest and not strip else 1   # (F4: the content comes first)
     widths = [hud_width] if hud_width else \
         sorted({max(1, narrowest, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
     best: Layout | None = None
