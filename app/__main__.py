@@ -93,6 +93,22 @@ def _positive_int(text: str) -> int:
     return _int_in(text, 1, MAX_STEPS, "steps")
 
 
+MIN_WINDOW, MAX_WINDOW = (640, 480), (7680, 4320)     # --size: the smallest and largest window
+
+
+def _window_size(text: str) -> tuple[int, int]:
+    """--size WxH: a window of W by H pixels (e.g. 1920x1080)."""
+    accepted = (f"accepted: WIDTHxHEIGHT in pixels, e.g. 1920x1080, from {MIN_WINDOW[0]}x"
+                f"{MIN_WINDOW[1]} to {MAX_WINDOW[0]}x{MAX_WINDOW[1]}")
+    w, sep, h = text.strip().lower().partition("x")
+    if not sep or not (plain_number(w) and plain_number(h) and w.isdigit() and h.isdigit()):
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not a size; {accepted}")
+    size = (int(w), int(h))
+    if not all(lo <= v <= hi for v, lo, hi in zip(size, MIN_WINDOW, MAX_WINDOW)):
+        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; {accepted}")
+    return size
+
+
 def build_parser() -> argparse.ArgumentParser:
     # allow_abbrev=False: --scen is not --scene (a stable command line; docs/reference.md)
     p = _Parser(prog="python -m app", allow_abbrev=False, description="A classroom lab for "
@@ -125,6 +141,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--record", metavar="FILE", help="window: save your mouse and key events "
                    "in the --input format")
     p.add_argument("--large-text", action="store_true", help="window: start with large text")
+    p.add_argument("--size", type=_window_size, metavar="WxH", help="window: its size in "
+                   "pixels, e.g. 1920x1080 (default 1280x800; F11 comes back to it)")
+    p.add_argument("--fullscreen", action="store_true", help="window: start full screen (F11 "
+                   "toggles it)")
     p.add_argument("--compare", nargs="+", metavar="KEY=VALUE[,KEY=VALUE]", help="run 2 to 4 "
                    "variants of the scene side by side in lockstep (--set values are shared)")
     p.add_argument("--csv", metavar="FILE", help="write every metric over time: a row per step "
@@ -242,6 +262,9 @@ def app_main(argv: list[str]) -> int:
                              f"{MAX_STEPS // hertz:,} seconds for {cls.name}")
     if args.headless and args.record:
         raise UsageError("--record records what you do in the window; it needs no --headless")
+    if args.headless and (args.size or args.fullscreen):
+        raise UsageError(f"--{'size' if args.size else 'fullscreen'} is the window's; headless "
+                         "pictures take --width")
     clip_problem(args, classes)
 
     events = None
@@ -293,7 +316,8 @@ def app_main(argv: list[str]) -> int:
                       screenshot=args.screenshot, seconds=args.seconds,
                       large_text=args.large_text, events=events, card=card,
                       compare=variants, extras=extras,
-                      clips=dict(path=args.video, fps=args.fps, width=args.width))
+                      clips=dict(path=args.video, fps=args.fps, width=args.width),
+                      size=args.size, fullscreen=args.fullscreen)
 
 
 def find_card(label: str, classes: list, overrides: dict):

@@ -136,15 +136,24 @@ def clip_size(scene: "Scene", width: int, clean: bool) -> tuple[int, int]:
 
 @dataclass
 class Clip:
-    """A clip written: where, how many frames, how many bytes."""
+    """A clip written: where, how many frames, how many bytes; `stored`: the frames in the file
+    if fewer (a GIF stores a run of identical frames, a pause, as one frame held longer)."""
     path: str
     frames: int
     size: tuple[int, int]
     fps: int
     bytes: int
+    stored: int | None = None
+
+    def frames_text(self) -> str:
+        """'37 frames' or '37 frames (9 stored: repeated frames are held longer)'."""
+        if self.stored is None or self.stored == self.frames:
+            return f"{self.frames} frames"
+        return (f"{self.frames} frames ({self.stored} stored: repeated frames are held "
+                "longer)")
 
     def text(self) -> str:
-        return (f"{self.path} ({self.frames} frames, {self.size[0]}x{self.size[1]}, "
+        return (f"{self.path} ({self.frames_text()}, {self.size[0]}x{self.size[1]}, "
                 f"{self.frames / self.fps:.3g} s at {self.fps} fps, {self.bytes / 1e6:.2f} MB)")
 
 
@@ -262,7 +271,10 @@ class GifWriter(ClipWriter):
                            duration=self.durations(), loop=0, optimize=True, disposal=1)
         finally:
             self.abandon()
-        return Clip(self.path, self.frames, self.size, self.fps, os.path.getsize(self.path))
+        with Image.open(self.path) as written:      # Pillow merges identical frames
+            stored = written.n_frames
+        return Clip(self.path, self.frames, self.size, self.fps, os.path.getsize(self.path),
+                    stored)
 
     def abandon(self) -> None:
         self._pool.shutdown(wait=True)

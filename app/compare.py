@@ -34,6 +34,7 @@ TAGS = "ABCD"          # the panes' names, in the order given
 HELD_TEXT = ("Blew up at t = {bad:.3f} s (NaN/inf, or past the scene's blow-up bounds): rolled "
              "back to t = {good:.3f} s and held here while the other panes go on (R restarts "
              "them all). {advice}")
+HELD_HEADLINE = "Blew up at {bad:.3f} s{why}; held (F4: why)"
 
 
 @dataclass(frozen=True)
@@ -151,6 +152,7 @@ class CompareRunner:
         self.clock = 0.0        # session seconds: the sum of every tick
         self.world = 0.0        # simulated seconds since the panes last started together
         self.held: dict[int, str] = {}     # pane -> why it stopped (a rollback's text)
+        self.held_headline: dict[int, str] = {}   # pane -> the same in one line (first page)
 
     @property
     def scenes(self) -> list[Scene]:
@@ -213,6 +215,7 @@ class CompareRunner:
             runner.rebuilt()
         self.world = 0.0
         self.held.clear()
+        self.held_headline.clear()
 
     # --- stepping ---------------------------------------------------------------------------
     def run(self, n: int, budget: float | None = None) -> tuple[int, dict[int, Rollback]]:
@@ -236,6 +239,8 @@ class CompareRunner:
                     rollbacks[k] = rb
                     self.held[k] = HELD_TEXT.format(bad=rb.bad_t, good=rb.good_t,
                                                     advice=rb.advice)
+                    self.held_headline[k] = HELD_HEADLINE.format(
+                        bad=rb.bad_t, why=f": {rb.headline}" if rb.headline else "")
         return n, rollbacks
 
     def _catch_up(self, k: int, runner: SceneRunner) -> Rollback | None:

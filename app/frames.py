@@ -73,9 +73,11 @@ def compare_header(scenes, t: float, status: list = (), notes: list = ()) -> lis
 
 def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = None,
                        details: bool = False, more: list = (), held: dict | None = None,
-                       extra: list = (), brief: bool = False) -> list[list]:
+                       extra: list = (), brief: bool = False,
+                       headlines: dict | None = None) -> list[list]:
     """Every pane's HUD lines: its tag, what differs, its cost and error, the scene's lines,
-    its own notes (`notes[k]`; a held pane's reason from `held`)."""
+    its own notes (`notes[k]`; a held pane's reason from `held`: on the first page its one-line
+    `headlines[k]` if given, the whole paragraph on the second, F4)."""
     scenes = [r.scene for r in runners]
     names = labels(scenes)
     same_dt = len({s.dt for s in scenes}) == 1
@@ -84,7 +86,8 @@ def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = No
         s = runner.scene
         own = list(notes[k]) if notes else []
         if held and k in held:
-            own.insert(0, hud.Line(held[k], hud.WARN_COLOR))
+            short = (headlines or {}).get(k) if not details else None
+            own.insert(0, hud.Line(short or held[k], hud.WARN_COLOR))
         if runner.error is not None:
             own.insert(0, hud.Line(f"stopped: {runner.error.splitlines()[-1]}", hud.ERROR_COLOR))
         elif not runner.finite:

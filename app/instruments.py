@@ -154,11 +154,13 @@ class Instruments:
                 if unit is not None:
                     vs = [unit.convert(v) if v == v else v for v in vs]
                 label = name + (f" ({unit.symbol})" if unit is not None and unit.symbol else "")
+                symbol = unit.symbol if unit is not None else ""
                 if compare:         # a pane that went non-finite does not scale the axis
                     out.append(live_plot.Line(f"{g.tag} {label}", g.color, ts, vs, dash=i,
-                                              scales=not g.runner.stopped))
+                                              scales=not g.runner.stopped, unit=symbol))
                 else:
-                    out.append(live_plot.Line(label, live_plot.PALETTE[i % 8], ts, vs))
+                    out.append(live_plot.Line(label, live_plot.PALETTE[i % 8], ts, vs,
+                                              unit=symbol))
         return out
 
     def now(self) -> float:

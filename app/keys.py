@@ -46,6 +46,12 @@ KEYS: tuple[ShellKey, ...] = (
              "help: the scene's description, its controls and settings"),
     ShellKey(("f2",), "F2", "toggle_large_text",
              "large text for the back row (projector mode): everything scales"),
+    ShellKey(("f11",), "F11", "toggle_fullscreen",
+             "full screen at the projector's size <-> the window (--fullscreen, --size WxH)"),
+    ShellKey((), "mouse wheel", "camera_event", "zoom in and out about the pointer (every scene and every "
+             "pane; compare mode: every pane alike)"),
+    ShellKey((), "middle button drag", "camera_event", "pan the view (every scene and every pane)"),
+    ShellKey(("0", "[0]"), "0", "fit_view", "fit the view again: undo zoom and pan"),
     ShellKey(("f3",), "F3", "toggle_overlays", "hide / show the HUD and metrics (a clean picture)"),
     ShellKey(("f4",), "F4", "toggle_details",
              "HUD details: the few lines a class reads <-> every line, the costs and the metrics"),
@@ -73,7 +79,7 @@ KEYS: tuple[ShellKey, ...] = (
 )
 
 # every name of every shell key: they never reach a scene, not even their key_up
-SHELL_KEY_NAMES = frozenset(name for k in KEYS for name in k.names) | frozenset("0")
+SHELL_KEY_NAMES = frozenset(name for k in KEYS for name in k.names)
 
 
 def action_for(name: str) -> str | None:

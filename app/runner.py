@@ -129,9 +129,16 @@ class Rollback:
     bad_t: float
     good_t: float
     advice: str = ""
+    headline: str = ""      # the scene's few words on why (Scene.blowup_headline)
 
     def text(self) -> str:
         return NONFINITE_TEXT.format(bad=self.bad_t, good=self.good_t, advice=self.advice)
+
+    def short_text(self) -> str:
+        """The same in one line a class reads (the window's first page; F4: text())."""
+        why = f": {self.headline}" if self.headline else ""
+        return (f"Blew up at {self.bad_t:.3f} s{why}; rolled back to {self.good_t:.3f} s and "
+                "paused (F4: why and what to try)")
 
 
 class SceneRunner:
@@ -351,7 +358,7 @@ class SceneRunner:
             self._keep_snapshot()
             if self.timeline is not None:   # its snapshots after here: the blow-up, to replay
                 self.timeline.point_at(scene)
-        return Rollback(bad_t, scene.time, advice(scene))
+        return Rollback(bad_t, scene.time, advice(scene), scene.blowup_headline())
 
     # --- what the HUD and the summary read ---------------------------------------------------
     @property

@@ -336,6 +336,12 @@ class Scene:
         predicted step limit). "" means the shell's general advice (smaller dt, more substeps)."""
         return ""
 
+    def blowup_headline(self) -> str:
+        """After a blow-up: why, in a few words a class reads from the back ("27x past its
+        limit"); the hint's whole paragraph goes on the second page (F4).
+        "" says only when it blew up."""
+        return ""
+
     def content_bounds(self) -> tuple[float, float, float, float]:
         """The world rectangle (x, y, w, h) that draw() covers; the layout keeps the HUD, the
         metrics strip and the panel off it. Default: the whole world_size."""

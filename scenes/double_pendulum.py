@@ -146,7 +146,8 @@ class DoublePendulumScene(PymunkScene):
         Effect("trail", True, "a fading trail of the tip (and of the ghost's tip)"))
     world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
     color_key = (((230, 159, 0), "ghost: the exact equations (RK4)"),
-                 ((86, 180, 233), "pymunk"))
+                 ((86, 180, 233), "pymunk"),
+                 ((230, 97, 76), f"x: where they parted ({PART_PX:g} px)"))
     metric_units = {"energy_drift": Unit("%", 100.0, resolution=1e-4),
                     "energy_drift_max": Unit("%", 100.0, resolution=1e-4),
                     "reference_energy_drift": Unit("%", 100.0, resolution=1e-6),
@@ -389,5 +390,5 @@ def draw_trail(surface: pygame.Surface, view, trail: Ring, color, pieces: int = 
         a, b = edges[i], edges[i + 1]
         if b - a < 1:
             continue
-        fade = 0.15 + 0.85 * (i + 1) / pieces
-        pygame.draw.lines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist(), px(2))
+        fade = 0.35 + 0.65 * (i + 1) / pieces     # the oldest still seen on a projector
+        pygame.draw.lines(surface, D.dim(color, fade), False, pts[a:b + 1].tolist(), px(3))

@@ -53,6 +53,16 @@ class MassSpringWords:
                       f"deforming cloth can pass it")
         return f"h = {h * 1e3:.3g} ms was {where}. {way}"
 
+    def blowup_headline(self) -> str:
+        """The blow-up in a few words: '27x past its limit' (the pane's tag names the
+        integrator)."""
+        name = self.p["integrator"]
+        pred = self.limit(name) if INTEGRATORS[name].explicit else None
+        if pred is None or pred <= 0 or not math.isfinite(pred):
+            return ""
+        h = self.dt / self.p["substeps"]
+        return f"{_times(h / pred)}x past its limit"
+
     def _energy_change(self) -> str:
         """The energy's change over the last simulated second, in the HUD's unit."""
         if len(self._energy) < 2:
@@ -75,7 +85,13 @@ class MassSpringWords:
         pred = self.limit(name)
         band = self.watch.band(name, h)
         if not INTEGRATORS[name].explicit:
-            where += f" = {h / limit:.0f}x symplectic Euler's limit" if om > 0 else ""
+            # the limit of the cloth as it is now: draped, it is stiffer than at rest (a held
+            # explicit pane beside, rolled back to its start, reads the one at rest): say both
+            rest = self.watch.rest("symplectic_euler")
+            then = (f", {_times(h / rest)}x at rest" if rest and
+                    _times(h / rest) != _times(h / limit) else "")
+            where += (f" = {_times(h / limit)}x symplectic Euler's limit (now{then})"
+                      if om > 0 else "")
         elif om <= 0:                          # every stiffness 0: no top mode, no limit
             where += ": no stiffness, so no step limit"
         elif pred is None:
@@ -96,8 +112,10 @@ class MassSpringWords:
         short (in words)."""
         c, m, p = self.cloth, self.metrics(), self.p
         title = INTEGRATORS[p["integrator"]].title
+        change = self._energy_change().strip()[1:-1]    # '-0.53 J in 0.93 s' (its zero named)
         lines = [f"{p['material']}, {title}: {self._where()}",
-                 f"energy {self.shown('energy', m['energy'])}{self._energy_change()}  |  "
+                 f"energy {self.shown('energy', m['energy'])} "
+                 f"(0 at the start{'; ' + change if change else ''})  |  "
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())

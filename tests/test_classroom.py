@@ -198,7 +198,12 @@ def test_messages_are_hud_lines_and_go_when_what_they_speak_of_changes(tmp_path)
     sv.apply_setting("blowup", True)
     for _ in range(80):
         w.update(1 / 60)
-    assert sv.banner and sv.banner in texts(w)
+    # the first page: one line a class reads; the second (F4): the whole paragraph
+    assert sv.banner and sv.banner_short in texts(w) and sv.banner not in texts(w)
+    assert sv.banner_short.startswith("Blew up at ") and "F4: why" in sv.banner_short
+    w.toggle_details()
+    assert sv.banner in texts(w)
+    w.toggle_details()
     w.render()
     assert not sv.layout.hud.colliderect(sv.layout.content_rect())
     sv.apply_setting("method", "verlet")           # the settings it spoke of changed
@@ -219,7 +224,9 @@ def test_a_blow_up_message_goes_when_the_material_changes(tmp_path):
     sv.apply_try(cls.find_card("Leather past its limit"))
     for _ in range(30):
         w.update(1 / 60)
-    assert sv.banner and any("symplectic Euler's predicted limit" in t for t in texts(w))
+    assert sv.banner and any("x past its limit; rolled back" in t for t in texts(w))
+    w.toggle_details()
+    assert any("symplectic Euler's predicted limit" in t for t in texts(w))
     sv.apply_setting("material", "cotton")
     assert not sv.banner and not any("predicted limit" in t for t in texts(w))
 

@@ -140,7 +140,8 @@ def test_p_lists_the_numbers_and_the_plot_gets_its_own_room():
                                              scancode=0, unicode="p"))
     picker = w.current_view
     assert picker.items()[:2] == ["y", "n"] and "label" not in picker.items()   # numbers only
-    for k in (pygame.K_RETURN, pygame.K_DOWN, pygame.K_RETURN):                 # y and n
+    assert view.inst.plot == ["y"]             # it opens with a line drawn (the first number)
+    for k in (pygame.K_DOWN, pygame.K_RETURN):                                  # and n
         w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
                                                  unicode=""))
     assert view.inst.plot == ["y", "n"]

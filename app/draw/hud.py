@@ -42,14 +42,20 @@ def _is_unit(word: str) -> bool:
 
 
 def _cut(text: str, f: pygame.font.Font, width: int) -> tuple[str, str]:
-    """Split a line holding one word wider than `width` (a file's path): the longest head that
-    fits, cut after its last '/' if there is one in its second half."""
+    """Split a line holding one word wider than `width` (a file's path, a setting): the longest
+    head that fits, cut after its last '/' if there is one in its second half, else after its
+    last ',' or '=' ("integrator=" / "implicit_euler", never "implicit_eul" / "er")."""
     n = 1
     while n < len(text) and f.size(text[: n + 1])[0] <= width:
         n += 1
+    if n >= len(text):
+        return text, ""
     slash = max(text.rfind("/", 0, n), text.rfind("\\", 0, n))
+    joint = max(text.rfind(",", 0, n), text.rfind("=", 0, n))
     if slash + 1 > n // 2:
         n = slash + 1
+    elif joint > 0:
+        n = joint + 1
     return text[:n], text[n:]
 
 
@@ -159,12 +165,8 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
             items_ = [Line(text, item.color, swatch=color) for color, text in item.keys]
             wrapped += _box_lines(items_, f, max_width, pad)
             continue
-        if item.keys:             # as many key items per row as fit
-            rows: list[list] = [[]]
-            for k in item.keys:
-                if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > max_width - 2 * pad:
-                    rows.append([])
-                rows[-1].append(k)
+        if item.keys:             # the fewest rows that hold the key, evenly filled
+            rows = _key_rows(item.keys, f, max_width - 2 * pad)
             wrapped += [Line("", item.color, keys=tuple(r)) for r in rows]
             continue
         room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
@@ -176,6 +178,28 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
             wrapped.append(Line(t, item.color, item.swatch if i == 0 else None,
                                 hint=hint if i == len(rows) - 1 else ""))
     return wrapped
+
+
+def _key_rows(keys: tuple, f: pygame.font.Font, width: int) -> list[list]:
+    """Key items in rows no wider than `width`: as few rows as fit, then as even as can be
+    (never '>20%' alone on a second row under eight items)."""
+    def pack(limit: float) -> list[list]:
+        rows: list[list] = [[]]
+        for k in keys:
+            if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > limit:
+                rows.append([])
+            rows[-1].append(k)
+        return rows
+    rows = pack(width)
+    if len(rows) > 1:
+        total = sum(_key_width(f, k) for k in keys)
+        limit = total / len(rows)
+        while limit < width:              # the narrowest limit that needs no more rows
+            even = pack(limit)
+            if len(even) == len(rows):
+                return even
+            limit += max(1.0, 0.02 * width)
+    return rows
 
 
 def _swatch_w(f: pygame.font.Font) -> int:

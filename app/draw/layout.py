@@ -18,12 +18,15 @@ from dataclasses import dataclass
 
 import pygame
 
-from app.draw.view import View
+from app.draw.view import Camera, View
 
 MARGIN = 8          # pixels between the content and the HUD, strip and edges
 HUD_SHARE = 0.5     # the HUD may take this much of the height before its text shrinks (never
                     # below the normal size)
+HUD_SHARE_DETAILS = 0.6  # on the second page (F4), where the text is what is read, in a window
+DETAILS_TALL = 700       # at least this tall: this much (in a shorter one the content is a stamp)
 HUD_WIDTHS = (1.0, 0.75, 0.55)   # the HUD box's widths tried, as fractions of the widest
+DETAILS_WIDTH = 0.7              # the second page's widest: this share of the area's width
 
 
 @dataclass
@@ -37,6 +40,7 @@ class Layout:
     hud_text: int = 28    # the HUD's text size (as font() takes it)
     hud_width: int = 0    # the width the HUD's lines are wrapped to
     filled: bool = False  # the content fills the free room 1:1 (Scene.content_fills)
+    fitted: View | None = None   # the view before the camera's zoom and pan (None: the same)
 
     def content_rect(self, bounds: tuple[float, float, float, float] | None = None
                      ) -> pygame.Rect:
@@ -103,26 +107,40 @@ def _scale(bounds, rect: pygame.Rect) -> float:
 
 
 def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, int] = (0, 0),
-                 strip: bool = True, hud_width: int | None = None) -> Layout:
+                 strip: bool = True, hud_width: int | None = None,
+                 bounds: tuple[float, float, float, float] | None = None,
+                 text_size: int | None = None) -> Layout:
     """The layout of `scene` in `area` with these HUD lines (None: HUD and strip hidden; `strip`
     False: no metrics strip); the HUD's room is at least `room` (what was reserved before), its
     lines wrapped to `hud_width` if given, else to whichever of HUD_WIDTHS shows the content
-    largest (the widest on a tie)."""
+    largest (the widest on a tie); `bounds`: the content's world rectangle if not the scene's
+    content_bounds() now (a view held still while the mouse drags the content); `text_size`:
+    the HUD's text at most this size (the panes of a comparison share one size)."""
     from app.draw import hud
-    from app.draw.text import TEXT
+    from app.draw.text import TEXT, font
     place = (lambda a, b, hud_size, strip_h: fill(a, scene, hud_size, strip_h)) \
         if getattr(scene, "content_fills", False) else fit
+    if bounds is None or getattr(scene, "content_fills", False):
+        bounds = scene.content_bounds()
     if lines is None:
-        return place(area, scene.content_bounds(), (0, 0), 0)
-    bounds = scene.content_bounds()
+        return place(area, bounds, (0, 0), 0)
     widest = hud.hud_width(area)
+    if strip:               # the second page (F4) is read as text: as wide as the area allows
+        widest = max(widest, int(DETAILS_WIDTH * (area.width - 2 * MARGIN)))
+    # never so narrow that the status line breaks ("physics" / "5.46 ms/step"): the first
+    # lines (the title, the time and cost) fit on one line each where the widest can
+    f = font(min(hud.HUD_SIZE, text_size or hud.HUD_SIZE))
+    head = max((f.size(getattr(x, "text", str(x)))[0] + 2 * 8 + 2 for x in lines[:2]
+                if "\n" not in getattr(x, "text", str(x))), default=1)
+    narrowest = head if head <= widest and not strip else 1   # (F4: the content comes first)
     widths = [hud_width] if hud_width else \
-        sorted({max(1, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
+        sorted({max(1, narrowest, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
     best: Layout | None = None
     for width in widths:
-        size = hud.HUD_SIZE  # large text in a small window: the HUD gives back some of its growth
-        w, h = hud.box_size(lines, size, max_width=width)
-        while h > HUD_SHARE * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+        size = min(hud.HUD_SIZE, text_size or hud.HUD_SIZE)   # large text in a small window:
+        w, h = hud.box_size(lines, int(round(size)), max_width=width)   # the HUD gives back some
+        share = HUD_SHARE_DETAILS if strip and area.height >= DETAILS_TALL else HUD_SHARE
+        while h > share * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
             size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
             w, h = hud.box_size(lines, int(round(size)), max_width=width)
         strip_h = hud.strip_height(scene, area, int(round(size))) if strip else 0
@@ -147,28 +165,43 @@ def _better(a: Layout, b: Layout) -> bool:
 
 class Pane:
     """One scene drawn with its HUD (and, on the second page, its metrics strip) into a
-    rectangle of a surface. `forget()` redoes the HUD's room on the next frame."""
+    rectangle of a surface. `forget()` redoes the HUD's room on the next frame. `camera`: the
+    zoom and pan applied on top of the fitted view (app/draw/view.py; shared by the panes of a
+    comparison). `hold(True)` keeps the content's bounds as they are (while the mouse drags the
+    content, the view must not re-fit under the pointer); `hold(False)` lets them follow the
+    scene again."""
 
-    def __init__(self, scene):
+    def __init__(self, scene, camera: Camera | None = None):
         self.scene = scene
+        self.camera = camera if camera is not None else Camera()
         self.room = (0, 0)                 # the HUD box reserved so far
         self.hud_width: int | None = None  # chosen when the room is redone
         self.layout: Layout | None = None
+        self.held: tuple[float, float, float, float] | None = None
+
+    def hold(self, on: bool) -> None:
+        self.held = (self.layout.bounds if on and self.layout is not None and
+                     not self.layout.filled else None)
 
     def forget(self) -> None:
         """Redo the HUD's room and width on the next fit (a new size, text size, page, ...)."""
         self.room, self.hud_width = (0, 0), None
 
-    def fit(self, rect: pygame.Rect, lines: list | None, strip: bool = False) -> Layout:
+    def fit(self, rect: pygame.Rect, lines: list | None, strip: bool = False,
+            text_size: int | None = None) -> Layout:
         """The layout in `rect` with these HUD lines (None: HUD and strip hidden). Lines that
         no longer fit the room reserved redo it (its width chosen again): the picture moves
         then, and only then."""
-        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width)
+        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width, self.held,
+                              text_size)
         if lines is not None and self.hud_width is not None and \
                 layout.hud.size != tuple(self.room):
-            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None)
+            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None, self.held,
+                                  text_size)
         if lines is not None:
             self.room, self.hud_width = layout.hud.size, layout.hud_width
+        layout.fitted = layout.view
+        layout.view = self.camera.apply(layout.view, layout.free)
         self.layout = layout
         return layout
 

@@ -39,6 +39,8 @@ class Line:
     dash: int = 0
     scales: bool = True     # False: the axis is not scaled to it (a run that blew up leaves the
                             # top of the plot instead of flattening every other line)
+    unit: str = ""          # its unit: lines in another unit than the first get their own axis,
+                            # on the right (a stretch in % beside an energy in J is not flat)
 
 
 def nice_ticks(lo: float, hi: float, most: int = 6) -> list[float]:
@@ -84,27 +86,49 @@ def y_range(lines: list[Line], t0: float, log: bool) -> tuple[float, float] | No
     return lo - pad, hi + pad
 
 
+def _in_view(ln: Line, t0: float, log: bool) -> bool:
+    return any(t >= t0 and math.isfinite(v) and (v > 0 or not log)
+               for t, v in zip(ln.ts, ln.vs))
+
+
 def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_now: float,
               window: float, log: bool = False, hint: str = "") -> dict[str, list]:
     """Draw `lines` over the last `window` seconds before `t_now` in `rect`; return where the
-    tick labels went ({"x": [rect, ...], "y": [...]}: the tests check they never overlap)."""
-    drawn: dict[str, list] = {"x": [], "y": []}
+    tick labels went ({"x": [rect, ...], "y": [...], "y2": [...]}: the tests check they never
+    overlap). Lines in a second unit are scaled to an axis of their own, labelled on the right;
+    a line with no value in view says so in the legend (a held pane's, which stopped earlier)."""
+    drawn: dict[str, list] = {"x": [], "y": [], "y2": []}
     surface.fill(BACKGROUND, rect)
     pygame.draw.rect(surface, FRAME, rect, 1)
     f = font(PLOT_SIZE)
     lh = f.get_linesize()
     pad = max(4, int(6 * TEXT.scale))
-    legend_rows = _legend_rows(lines, f, rect.width - 2 * pad)
-    top = rect.top + pad + len(legend_rows) * lh
     t0 = max(t_now - window, 0.0) if t_now >= window else 0.0
     t1 = max(t0 + window, t_now)
-    yr = y_range(lines, t0, log)
+    lines = [ln if _in_view(ln, t0, log) else
+             Line(f"{ln.label} (none in view)", ln.color, ln.ts, ln.vs, ln.dash, ln.scales,
+                  ln.unit) for ln in lines]
+    legend_rows = _legend_rows(lines, f, rect.width - 2 * pad)
+    top = rect.top + pad + len(legend_rows) * lh
+    first = lines[0].unit if lines else ""
+    left_lines = [ln for ln in lines if ln.unit == first]
+    right_lines = [ln for ln in lines if ln.unit != first]
+    yr = y_range(left_lines, t0, log)
+    yr2 = y_range(right_lines, t0, log) if right_lines else None
     most = max(2, min(6, int((rect.bottom - top - 2 * pad - lh) // (1.5 * lh))))  # labels
-    ticks = nice_ticks(*yr, most) if yr is not None and not log else \
-        _decades(*yr, most) if yr else []                                          # apart
-    labels = [fmt_number(10 ** t if log else t) for t in ticks]
+
+    def ticks_of(r):
+        return (nice_ticks(*r, most) if not log else _decades(*r, most)) if r else []
+    ticks, ticks2 = ticks_of(yr), ticks_of(yr2)                                    # apart
+    two = bool(right_lines)           # two axes: each tick names its unit ('20 %', '-40 J')
+    labels = [fmt_number(10 ** t if log else t) + (f" {first}" if two and first else "")
+              for t in ticks]
+    labels2 = [fmt_number(10 ** t if log else t) + (f" {right_lines[0].unit}"
+                                                    if right_lines[0].unit else "")
+               for t in ticks2] if two else []
     left = rect.left + pad + max([f.size(s)[0] for s in labels] + [f.size("0")[0]]) + pad
-    plot = pygame.Rect(left, top + pad, rect.right - pad - left, rect.bottom - top - 2 * pad - lh)
+    right = rect.right - pad - (max([f.size(s)[0] for s in labels2]) + pad if labels2 else 0)
+    plot = pygame.Rect(left, top + pad, right - left, rect.bottom - top - 2 * pad - lh)
     _draw_legend(surface, legend_rows, (rect.left + pad, rect.top + pad), f)
     if plot.width < 20 or plot.height < 10:
         return drawn
@@ -122,33 +146,35 @@ def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_n
         surface.blit(img, at)
         drawn["x"].append(img.get_rect(topleft=at))
     unit = f.render("t (s)", True, LABEL)
-    if yr is None:
+    if yr is None and yr2 is None:
         img = f.render("no value yet", True, LABEL)
         surface.blit(img, img.get_rect(center=plot.center))
         return drawn
-    lo, hi = yr
 
-    def y_of(v: float) -> float | None:
-        if not math.isfinite(v) or (log and v <= 0):
+    def y_of(v: float, r) -> float | None:
+        if r is None or not math.isfinite(v) or (log and v <= 0):
             return None
         w = math.log10(v) if log else v
-        return plot.bottom - (w - lo) / (hi - lo) * plot.height
+        return plot.bottom - (w - r[0]) / (r[1] - r[0]) * plot.height
 
-    for t, text in zip(ticks, labels):
-        y = plot.bottom - (t - lo) / (hi - lo) * plot.height
-        pygame.draw.line(surface, GRID, (plot.left + 1, y), (plot.right - 2, y))
-        img = f.render(text, True, LABEL)
-        at = (plot.left - pad - img.get_width(), y - img.get_height() / 2)
-        surface.blit(img, at)
-        drawn["y"].append(img.get_rect(topleft=at))
-    surface.blit(unit, (plot.right - unit.get_width() - 2, plot.top + 2))
+    for r, tk, texts, key in ((yr, ticks, labels, "y"), (yr2, ticks2, labels2, "y2")):
+        for t, text in zip(tk, texts):
+            y = plot.bottom - (t - r[0]) / (r[1] - r[0]) * plot.height
+            if key == "y":
+                pygame.draw.line(surface, GRID, (plot.left + 1, y), (plot.right - 2, y))
+            img = f.render(text, True, LABEL)
+            at = (plot.left - pad - img.get_width() if key == "y" else plot.right + pad,
+                  y - img.get_height() / 2)
+            surface.blit(img, at)
+            drawn[key].append(img.get_rect(topleft=at))
     old = surface.get_clip()
     surface.set_clip(plot.clip(old))
     try:
         for ln in lines:
+            r = yr if ln.unit == first else yr2
             run: list[tuple[float, float]] = []
             for t, v in zip(ln.ts, ln.vs):
-                y = y_of(v) if t >= t0 else None
+                y = y_of(v, r) if t >= t0 else None
                 if y is None:
                     _polyline(surface, ln.color, run, ln.dash)
                     run = []
@@ -157,9 +183,15 @@ def draw_plot(surface: pygame.Surface, rect: pygame.Rect, lines: list[Line], t_n
             _polyline(surface, ln.color, run, ln.dash)
     finally:
         surface.set_clip(old)
+    # the axis's name and the hint on a backing of their own: no line runs through them
+    at = (plot.right - unit.get_width() - 2, plot.top + 2)
+    surface.fill(BACKGROUND, unit.get_rect(topleft=at).inflate(4, 2))
+    surface.blit(unit, at)
     if hint:
         img = f.render(hint, True, LABEL)
         if img.get_width() < plot.width - unit.get_width() - 12:
+            surface.fill(BACKGROUND, img.get_rect(topleft=(plot.left + 4, plot.top + 2))
+                         .inflate(4, 2))
             surface.blit(img, (plot.left + 4, plot.top + 2))
     return drawn
 

@@ -78,8 +78,8 @@ def color_key_line(scene) -> list:
 class PaneGrid:
     """The panes of a comparison and their arrangement in an area."""
 
-    def __init__(self, scenes):
-        self.panes = [Pane(s) for s in scenes]
+    def __init__(self, scenes, camera=None):
+        self.panes = [Pane(s, camera) for s in scenes]     # one camera: every pane alike
         self.cells: list[pygame.Rect] | None = None
         self._for: tuple | None = None        # (area, header height) the cells were chosen for
         self.header = pygame.Rect(0, 0, 0, 0)
@@ -123,12 +123,20 @@ class PaneGrid:
         layouts, self.used = [], []
         for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, lines)):
             layout = p.fit(cell, ln, strip)
-            if brief is not None and ln is not None and layout.hud.bottom > cell.bottom:
+            if brief is not None and ln is not None and _cramped(layout, cell, strip):
                 p.forget()
                 ln = brief[k]
                 layout = p.fit(cell, ln, strip)
             layouts.append(layout)
             self.used.append(ln)
+        # one text size in every pane: a pane whose text had to shrink sets it for all (three
+        # panes large and one small reads as a mistake)
+        shown = [lay.hud_text for lay, ln in zip(layouts, self.used) if ln is not None]
+        if shown and min(shown) != max(shown):
+            for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, self.used)):
+                if ln is not None and layouts[k].hud_text != min(shown):
+                    p.forget()
+                    layouts[k] = p.fit(cell, ln, strip, text_size=min(shown))
         return layouts
 
     def choose(self, rest: pygame.Rect, lines: list, strip: bool,
@@ -142,7 +150,7 @@ class PaneGrid:
             layouts = []
             for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
                 lay = scene_layout(c, p.scene, ln, strip=strip)
-                if brief is not None and ln is not None and lay.hud.bottom > c.bottom:
+                if brief is not None and ln is not None and _cramped(lay, c, strip):
                     lay = scene_layout(c, p.scene, brief[k], strip=strip)
                 layouts.append(lay)
             spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
@@ -177,6 +185,13 @@ class PaneGrid:
             if cell.collidepoint(pos):
                 return k
         return None
+
+
+def _cramped(layout: Layout, cell: pygame.Rect, details: bool = False) -> bool:
+    """A pane's HUD box runs out of its cell, or, on the first page, had to shrink its text
+    below the size every pane's text has (F2 given up in one pane only): it takes its brief
+    lines instead. (On the second page, F4, the details are what was asked for: they stay.)"""
+    return layout.hud.bottom > cell.bottom or (not details and layout.hud_text < hud.HUD_SIZE)
 
 
 def _content_area(layout: Layout, cell: pygame.Rect) -> float:

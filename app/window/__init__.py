@@ -4,6 +4,7 @@
     views.py      the base of every view and the two simple ones (switched like arcade's
                   show_view): the menu and the help overlay
     scene_view.py the view of a running scene: its SceneRunner, clock, pane and input routing
+    camera_host.py  zoom (wheel), pan (middle button), 0 to fit again: what the views share
     panel.py      the parameter panel (pygame-gui) with the scene's "try this" cards
     recorder.py   --record: the events a scene received and the command that replays them
 

@@ -42,7 +42,7 @@ class CompareView(SceneView):
         self.target: int | None = None          # the panel edits every pane (None) or pane k
         self.drag_pane: int | None = None        # the pane a drag began in
         super().__init__(window, scenes[0], shared, events)
-        self.grid = PaneGrid(self.scenes)
+        self.grid = PaneGrid(self.scenes, self.camera)
         self.pane = self.grid                    # forget() and layout, as the view uses them
 
     # --- the hooks of SceneView --------------------------------------------------------------
@@ -85,7 +85,7 @@ class CompareView(SceneView):
         more = [f"{self.fps:.0f} frames per second (drawing "
                 f"{1000 * self.window.last_draw_seconds:.1f} ms a frame)"] if details else []
         return compare_pane_lines(self.runner.runners, None, details, more, self.runner.held,
-                                  brief=brief)
+                                  brief=brief, headlines=self.runner.held_headline)
 
     def fit(self, lines: list | None = None):
         if not self.overlays:
@@ -193,6 +193,11 @@ class CompareView(SceneView):
         self._refresh_panel()
 
     # --- the mouse -----------------------------------------------------------------------------
+    def layout_at(self, pos):
+        """The layout of the pane under `pos` (its view zooms and pans every pane alike)."""
+        k = self.grid.pane_at(pos) if self.scene_area().collidepoint(pos) else None
+        return self.grid.panes[k].layout if k is not None else None
+
     def _mouse_event(self, ev: pygame.event.Event, consumed: bool) -> None:
         """A press on any pane, in that pane's world coordinates, to every pane."""
         k = self.grid.pane_at(ev.pos) if not consumed else None
@@ -212,6 +217,8 @@ class CompareView(SceneView):
                 self.drag_pane = k
             self.dragging.add(ev.button)
             self.deliver(InputEvent("mouse_down", pos=world, button=ev.button))
+            if ev.button == 1:
+                self._say_who_caught(k)
         elif ev.type == pygame.MOUSEBUTTONUP and ev.button in (1, 3) and (
                 ev.button in self.dragging or k is not None):
             self.dragging.discard(ev.button)
@@ -220,6 +227,19 @@ class CompareView(SceneView):
             self.deliver(InputEvent("mouse_up", pos=world, button=ev.button))
         elif ev.type == pygame.MOUSEMOTION and (k is not None or self.dragging):
             self.deliver(InputEvent("mouse_move", pos=world))
+
+    def _say_who_caught(self, k: int) -> None:
+        """A press reaches every pane at the same world point; a pane whose cloth has sagged or
+        swung elsewhere catches nothing there. Say so (it was silent): which panes caught it."""
+        caught = [_grabbing(s) for s in self.scenes]
+        if None in caught or all(caught) or not any(caught):
+            return                              # not a cloth, or every pane alike
+        tags = "ABCD"
+        yes = ", ".join(tags[j] for j, c in enumerate(caught) if c)
+        no = ", ".join(tags[j] for j, c in enumerate(caught) if not c)
+        self.window.flash(f"the press caught the cloth in {yes} only: in {no} it is not under "
+                          "that point (every pane gets the same world point)", hud.WARN_COLOR,
+                          topic="drag")
 
     # --- settings ------------------------------------------------------------------------------
     def apply_setting(self, name: str, value: Any) -> bool:
@@ -290,6 +310,12 @@ class CompareView(SceneView):
             return False
         return self.window.open_compare(type(self.scene), dict(card.settings),
                                         [Variant(as_variant(o), o) for o in own], card)
+
+
+def _grabbing(scene: Scene) -> bool | None:
+    """Whether a cloth scene holds a particle under the mouse now (None: not a cloth)."""
+    cloth = getattr(scene, "cloth", None)
+    return None if cloth is None or not hasattr(cloth, "grabbed") else cloth.grabbed is not None
 
 
 __all__ = ["CompareView", "EVERY_PANE"]

@@ -62,8 +62,17 @@ class InstrumentHost:
         return area
 
     def toggle_plot(self) -> None:
-        """P: the list of numbers to plot."""
+        """P: the list of numbers to plot; with nothing plotted yet, it opens with one line
+        already drawn (the scene's error against its reference, else its first number), not
+        an empty strip."""
         from app.window.plot_picker import PlotPicker
+        if not self.inst.plot:
+            choices = self.inst.choices()
+            pick = getattr(self.scene, "error_metric", None)
+            pick = pick if pick in choices else (choices[0] if choices else None)
+            if pick is not None:
+                self.inst.toggle_metric(pick)
+                self.plot_changed()
         self.window.show_view(PlotPicker(self.window, self))
 
     def plot_changed(self) -> None:

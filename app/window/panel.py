@@ -191,11 +191,12 @@ class ParamPanel:
                     y += row + gap
             self.watch_box = UITextBox("", pygame.Rect(pad, y, inner_w, row),
                                        manager, container=self.container, object_id="#watch")
-            # as tall as the longest card's text wrapped (a box that scrolls hides the end)
-            watch_font = manager.get_theme().get_font(self.watch_box.combined_element_ids)
-            texts = [WATCH_HINT] + [_watch_text(c) for c in every_card]
-            lines = max(len(hud.wrap(t, watch_font, inner_w - 16)) for t in texts)
-            height = int(lines * watch_font.size("Ay")[1] * 1.25) + 12
+            # as tall as the text it shows (a box that scrolls hides the end; one as tall as the
+            # longest card's left a 200-300 px gap above "Parameters"): what lies below it
+            # moves when a card's text is longer or shorter (_fit_watch)
+            self._watch_font = manager.get_theme().get_font(self.watch_box.combined_element_ids)
+            self._watch_w = inner_w
+            height = self._watch_height(WATCH_HINT)
             self.watch_box.set_dimensions((inner_w, height))
             self.watch_box.set_text(_html(WATCH_HINT))
             self._watch_shown = WATCH_HINT
@@ -221,9 +222,14 @@ class ParamPanel:
             if prm.choices is not None:
                 label(prm.name)
                 y += row
+                # a list that would run past the panel's bottom opens upwards (the materials'
+                # list showed only its first item)
+                below = rect.height - (y + row) - 8
+                up = len(prm.choices) * row > below and y > below
                 d = UIDropDownMenu(list(prm.choices), str(value),
                                    pygame.Rect(pad, y, inner_w, row), manager,
-                                   container=self.container)
+                                   container=self.container,
+                                   object_id="#choice_up" if up else None)
                 self.dropdowns[prm.name] = d
                 self._by_element[d] = ("choice", prm.name)
                 y += row + gap
@@ -264,8 +270,38 @@ class ParamPanel:
                 self._by_element[b] = ("toggle", eff.name)
                 y += row + gap
         self.container.set_scrollable_area_dimensions((rect.width - 20, y + pad))
+        self._height = y + pad
+        self._row_step = row + gap
+        self._wheel_speed()
         self._toggle_state: dict[str, bool | None] = {}
         self.refresh()
+
+    def _wheel_speed(self) -> None:
+        """A notch of the mouse wheel scrolls three rows (pygame-gui's default: ~25 px)."""
+        bar = getattr(self.container, "vert_scroll_bar", None)
+        if bar is not None:
+            bar.scroll_wheel_speed = 3.0 * self._row_step
+
+    def _watch_height(self, text: str) -> int:
+        lines = len(hud.wrap(text, self._watch_font, self._watch_w - 16))
+        return int(lines * self._watch_font.size("Ay")[1] * 1.25) + 12
+
+    def _fit_watch(self, text: str) -> None:
+        """Make the watch box as tall as `text` and move what lies below it by the change."""
+        box = self.watch_box
+        old = box.relative_rect.height
+        new = self._watch_height(text)
+        if new == old:
+            return
+        top = box.relative_rect.top
+        for el in list(self.container.get_container().elements):
+            r = el.relative_rect
+            if el is not box and r.top > top:
+                el.set_relative_position((r.left, r.top + new - old))
+        box.set_dimensions((self._watch_w, new))
+        self._height += new - old
+        self.container.set_scrollable_area_dimensions((self.rect.width - 20, self._height))
+        self._wheel_speed()
 
     # --- reading the scene ---------------------------------------------------------------------
     def _current(self, name: str) -> Any:
@@ -320,6 +356,7 @@ class ParamPanel:
         text = _watch_text(shown) if shown is not None else WATCH_HINT
         if text != self._watch_shown:
             self._watch_shown = text
+            self._fit_watch(text)
             self.watch_box.set_text(_html(text))
 
     def release_keyboard(self) -> None:

@@ -128,12 +128,15 @@ class PlotPicker(ShellView):
         return f"[{'x' if on else ' '}] {item}   {value}", ROW_ON if on else hud.TEXT_COLOR
 
     def draw(self, screen: pygame.Surface) -> None:
-        """The list over the world area's top right, in as many columns as its height needs."""
+        """The list at the window's top right, over the panel first (not over a pane of a
+        comparison, unless it is wider than the panel), in as many columns as its height
+        needs."""
         self.under.draw(screen)
         metrics = self.scene.metrics()
         items = self.items()
         texts = [self.row_text(item, metrics) for item in items]
         area = self.under.world_area()
+        area = pygame.Rect(area.left, area.top, screen.get_width() - area.left, area.height)
         pad = int(12 * TEXT.scale)
         title = "Plot over time: pick what to plot"
         size = PICKER_SIZE          # large text in a small window: the list gives back some

@@ -24,11 +24,12 @@ from app.draw.text import TEXT
 from app.loop import FixedStepClock
 from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
+from app.window.camera_host import CameraHost
 from app.window.instrument_host import InstrumentHost
 from app.window.recorder import changed_settings
 from app.window.timeline_host import TimelineHost
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
-from app.window.views import HelpView, ShellView, WindowLike
+from app.window.views import HelpView, ShellView, WindowLike, safe, slow_text
 
 if TYPE_CHECKING:
     from app.window.panel import ParamPanel
@@ -42,7 +43,7 @@ ERROR_LINES = 12            # the HUD shows at most this many lines of an error 
                             # the whole traceback)
 
 
-class SceneView(InstrumentHost, TimelineHost, ShellView):
+class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
@@ -58,9 +59,11 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
         self.panel_visible = window.panel_visible
         self.overlays = True                # F3 hides HUD and metrics
         self.banner = ""                    # the non-finite rollback's message (in the HUD)
+        self.banner_short = ""              # the same in one line (the first page; F4: all)
         self.dragging: set[int] = set()     # mouse buttons pressed in the world area
         self.typed_keys: set[int] = set()   # keys pressed while typing into the panel
-        self.pane = Pane(scene)             # the scene and its HUD in the world area
+        self.setup_camera()                 # wheel zoom, middle-button pan (0 fits again)
+        self.pane = Pane(scene, self.camera)   # the scene and its HUD in the world area
         self._notes_shown: tuple = ()       # the messages the HUD's room was made for
         self.speed = SpeedWatch()            # frames per second; why a frame dropped steps
         self._shown_ms: float | None = None          # the HUD's physics figure (physics_ms)
@@ -317,8 +320,11 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
                 kind = "key_down" if ev.type == pygame.KEYDOWN else "key_up"
                 self.deliver(InputEvent(kind, key=pygame.key.name(ev.key)))
             return
+        if self.camera_event(ev, consumed):
+            return
         if ev.type in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP, pygame.MOUSEMOTION):
             self._mouse_event(ev, consumed)
+            self.pane_hold()
 
     def _mouse_event(self, ev: pygame.event.Event, consumed: bool) -> None:
         if consumed or not self.timeline_mouse(ev):      # a click on the scrub bar is its own
@@ -362,7 +368,7 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
             self.clock.paused = True
             self.clock.accumulator = 0.0
             self.dragging.clear()
-            self.banner = rollback.text()
+            self.banner, self.banner_short = rollback.text(), rollback.short_text()
             self.speed.restart(forget=True)    # undone steps: not "slower than real time"
             self._refresh_panel()
         elif self.runner.error is not None:
@@ -410,8 +416,8 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
         if clock.paused:
             state.append("PAUSED (Space resumes, . steps)")
         if clock.slow_motion != 1.0:
-            slow = "1" if clock.slow_motion == 1.0 else f"1/{int(round(1 / clock.slow_motion))}"
-            state.append(f"speed x{slow} (- slower, = faster)")
+            state.append(f"speed x{slow_text(clock.slow_motion)} (- slower, = faster)")
+        state += self.zoom_state()
         if state:
             lines.append(L("  |  ".join(state), hud.WARN_COLOR))
         if self.window.recorder.active:
@@ -442,7 +448,8 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
                                                  "in the terminal)"]
             lines.append(hud.Line("\n".join(text), hud.ERROR_COLOR))
         if self.banner:
-            lines.append(hud.Line(self.banner, hud.WARN_COLOR))
+            short = getattr(self, "banner_short", "") if not self.window.hud_details else ""
+            lines.append(hud.Line(short or self.banner, hud.WARN_COLOR))
         lines += self.timeline_notes()
         # a card's promise is in the panel's box under the cards while the panel is shown
         shown_there = self.panel is not None and self.panel.watch_box is not None
@@ -491,10 +498,3 @@ class SceneView(InstrumentHost, TimelineHost, ShellView):
         if self.manager is not None:
             self.manager.draw_ui(screen)
 
-
-def safe(fn, default):
-    """fn(), or `default` if the scene raised SceneError (its message is shown elsewhere)."""
-    try:
-        return fn()
-    except SceneError:
-        return default

@@ -172,7 +172,8 @@ class HelpView(ShellView):
 
     def shell_key(self, key: int) -> bool:
         action = keys.action_for(pygame.key.name(key))
-        if action in ("toggle_help", "escape", "toggle_large_text", "screenshot"):
+        if action in ("toggle_help", "escape", "toggle_large_text", "screenshot",
+                      "toggle_fullscreen"):
             return super().shell_key(key)
         return action is not None           # the other shell keys wait until the help closes
 
@@ -224,4 +225,18 @@ class HelpView(ShellView):
                           screen.get_height() - f.get_linesize() - 6))
 
 
-__all__ = ["ShellView", "MenuView", "HelpView"]
+def safe(fn, default):
+    """fn(), or `default` if the scene raised SceneError (its message is shown elsewhere)."""
+    from app.scene import SceneError
+    try:
+        return fn()
+    except SceneError:
+        return default
+
+
+def slow_text(factor: float) -> str:
+    """A slow-motion factor as the HUD writes it: '1', '1/2', '1/8'."""
+    return "1" if factor == 1.0 else f"1/{int(round(1 / factor))}"
+
+
+__all__ = ["ShellView", "MenuView", "HelpView", "safe", "slow_text"]

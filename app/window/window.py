@@ -22,7 +22,7 @@ render); `run_window` is the loop the command line calls.
 
 from __future__ import annotations
 
-import os
+import asyncio
 import sys
 import time
 import traceback
@@ -36,6 +36,7 @@ from app.draw.text import TEXT
 from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
 from app.scene import InputEvent, ParamError, Scene, SceneError
 from app.window.clip_recorder import ClipRecorder
+from app.window.display import open_display as _open_display
 from app.window.recorder import Recorder
 from app.window.scene_view import SceneView
 from app.window.speed import FPS_CAP
@@ -47,7 +48,7 @@ MESSAGE_SECONDS = 4.0
 NO_DISPLAY = ("python -m app: error: no display for the window: {}; use --headless, or run under "
               "xvfb-run")
 
-__all__ = ["Window", "Message", "run_window", "NONFINITE_TEXT", "SNAPSHOT_EVERY",
+__all__ = ["Window", "Message", "run_window", "window_main", "NONFINITE_TEXT", "SNAPSHOT_EVERY",
            "LARGE_TEXT_SCALE"]
 
 class Message(NamedTuple):
@@ -98,6 +99,8 @@ class Window:
         self.csv_path: str | None = None      # --csv FILE: the open scene's metrics go there
         self.plot_start: list[str] = []       # --plot: what the first scene opens plotted
         self._csv_owner = None                # the view whose metrics the file holds
+        self.fullscreen = False               # F11 (--fullscreen)
+        self.windowed_size: tuple[int, int] = tuple(screen.get_size())   # F11 comes back to it
         self.current_view: ShellView = MenuView(self)
         TEXT.scale = LARGE_TEXT_SCALE if large_text else 1.0
 
@@ -269,6 +272,23 @@ class Window:
         self.screen = surface or pygame.display.get_surface() or self.screen
         self.relayout()
 
+    def toggle_fullscreen(self) -> None:
+        """F11: full screen at the desktop's size, or back to the window's size (--size)."""
+        self.set_fullscreen(not self.fullscreen)
+
+    def set_fullscreen(self, on: bool) -> None:
+        if not (pygame.display.get_init() and pygame.display.get_surface() is not None):
+            return                                  # drawing off-screen: nothing to resize
+        if on == self.fullscreen:
+            return
+        if on:
+            self.windowed_size = self.screen.get_size()
+            surface = pygame.display.set_mode((0, 0), pygame.FULLSCREEN)
+        else:
+            surface = pygame.display.set_mode(self.windowed_size, pygame.RESIZABLE)
+        self.fullscreen = on
+        self.resize(surface)
+
     # --- messages ------------------------------------------------------------------------------
     def flash(self, text: str, color=hud.WARN_COLOR, seconds: float = MESSAGE_SECONDS,
               topic: str = "scene") -> None:
@@ -369,51 +389,40 @@ class Window:
 # ----------------------------------------------------------------------------------------------
 # the main loop (python -m app without --headless)
 # ----------------------------------------------------------------------------------------------
-class _quiet_stderr:
-    """Silence file descriptor 2 (C libraries' messages) inside a `with` block."""
-
-    def __enter__(self):
-        sys.stderr.flush()
-        self.saved = os.dup(2)
-        devnull = os.open(os.devnull, os.O_WRONLY)
-        os.dup2(devnull, 2)
-        os.close(devnull)
-
-    def __exit__(self, *exc):
-        os.dup2(self.saved, 2)
-        os.close(self.saved)
-        return False
-
-
-def _open_display(size: tuple[int, int]) -> pygame.Surface:
-    """Open the window; raise pygame.error if there is no usable display."""
-    if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY")
-                                                 or os.environ.get("WAYLAND_DISPLAY")):
-        with _quiet_stderr():     # SDL's own probing prints "XDG_RUNTIME_DIR is invalid" lines
-            pygame.display.init()
-    else:
-        pygame.display.init()
-    driver = pygame.display.get_driver()
-    # SDL quietly falls back to an invisible 'offscreen' window when there is no display; that
-    # is no window for a person, unless someone asked for it (tests, SDL_VIDEODRIVER=dummy).
-    if driver in ("offscreen", "dummy") and os.environ.get("SDL_VIDEODRIVER", "") != driver:
-        raise pygame.error(f"SDL found no display (it fell back to the '{driver}' driver; "
-                           "is DISPLAY set?)")
-    return pygame.display.set_mode(size, pygame.RESIZABLE)
-
 
 def run_window(scene_name: str | None, overrides: dict[str, str], record: str | None = None,
                screenshot: str | None = None, seconds: float | None = None,
                large_text: bool = False, events: list | None = None, card=None,
-               compare: list | None = None, extras=None, clips: dict | None = None) -> int:
+               compare: list | None = None, extras=None, clips: dict | None = None,
+               size: tuple[int, int] | None = None, fullscreen: bool = False) -> int:
     """Open the window (the menu, or `scene_name` with `overrides`, or with the try `card`
     applied as a click applies it, or a comparison of the `compare` variants with `overrides`
     shared) and run it until the user quits, or for `seconds` of wall time. Return the exit
     code (2 when there is no display). With `record`, the events are written and the replay
     command printed on every way out; `clips` (path, fps, width) set up F9's clips, saved and
-    named on every way out too; `extras` (app.headless.Extras): --csv, --plot, --arrows."""
+    named on every way out too; `extras` (app.headless.Extras): --csv, --plot, --arrows;
+    `size` (--size WxH): the window's size (default DEFAULT_SIZE), `fullscreen` (--fullscreen):
+    start full screen (F11 toggles).
+
+    The loop itself is `window_main`, a coroutine that yields once a frame (what a browser
+    build through pygbag needs: docs/developers.md); here asyncio runs it."""
+    return asyncio.run(window_main(scene_name, overrides, record, screenshot, seconds,
+                                   large_text, events, card, compare, extras, clips, size,
+                                   fullscreen))
+
+
+async def window_main(scene_name: str | None, overrides: dict[str, str],
+                      record: str | None = None, screenshot: str | None = None,
+                      seconds: float | None = None, large_text: bool = False,
+                      events: list | None = None, card=None, compare: list | None = None,
+                      extras=None, clips: dict | None = None,
+                      size: tuple[int, int] | None = None, fullscreen: bool = False) -> int:
+    """The window's main loop as one coroutine (run_window's arguments): each frame reads the
+    events, advances the view, draws, flips, and then awaits asyncio.sleep(0) once, so that a
+    browser's event loop (pygbag) gets control back between frames; on the desktop that await
+    costs nothing and the frame rate is pygame's clock's, as before."""
     try:
-        screen = _open_display(DEFAULT_SIZE)
+        screen = _open_display(size or DEFAULT_SIZE, fullscreen)
     except pygame.error as e:
         print(NO_DISPLAY.format(str(e).strip() or "unknown SDL error"), file=sys.stderr)
         pygame.display.quit()
@@ -425,6 +434,8 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
     formula.BACKGROUND = screenshot is None      # F4's formulas drawn by a worker: no frame waits
     from scenes import get_scene, menu_scenes
     window = Window(screen, menu_scenes(), large_text=large_text, events=events, record=record)
+    window.windowed_size = tuple(size or DEFAULT_SIZE)
+    window.fullscreen = fullscreen
     window.clips = ClipRecorder(**(clips or {}))
     if extras is not None:
         window.csv_path, window.arrows = extras.csv, extras.arrows
@@ -450,6 +461,7 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
             pygame.display.flip()
             if seconds is not None and time.perf_counter() - start >= seconds:
                 break
+            await asyncio.sleep(0)      # the one yield a frame (a browser's loop runs here)
         if screenshot:
             window.render()
             window.save_screenshot(screenshot)
