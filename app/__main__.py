@@ -67,6 +67,11 @@ def _timeout(text: str) -> float:
     return value
 
 
+def _seed(text: str) -> int:
+    """--seed: the exercise checks' random cases (a whole number, 0 to 2**32 - 1)."""
+    return _int_in(text, 0, 2 ** 32 - 1, "a seed")
+
+
 def _int_in(text: str, lo: int, hi: int, what: str) -> int:
     try:
         if not plain_number(text):
@@ -395,6 +400,9 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help="one JSON object per exercise")
     c.add_argument("--timeout", type=_timeout, default=CHECK_TIMEOUT,
                    help=f"seconds a check may run (default {CHECK_TIMEOUT:g})")
+    c.add_argument("--seed", type=_seed, default=None,
+                   help="the random cases' seed, 0 to 2**32-1 (default: a new one each run, "
+                   "printed with the verdict; give it to repeat that run's cases)")
     k = sub.add_parser("copy", help="copy the starters into a folder of your own",
                        allow_abbrev=False)
     k.add_argument("folder")
@@ -439,7 +447,7 @@ def exercise_main(argv: list[str]) -> int:
         if not os.path.isfile(paths[0]):
             raise UsageError(f"--path '{paths[0]}': no such file; accepted: a .py file, e.g. "
                              f"exercises/{args.name}.py")
-    return cli.check(chosen, paths, args.json, args.timeout)
+    return cli.check(chosen, paths, args.json, args.timeout, args.seed)
 
 
 def leave(code: int) -> NoReturn:

@@ -19,11 +19,14 @@ student's satisfy_rods returned; each judge measures:
 
 from __future__ import annotations
 
+import itertools
+import math
 from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Raw, Result, Student, array_of, fmt, within
+from app.exercises.base import (Check, Exercise, Raw, Result, Student, array_of, cases_rng, fmt,
+                                rounding, within)
 
 
 def reference() -> SimpleNamespace:
@@ -260,6 +263,121 @@ def judge_coincident(raw: Raw) -> Result:
                   "two particles at one point have |delta| = 0: divide by max(|delta|, 1e-9).")
 
 
+# ----- random rods, masses, pins and sweeps (a new seed each run) --------------------------------
+# One sweep fixes the rods one at a time, so its result depends on their order: the slide's loop
+# takes them in file order, the lab's batches (app/physics/jakobsen.py) in another. The judge
+# therefore replays the slide's sweeps in EVERY order of the rods (at most 5 rods: 120 orders,
+# the same order each sweep) and passes the answer that matches one of them, within the
+# rounding of those sweeps. A batch of rods that share no particle, solved at once, is one of
+# these orders; a sweep that takes every rod's direction at its start (Jacobi), one sweep too
+# many or too few, or a guard that leaves the whole sweep at a zero length is none of them.
+RANDOM_CASES = 4
+
+
+def random_cases() -> list[tuple]:
+    """3 to 6 particles, 2 to 5 rods (no two between the same particles), inverse masses from
+    0.2 to 5 or 0 (pinned, about one in four), rests from 0 (a zero-length rod, at most one) to
+    60 px, 1 to 4 sweeps; in the last two cases a rod whose ends start at one point (placed first
+    or in the middle of the list)."""
+    rng = cases_rng("constraints random")
+    cases = []
+    for k in range(RANDOM_CASES):
+        n = int(rng.integers(3, 7))
+        pairs = [p for p in itertools.combinations(range(n), 2)]
+        m = int(rng.integers(2, min(5, len(pairs)) + 1))
+        chosen = rng.choice(len(pairs), m, replace=False)
+        ab = np.array([pairs[c] for c in chosen])
+        ab = np.where(rng.random((m, 1)) < 0.5, ab, ab[:, ::-1])
+        a, b = ab[:, 0].astype(np.intp), ab[:, 1].astype(np.intp)
+        x = rng.uniform(0.0, 100.0, (n, 2))
+        w = np.where(rng.random(n) < 0.25, 0.0, rng.uniform(0.2, 5.0, n))
+        rest = rng.uniform(5.0, 60.0, m)
+        if rng.random() < 0.5:
+            rest[int(rng.integers(0, m))] = 0.0                  # a zero-length rod
+        if k >= 2:                                               # ends at one point
+            r = 0 if k == 2 else int(rng.integers(0, m))
+            x[b[r]] = x[a[r]]
+            w[a[r]] = w[a[r]] or 1.0                             # and free to move
+        cases.append((x, a, b, rest, w, int(rng.integers(1, 5))))
+    return cases
+
+
+def slide_sweeps(x, a, b, rest, w, iterations, order, mistake: str = "") -> np.ndarray:
+    """The slide's sweeps with the rods in `order` (in the parent), or one of the usual mistakes:
+    'directions once per sweep', 'one sweep too many', 'one sweep short', 'break at a zero
+    length'."""
+    x = np.array(x, dtype=float)
+    sweeps = iterations + {"one sweep too many": 1, "one sweep short": -1}.get(mistake, 0)
+    for _ in range(sweeps):
+        start = x.copy()
+        for k in order:
+            i, j = a[k], b[k]
+            total = w[i] + w[j]
+            if total == 0:
+                continue
+            delta = (start if mistake == "directions once per sweep" else x)[j] - \
+                (start if mistake == "directions once per sweep" else x)[i]
+            d = math.hypot(delta[0], delta[1])
+            if d == 0 and mistake == "break at a zero length":
+                break
+            d = max(d, 1e-9)
+            c = delta * (d - rest[k]) / d
+            x[i] += c * (w[i] / total)
+            x[j] -= c * (w[j] / total)
+    return x
+
+
+SWEEP_MISTAKES = {
+    "directions once per sweep": "each rod's delta is taken at the START of the sweep (all "
+        "directions at once, then every correction added: Jacobi): a rod must see the positions "
+        "the rods before it in this sweep left ('fix one rod at a time'); read delta = x[b] - "
+        "x[a] inside the loop over the rods, from the array you are changing",
+    "one sweep too many": "one sweep too many: the loop runs iterations + 1 times (range("
+        "iterations + 1), or a sweep before the loop as well as in it); it runs `iterations` "
+        "times",
+    "one sweep short": "one sweep short: range(iterations - 1); it runs `iterations` times",
+    "break at a zero length": "the sweep stops at a rod of length 0 (`break` in the guard): "
+        "that leaves every rod after it unfixed in that sweep. Skip only that rod (continue), "
+        "or divide by max(|delta|, 1e-9), which moves nothing when delta = 0",
+}
+
+
+def measure_random(m: Student) -> dict:
+    return {str(k): relax(m, *case) for k, case in enumerate(random_cases())}
+
+
+def judge_random(raw: Raw) -> Result:
+    for k, (x, a, b, rest, w, iterations) in enumerate(random_cases()):
+        out = raw.array(str(k), x.shape)
+        tol = rounding(float(np.abs(x).max() + rest.max()), ops=8 * iterations * len(a))
+        orders = list(itertools.permutations(range(len(a))))
+        errs = [float(np.abs(out - slide_sweeps(x, a, b, rest, w, iterations, o)).max())
+                for o in orders]
+        err = min(errs) if all(map(math.isfinite, errs)) else math.inf
+        if err <= tol:
+            continue
+        hint = ("one sweep fixes every rod once, in some order, each rod from the positions the "
+                "rods before it left; `iterations` sweeps; ends move by their shares w / (w_a + "
+                "w_b); a pinned end (w = 0) never moves.")
+        for mistake, text in SWEEP_MISTAKES.items():
+            if any(np.allclose(out, slide_sweeps(x, a, b, rest, w, iterations, o, mistake),
+                               rtol=0, atol=tol) for o in orders):
+                hint = text + "."
+                break
+        if not np.isfinite(out).all():
+            hint = ("NaN or inf: a rod of length 0 (two particles at one point) divides by "
+                    "|delta| = 0; divide by max(|delta|, 1e-9). " + hint)
+        pinned = w == 0
+        moved = float(np.abs(out[pinned] - x[pinned]).max()) if pinned.any() else 0.0
+        return Result(False, f"case {k + 1} of {RANDOM_CASES} ({len(x)} particles, {len(a)} rods, "
+                      f"{iterations} sweeps, {int(pinned.sum())} pinned): {fmt(err)} px off the "
+                      f"slide's sweeps in the nearest of the {len(orders)} orders of the rods"
+                      + (f"; pinned particles moved {fmt(moved)} px" if moved else ""),
+                      f"< {tol:.2g} px (the sweeps' own rounding)", hint)
+    return Result(True, f"{RANDOM_CASES} random sets of rods: each the slide's sweeps in an order "
+                  "of the rods", "the slide's sweeps, within their rounding")
+
+
 EXERCISE = Exercise(
     name="constraints",
     title="Jakobsen's rods: relaxing distance constraints",
@@ -273,5 +391,6 @@ EXERCISE = Exercise(
             Check("shares by inverse mass", measure_rod(STRETCHED), judge_shares),
             Check("each rod its rest", measure_rests, judge_rests),
             Check("stretch falls", measure_stretch, judge_stretch),
-            Check("coincident particles", measure_coincident, judge_coincident)),
+            Check("coincident particles", measure_coincident, judge_coincident),
+            Check("random rods and sweeps", measure_random, judge_random)),
 )

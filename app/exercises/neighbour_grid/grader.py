@@ -28,7 +28,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student
+from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student, cases_rng, counted
 
 CUTOFF = 40.0
 
@@ -96,13 +96,14 @@ def pairs_of(m: Student, x: np.ndarray, cutoff: float, box) -> dict:
             raise ValueError
         if ia.dtype.kind not in "iu" or ja.dtype.kind not in "iu":
             raise TypeError
-        count = int(tests)
-        if count != tests:
+        if isinstance(tests, bool) or not isinstance(tests, (int, np.integer)) and not (
+                isinstance(tests, (float, np.floating)) and float(tests).is_integer()):
             raise TypeError
     except (TypeError, ValueError, OverflowError):
         raise BadAnswer("grid_pairs must return (i, j, tests): two integer arrays of the same "
                         f"length (the pairs' particle indices) and an integer; got "
                         f"{described(i)}, {described(j)}, {type(tests).__name__}") from None
+    count = counted(tests, "grid_pairs's tests (the third value)")
     n = len(x)
     if len(ia) and (min(ia.min(), ja.min()) < 0 or max(ia.max(), ja.max()) >= n):
         raise BadAnswer(f"grid_pairs returned particle indices outside 0..{n - 1} (from "
@@ -187,10 +188,17 @@ def hint_for(x, cutoff, box, missed, extra, twice, self_pairs, reach=math.inf) -
         if all(edge(p) or edge(q) for p, q in missed):
             hints.append("a particle on the far edge (x = w or y = h) falls in cell number "
                          "nx (or ny), one past the last: clamp the cell index into 0..nx-1")
-        if (0, 0) in steps and reach < 0.9 * cutoff:
+        nearest_missed = min(math.dist(x[p], x[q]) for p, q in missed)
+        if (0, 0) in steps and reach <= math.sqrt(cutoff) * (1 + 1e-9) < 0.9 * cutoff:
             hints.append(f"no pair farther apart than {reach:.3g} was kept, even in one cell: "
                          "the distance test is off. Keep |x_j - x_i| < cutoff (or d . d < "
                          "cutoff^2: the square on both sides)")
+        elif (0, 0) in steps and reach < nearest_missed:
+            hints.append(f"your pairs are exactly those closer than about {reach:.4g} (every "
+                         f"pair missed is {nearest_missed:.4g} or more apart), not the cut-off "
+                         f"{cutoff:.6g} the function was given: is the cut-off a fixed number in "
+                         "your code (the checks and the scenes use many)? Use the argument "
+                         "`cutoff` everywhere")
         elif steps <= {(0, 0)}:
             hints.append("pairs in the same cell were missed: pair each particle with every "
                          "other particle of its own cell")
@@ -242,26 +250,82 @@ def block_candidates(x: np.ndarray, cutoff: float, box) -> int:
     return int(block[cy, cx].sum())
 
 
-def judge_tests(raw: Raw) -> Result:
+# ----- the count of pair tests: measured here, from the particles ---------------------------------
+# The count a student's grid_pairs reports is not believed: the grader computes, from the same
+# particles, the candidate count of every cell grid the starter describes or allows, and the
+# reported count must be one of them exactly. Why this and not arrays that count their reads: a
+# NumPy answer reads x once and computes thousands of distances by broadcasting, and np.asarray
+# strips any counting wrapper, so reads say nothing about distances; a grid's candidates are
+# fixed by its cells, and cells at least a cut-off wide (or a 1/k of it, searched k cells around)
+# are what the starter asks for. An invented number (pairs found + 1000, a fraction of all pairs)
+# lands on one of these few exact counts only by computing a grid, which is the exercise.
+GRIDS = (("cells floor(w / cutoff) across, 3 x 3", "fit", 1, 1),
+         ("cells exactly a cut-off wide (x // cutoff), 3 x 3", "size", 1, 1),
+         ("cells half a cut-off wide, 5 x 5", "size", 2, 2),
+         ("cells a third of a cut-off wide, 7 x 7", "size", 3, 3),
+         ("cells floor(2 w / cutoff) across, 5 x 5", "fit", 2, 2))
+
+
+def grid_cells(x: np.ndarray, cutoff: float, box, kind: str, k: int) -> np.ndarray:
+    """Each particle's cell (column, row) in one of the GRIDS."""
+    if kind == "fit":
+        nx, ny = max(1, int(k * box[0] // cutoff)), max(1, int(k * box[1] // cutoff))
+        return np.stack([np.clip(np.floor(x[:, 0] * nx / box[0]), 0, nx - 1),
+                         np.clip(np.floor(x[:, 1] * ny / box[1]), 0, ny - 1)], 1).astype(np.int64)
+    return np.floor(x / (cutoff / k)).astype(np.int64)
+
+
+def grid_counts(x: np.ndarray, cutoff: float, box) -> dict[int, str]:
+    """Every count of distance tests a cell grid makes on these particles: for each grid of GRIDS,
+    own-cell pairs S (each once) and neighbouring-cell pairs N (each once), counted once or both
+    ways round, with or without each particle tested against itself."""
+    n = len(x)
+    out: dict[int, str] = {}
+    if n == 0:
+        return {0: "no particles"}
+    for label, kind, k, reach in GRIDS:
+        cells = grid_cells(x, cutoff, box, kind, k)
+        cells -= cells.min(axis=0) - reach                # a border of empty cells
+        count = np.zeros(tuple(cells.max(axis=0) + reach + 1), np.int64)
+        np.add.at(count, (cells[:, 0], cells[:, 1]), 1)
+        own = int((count * (count - 1) // 2).sum())
+        near = 0
+        for dx in range(-reach, reach + 1):
+            for dy in range(0, reach + 1):
+                if dy == 0 and dx <= 0:
+                    continue                              # half the stencil: each pair once
+                shifted = np.roll(np.roll(count, -dx, 0), -dy, 1)
+                near += int((count * shifted).sum())
+        for o, o_text in ((own, "own cell once"), (own + n, "own cell once, itself too"),
+                          (2 * own, "own cell both ways"), (2 * own + n, "own cell both ways, "
+                                                            "itself too")):
+            for m, m_text in ((near, "neighbours once"), (2 * near, "neighbours both ways")):
+                out.setdefault(o + m, f"{label}: {o_text}, {m_text}")
+    return out
+
+
+def judge_count(x, cutoff, box, tests: int, found: int, ok_pairs: bool, measured: str,
+                hint: str) -> Result:
+    """The pairs and the count of tests against the counts of GRIDS on these particles."""
     from app.physics.neighbours import all_pair_tests, grid_shape
-    x, cutoff, box = tests_case()
-    ok_pairs, measured, hint = compare(raw, x, cutoff, box)
-    tests = raw.integer("tests")
+    counts = grid_counts(x, cutoff, box)
     most = block_candidates(x, cutoff, box)      # every particle of the 9 cells around each
-    found = len(set(zip(raw.array("i", (None,), np.int64).tolist(),
-                        raw.array("j", (None,), np.int64).tolist())))
     every = all_pair_tests(len(x))
-    ok = ok_pairs and found < tests <= most
-    text = f"{tests:,} pair tests ({100 * tests / every:.1f}% of all {every:,} pairs)"
+    text = (f"{tests:,} pair tests ({100 * tests / max(every, 1):.1f}% of all {every:,} pairs)")
+    lab = min(counts)
+    bound = (f"the count of a cell grid's candidates: {lab:,} for the starter's grid each pair "
+             f"once, {2 * lab:,} both ways (or another grid's, {len(counts)} counts in all)")
     if not ok_pairs:
-        return Result(False, f"{text}; {measured}", f"the right pairs, and at most {most:,} tests",
-                      hint)
+        return Result(False, f"{text}; {measured}", "the right pairs; " + bound, hint)
+    if tests in counts:
+        return Result(True, f"{text}: {counts[tests]}", bound)
+    nearest = min(counts, key=lambda c: abs(c - tests))
     nx, ny = grid_shape(box, cutoff)
     if tests <= found:
         hint = (f"{'as few' if tests == found else 'fewer'} tests than pairs found ({found:,}): "
                 "count every distance you compute (every candidate from the cells, also those "
                 "too far apart), not only the pairs kept")
-    elif tests >= 0.5 * every:
+    elif tests >= 0.5 * every and every > 1000:
         hint = ("that is testing all pairs: the grid's point is to test only the particles of "
                 "the 3 x 3 cells around each particle's cell")
     elif tests > most:
@@ -270,8 +334,63 @@ def judge_tests(raw: Raw) -> Result:
                 f"box = (w, h) = ({box[0]:g}, {box[1]:g}): a particle's cell is (floor(x nx / w), "
                 "floor(y ny / h)); w and h (or x and y) swapped make cells far wider than the "
                 "cut-off on one side")
-    return Result(bool(ok), text, f"more than {found:,} (the pairs) and at most {most:,} (the 9 "
-                  "cells around each particle)", hint)
+    else:
+        hint = (f"{tests:,} is the count of no cell grid on these particles: the nearest, "
+                f"{nearest:,} ({counts[nearest]}), is {abs(tests - nearest):,} away. tests is "
+                "the number of distances your code computed, one per candidate pair")
+    return Result(False, text, bound, hint)
+
+
+def judge_tests(raw: Raw) -> Result:
+    x, cutoff, box = tests_case()
+    ok_pairs, measured, hint = compare(raw, x, cutoff, box)
+    found = len(set(zip(raw.array("i", (None,), np.int64).tolist(),
+                        raw.array("j", (None,), np.int64).tolist())))
+    return judge_count(x, cutoff, box, raw.integer("tests"), found, ok_pairs, measured, hint)
+
+
+# ----- random boxes, cut-offs and particles (a new seed each run) --------------------------------
+RANDOM_CASES = 4
+
+
+def random_cases() -> list[tuple[np.ndarray, float, tuple[float, float]]]:
+    """Boxes of any shape, cut-offs that do and do not divide them (w / cutoff with a fraction of
+    0.5 to 0.95 in the first: round() gives one cell too many, each narrower than the cut-off),
+    from none to 500 particles, some on the edges x = 0, x = w, y = h."""
+    rng = cases_rng("neighbour_grid random")
+    cases = []
+    for k in range(RANDOM_CASES):
+        w, h = rng.uniform(80.0, 1500.0, 2)
+        cells = rng.integers(1, 16) + (rng.uniform(0.5, 0.95) if k == 0 else rng.uniform())
+        cutoff = float(w / cells)
+        n = int(rng.integers(150, 500)) if k < 2 else int(rng.integers(0, 200))
+        x = rng.uniform(0.0, 1.0, (n, 2)) * (w, h)
+        for p in np.flatnonzero(rng.random(n) < 0.05):        # on an edge of the box
+            axis = int(rng.integers(0, 2))
+            x[p, axis] = (w, h)[axis] * int(rng.integers(0, 2))
+        x = np.clip(x, 0.0, (w, h))
+        cases.append((x, cutoff, (float(w), float(h))))
+    return cases
+
+
+def measure_random(m: Student) -> dict:
+    return {str(k): pairs_of(m, *case) for k, case in enumerate(random_cases())}
+
+
+def judge_random(raw: Raw) -> Result:
+    for k, (x, cutoff, box) in enumerate(random_cases()):
+        one = Raw(raw.values.get(str(k)))
+        ok_pairs, measured, hint = compare(one, x, cutoff, box)
+        found = len(set(zip(one.array("i", (None,), np.int64).tolist(),
+                            one.array("j", (None,), np.int64).tolist())))
+        r = judge_count(x, cutoff, box, one.integer("tests"), found, ok_pairs, measured, hint)
+        if not r.passed:
+            where = (f"case {k + 1} of {RANDOM_CASES}: {len(x)} particles, box "
+                     f"{box[0]:.6g} x {box[1]:.6g}, cut-off {cutoff:.6g} (w / cutoff = "
+                     f"{box[0] / cutoff:.3g})")
+            return Result(False, f"{where}: {r.measured}", r.bound, r.hint)
+    return Result(True, f"{RANDOM_CASES} random boxes and cut-offs: every pair, a grid's count",
+                  "every pair with |d| < cut-off, once; a grid's count of tests")
 
 
 EXERCISE = Exercise(
@@ -286,5 +405,6 @@ EXERCISE = Exercise(
                   judge_case(clustered_case)),
             Check("on the cell borders", measure_case(border_case), judge_case(border_case)),
             Check("few particles", measure_few, judge_few),
-            Check("pair tests", measure_case(tests_case), judge_tests)),
+            Check("pair tests", measure_case(tests_case), judge_tests),
+            Check("random boxes and cut-offs", measure_random, judge_random)),
 )

@@ -26,8 +26,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, array_of, fmt,
-                                order, within)
+from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, array_of,
+                                cases_rng, fmt, order, rounding, within)
 
 G = np.array([0.0, 900.0])            # px/s^2, y down
 OMEGA = 2 * math.pi                   # the test spring: one period per second
@@ -254,6 +254,72 @@ def judge_inputs(raw: Raw) -> Result:
                   "x_new is fine: the caller is done with it (the slide's pointer swap).")
 
 
+# ----- random particles, accelerations, steps and drags (a new seed each run) ---------------------
+RANDOM_CASES, RANDOM_STEPS = 4, 5
+
+
+def random_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, float, float]]:
+    """1 to 40 particles anywhere, moving any way, each with its own acceleration (any direction,
+    up to 5000 px/s^2), h from 1 ms to 0.1 s, drag 0 (the first case) to 0.5."""
+    rng = cases_rng("verlet random")
+    cases = []
+    for k in range(RANDOM_CASES):
+        n = int(rng.integers(1, 41))
+        x = rng.uniform(-500.0, 1500.0, (n, 2))
+        h = float(10 ** rng.uniform(-3.0, -1.0))
+        x_prev = x - rng.normal(0.0, 400.0, (n, 2)) * h
+        a = rng.normal(0.0, 1.0, (n, 2)) * 10 ** rng.uniform(1.0, 3.7, (n, 1))
+        drag = 0.0 if k == 0 else float(rng.uniform(0.0, 0.5))
+        cases.append((x, x_prev, a, h, drag))
+    return cases
+
+
+def measure_random(m: Student) -> dict:
+    out = {}
+    for k, (x, x_prev, a, h, drag) in enumerate(random_cases()):
+        xs = []
+        for _ in range(RANDOM_STEPS):       # the same accelerations each step, chained
+            x, x_prev = step(m, x.copy(), x_prev.copy(), a.copy(), h, drag)
+            xs.append((x, x_prev))
+        out[str(k)] = {"x": [p[0] for p in xs], "x_prev": [p[1] for p in xs]}
+    return out
+
+
+def judge_random(raw: Raw) -> Result:
+    from app.physics.jakobsen import verlet_step
+    worst = 0.0
+    for k, (x0, xp0, a, h, drag) in enumerate(random_cases()):
+        one = Raw(raw.values.get(str(k)))
+        n = len(x0)
+        xs, xps = (one.array("x", (RANDOM_STEPS, n, 2)), one.array("x_prev", (RANDOM_STEPS, n, 2)))
+        x, x_prev = x0, xp0
+        for s in range(RANDOM_STEPS):       # each step from the student's own last state
+            want, want_prev = verlet_step(xs[s - 1] if s else x0, xps[s - 1] if s else xp0, a, h,
+                                          drag)
+            here = xs[s - 1] if s else x0
+            scale = float(np.abs(here).max() + np.abs(here - (xps[s - 1] if s else xp0)).max()
+                          + np.abs(a).max() * h * h)
+            tol = rounding(scale, ops=4)
+            err = max(float(np.abs(xs[s] - want).max()), float(np.abs(xps[s] - want_prev).max()))
+            worst = max(worst, err / tol) if math.isfinite(err) else math.inf
+            if not err <= tol:
+                mean = verlet_step(here, xps[s - 1] if s else xp0,
+                                   np.broadcast_to(a.mean(axis=0), a.shape), h, drag)[0]
+                hint = ("x' = x + (1 - drag) (x - x_prev) + a h^2, each particle with its own "
+                        "row of a; return (x', x).")
+                if n > 1 and np.allclose(xs[s], mean, rtol=0, atol=tol):
+                    hint = ("every particle got the same acceleration, the mean of a: each "
+                            "particle has its own row a[k] (a has shape (n, 2)); use a as it is.")
+                elif np.allclose(xs[s], want, rtol=0, atol=tol):
+                    hint = ("x' is right, the second value is not: return (x', x), the old x as "
+                            "the next x_prev.")
+                return Result(False, f"case {k + 1} of {RANDOM_CASES} ({n} particles, h = "
+                              f"{h:.3g} s, drag {drag:.3g}), step {s + 1}: {fmt(err)} px off the "
+                              "lab's step", f"< {tol:.2g} px (the lab's own rounding here)", hint)
+    return Result(True, f"{RANDOM_CASES} random systems x {RANDOM_STEPS} steps: within "
+                  f"{worst:.2g} of the rounding bound", "each step within the lab's rounding")
+
+
 EXERCISE = Exercise(
     name="verlet",
     title="Verlet integration: the velocity-less step with drag",
@@ -266,5 +332,6 @@ EXERCISE = Exercise(
             Check("energy kept (drag 0)", measure_energy, judge_energy),
             Check("drag loses energy", measure_drag, judge_drag),
             Check("terminal speed with drag", measure_terminal, judge_terminal),
-            Check("inputs kept", measure_inputs, judge_inputs)),
+            Check("inputs kept", measure_inputs, judge_inputs),
+            Check("random particles and steps", measure_random, judge_random)),
 )
