@@ -208,7 +208,8 @@ def test_a_missing_package_is_a_failed_check_with_the_file_and_line():
 def test_an_exception_in_one_check_fails_that_check_and_the_others_still_run():
     path = str(ANSWERS / "verlet_raises_with_drag.py")
     report = checks_of(grade(get_exercise("verlet"), path))
-    for name in ("drag loses energy", "terminal speed with drag"):    # the two with drag
+    for name in ("drag loses energy", "terminal speed with drag",      # the three with drag
+                 "random particles and steps"):
         failed = report.pop(name)
         assert f'File "{path}", line 7, in verlet_step' in failed.error
         assert "ValueError: drag is not supported yet" in failed.error
@@ -327,7 +328,7 @@ def test_copy_then_check_with_path(tmp_path, capsys):
     assert main(["exercise", "check", "verlet", "--path", str(folder / "verlet.py"), "--json"]) == 1
     report = json.loads(capsys.readouterr().out)
     assert [c["name"] for c in report["checks"] if not c["passed"]] == [
-        "drag loses energy", "terminal speed with drag"]
+        "drag loses energy", "terminal speed with drag", "random particles and steps"]
 
 
 def test_check_all_prints_a_summary_table(tmp_path, capsys):
@@ -337,9 +338,10 @@ def test_check_all_prints_a_summary_table(tmp_path, capsys):
     assert main(["exercise", "check", "all", "--path", str(folder), "--timeout", "5"]) == 1
     out = capsys.readouterr().out
     table = out[out.index("exercise "):].splitlines()
-    assert len(table) == 1 + len(EXERCISES)
-    assert table[1].split()[:2] == ["verlet", "0/7"]        # imports + 6 checks, all failed
-    assert all(line.split()[-1] == "FAIL" for line in table[1:])   # missing files fail too
+    assert len(table) == 2 + len(EXERCISES)                 # and the seed's line
+    assert table[-1].startswith("seed ")
+    assert table[1].split()[:2] == ["verlet", "0/8"]        # imports + 7 checks, all failed
+    assert all(line.split()[-1] == "FAIL" for line in table[1:-1])   # missing files fail too
 
 
 # ----- the exercise scenes -----------------------------------------------------------------------
@@ -448,6 +450,7 @@ def test_without_fork_the_checks_run_in_process_and_still_catch_exceptions(monke
     report = checks_of(grade(get_exercise("verlet"), path))
     assert "ValueError: drag is not supported yet" in report.pop("drag loses energy").error
     assert "ValueError: drag is not supported yet" in report.pop("terminal speed with drag").error
+    assert "ValueError: drag is not supported yet" in report.pop("random particles and steps").error
     assert all(c.passed for c in report.values())
 
 
