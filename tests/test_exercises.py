@@ -132,7 +132,7 @@ WRONG = {
     "rk4_quarter_weights": ("rk4", "RK4 order, spring", "divided by 4"),
     "rk4_increment": ("rk4", "RK4 order, spring", "the increment"),
     "rk4_k4_half_time": ("rk4", "RK4 stage times", "k4 is taken at t + h/2"),
-    "rk4_midpoint_time_fixed": ("rk4", "midpoint, not Heun", "taken at time t"),
+    "rk4_midpoint_time_fixed": ("rk4", "midpoint, not Heun", "midpoint's slope is taken at time t"),
     "solver_times_mass": ("solver_interface", "a = f / m", "f * m, not f / m"),
     "solver_mass_twice": ("solver_interface", "a = f / m", "divided by the mass twice"),
     "l_limit_dynamic": ("pivoting_l", "the L", "limit body is not STATIC"),

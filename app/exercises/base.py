@@ -154,8 +154,8 @@ def array_of(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
                            "significant digits, too few for these checks; compute in float64 "
                            "(NumPy's default: drop the dtype=np." + kind + ")")
     if not np.isfinite(arr).all() and what + " nan" not in NOTES:
-        NOTES[what + " nan"] = (f"{what} returned NaN or inf: a division by zero (a length of "
-                                "0?), or values that grew without bound")
+        bad = int((~np.isfinite(arr)).sum())
+        NOTES[what + " nan"] = f"{what} returned NaN or inf ({bad} of {arr.size} values)"
     return arr
 
 

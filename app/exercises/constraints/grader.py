@@ -45,20 +45,24 @@ SWAPPED_HINT = ("each end moved by the OTHER end's share: x_a moves by w_a / (w_
 
 
 def relax_with(kind: str, x, a, b, rest, w, iterations) -> np.ndarray:
-    """The slide's sweeps with one of the usual mistakes in the shares (in the parent)."""
+    """The slide's sweeps with one of the usual mistakes (in the parent): 'equal shares', 'swapped
+    shares', 'no share sum' (w, not w / (w_a + w_b)), 'no length' (diff not divided by |delta|),
+    'no pinned skip' (0 / 0 for a rod between two pinned particles)."""
     x = np.array(x, dtype=float)
     for _ in range(iterations):
         for k in range(len(a)):
             i, j = a[k], b[k]
             total = w[i] + w[j]
-            if total == 0:
+            if total == 0 and kind != "no pinned skip":
                 continue
             delta = x[j] - x[i]
             d = max(float(np.linalg.norm(delta)), 1e-9)
-            c = delta * (d - rest[k]) / d
-            si, sj = ((0.5, 0.5) if kind == "equal shares" else
-                      (w[j] / total, w[i] / total) if kind == "swapped shares" else
-                      (w[i] / total, w[j] / total))
+            c = delta * (d - rest[k]) / (1.0 if kind == "no length" else d)
+            with np.errstate(all="ignore"):
+                si, sj = ((0.5, 0.5) if kind == "equal shares" else
+                          (w[i], w[j]) if kind == "no share sum" else
+                          (w[j] / total, w[i] / total) if kind == "swapped shares" else
+                          (w[i] / total, w[j] / total))
             x[i] += c * si
             x[j] -= c * sj
     return x
@@ -81,21 +85,27 @@ def chain() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
 
 def measure_pinned(m: Student) -> dict:
     x, a, b, w = chain()
-    return {"x": relax(m, x, a, b, np.full(len(a), 10.0), w, 20)}
+    return {"x": relax(m, x, a, b, np.full(len(a), 10.0), w, 20),
+            "x1": relax(m, x, a, b, np.full(len(a), 10.0), w, 1)}    # where a NaN starts
 
 
 def judge_pinned(raw: Raw) -> Result:
     x, a, b, w = chain()
     out = raw.array("x", x.shape)
     moved = float(np.abs(out[w == 0] - x[w == 0]).max())
-    hint = WEIGHT_HINT
+    hint = (f"the pinned particles (w = 0) moved by up to {fmt(moved)} px in 20 sweeps; each "
+            "end moves by its share w_a / (w_a + w_b) of the correction, 0 for w = 0.")
     if np.allclose(out, relax_with("swapped shares", x, a, b, np.full(len(a), 10.0), w, 20),
                    atol=1e-9):
         hint = SWAPPED_HINT
     elif np.allclose(out, relax_with("equal shares", x, a, b, np.full(len(a), 10.0), w, 20),
                      atol=1e-9):
         hint = "the ends share each correction 50/50, pinned or not: " + WEIGHT_HINT
-    if not np.isfinite(out[w == 0]).all():
+    with np.errstate(all="ignore"):
+        no_skip = relax_with("no pinned skip", x, a, b, np.full(len(a), 10.0), w, 1)
+    first = raw.array("x1", x.shape) if raw.has("x1") else out
+    if not np.isfinite(out[w == 0]).all() and np.array_equal(np.isfinite(first),
+                                                            np.isfinite(no_skip)):
         hint = ("NaN at the pinned particles: a rod whose two ends are both pinned has "
                 "w_a + w_b = 0, and its shares 0 / 0 are NaN. Skip such a rod (if w_a + w_b == 0: "
                 "continue). " + hint)
@@ -135,9 +145,18 @@ def judge_one_rod(raw: Raw) -> Result:
                 "`iterations` times? range(iterations), not range(iterations - 1).")
     elif length > 50.0 + 1e-9:
         hint = "the rod got LONGER (50 -> " + f"{length:.3g}): a sign is flipped. " + hint
-    elif length < REST - 1e-9:
+    elif np.allclose(out, relax_with("no share sum", STRETCHED, [0], [1], [REST], ROD_W, 1),
+                     atol=1e-9):
         hint = (f"the ends moved too far (50 px -> {length:.3g} along the old rod, rest 20; "
-                "below 0 they crossed): did you forget to divide by w_a + w_b? " + hint)
+                "below 0 they crossed): they moved by w times the correction; did you forget "
+                "to divide by w_a + w_b? " + hint)
+    elif np.allclose(out, relax_with("no length", STRETCHED, [0], [1], [REST], ROD_W, 1),
+                     atol=1e-9):
+        hint = ("the correction is not divided by the length: diff = (|delta| - rest) / "
+                "|delta|, so that delta * diff is (|delta| - rest) along the rod. " + hint)
+    else:
+        hint = (f"after one pass the rod is {length:.6g} px along its old direction (rest "
+                f"{REST:g}, was 50). " + hint)
     return Result(within(err, 0.0, 1e-9), f"|length - rest| = {fmt(err)} px after one pass",
                   "< 1e-09 px", hint)
 

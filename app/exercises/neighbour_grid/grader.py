@@ -199,18 +199,44 @@ def hint_for(x, cutoff, box, missed, extra, twice, self_pairs, reach=math.inf) -
                          f"{cutoff:.6g} the function was given: is the cut-off a fixed number in "
                          "your code (the checks and the scenes use many)? Use the argument "
                          "`cutoff` everywhere")
+        elif narrow_grid(x, cutoff, box, missed):
+            hints.append(narrow_grid(x, cutoff, box, missed))
         elif steps <= {(0, 0)}:
             hints.append("pairs in the same cell were missed: pair each particle with every "
                          "other particle of its own cell")
         elif steps <= {(1, 1)}:
             hints.append("only pairs across a CORNER were missed: the diagonal neighbour cells "
                          "count too (8 neighbours, or 4 in a half stencil)")
+        elif (0, 0) not in steps:
+            hints.append(f"{len(missed)} pairs in NEIGHBOURING cells were missed, none in one "
+                         "cell: two particles closer than the cut-off may sit in neighbouring "
+                         "cells, so search the 3 x 3 block of cells around each particle's cell")
         else:
-            hints.append(f"{len(missed)} pairs within the cut-off missed: two particles closer "
-                         "than the cut-off are in the same or in NEIGHBOURING cells (cells at "
-                         "least a cut-off wide: nx = floor(w / cutoff)), so search the 3 x 3 "
-                         "block of cells around each particle's cell")
+            p, q = min(missed)
+            hints.append(f"{len(missed)} pairs within the cut-off missed, e.g. particles {p} and "
+                         f"{q}, {math.dist(x[p], x[q]):.4g} apart, at ({x[p, 0]:.4g}, "
+                         f"{x[p, 1]:.4g}) and ({x[q, 0]:.4g}, {x[q, 1]:.4g})")
     return "; ".join(hints) + "."
+
+
+def narrow_grid(x, cutoff, box, missed) -> str:
+    """The hint if the pairs missed are exactly those two or more cells apart in a grid of cells
+    narrower than the cut-off (nx = round(w / cutoff) or ceil), else ''."""
+    want = true_pairs(x, cutoff)
+    for count in (round, math.ceil):
+        nx, ny = max(1, count(box[0] / cutoff)), max(1, count(box[1] / cutoff))
+        if (nx, ny) == (max(1, int(box[0] // cutoff)), max(1, int(box[1] // cutoff))):
+            continue
+        cell = np.stack([np.clip(np.floor(x[:, 0] * nx / box[0]), 0, nx - 1),
+                         np.clip(np.floor(x[:, 1] * ny / box[1]), 0, ny - 1)], axis=1)
+        apart = {(p, q) for p, q in want if np.abs(cell[p] - cell[q]).max() > 1}
+        if apart and apart == set(missed):
+            return (f"the pairs missed are those two cells apart in a grid of {nx} x {ny} cells "
+                    f"({box[0] / nx:.4g} x {box[1] / ny:.4g} px: w / cutoff rounded up, as round() "
+                    "or ceil() do): cells "
+                    f"narrower than the cut-off {cutoff:.4g}. Cells must be at least a cut-off "
+                    "wide: nx = floor(w / cutoff)")
+    return ""
 
 
 def judge_case(case):
@@ -266,42 +292,59 @@ GRIDS = (("cells floor(w / cutoff) across, 3 x 3", "fit", 1, 1),
          ("cells floor(2 w / cutoff) across, 5 x 5", "fit", 2, 2))
 
 
-def grid_cells(x: np.ndarray, cutoff: float, box, kind: str, k: int) -> np.ndarray:
-    """Each particle's cell (column, row) in one of the GRIDS."""
-    if kind == "fit":
-        nx, ny = max(1, int(k * box[0] // cutoff)), max(1, int(k * box[1] // cutoff))
-        return np.stack([np.clip(np.floor(x[:, 0] * nx / box[0]), 0, nx - 1),
-                         np.clip(np.floor(x[:, 1] * ny / box[1]), 0, ny - 1)], 1).astype(np.int64)
+def grid_cells(x: np.ndarray, cutoff: float, box, kind: str, k: float) -> np.ndarray:
+    """Each particle's cell (column, row) in a grid: 'fit' (nx = floor(k w / cutoff) cells across
+    the box, clamped), 'size' (cells cutoff / k wide from 0, unclamped), 'swapped' (a 'fit' grid
+    that reads the box as (h, w): a mistake's)."""
+    if kind in ("fit", "swapped"):
+        bw, bh = box[::-1] if kind == "swapped" else box
+        nx, ny = max(1, int(k * bw // cutoff)), max(1, int(k * bh // cutoff))
+        return np.stack([np.clip(np.floor(x[:, 0] * nx / bw), 0, nx - 1),
+                         np.clip(np.floor(x[:, 1] * ny / bh), 0, ny - 1)], 1).astype(np.int64)
     return np.floor(x / (cutoff / k)).astype(np.int64)
 
 
-def grid_counts(x: np.ndarray, cutoff: float, box) -> dict[int, str]:
-    """Every count of distance tests a cell grid makes on these particles: for each grid of GRIDS,
-    own-cell pairs S (each once) and neighbouring-cell pairs N (each once), counted once or both
-    ways round, with or without each particle tested against itself."""
-    n = len(x)
+def stencil_counts(cells: np.ndarray, reach: int, label: str) -> dict[int, str]:
+    """The counts of distance tests a grid with these cells makes when each particle meets those
+    up to `reach` cells away: own-cell pairs S and neighbouring-cell pairs N (each once), counted
+    once or both ways round, with or without each particle tested against itself."""
+    n = len(cells)
+    cells = cells - (cells.min(axis=0) - reach)            # a border of empty cells
+    count = np.zeros(tuple(cells.max(axis=0) + reach + 1), np.int64)
+    np.add.at(count, (cells[:, 0], cells[:, 1]), 1)
+    own = int((count * (count - 1) // 2).sum())
+    near = 0
+    for dx in range(-reach, reach + 1):
+        for dy in range(0, reach + 1):
+            if dy == 0 and dx <= 0:
+                continue                                  # half the stencil: each pair once
+            shifted = np.roll(np.roll(count, -dx, 0), -dy, 1)
+            near += int((count * shifted).sum())
     out: dict[int, str] = {}
-    if n == 0:
-        return {0: "no particles"}
-    for label, kind, k, reach in GRIDS:
-        cells = grid_cells(x, cutoff, box, kind, k)
-        cells -= cells.min(axis=0) - reach                # a border of empty cells
-        count = np.zeros(tuple(cells.max(axis=0) + reach + 1), np.int64)
-        np.add.at(count, (cells[:, 0], cells[:, 1]), 1)
-        own = int((count * (count - 1) // 2).sum())
-        near = 0
-        for dx in range(-reach, reach + 1):
-            for dy in range(0, reach + 1):
-                if dy == 0 and dx <= 0:
-                    continue                              # half the stencil: each pair once
-                shifted = np.roll(np.roll(count, -dx, 0), -dy, 1)
-                near += int((count * shifted).sum())
-        for o, o_text in ((own, "own cell once"), (own + n, "own cell once, itself too"),
-                          (2 * own, "own cell both ways"), (2 * own + n, "own cell both ways, "
-                                                            "itself too")):
-            for m, m_text in ((near, "neighbours once"), (2 * near, "neighbours both ways")):
-                out.setdefault(o + m, f"{label}: {o_text}, {m_text}")
+    for o, o_text in ((own, "own cell once"), (own + n, "own cell once, itself too"),
+                      (2 * own, "own cell both ways"), (2 * own + n, "own cell both ways, "
+                                                        "itself too")):
+        for m, m_text in ((near, "neighbours once"), (2 * near, "neighbours both ways")):
+            out.setdefault(o + m, f"{label}: {o_text}, {m_text}")
     return out
+
+
+def grid_counts(x: np.ndarray, cutoff: float, box, grids=GRIDS) -> dict[int, str]:
+    """Every count of distance tests a grid of `grids` makes on these particles."""
+    if len(x) == 0:
+        return {0: "no particles"}
+    out: dict[int, str] = {}
+    for label, kind, k, reach in grids:
+        for count, text in stencil_counts(grid_cells(x, cutoff, box, kind, k), reach,
+                                          label).items():
+            out.setdefault(count, text)
+    return out
+
+
+MISTAKEN_GRIDS = {
+    "big": (("cells two cut-offs wide", "fit", 0.5, 1),),
+    "swapped": (("the box read as (h, w)", "swapped", 1, 1),),
+}
 
 
 def judge_count(x, cutoff, box, tests: int, found: int, ok_pairs: bool, measured: str,
@@ -321,19 +364,22 @@ def judge_count(x, cutoff, box, tests: int, found: int, ok_pairs: bool, measured
         return Result(True, f"{text}: {counts[tests]}", bound)
     nearest = min(counts, key=lambda c: abs(c - tests))
     nx, ny = grid_shape(box, cutoff)
+    n = len(x)
     if tests <= found:
-        hint = (f"{'as few' if tests == found else 'fewer'} tests than pairs found ({found:,}): "
+        hint = (f"{'as few tests as' if tests == found else 'fewer tests than'} pairs found "
+                f"({found:,}): "
                 "count every distance you compute (every candidate from the cells, also those "
                 "too far apart), not only the pairs kept")
-    elif tests >= 0.5 * every and every > 1000:
+    elif tests in (every, 2 * every, n * n) and every > 10 * found:
         hint = ("that is testing all pairs: the grid's point is to test only the particles of "
                 "the 3 x 3 cells around each particle's cell")
-    elif tests > most:
-        hint = (f"more tests than the 9 cells around each particle hold: are the cells larger "
-                f"than the cut-off? nx = floor(w / cutoff) = {nx} cells across, {ny} down, with "
-                f"box = (w, h) = ({box[0]:g}, {box[1]:g}): a particle's cell is (floor(x nx / w), "
-                "floor(y ny / h)); w and h (or x and y) swapped make cells far wider than the "
-                "cut-off on one side")
+    elif tests in grid_counts(x, cutoff, box, MISTAKEN_GRIDS["swapped"]):
+        hint = (f"your count is that of a grid with w and h (or x and y) swapped: nx = floor(w / "
+                f"cutoff) = {nx} cells across, {ny} down, with box = (w, h) = ({box[0]:g}, "
+                f"{box[1]:g}); a particle's cell is (floor(x nx / w), floor(y ny / h))")
+    elif tests in grid_counts(x, cutoff, box, MISTAKEN_GRIDS["big"]):
+        hint = (f"your count is that of cells two cut-offs wide: cells larger than the cut-off "
+                f"hold more candidates; nx = floor(w / cutoff) = {nx} cells across, {ny} down")
     else:
         hint = (f"{tests:,} is the count of no cell grid on these particles: the nearest, "
                 f"{nearest:,} ({counts[nearest]}), is {abs(tests - nearest):,} away. tests is "

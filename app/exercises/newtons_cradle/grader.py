@@ -136,6 +136,10 @@ def judge_row(raw: Raw, balls: int, radius: float, lifted: int) -> Result:
             np.all(np.abs(angles[:balls - lifted]) < 1e-6):
         hint = ("the LAST balls are lifted: lift the first `lifted` balls (i < lifted, the left "
                 "end), the ones the scene releases into the row. " + hint)
+    if balls > 1 and np.all(np.diff(anchor[:, 0]) < 0):
+        hint = ("the balls come back right to left (their anchors' x fall along the list you "
+                "return): return them in order along the row, left to right; the first `lifted` "
+                "of that list are the ones lifted.")
     shown = ", ".join(f"{a:.3g}" for a in angles)
     notes = raw.texts("overridden") if raw.has("overridden") else []
     note = (f"; your build_cradle sets {', '.join(notes)}: {OVERRIDE_NOTE}" if notes else "")

@@ -62,8 +62,14 @@ def measure_forces(ks: float, kd: float):
 
 
 SPRING_MISTAKES = {
+    "damping sign": "the damping term has the wrong sign: f_a = -[ks (|l| - rest) + kd (v_a - "
+                    "v_b) . u] u, so damping pulls against the relative motion along the spring "
+                    "(a plus inside the brackets).",
     "sign flipped": "your forces are the lab's with the sign flipped: f_a = -[...] l/|l| with "
                     "l = x_a - x_b (a stretched spring pulls a towards b), f_b = -f_a.",
+    "hooke sign": "the Hooke part pushes a stretched spring apart: its sign is flipped (l = x_b - "
+                  "x_a?); with l = x_a - x_b and u = l/|l|, f_a = -ks (|l| - rest) u pulls a "
+                  "towards b.",
     "f[a] += fa": "a particle in several springs gets only one of them: f[a] += fa keeps the "
                   "last write for a repeated index. Use np.add.at(f, a, fa) (or a loop over "
                   "springs).",
@@ -92,6 +98,10 @@ def spring_with(kind: str, x, v, a, b, ks, kd, rest) -> np.ndarray:
     u = l if kind == "not unit" else l / length
     dv = v[a] if kind == "v_a only" else v[a] - v[b]
     stretch = length if kind == "no rest" else length - rest[:, None]
+    if kind == "damping sign":
+        kd = -kd
+    if kind == "hooke sign":
+        ks = -ks
     if kind == "unprojected":
         fa = -ks * stretch * u - kd * dv
     else:

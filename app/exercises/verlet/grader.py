@@ -173,22 +173,43 @@ def measure_drag(m: Student) -> dict:
     return {"xs": run_spring(m, 1 / 60, 2.0, drag=0.01)}
 
 
+def drag_run_with(kind: str) -> np.ndarray:
+    """The drag check's spring run with one of the usual drag mistakes (here, in the parent):
+    'drag sign' x + (1 + drag)(x - x_prev), 'slide literal' (2 - drag) x - x_prev, 'drag twice'
+    x + (1 - drag)^2 (x - x_prev), 'no drag' x + (x - x_prev)."""
+    class Mistake:
+        @staticmethod
+        def verlet_step(x, x_prev, a, h, drag):
+            keep = {"drag sign": 1 + drag, "drag twice": (1 - drag) ** 2,
+                    "no drag": 1.0}.get(kind, 1 - drag)
+            if kind == "slide literal":
+                return (2 - drag) * x - x_prev + a * h * h, x.copy()
+            return x + keep * (x - x_prev) + a * h * h, x.copy()
+    with np.errstate(all="ignore"):
+        return run_spring(Mistake, 1 / 60, 2.0, drag=0.01)
+
+
 def judge_drag(raw: Raw) -> Result:
-    e = spring_energy(raw.array("xs", (121,)), 1 / 60)
+    xs = raw.array("xs", (121,))
+    e = spring_energy(xs, 1 / 60)
     ratio = float(e[-60:].mean() / e[:60].mean())
     expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
-    hint = (DRAG_HINT + " Lowering only the 2 (1.99 x - x_prev) is no drag: it pulls every "
-            "particle towards x = 0.")
-    if not math.isfinite(ratio) or ratio > 3.0:
-        hint = ("the energy grows without bound, with drag or without: fix 'free fall' and "
-                "'energy kept' first. " + hint)
-    elif ratio > 1.05:
-        hint = "the energy GROWS: (1 - drag), not (1 + drag). " + hint
-    elif ratio > 0.99:
-        hint = "almost no energy lost: did you ignore drag? " + hint
-    elif within(ratio, expected ** 2, 0.02):
-        hint = ("twice the loss of (1 - drag): the drag is applied twice ((1 - drag)^2, or to "
-                "both x and x_prev). " + hint)
+    named = {kind: text for kind, text in (
+        ("drag sign", "the energy GROWS: (1 - drag), not (1 + drag)."),
+        ("slide literal", "Lowering only the 2 (1.99 x - x_prev) is no drag: it pulls every "
+                          "particle towards x = 0."),
+        ("no drag", "no energy lost: drag is not used (x + (x - x_prev) + a h^2 whatever "
+                    "drag is)."),
+        ("drag twice", "twice the loss of (1 - drag): the drag is applied twice ((1 - drag)^2, "
+                       "or to both x and x_prev).")) if np.allclose(
+            xs, drag_run_with(kind), rtol=1e-9, atol=1e-9)}
+    hint = " ".join(named.values()) + (" " if named else "") + DRAG_HINT
+    if not named:
+        hint = (f"the energy kept over 1 s is {fmt(ratio)}, where (1 - drag) per step keeps "
+                f"{expected:.2f}. " + DRAG_HINT)
+        if not math.isfinite(ratio) or ratio > 3.0:
+            hint = ("the energy grows without bound, with drag or without: fix 'free fall' and "
+                    "'energy kept' first. " + DRAG_HINT)
     return Result(within(ratio, expected, 0.05),
                   f"energy ratio {fmt(ratio)} over 1 s at drag 0.01",
                   f"{expected:.2f} +- 0.05 (x (1 - drag) per step)", hint)
