@@ -347,6 +347,29 @@ MISTAKEN_GRIDS = {
 }
 
 
+def mistaken_counts(x: np.ndarray, cutoff: float, box) -> dict[int, list[str]]:
+    """The counts of tests of the usual mistakes on these particles, each with its hint."""
+    from app.physics.neighbours import all_pair_tests, grid_shape
+    nx, ny = grid_shape(box, cutoff)
+    n, every = len(x), all_pair_tests(len(x))
+    hints = {
+        "all": "that is testing all pairs: the grid's point is to test only the particles of "
+               "the 3 x 3 cells around each particle's cell",
+        "swapped": f"your count is that of a grid with w and h (or x and y) swapped: nx = floor(w "
+                   f"/ cutoff) = {nx} cells across, {ny} down, with box = (w, h) = ({box[0]:g}, "
+                   f"{box[1]:g}); a particle's cell is (floor(x nx / w), floor(y ny / h))",
+        "big": f"your count is that of cells two cut-offs wide: cells larger than the cut-off "
+               f"hold more candidates; nx = floor(w / cutoff) = {nx} cells across, {ny} down"}
+    out: dict[int, list[str]] = {}
+    for count in {every, 2 * every, n * n}:
+        out.setdefault(count, []).append(hints["all"])
+    for kind in ("swapped", "big"):
+        for count in grid_counts(x, cutoff, box, MISTAKEN_GRIDS[kind]):
+            if hints[kind] not in out.setdefault(count, []):
+                out[count].append(hints[kind])
+    return out
+
+
 def judge_count(x, cutoff, box, tests: int, found: int, ok_pairs: bool, measured: str,
                 hint: str) -> Result:
     """The pairs and the count of tests against the counts of GRIDS on these particles."""
@@ -370,16 +393,10 @@ def judge_count(x, cutoff, box, tests: int, found: int, ok_pairs: bool, measured
                 f"({found:,}): "
                 "count every distance you compute (every candidate from the cells, also those "
                 "too far apart), not only the pairs kept")
-    elif tests in (every, 2 * every, n * n) and every > 10 * found:
-        hint = ("that is testing all pairs: the grid's point is to test only the particles of "
-                "the 3 x 3 cells around each particle's cell")
-    elif tests in grid_counts(x, cutoff, box, MISTAKEN_GRIDS["swapped"]):
-        hint = (f"your count is that of a grid with w and h (or x and y) swapped: nx = floor(w / "
-                f"cutoff) = {nx} cells across, {ny} down, with box = (w, h) = ({box[0]:g}, "
-                f"{box[1]:g}); a particle's cell is (floor(x nx / w), floor(y ny / h))")
-    elif tests in grid_counts(x, cutoff, box, MISTAKEN_GRIDS["big"]):
-        hint = (f"your count is that of cells two cut-offs wide: cells larger than the cut-off "
-                f"hold more candidates; nx = floor(w / cutoff) = {nx} cells across, {ny} down")
+    elif tests in mistaken_counts(x, cutoff, box):
+        named = mistaken_counts(x, cutoff, box)[tests]
+        hint = (named[0] if len(named) == 1 else "your count matches more than one usual "
+                "mistake on these particles: " + "; or ".join(named))
     else:
         hint = (f"{tests:,} is the count of no cell grid on these particles: the nearest, "
                 f"{nearest:,} ({counts[nearest]}), is {abs(tests - nearest):,} away. tests is "

@@ -117,7 +117,7 @@ def judge_row(raw: Raw, balls: int, radius: float, lifted: int) -> Result:
            f"a ball's radius is not the radius asked ({radius:g})":
                bool(np.abs(radii - radius).max() > 1e-9),
            "neighbouring balls overlap at rest (pitch < 2 radius)":
-               bool(pitch.min() < 2 * radius - 1e-9) if balls > 1 else False}
+               bool(np.abs(pitch).min() < 2 * radius - 1e-9) if balls > 1 else False}
     wrong = [text for text, bad in bar.items() if bad]
     ok = angle_err < 1e-6 and length_err < 1e-6 and not wrong
     hint = ("ball i = anchor i + STRING (sin th, cos th), th = -LIFT_ANGLE for the first `lifted` "
