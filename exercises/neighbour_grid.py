@@ -29,6 +29,10 @@ cell borders and the box's edges, and for 0, 1 and 2 particles; and on 2000 part
 particle dance's density, in a box 1440 x 480), your test count is more than the pairs found (a
 grid also tests candidates that turn out too far) and at most the particles of the 9 cells around
 each particle (about 4% of all pairs).
+Then random boxes, cut-offs (w / cutoff with any fraction) and particles (seeded: the seed is
+printed, --seed N repeats it): every pair exactly, and your test count must be the count of
+candidates of a cell grid on those particles, which the grader computes itself (cells of
+floor(w / R), or R / 2 or R / 3 searched 2 or 3 cells around; each pair once or both ways).
 
 Hints:
   * Sort the particles into cells first: a dict from (cx, cy) to a list of indices, or NumPy

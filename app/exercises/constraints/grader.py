@@ -15,6 +15,8 @@ student's satisfy_rods returned; each judge measures:
   stretch falls       a hanging 6 x 6 cloth (top row pinned) for 1/3 s at 60 Hz, stepped by the
                       lab's Verlet: the mean stretch after 1, 5, 25 sweeps per step falls
   coincident          two particles at one point, rest 10: the result is finite (no 0/0)
+  random rods      4 random sets of rods (seeded; pins, masses, zero-length rods, ends at one
+                   point): the slide's sweeps in one of the orders of the rods, within rounding
 """
 
 from __future__ import annotations

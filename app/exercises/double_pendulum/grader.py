@@ -13,6 +13,8 @@ where the bodies are and what the scene measured; the judges decide:
   energy kept      released high (the scene's 120 and 150 degrees), 20 s: |energy drift| < 1%
                    at every step (a NaN bob is no drift of 0: it fails)
   joints hold      the same release, 5 s: the rods' length error stays under 1 px (`pin_error`)
+  random pendulums 3 random builds (seeded; any anchor, lengths, masses, angles) as asked, and a
+                   small random release within 1 px of the equations for 1.5 s
 """
 
 from __future__ import annotations

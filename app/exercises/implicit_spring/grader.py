@@ -23,6 +23,10 @@ functions returned (positions, velocities, A and rhs); each judge does the physi
   inputs kept      x and v are not changed
 A failed step is compared with the usual mistakes (explicit Euler, rhs without h K v, h K for
 h^2 K, K without its transverse part, ...) and the hint names the one it matches.
+  random systems   4 random systems (seeded; pins at rest, gravity any way): A and rhs and the
+                   step against the lab's linear system, within eps x cond(A) x |dv|
+Every pinned particle of these checks is at rest (v = 0): the starter's 'it won't move' and the
+lab's step agree, and a step that holds the pin still passes.
 """
 
 from __future__ import annotations

@@ -19,6 +19,8 @@ sets of unordered pairs, with all pairs closer than the cut-off:
                    reason to exist
 A miss or an extra is named: pairs across a cell border missed, a particle on the far edge, a
 distance test with <= or none at all, a pair given twice or a particle paired with itself.
+  random boxes     4 random boxes, cut-offs and particle sets (seeded): every pair, and a grid's
+                   count of tests
 """
 
 from __future__ import annotations

@@ -13,6 +13,10 @@ hertz 120 x 30 substeps). The measures run it in the child and send back what th
                    `balls_out`, counted in the half swing after the first impact)
   middle still     2 lifted, 10 s: the balls between stay within 2 px of rest (`middle_max_drift`)
   energy kept      1 lifted, 10 s: more than 95% of the energy is left (`energy_ratio`)
+  random rows      3 random rows (seeded; any balls, radius, lifted) hang as asked, and a random
+                   row gives k in, k out
+Settings a builder sets on the space that the scene sets itself (gravity, damping, iterations)
+are named in 'lifted as asked' and in the live scene's HUD (overridden, never silently).
 """
 
 from __future__ import annotations

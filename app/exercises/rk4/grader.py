@@ -16,6 +16,7 @@ student's steps produced (the stability check: the limit its bisection found); e
                           order, is the trapezoid rule (0.34375), Ralston's is exact (1/3)
   any shape of y          y of shape (3, 2): both steps return shape (3, 2), equal to the lab's
   y kept                  neither step changes the y it was given
+  random ODEs      4 random linear ODEs and cubics (seeded): each step's closed form
 """
 
 from __future__ import annotations

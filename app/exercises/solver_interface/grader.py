@@ -11,6 +11,7 @@ On 4 particles with gravity, drag and two springs:
   any number          3 and 6 particles (a chain of springs): agrees with the lab's, as above
                       (and 4, to tell a count written in from a derivative wrong for all)
   state kept          the state vector passed in is not changed
+  random systems   4 random systems (seeded): the lab's derivative within its rounding
 """
 
 from __future__ import annotations

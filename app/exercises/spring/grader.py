@@ -11,6 +11,7 @@ student's spring_forces returned (or the state their forces moved); each judge c
   damping removes  two particles on a stretched damped spring, 2 s of small symplectic Euler
                    steps: the energy falls below half of its start
   inputs kept      x and v are not changed
+  random springs   4 random sets (seeded): the lab's forces within its rounding
 """
 
 from __future__ import annotations

@@ -17,6 +17,8 @@ does the physics on them:
                    s = (1 - drag) s + g h^2: s = g h^2 / drag, a speed g h / drag = 1500 px/s
                    (+- 0.5). Drag that also scales g h^2 settles at (1 - drag) of it: 1485.
   inputs kept      x and a are not changed; the new x is a new array
+  random particles and steps  4 random systems (seeded) x 5 chained steps, each particle its
+                   own acceleration, any h and drag: the lab's step within its rounding
 """
 
 from __future__ import annotations
