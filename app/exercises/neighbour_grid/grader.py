@@ -13,10 +13,11 @@ sets of unordered pairs, with all pairs closer than the cut-off:
   few particles    0, 1 and 2 particles: no pairs, no error
   pair tests       2000 particles at the particle dance's density (its box's area, 960 x 720,
                    stretched to 1440 x 480: a grid cut with w and h swapped shows), cut-off 40:
-                   the distances computed are more than the pairs found (a grid also tests
-                   candidates that are too far) and at most the particles of the 9 cells around
-                   each particle, summed (about 79 000, 4% of all pairs' 2 million): the grid's
-                   reason to exist
+                   the count of tests the function reports must be the candidate count of a cell
+                   grid on these particles, which the grader computes itself (GRIDS below: the
+                   starter's cells floor(w / R) with 3 x 3, cells R, R/2 or R/3 wide searched 1,
+                   2 or 3 cells around; each pair once or both ways, with or without itself).
+                   Why this and not a count the student could invent: see the comment at GRIDS
 A miss or an extra is named: pairs across a cell border missed, a particle on the far edge, a
 distance test with <= or none at all, a pair given twice or a particle paired with itself.
   random boxes     4 random boxes, cut-offs and particle sets (seeded): every pair, and a grid's
