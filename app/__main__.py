@@ -11,7 +11,7 @@
     python -m app [--headless] --scene NAME --compare A B [C [D]]   variants side by side
     python -m app [--headless] ... [--csv FILE] [--plot M1,M2] [--arrows]   the instruments
     python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|all] [--json] [--out DIR] [--quick]
-    python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
+    python -m app exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR
 
 Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.
 """
@@ -410,7 +410,7 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
 
 
 def exercise_main(argv: list[str]) -> int:
-    """`exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`."""
+    """`exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR`."""
     from app.exercises import cli, exercise_names, get_exercise
     from app.exercises.loading import shown, starter_path
     names = exercise_names()

@@ -1,4 +1,4 @@
-"""`python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`.
+"""`python -m app exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR`.
 
 The command line's parser (app/__main__.py) checks the usage; these functions do the work and
 return the exit code: 0 every check passed, 1 a check failed.
