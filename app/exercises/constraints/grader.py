@@ -296,22 +296,29 @@ RANDOM_CASES = 4
 
 
 def random_cases() -> list[tuple]:
-    """3 to 6 particles, 2 to 5 rods (no two between the same particles), inverse masses from
-    0.2 to 5 or 0 (pinned, about one in four), rests from 0 (a zero-length rod, at most one) to
-    60 px, 1 to 4 sweeps; in the last two cases a rod whose ends start at one point (placed first
-    or in the middle of the list)."""
+    """3 to 5 particles joined in a chain (so that rods share particles and one sweep does not
+    settle them) plus up to 5 rods in all (no two between the same particles), in random order
+    and direction; inverse masses from 0.2 to 5, one particle pinned (w = 0) in half the cases;
+    rests from 0 (a zero-length rod, at most one) to 60 px; 1 to 4 sweeps; in the last two cases
+    a rod whose ends start at one point (placed first or anywhere in the list)."""
     rng = cases_rng("constraints random")
     cases = []
     for k in range(RANDOM_CASES):
-        n = int(rng.integers(3, 7))
-        pairs = [p for p in itertools.combinations(range(n), 2)]
-        m = int(rng.integers(2, min(5, len(pairs)) + 1))
-        chosen = rng.choice(len(pairs), m, replace=False)
-        ab = np.array([pairs[c] for c in chosen])
+        n = int(rng.integers(3, 6))
+        path = rng.permutation(n)              # a chain through every particle: rods that
+        pairs = [tuple(sorted(p)) for p in zip(path[:-1], path[1:])]   # share particles
+        others = [p for p in itertools.combinations(range(n), 2) if p not in pairs]
+        extra = int(rng.integers(0, min(5 - len(pairs), len(others)) + 1))
+        pairs += [others[c] for c in rng.choice(len(others), extra, replace=False)]
+        pairs = [pairs[c] for c in rng.permutation(len(pairs))]
+        m = len(pairs)
+        ab = np.array(pairs)
         ab = np.where(rng.random((m, 1)) < 0.5, ab, ab[:, ::-1])
         a, b = ab[:, 0].astype(np.intp), ab[:, 1].astype(np.intp)
         x = rng.uniform(0.0, 100.0, (n, 2))
-        w = np.where(rng.random(n) < 0.25, 0.0, rng.uniform(0.2, 5.0, n))
+        w = rng.uniform(0.2, 5.0, n)
+        if rng.random() < 0.5:
+            w[int(rng.integers(0, n))] = 0.0                     # one pinned particle
         rest = rng.uniform(5.0, 60.0, m)
         if rng.random() < 0.5:
             rest[int(rng.integers(0, m))] = 0.0                  # a zero-length rod
