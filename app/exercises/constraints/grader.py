@@ -387,11 +387,14 @@ def judge_random(raw: Raw) -> Result:
         hint = ("one sweep fixes every rod once, in some order, each rod from the positions the "
                 "rods before it left; `iterations` sweeps; ends move by their shares w / (w_a + "
                 "w_b); a pinned end (w = 0) never moves.")
-        for mistake, text in SWEEP_MISTAKES.items():
-            if any(np.allclose(out, slide_sweeps(x, a, b, rest, w, iterations, o, mistake),
-                               rtol=0, atol=tol) for o in orders):
-                hint = text + "."
-                break
+        named = [text for mistake, text in SWEEP_MISTAKES.items()
+                 if any(np.allclose(out, slide_sweeps(x, a, b, rest, w, iterations, o, mistake),
+                                    rtol=0, atol=tol) for o in orders)]
+        if len(named) == 1:
+            hint = named[0] + "."
+        elif named:
+            hint = ("this matches more than one usual mistake here: " + "; or ".join(named)
+                    + ".")
         if not np.isfinite(out).all():
             hint = ("NaN or inf: a rod of length 0 (two particles at one point) divides by "
                     "|delta| = 0; divide by max(|delta|, 1e-9). " + hint)
