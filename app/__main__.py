@@ -11,7 +11,7 @@
     python -m app [--headless] --scene NAME --compare A B [C [D]]   variants side by side
     python -m app [--headless] ... [--csv FILE] [--plot M1,M2] [--arrows]   the instruments
     python -m app bench [cloth|integrators|pymunk|mass_spring|particles|clips|frames|all] [--json] [--out DIR] [--quick]
-    python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR
+    python -m app exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR
 
 Bad usage prints one line on stderr that names the problem and the accepted values, and exits 2.
 """
@@ -65,6 +65,11 @@ def _timeout(text: str) -> float:
         raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: seconds "
                                          f"> 0 and at most {MAX_TIMEOUT:g}")
     return value
+
+
+def _seed(text: str) -> int:
+    """--seed: the exercise checks' random cases (a whole number, 0 to 2**32 - 1)."""
+    return _int_in(text, 0, 2 ** 32 - 1, "a seed")
 
 
 def _int_in(text: str, lo: int, hi: int, what: str) -> int:
@@ -425,6 +430,9 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help="one JSON object per exercise")
     c.add_argument("--timeout", type=_timeout, default=CHECK_TIMEOUT,
                    help=f"seconds a check may run (default {CHECK_TIMEOUT:g})")
+    c.add_argument("--seed", type=_seed, default=None,
+                   help="the random cases' seed, 0 to 2**32-1 (default: a new one each run, "
+                   "printed with the verdict; give it to repeat that run's cases)")
     k = sub.add_parser("copy", help="copy the starters into a folder of your own",
                        allow_abbrev=False)
     k.add_argument("folder")
@@ -432,7 +440,7 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
 
 
 def exercise_main(argv: list[str]) -> int:
-    """`exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`."""
+    """`exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR`."""
     from app.exercises import cli, exercise_names, get_exercise
     from app.exercises.loading import shown, starter_path
     names = exercise_names()
@@ -469,7 +477,7 @@ def exercise_main(argv: list[str]) -> int:
         if not os.path.isfile(paths[0]):
             raise UsageError(f"--path '{paths[0]}': no such file; accepted: a .py file, e.g. "
                              f"exercises/{args.name}.py")
-    return cli.check(chosen, paths, args.json, args.timeout)
+    return cli.check(chosen, paths, args.json, args.timeout, args.seed)
 
 
 def build_scene_parser() -> argparse.ArgumentParser:

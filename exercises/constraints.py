@@ -24,6 +24,9 @@ skipped); one rod alone is exactly satisfied after one sweep, squashed or stretc
 of different rest lengths each reach their own; the ends share the correction by inverse mass
 (the centre of mass stays put); a hanging cloth stretches less with more iterations; two
 particles at one point give no NaN.
+Then random sets of rods (seeded: the seed is printed, --seed N repeats it): inverse masses,
+pinned particles, zero-length rods, two ends at one point, 1 to 4 sweeps; your result must be
+the slide's sweeps in some order of the rods (the same order each sweep), within rounding.
 
 Hints:
   * A plain Python loop over the rods is fine here (it is what the slide does); the lab's

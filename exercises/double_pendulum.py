@@ -22,6 +22,9 @@ What the grader measures: the bobs start where asked with their masses, in the s
 both rods, and cannot collide with each other; from a small release the tip stays within 1 px of
 the equations' solution for 2 s; released high, the energy drifts less than 1% in 20 s; the rods'
 lengths hold within 1 px.
+Then random pendulums (seeded: the seed is printed, --seed N repeats it): any anchor, lengths,
+masses and angles are built as asked, and a small random release stays within 1 px of the
+equations.
 
 Hints:
   * moment: pymunk.moment_for_circle(mass, 0, radius).

@@ -53,6 +53,10 @@ stays); one undamped spring at omega h = 10 keeps exactly 1/(1 + (omega h)^2) of
 step (backward Euler's artificial damping); your A and rhs solve to the lab's step, and your step
 agrees with it (1e-9) on a system of five particles (one spring squashed); a stiff chain at 14x
 the explicit limit only loses energy; x and v are not changed.
+Then random systems (seeded: the seed is printed, --seed N repeats it): 2 to 6 particles, any
+springs, masses and pinned particles (at rest: a pinned particle won't move), gravity of any size
+pointing any way, h from 1 ms to 0.5 s: your A and rhs and your step against the lab's linear
+system, within its rounding.
 
 Hints:
   * Build K and D with np.zeros((2 n, 2 n)) and a loop over the springs (a few particles: a loop

@@ -26,9 +26,12 @@ Watch it:   python -m app --scene exercise:neighbour_grid   (your pairs as lines
 What the grader measures: your pairs are exactly all pairs closer than the cut-off (found by
 testing every pair), for random particles, tight clusters (many in one cell), particles on the
 cell borders and the box's edges, and for 0, 1 and 2 particles; and on 2000 particles (the
-particle dance's density, in a box 1440 x 480), your test count is more than the pairs found (a
-grid also tests candidates that turn out too far) and at most the particles of the 9 cells around
-each particle (about 4% of all pairs).
+particle dance's density, in a box 1440 x 480), your test count is the number of candidates of
+a cell grid on those particles (about 2% of all pairs), which the grader counts itself: cells of
+floor(w / R) searched 3 x 3 (or cells R / 2 or R / 3 wide, searched 2 or 3 cells around), each
+candidate pair counted once or both ways round. Then random boxes, cut-offs (w / cutoff with any
+fraction) and particles (seeded: the seed is printed, --seed N repeats it): every pair exactly,
+and again a grid's count.
 
 Hints:
   * Sort the particles into cells first: a dict from (cx, cy) to a list of indices, or NumPy

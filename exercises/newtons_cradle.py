@@ -25,6 +25,10 @@ What the grader measures: the balls hang as above (angles, string lengths, the a
 and centred on CENTRE_X, mass 1 each); then with the cradle scene's own verdict (5 balls, 120 Hz
 x 30 substeps): k in, k out for k = 1, 2, 3; the middle balls stay within 2 px of rest over 10 s;
 more than 95% of the energy is left after 10 s.
+Then random rows (seeded: the seed is printed, --seed N repeats it): 2 to 9 balls of any
+`radius` and any number lifted hang as above, and one random row gives k in, k out. The scene
+sets the space's gravity, damping and iterations itself: if your build_cradle sets them, the
+check and the scene's HUD say they were overridden.
 
 Hints:
   * Leave a hair of space between the balls (gap ~0.02 px): balls pressed together (overlapping

@@ -19,6 +19,8 @@ What the grader measures: the order of each method on a spring and on a pendulum
 fall 16x per halved step for RK4: order 4, and 4x for midpoint: order 2, +- 0.2); that f is
 called at the right times (on dy/dt = t^3 RK4 is exact); and RK4's stability limit on the spring,
 omega*h = 2 sqrt 2 = 2.83 (+- 2%); and that neither step changes the y it was given.
+Then random linear ODEs (seeded: the seed is printed, --seed N repeats it) with y of any shape:
+one step of each method must equal that method's exact value there, within rounding.
 
 Hints:
   * The weights matter: equal weights (k1 + k2 + k3 + k4)/4 give only order 2.

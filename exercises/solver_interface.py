@@ -20,6 +20,8 @@ What the grader measures: your derivative against the lab's particle system
 (app/physics/particles.py) with gravity, drag and springs; dx/dt is exactly v; two calls on the
 same state agree (the accumulator is cleared); doubling the masses halves the accelerations; the
 state you were given is not changed.
+Then random systems (seeded: the seed is printed, --seed N repeats it): 1 to 8 particles,
+any masses, 0 to 4 forces of any kind, compared with the lab's derivative within its rounding.
 
 Hints:
   * x = state[:2 * n].reshape(n, 2) is a view, not a copy: read from it, do not write into it.

@@ -19,6 +19,8 @@ Watch it:   python -m app --scene exercise:spring        (a rope of springs, the
 What the grader measures: your forces against the lab's (app/physics/forces.py, Springs) on
 random systems, the Hooke part and the damping part separately; Newton's third law (all the
 forces add up to zero); a damped spring loses energy; x and v are not changed.
+Then random springs (seeded: the seed is printed, --seed N repeats it): any ks, kd, rests,
+particles in several springs or in none, compared with the lab's forces within its rounding.
 
 Hints:
   * Row-wise dot products: np.sum(p * q, axis=1, keepdims=True).

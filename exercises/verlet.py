@@ -25,6 +25,9 @@ difference is exact for a constant acceleration); on a spring the error must fal
 halves (second order. The slide's "4th order accurate" is true of ONE step, whose error is
 O(h^4); over a fixed time the 1/h steps add up to O(h^2)); with drag 0 a spring keeps its energy;
 with drag 0.01 it loses 1% of its energy per step; x and a must not be changed.
+Then the same on random systems (seeded: the seed is printed, --seed N repeats it): 1 to 40
+particles, each with its own acceleration, any h and drag, compared with the lab's step within
+its rounding.
 
 Hints:
   * NumPy does the whole array at once: no loop over particles.

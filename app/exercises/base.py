@@ -23,6 +23,8 @@ message); `array_of` also notes what came back (float32, NaN) for the hint.
 from __future__ import annotations
 
 import math
+import secrets
+import zlib
 from dataclasses import dataclass, field
 from types import SimpleNamespace
 from typing import Any, Callable
@@ -68,6 +70,57 @@ class Exercise:
     checks: tuple[Check, ...] = field(default=())
 
 
+# ----- the seed of the random cases -------------------------------------------------------------
+# Every check that draws random inputs draws them from `cases_rng(name)`: the run's SEED (a new one
+# each run, printed with the verdict; `--seed N` repeats it) and the check's name. The grader sets
+# SEED (set_seed) before it starts a child; the child is forked from it, so the child's measure
+# and the parent's judge draw the very same inputs, and the judge never reads them from the child.
+SEED = 0
+SEED_BITS = 32
+
+
+def new_seed() -> int:
+    return secrets.randbits(SEED_BITS)
+
+
+def set_seed(seed: int | None) -> int:
+    """Use `seed` (None: a new one) for the random cases from now on; returns it."""
+    global SEED
+    SEED = new_seed() if seed is None else int(seed)
+    return SEED
+
+
+def cases_rng(name: str) -> np.random.Generator:
+    """The generator of one check's random cases: the same in the child and in the parent."""
+    return np.random.default_rng([SEED, zlib.crc32(name.encode())])
+
+
+EPS = float(np.finfo(float).eps)
+
+
+def rounding(scale: float, ops: float = 1.0, safety: float = 64.0) -> float:
+    """The tolerance for comparing with the reference: the rounding its own float64 arithmetic may
+    carry, eps x the size of the numbers it combines (`scale`) x the operations in sequence
+    (`ops`), times a safety factor (another order of the same sums rounds differently: a right
+    answer that adds in another order lands within it, a wrong term does not)."""
+    return safety * EPS * max(scale, 1e-300) * max(ops, 1.0)
+
+
+def counted(value: Any, what: str) -> int:
+    """A count the student's function returned, as a Python int that fits in float64 without
+    loss; BadAnswer naming what came back otherwise (a float with a fraction, NaN, 10**400)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise BadAnswer(f"{what} is a {type(value).__name__}; expected an integer")
+    try:
+        f = float(value)
+    except OverflowError:
+        raise BadAnswer(f"{what} is an integer of {len(str(abs(int(value))))} digits: too large "
+                        "to be a count of anything here") from None
+    if not math.isfinite(f) or f != int(value) or abs(f) > 2 ** 53:
+        raise BadAnswer(f"{what} is {value!r:.40}; expected a whole number below 2**53")
+    return int(value)
+
+
 # ----- the child's side: calling the student's functions --------------------------------------
 NOTES: dict[str, str] = {}      # what came back, noted once per function per check (the hint)
 
@@ -101,8 +154,8 @@ def array_of(value: Any, shape: tuple[int, ...], what: str) -> np.ndarray:
                            "significant digits, too few for these checks; compute in float64 "
                            "(NumPy's default: drop the dtype=np." + kind + ")")
     if not np.isfinite(arr).all() and what + " nan" not in NOTES:
-        NOTES[what + " nan"] = (f"{what} returned NaN or inf: a division by zero (a length of "
-                                "0?), or values that grew without bound")
+        bad = int((~np.isfinite(arr)).sum())
+        NOTES[what + " nan"] = f"{what} returned NaN or inf ({bad} of {arr.size} values)"
     return arr
 
 
@@ -128,7 +181,10 @@ class Raw:
         v = self._get(key)
         if isinstance(v, bool) or not isinstance(v, (int, float)):
             raise Malformed(f"'{key}' is not a number")
-        return float(v)
+        try:
+            return float(v)
+        except OverflowError:          # an integer beyond float64 (10**400)
+            raise Malformed(f"'{key}' is a number too large for float64") from None
 
     def optional(self, key: str) -> float | None:
         """A number, or None where the measurement says 'none yet'."""
@@ -138,6 +194,8 @@ class Raw:
         v = self._get(key)
         if isinstance(v, bool) or not isinstance(v, int):
             raise Malformed(f"'{key}' is not an integer")
+        if abs(v) > 2 ** 63:            # every count a check sends fits in 64 bits
+            raise Malformed(f"'{key}' is an integer too large ({len(str(abs(v)))} digits)")
         return v
 
     def flag(self, key: str) -> bool:

@@ -1,4 +1,4 @@
-"""`python -m app exercise list | check NAME|all [--path P] [--reference] [--json] | copy DIR`.
+"""`python -m app exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR`.
 
 The command line's parser (app/__main__.py) checks the usage; these functions do the work and
 return the exit code: 0 every check passed, 1 a check failed.
@@ -40,12 +40,12 @@ def list_exercises() -> int:
 
 @quiet_pipe
 def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
-          timeout: float = CHECK_TIMEOUT) -> int:
-    """Grade each exercise on its file (None: the lab's reference), several at once; print the
-    reports in order (what the student's code printed first, on stderr, capped), and a summary
-    table for more than one."""
+          timeout: float = CHECK_TIMEOUT, seed: int | None = None) -> int:
+    """Grade each exercise on its file (None: the lab's reference), several at once, on the
+    random cases of `seed` (None: a new one, printed); print the reports in order (what the
+    student's code printed first, on stderr, capped), and a summary table for more than one."""
     reports: list[Report] = []
-    for report in grade_many(list(zip(exercises, paths)), timeout):
+    for report in grade_many(list(zip(exercises, paths)), timeout, seed=seed):
         reports.append(report)
         if report.output_bytes:
             print(report.output_text(), file=sys.stderr, flush=True)
@@ -58,6 +58,8 @@ def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
         for r in reports:
             n = sum(c.passed for c in r.checks)
             print(f"{r.exercise:18} {n:>3}/{len(r.checks):<3}  {'pass' if r.passed else 'FAIL'}")
+        print(f"seed {reports[0].seed}: python -m app exercise check ... --seed "
+              f"{reports[0].seed} repeats these random cases")
     return 0 if all(r.passed for r in reports) else 1
 
 

@@ -388,9 +388,12 @@ def chosen(exercise: Exercise, only: tuple[str, ...] | None) -> list[Check]:
 
 
 def grade_many(jobs: list[tuple[Exercise, str | None]], timeout: float = CHECK_TIMEOUT,
-               only: tuple[str, ...] | None = None, parallel: int = JOBS) -> Iterator[Report]:
+               only: tuple[str, ...] | None = None, parallel: int = JOBS,
+               seed: int | None = None) -> Iterator[Report]:
     """Grade each (exercise, path) (path None: the lab's reference answer); yield the reports
-    in order, as soon as each is complete."""
+    in order, as soon as each is complete. `seed` picks the checks' random cases (None: a new
+    one; each report carries it)."""
+    base.set_seed(seed)
     if not CAN_FORK:
         for exercise, path in jobs:
             yield in_process(exercise, path, chosen(exercise, only))
@@ -400,10 +403,10 @@ def grade_many(jobs: list[tuple[Exercise, str | None]], timeout: float = CHECK_T
 
 
 def grade(exercise: Exercise, path: str | None, timeout: float = CHECK_TIMEOUT,
-          only: tuple[str, ...] | None = None) -> Report:
+          only: tuple[str, ...] | None = None, seed: int | None = None) -> Report:
     """Grade the module at `path` (None: the lab's reference answer): the import, then every
-    check (or those named in `only`)."""
-    return next(grade_many([(exercise, path)], timeout, only, 1))
+    check (or those named in `only`), on the random cases of `seed` (None: a new one)."""
+    return next(grade_many([(exercise, path)], timeout, only, 1, seed))
 
 
 def import_probe(exercise: Exercise, path: str, timeout: float = CHECK_TIMEOUT) -> CheckReport:

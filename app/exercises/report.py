@@ -7,11 +7,12 @@ malformed value) into a CheckReport. A NaN never passes, whatever the judge comp
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
 
+from app.exercises import base
 from app.exercises.base import Check, Malformed, Raw, Result, non_finite
 from app.exercises.channel import Frame
 
@@ -43,6 +44,7 @@ class Report:
     checks: list[CheckReport]
     output: str = ""         # the first OUTPUT_SHOWN bytes of what the student's code printed
     output_bytes: int = 0    # how much it printed in all
+    seed: int = field(default_factory=lambda: base.SEED)   # the random cases' (--seed repeats)
 
     @property
     def passed(self) -> bool:
@@ -50,11 +52,13 @@ class Report:
 
     def to_json(self) -> dict[str, Any]:
         return {"exercise": self.exercise, "path": self.path, "passed": self.passed,
-                "checks": [asdict(c) for c in self.checks], "output_bytes": self.output_bytes}
+                "seed": self.seed, "checks": [asdict(c) for c in self.checks],
+                "output_bytes": self.output_bytes}
 
     def text(self) -> str:
         n = sum(c.passed for c in self.checks)
-        head = f"{self.exercise}: {self.path}: {n}/{len(self.checks)} checks pass"
+        head = (f"{self.exercise}: {self.path}: {n}/{len(self.checks)} checks pass (seed "
+                f"{self.seed}: --seed {self.seed} repeats these random cases)")
         return "\n".join([head] + [line for c in self.checks for line in c.lines()])
 
     def output_text(self) -> str:

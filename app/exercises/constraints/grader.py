@@ -15,15 +15,20 @@ student's satisfy_rods returned; each judge measures:
   stretch falls       a hanging 6 x 6 cloth (top row pinned) for 1/3 s at 60 Hz, stepped by the
                       lab's Verlet: the mean stretch after 1, 5, 25 sweeps per step falls
   coincident          two particles at one point, rest 10: the result is finite (no 0/0)
+  random rods      4 random sets of rods (seeded; pins, masses, zero-length rods, ends at one
+                   point): the slide's sweeps in one of the orders of the rods, within rounding
 """
 
 from __future__ import annotations
 
+import itertools
+import math
 from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Raw, Result, Student, array_of, fmt, within
+from app.exercises.base import (Check, Exercise, Raw, Result, Student, array_of, cases_rng, fmt,
+                                rounding, within)
 
 
 def reference() -> SimpleNamespace:
@@ -42,20 +47,24 @@ SWAPPED_HINT = ("each end moved by the OTHER end's share: x_a moves by w_a / (w_
 
 
 def relax_with(kind: str, x, a, b, rest, w, iterations) -> np.ndarray:
-    """The slide's sweeps with one of the usual mistakes in the shares (in the parent)."""
+    """The slide's sweeps with one of the usual mistakes (in the parent): 'equal shares', 'swapped
+    shares', 'no share sum' (w, not w / (w_a + w_b)), 'no length' (diff not divided by |delta|),
+    'no pinned skip' (0 / 0 for a rod between two pinned particles)."""
     x = np.array(x, dtype=float)
     for _ in range(iterations):
         for k in range(len(a)):
             i, j = a[k], b[k]
             total = w[i] + w[j]
-            if total == 0:
+            if total == 0 and kind != "no pinned skip":
                 continue
             delta = x[j] - x[i]
             d = max(float(np.linalg.norm(delta)), 1e-9)
-            c = delta * (d - rest[k]) / d
-            si, sj = ((0.5, 0.5) if kind == "equal shares" else
-                      (w[j] / total, w[i] / total) if kind == "swapped shares" else
-                      (w[i] / total, w[j] / total))
+            c = delta * (d - rest[k]) / (1.0 if kind == "no length" else d)
+            with np.errstate(all="ignore"):
+                si, sj = ((0.5, 0.5) if kind == "equal shares" else
+                          (w[i], w[j]) if kind == "no share sum" else
+                          (w[j] / total, w[i] / total) if kind == "swapped shares" else
+                          (w[i] / total, w[j] / total))
             x[i] += c * si
             x[j] -= c * sj
     return x
@@ -78,21 +87,27 @@ def chain() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
 
 def measure_pinned(m: Student) -> dict:
     x, a, b, w = chain()
-    return {"x": relax(m, x, a, b, np.full(len(a), 10.0), w, 20)}
+    return {"x": relax(m, x, a, b, np.full(len(a), 10.0), w, 20),
+            "x1": relax(m, x, a, b, np.full(len(a), 10.0), w, 1)}    # where a NaN starts
 
 
 def judge_pinned(raw: Raw) -> Result:
     x, a, b, w = chain()
     out = raw.array("x", x.shape)
     moved = float(np.abs(out[w == 0] - x[w == 0]).max())
-    hint = WEIGHT_HINT
+    hint = (f"the pinned particles (w = 0) moved by up to {fmt(moved)} px in 20 sweeps; each "
+            "end moves by its share w_a / (w_a + w_b) of the correction, 0 for w = 0.")
     if np.allclose(out, relax_with("swapped shares", x, a, b, np.full(len(a), 10.0), w, 20),
                    atol=1e-9):
         hint = SWAPPED_HINT
     elif np.allclose(out, relax_with("equal shares", x, a, b, np.full(len(a), 10.0), w, 20),
                      atol=1e-9):
         hint = "the ends share each correction 50/50, pinned or not: " + WEIGHT_HINT
-    if not np.isfinite(out[w == 0]).all():
+    with np.errstate(all="ignore"):
+        no_skip = relax_with("no pinned skip", x, a, b, np.full(len(a), 10.0), w, 1)
+    first = raw.array("x1", x.shape) if raw.has("x1") else out
+    if not np.isfinite(out[w == 0]).all() and np.array_equal(np.isfinite(first),
+                                                            np.isfinite(no_skip)):
         hint = ("NaN at the pinned particles: a rod whose two ends are both pinned has "
                 "w_a + w_b = 0, and its shares 0 / 0 are NaN. Skip such a rod (if w_a + w_b == 0: "
                 "continue). " + hint)
@@ -132,9 +147,18 @@ def judge_one_rod(raw: Raw) -> Result:
                 "`iterations` times? range(iterations), not range(iterations - 1).")
     elif length > 50.0 + 1e-9:
         hint = "the rod got LONGER (50 -> " + f"{length:.3g}): a sign is flipped. " + hint
-    elif length < REST - 1e-9:
+    elif np.allclose(out, relax_with("no share sum", STRETCHED, [0], [1], [REST], ROD_W, 1),
+                     atol=1e-9):
         hint = (f"the ends moved too far (50 px -> {length:.3g} along the old rod, rest 20; "
-                "below 0 they crossed): did you forget to divide by w_a + w_b? " + hint)
+                "below 0 they crossed): they moved by w times the correction; did you forget "
+                "to divide by w_a + w_b? " + hint)
+    elif np.allclose(out, relax_with("no length", STRETCHED, [0], [1], [REST], ROD_W, 1),
+                     atol=1e-9):
+        hint = ("the correction is not divided by the length: diff = (|delta| - rest) / "
+                "|delta|, so that delta * diff is (|delta| - rest) along the rod. " + hint)
+    else:
+        hint = (f"after one pass the rod is {length:.6g} px along its old direction (rest "
+                f"{REST:g}, was 50). " + hint)
     return Result(within(err, 0.0, 1e-9), f"|length - rest| = {fmt(err)} px after one pass",
                   "< 1e-09 px", hint)
 
@@ -260,6 +284,131 @@ def judge_coincident(raw: Raw) -> Result:
                   "two particles at one point have |delta| = 0: divide by max(|delta|, 1e-9).")
 
 
+# ----- random rods, masses, pins and sweeps (a new seed each run) --------------------------------
+# One sweep fixes the rods one at a time, so its result depends on their order: the slide's loop
+# takes them in file order, the lab's batches (app/physics/jakobsen.py) in another. The judge
+# therefore replays the slide's sweeps in EVERY order of the rods (at most 5 rods: 120 orders,
+# the same order each sweep) and passes the answer that matches one of them, within the
+# rounding of those sweeps. A batch of rods that share no particle, solved at once, is one of
+# these orders; a sweep that takes every rod's direction at its start (Jacobi), one sweep too
+# many or too few, or a guard that leaves the whole sweep at a zero length is none of them.
+RANDOM_CASES = 4
+
+
+def random_cases() -> list[tuple]:
+    """3 to 5 particles joined in a chain (so that rods share particles and one sweep does not
+    settle them) plus up to 5 rods in all (no two between the same particles), in random order
+    and direction; inverse masses from 0.2 to 5, one particle pinned (w = 0) in half the cases;
+    rests from 0 (a zero-length rod, at most one) to 60 px; 1 to 4 sweeps; in the last two cases
+    a rod whose ends start at one point (placed first or anywhere in the list)."""
+    rng = cases_rng("constraints random")
+    cases = []
+    for k in range(RANDOM_CASES):
+        n = int(rng.integers(3, 6))
+        path = rng.permutation(n)              # a chain through every particle: rods that
+        pairs = [tuple(sorted(p)) for p in zip(path[:-1], path[1:])]   # share particles
+        others = [p for p in itertools.combinations(range(n), 2) if p not in pairs]
+        extra = int(rng.integers(0, min(5 - len(pairs), len(others)) + 1))
+        pairs += [others[c] for c in rng.choice(len(others), extra, replace=False)]
+        pairs = [pairs[c] for c in rng.permutation(len(pairs))]
+        m = len(pairs)
+        ab = np.array(pairs)
+        ab = np.where(rng.random((m, 1)) < 0.5, ab, ab[:, ::-1])
+        a, b = ab[:, 0].astype(np.intp), ab[:, 1].astype(np.intp)
+        x = rng.uniform(0.0, 100.0, (n, 2))
+        w = rng.uniform(0.2, 5.0, n)
+        if rng.random() < 0.5:
+            w[int(rng.integers(0, n))] = 0.0                     # one pinned particle
+        rest = rng.uniform(5.0, 60.0, m)
+        if rng.random() < 0.5:
+            rest[int(rng.integers(0, m))] = 0.0                  # a zero-length rod
+        if k >= 2:                                               # ends at one point
+            r = 0 if k == 2 else int(rng.integers(0, m))
+            x[b[r]] = x[a[r]]
+            w[a[r]] = w[a[r]] or 1.0                             # and free to move
+        cases.append((x, a, b, rest, w, int(rng.integers(1, 5))))
+    return cases
+
+
+def slide_sweeps(x, a, b, rest, w, iterations, order, mistake: str = "") -> np.ndarray:
+    """The slide's sweeps with the rods in `order` (in the parent), or one of the usual mistakes:
+    'directions once per sweep', 'one sweep too many', 'one sweep short', 'break at a zero
+    length'."""
+    x = np.array(x, dtype=float)
+    sweeps = iterations + {"one sweep too many": 1, "one sweep short": -1}.get(mistake, 0)
+    for _ in range(sweeps):
+        start = x.copy()
+        for k in order:
+            i, j = a[k], b[k]
+            total = w[i] + w[j]
+            if total == 0:
+                continue
+            delta = (start if mistake == "directions once per sweep" else x)[j] - \
+                (start if mistake == "directions once per sweep" else x)[i]
+            d = math.hypot(delta[0], delta[1])
+            if d == 0 and mistake == "break at a zero length":
+                break
+            d = max(d, 1e-9)
+            c = delta * (d - rest[k]) / d
+            x[i] += c * (w[i] / total)
+            x[j] -= c * (w[j] / total)
+    return x
+
+
+SWEEP_MISTAKES = {
+    "directions once per sweep": "each rod's delta is taken at the START of the sweep (all "
+        "directions at once, then every correction added: Jacobi): a rod must see the positions "
+        "the rods before it in this sweep left ('fix one rod at a time'); read delta = x[b] - "
+        "x[a] inside the loop over the rods, from the array you are changing",
+    "one sweep too many": "one sweep too many: the loop runs iterations + 1 times (range("
+        "iterations + 1), or a sweep before the loop as well as in it); it runs `iterations` "
+        "times",
+    "one sweep short": "one sweep short: range(iterations - 1); it runs `iterations` times",
+    "break at a zero length": "the sweep stops at a rod of length 0 (`break` in the guard): "
+        "that leaves every rod after it unfixed in that sweep. Skip only that rod (continue), "
+        "or divide by max(|delta|, 1e-9), which moves nothing when delta = 0",
+}
+
+
+def measure_random(m: Student) -> dict:
+    return {str(k): relax(m, *case) for k, case in enumerate(random_cases())}
+
+
+def judge_random(raw: Raw) -> Result:
+    for k, (x, a, b, rest, w, iterations) in enumerate(random_cases()):
+        out = raw.array(str(k), x.shape)
+        tol = rounding(float(np.abs(x).max() + rest.max()), ops=8 * iterations * len(a))
+        orders = list(itertools.permutations(range(len(a))))
+        errs = [float(np.abs(out - slide_sweeps(x, a, b, rest, w, iterations, o)).max())
+                for o in orders]
+        err = min(errs) if all(map(math.isfinite, errs)) else math.inf
+        if err <= tol:
+            continue
+        hint = ("one sweep fixes every rod once, in some order, each rod from the positions the "
+                "rods before it left; `iterations` sweeps; ends move by their shares w / (w_a + "
+                "w_b); a pinned end (w = 0) never moves.")
+        named = [text for mistake, text in SWEEP_MISTAKES.items()
+                 if any(np.allclose(out, slide_sweeps(x, a, b, rest, w, iterations, o, mistake),
+                                    rtol=0, atol=tol) for o in orders)]
+        if len(named) == 1:
+            hint = named[0] + "."
+        elif named:
+            hint = ("this matches more than one usual mistake here: " + "; or ".join(named)
+                    + ".")
+        if not np.isfinite(out).all():
+            hint = ("NaN or inf: a rod of length 0 (two particles at one point) divides by "
+                    "|delta| = 0; divide by max(|delta|, 1e-9). " + hint)
+        pinned = w == 0
+        moved = float(np.abs(out[pinned] - x[pinned]).max()) if pinned.any() else 0.0
+        return Result(False, f"case {k + 1} of {RANDOM_CASES} ({len(x)} particles, {len(a)} rods, "
+                      f"{iterations} sweeps, {int(pinned.sum())} pinned): {fmt(err)} px off the "
+                      f"slide's sweeps in the nearest of the {len(orders)} orders of the rods"
+                      + (f"; pinned particles moved {fmt(moved)} px" if moved else ""),
+                      f"< {tol:.2g} px (the sweeps' own rounding)", hint)
+    return Result(True, f"{RANDOM_CASES} random sets of rods: each the slide's sweeps in an order "
+                  "of the rods", "the slide's sweeps, within their rounding")
+
+
 EXERCISE = Exercise(
     name="constraints",
     title="Jakobsen's rods: relaxing distance constraints",
@@ -273,5 +422,6 @@ EXERCISE = Exercise(
             Check("shares by inverse mass", measure_rod(STRETCHED), judge_shares),
             Check("each rod its rest", measure_rests, judge_rests),
             Check("stretch falls", measure_stretch, judge_stretch),
-            Check("coincident particles", measure_coincident, judge_coincident)),
+            Check("coincident particles", measure_coincident, judge_coincident),
+            Check("random rods and sweeps", measure_random, judge_random)),
 )

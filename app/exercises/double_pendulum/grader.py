@@ -13,6 +13,8 @@ where the bodies are and what the scene measured; the judges decide:
   energy kept      released high (the scene's 120 and 150 degrees), 20 s: |energy drift| < 1%
                    at every step (a NaN bob is no drift of 0: it fails)
   joints hold      the same release, 5 s: the rods' length error stays under 1 px (`pin_error`)
+  random pendulums 3 random builds (seeded; any anchor, lengths, masses, angles) as asked, and a
+                   small random release within 1 px of the equations for 1.5 s
 """
 
 from __future__ import annotations
@@ -20,7 +22,8 @@ from __future__ import annotations
 import math
 from types import SimpleNamespace
 
-from app.exercises.base import BadAnswer, Check, Exercise, Raw, Result, Student, fmt, within
+from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, cases_rng, fmt,
+                                within)
 from app.exercises.pymunk_run import run_scene
 
 SOFT_HINT = ("pymunk's joints are soft by default: they correct only part of the length error "
@@ -33,10 +36,11 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(build_double_pendulum=build_double_pendulum)
 
 
-def measure_built(m: Student) -> dict:
+def measure_built(m: Student, anchor=ANCHOR, lengths=LENGTHS, masses=MASSES,
+                  angles=ANGLES) -> dict:
     import pymunk
     space = pymunk.Space()
-    pair = m.build_double_pendulum(space, ANCHOR, LENGTHS, MASSES, ANGLES)
+    pair = m.build_double_pendulum(space, anchor, lengths, masses, angles)
     if (not isinstance(pair, (tuple, list)) or len(pair) != 2
             or not all(isinstance(b, pymunk.Body) for b in pair)):
         raise BadAnswer(f"build_double_pendulum returned {pair!r:.200}; expected (body1, body2)")
@@ -52,7 +56,7 @@ def measure_built(m: Student) -> dict:
                 sb.filter)) for sa in pair[0].shapes for sb in pair[1].shapes)}
 
 
-def placements() -> dict[tuple, str]:
+def placements(ANCHOR=ANCHOR, LENGTHS=LENGTHS, ANGLES=ANGLES) -> dict[tuple, str]:  # noqa: N803
     """Where the usual slips put the two bobs, and what to say."""
     def bobs(angles, lengths, trig, second_from_anchor=False):
         (a1, a2), (l1, l2) = angles, lengths
@@ -75,7 +79,8 @@ def placements() -> dict[tuple, str]:
     }
 
 
-def judge_built(raw: Raw) -> Result:
+def judge_built(raw: Raw, ANCHOR=ANCHOR, LENGTHS=LENGTHS, MASSES=MASSES,  # noqa: N803
+                ANGLES=ANGLES) -> Result:
     p1 = (ANCHOR[0] + LENGTHS[0] * math.sin(ANGLES[0]),
           ANCHOR[1] + LENGTHS[0] * math.cos(ANGLES[0]))
     p2 = (p1[0] + LENGTHS[1] * math.sin(ANGLES[1]), p1[1] + LENGTHS[1] * math.cos(ANGLES[1]))
@@ -105,7 +110,7 @@ def judge_built(raw: Raw) -> Result:
         hint = "the masses are swapped: body1 has masses[0], body2 masses[1]. " + hint
     else:                               # where the usual slips put the bobs
         got = (raw.array("p1", (2,)), raw.array("p2", (2,)))
-        for (c1, c2), text in placements().items():
+        for (c1, c2), text in placements(ANCHOR, LENGTHS, ANGLES).items():
             if max(math.dist(got[0], c1), math.dist(got[1], c2)) < 1e-6:
                 hint = text + " " + hint
                 break
@@ -162,6 +167,67 @@ def judge_joints(raw: Raw) -> Result:
                   SOFT_HINT)
 
 
+# ----- random pendulums (a new seed each run) ----------------------------------------------------
+def random_pendulums() -> list[tuple]:
+    """(anchor, lengths, masses, angles): anchors anywhere on the screen, rods 20 to 300 px,
+    masses 0.05 to 20, angles from -pi to pi; the last one small (within 12 degrees), of the
+    scene's ranges and masses 0.5 to 2 (pymunk's iterative solver parts from the equations at a
+    mass ratio of 1:50, whoever builds it), run beside the equations for 1.5 s."""
+    rng = cases_rng("double_pendulum random")
+    out = []
+    for k in range(4):
+        small = k == 3
+        anchor = (480.0, 350.0) if small else tuple(rng.uniform(0.0, 900.0, 2))
+        lengths = tuple(rng.uniform(20.0, 170.0 if small else 300.0, 2))
+        masses = (tuple(rng.uniform(0.5, 2.0, 2)) if small else   # pymunk's solver drifts
+                  tuple(10 ** rng.uniform(math.log10(0.05), math.log10(20.0), 2)))  # at 1:50
+        angles = tuple(rng.uniform(-1.0, 1.0, 2) * (math.radians(12.0) if small else math.pi))
+        out.append((anchor, lengths, masses, angles))
+    return out
+
+
+def measure_random(m: Student) -> dict:
+    cases = random_pendulums()
+    out = {str(k): measure_built(m, *case) for k, case in enumerate(cases)}
+    _, lengths, masses, angles = cases[-1]
+    worst = [0.0]
+
+    def watch(scene):
+        d = scene.metrics()["reference_divergence"]
+        d = math.inf if d is None else d
+        if worst[0] == worst[0] and not d <= worst[0]:
+            worst[0] = d
+    settings = {"angle1": math.degrees(angles[0]), "angle2": math.degrees(angles[1]),
+                "length1": lengths[0], "length2": lengths[1], "mass1": masses[0],
+                "mass2": masses[1]}
+    scene = run_scene("double_pendulum", m, 1.5, settings, watch)
+    out["worst"], out["finite"] = worst[0], scene.is_finite()
+    return out
+
+
+def judge_random(raw: Raw) -> Result:
+    cases = random_pendulums()
+    for k, case in enumerate(cases):
+        r = judge_built(Raw(raw.values.get(str(k))), *case)
+        if not r.passed:
+            anchor, lengths, masses, angles = case
+            return Result(False, f"anchor ({anchor[0]:.4g}, {anchor[1]:.4g}), lengths "
+                          f"{lengths[0]:.4g}, {lengths[1]:.4g}, masses {masses[0]:.3g}, "
+                          f"{masses[1]:.3g}, angles {angles[0]:.3g}, {angles[1]:.3g} rad: "
+                          f"{r.measured}", r.bound, r.hint)
+    worst = raw.number("worst")
+    _, lengths, masses, angles = cases[-1]
+    if not (raw.flag("finite") and worst < 1.0):
+        return Result(False, f"released at {math.degrees(angles[0]):.3g} and "
+                      f"{math.degrees(angles[1]):.3g} degrees (lengths {lengths[0]:.4g}, "
+                      f"{lengths[1]:.4g}, masses {masses[0]:.3g}, {masses[1]:.3g}): the tip up "
+                      f"to {fmt(worst)} px from the equations' in 1.5 s", "< 1 px",
+                      "two PinJoints: anchor-bob1 and bob1-bob2, each between the bodies' "
+                      "centres, with the lengths and masses given. " + SOFT_HINT)
+    return Result(True, f"{len(cases)} random pendulums built as asked; a small release within "
+                  f"{fmt(worst)} px of the equations", "as asked; < 1 px")
+
+
 EXERCISE = Exercise(
     name="double_pendulum",
     title="A double pendulum in pymunk",
@@ -172,5 +238,6 @@ EXERCISE = Exercise(
     checks=(Check("built as asked", measure_built, judge_built),
             Check("agrees with the equations", measure_agrees, judge_agrees),
             Check("energy kept", measure_energy, judge_energy),
-            Check("joints hold", measure_joints, judge_joints)),
+            Check("joints hold", measure_joints, judge_joints),
+            Check("random pendulums", measure_random, judge_random)),
 )

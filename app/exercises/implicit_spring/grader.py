@@ -23,6 +23,10 @@ functions returned (positions, velocities, A and rhs); each judge does the physi
   inputs kept      x and v are not changed
 A failed step is compared with the usual mistakes (explicit Euler, rhs without h K v, h K for
 h^2 K, K without its transverse part, ...) and the hint names the one it matches.
+  random systems   4 random systems (seeded; pins at rest, gravity any way): A and rhs and the
+                   step against the lab's linear system, within eps x cond(A) x |dv|
+Every pinned particle of these checks is at rest (v = 0): the starter's 'it won't move' and the
+lab's step agree, and a step that holds the pin still passes.
 """
 
 from __future__ import annotations
@@ -32,8 +36,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, array_of, fmt,
-                                within)
+from app.exercises.base import (EPS, BadAnswer, Check, Exercise, Raw, Result, Student, array_of,
+                                cases_rng, fmt, within)
 
 
 # ----- the lab's answer --------------------------------------------------------------------------
@@ -111,6 +115,8 @@ def mistaken_step(kind: str, x, v, w, a, b, ks, kd, rest, g, h):
         "no transverse part": "none", "transverse part not clamped": "unclamped",
         "transverse 1 - |l|/rest": "inverted", "K_ab = +K_aa": "K_ab = +K_aa"}.get(kind,
                                                                                 "clamped"))
+    if kind == "gravity's x dropped":
+        g = np.array([0.0, g[1]])
     grav = np.where(w[:, None] > 0, g, 0.0) * (kind != "no gravity")
     acc = w[:, None] * f + grav
     if kind == "explicit Euler":
@@ -157,6 +163,8 @@ MISTAKES = {
     "no damping in A": "A is missing the damping: A = I - h W D - h^2 W K with D = df/dv "
                        "(D_aa = -kd u u^T)",
     "no gravity": "gravity is missing: it adds h g to dv of every free particle",
+    "gravity's x dropped": "only gravity's y component is used: g is a vector (gx, gy) that may "
+                           "point any way; add h g, both components, for each free particle",
     "pinned not held": "the pinned particle moved: w = 0 (mass infinite) makes its rows of W, "
                        "and so its dv, zero",
     "K_ab = +K_aa": "the off-diagonal blocks have the wrong sign: K_ab = K_ba = -K_aa (the "
@@ -230,7 +238,9 @@ def random_inputs() -> tuple:
     a, b = np.array([0, 1, 2, 3, 0, 1, 2]), np.array([1, 2, 3, 4, 2, 3, 4])
     rest = 0.8 * np.linalg.norm(x[a] - x[b], axis=1)          # stretched, but for one:
     rest[6] *= 1.5                                            # squashed, 1.2x its length
-    return x, v, np.array([0.0, 1.0, 0.5, 2.0, 1.0]), a, b, 400.0, 3.0, rest, G, 0.1
+    w = np.array([0.0, 1.0, 0.5, 2.0, 1.0])
+    v[w == 0] = 0.0         # the starter: a pinned particle "won't move" (no velocity to keep)
+    return x, v, w, a, b, 400.0, 3.0, rest, G, 0.1
 
 
 CHAIN_N, CHAIN_KS, CHAIN_L, CHAIN_H, CHAIN_STEPS = 8, 5000.0, 40.0, 0.2, 40
@@ -469,6 +479,95 @@ def judge_inputs(raw: Raw) -> Result:
                   "caller's state, which it may still need (to draw, to measure the energy).")
 
 
+# ----- random systems (a new seed each run) ------------------------------------------------------
+RANDOM_CASES = 4
+
+
+def random_systems() -> list[tuple]:
+    """2 to 6 particles, 1 to 8 springs (stretched and squashed: rest 0.5 to 1.5 of the length),
+    ks 10 to 5000, kd 0 to 10, inverse masses 0.2 to 3 or 0 (pinned, at rest), gravity of any
+    size (0 to 1500 px/s^2) pointing any way, h from 1 ms to 0.5 s."""
+    rng = cases_rng("implicit_spring random")
+    cases = []
+    for _ in range(RANDOM_CASES):
+        n = int(rng.integers(2, 7))
+        pairs = [(i, j) for i in range(n) for j in range(i + 1, n)]
+        m = int(rng.integers(1, min(8, len(pairs)) + 1))
+        ab = np.array([pairs[c] for c in rng.choice(len(pairs), m, replace=False)])
+        a, b = ab[:, 0].astype(np.intp), ab[:, 1].astype(np.intp)
+        x = rng.uniform(0.0, 300.0, (n, 2))
+        w = np.where(rng.random(n) < 0.25, 0.0, rng.uniform(0.2, 3.0, n))
+        w[int(rng.integers(0, n))] = float(rng.uniform(0.2, 3.0))      # one free at least
+        v = rng.normal(0.0, 50.0, (n, 2)) * (w > 0)[:, None]
+        rest = np.linalg.norm(x[a] - x[b], axis=1) * rng.uniform(0.5, 1.5, m)
+        angle = rng.uniform(0.0, 2 * math.pi)
+        g = rng.uniform(0.0, 1500.0) * np.array([math.cos(angle), math.sin(angle)])
+        cases.append((x, v, w, a, b, float(10 ** rng.uniform(1.0, 3.7)),
+                      float(rng.uniform(0.0, 10.0)) * (rng.random() < 0.7), rest, g,
+                      float(10 ** rng.uniform(-3.0, -0.3))))
+    return cases
+
+
+def measure_random(m: Student) -> dict:
+    out = {}
+    for k, inputs in enumerate(random_systems()):
+        x, v = inputs[0], inputs[1]
+        system = m.linear_system(x.copy(), v.copy(), *inputs[2:])
+        if not isinstance(system, tuple) or len(system) != 2:
+            raise BadAnswer(f"linear_system returned {type(system).__name__}; expected a pair "
+                            "(A, rhs)")
+        xn, vn = step(m, inputs)
+        out[str(k)] = {"A": array_of(system[0], (x.size, x.size), "linear_system's A"),
+                       "rhs": array_of(system[1], (x.size,), "linear_system's rhs"),
+                       "x": xn, "v": vn}
+    return out
+
+
+def judge_random(raw: Raw) -> Result:
+    """Each system's dv from the student's A and rhs (solved here) and their step, against the
+    lab's linear system solved directly, within its rounding: eps x cond(A) x the size of dv and
+    v, times 64 and the system's size, or 4x the distance of the lab's own step (conjugate
+    gradients, to their tolerance) from that solution, whichever is larger."""
+    worst = 0.0
+    for k, inputs in enumerate(random_systems()):
+        x, v, w, h, g = inputs[0], inputs[1], inputs[2], inputs[-1], inputs[-2]
+        one = Raw(raw.values.get(str(k)))
+        n2 = x.size
+        A, rhs = one.array("A", (n2, n2)), one.array("rhs", (n2,))
+        xs, vs = one.array("x", x.shape), one.array("v", v.shape)
+        A_ref, rhs_ref = reference().linear_system(*inputs)
+        dv_ref = np.linalg.solve(A_ref, rhs_ref).reshape(v.shape)
+        scale = float(np.abs(dv_ref).max() + np.abs(v).max())
+        tol_v = 64 * EPS * float(np.linalg.cond(A_ref)) * scale * n2
+        # the lab's own step solves by conjugate gradients, to its tolerance: where that is
+        # looser than the direct solve's rounding, the lab's own distance (x4) is the bound
+        lab_x, lab_v = reference().implicit_euler_step(*inputs)
+        tol_v = max(tol_v, 4 * float(np.abs(lab_v - v - dv_ref).max()))
+        tol_x = max(h * tol_v + 64 * EPS * float(np.abs(x).max()),
+                    4 * float(np.abs(lab_x - x - h * (v + dv_ref)).max()))
+        try:
+            dv = np.linalg.solve(A, rhs).reshape(v.shape)
+        except np.linalg.LinAlgError:
+            dv = np.full(v.shape, math.nan)
+        errs = {"A and rhs": float(np.abs(dv - dv_ref).max()) / tol_v,
+                "the step": max(float(np.abs(vs - v - dv_ref).max()) / tol_v,
+                                float(np.abs(xs - x - h * (v + dv_ref)).max()) / tol_x)}
+        bad = [name for name, e in errs.items() if not e <= 1.0]
+        worst = max([worst] + [e for e in errs.values() if math.isfinite(e)])
+        if bad:
+            got = (x + h * (v + dv), v + dv) if bad[0] == "A and rhs" else (xs, vs)
+            hint = name_mistake(got, inputs) or STEP_HINT
+            off = float(np.abs(got[1] - v - dv_ref).max())
+            where = (f"case {k + 1} of {RANDOM_CASES} ({len(x)} particles, {len(inputs[3])} "
+                     f"springs, {int((w == 0).sum())} pinned, ks {inputs[5]:.4g}, kd "
+                     f"{inputs[6]:.3g}, g ({g[0]:.4g}, {g[1]:.4g}), h {h:.3g} s)")
+            return Result(False, f"{where}: {' and '.join(bad)} {fmt(off)} px/s off the lab's "
+                          f"dv ({fmt(off / max(float(np.abs(dv_ref).max()), 1e-300))} relative)",
+                          f"< {tol_v:.2g} px/s (the lab's own accuracy here)", hint)
+    return Result(True, f"{RANDOM_CASES} random systems: A and rhs and the step within "
+                  f"{worst:.2g} of the rounding bound", "within the lab's rounding")
+
+
 EXERCISE = Exercise(
     name="implicit_spring",
     title="Implicit Euler: Baraff & Witkin's linear system for a spring system",
@@ -482,5 +581,6 @@ EXERCISE = Exercise(
             Check("A and rhs", measure_system, judge_system),
             Check("the step", measure_step, judge_step),
             Check("stable far past the limit", measure_chain, judge_chain),
-            Check("inputs kept", measure_inputs, judge_inputs)),
+            Check("inputs kept", measure_inputs, judge_inputs),
+            Check("random systems", measure_random, judge_random)),
 )

@@ -41,10 +41,17 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
         Effect("reference", True, "the lab's cradle, built by the lab's build_cradle, as orange "
                "rings", rebuild=True),)
     world_keys = NewtonsCradleScene.world_keys + ("ghost", "ghost_bodies", "ghost_anchors")
+    overridden: list[str] = []          # space settings the student's builder set (and the
+                                        # scene overrides): the HUD says so
 
     def add_balls(self, space: pymunk.Space) -> list[pymunk.Body]:
+        from app.exercises.newtons_cradle.grader import overridden, space_settings
         n, k = self.p["balls"], self.p["lifted"]
+        before = space_settings(space)
         bodies = bodies_of(self.impl.build_cradle(space, n, RADIUS, k), n, "build_cradle")
+        self.overridden = overridden(before, space_settings(space))
+        space.gravity, space.damping, space.iterations = (before["gravity"], before["damping"],
+                                                          before["iterations"])   # the scene's
         try:                 # the order along the row is the strings' (lifted balls move)
             xs, where = [string_of(space, b)[1][0] for b in bodies], "their strings' anchors"
         except ValueError:   # a ball on no string: 'lifted as asked' says so; its x, here
@@ -63,6 +70,13 @@ class CradleExercise(StudentCode, NewtonsCradleScene):
         self.ghost_bodies = self.reference.build_cradle(self.ghost, n, RADIUS, k)
         self.ghost_anchors = [string_of(self.ghost, b)[1] for b in self.ghost_bodies]
         return bodies
+
+    def hud_lines(self) -> list[str]:
+        lines = super().hud_lines()
+        if self.overridden and not self.error:
+            lines.insert(1, f"overridden: your build_cradle sets {', '.join(self.overridden)}; "
+                         "the scene uses its g, damping, iterations")
+        return lines
 
     def step(self, h: float) -> None:
         super().step(h)

@@ -12,6 +12,8 @@ The measures send back the L's geometry and what the scene measured; the judges 
                    scene's largest `pin_error`) stays under 1 px
   stops at max     the same run: the slide joint's largest distance reaches its max (within 1 px)
                    and goes no further than 2 px past it
+No random cases here: add_L(space) takes nothing but the space (the tutorial's numbers are fixed
+in the starter), so the whole space of its inputs is the one the checks use.
 """
 
 from __future__ import annotations

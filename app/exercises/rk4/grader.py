@@ -16,6 +16,7 @@ student's steps produced (the stability check: the limit its bisection found); e
                           order, is the trapezoid rule (0.34375), Ralston's is exact (1/3)
   any shape of y          y of shape (3, 2): both steps return shape (3, 2), equal to the lab's
   y kept                  neither step changes the y it was given
+  random ODEs      4 random linear ODEs and cubics (seeded): each step's closed form
 """
 
 from __future__ import annotations
@@ -25,8 +26,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import (Check, Exercise, Raw, Result, Student, array_of, fmt, order,
-                                within)
+from app.exercises.base import (Check, Exercise, Raw, Result, Student, array_of, cases_rng, fmt,
+                                order, rounding, within)
 
 STEPS = (16, 32, 64)
 T_END, Y0 = 2.5, (1.0, 0.0)
@@ -305,6 +306,95 @@ def judge_kept(raw: Raw) -> Result:
                   "solver may still need (to retry a step, or to measure the error).")
 
 
+# ----- random ODEs (a new seed each run) ---------------------------------------------------------
+# One step of ANY explicit fourth-order Runge-Kutta method (classical, Kutta's 3/8 rule, ...) on
+# a linear system y' = M y is exactly the Taylor polynomial I + hM + (hM)^2/2 + (hM)^3/6 +
+# (hM)^4/24 of exp(hM) times y, and on y' = p(t) with p a cubic it is exact (the integral); one
+# midpoint step is I + hM + (hM)^2/2 and h p(t + h/2). So the judge compares a step on the two
+# side by side (the last row of y obeys y' = p(t), the others y' = M y), for random M, p, t, h
+# and shapes of y, with the closed form, within rounding: not only with the lab's code.
+RANDOM_CASES = 4
+
+
+def random_odes() -> list[tuple]:
+    """y of shape (k,) or (k, 2) with k = 2 to 5 (the last row the quadrature), M of any sign
+    and size with |h M| up to 2.5, a random cubic p, t from -5 to 5, h from 0.001 to 1."""
+    rng = cases_rng("rk4 random")
+    cases = []
+    for _ in range(RANDOM_CASES):
+        k = int(rng.integers(2, 6))
+        shape = (k,) if rng.random() < 0.5 else (k, 2)
+        h = float(10 ** rng.uniform(-3.0, 0.0))
+        d = k - 1
+        M = rng.normal(0.0, 1.0, (d, d))
+        M *= rng.uniform(0.1, 2.5) / (h * max(float(np.abs(np.linalg.eigvals(M)).max()), 1e-9))
+        p = rng.normal(0.0, 1.0, 4)                 # p(t) = p0 + p1 t + p2 t^2 + p3 t^3
+        y = rng.normal(0.0, 3.0, shape)
+        cases.append((M, p, float(rng.uniform(-5.0, 5.0)), y, h))
+    return cases
+
+
+def ode(M: np.ndarray, p: np.ndarray):
+    """f(t, y) for the rows y[:-1] (y' = M y) and y[-1] (y' = p(t))."""
+    def f(t: float, y: np.ndarray) -> np.ndarray:
+        y = np.asarray(y, dtype=float)
+        out = np.empty_like(y)
+        out[:-1] = M @ y[:-1]
+        out[-1] = p[0] + t * (p[1] + t * (p[2] + t * p[3]))
+        return out
+    return f
+
+
+def closed_form(fname: str, M, p, t: float, y: np.ndarray, h: float) -> np.ndarray:
+    order = 4 if fname == "rk4_step" else 2
+    hm = h * M
+    term, total = np.eye(len(M)), np.eye(len(M))
+    for j in range(1, order + 1):
+        term = term @ hm / j
+        total = total + term
+    out = np.empty_like(y)
+    out[:-1] = total @ y[:-1]
+    P = lambda s: p[0] * s + p[1] * s ** 2 / 2 + p[2] * s ** 3 / 3 + p[3] * s ** 4 / 4  # noqa
+    mid = t + h / 2
+    out[-1] = y[-1] + (P(t + h) - P(t) if order == 4 else
+                       h * (p[0] + mid * (p[1] + mid * (p[2] + mid * p[3]))))
+    return out
+
+
+def measure_random(m: Student) -> dict:
+    out = {}
+    for k, (M, p, t, y, h) in enumerate(random_odes()):
+        for fname in ("rk4_step", "midpoint_step"):
+            out[f"{fname} {k}"] = array_of(getattr(m, fname)(ode(M, p), t, y.copy(), h), y.shape,
+                                           fname)
+    out["probe rk4_step"] = measure_probe(m, "rk4_step")
+    out["probe midpoint_step"] = measure_probe(m, "midpoint_step")
+    return out
+
+
+def judge_random(raw: Raw) -> Result:
+    for k, (M, p, t, y, h) in enumerate(random_odes()):
+        for fname in ("rk4_step", "midpoint_step"):
+            got = raw.array(f"{fname} {k}", y.shape)
+            want = closed_form(fname, M, p, t, y, h)
+            tmax = abs(t) + h
+            scale = float(np.abs(y).max() * 20 + h * np.abs(p).sum() * (1 + tmax) ** 3)
+            tol = rounding(scale, ops=8 * len(M))
+            err = float(np.abs(got - want).max())
+            if not err <= tol:
+                named = probe_mistake(fname, Raw({"probe": raw.values.get(f"probe {fname}")}))
+                what = "fourth-order Runge-Kutta step" if fname == "rk4_step" else "midpoint step"
+                return Result(False, f"case {k + 1} of {RANDOM_CASES}, {fname} (y of shape "
+                              f"{y.shape}, t = {t:.3g}, h = {h:.3g}): {fmt(err)} off a {what}",
+                              f"< {tol:.2g} (rounding)", named.strip() or (
+                                  f"{fmt(err)} off the exact {what} on y' = M y (its Taylor "
+                                  f"polynomial of degree {4 if fname == 'rk4_step' else 2}) and "
+                                  "y' = p(t) side by side: the stages, their times (t + h/2, "
+                                  "t + h) and the weights are where a step goes wrong."))
+    return Result(True, f"{RANDOM_CASES} random linear ODEs and cubics: both steps exact but for "
+                  "rounding", "each step's closed form, within rounding")
+
+
 EXERCISE = Exercise(
     name="rk4",
     title="Runge-Kutta: RK4 and the midpoint method for any ODE",
@@ -325,5 +415,6 @@ EXERCISE = Exercise(
             Check("midpoint, not Heun", measure_quadrature("midpoint_step", 2),
                   judge_midpoint_times),
             Check("any shape of y", measure_shape, judge_shape),
-            Check("y kept", measure_kept, judge_kept)),
+            Check("y kept", measure_kept, judge_kept),
+            Check("random ODEs", measure_random, judge_random)),
 )

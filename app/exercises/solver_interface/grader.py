@@ -11,6 +11,7 @@ On 4 particles with gravity, drag and two springs:
   any number          3 and 6 particles (a chain of springs): agrees with the lab's, as above
                       (and 4, to tell a count written in from a derivative wrong for all)
   state kept          the state vector passed in is not changed
+  random systems   4 random systems (seeded): the lab's derivative within its rounding
 """
 
 from __future__ import annotations
@@ -19,7 +20,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import Check, Exercise, Raw, Result, Student, array_of, fmt, within
+from app.exercises.base import (Check, Exercise, Raw, Result, Student, array_of, cases_rng, fmt,
+                                rounding, within)
 
 N = 4
 MASSES = np.array([1.0, 2.0, 0.5, 1.5])
@@ -197,6 +199,71 @@ def judge_state_kept(raw: Raw) -> Result:
                   "read x and v from the state; write the forces into a new array f.")
 
 
+# ----- random systems (a new seed each run) ------------------------------------------------------
+RANDOM_CASES = 4
+
+
+def random_systems() -> list[tuple[np.ndarray, np.ndarray, list, str]]:
+    """1 to 8 particles, masses 0.1 to 10, and 0 to 4 forces in any order: gravity of any size
+    pointing any way, drag, springs between random pairs, a force that reads x and v and sets
+    nothing but its own share (a swirl)."""
+    rng = cases_rng("solver_interface random")
+    cases = []
+    for _ in range(RANDOM_CASES):
+        n = int(rng.integers(1, 9))
+        masses = rng.uniform(0.1, 10.0, n)
+        y = np.concatenate([rng.uniform(0, 300, 2 * n), rng.normal(0, 40, 2 * n)])
+        kinds = list(rng.choice(["gravity", "drag", "springs", "swirl"], int(rng.integers(0, 5))))
+        forces, names = [], []
+        for kind in kinds:
+            if kind == "gravity":
+                forces.append(gravity(masses, tuple(rng.normal(0.0, 600.0, 2))))
+            elif kind == "drag":
+                forces.append(drag(float(rng.uniform(0.0, 2.0))))
+            elif kind == "springs" and n > 1:
+                m = int(rng.integers(1, 2 * n))
+                a = rng.integers(0, n, m)
+                forces.append(springs(a, (a + rng.integers(1, n, m)) % n,
+                                      float(rng.uniform(1, 100)), rng.uniform(0, 80, m)))
+            elif kind == "swirl":
+                c = float(rng.uniform(-3.0, 3.0))
+                def swirl(x, v, f, c=c):
+                    f += c * np.stack([-x[:, 1] + v[:, 0], x[:, 0] - v[:, 1]], axis=1)
+                forces.append(swirl)
+            else:
+                continue
+            names.append(str(kind))
+        cases.append((y, masses, forces, ", ".join(names) or "no forces"))
+    return cases
+
+
+def measure_random(m: Student) -> dict:
+    return {str(k): deriv(m, y, masses, forces)
+            for k, (y, masses, forces, _) in enumerate(random_systems())}
+
+
+def judge_random(raw: Raw) -> Result:
+    for k, (y, masses, forces, names) in enumerate(random_systems()):
+        d = raw.array(str(k), y.shape)
+        ref = lab(y, masses, forces)
+        n = len(masses)
+        f_scale = float(np.abs(ref[2 * n:]).max() * masses.max()) if n else 0.0
+        tol = rounding(float(np.abs(y).max()) + f_scale / masses.min() * 4, ops=4 + 2 * n)
+        err = float(np.abs(d - ref).max())
+        if not err <= tol:
+            half = 2 * n
+            part = ("dx/dt (the first half)" if not np.allclose(d[:half], ref[:half], rtol=0,
+                                                               atol=tol) else
+                    "dv/dt (the second half)")
+            return Result(False, f"case {k + 1} of {RANDOM_CASES} ({n} particles, {names}): "
+                          f"{fmt(err)} off the lab's derivative, in {part}",
+                          f"< {tol:.2g} (the lab's rounding)",
+                          f"{part} is {fmt(err)} off: clear f, call every force(x, v, f) in the "
+                          "list (whatever their number), then " + LAYOUT)
+    return Result(True, f"{RANDOM_CASES} random systems: the lab's derivative within its "
+                  "rounding", "the lab's derivative, within its rounding")
+
+
 EXERCISE = Exercise(
     name="solver_interface",
     title="The solver interface: derivative evaluation",
@@ -209,5 +276,6 @@ EXERCISE = Exercise(
             Check("clears forces", measure_twice, judge_clears),
             Check("a = f / m", measure_masses, judge_masses),
             Check("any number of particles", measure_counts, judge_counts),
-            Check("state kept", measure_state_kept, judge_state_kept)),
+            Check("state kept", measure_state_kept, judge_state_kept),
+            Check("random systems", measure_random, judge_random)),
 )

@@ -11,6 +11,7 @@ student's spring_forces returned (or the state their forces moved); each judge c
   damping removes  two particles on a stretched damped spring, 2 s of small symplectic Euler
                    steps: the energy falls below half of its start
   inputs kept      x and v are not changed
+  random springs   4 random sets (seeded): the lab's forces within its rounding
 """
 
 from __future__ import annotations
@@ -19,8 +20,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import (Check, Exercise, Malformed, Raw, Result, Student, array_of, fmt,
-                                within)
+from app.exercises.base import (Check, Exercise, Malformed, Raw, Result, Student, array_of,
+                                cases_rng, fmt, rounding, within)
 
 A = np.array([0, 1, 2, 3, 0, 1, 4, 2])
 B = np.array([1, 2, 3, 4, 2, 3, 0, 4])
@@ -62,8 +63,14 @@ def measure_forces(ks: float, kd: float):
 
 
 SPRING_MISTAKES = {
+    "damping sign": "the damping term has the wrong sign: f_a = -[ks (|l| - rest) + kd (v_a - "
+                    "v_b) . u] u, so damping pulls against the relative motion along the spring "
+                    "(a plus inside the brackets).",
     "sign flipped": "your forces are the lab's with the sign flipped: f_a = -[...] l/|l| with "
                     "l = x_a - x_b (a stretched spring pulls a towards b), f_b = -f_a.",
+    "hooke sign": "the Hooke part pushes a stretched spring apart: its sign is flipped (l = x_b - "
+                  "x_a?); with l = x_a - x_b and u = l/|l|, f_a = -ks (|l| - rest) u pulls a "
+                  "towards b.",
     "f[a] += fa": "a particle in several springs gets only one of them: f[a] += fa keeps the "
                   "last write for a repeated index. Use np.add.at(f, a, fa) (or a loop over "
                   "springs).",
@@ -92,6 +99,10 @@ def spring_with(kind: str, x, v, a, b, ks, kd, rest) -> np.ndarray:
     u = l if kind == "not unit" else l / length
     dv = v[a] if kind == "v_a only" else v[a] - v[b]
     stretch = length if kind == "no rest" else length - rest[:, None]
+    if kind == "damping sign":
+        kd = -kd
+    if kind == "hooke sign":
+        ks = -ks
     if kind == "unprojected":
         fa = -ks * stretch * u - kd * dv
     else:
@@ -236,6 +247,53 @@ def judge_inputs(raw: Raw) -> Result:
                   "particles' state, which the caller goes on stepping.")
 
 
+# ----- random springs (a new seed each run) ------------------------------------------------------
+RANDOM_CASES = 4
+
+
+def random_springs() -> list[tuple]:
+    """2 to 9 particles, 1 to 14 springs between any two (a particle in several springs, or in
+    none, the last one included), ks 0 to 500, kd 0 to 20, rests 0 to 80 px (stretched and
+    squashed), velocities any way."""
+    rng = cases_rng("spring random")
+    cases = []
+    for _ in range(RANDOM_CASES):
+        n = int(rng.integers(2, 10))
+        m = int(rng.integers(1, 15))
+        a = rng.integers(0, n, m)
+        b = (a + rng.integers(1, n, m)) % n                    # never a spring from a to a
+        x = rng.uniform(0.0, 300.0, (n, 2))
+        v = rng.normal(0.0, 40.0, (n, 2))
+        cases.append((x, v, a.astype(np.intp), b.astype(np.intp), float(rng.uniform(0, 500)),
+                      float(rng.uniform(0, 20)), rng.uniform(0.0, 80.0, m)))
+    return cases
+
+
+def measure_random(m: Student) -> dict:
+    return {str(k): forces(m, *case) for k, case in enumerate(random_springs())}
+
+
+def judge_random(raw: Raw) -> Result:
+    for k, (x, v, a, b, ks, kd, rest) in enumerate(random_springs()):
+        f = raw.array(str(k), x.shape)
+        ref = reference().spring_forces(x, v, a, b, ks, kd, rest)
+        length = np.linalg.norm(x[a] - x[b], axis=1)
+        scale = float((ks * (length + rest) + kd * np.linalg.norm(v[a] - v[b], axis=1)).max())
+        tol = rounding(scale, ops=len(a))
+        err = float(np.abs(f - ref).max())
+        if not err <= tol:
+            worst = int(np.nanargmax(np.abs(f - ref).max(axis=1))) if np.isfinite(f).all() else -1
+            hint = named_spring_mistake(f, x, v, a, b, ks, kd, rest) or (
+                "f_a = -[ks (|l| - rest) + kd (v_a - v_b) . u] u with l = x_a - x_b, u = l/|l|, "
+                "f_b = -f_a, summed over every spring a particle is in.")
+            return Result(False, f"case {k + 1} of {RANDOM_CASES} ({len(x)} particles, {len(a)} "
+                          f"springs, ks {ks:.4g}, kd {kd:.3g}): forces {fmt(err)} off the lab's"
+                          + (f" (most at particle {worst})" if worst >= 0 else ""),
+                          f"< {tol:.2g} (the lab's rounding)", hint)
+    return Result(True, f"{RANDOM_CASES} random sets of springs: the lab's forces within its "
+                  "rounding", "the lab's forces, within its rounding")
+
+
 EXERCISE = Exercise(
     name="spring",
     title="Damped springs: an n-ary force",
@@ -253,5 +311,6 @@ EXERCISE = Exercise(
             Check("third law", measure_third_law, judge_third_law),
             Check("a particle in no spring", measure_alone, judge_alone),
             Check("damping removes energy", measure_damping_removes, judge_damping_removes),
-            Check("inputs kept", measure_inputs, judge_inputs)),
+            Check("inputs kept", measure_inputs, judge_inputs),
+            Check("random springs", measure_random, judge_random)),
 )

@@ -17,6 +17,8 @@ does the physics on them:
                    s = (1 - drag) s + g h^2: s = g h^2 / drag, a speed g h / drag = 1500 px/s
                    (+- 0.5). Drag that also scales g h^2 settles at (1 - drag) of it: 1485.
   inputs kept      x and a are not changed; the new x is a new array
+  random particles and steps  4 random systems (seeded) x 5 chained steps, each particle its
+                   own acceleration, any h and drag: the lab's step within its rounding
 """
 
 from __future__ import annotations
@@ -26,8 +28,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, array_of, fmt,
-                                order, within)
+from app.exercises.base import (BadAnswer, Check, Exercise, Raw, Result, Student, array_of,
+                                cases_rng, fmt, order, rounding, within)
 
 G = np.array([0.0, 900.0])            # px/s^2, y down
 OMEGA = 2 * math.pi                   # the test spring: one period per second
@@ -173,22 +175,43 @@ def measure_drag(m: Student) -> dict:
     return {"xs": run_spring(m, 1 / 60, 2.0, drag=0.01)}
 
 
+def drag_run_with(kind: str) -> np.ndarray:
+    """The drag check's spring run with one of the usual drag mistakes (here, in the parent):
+    'drag sign' x + (1 + drag)(x - x_prev), 'slide literal' (2 - drag) x - x_prev, 'drag twice'
+    x + (1 - drag)^2 (x - x_prev), 'no drag' x + (x - x_prev)."""
+    class Mistake:
+        @staticmethod
+        def verlet_step(x, x_prev, a, h, drag):
+            keep = {"drag sign": 1 + drag, "drag twice": (1 - drag) ** 2,
+                    "no drag": 1.0}.get(kind, 1 - drag)
+            if kind == "slide literal":
+                return (2 - drag) * x - x_prev + a * h * h, x.copy()
+            return x + keep * (x - x_prev) + a * h * h, x.copy()
+    with np.errstate(all="ignore"):
+        return run_spring(Mistake, 1 / 60, 2.0, drag=0.01)
+
+
 def judge_drag(raw: Raw) -> Result:
-    e = spring_energy(raw.array("xs", (121,)), 1 / 60)
+    xs = raw.array("xs", (121,))
+    e = spring_energy(xs, 1 / 60)
     ratio = float(e[-60:].mean() / e[:60].mean())
     expected = 0.99 ** 60           # the amplitude falls by sqrt(1 - drag) per step
-    hint = (DRAG_HINT + " Lowering only the 2 (1.99 x - x_prev) is no drag: it pulls every "
-            "particle towards x = 0.")
-    if not math.isfinite(ratio) or ratio > 3.0:
-        hint = ("the energy grows without bound, with drag or without: fix 'free fall' and "
-                "'energy kept' first. " + hint)
-    elif ratio > 1.05:
-        hint = "the energy GROWS: (1 - drag), not (1 + drag). " + hint
-    elif ratio > 0.99:
-        hint = "almost no energy lost: did you ignore drag? " + hint
-    elif within(ratio, expected ** 2, 0.02):
-        hint = ("twice the loss of (1 - drag): the drag is applied twice ((1 - drag)^2, or to "
-                "both x and x_prev). " + hint)
+    named = {kind: text for kind, text in (
+        ("drag sign", "the energy GROWS: (1 - drag), not (1 + drag)."),
+        ("slide literal", "Lowering only the 2 (1.99 x - x_prev) is no drag: it pulls every "
+                          "particle towards x = 0."),
+        ("no drag", "no energy lost: drag is not used (x + (x - x_prev) + a h^2 whatever "
+                    "drag is)."),
+        ("drag twice", "twice the loss of (1 - drag): the drag is applied twice ((1 - drag)^2, "
+                       "or to both x and x_prev).")) if np.allclose(
+            xs, drag_run_with(kind), rtol=1e-9, atol=1e-9)}
+    hint = " ".join(named.values()) + (" " if named else "") + DRAG_HINT
+    if not named:
+        hint = (f"the energy kept over 1 s is {fmt(ratio)}, where (1 - drag) per step keeps "
+                f"{expected:.2f}. " + DRAG_HINT)
+        if not math.isfinite(ratio) or ratio > 3.0:
+            hint = ("the energy grows without bound, with drag or without: fix 'free fall' and "
+                    "'energy kept' first. " + DRAG_HINT)
     return Result(within(ratio, expected, 0.05),
                   f"energy ratio {fmt(ratio)} over 1 s at drag 0.01",
                   f"{expected:.2f} +- 0.05 (x (1 - drag) per step)", hint)
@@ -254,6 +277,72 @@ def judge_inputs(raw: Raw) -> Result:
                   "x_new is fine: the caller is done with it (the slide's pointer swap).")
 
 
+# ----- random particles, accelerations, steps and drags (a new seed each run) ---------------------
+RANDOM_CASES, RANDOM_STEPS = 4, 5
+
+
+def random_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, float, float]]:
+    """1 to 40 particles anywhere, moving any way, each with its own acceleration (any direction,
+    up to 5000 px/s^2), h from 1 ms to 0.1 s, drag 0 (the first case) to 0.5."""
+    rng = cases_rng("verlet random")
+    cases = []
+    for k in range(RANDOM_CASES):
+        n = int(rng.integers(1, 41))
+        x = rng.uniform(-500.0, 1500.0, (n, 2))
+        h = float(10 ** rng.uniform(-3.0, -1.0))
+        x_prev = x - rng.normal(0.0, 400.0, (n, 2)) * h
+        a = rng.normal(0.0, 1.0, (n, 2)) * 10 ** rng.uniform(1.0, 3.7, (n, 1))
+        drag = 0.0 if k == 0 else float(rng.uniform(0.0, 0.5))
+        cases.append((x, x_prev, a, h, drag))
+    return cases
+
+
+def measure_random(m: Student) -> dict:
+    out = {}
+    for k, (x, x_prev, a, h, drag) in enumerate(random_cases()):
+        xs = []
+        for _ in range(RANDOM_STEPS):       # the same accelerations each step, chained
+            x, x_prev = step(m, x.copy(), x_prev.copy(), a.copy(), h, drag)
+            xs.append((x, x_prev))
+        out[str(k)] = {"x": [p[0] for p in xs], "x_prev": [p[1] for p in xs]}
+    return out
+
+
+def judge_random(raw: Raw) -> Result:
+    from app.physics.jakobsen import verlet_step
+    worst = 0.0
+    for k, (x0, xp0, a, h, drag) in enumerate(random_cases()):
+        one = Raw(raw.values.get(str(k)))
+        n = len(x0)
+        xs, xps = (one.array("x", (RANDOM_STEPS, n, 2)), one.array("x_prev", (RANDOM_STEPS, n, 2)))
+        x, x_prev = x0, xp0
+        for s in range(RANDOM_STEPS):       # each step from the student's own last state
+            want, want_prev = verlet_step(xs[s - 1] if s else x0, xps[s - 1] if s else xp0, a, h,
+                                          drag)
+            here = xs[s - 1] if s else x0
+            scale = float(np.abs(here).max() + np.abs(here - (xps[s - 1] if s else xp0)).max()
+                          + np.abs(a).max() * h * h)
+            tol = rounding(scale, ops=4)
+            err = max(float(np.abs(xs[s] - want).max()), float(np.abs(xps[s] - want_prev).max()))
+            worst = max(worst, err / tol) if math.isfinite(err) else math.inf
+            if not err <= tol:
+                mean = verlet_step(here, xps[s - 1] if s else xp0,
+                                   np.broadcast_to(a.mean(axis=0), a.shape), h, drag)[0]
+                hint = ("x' = x + (1 - drag) (x - x_prev) + a h^2, each particle with its own "
+                        "row of a; return (x', x).")
+                if n > 1 and np.allclose(xs[s], mean, rtol=0, atol=tol):
+                    hint = ("every particle got the same acceleration, the mean of a: each "
+                            "particle has its own row a[k] (a has shape (n, 2)); use a as it is.")
+                elif np.allclose(xs[s], want, rtol=0, atol=tol):
+                    hint = ("x' is right, the second value is not: return (x', x), the old x as "
+                            "the next x_prev.")
+                return Result(False, f"case {k + 1} of {RANDOM_CASES} ({n} particles, h = "
+                              f"{h:.3g} s, drag {drag:.3g}), step {s + 1}: {fmt(err)} px off the "
+                              "lab's step", f"< {tol:.2g} px (the lab's own rounding here)", hint)
+    return Result(True, f"{RANDOM_CASES} random systems x {RANDOM_STEPS} steps: within "
+                  f"{worst:.2g} of the rounding bound", "each step within the lab's rounding")
+
+
 EXERCISE = Exercise(
     name="verlet",
     title="Verlet integration: the velocity-less step with drag",
@@ -266,5 +355,6 @@ EXERCISE = Exercise(
             Check("energy kept (drag 0)", measure_energy, judge_energy),
             Check("drag loses energy", measure_drag, judge_drag),
             Check("terminal speed with drag", measure_terminal, judge_terminal),
-            Check("inputs kept", measure_inputs, judge_inputs)),
+            Check("inputs kept", measure_inputs, judge_inputs),
+            Check("random particles and steps", measure_random, judge_random)),
 )

@@ -1,0 +1,20 @@
+"""Wrong (fails 'random rods and sweeps'): a zero-length guard that leaves the whole sweep
+(break) instead of skipping the rod."""
+import numpy as np
+
+
+def satisfy_rods(x, a, b, rest, w, iterations):
+    x = np.array(x, dtype=float)
+    for _ in range(iterations):
+        for i, j, r in zip(a, b, rest):
+            wsum = w[i] + w[j]
+            if wsum == 0:
+                continue
+            d = x[j] - x[i]
+            length = float(np.hypot(d[0], d[1]))
+            if length == 0:
+                break
+            move = (length - r) / (length * wsum) * d
+            x[i] += w[i] * move
+            x[j] -= w[j] * move
+    return x
