@@ -43,6 +43,7 @@ class Report:
     checks: list[CheckReport]
     output: str = ""         # the first OUTPUT_SHOWN bytes of what the student's code printed
     output_bytes: int = 0    # how much it printed in all
+    sandbox: str = ""        # the walls the child ran in, and those this machine lacks
 
     @property
     def passed(self) -> bool:
@@ -50,12 +51,14 @@ class Report:
 
     def to_json(self) -> dict[str, Any]:
         return {"exercise": self.exercise, "path": self.path, "passed": self.passed,
-                "checks": [asdict(c) for c in self.checks], "output_bytes": self.output_bytes}
+                "checks": [asdict(c) for c in self.checks], "output_bytes": self.output_bytes,
+                "sandbox": self.sandbox}
 
     def text(self) -> str:
         n = sum(c.passed for c in self.checks)
         head = f"{self.exercise}: {self.path}: {n}/{len(self.checks)} checks pass"
-        return "\n".join([head] + [line for c in self.checks for line in c.lines()])
+        top = [self.sandbox] if self.sandbox else []
+        return "\n".join(top + [head] + [line for c in self.checks for line in c.lines()])
 
     def output_text(self) -> str:
         """What the student's code printed, as shown on stderr ('' if nothing)."""
