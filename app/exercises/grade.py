@@ -174,18 +174,27 @@ class Session:
         from here, and in it a fresh Python that imports the harness and the student's file."""
         self.sel = sel
         p = sandbox.protections()
-        folder = sandbox.new_folder(p)
-        copy = None
+        data = None
         if self.path is not None and self.refused is None:
             try:
                 data = read_source(self.path)
+            except NotASourceFile as e:
+                self.refused = str(e)
+        if self.refused is not None and first == 0:    # nothing to run: no child
+            self.import_failed(CheckReport("imports", False, "not read", "a Python file",
+                                           error=self.refused))
+            return
+        folder = sandbox.new_folder(p)
+        copy = None
+        if data is not None:
+            try:
                 copy = os.path.join(folder, os.path.basename(self.path))
                 with open(copy, "wb") as f:
                     f.write(data)
                 if p.uid is not None:
                     os.chown(copy, p.uid, p.uid)
-            except NotASourceFile as e:
-                self.refused, copy = str(e), None
+            except OSError as e:
+                self.refused, copy = f"the grader could not copy the file: {e}", None
         token = secrets.token_hex(16)
         n = max(1, len(self.checks) - first)
         argument = json.dumps({"exercise": self.exercise.name, "path": self.path, "copy": copy,
@@ -488,7 +497,8 @@ def run_sessions(sessions: list[Session], jobs: int = JOBS) -> Iterator[Report]:
                 s.start(sel, 0)
                 running.append(s)
             now = time.monotonic()
-            limit = min(s.child.deadline for s in running if s.child) - now if running else 0
+            deadlines = [s.child.deadline for s in running if s.child]
+            limit = min(deadlines) - now if deadlines else 0
             if any(s.child and s.child.pidfd is None for s in running):
                 limit = min(limit, 0.05)
             for key, _ in sel.select(max(0.0, limit)):
