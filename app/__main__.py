@@ -499,6 +499,9 @@ def leave(code: int) -> NoReturn:
             stream.flush()
         except (OSError, ValueError):
             pass
+    sandbox = sys.modules.get("app.exercises.sandbox")     # its temporary folders (no atexit)
+    if sandbox is not None:
+        sandbox.cleanup()
     os._exit(code)
 
 

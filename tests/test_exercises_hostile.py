@@ -553,3 +553,21 @@ def test_the_harness_holds_the_checks_but_not_the_exercises_answer():
     assert "app/physics/neighbours.py" not in sandbox.harness_files("verlet")
     cradle = sandbox.harness_files("newtons_cradle")["scenes/newtons_cradle.py"]
     assert cradle.count(sandbox.STUB) >= 1
+
+
+@pytest.mark.skipif(not WALLS.pids, reason="no pids cgroup here (needs root and the pids "
+                    "controller)")
+def test_a_fork_bomb_stops_at_the_childs_process_limit_and_leaves_nothing(monkeypatch):
+    mark = marked(monkeypatch)
+    report, _ = graded("verlet_fork_bomb")
+    assert report.passed, report.text()
+    forked = int(report.output.split("forked ")[1].split()[0])
+    assert 0 < forked < sandbox.PROCESSES
+    assert left_behind(mark) == []
+
+
+@NEEDS_LANDLOCK
+def test_a_file_cannot_read_secrets_the_repository_or_other_folders():
+    report, _ = graded("verlet_reads_secrets")
+    assert report.passed, report.text()
+    assert "READ" not in report.output and report.output.count("refused") == 5, report.output

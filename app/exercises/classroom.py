@@ -160,6 +160,7 @@ class Progress:
         if sys.stderr.isatty():
             try:
                 from tqdm import tqdm
+                tqdm.monitor_interval = 0      # no monitor thread: the grader forks
                 self.bar = tqdm(total=total, initial=done, unit="file", desc="grading",
                                 file=sys.stderr, dynamic_ncols=True)
             except ImportError:

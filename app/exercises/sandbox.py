@@ -47,6 +47,7 @@ import stat
 import sys
 import sysconfig
 import tempfile
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -164,6 +165,7 @@ class Protections:
     namespaces: int = 0               # the CLONE_NEW* flags unshare accepts here
     uid: int | None = None            # the separate uid, or None
     root: bool = False
+    pids: str | None = None           # a cgroup folder where a pids.max can be made, or None
     why_not: dict[str, str] = field(default_factory=dict)
 
     def walls(self) -> tuple[list[str], list[str]]:
@@ -190,6 +192,13 @@ class Protections:
                                     "signals: no Landlock scope, PID namespace or separate uid")
         on.append("processes (PID namespace)" if self.namespaces & CLONE_NEWPID else
                   "processes (a subreaper kills what is left)")
+        if self.pids:
+            on.append(f"at most {PROCESSES} processes (pids cgroup)")
+        elif self.uid is not None:
+            on.append(f"at most {PROCESSES} processes (RLIMIT_NPROC)")
+        else:
+            off.append("a process limit: no pids cgroup here, and RLIMIT_NPROC would count "
+                       "every process of uid 0 (a fork bomb ends with the check)")
         if self.root:
             if self.uid is not None:
                 on.append(f"uid {self.uid}")
@@ -245,6 +254,7 @@ def protections() -> Protections:
         _PROTECTIONS = p
         return p
     p.landlock = landlock_abi()
+    p.pids = pids_cgroup() if p.root else None
     if os.environ.get("LAB_SANDBOX_NO_LANDLOCK"):     # tests: a kernel without Landlock
         p.landlock = 0
     for flag in (CLONE_NEWPID, CLONE_NEWNET, CLONE_NEWIPC, CLONE_NEWUTS):
@@ -259,6 +269,29 @@ def protections() -> Protections:
                                 "(a folder on its way is private)")
     _PROTECTIONS = p
     return p
+
+
+PIDS_ROOTS = ("/sys/fs/cgroup/pids", "/sys/fs/cgroup/unified", "/sys/fs/cgroup")
+
+
+def pids_cgroup() -> str | None:
+    """A cgroup folder (v1 pids controller, or v2 with pids enabled) in which a child cgroup gets
+    a pids.max: tried by making one."""
+    for root in PIDS_ROOTS:
+        probe = os.path.join(root, f"lab-grader-probe-{os.getpid()}")
+        try:
+            os.mkdir(probe)
+        except OSError:
+            continue
+        try:
+            if os.path.exists(os.path.join(probe, "pids.max")):
+                return root
+        finally:
+            try:
+                os.rmdir(probe)
+            except OSError:
+                pass
+    return None
 
 
 # ----- what the child may read ----------------------------------------------------------------
@@ -296,10 +329,15 @@ def without(path: str, hidden: str) -> list[str]:
     return out
 
 
+ETC = ("/etc/ld.so.cache", "/etc/localtime", "/etc/nsswitch.conf", "/etc/passwd", "/etc/group",
+       "/etc/os-release")          # not the rest of /etc: the child may be uid 0 (no capability,
+#                                    but the owner of /etc/shadow)
+
+
 def readable_paths(harness: str) -> list[str]:
     roots = [sys.prefix, sys.base_prefix, sys.exec_prefix, os.path.dirname(os.path.realpath(
         sys.executable)), sysconfig.get_paths()["stdlib"], *site_dirs(),
-        "/usr", "/lib", "/lib64", "/lib32", "/bin", "/etc", "/proc", "/sys/devices/system/cpu",
+        "/usr", "/lib", "/lib64", "/lib32", "/bin", *ETC, "/proc", "/sys/devices/system/cpu",
         "/dev/urandom", "/dev/random", "/dev/zero", harness]
     out: list[str] = []
     for root in dict.fromkeys(os.path.realpath(r) for r in roots):
@@ -515,6 +553,7 @@ def harness_files(exercise: str, stub: bool = True) -> dict[str, str]:
 
 _HARNESS: dict[str, str] = {}
 _ROOT: list[str] = []
+_OWNER: list[int] = []
 
 
 def _root() -> str:
@@ -523,8 +562,19 @@ def _root() -> str:
         root = tempfile.mkdtemp(prefix="lab-grader-")
         os.chmod(root, 0o755)
         _ROOT.append(root)
-        atexit.register(shutil.rmtree, root, True)
+        _OWNER[:] = [os.getpid()]
+        atexit.register(cleanup)
     return _ROOT[0]
+
+
+def cleanup() -> None:
+    """Remove this process's harnesses and folders (atexit does it too; os._exit skips atexit)."""
+    if _OWNER and _OWNER[0] != os.getpid():      # a forked copy: the folders are not its own
+        return
+    for root in _ROOT:
+        shutil.rmtree(root, ignore_errors=True)
+    _ROOT.clear()
+    _HARNESS.clear()
 
 
 def harness(exercise: str, stub: bool = True) -> str:
@@ -609,7 +659,7 @@ MEMORY = 3 << 30          # bytes of data the child may hold (the checks use MBs
 #                           about 150 MB; a runaway allocation is a MemoryError in their code)
 FILE_SIZE = 64 << 20      # bytes of one file it writes
 OPEN_FILES = 256
-PROCESSES = 64            # processes and threads of the separate uid
+PROCESSES = 128           # processes and threads of one child (pids cgroup) or of the separate uid
 
 
 def confine(box: Box, channel: int, output: int) -> None:
@@ -685,6 +735,7 @@ def _kill_leftovers() -> None:
 def keeper(box: Box, channel: int, output: int, control: int) -> None:
     """The forked keeper (never returns): namespaces, the child, its end and what it left."""
     code = KEEPER_FAILED
+    said = output
     try:
         os.setsid()                           # Ctrl-C at the terminal is the grader's to handle
         signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -699,11 +750,18 @@ def keeper(box: Box, channel: int, output: int, control: int) -> None:
         lc = libc()
         lc.prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
         p = box.protections
+        group = None
+        if p.pids:
+            group = os.path.join(p.pids, f"lab-grader-{os.getpid()}")
+            os.mkdir(group)
+            with open(os.path.join(group, "pids.max"), "w") as f:
+                f.write(str(PROCESSES))
         if p.namespaces:
             _check(lc.unshare(ctypes.c_int(p.namespaces)), "unshare")
         pid = os.fork()
         if pid == 0:
-            _child(box, channel, output, control)
+            _child(box, channel, output, control, group)
+        said = None
         os.close(channel)
         os.close(output)
         pidfd = os.pidfd_open(pid)
@@ -712,19 +770,48 @@ def keeper(box: Box, channel: int, output: int, control: int) -> None:
             os.kill(pid, signal.SIGKILL)
         _, status = os.waitpid(pid, 0)
         _kill_leftovers()
+        if group is not None:
+            _remove_group(group)
         if os.WIFSIGNALED(status):
             sig = os.WTERMSIG(status)
             signal.signal(sig, signal.SIG_DFL)
             os.kill(os.getpid(), sig)
         code = os.WEXITSTATUS(status)
-    except BaseException:                     # noqa: BLE001
-        pass
+    except BaseException as e:                # noqa: BLE001 - say why, on the child's output
+        if said is not None:
+            try:
+                os.write(said, f"the grader's sandbox could not be set up: {e}\n".encode())
+            except OSError:
+                pass
     os._exit(code)
 
 
-def _child(box: Box, channel: int, output: int, control: int) -> None:
+def _remove_group(group: str) -> None:
+    """Kill what is left in the cgroup (nothing, with a PID namespace) and remove it."""
+    for _ in range(100):
+        try:
+            with open(os.path.join(group, "cgroup.procs")) as f:
+                pids = [int(x) for x in f.read().split()]
+        except OSError:
+            pids = []
+        for pid in pids:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except OSError:
+                pass
+        try:
+            os.rmdir(group)
+            return
+        except OSError:
+            time.sleep(0.01)
+
+
+def _child(box: Box, channel: int, output: int, control: int, group: str | None = None) -> None:
     try:
         os.close(control)
+        if group is not None:                  # the child and all it starts count in pids.max
+            with open(os.path.join(group, "cgroup.procs"), "w") as f:
+                f.write("0")
         confine(box, channel, output)
         os.execve(sys.executable, child_argv(box), child_env(box))
     except BaseException as e:                 # noqa: BLE001 - fail closed: nothing runs
