@@ -100,12 +100,12 @@ def test_ctrl_c_stops_with_one_line_and_the_same_command_goes_on(tmp_path):
     while not book.exists() and time.monotonic() < deadline:   # the first student is done
         time.sleep(0.05)
     p.send_signal(signal.SIGINT)
-    _, err = p.communicate(timeout=60)
+    _, err = p.communicate(timeout=120)
     assert p.returncode == 130, err
     last = err.strip().splitlines()[-1]
-    assert last.startswith("interrupted: ") and "Traceback" not in err
+    assert last.startswith("interrupted") and "Traceback" not in err, err
     done = {r["student"] for r in gradebook(book).values()}
-    assert 1 <= len(done) < 4
+    assert 1 <= len(done) < 4, err
     p = run_cli(*args)
     _, err = p.communicate(timeout=300)
     assert p.returncode == 0 and err.count("graded before") == len(done), err

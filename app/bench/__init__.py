@@ -26,7 +26,6 @@ BENCHMARKS = {           # name -> module (imported only when run)
     "mass_spring": "app.bench.mass_spring",
     "particles": "app.bench.particles",
     "clips": "app.bench.clips",
-    "grade": "app.bench.grading",
 }
 
 

@@ -196,9 +196,18 @@ def _grade_many(jobs, timeout, parallel, seed) -> Iterator[Report]:
 
 def grade_class(class_dir: str, jobs: int, out: str | None = None, gradescope: bool = False,
                 timeout: float = CHECK_TIMEOUT, seed: int | None = None) -> int:
-    """Grade every student of `class_dir`; return 0 (done) or 130 (interrupted)."""
-    from app.exercises import sandbox
+    """Grade every student of `class_dir`; return 0 (done) or 130 (interrupted: Ctrl-C)."""
     out = out or os.path.join(class_dir, "gradebook.csv")
+    try:
+        return _grade_class(class_dir, jobs, out, gradescope, timeout, seed)
+    except KeyboardInterrupt:        # before the first student or after the last: still one line
+        print(f"interrupted (in {out}); the same command goes on from there", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout: float,
+                 seed: int | None) -> int:
+    from app.exercises import sandbox
     folder = reports_folder(out)
     os.makedirs(folder, exist_ok=True)
     if seed is None and hasattr(base, "new_seed"):

@@ -1,4 +1,6 @@
-"""`python -m app bench grade`: the time to grade a class with `exercise grade --jobs 2`.
+"""`python -m app.exercises.bench_grade [--quick] [--json]`: the time to grade a class with
+`exercise grade --jobs 2` (a benchmark beside the grader: app/bench sits below app/exercises
+and does not import it).
 
 It makes STUDENTS students' folders (3 with --quick) from the answers the tests keep
 (tests/exercise_answers/: right answers, wrong ones, and a hostile file for every tenth
@@ -25,6 +27,7 @@ from app.bench import Report
 STUDENTS = 30
 JOBS = 2
 ANSWERS = Path(__file__).resolve().parents[2] / "tests" / "exercise_answers"
+OUT = "bench-results"
 PREFIX = {"verlet": "verlet_", "constraints": "constraints_", "spring": "spring_",
           "rk4": "rk4_", "solver_interface": "solver_", "implicit_spring": "implicit_",
           "neighbour_grid": "grid_", "newtons_cradle": "cradle_",
@@ -79,3 +82,26 @@ def run(report: Report) -> dict[str, Any]:
                    f"{wall / files:.3f}", f"{cpu:.1f}", f"{len(rows)} ({passed})",
                    f"{out['load_average']:.1f}" if out["load_average"] is not None else "-"]])
     return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    import argparse
+    import json
+    import sys
+    p = argparse.ArgumentParser(prog="python -m app.exercises.bench_grade",
+                                description="the time to grade 30 students with --jobs 2")
+    p.add_argument("--quick", action="store_true", help="3 students (a smoke run)")
+    p.add_argument("--json", action="store_true", help="the numbers as JSON on stdout")
+    args = p.parse_args(argv)
+    from app.bench import machine_note
+    report = Report(OUT, args.json, args.quick)
+    report.say(machine_note())
+    out = run(report)
+    if args.json:
+        print(json.dumps(out, indent=1))
+    sys.stdout.flush()
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
