@@ -1,12 +1,13 @@
 """The grader's child process: import the student's file once, run the measuring half of each
 check on it, and send the raw values back, one frame per check (app/exercises/channel.py).
 
-It runs in a process forked from the grader, in a process group of its own (so the grader can end
-every process the student's code started), with stdin from /dev/null and stdout and stderr on a
-pipe the grader reads and caps, its data capped at MEMORY_ROOM more than it holds. It never
-decides a verdict: `measure` returns what the student's
-functions gave, and the parent judges it (app/exercises/grade.py). When it is done it leaves with
-os._exit: a thread the student started (even a non-daemon one) cannot keep it alive.
+On Linux it is a fresh `python -I` in the operating system's walls (app/exercises/sandbox.py):
+`sandbox_main` is its entry point, with only the harness on its path, stdin from /dev/null,
+stdout and stderr on a pipe the grader reads and caps, the channel on fd 3. Elsewhere
+`child_main` runs in a plain fork of the grader. It never decides a verdict: `measure` returns
+what the student's functions gave, and the parent judges it (app/exercises/grade.py). When it is
+done it leaves with os._exit: a thread the student started (even a non-daemon one) cannot keep it
+alive.
 """
 
 from __future__ import annotations

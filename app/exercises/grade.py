@@ -1,8 +1,14 @@
 """Grading a student's file so that nothing in it can break the lab or change a verdict.
 
-One child process per exercise (forked: NumPy and pymunk are already loaded) imports the file
-ONCE and runs the measuring half of every check (app/exercises/child.py); the verdicts are the
-parent's, computed here from the raw values each check sends back (app/exercises/base.py):
+One child process per exercise imports the file ONCE and runs the measuring half of every check
+(app/exercises/child.py); the verdicts are the parent's, computed here from the raw values each
+check sends back (app/exercises/base.py). On Linux the child runs in the operating system's walls
+(app/exercises/sandbox.py): a keeper forked from here gives it PID, network, IPC and UTS
+namespaces and a pids cgroup; it drops every capability, restricts itself with Landlock (reads
+Python's files and its harness only, writes its own temporary folder only, no TCP, signals
+scoped to itself) and execs a fresh `python -I` that imports only the harness (the lab modules
+its checks run, the exercise's reference stubbed out): nothing of this process's memory comes
+along. Every report's first line says which walls are in force and which this machine lacks.
 
   * the channel is untrusted (app/exercises/channel.py): framed, JSON, bounded in size, and
     bounded in time by a deadline per check; junk, a forged frame, half a frame is a failed
@@ -10,22 +16,23 @@ parent's, computed here from the raw values each check sends back (app/exercises
   * a syntax error, a missing package, an exception at import is a failed "imports" check with
     the student's file and line; the other checks are then reported as not run;
   * an exception in a check fails that check (their traceback) and the next check runs;
-  * a check still running after the time limit is stopped, and the exercise's remaining checks
-    are skipped (each would wait as long again), saying so;
+  * a check's time limit is the floor (--timeout) or LIMIT_FACTOR times the reference's own time
+    on that check, measured in this run on this machine (reference_time), whichever is longer;
+    a check still running then is stopped, the exercise's remaining checks are skipped (each
+    would wait as long again), and the report says what was measured;
   * a child that dies (pymunk aborts the process on some values, os._exit) fails the check it was
     in; a new child imports the file again for the checks after it;
-  * the child has a process group of its own, and the whole group is killed when the exercise
-    is done: no process the student's code started outlives the check (the kill is atomic with
-    fork: a process forking as it comes is caught too); its data is capped (child.MEMORY_ROOM:
-    a runaway allocation is a MemoryError in their code);
+  * when the exercise is done the keeper kills the child, and the kernel every process in its
+    PID namespace (a setsid daemon too); the keeper, a subreaper, kills anything else left;
   * a file that hands in the lab's own code (a name of app/ or scenes/ in its module) fails the
     import: the grader grades code the student wrote;
   * the student's output (prints, os.write, subprocesses) is captured and its first OUTPUT_SHOWN
     bytes shown (on stderr, before the report), the rest counted and dropped;
   * the grader's own errors (a judge that raises) are reported as the grader's.
-`check all` grades up to JOBS exercises at once, each in its own child.
-(Windows cannot fork: there the checks run in the grader's process, which still catches every
-exception but cannot stop an endless loop nor keep a verdict out of the student's reach.)
+`check all` grades up to JOBS exercises at once, each in its own child. Elsewhere than Linux the
+child is a plain fork of this process, unconfined, and the report says so (Windows cannot fork:
+there the checks run in the grader's process, which still catches every exception but cannot
+stop an endless loop nor keep a verdict out of the student's reach).
 """
 
 from __future__ import annotations
