@@ -501,6 +501,7 @@ def test_a_file_cannot_signal_the_grader_its_group_or_any_process_outside(monkey
     victim = subprocess.Popen(["sleep", "30"], start_new_session=True)
     try:
         monkeypatch.setenv("LAB_TEST_VICTIM", str(victim.pid))
+        monkeypatch.setenv("LAB_TEST_GRADER", str(os.getpid()))   # this process: the grader
         report, _ = graded("verlet_kills_grader")          # this process survives to read it
         assert report.passed, report.text()
         assert victim.poll() is None                       # nobody outside got a signal
@@ -571,3 +572,20 @@ def test_a_file_cannot_read_secrets_the_repository_or_other_folders():
     report, _ = graded("verlet_reads_secrets")
     assert report.passed, report.text()
     assert "READ" not in report.output and report.output.count("refused") == 5, report.output
+
+
+def test_a_time_limit_is_a_multiple_of_the_references_time_measured_in_the_run(monkeypatch):
+    # a right answer once failed a flat 5 s limit on a loaded machine ("an endless loop?"): the
+    # limit is now the floor or 20x the reference's own time on this machine, and a timeout
+    # says what was measured. Here the reference's time is set (the machine's load, in effect)
+    import app.exercises.grade as g
+    slow = str(ROOT / "tests" / "exercise_answers" / "right" / "verlet_slow_start.py")
+    monkeypatch.setattr(g, "reference_time", lambda exercise, check: 0.15)     # limit 3 s
+    report = grade(VERLET, slow, timeout=0.1, only=("free fall",))
+    assert report.passed, report.text()
+    monkeypatch.setattr(g, "reference_time", lambda exercise, check: 0.001)    # limit 0.1 s
+    report = grade(VERLET, slow, timeout=0.1, only=("free fall",))
+    c = report.checks[0]
+    assert not c.passed and c.measured.startswith("still running after")
+    assert "the reference took 0.001 s on this machine" in c.error and "endless" not in c.error
+    assert "20x the reference's 0.001 s, at least 0.1 s" in c.bound

@@ -4,7 +4,8 @@ scope and the PID namespace keep every signal inside its sandbox: the grader rep
 import os
 import signal
 
-for _target in (os.getppid(), -os.getpgid(0), int(os.environ.get("LAB_TEST_VICTIM", "0"))):
+for _target in (os.getppid(), -os.getpgid(0), int(os.environ.get("LAB_TEST_VICTIM", "0")),
+                int(os.environ.get("LAB_TEST_GRADER", "0"))):
     try:
         if _target:
             os.kill(_target, signal.SIGTERM)
