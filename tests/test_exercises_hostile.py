@@ -383,11 +383,12 @@ def test_a_chain_of_forks_racing_the_kill_leaves_no_process(monkeypatch):
 
 def test_a_runaway_allocation_is_a_memory_error_at_the_childs_cap(monkeypatch):
     from app.exercises import sandbox
-    monkeypatch.setattr(sandbox, "MEMORY", 600 << 20)    # the forked keeper reads it
-    start = time.monotonic()
-    report = grade(VERLET, str(HOSTILE / "verlet_memory_creep.py"), timeout=5.0,
+    # the child's data: Python and NumPy hold ~60 MB of it; 400 MB leaves room for 3 of the
+    # file's 100 MB blocks (the cap is sandbox.MEMORY, 3 GB, when not set by a test)
+    monkeypatch.setattr(sandbox, "MEMORY", 400 << 20)    # the forked keeper reads it
+    report = grade(VERLET, str(HOSTILE / "verlet_memory_creep.py"), timeout=60.0,
                    only=("free fall",))
-    assert "MemoryError" in report.checks[0].error and time.monotonic() - start < 5.0
+    assert "MemoryError" in report.checks[0].error, report.text()
 
 
 @pytest.mark.parametrize("name, only", [
