@@ -408,7 +408,8 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
     g.add_argument("--out", help="the gradebook CSV (default CLASS_DIR/gradebook.csv); the "
                    "reports go to a folder beside it, OUT-reports/")
     g.add_argument("--gradescope", action="store_true", help="also write each student's "
-                   "results.json in Gradescope's autograder format (OUT-reports/STUDENT.results.json)")
+                   "results.json in Gradescope's autograder format "
+                   "(OUT-reports/STUDENT.results.json)")
     g.add_argument("--timeout", type=_timeout, default=CHECK_TIMEOUT,
                    help=f"seconds a check may run at least (default {CHECK_TIMEOUT:g}; or 20x the "
                    "reference's time on this machine, if longer)")
@@ -462,7 +463,7 @@ def exercise_main(argv: list[str]) -> int:
 
 
 def grade_class_main(args: argparse.Namespace) -> int:
-    """`exercise grade CLASS_DIR`: the usage checked here, the work in app/exercises/classroom.py."""
+    """`exercise grade CLASS_DIR`: the usage checked here, the work in classroom.py."""
     from app.exercises import classroom
     folder = args.class_dir
     if not folder.strip():
