@@ -59,7 +59,8 @@ FAILS = {
     "verlet_forged_token": ("every", ""),
     "verlet_thread": ("free fall", ""),
     # the second pass (issue 16)
-    "verlet_reexports_lab": ("imports", "No module named 'app.physics'"),   # not in its sandbox
+    # not in its sandbox; or, where the harness holds the module (stubbed), refused by name
+    "verlet_reexports_lab": ("imports", ("No module named 'app.physics'", "the lab's own code")),
     "verlet_closes_fds": ("imports", "channel was closed or redirected"),
     "verlet_dup_over_channel": ("imports", "channel was closed or redirected"),
     "verlet_segfault": ("every", "killed by signal 11 (SIGSEGV)"),
@@ -74,7 +75,8 @@ def test_a_hostile_file_ends_quickly_with_failed_checks(name):
     failed = [c for c in report.checks if not c.passed]
     if where == "imports":
         assert report.checks[0].name == "imports" and not report.checks[0].passed
-        assert words in report.checks[0].error, report.text()
+        assert any(w in report.checks[0].error for w in (
+            words if isinstance(words, tuple) else (words,))), report.text()
         assert all(c.measured == "not run" for c in report.checks[1:])
     elif where == "every":
         assert len(failed) == len(VERLET.checks), report.text()
