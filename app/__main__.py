@@ -420,7 +420,7 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
     # allow_abbrev=False on every level: --ref is not --reference (docs/reference.md)
     p = _Parser(prog="python -m app exercise", allow_abbrev=False, description="student "
                 "exercises: list them, grade an answer, copy the starters")
-    sub = p.add_subparsers(dest="command", metavar="list|check|copy", parser_class=_Parser)
+    sub = p.add_subparsers(dest="command", metavar="list|check|copy|grade", parser_class=_Parser)
     sub.add_parser("list", help="name, title and slide of every exercise", allow_abbrev=False)
     c = sub.add_parser("check", help="grade an answer (headless)", allow_abbrev=False)
     c.add_argument("name", help=f"accepted: {', '.join(names)}, all")
@@ -436,6 +436,23 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
     k = sub.add_parser("copy", help="copy the starters into a folder of your own",
                        allow_abbrev=False)
     k.add_argument("folder")
+    g = sub.add_parser("grade", help="grade a whole class: a folder per student",
+                       allow_abbrev=False)
+    g.add_argument("class_dir", metavar="CLASS_DIR", help="a folder holding a folder per student "
+                   "(each with the student's NAME.py files)")
+    g.add_argument("--jobs", type=lambda t: _int_in(t, 1, 256, "--jobs"),
+                   default=os.cpu_count() or 1,
+                   help="files graded at once, each in its own sandbox (default: the CPU count)")
+    g.add_argument("--out", help="the gradebook CSV (default CLASS_DIR/gradebook.csv); the "
+                   "reports go to a folder beside it, OUT-reports/")
+    g.add_argument("--gradescope", action="store_true", help="also write each student's "
+                   "results.json in Gradescope's autograder format "
+                   "(OUT-reports/STUDENT.results.json)")
+    g.add_argument("--timeout", type=_timeout, default=CHECK_TIMEOUT,
+                   help=f"seconds a check may run at least (default {CHECK_TIMEOUT:g}; or 20x the "
+                   "reference's time on this machine, if longer)")
+    g.add_argument("--seed", type=lambda t: _int_in(t, 0, 2 ** 32 - 1, "--seed"), default=None,
+                   help="the random cases' seed (default: a new one, written in the gradebook)")
     return p
 
 
@@ -446,9 +463,12 @@ def exercise_main(argv: list[str]) -> int:
     names = exercise_names()
     args = build_exercise_parser(names).parse_args(argv)
     if args.command is None:
-        raise UsageError("exercise needs a command; accepted: list, check NAME|all, copy DIR")
+        raise UsageError("exercise needs a command; accepted: list, check NAME|all, copy DIR, "
+                         "grade CLASS_DIR")
     if args.command == "list":
         return cli.list_exercises()
+    if args.command == "grade":
+        return grade_class_main(args)
     if args.command == "copy":
         writable_folder(args.folder, "copy", "exercise copy mywork", "verlet.py")
         taken = cli.existing_copies(args.folder)
@@ -507,6 +527,27 @@ def scene_main(argv: list[str]) -> int:
     return EXIT_OK
 
 
+def grade_class_main(args: argparse.Namespace) -> int:
+    """`exercise grade CLASS_DIR`: the usage checked here, the work in classroom.py."""
+    from app.exercises import classroom
+    folder = args.class_dir
+    if not folder.strip():
+        raise UsageError("grade needs a class folder, e.g. exercise grade class2026/")
+    if not os.path.isdir(folder):
+        raise UsageError(f"grade: '{folder}' is not a folder; accepted: a folder holding a folder "
+                         "per student")
+    out = args.out or os.path.join(folder, "gradebook.csv")
+    if os.path.isdir(out):
+        raise UsageError(f"--out '{out}' is a folder; accepted: a CSV file name")
+    problem = check_output_path(out, "--out")
+    if problem:
+        raise UsageError(problem)
+    if not classroom.students_in(folder, out):
+        raise UsageError(f"grade: '{folder}' holds no student folder; accepted: a folder holding "
+                         "a folder per student (each with NAME.py files)")
+    return classroom.grade_class(folder, args.jobs, out, args.gradescope, args.timeout, args.seed)
+
+
 def leave(code: int) -> NoReturn:
     """Exit with `code`. An exercise scene runs the student's file in this process, and what it
     left behind must not keep the lab open nor write after the JSON: a thread (even a non-daemon
@@ -524,6 +565,9 @@ def leave(code: int) -> NoReturn:
             stream.flush()
         except (OSError, ValueError):
             pass
+    sandbox = sys.modules.get("app.exercises.sandbox")     # its temporary folders (no atexit)
+    if sandbox is not None:
+        sandbox.cleanup()
     os._exit(code)
 
 

@@ -390,8 +390,11 @@ def test_an_endless_loop_is_stopped_and_the_rest_of_that_exercise_skipped():
     report = grade(get_exercise("verlet"), str(HOSTILE / "verlet_endless.py"), timeout=0.2)
     first, rest = report.checks[0], report.checks[1:]
     assert len(report.checks) == len(get_exercise("verlet").checks)
-    assert not first.passed and "stopped after 0.2 s" in first.error
-    assert first.measured == "still running after 0.2 s"
+    # the limit: 0.2 s, or 20x the reference's own time on this machine, whichever is longer;
+    # the report says what was measured, the reference's time too, and guesses no cause
+    assert not first.passed and "stopped after" in first.error
+    assert "the reference took" in first.error and "endless" not in first.error
+    assert first.measured.startswith("still running after") and "x the reference's" in first.bound
     for c in rest:      # each would wait as long again: skipped, and it says why
         assert not c.passed and c.measured == "not run" and "ran out of time" in c.error
 

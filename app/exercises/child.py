@@ -1,12 +1,13 @@
 """The grader's child process: import the student's file once, run the measuring half of each
 check on it, and send the raw values back, one frame per check (app/exercises/channel.py).
 
-It runs in a process forked from the grader, in a process group of its own (so the grader can end
-every process the student's code started), with stdin from /dev/null and stdout and stderr on a
-pipe the grader reads and caps, its data capped at MEMORY_ROOM more than it holds. It never
-decides a verdict: `measure` returns what the student's
-functions gave, and the parent judges it (app/exercises/grade.py). When it is done it leaves with
-os._exit: a thread the student started (even a non-daemon one) cannot keep it alive.
+On Linux it is a fresh `python -I` in the operating system's walls (app/exercises/sandbox.py):
+`sandbox_main` is its entry point, with only the harness on its path, stdin from /dev/null,
+stdout and stderr on a pipe the grader reads and caps, the channel on fd 3. Elsewhere
+`child_main` runs in a plain fork of the grader. It never decides a verdict: `measure` returns
+what the student's functions gave, and the parent judges it (app/exercises/grade.py). When it is
+done it leaves with os._exit: a thread the student started (even a non-daemon one) cannot keep it
+alive.
 """
 
 from __future__ import annotations
@@ -55,11 +56,13 @@ def fd_limit() -> int:
     return soft if 0 < soft < 1 << 20 else 1 << 16
 
 
-def import_answer(path: str | None, exercise: Exercise) -> Any:
-    """The module to grade: the student's file, or the lab's reference answer (path None)."""
+def import_answer(path: str | None, exercise: Exercise, shown_as: str | None = None) -> Any:
+    """The module to grade: the student's file, or the lab's reference answer (path None). The
+    sandboxed child reads a copy of the file (`path`) and names the student's (`shown_as`)."""
     if path is None:
         return exercise.reference()
-    module = load_module(path)
+    module = load_module(path, shown_as)
+    path = shown_as or path
     missing = [f for f in exercise.functions if not callable(getattr(module, f, None))]
     if missing:
         raise BadAnswer(f"{path} defines no function {', '.join(missing)}")
@@ -97,9 +100,11 @@ def outcome(exc: BaseException, path: str | None) -> tuple[str, str]:
 
 
 def run_child(exercise: Exercise, path: str | None, checks: list[tuple[int, Check]],
-              token: str, channel: int) -> None:
+              token: str, channel: int, copy: str | None = None,
+              refused: str | None = None) -> None:
     """The child's work (the caller has set up its fds): the import, then each check in turn.
-    Returns when done; the caller leaves with os._exit."""
+    Returns when done; the caller leaves with os._exit. `copy`: the file to read (the sandbox's
+    copy of `path`); `refused`: why the grader could not copy it (the import fails with it)."""
     # a wrong answer overflows or divides by zero on purpose-built cases: the check reports the
     # result (NaN, a huge error); NumPy's warnings would only bury the report
     warnings.simplefilter("ignore", RuntimeWarning)
@@ -111,7 +116,9 @@ def run_child(exercise: Exercise, path: str | None, checks: list[tuple[int, Chec
                                   list(base.NOTES.values())))
 
     try:
-        module = import_answer(path, exercise)
+        if refused is not None:
+            raise NotASourceFile(refused)
+        module = import_answer(copy or path, exercise, path)
     except BaseException as e:     # noqa: BLE001 - anything at import is a failed import
         status, error = outcome(e, path)
         send(-1, status, error=error)
@@ -163,5 +170,39 @@ def child_main(exercise: Exercise, path: str | None, checks: list[tuple[int, Che
         os._exit(code)
 
 
-__all__ = ["child_main", "run_child", "import_answer", "outcome", "refuse_borrowed",
+READY = -2       # the frame the sandboxed child sends once its harness is imported
+
+
+def sandbox_main() -> None:
+    """Entry point of the sandboxed child (app/exercises/sandbox.py: a fresh `python -I` in the
+    walls, its harness on sys.path); its one argument says what to grade. Never returns."""
+    import json
+    from app.exercises import get_exercise
+    from app.exercises.sandbox import CHANNEL_FD
+    code = 0
+    try:
+        args = json.loads(sys.argv[1])
+        exercise = get_exercise(args["exercise"])
+        only = args["only"]
+        checks = [c for c in exercise.checks if only is None or c.name in only]
+        if args.get("seed") is not None and hasattr(base, "set_seed"):
+            base.set_seed(args["seed"])
+        sys.stdout.reconfigure(errors="backslashreplace")
+        sys.stderr.reconfigure(errors="backslashreplace", line_buffering=True)
+        write_all(CHANNEL_FD, encode(args["token"], READY, "ok"))
+        first = args["first"]
+        run_child(exercise, args["path"], [(k, checks[k]) for k in range(first, len(checks))],
+                  args["token"], CHANNEL_FD, args["copy"], args["refused"])
+    except BaseException:                # noqa: BLE001 - e.g. the channel closed by their code
+        code = CHANNEL_LOST
+    finally:
+        try:
+            sys.stdout.flush()
+            sys.stderr.flush()
+        except BaseException:            # noqa: BLE001
+            pass
+        os._exit(code)
+
+
+__all__ = ["child_main", "sandbox_main", "run_child", "import_answer", "outcome", "refuse_borrowed",
            "CHANNEL_LOST", "MEMORY_ROOM", "limit_memory"]

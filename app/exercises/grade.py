@@ -1,8 +1,14 @@
 """Grading a student's file so that nothing in it can break the lab or change a verdict.
 
-One child process per exercise (forked: NumPy and pymunk are already loaded) imports the file
-ONCE and runs the measuring half of every check (app/exercises/child.py); the verdicts are the
-parent's, computed here from the raw values each check sends back (app/exercises/base.py):
+One child process per exercise imports the file ONCE and runs the measuring half of every check
+(app/exercises/child.py); the verdicts are the parent's, computed here from the raw values each
+check sends back (app/exercises/base.py). On Linux the child runs in the operating system's walls
+(app/exercises/sandbox.py): a keeper forked from here gives it PID, network, IPC and UTS
+namespaces and a pids cgroup; it drops every capability, restricts itself with Landlock (reads
+Python's files and its harness only, writes its own temporary folder only, no TCP, signals
+scoped to itself) and execs a fresh `python -I` that imports only the harness (the lab modules
+its checks run, the exercise's reference stubbed out): nothing of this process's memory comes
+along. Every report's first line says which walls are in force and which this machine lacks.
 
   * the channel is untrusted (app/exercises/channel.py): framed, JSON, bounded in size, and
     bounded in time by a deadline per check; junk, a forged frame, half a frame is a failed
@@ -10,22 +16,23 @@ parent's, computed here from the raw values each check sends back (app/exercises
   * a syntax error, a missing package, an exception at import is a failed "imports" check with
     the student's file and line; the other checks are then reported as not run;
   * an exception in a check fails that check (their traceback) and the next check runs;
-  * a check still running after the time limit is stopped, and the exercise's remaining checks
-    are skipped (each would wait as long again), saying so;
+  * a check's time limit is the floor (--timeout) or LIMIT_FACTOR times the reference's own time
+    on that check, measured in this run on this machine (reference_time), whichever is longer;
+    a check still running then is stopped, the exercise's remaining checks are skipped (each
+    would wait as long again), and the report says what was measured;
   * a child that dies (pymunk aborts the process on some values, os._exit) fails the check it was
     in; a new child imports the file again for the checks after it;
-  * the child has a process group of its own, and the whole group is killed when the exercise
-    is done: no process the student's code started outlives the check (the kill is atomic with
-    fork: a process forking as it comes is caught too); its data is capped (child.MEMORY_ROOM:
-    a runaway allocation is a MemoryError in their code);
+  * when the exercise is done the keeper kills the child, and the kernel every process in its
+    PID namespace (a setsid daemon too); the keeper, a subreaper, kills anything else left;
   * a file that hands in the lab's own code (a name of app/ or scenes/ in its module) fails the
     import: the grader grades code the student wrote;
   * the student's output (prints, os.write, subprocesses) is captured and its first OUTPUT_SHOWN
     bytes shown (on stderr, before the report), the rest counted and dropped;
   * the grader's own errors (a judge that raises) are reported as the grader's.
-`check all` grades up to JOBS exercises at once, each in its own child.
-(Windows cannot fork: there the checks run in the grader's process, which still catches every
-exception but cannot stop an endless loop nor keep a verdict out of the student's reach.)
+`check all` grades up to JOBS exercises at once, each in its own child. Elsewhere than Linux the
+child is a plain fork of this process, unconfined, and the report says so (Windows cannot fork:
+there the checks run in the grader's process, which still catches every exception but cannot
+stop an endless loop nor keep a verdict out of the student's reach).
 """
 
 from __future__ import annotations
@@ -33,6 +40,7 @@ from __future__ import annotations
 import json
 import os
 import secrets
+import select
 import selectors
 import signal
 import sys
@@ -40,15 +48,18 @@ import time
 from dataclasses import dataclass, field
 from typing import Iterator
 
-from app.exercises import base
+from app.exercises import base, sandbox
 from app.exercises.base import Check, Exercise, plain
 from app.exercises.channel import ChannelError, Frame, FrameReader, parse
-from app.exercises.child import CHANNEL_LOST, child_main, import_answer, outcome
-from app.exercises.loading import shown, starter_path
+from app.exercises.child import CHANNEL_LOST, READY, child_main, import_answer, outcome
+from app.exercises.loading import NotASourceFile, read_source, shown, starter_path
 from app.exercises.report import OUTPUT_SHOWN, CheckReport, Report, not_run, verdict
 
-CHECK_TIMEOUT = 10.0        # seconds a check may run before it counts as an endless loop
+CHECK_TIMEOUT = 10.0        # seconds a check may run at least (the floor of its time limit)
+LIMIT_FACTOR = 20           # ... and at least this many times the reference's own time
+STARTUP = 60.0              # seconds a sandboxed child may take to start (Python, NumPy, pymunk)
 CAN_FORK = hasattr(os, "fork")
+SANDBOXED = CAN_FORK and sys.platform.startswith("linux") and hasattr(os, "pidfd_open")
 JOBS = max(1, min(4, os.cpu_count() or 1))   # exercises graded at once by `check all`
 READ = 1 << 16
 
@@ -56,11 +67,12 @@ DIED = ("the check's process ended without a result: a crash in a library (pymun
         "values, e.g. a negative radius or mass), os._exit, or a signal")
 NO_CHANNEL = ("the check's process could not send its result: the grader's channel was closed "
               "or redirected (did your code close or dup2 file descriptors, os.closerange?)")
-ENDLESS = ("stopped after {t:g} s: an endless loop (a while loop whose condition never changes)? "
-           "Or a step far too slow: a check calls your function hundreds of times, so a sleep "
-           "or a print of whole arrays in it adds up")
-SKIPPED = ("not run: the check before it ran out of time, and each would wait {t:g} s again; "
-           "fix that one first")
+ENDLESS = ("stopped after {t:.1f} s{ref}. A check calls your function hundreds of times: a loop "
+           "that never ends, a sleep or a print of whole arrays in it adds up")
+SKIPPED = ("not run: the check before it ran out of time, and each would wait {t:g} s or more "
+           "again; fix that one first")
+SETUP = ("the grader's sandbox could not be set up, so your code was not run (a problem of the "
+         "machine, not of your file): {why}")
 
 
 # ----- one exercise: its child (or children) and what came back --------------------------------
@@ -71,11 +83,34 @@ class Child:
     channel: int
     output: int
     pidfd: int | None
-    expected: int                # the check whose frame comes next (-1: the import)
+    expected: int                # the check whose frame comes next (-1: the import; -2: ready)
     first: int                   # the first check this child runs
     deadline: float
     reader: FrameReader = field(default_factory=FrameReader)
     exited: bool = False
+    control: int | None = None   # the keeper's control pipe (closed: the keeper ends the child)
+    folder: str | None = None    # the child's own temporary folder
+    started: float = 0.0         # when the running check (or the import) started
+
+
+REFERENCE_TIMES: dict[tuple[str, str, object], float | None] = {}
+
+
+def reference_time(exercise: Exercise, check: Check) -> float | None:
+    """Seconds the lab's reference takes on `check` on this machine now (measured in this
+    process, once per run and seed: the time limit of a check is a multiple of it); None if the
+    reference cannot be timed here."""
+    key = (exercise.name, check.name, getattr(base, "SEED", None))
+    if key not in REFERENCE_TIMES:
+        try:
+            ref = exercise.reference()
+            start = time.perf_counter()
+            check.measure(ref)
+            REFERENCE_TIMES[key] = time.perf_counter() - start
+        except Exception:            # noqa: BLE001 - the floor of the limit still holds
+            REFERENCE_TIMES[key] = None
+        base.NOTES.clear()
+    return REFERENCE_TIMES[key]
 
 
 class Session:
@@ -91,9 +126,26 @@ class Session:
         self.child: Child | None = None
         self.done = False
         self.sel: selectors.BaseSelector | None = None
+        self.sandbox = sandbox.protections().line() if SANDBOXED else \
+            "sandbox: none (not Linux: the checks run in a forked process, unconfined)"
+        self.copy: str | None = None         # the student's file, as read once
+        self.refused: str | None = None      # why it could not be read
+
+    def limit(self, k: int) -> tuple[float, float | None]:
+        """Check k's time limit and the reference's time it comes from (None: the floor)."""
+        if k < 0 or self.path is None:
+            return self.timeout, None
+        ref = reference_time(self.exercise, self.checks[k])
+        if ref is None:
+            return self.timeout, None
+        return max(self.timeout, LIMIT_FACTOR * ref), ref
 
     # --- the child's life ------------------------------------------------------------------------
     def start(self, sel: selectors.BaseSelector, first: int) -> None:
+        from app.exercises import NAMES
+        if SANDBOXED and self.exercise.name in NAMES:   # (a test's made-up exercise: forked)
+            self.start_sandboxed(sel, first)
+            return
         self.sel = sel
         token = secrets.token_hex(16)
         chan_r, chan_w = os.pipe()
@@ -124,6 +176,60 @@ class Session:
         if pidfd is not None:
             sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
 
+    def start_sandboxed(self, sel: selectors.BaseSelector, first: int) -> None:
+        """A child in the operating system's walls (app/exercises/sandbox.py): a keeper forked
+        from here, and in it a fresh Python that imports the harness and the student's file."""
+        self.sel = sel
+        p = sandbox.protections()
+        data = None
+        if self.path is not None and self.refused is None:
+            try:
+                data = read_source(self.path)
+            except NotASourceFile as e:
+                self.refused = str(e)
+        if self.refused is not None and first == 0:    # nothing to run: no child
+            self.import_failed(CheckReport("imports", False, "not read", "a Python file",
+                                           error=self.refused))
+            return
+        folder = sandbox.new_folder(p)
+        copy = None
+        if data is not None:
+            try:
+                copy = os.path.join(folder, os.path.basename(self.path))
+                with open(copy, "wb") as f:
+                    f.write(data)
+                if p.uid is not None:
+                    os.chown(copy, p.uid, p.uid)
+            except OSError as e:
+                self.refused, copy = f"the grader could not copy the file: {e}", None
+        token = secrets.token_hex(16)
+        n = max(1, len(self.checks) - first)
+        argument = json.dumps({"exercise": self.exercise.name, "path": self.path, "copy": copy,
+                               "refused": self.refused, "token": token, "first": first,
+                               "only": [c.name for c in self.checks],
+                               "seed": getattr(base, "SEED", None)})
+        box = sandbox.Box(sandbox.harness(self.exercise.name, stub=self.path is not None), folder,
+                          argument, int(STARTUP + self.timeout * LIMIT_FACTOR * (n + 1)), p)
+        chan_r, chan_w = os.pipe()
+        out_r, out_w = os.pipe()
+        ctl_r, ctl_w = os.pipe()
+        sys.stdout.flush()
+        sys.stderr.flush()
+        pid = os.fork()
+        if pid == 0:                      # the keeper: never returns
+            sandbox.keeper(box, chan_w, out_w, ctl_r)
+        for fd in (chan_w, out_w, ctl_r):
+            os.close(fd)
+        for fd in (chan_r, out_r):
+            os.set_blocking(fd, False)
+        pidfd = os.pidfd_open(pid)
+        now = time.monotonic()
+        self.child = Child(pid, token, chan_r, out_r, pidfd, READY, first, now + STARTUP,
+                           control=ctl_w, folder=folder, started=now)
+        sel.register(chan_r, selectors.EVENT_READ, self.on_channel)
+        sel.register(out_r, selectors.EVENT_READ, self.on_output)
+        sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
+
     def fds(self) -> list[int]:
         c = self.child
         if c is None:
@@ -140,6 +246,9 @@ class Session:
         """Kill the child's whole process group, reap it, keep the output it left, close."""
         c = self.child
         if c is None:
+            return
+        if c.control is not None:
+            self.stop_keeper(c)
             return
         try:
             os.killpg(c.pid, signal.SIGKILL)     # the student's background processes too
@@ -158,6 +267,30 @@ class Session:
         for fd in self.fds():
             self._unregister(fd)
             os.close(fd)
+        self.child = None
+
+    def stop_keeper(self, c: Child) -> None:
+        """Close the keeper's control pipe (it kills the child, and the kernel every process in
+        the child's PID namespace), reap the keeper, keep the output, remove the folder."""
+        os.close(c.control)
+        c.control = None
+        if not c.exited:
+            ready, _, _ = select.select([c.pidfd], [], [], 10.0)
+            if not ready:                        # a keeper that hangs: should never happen
+                try:
+                    signal.pidfd_send_signal(c.pidfd, signal.SIGKILL)
+                except OSError:
+                    pass
+            try:
+                os.waitpid(c.pid, 0)
+            except ChildProcessError:
+                pass
+        self.read_output(c.output, drain=True)
+        for fd in self.fds():
+            self._unregister(fd)
+            os.close(fd)
+        if c.folder:
+            sandbox.remove_folder(c.folder)
         self.child = None
 
     # --- events --------------------------------------------------------------------------------
@@ -229,6 +362,11 @@ class Session:
             how = f"exit code {os.WEXITSTATUS(status)}"
             if os.WEXITSTATUS(status) == CHANNEL_LOST:    # the child's own way out
                 why = NO_CHANNEL
+            elif c.control is not None and c.expected == READY and os.WEXITSTATUS(status) in (
+                    sandbox.SETUP_FAILED, sandbox.KEEPER_FAILED):
+                self.read_output(c.output, drain=True)
+                text = bytes(self.output).decode("utf-8", "replace").strip().splitlines()
+                why = SETUP.format(why=text[-1] if text else f"exit code {os.WEXITSTATUS(status)}")
             elif os.WEXITSTATUS(status) == 0:             # a clean exit, and no result
                 why = DIED + "; or its channel was closed or redirected by your code"
         cut = " (in the middle of a frame)" if c.reader.partial() else ""
@@ -253,6 +391,11 @@ class Session:
     # --- what the frames and the failures mean ---------------------------------------------------
     def accept(self, frame: Frame) -> None:
         c = self.child
+        if frame.check == READY:               # the harness is in: the import's time starts now
+            c.expected = -1
+            c.started = time.monotonic()
+            c.deadline = c.started + self.timeout
+            return
         if frame.check == -1:
             if frame.status != "ok":
                 self.import_failed(verdict(Check("imports", None, None), frame))
@@ -263,7 +406,8 @@ class Session:
         else:
             self.reports[frame.check] = verdict(self.checks[frame.check], frame)
             c.expected = frame.check + 1
-        c.deadline = time.monotonic() + self.timeout
+        c.started = time.monotonic()
+        c.deadline = c.started + self.timeout
         if c.expected >= len(self.checks):
             self.finish()
 
@@ -282,7 +426,7 @@ class Session:
         """The child died or its channel is damaged while check `expected` ran: that check
         fails; a new child goes on with the checks after it."""
         c = self.child
-        if c.expected == -1:
+        if c.expected < 0:
             self.import_failed(CheckReport("imports", False, measured, "a normal import",
                                            error=error))
             return
@@ -296,17 +440,41 @@ class Session:
             self.finish()
 
     def timed_out(self) -> None:
+        """The check (or the import) ran past its deadline. A check's limit is the floor
+        (--timeout) or LIMIT_FACTOR times the reference's own time on this machine, whichever is
+        longer: measured now, on the same machine under the same load. If that is later than the
+        floor, the check goes on until then; else it is stopped, and the report says what was
+        measured (not a guessed cause)."""
         c = self.child
-        t = self.timeout
+        now = time.monotonic()
+        t = now - c.started
+        if c.expected == READY:
+            self.import_failed(CheckReport(
+                "imports", False, f"the grader's sandbox did not start in {STARTUP:g} s",
+                f"started within {STARTUP:g} s", error=SETUP.format(
+                    why="Python, NumPy and the harness took too long to import (a machine "
+                        "loaded far beyond its cores?)")))
+            return
         if c.expected == -1:
-            self.import_failed(CheckReport("imports", False, f"still running after {t:g} s",
-                                           f"done within {t:g} s", error=ENDLESS.format(t=t)))
+            self.import_failed(CheckReport("imports", False, f"still running after {t:.1f} s",
+                                           f"done within {self.timeout:g} s",
+                                           error=ENDLESS.format(t=t, ref="")))
             return
         k = c.expected
-        self.reports[k] = CheckReport(self.checks[k].name, False, f"still running after {t:g} s",
-                                      f"done within {t:g} s", error=ENDLESS.format(t=t))
+        limit, ref = self.limit(k)
+        if c.started + limit > time.monotonic() + 0.01:     # the reference asks for more time
+            c.deadline = c.started + limit
+            return
+        t = time.monotonic() - c.started
+        bound = f"done within {limit:.3g} s"
+        why = ""
+        if ref is not None:
+            bound += f" ({LIMIT_FACTOR}x the reference's {ref:.2g} s, at least {self.timeout:g} s)"
+            why = f"; the reference took {ref:.2g} s on this machine"
+        self.reports[k] = CheckReport(self.checks[k].name, False, f"still running after {t:.1f} s",
+                                      bound, error=ENDLESS.format(t=t, ref=why))
         for j in range(k + 1, len(self.checks)):
-            self.reports[j] = not_run(self.checks[j], SKIPPED.format(t=t))
+            self.reports[j] = not_run(self.checks[j], SKIPPED.format(t=self.timeout))
         self.finish()
 
     def finish(self) -> None:
@@ -320,7 +488,9 @@ class Session:
             checks = [self.imports] + checks
         text = self.output.decode("utf-8", "replace")
         text = "".join(ch if ch in "\n\t" or ch.isprintable() else "?" for ch in text)
-        return Report(self.exercise.name, where, checks, text, self.output_bytes)
+        report = Report(self.exercise.name, where, checks, text, self.output_bytes)
+        report.sandbox = self.sandbox
+        return report
 
 
 def run_sessions(sessions: list[Session], jobs: int = JOBS) -> Iterator[Report]:
@@ -334,7 +504,8 @@ def run_sessions(sessions: list[Session], jobs: int = JOBS) -> Iterator[Report]:
                 s.start(sel, 0)
                 running.append(s)
             now = time.monotonic()
-            limit = min(s.child.deadline for s in running if s.child) - now if running else 0
+            deadlines = [s.child.deadline for s in running if s.child]
+            limit = min(deadlines) - now if deadlines else 0
             if any(s.child and s.child.pidfd is None for s in running):
                 limit = min(limit, 0.05)
             for key, _ in sel.select(max(0.0, limit)):

@@ -45,6 +45,7 @@ class Report:
     output: str = ""         # the first OUTPUT_SHOWN bytes of what the student's code printed
     output_bytes: int = 0    # how much it printed in all
     seed: int = field(default_factory=lambda: base.SEED)   # the random cases' (--seed repeats)
+    sandbox: str = ""        # the walls the child ran in, and those this machine lacks
 
     @property
     def passed(self) -> bool:
@@ -53,13 +54,14 @@ class Report:
     def to_json(self) -> dict[str, Any]:
         return {"exercise": self.exercise, "path": self.path, "passed": self.passed,
                 "seed": self.seed, "checks": [asdict(c) for c in self.checks],
-                "output_bytes": self.output_bytes}
+                "output_bytes": self.output_bytes, "sandbox": self.sandbox}
 
     def text(self) -> str:
         n = sum(c.passed for c in self.checks)
         head = (f"{self.exercise}: {self.path}: {n}/{len(self.checks)} checks pass (seed "
                 f"{self.seed}: --seed {self.seed} repeats these random cases)")
-        return "\n".join([head] + [line for c in self.checks for line in c.lines()])
+        top = [self.sandbox] if self.sandbox else []
+        return "\n".join(top + [head] + [line for c in self.checks for line in c.lines()])
 
     def output_text(self) -> str:
         """What the student's code printed, as shown on stderr ('' if nothing)."""

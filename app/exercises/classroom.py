@@ -1,0 +1,260 @@
+"""`python -m app exercise grade CLASS_DIR`: a whole class in one command.
+
+CLASS_DIR holds a folder per student, each with the student's NAME.py files (a missing file is
+graded as missing: 0 of its checks). Every (student, exercise) is graded in a sandbox of its own
+(app/exercises/sandbox.py), JOBS at once, so a student whose files crash, hang or attack loses
+only their own results. What it writes (each file to a temporary name, then renamed into place):
+
+  OUT (CLASS_DIR/gradebook.csv)   a row per student and exercise: student, exercise, passed,
+                                  checks, verdict (PASS/FAIL), seed; rewritten as each student
+                                  is done, so an interrupted run leaves a valid gradebook
+  OUT-reports/STUDENT.txt         the student's report: every exercise's checks, hints, output
+  OUT-reports/STUDENT.json        the same as data; a run finds it and does not grade that
+                                  student again while their files are unchanged (resume)
+  OUT-reports/STUDENT.results.json  with --gradescope: Gradescope's autograder format
+
+Ctrl-C stops the run with one line and exit code 130; the same command resumes it.
+"""
+
+from __future__ import annotations
+
+import csv
+import hashlib
+import inspect
+import io
+import json
+import os
+import sys
+import time
+from dataclasses import dataclass
+from typing import Any, Iterator
+
+from app.exercises import EXERCISES, base
+from app.exercises.grade import CHECK_TIMEOUT, Report, grade_many
+
+EXIT_INTERRUPTED = 130
+FIELDS = ("student", "exercise", "passed", "checks", "verdict", "seed")
+
+
+def reports_folder(out: str) -> str:
+    stem, _ = os.path.splitext(out)
+    return stem + "-reports"
+
+
+def students_in(class_dir: str, out: str) -> list[str]:
+    """The student folders: every sub-folder but hidden ones and the grader's own reports."""
+    own = os.path.realpath(reports_folder(out))
+    return sorted(d for d in os.listdir(class_dir)
+                  if not d.startswith(".") and os.path.isdir(os.path.join(class_dir, d))
+                  and os.path.realpath(os.path.join(class_dir, d)) != own)
+
+
+def fingerprint(folder: str) -> str:
+    """A hash of the student's exercise files as they are now (a changed file: graded again)."""
+    h = hashlib.sha256()
+    for e in EXERCISES:
+        path = os.path.join(folder, f"{e.name}.py")
+        h.update(e.name.encode())
+        try:
+            if os.path.isfile(path):
+                with open(path, "rb") as f:
+                    h.update(f.read(1 << 21))
+        except OSError:
+            h.update(b"unreadable")
+    return h.hexdigest()
+
+
+def write_atomic(path: str, text: str) -> None:
+    """Write `text` to a temporary file beside `path`, then rename it into place."""
+    tmp = f"{path}.tmp-{os.getpid()}"
+    with open(tmp, "w", encoding="utf-8", newline="") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(tmp, path)
+
+
+@dataclass
+class Result:
+    """One student's grades: what the gradebook and the reports are made from."""
+    student: str
+    seed: int | None
+    fingerprint: str
+    exercises: list[dict[str, Any]]          # Report.to_json() each
+    text: str                                # the readable report
+
+    def rows(self) -> list[dict[str, Any]]:
+        out = []
+        for r in self.exercises:
+            n = sum(c["passed"] for c in r["checks"])
+            out.append({"student": self.student, "exercise": r["exercise"], "passed": n,
+                        "checks": len(r["checks"]), "verdict": "PASS" if r["passed"] else "FAIL",
+                        "seed": "" if self.seed is None else self.seed})
+        return out
+
+    def gradescope(self, sandbox_line: str) -> dict[str, Any]:
+        """Gradescope's results.json: a point per check."""
+        tests = []
+        for r in self.exercises:
+            for c in r["checks"]:
+                lines = [f"measured {c['measured'] or '-'}; needed {c['bound']}"]
+                lines += [t for t in (c["error"], c["hint"] and f"hint: {c['hint']}") if t]
+                tests.append({"name": f"{r['exercise']}: {c['name']}",
+                              "score": 1 if c["passed"] else 0, "max_score": 1,
+                              "status": "passed" if c["passed"] else "failed",
+                              "output": "\n".join(lines)})
+        seed = "" if self.seed is None else f" (seed {self.seed}: --seed {self.seed} repeats it)"
+        return {"score": sum(t["score"] for t in tests), "max_score": len(tests),
+                "output": f"{sandbox_line}{seed}", "tests": tests}
+
+
+def as_result(student: str, seed: int | None, fp: str, reports: list[Report]) -> Result:
+    text = []
+    for r in reports:
+        if r.output_bytes:
+            text.append(r.output_text())
+        text.append(r.text())
+    return Result(student, seed, fp, [r.to_json() for r in reports], "\n\n".join(text) + "\n")
+
+
+def load_result(path: str, fp: str) -> Result | None:
+    """A student's result from an earlier run, if their files have not changed since."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+        if data.get("fingerprint") != fp or data.get("exercises_graded") != [
+                e.name for e in EXERCISES]:
+            return None
+        return Result(data["student"], data["seed"], fp, data["exercises"], data["text"])
+    except (OSError, ValueError, KeyError, TypeError):
+        return None
+
+
+def save(result: Result, folder: str, gradescope: bool, sandbox_line: str) -> None:
+    stem = os.path.join(folder, result.student)
+    write_atomic(stem + ".txt", result.text)
+    if gradescope:
+        write_atomic(stem + ".results.json", json.dumps(result.gradescope(sandbox_line),
+                                                        indent=1))
+    write_atomic(stem + ".json", json.dumps({
+        "student": result.student, "seed": result.seed, "fingerprint": result.fingerprint,
+        "exercises_graded": [e.name for e in EXERCISES], "exercises": result.exercises,
+        "text": result.text}))
+
+
+def gradebook_text(results: list[Result]) -> str:
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, FIELDS, lineterminator="\n")
+    w.writeheader()
+    for r in sorted(results, key=lambda r: r.student):
+        w.writerows(r.rows())
+    return buf.getvalue()
+
+
+class Progress:
+    """A bar with the time remaining on a terminal (tqdm); a plain line per student otherwise."""
+
+    def __init__(self, total: int, done: int, students: int):
+        self.students, self.finished = students, 0
+        self.bar = None
+        if sys.stderr.isatty():
+            try:
+                from tqdm import tqdm
+                tqdm.monitor_interval = 0      # no monitor thread: the grader forks
+                self.bar = tqdm(total=total, initial=done, unit="file", desc="grading",
+                                file=sys.stderr, dynamic_ncols=True)
+            except ImportError:
+                pass
+
+    def step(self) -> None:
+        if self.bar is not None:
+            self.bar.update(1)
+
+    def student(self, result: Result, resumed: bool = False) -> None:
+        self.finished += 1
+        passed = sum(e["passed"] for e in result.exercises)
+        line = (f"{result.student}: {passed}/{len(result.exercises)} exercises pass"
+                f"{' (graded before: files unchanged)' if resumed else ''} "
+                f"[{self.finished}/{self.students} students]")
+        if self.bar is not None:
+            self.bar.write(line, file=sys.stderr)
+        else:
+            print(line, file=sys.stderr, flush=True)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+def _grade_many(jobs, timeout, parallel, seed) -> Iterator[Report]:
+    """grade_many with the run's seed where it takes one (the seed option is another branch's:
+    either order of merging works)."""
+    if "seed" in inspect.signature(grade_many).parameters:
+        return grade_many(jobs, timeout, None, parallel, seed=seed)
+    return grade_many(jobs, timeout, None, parallel)
+
+
+def grade_class(class_dir: str, jobs: int, out: str | None = None, gradescope: bool = False,
+                timeout: float = CHECK_TIMEOUT, seed: int | None = None) -> int:
+    """Grade every student of `class_dir`; return 0 (done) or 130 (interrupted: Ctrl-C)."""
+    out = out or os.path.join(class_dir, "gradebook.csv")
+    try:
+        return _grade_class(class_dir, jobs, out, gradescope, timeout, seed)
+    except KeyboardInterrupt:        # before the first student or after the last: still one line
+        print(f"interrupted (in {out}); the same command goes on from there", file=sys.stderr)
+        return EXIT_INTERRUPTED
+
+
+def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout: float,
+                 seed: int | None) -> int:
+    from app.exercises import sandbox
+    folder = reports_folder(out)
+    os.makedirs(folder, exist_ok=True)
+    if seed is None and hasattr(base, "new_seed"):
+        seed = base.new_seed()
+    students = students_in(class_dir, out)
+    line = sandbox.protections().line()
+    print(line, file=sys.stderr)
+    results: dict[str, Result] = {}
+    todo = []
+    for s in students:
+        fp = fingerprint(os.path.join(class_dir, s))
+        earlier = load_result(os.path.join(folder, f"{s}.json"), fp)
+        if earlier is not None:
+            results[s] = earlier
+        else:
+            todo.append((s, fp))
+    progress = Progress(len(students) * len(EXERCISES), len(results) * len(EXERCISES),
+                        len(students))
+    for s in sorted(results):
+        progress.student(results[s], resumed=True)
+    start = time.monotonic()
+    jobs_list = [(e, os.path.join(class_dir, s, f"{e.name}.py")) for s, _ in todo
+                 for e in EXERCISES]
+    reports = _grade_many(jobs_list, timeout, jobs, seed)
+    try:
+        for s, fp in todo:
+            got = []
+            for _ in EXERCISES:
+                got.append(next(reports))
+                progress.step()
+            result = as_result(s, seed, fp, got)
+            results[s] = result
+            save(result, folder, gradescope, line)
+            write_atomic(out, gradebook_text(list(results.values())))
+            progress.student(result)
+        write_atomic(out, gradebook_text(list(results.values())))
+    except KeyboardInterrupt:
+        reports.close()                  # its children and their sandboxes end here
+        progress.close()
+        print(f"interrupted: {len(results)} of {len(students)} students graded (in {out}); the "
+              "same command goes on from there", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    progress.close()
+    print(f"graded {len(students)} students ({len(todo)} now, in "
+          f"{time.monotonic() - start:.1f} s with {jobs} at once): {out}, reports in "
+          f"{folder}/", file=sys.stderr)
+    return 0
+
+
+__all__ = ["grade_class", "students_in", "reports_folder", "gradebook_text", "FIELDS"]
