@@ -384,7 +384,12 @@ class SandboxScene(FileScene):
                 bb = shape.cache_bb()
                 a, b = view.pt((bb.left - 4, bb.top - 4)), view.pt((bb.right + 4, bb.bottom + 4))
                 pygame.draw.rect(surface, SELECTED, pygame.Rect(a, (b[0] - a[0], b[1] - a[1])), 1)
-        if self.press is not None and self.tool != "move" and not self.playing:
+        if self.corners and not self.playing:       # the polygon so far, closed to the mouse
+            pts = [view.pt(p) for p in self.corners + [self.mouse]]
+            pygame.draw.lines(surface, PREVIEW, False, pts, 1)
+            for p in pts[:-1]:
+                pygame.draw.circle(surface, SELECTED, p, 3)
+        if self.press is not None and self.tool not in ("move", "polygon") and not self.playing:
             (ax, ay), (bx, by) = self.press, self.mouse
             if self.tool in JOINT_TOOLS:
                 pygame.draw.line(surface, SELECTED, view.pt((ax, ay)), view.pt((bx, by)), 2)

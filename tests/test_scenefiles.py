@@ -475,6 +475,9 @@ def test_the_sandbox_draws_polygons_and_refuses_a_concave_one():
     pts = [(500, 300), (600, 300), (550, 320), (550, 400)]          # an arrow head: concave
     for p in pts:
         draw(s, ("mouse_down", p), ("mouse_up", p))
+    surface = pygame.Surface((480, 360))
+    s.draw(surface, View.fit_bounds(s.content_bounds(), (0, 0, 480, 360)))   # the corners so far
+    assert len(s.corners) == 4
     from app.scene import InputEvent
     s.handle_event(InputEvent("mouse_down", pos=(0, 0), button=3))  # right-click closes
     assert s.metrics()["bodies"] == 2 and "not drawn" in s.message and "convex" in s.message
