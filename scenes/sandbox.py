@@ -211,7 +211,9 @@ class SandboxScene(FileScene):
                 return [float(p[0]), float(p[1])]
             q = self.named[name].world_to_local(p)
             return [float(q.x), float(q.y)]
-        number = len(self.drawing["joint"]) + 1
+        taken, number = {j["name"] for j in self.drawing["joint"]}, 1
+        while f"{self.tool}{number}" in taken:     # names stay unique after a deletion
+            number += 1
         joint: dict[str, Any] = {"kind": kind, "name": f"{self.tool}{number}", "a": name_a,
                                  "b": name_b}
         if kind == "pivot":

@@ -417,6 +417,14 @@ def test_the_sandbox_joins_bodies_and_deleting_a_body_takes_its_joints(tmp_path,
     draw(s, ("key_down", "return"), ("key_down", "m"), ("mouse_down", (400, 310)),
          ("mouse_up", (400, 310)), ("key_down", "delete"))
     assert s.metrics()["joints"] == 1 and s.metrics()["bodies"] == 2     # the pin is left
+    t = SandboxScene()          # two pins, the first one's ball deleted, a third pin drawn
+    draw(t, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (410, 200)),
+         ("mouse_down", (500, 200)), ("mouse_up", (510, 200)), ("key_down", "j"),
+         ("mouse_down", (400, 200)), ("mouse_up", (300, 100)), ("mouse_down", (500, 200)),
+         ("mouse_up", (300, 100)), ("key_down", "m"), ("mouse_down", (400, 200)),
+         ("mouse_up", (400, 200)), ("key_down", "delete"), ("key_down", "j"),
+         ("mouse_down", (500, 200)), ("mouse_up", (600, 100)))
+    assert [j["name"] for j in t.drawing["joint"]] == ["pin2", "pin1"]   # no name twice
 
 
 def test_the_refusal_shown_in_experiments_md_is_the_one_the_lab_prints(tmp_path):
