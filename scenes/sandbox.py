@@ -10,13 +10,18 @@ replays headless (`--input`) into the same world and the same file.
 
 Controls (keys the lab's shell does not use):
   C circle: drag from the centre out to the radius (a dynamic ball)
-  B box: drag from one corner to the other (a dynamic box)
+  X box: drag from one corner to the other (a dynamic box)
+  G polygon: click its corners, right-click (or click the first corner again) to close it; it
+    must be convex, or the loader refuses it and says why
   L line: drag from one end to the other (a static line, the ground)
-  M move: drag a body to move it; click one to select it; Q and E turn it by 15 degrees
-  J pin joint, S spring, O pivot: drag from a point on one body to a point on another (or to
-    empty space: a fixed point of the world); a pivot joins them at the point you pressed
+  M move: drag a body to move it; click one to select it; Q and W turn it by 15 degrees
+  J pin joint, S spring, O pivot, D slide joint (a rope: any distance up to the one drawn): drag
+    from a point on one body to a point on another (or to empty space: a fixed point of the
+    world); a pivot joins them at the point you pressed
   Delete or Backspace: delete the selected body (and its joints)
   Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo      Ctrl+S save to sandbox-N.toml
+  Ctrl+O: open the newest sandbox-N.toml of the current folder (Ctrl+Z goes back)
+(B and E are the shell's blow-up watch and energy bars, so the box is X and the turns Q and W.)
 While playing, the left button drags bodies as in every pymunk scene.
 """
 
@@ -32,15 +37,16 @@ import pymunk
 
 from app.physics.bounds import clamp_point
 from app.scene import InputEvent
-from app.scenefile.load import check_spec, SceneFileError
+from app.scenefile.load import check_spec, load_spec, SceneFileError
 from app.scenefile.scene import FileScene
 from app.scenefile.write import save, to_data
 
-TOOLS = {"c": "circle", "b": "box", "l": "line", "m": "move", "j": "pin", "s": "spring",
-         "o": "pivot"}
-JOINT_TOOLS = {"pin": "pin", "spring": "damped_spring", "pivot": "pivot"}
+TOOLS = {"c": "circle", "x": "box", "g": "polygon", "l": "line", "m": "move", "j": "pin",
+         "s": "spring", "o": "pivot", "d": "slide"}
+JOINT_TOOLS = {"pin": "pin", "spring": "damped_spring", "pivot": "pivot", "slide": "slide"}
+TURN_KEYS = {"q": -1.0, "w": 1.0}
 SPRING_STIFFNESS, SPRING_DAMPING = 50.0, 1.0     # a soft spring: it visibly swings
-TURN = 15.0               # degrees Q and E turn the selected body
+TURN = 15.0               # degrees Q and W turn the selected body
 CTRL = ("left ctrl", "right ctrl")
 DENSITY = 0.01            # kg per px^2 of what is drawn: a ball of radius 20 is 12.6 kg
 MIN_SIZE = 4.0            # px: a click without a drag draws nothing smaller than this
@@ -59,13 +65,14 @@ def empty_spec(world_size: tuple[int, int]) -> dict[str, Any]:
 
 
 class SandboxScene(FileScene):
-    """Sandbox: draw circles, boxes and lines with the mouse, play them, save them as a scene
-    file (Ctrl+S) that the lab runs like its own.
+    """Sandbox: draw circles, boxes, polygons and lines with the mouse, play them, save them as
+    a scene file (Ctrl+S) that the lab runs like its own, open the last one saved (Ctrl+O).
 
-    C circle, B box, L line (static), M move/select (Q, E turn it); J pin, S spring, O pivot
-    joints (drag from one body to another or to the world); Delete removes the selected body; Enter
-    plays / goes back to the drawing; Ctrl+Z / Ctrl+Y undo / redo; Ctrl+S saves sandbox-N.toml
-    in the current folder.
+    C circle, X box, G polygon (click corners, right-click closes), L line (static), M
+    move/select (Q, W turn it); J pin, S spring, O pivot, D slide joints (drag from one body to
+    another or to the world); Delete removes the selected body; Enter plays / goes back to the
+    drawing; Ctrl+Z / Ctrl+Y undo / redo; Ctrl+S saves sandbox-N.toml in the current folder,
+    Ctrl+O opens the newest one there.
     """
 
     name = "sandbox"
@@ -83,6 +90,7 @@ class SandboxScene(FileScene):
         self.press: tuple[float, float] | None = None    # where the drag started
         self.mouse = (0.0, 0.0)
         self.selected: str | None = None
+        self.corners: list[tuple[float, float]] = []    # the polygon's corners so far
         self.moving: tuple[float, float] | None = None   # grab offset of the body moved
         self._moving_undo = False
         self.message = ""
@@ -161,6 +169,35 @@ class SandboxScene(FileScene):
         self.edit(lambda d: d["body"].append(body))
         self.selected = body["name"]
 
+    def corner(self, p: tuple[float, float]) -> None:
+        """One more corner of the polygon; a click on the first corner closes it."""
+        if len(self.corners) >= 3 and math.dist(p, self.corners[0]) < MIN_SIZE * 2:
+            self.close_polygon()
+        elif not self.corners or math.dist(p, self.corners[-1]) >= MIN_SIZE:
+            self.corners.append((float(p[0]), float(p[1])))
+
+    def close_polygon(self) -> None:
+        """A dynamic polygon from the corners clicked, its origin at their centroid; the
+        loader checks it (at least 3 corners, convex, an area) before pymunk sees it."""
+        pts, self.corners = self.corners, []
+        if len(pts) < 3:
+            self.message = "not drawn: a polygon needs at least 3 corners"
+            return
+        n = len(pts)
+        cross = [pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1]
+                 for i in range(n)]
+        area = sum(cross) / 2
+        if abs(area) < 1e-6:
+            self.message = "not drawn: the polygon's corners are on one line (no area)"
+            return
+        cx = sum((pts[i][0] + pts[(i + 1) % n][0]) * cross[i] for i in range(n)) / (6 * area)
+        cy = sum((pts[i][1] + pts[(i + 1) % n][1]) * cross[i] for i in range(n)) / (6 * area)
+        body = {"name": self.new_name("polygon"), "position": [cx, cy], "density": DENSITY,
+                "shape": [{"kind": "polygon",
+                           "points": [[x - cx, y - cy] for x, y in pts]}]}
+        if self.edit(lambda d: d["body"].append(body)):
+            self.selected = body["name"]
+
     def join(self, a: tuple[float, float], b: tuple[float, float]) -> None:
         """A joint from the body under a (or the world) to the body under b (or the world),
         anchored where the drag started and ended (a pivot: at a)."""
@@ -174,7 +211,9 @@ class SandboxScene(FileScene):
                 return [float(p[0]), float(p[1])]
             q = self.named[name].world_to_local(p)
             return [float(q.x), float(q.y)]
-        number = len(self.drawing["joint"]) + 1
+        taken, number = {j["name"] for j in self.drawing["joint"]}, 1
+        while f"{self.tool}{number}" in taken:     # names stay unique after a deletion
+            number += 1
         joint: dict[str, Any] = {"kind": kind, "name": f"{self.tool}{number}", "a": name_a,
                                  "b": name_b}
         if kind == "pivot":
@@ -184,6 +223,8 @@ class SandboxScene(FileScene):
             joint["anchor_a"], joint["anchor_b"] = local(name_a, a), local(name_b, b)
         if kind == "damped_spring":
             joint["stiffness"], joint["damping"] = SPRING_STIFFNESS, SPRING_DAMPING
+        if kind == "slide":           # a rope: slack up to the length drawn, taut beyond
+            joint["min"], joint["max"] = 0.0, round(math.hypot(b[0] - a[0], b[1] - a[1]), 3)
         self.edit(lambda d: d["joint"].append(joint))
 
     def turn(self, degrees: float) -> None:
@@ -239,6 +280,24 @@ class SandboxScene(FileScene):
             return
         self.message = f"saved to {os.path.abspath(path)}"
 
+    def open_newest(self) -> None:
+        """Open the saved sandbox-N.toml with the greatest N in the current folder as the
+        drawing (one undo step); a file the loader refuses changes nothing and says why."""
+        numbers = [int(f[8:-5]) for f in os.listdir(".")
+                   if f.startswith("sandbox-") and f.endswith(".toml") and f[8:-5].isdigit()]
+        if not numbers:
+            self.message = "nothing to open: no sandbox-N.toml in " + os.path.abspath(".")
+            return
+        path = f"sandbox-{max(numbers)}.toml"
+        try:
+            spec = load_spec(path)
+        except SceneFileError as e:
+            self.message = f"not opened: {e}"
+            return
+        if self.edit(lambda d: (d.clear(), d.update(copy.deepcopy(spec)))):
+            self.selected, self.corners = None, []
+            self.message = f"opened {os.path.abspath(path)}"
+
     # ----- events -------------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
         if event.kind.startswith("mouse"):
@@ -251,6 +310,8 @@ class SandboxScene(FileScene):
             self.key(event.key)
         elif self.playing:
             super().handle_event(event)         # play: drag bodies as in every pymunk scene
+        elif event.kind == "mouse_down" and event.button == 3 and self.tool == "polygon":
+            self.close_polygon()
         elif event.kind == "mouse_down" and event.button == 1:
             self.press = event.pos
             if self.tool == "move":
@@ -263,7 +324,9 @@ class SandboxScene(FileScene):
         elif event.kind == "mouse_move" and self.moving is not None:
             self.move_to(self.selected, event.pos)
         elif event.kind == "mouse_up" and event.button == 1 and self.press is not None:
-            if self.tool != "move":
+            if self.tool == "polygon":
+                self.corner(event.pos)
+            elif self.tool != "move":
                 self.add(self.press, event.pos)
             self.press, self.moving = None, None
 
@@ -286,11 +349,13 @@ class SandboxScene(FileScene):
             self.playing = playing
         elif key in ("delete", "backspace") and not self.playing:
             self.delete()
-        elif key in ("q", "e") and not self.playing and not self.ctrl:
-            self.turn(-TURN if key == "q" else TURN)
+        elif self.ctrl and key == "o":
+            self.open_newest()
+        elif key in TURN_KEYS and not self.playing and not self.ctrl:
+            self.turn(TURN_KEYS[key] * TURN)
         elif key in TOOLS and not self.ctrl:
             self.tool = TOOLS[key]
-            self.press = None
+            self.press, self.corners = None, []
 
     # ----- reporting ----------------------------------------------------------------------------
     def metrics(self) -> dict[str, Any]:
@@ -307,8 +372,8 @@ class SandboxScene(FileScene):
     def hud_lines(self) -> list[str]:
         mode = ("PLAYING (Enter: back to the drawing)" if self.playing else
                 f"DRAWING with the {self.tool} tool (Enter: play)")
-        lines = [mode, "C circle, B box, L line, M move (Q/E turn), J pin, S spring, O pivot; "
-                       "Del delete; Ctrl+Z/Y undo/redo; Ctrl+S save"]
+        lines = [mode, "C circle, X box, G polygon, L line, M move (Q/W turn), J pin, S spring, "
+                       "O pivot, D slide; Del delete; Ctrl+Z/Y undo/redo; Ctrl+S save, Ctrl+O open"]
         if self.message:
             lines.append(self.message)
         return lines
@@ -321,7 +386,12 @@ class SandboxScene(FileScene):
                 bb = shape.cache_bb()
                 a, b = view.pt((bb.left - 4, bb.top - 4)), view.pt((bb.right + 4, bb.bottom + 4))
                 pygame.draw.rect(surface, SELECTED, pygame.Rect(a, (b[0] - a[0], b[1] - a[1])), 1)
-        if self.press is not None and self.tool != "move" and not self.playing:
+        if self.corners and not self.playing:       # the polygon so far, closed to the mouse
+            pts = [view.pt(p) for p in self.corners + [self.mouse]]
+            pygame.draw.lines(surface, PREVIEW, False, pts, 1)
+            for p in pts[:-1]:
+                pygame.draw.circle(surface, SELECTED, p, 3)
+        if self.press is not None and self.tool not in ("move", "polygon") and not self.playing:
             (ax, ay), (bx, by) = self.press, self.mouse
             if self.tool in JOINT_TOOLS:
                 pygame.draw.line(surface, SELECTED, view.pt((ax, ay)), view.pt((bx, by)), 2)

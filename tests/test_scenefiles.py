@@ -355,7 +355,7 @@ def test_the_sandbox_draws_saves_and_the_file_plays_the_same_world(tmp_path, mon
     monkeypatch.chdir(tmp_path)
     s = SandboxScene()
     draw(s, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_move", (420, 200)),
-         ("mouse_up", (425, 200)), ("key_down", "b"), ("mouse_down", (500, 300)),
+         ("mouse_up", (425, 200)), ("key_down", "x"), ("mouse_down", (500, 300)),
          ("mouse_up", (560, 340)), ("key_down", "l"), ("mouse_down", (300, 500)),
          ("mouse_up", (700, 600)), ("key_down", "left ctrl"), ("key_down", "s"),
          ("key_up", "left ctrl"))
@@ -397,7 +397,7 @@ def test_the_sandbox_joins_bodies_and_deleting_a_body_takes_its_joints(tmp_path,
     from scenes.sandbox import SandboxScene
     monkeypatch.chdir(tmp_path)
     s = SandboxScene()
-    draw(s, ("key_down", "b"), ("mouse_down", (300, 300)), ("mouse_up", (500, 320)),
+    draw(s, ("key_down", "x"), ("mouse_down", (300, 300)), ("mouse_up", (500, 320)),
          ("key_down", "o"), ("mouse_down", (400, 310)), ("mouse_up", (400, 310)),
          ("key_down", "s"), ("mouse_down", (310, 310)), ("mouse_up", (310, 500)),
          ("key_down", "c"), ("mouse_down", (480, 200)), ("mouse_up", (495, 200)),
@@ -417,6 +417,14 @@ def test_the_sandbox_joins_bodies_and_deleting_a_body_takes_its_joints(tmp_path,
     draw(s, ("key_down", "return"), ("key_down", "m"), ("mouse_down", (400, 310)),
          ("mouse_up", (400, 310)), ("key_down", "delete"))
     assert s.metrics()["joints"] == 1 and s.metrics()["bodies"] == 2     # the pin is left
+    t = SandboxScene()          # two pins, the first one's ball deleted, a third pin drawn
+    draw(t, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (410, 200)),
+         ("mouse_down", (500, 200)), ("mouse_up", (510, 200)), ("key_down", "j"),
+         ("mouse_down", (400, 200)), ("mouse_up", (300, 100)), ("mouse_down", (500, 200)),
+         ("mouse_up", (300, 100)), ("key_down", "m"), ("mouse_down", (400, 200)),
+         ("mouse_up", (400, 200)), ("key_down", "delete"), ("key_down", "j"),
+         ("mouse_down", (500, 200)), ("mouse_up", (600, 100)))
+    assert [j["name"] for j in t.drawing["joint"]] == ["pin2", "pin1"]   # no name twice
 
 
 def test_the_refusal_shown_in_experiments_md_is_the_one_the_lab_prints(tmp_path):
@@ -452,3 +460,78 @@ def test_a_drawing_replayed_headless_saves_the_same_file(tmp_path, monkeypatch, 
     draw(SandboxScene(), *events)
     saved = [(tmp_path / d / "sandbox-1.toml").read_text() for d in ("a", "b")]
     assert saved[0] == saved[1]
+
+
+def test_the_sandbox_keys_are_not_the_shells():
+    """B and E are the shell's (blow-up watch, energy bars): they never reach a scene, so the
+    sandbox's own keys must be others."""
+    from app.scene import SHELL_KEYS
+    from scenes.sandbox import TOOLS, TURN_KEYS
+    assert not (set(TOOLS) | set(TURN_KEYS)) & SHELL_KEYS
+
+
+def test_the_sandbox_draws_polygons_and_refuses_a_concave_one():
+    from scenes.sandbox import SandboxScene
+    s = SandboxScene()
+    draw(s, ("key_down", "g"), ("mouse_down", (400, 200)), ("mouse_up", (400, 200)),
+         ("mouse_down", (480, 200)), ("mouse_up", (480, 200)),
+         ("mouse_down", (440, 260)), ("mouse_up", (440, 260)),
+         ("mouse_down", (401, 201)), ("mouse_up", (401, 201)))      # the first corner: closed
+    body = s.named["polygon1"]
+    assert s.metrics()["bodies"] == 2 and body.position.x == pytest.approx(440)
+    assert body.position.y == pytest.approx(220) and body.mass == pytest.approx(0.01 * 2400)
+    pts = [(500, 300), (600, 300), (550, 320), (550, 400)]          # an arrow head: concave
+    for p in pts:
+        draw(s, ("mouse_down", p), ("mouse_up", p))
+    surface = pygame.Surface((480, 360))
+    s.draw(surface, View.fit_bounds(s.content_bounds(), (0, 0, 480, 360)))   # the corners so far
+    assert len(s.corners) == 4
+    from app.scene import InputEvent
+    s.handle_event(InputEvent("mouse_down", pos=(0, 0), button=3))  # right-click closes
+    assert s.metrics()["bodies"] == 2 and "not drawn" in s.message and "convex" in s.message
+    for p in [(100, 100), (200, 100), (300, 100)]:                  # on one line: no area
+        draw(s, ("mouse_down", p), ("mouse_up", p))
+    s.handle_event(InputEvent("mouse_down", pos=(0, 0), button=3))
+    assert s.metrics()["bodies"] == 2 and "not drawn" in s.message
+    draw(s, ("key_down", "return"))
+    for _ in range(60):
+        s.advance()
+    assert s.named["polygon1"].position.y > 250                     # the world rebuilt: it fell
+
+
+def test_the_sandbox_slide_joint_is_a_rope_and_its_file_opens_into_the_same_world(tmp_path,
+                                                                                 monkeypatch):
+    """A ball on a slide joint to the world (min 0, max the length drawn): it falls until the
+    rope is taut and hangs there. Ctrl+S then Ctrl+O in a fresh sandbox gives the same world."""
+    from scenes.sandbox import SandboxScene
+    monkeypatch.chdir(tmp_path)
+    s = SandboxScene()
+    draw(s, ("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (410, 200)),
+         ("key_down", "g"), ("mouse_down", (600, 200)), ("mouse_up", (600, 200)),
+         ("mouse_down", (660, 200)), ("mouse_up", (660, 200)),
+         ("mouse_down", (630, 150)), ("mouse_up", (630, 150)))
+    from app.scene import InputEvent
+    s.handle_event(InputEvent("mouse_down", pos=(630, 150), button=3))
+    draw(s, ("key_down", "d"), ("mouse_down", (400, 200)), ("mouse_up", (400, 100)),
+         ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl"))
+    joint = s.drawing["joint"][0]
+    assert (joint["kind"], joint["a"], joint["b"]) == ("slide", "ball1", "world")
+    assert (joint["min"], joint["max"]) == (0.0, 100.0)
+    fresh = SandboxScene()
+    draw(fresh, ("key_down", "left ctrl"), ("key_down", "o"), ("key_up", "left ctrl"))
+    assert "opened" in fresh.message and fresh.drawing == s.drawing
+    draw(s, ("key_down", "return"))
+    draw(fresh, ("key_down", "return"))
+    for _ in range(120):
+        s.advance()
+        fresh.advance()
+    assert s.state_hash() == fresh.state_hash()
+    ball = s.named["ball1"]
+    assert 199.0 < ball.position.y < 205.0          # at most the rope's 100 px below (400, 100)
+    draw(fresh, ("key_down", "return"), ("key_down", "left ctrl"), ("key_down", "z"))
+    assert fresh.metrics()["bodies"] == 1            # Ctrl+Z: back to the empty floor
+    empty = SandboxScene()
+    (tmp_path / "sub").mkdir()
+    monkeypatch.chdir(tmp_path / "sub")
+    draw(empty, ("key_down", "left ctrl"), ("key_down", "o"))
+    assert "nothing to open" in empty.message and empty.metrics()["bodies"] == 1
