@@ -362,11 +362,17 @@ class Contacts:
 
 
 def project(obstacles, points: np.ndarray, margin: float = 0.0,
-            movable: np.ndarray | None = None) -> Contacts:
+            movable: np.ndarray | None = None, start: np.ndarray | None = None) -> Contacts:
     """Move every point found closer than `margin` to an obstacle (inside it, for margin 0) out
     along the normal to distance `margin`: p += (margin - d) * n. Writes into `points` (n, 2);
     points where `movable` is False (pinned, grabbed) are left where they are. Obstacles are
-    handled in order (see the module docstring). Returns the Contacts."""
+    handled in order (see the module docstring). Returns the Contacts.
+
+    `start` ((2, n), optional): where each point was before this step. The shortest way out of
+    a thin obstacle can be through its far side: a point that came down 6 px into a table top
+    10 px thick is nearer its underside. With `start`, a point whose normal now points against
+    the normal where it started (it has crossed the middle) is first put back where its path
+    from `start` entered the obstacle, then pushed out from there: on the side it came from."""
     n = len(points)
     depth = np.zeros(n)
     normal = np.zeros((n, 2))
@@ -381,8 +387,10 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         inside = d < margin
         if not inside.any():
             continue
-        ids, push = ids[inside], margin - d[inside]          # usually few: correct only those
-        nx, ny = nx[inside], ny[inside]
+        ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]   # usually few
+        if start is not None and not isinstance(ob, HalfPlane):
+            d, nx, ny = _back_to_entry(ob, ids, d, nx, ny, px, py, start)
+        push = margin - d
         px[ids] += (push * nx).astype(points.dtype, copy=False)
         py[ids] += (push * ny).astype(points.dtype, copy=False)
         depth[ids] += push
@@ -391,6 +399,32 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         index[ids] = k
         hit[ids] = True
     return Contacts(hit, depth, normal, index)
+
+
+def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start, halvings: int = 20):
+    """project()'s guard against popping out of the far side: the points `ids` (inside `ob`,
+    at distance d with normal (nx, ny)) whose start was outside with a normal against theirs
+    are moved to where the straight path start -> now met the surface (bisection); returns
+    their new d and normal (the others' unchanged)."""
+    sx, sy = start[0][ids].astype(np.float64), start[1][ids].astype(np.float64)
+    d0, n0x, n0y = ob.distance_xy(sx, sy)
+    crossed = (d0 >= 0) & (n0x * nx + n0y * ny < 0)
+    if not crossed.any():
+        return d, nx, ny
+    c = np.flatnonzero(crossed)
+    ax, ay = sx[c], sy[c]
+    ex, ey = px[ids[c]] - ax, py[ids[c]] - ay
+    lo, hi = np.zeros(c.size), np.ones(c.size)
+    for _ in range(halvings):               # d >= 0 at lo, d < 0 at hi
+        mid = (lo + hi) / 2
+        out = ob.distance_xy(ax + mid * ex, ay + mid * ey)[0] >= 0
+        lo, hi = np.where(out, mid, lo), np.where(out, hi, mid)
+    qx, qy = ax + lo * ex, ay + lo * ey
+    px[ids[c]], py[ids[c]] = qx, qy
+    dq, nqx, nqy = ob.distance_xy(qx, qy)
+    d, nx, ny = d.copy(), nx.copy(), ny.copy()
+    d[c], nx[c], ny[c] = dq, nqx, nqy
+    return d, nx, ny
 
 
 def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.0,
