@@ -43,7 +43,8 @@ What a step does with them (the Verlet cloth; the mass-spring cloth uses the sam
    particle pushed out of one obstacle into a second one that overlaps it is then pushed out of
    the second (and may end inside the first: where two obstacles crush the cloth between them
    there is no place outside both, and `penetration_max` says how deep the trapped ones are).
-2. `verlet_friction(x, x_prev, contacts, mu)`: Coulomb friction on the Verlet cloth. For a
+2. `verlet_friction(x, x_prev, contacts, mu)` (written in app/physics/friction.py, imported from
+   here like the rest): Coulomb friction on the Verlet cloth. For a
    particle in contact, the distance travelled in this step is v = x - x_prev (x: projected, x_prev:
    where it started). Its part along
    the surface, v_t = v - (v . n) n, is reduced by at most mu times the normal correction that
@@ -463,54 +464,8 @@ def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
     return False
 
 
-# ----- friction -----------------------------------------------------------------------------------
-def coulomb_friction(motion: np.ndarray, normal: np.ndarray, normal_change: np.ndarray,
-                     mask: np.ndarray, mu: float) -> np.ndarray:
-    """Coulomb's law on a motion (a displacement per step, or a velocity), for the points in
-    `mask`: the tangential part m_t = m - (m . n) n shrinks by mu * normal_change (what the
-    contact removed along the normal, >= 0), and to zero if it is smaller (static friction).
-    Returns the change to add to `motion` (n, 2): minus the removed tangential part; zero
-    outside the mask. It never reverses the sliding: the factor applied to m_t is in [0, 1]."""
-    change = np.zeros(motion.shape, np.float64)
-    ids = np.flatnonzero(mask)
-    if ids.size == 0 or mu <= 0:
-        return change
-    m = motion[ids].astype(np.float64)
-    nrm = normal[ids]
-    along = (m * nrm).sum(1, keepdims=True)
-    tangent = m - along * nrm
-    speed = np.hypot(tangent[:, 0], tangent[:, 1])
-    removable = mu * np.maximum(normal_change[ids], 0.0)
-    keep = np.where(speed > removable, 1.0 - removable / np.maximum(speed, TINY), 0.0)
-    change[ids] = -(1.0 - keep)[:, None] * tangent
-    return change
-
-
-def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: float,
-                    obstacles=(), h: float = 0.0) -> None:
-    """Coulomb friction for the Verlet cloth (see the module docstring, step 2): for each
-    particle in contact, the sliding x - x_prev (minus the surface's own motion, velocity * h,
-    of the obstacle it touches) loses at most mu * depth along the surface, by moving x back
-    along it. Writes into x ((n, 2) arrays, views welcome)."""
-    ids = np.flatnonzero(contacts.mask)
-    if ids.size == 0 or mu <= 0:
-        return
-    xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
-    mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
-    my = ys[ids].astype(np.float64) - x_prev[ids, 1]
-    if h and len(obstacles):                   # ...relative to the surface it touches
-        carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
-        mx -= carry[contacts.index[ids], 0]
-        my -= carry[contacts.index[ids], 1]
-    nx, ny = contacts.normal[ids, 0], contacts.normal[ids, 1]
-    along = mx * nx + my * ny
-    tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
-    speed = np.hypot(tx, ty)
-    removable = mu * contacts.depth[ids]
-    # the share of the tangential travel removed: all of it (sticks) or mu * depth of it
-    gone = np.where(speed > removable, removable / np.maximum(speed, TINY), 1.0)
-    xs[ids] -= (gone * tx).astype(x.dtype, copy=False)        # less travel: x moves back
-    ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
+# ----- friction: app/physics/friction.py (coulomb_friction, verlet_friction), here too -----------
+from app.physics.friction import coulomb_friction, verlet_friction  # noqa: E402
 
 
 __all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
