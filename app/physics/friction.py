@@ -1,18 +1,34 @@
 """Coulomb friction for particles in contact, the rule of app/physics/obstacles.py's step 2 (read
 its docstring first): the sliding of a touching particle loses at most mu times the normal
-correction its contact made. obstacles.py re-exports both functions (import them from there).
+correction its contact made. obstacles.py re-exports both functions and the Contacts record a
+projection returns (import them from there).
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from dataclasses import dataclass
 
 import numpy as np
 
-if TYPE_CHECKING:                       # (obstacles.py imports this module: no cycle at run time)
-    from app.physics.obstacles import Contacts
-
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
+
+
+@dataclass
+class Contacts:
+    """What a projection did, per point: `mask` True where the point touched an obstacle (was
+    found within `margin` of it and moved); `depth` the distance it was moved along the normal
+    (px, 0 where no contact: the normal correction friction is measured against); `normal` (n, 2)
+    the outward normal of the obstacle it was pushed out of (the last one, if several);
+    `index` that obstacle's position in the list (-1: none)."""
+
+    mask: np.ndarray
+    depth: np.ndarray
+    normal: np.ndarray
+    index: np.ndarray
+
+    @property
+    def count(self) -> int:
+        return int(np.count_nonzero(self.mask))
 
 
 def coulomb_friction(motion: np.ndarray, normal: np.ndarray, normal_change: np.ndarray,
@@ -64,4 +80,4 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
 
 
-__all__ = ["coulomb_friction", "verlet_friction"]
+__all__ = ["Contacts", "coulomb_friction", "verlet_friction"]

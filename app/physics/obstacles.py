@@ -77,6 +77,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+# Contacts and the friction rules live in app/physics/friction.py; imported from here like the rest
+from app.physics.friction import Contacts, coulomb_friction, verlet_friction
+
 OBSTACLE_KINDS = ("circle", "box", "half_plane", "segment")
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
 
@@ -344,24 +347,6 @@ def penetration_max(obstacles, points: np.ndarray, mask: np.ndarray | None = Non
 
 
 # ----- projection ---------------------------------------------------------------------------------
-@dataclass
-class Contacts:
-    """What a projection did, per point: `mask` True where the point touched an obstacle (was
-    found within `margin` of it and moved); `depth` the distance it was moved along the normal
-    (px, 0 where no contact: the normal correction friction is measured against); `normal` (n, 2)
-    the outward normal of the obstacle it was pushed out of (the last one, if several);
-    `index` that obstacle's position in the list (-1: none)."""
-
-    mask: np.ndarray
-    depth: np.ndarray
-    normal: np.ndarray
-    index: np.ndarray
-
-    @property
-    def count(self) -> int:
-        return int(np.count_nonzero(self.mask))
-
-
 def project(obstacles, points: np.ndarray, margin: float = 0.0,
             movable: np.ndarray | None = None, start: np.ndarray | None = None) -> Contacts:
     """Move every point found closer than `margin` to an obstacle (inside it, for margin 0) out
@@ -462,10 +447,6 @@ def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
                     ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
                 return True
     return False
-
-
-# ----- friction: app/physics/friction.py (coulomb_friction, verlet_friction), here too -----------
-from app.physics.friction import coulomb_friction, verlet_friction  # noqa: E402
 
 
 __all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
