@@ -368,8 +368,9 @@ class ClothScene(ClothContact, Scene):
         if len(shares) > 3:
             parts.append(f"rest {100 * sum(v for _, v in shares[3:]):.0f}%")
         split = ", ".join(parts) or "-"
+        drag = "  |  LMB in an obstacle: drag it" if self.obstacles else ""
         return [
-            "LMB: move+lock  |  RMB: unlock  |  U: unlock all",
+            f"LMB: move+lock  |  RMB: unlock  |  U: unlock all{drag}",
             f"{c.rows}x{c.cols} particles, {m['constraints']} rods ({sets})",
             f"physics time: {split}",
         ]

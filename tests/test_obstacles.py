@@ -202,3 +202,17 @@ def test_the_exact_path_tests_agree_with_the_golden_section_search(k):
         assert np.array_equal(mask[clear], (dmin < -depth)[clear])
         q = p0[mask] + t[mask, None] * (p1 - p0)[mask]
         assert np.all(ob.signed_distance(q)[0] < -depth + 1e-9)      # t is a place that deep
+
+
+def test_a_point_that_crossed_the_middle_of_a_thin_box_goes_back_out_the_side_it_came_from():
+    top = Box(0.0, 0.0, 100.0, 5.0)                          # a table top 10 px thick
+    start = np.array([[0.0, 20.0, -30.0], [-8.0, -8.0, 8.0]])     # (2, n): above, above, below
+    points = np.array([[0.0, 3.0], [20.0, -1.0], [-30.0, -2.0]])  # 3 px deep (past the middle),
+    c = project([top], points, 0.25, start=start)                 # 1 px, and 3 px from below
+    assert points[0, 1] == pytest.approx(-5.25)              # back out on top, not beneath
+    assert points[1, 1] == pytest.approx(-5.25)              # not past the middle: as before
+    assert points[2, 1] == pytest.approx(5.25)               # came from below: out below
+    assert c.count == 3
+    plain = np.array([[0.0, 3.0]])
+    project([top], plain, 0.25)                              # without start: the nearer face
+    assert plain[0, 1] == pytest.approx(5.25)

@@ -38,6 +38,7 @@ class Picture:
 TOUR_TILE = 400
 TOUR: dict[str, str] = {
     "cloth": "--set wind=on --seconds 3",
+    "cloth_collisions": "--try 'Pull the tablecloth' --seconds 3",
     "mass_spring_cloth": "--try 'Silk in the wind' --seconds 3",
     "falling_balls": "--try 'Catch 60 balls in a box' --seconds 8",
     "pivoting_l": "--seconds 12",
@@ -83,7 +84,7 @@ def _run(argv: list[str], code: int) -> None:
 
 
 def make_tour(out: Path) -> None:
-    """The eight scenes in one picture: 4 x 2 tiles, each scene's name under it."""
+    """Every scene in one picture: rows of 4 tiles, each scene's name under it."""
     import pygame
     from app.draw.text import font
     cols, cell_h, label_h = 4, 300, 26

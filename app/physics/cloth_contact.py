@@ -5,7 +5,9 @@ contact passes sit around the sweeps, each a separate function, chosen once by t
 are on (`contact_passes`): an effect that is off is not in the lists, so the step never calls it.
 
     Verlet step
-    collisions  (before)  every particle inside an obstacle is moved to its surface (Jakobsen)
+    collisions  (before)  every particle inside an obstacle is moved to its surface (Jakobsen);
+                          one that came in past a thin obstacle's middle goes back out on the
+                          side it came from (project's `start`), not out of the far side
     friction    (before)  Coulomb: the sliding x - x_prev loses at most mu x the correction
     rod sweeps            (the rods now see particles outside the obstacles)
     self_collision        pairs of particles closer than `self_distance` (not joined by a rod)
@@ -121,7 +123,7 @@ def collide_before(c, h: float) -> None:
     if st.start is None or st.start.shape != start.shape:
         st.start = np.empty(start.shape, start.dtype)
     st.start[...] = start
-    st.contacts = project(st.obstacles, x, st.margin, c.free.ravel() > 0)
+    st.contacts = project(st.obstacles, x, st.margin, c.free.ravel() > 0, st.start)
     st.touching = st.contacts.mask
 
 
@@ -130,7 +132,7 @@ def collide_after(c, h: float) -> None:
     st, x = c.contact, _points(c.x)
     movable = c.free.ravel() > 0
     _catch_tunnelling(st, st.start, x, movable)
-    st.contacts = project(st.obstacles, x, st.margin, movable)
+    st.contacts = project(st.obstacles, x, st.margin, movable, st.start)
     st.touching = st.touching | st.contacts.mask
     st.crowded = len(st.obstacles) > 1 and obstacles_may_touch(st.obstacles, st.margin)
     if st.crowded:

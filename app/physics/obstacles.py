@@ -43,7 +43,8 @@ What a step does with them (the Verlet cloth; the mass-spring cloth uses the sam
    particle pushed out of one obstacle into a second one that overlaps it is then pushed out of
    the second (and may end inside the first: where two obstacles crush the cloth between them
    there is no place outside both, and `penetration_max` says how deep the trapped ones are).
-2. `verlet_friction(x, x_prev, contacts, mu)`: Coulomb friction on the Verlet cloth. For a
+2. `verlet_friction(x, x_prev, contacts, mu)` (written in app/physics/friction.py, imported from
+   here like the rest): Coulomb friction on the Verlet cloth. For a
    particle in contact, the distance travelled in this step is v = x - x_prev (x: projected, x_prev:
    where it started). Its part along
    the surface, v_t = v - (v . n) n, is reduced by at most mu times the normal correction that
@@ -75,6 +76,9 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+
+# Contacts and the friction rules live in app/physics/friction.py; imported from here like the rest
+from app.physics.friction import Contacts, coulomb_friction, verlet_friction
 
 OBSTACLE_KINDS = ("circle", "box", "half_plane", "segment")
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
@@ -343,30 +347,18 @@ def penetration_max(obstacles, points: np.ndarray, mask: np.ndarray | None = Non
 
 
 # ----- projection ---------------------------------------------------------------------------------
-@dataclass
-class Contacts:
-    """What a projection did, per point: `mask` True where the point touched an obstacle (was
-    found within `margin` of it and moved); `depth` the distance it was moved along the normal
-    (px, 0 where no contact: the normal correction friction is measured against); `normal` (n, 2)
-    the outward normal of the obstacle it was pushed out of (the last one, if several);
-    `index` that obstacle's position in the list (-1: none)."""
-
-    mask: np.ndarray
-    depth: np.ndarray
-    normal: np.ndarray
-    index: np.ndarray
-
-    @property
-    def count(self) -> int:
-        return int(np.count_nonzero(self.mask))
-
-
 def project(obstacles, points: np.ndarray, margin: float = 0.0,
-            movable: np.ndarray | None = None) -> Contacts:
+            movable: np.ndarray | None = None, start: np.ndarray | None = None) -> Contacts:
     """Move every point found closer than `margin` to an obstacle (inside it, for margin 0) out
     along the normal to distance `margin`: p += (margin - d) * n. Writes into `points` (n, 2);
     points where `movable` is False (pinned, grabbed) are left where they are. Obstacles are
-    handled in order (see the module docstring). Returns the Contacts."""
+    handled in order (see the module docstring). Returns the Contacts.
+
+    `start` ((2, n), optional): where each point was before this step. The shortest way out of
+    a thin obstacle can be through its far side: a point that came down 6 px into a table top
+    10 px thick is nearer its underside. With `start`, a point whose normal now points against
+    the normal where it started (it has crossed the middle) is first put back where its path
+    from `start` entered the obstacle, then pushed out from there: on the side it came from."""
     n = len(points)
     depth = np.zeros(n)
     normal = np.zeros((n, 2))
@@ -381,8 +373,10 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         inside = d < margin
         if not inside.any():
             continue
-        ids, push = ids[inside], margin - d[inside]          # usually few: correct only those
-        nx, ny = nx[inside], ny[inside]
+        ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]   # usually few
+        if start is not None and not isinstance(ob, HalfPlane):
+            d, nx, ny = _back_to_entry(ob, ids, d, nx, ny, px, py, start)
+        push = margin - d
         px[ids] += (push * nx).astype(points.dtype, copy=False)
         py[ids] += (push * ny).astype(points.dtype, copy=False)
         depth[ids] += push
@@ -391,6 +385,32 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         index[ids] = k
         hit[ids] = True
     return Contacts(hit, depth, normal, index)
+
+
+def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start, halvings: int = 20):
+    """project()'s guard against popping out of the far side: the points `ids` (inside `ob`,
+    at distance d with normal (nx, ny)) whose start was outside with a normal against theirs
+    are moved to where the straight path start -> now met the surface (bisection); returns
+    their new d and normal (the others' unchanged)."""
+    sx, sy = start[0][ids].astype(np.float64), start[1][ids].astype(np.float64)
+    d0, n0x, n0y = ob.distance_xy(sx, sy)
+    crossed = (d0 >= 0) & (n0x * nx + n0y * ny < 0)
+    if not crossed.any():
+        return d, nx, ny
+    c = np.flatnonzero(crossed)
+    ax, ay = sx[c], sy[c]
+    ex, ey = px[ids[c]] - ax, py[ids[c]] - ay
+    lo, hi = np.zeros(c.size), np.ones(c.size)
+    for _ in range(halvings):               # d >= 0 at lo, d < 0 at hi
+        mid = (lo + hi) / 2
+        out = ob.distance_xy(ax + mid * ex, ay + mid * ey)[0] >= 0
+        lo, hi = np.where(out, mid, lo), np.where(out, hi, mid)
+    qx, qy = ax + lo * ex, ay + lo * ey
+    px[ids[c]], py[ids[c]] = qx, qy
+    dq, nqx, nqy = ob.distance_xy(qx, qy)
+    d, nx, ny = d.copy(), nx.copy(), ny.copy()
+    d[c], nx[c], ny[c] = dq, nqx, nqy
+    return d, nx, ny
 
 
 def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.0,
@@ -427,56 +447,6 @@ def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
                     ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
                 return True
     return False
-
-
-# ----- friction -----------------------------------------------------------------------------------
-def coulomb_friction(motion: np.ndarray, normal: np.ndarray, normal_change: np.ndarray,
-                     mask: np.ndarray, mu: float) -> np.ndarray:
-    """Coulomb's law on a motion (a displacement per step, or a velocity), for the points in
-    `mask`: the tangential part m_t = m - (m . n) n shrinks by mu * normal_change (what the
-    contact removed along the normal, >= 0), and to zero if it is smaller (static friction).
-    Returns the change to add to `motion` (n, 2): minus the removed tangential part; zero
-    outside the mask. It never reverses the sliding: the factor applied to m_t is in [0, 1]."""
-    change = np.zeros(motion.shape, np.float64)
-    ids = np.flatnonzero(mask)
-    if ids.size == 0 or mu <= 0:
-        return change
-    m = motion[ids].astype(np.float64)
-    nrm = normal[ids]
-    along = (m * nrm).sum(1, keepdims=True)
-    tangent = m - along * nrm
-    speed = np.hypot(tangent[:, 0], tangent[:, 1])
-    removable = mu * np.maximum(normal_change[ids], 0.0)
-    keep = np.where(speed > removable, 1.0 - removable / np.maximum(speed, TINY), 0.0)
-    change[ids] = -(1.0 - keep)[:, None] * tangent
-    return change
-
-
-def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: float,
-                    obstacles=(), h: float = 0.0) -> None:
-    """Coulomb friction for the Verlet cloth (see the module docstring, step 2): for each
-    particle in contact, the sliding x - x_prev (minus the surface's own motion, velocity * h,
-    of the obstacle it touches) loses at most mu * depth along the surface, by moving x back
-    along it. Writes into x ((n, 2) arrays, views welcome)."""
-    ids = np.flatnonzero(contacts.mask)
-    if ids.size == 0 or mu <= 0:
-        return
-    xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
-    mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
-    my = ys[ids].astype(np.float64) - x_prev[ids, 1]
-    if h and len(obstacles):                   # ...relative to the surface it touches
-        carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
-        mx -= carry[contacts.index[ids], 0]
-        my -= carry[contacts.index[ids], 1]
-    nx, ny = contacts.normal[ids, 0], contacts.normal[ids, 1]
-    along = mx * nx + my * ny
-    tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
-    speed = np.hypot(tx, ty)
-    removable = mu * contacts.depth[ids]
-    # the share of the tangential travel removed: all of it (sticks) or mu * depth of it
-    gone = np.where(speed > removable, removable / np.maximum(speed, TINY), 1.0)
-    xs[ids] -= (gone * tx).astype(x.dtype, copy=False)        # less travel: x moves back
-    ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
 
 
 __all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",

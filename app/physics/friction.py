@@ -1,0 +1,83 @@
+"""Coulomb friction for particles in contact, the rule of app/physics/obstacles.py's step 2 (read
+its docstring first): the sliding of a touching particle loses at most mu times the normal
+correction its contact made. obstacles.py re-exports both functions and the Contacts record a
+projection returns (import them from there).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+TINY = 1e-12                                 # shortest length we divide by (no 0/0)
+
+
+@dataclass
+class Contacts:
+    """What a projection did, per point: `mask` True where the point touched an obstacle (was
+    found within `margin` of it and moved); `depth` the distance it was moved along the normal
+    (px, 0 where no contact: the normal correction friction is measured against); `normal` (n, 2)
+    the outward normal of the obstacle it was pushed out of (the last one, if several);
+    `index` that obstacle's position in the list (-1: none)."""
+
+    mask: np.ndarray
+    depth: np.ndarray
+    normal: np.ndarray
+    index: np.ndarray
+
+    @property
+    def count(self) -> int:
+        return int(np.count_nonzero(self.mask))
+
+
+def coulomb_friction(motion: np.ndarray, normal: np.ndarray, normal_change: np.ndarray,
+                     mask: np.ndarray, mu: float) -> np.ndarray:
+    """Coulomb's law on a motion (a displacement per step, or a velocity), for the points in
+    `mask`: the tangential part m_t = m - (m . n) n shrinks by mu * normal_change (what the
+    contact removed along the normal, >= 0), and to zero if it is smaller (static friction).
+    Returns the change to add to `motion` (n, 2): minus the removed tangential part; zero
+    outside the mask. It never reverses the sliding: the factor applied to m_t is in [0, 1]."""
+    change = np.zeros(motion.shape, np.float64)
+    ids = np.flatnonzero(mask)
+    if ids.size == 0 or mu <= 0:
+        return change
+    m = motion[ids].astype(np.float64)
+    nrm = normal[ids]
+    along = (m * nrm).sum(1, keepdims=True)
+    tangent = m - along * nrm
+    speed = np.hypot(tangent[:, 0], tangent[:, 1])
+    removable = mu * np.maximum(normal_change[ids], 0.0)
+    keep = np.where(speed > removable, 1.0 - removable / np.maximum(speed, TINY), 0.0)
+    change[ids] = -(1.0 - keep)[:, None] * tangent
+    return change
+
+
+def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: float,
+                    obstacles=(), h: float = 0.0) -> None:
+    """Coulomb friction for the Verlet cloth (see the module docstring, step 2): for each
+    particle in contact, the sliding x - x_prev (minus the surface's own motion, velocity * h,
+    of the obstacle it touches) loses at most mu * depth along the surface, by moving x back
+    along it. Writes into x ((n, 2) arrays, views welcome)."""
+    ids = np.flatnonzero(contacts.mask)
+    if ids.size == 0 or mu <= 0:
+        return
+    xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
+    mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
+    my = ys[ids].astype(np.float64) - x_prev[ids, 1]
+    if h and len(obstacles):                   # ...relative to the surface it touches
+        carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
+        mx -= carry[contacts.index[ids], 0]
+        my -= carry[contacts.index[ids], 1]
+    nx, ny = contacts.normal[ids, 0], contacts.normal[ids, 1]
+    along = mx * nx + my * ny
+    tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
+    speed = np.hypot(tx, ty)
+    removable = mu * contacts.depth[ids]
+    # the share of the tangential travel removed: all of it (sticks) or mu * depth of it
+    gone = np.where(speed > removable, removable / np.maximum(speed, TINY), 1.0)
+    xs[ids] -= (gone * tx).astype(x.dtype, copy=False)        # less travel: x moves back
+    ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
+
+
+__all__ = ["Contacts", "coulomb_friction", "verlet_friction"]
