@@ -30,6 +30,7 @@ from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras
                           InputFileError, check_output_path, load_events, run_headless,
                           screenshot_path, steps_for)
 from app.cli_checks import UsageError, check_plot, compare_variants, instrument_problem
+from app.outputs import OutputError, clash, discard_all, one_line, shown
 from app.scene import plain_number, shown_text
 
 
@@ -39,7 +40,7 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> NoReturn:
         # argparse echoes what it refuses: cut a pasted wall of text to one readable line
-        raise UsageError(message if len(message) <= 300 else message[:280] + " ...")
+        raise UsageError(one_line(message, 300))
 
 
 def _positive_float(text: str) -> float:
@@ -140,6 +141,8 @@ def use_dummy_video() -> None:
     """Headless runs and benchmarks draw off-screen: no window, no sound."""
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+    # SDL would turn Ctrl-C into a quit event nobody reads: let Python see it (exit code 130)
+    os.environ.setdefault("SDL_NO_SIGNAL_HANDLERS", "1")
 
 
 def parse_sets(pairs: list[str]) -> dict[str, str]:
@@ -163,12 +166,31 @@ def main(argv: list[str] | None = None) -> int:
         if argv and argv[0] == "exercise":
             return exercise_main(argv[1:])
         return app_main(argv)
-    except UsageError as e:
-        print(f"python -m app: error: {e}", file=sys.stderr)
+    except (UsageError, OutputError) as e:    # bad usage, or a file that could not be written
+        print(f"python -m app: error: {one_line(str(e))}", file=sys.stderr)
         return EXIT_USAGE
     except BrokenPipeError:     # stdout closed early (`... --json | head -1`): stop quietly
+        discard_all()
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no error at exit
         return EXIT_OK
+    except KeyboardInterrupt:   # Ctrl-C: one line, no traceback; no half-written file is left
+        return interrupted()
+
+
+def interrupted() -> int:
+    """Ctrl-C: remove the outputs being written (the files that were there stay as they were),
+    say so in one line, exit code 130."""
+    discard_all()
+    try:
+        print("python -m app: interrupted (Ctrl-C); no output was left half-written: files being "
+              "written were not, and files that were there are as they were", file=sys.stderr,
+              flush=True)
+    except (OSError, ValueError):
+        pass
+    return EXIT_INTERRUPTED
+
+
+EXIT_INTERRUPTED = 130          # 128 + SIGINT, as shells report it
 
 
 def app_main(argv: list[str]) -> int:
@@ -200,7 +222,7 @@ def app_main(argv: list[str]) -> int:
         student_file = args.scene.removeprefix("exercise:")
         if student_file != args.scene and student_file.endswith(".py") and not os.path.isfile(
                 student_file):
-            raise UsageError(f"--scene {args.scene}: no such file '{student_file}'; accepted: "
+            raise UsageError(f"--scene {shown(args.scene)}: no such file; accepted: "
                              "exercise:NAME, or exercise:PATH/NAME.py of a file that exists")
         cls = get_scene(args.scene)
         if cls is None:
@@ -250,10 +272,19 @@ def app_main(argv: list[str]) -> int:
     tables = [screenshot_path(args.csv, c.name, len(classes) > 1) for c in classes
               if args.csv and len(classes) > 1]
     instrument_problem(args, classes)
-    for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record"),
-                       (args.csv, "--csv"), *((t, "--csv") for t in tables),
-                       *((shot, "--screenshot") for shot in shots if shot != args.screenshot),
-                       *((clip, "--video") for clip in clip_paths(args, classes))):
+    outputs = [(args.screenshot, "--screenshot"), (args.record, "--record"),
+               *(((args.csv, "--csv"),) if not tables else ()), *((t, "--csv") for t in tables),
+               *((shot, "--screenshot") for shot in shots if shot != args.screenshot),
+               *((clip, "--video") for clip in clip_paths(args, classes))]
+    if shots and shots != [args.screenshot]:
+        outputs = [o for o in outputs if o != (args.screenshot, "--screenshot")]
+    inputs = [(args.input, "--input")]
+    if args.scene and args.scene.startswith("exercise:") and args.scene.endswith(".py"):
+        inputs.append((args.scene.removeprefix("exercise:"), "the exercise file"))
+    problem = clash([o for o in outputs if o[0]], [i for i in inputs if i[0]])
+    if problem:                       # before anything is written: nothing is lost
+        raise UsageError(problem)
+    for path, what in outputs:
         if path is not None:
             problem = check_output_path(path, what)      # last: it may create the folder
             if problem:
@@ -351,7 +382,7 @@ def writable_folder(path: str, what: str, example: str, probe: str) -> None:
     if not path.strip():
         raise UsageError(f"{what} needs a folder name, e.g. {example}")
     if os.path.exists(path) and not os.path.isdir(path):
-        raise UsageError(f"{what} '{path}' is a file; accepted: a folder")
+        raise UsageError(f"{what} {shown(path)} is a file; accepted: a folder")
     problem = check_output_path(os.path.join(path, probe), f"{what} folder")
     if problem:
         raise UsageError(problem)
@@ -415,7 +446,7 @@ def exercise_main(argv: list[str]) -> int:
         writable_folder(args.folder, "copy", "exercise copy mywork", "verlet.py")
         taken = cli.existing_copies(args.folder)
         if taken:
-            raise UsageError(f"copy: '{taken[0]}' exists; nothing copied (your work is never "
+            raise UsageError(f"copy: {shown(taken[0])} exists; nothing copied (your work is never "
                              "overwritten): pick another folder or move it away")
         return cli.copy(args.folder)
     if args.name != "all" and get_exercise(args.name) is None:
@@ -431,14 +462,15 @@ def exercise_main(argv: list[str]) -> int:
     elif args.name == "all":
         folder = args.path
         if folder is not None and not os.path.isdir(folder):
-            raise UsageError(f"--path '{folder}': with 'all' it names a folder of NAME.py files")
+            raise UsageError(f"--path {shown(folder)}: with 'all' it names a folder of NAME.py "
+                             "files")
         paths = [shown(os.path.join(folder, f"{e.name}.py")) if folder else
                  shown(starter_path(e.name)) for e in chosen]
     else:
         paths = [args.path or shown(starter_path(args.name))]
         if not os.path.isfile(paths[0]):
-            raise UsageError(f"--path '{paths[0]}': no such file; accepted: a .py file, e.g. "
-                             f"exercises/{args.name}.py")
+            raise UsageError(f"--path {shown(paths[0])}: no such file; accepted: a .py file, "
+                             f"e.g. exercises/{args.name}.py")
     return cli.check(chosen, paths, args.json, args.timeout)
 
 
@@ -464,4 +496,8 @@ def leave(code: int) -> NoReturn:
 
 if __name__ == "__main__":
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    leave(main())
+    try:
+        code = main()
+    except KeyboardInterrupt:      # Ctrl-C between main's own handlers (at exit)
+        code = interrupted()
+    leave(code)

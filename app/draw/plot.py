@@ -135,15 +135,17 @@ def figure(charts: Sequence[LineChart], cols: int = 2, size: tuple[float, float]
 
 def save_figure(fig, path: str) -> str:
     """Write `fig` as PNG at `path` and as SVG beside it (folders made as needed; no date or
-    software version inside, so the same chart gives the same files); return the PNG's path."""
+    software version inside, so the same chart gives the same files); return the PNG's path.
+    OutputError (one line) if one cannot be written: the old file is left as it was."""
     from matplotlib import rc_context
+
+    from app.outputs import atomic_path
     root, _ = os.path.splitext(os.fspath(path))
-    folder = os.path.dirname(root)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    with rc_context(_STYLE):
-        fig.savefig(root + ".png", metadata={"Software": None})
-        fig.savefig(root + ".svg", metadata={"Date": None})
+    with rc_context(_STYLE):          # each file whole or not at all (app/outputs.py)
+        with atomic_path(root + ".png", "the chart") as tmp:
+            fig.savefig(tmp, format="png", metadata={"Software": None})
+        with atomic_path(root + ".svg", "the chart") as tmp:
+            fig.savefig(tmp, format="svg", metadata={"Date": None})
     return root + ".png"
 
 

@@ -105,8 +105,8 @@ class ClipRecorder:
         size = (even(w), even(area.height * w / area.width))
         try:
             self.writer = open_clip(str(path), size, self.fps)
-        except (OSError, RuntimeError) as e:
-            window.flash(f"could not start the clip '{path.resolve()}': {e}", hud.ERROR_COLOR)
+        except OSError as e:                    # OutputError: one line, the path in it
+            window.flash(str(e), hud.ERROR_COLOR)
             return
         self.made += 1
         self._view, self._area = view, area.copy()
@@ -234,7 +234,8 @@ def _text_boxes(view) -> list[pygame.Rect]:
 
 def _saved_text(result: dict) -> str:
     if "error" in result:
-        return f"the clip {result['path']} could not be written: {result['error']}"
+        return result["error"]           # OutputError's line: the path, why, what was left
     clip: Clip = result["clip"]
     return (f"clip saved: {result['path']} ({clip.frames} frames, {clip.size[0]}x{clip.size[1]}"
-            f", {clip.frames / clip.fps:.1f} s, {clip.bytes / 1e6:.2f} MB)")
+            f", {clip.seconds:.1f} s, {clip.bytes / 1e6:.2f} MB"
+            + (", replaced the file that was there)" if clip.replaced else ")"))

@@ -432,8 +432,12 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
         if screenshot:
             window.render()
             window.save_screenshot(screenshot)
-    except KeyboardInterrupt:
-        pass
+    except KeyboardInterrupt:      # Ctrl-C in the terminal: the recording and clips are still
+        code = 130                 # saved (every way out), then exit code 130 and one line
+        print("python -m app: interrupted (Ctrl-C); the window closed as Esc would close it",
+              file=sys.stderr, flush=True)
+    else:
+        code = 0
     finally:
         window.close()
         line = window.recorder.write()
@@ -442,4 +446,4 @@ def run_window(scene_name: str | None, overrides: dict[str, str], record: str | 
         for line in window.clips.finish(window):
             print(line, flush=True)
         pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
-    return 0
+    return code
