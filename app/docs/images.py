@@ -85,6 +85,8 @@ def _run(argv: list[str], code: int) -> None:
 def make_tour(out: Path) -> None:
     """The eight scenes in one picture: 4 x 2 tiles, each scene's name under it."""
     import pygame
+
+    from app.draw import save_png
     from app.draw.text import font
     cols, cell_h, label_h = 4, 300, 26
     with tempfile.TemporaryDirectory() as tmp:
@@ -106,7 +108,7 @@ def make_tour(out: Path) -> None:
                               y0 + (cell_h - tile.get_height()) // 2))
             label = font(24).render(scene, True, (230, 230, 235))
             sheet.blit(label, (x0 + (TOUR_TILE - label.get_width()) // 2, y0 + cell_h + 2))
-        pygame.image.save(sheet, str(out))
+        save_png(sheet, out, what="the picture")     # whole or not at all
 
 
 def make_images(folder: Path = IMAGES) -> None:
