@@ -394,7 +394,7 @@ def build_bench_parser(choices: list[str]) -> argparse.ArgumentParser:
     p.add_argument("which", nargs="?", default="all",
                    help=f"what to measure; accepted: {', '.join(choices)}")
     p.add_argument("--json", action="store_true", help="print the numbers as JSON on stdout")
-    p.add_argument("--out", default="bench-results", help="folder for the PNG charts")
+    p.add_argument("--out", default="lab-output/bench", help="folder for the PNG charts")
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats (a smoke run)")
     return p
 
@@ -406,7 +406,7 @@ def bench_main(argv: list[str]) -> int:
     if args.which not in choices:
         raise UsageError(f"unknown benchmark {shown_text(args.which)}; accepted: "
                          f"{', '.join(choices)}")
-    writable_folder(args.out, "--out", "--out bench-results", "chart.png")
+    writable_folder(args.out, "--out", "--out lab-output/bench", "chart.png")
     use_dummy_video()
     return run_benchmarks(args.which, args.json, args.out, args.quick)
 

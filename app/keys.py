@@ -56,8 +56,8 @@ KEYS: tuple[ShellKey, ...] = (
     ShellKey(("v",), "V", "toggle_arrows", "velocity and force arrows on / off"),
     ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
              "--video's file; the message gives the full path)"),
-    ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
-             "full path)"),
+    ShellKey(("f12",), "F12", "screenshot", "screenshot to lab-output/screenshots/ (the message "
+             "gives the full path)"),
     ShellKey(("escape",), "Esc", "escape", "close the help; else back to the menu; in the menu: "
              "quit"),
 )

@@ -43,6 +43,8 @@ _SHORT = reprlib.Repr()
 _SHORT.maxstring = 60          # a pasted page, a 100k-character path: cut in the middle
 _SHORT.maxother = 60
 
+OUTPUT_DIR = "lab-output"      # where the lab's own outputs go unless told (F12, F9, bench):
+                               # one folder, in .gitignore, named by the docs
 MAX_LINE = 600                 # characters in one error line, at most (a safety net)
 
 
@@ -327,4 +329,4 @@ def clash(outputs: Sequence[tuple[str, str]],
 
 __all__ = ["shown", "one_line", "OutputError", "Pending", "atomic_path", "atomic_write",
            "write_text", "write_bytes", "discard_all", "output_problem", "input_problem",
-           "clash", "MAX_LINE"]
+           "clash", "MAX_LINE", "OUTPUT_DIR"]

@@ -32,7 +32,8 @@ BENCHMARKS = {           # name -> module (imported only when run)
 class Report:
     """Where a benchmark prints tables, shows progress and saves charts."""
 
-    def __init__(self, out_dir: str = "bench-results", as_json: bool = False, quick: bool = False):
+    def __init__(self, out_dir: str = "lab-output/bench", as_json: bool = False,
+                 quick: bool = False):
         self.out_dir = out_dir
         self.as_json = as_json        # with --json, tables go to stderr and JSON to stdout
         self.quick = quick            # fewer repeats and sizes (used by the tests)
@@ -96,7 +97,7 @@ def machine_note() -> str:
     return f"{cores} cores, load average {load:.2f} over the last minute{busy}"
 
 
-def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-results",
+def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "lab-output/bench",
                    quick: bool = False) -> int:
     """Run one benchmark or all; print tables (or JSON); return an exit code."""
     names = list(BENCHMARKS) if which == "all" else [which]

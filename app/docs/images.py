@@ -31,7 +31,10 @@ class Picture:
     code: int = 0
 
     def argv(self, out: Path) -> list[str]:
-        return shlex.split(self.command)[3:] + ["--screenshot", str(out)]
+        """The command's arguments, its screenshot written to `out` (the docs print it writing
+        to lab-output/, the folder their commands write to)."""
+        args = shlex.split(self.command)[3:]
+        return [str(out) if a == f"lab-output/{self.file}" else a for a in args]
 
 
 # the README's tour: one tile per scene (the scene alone, 400 px wide), in the registry's order
@@ -49,16 +52,18 @@ TOUR: dict[str, str] = {
 
 PICTURES: tuple[Picture, ...] = (
     Picture("cloth-1x10-vs-10x1.png",
-            "python -m app --headless --scene cloth --try '1x10 vs 10x1' --seconds 2 --width 960"),
+            "python -m app --headless --scene cloth --try '1x10 vs 10x1' --seconds 2 --width 960 "
+            "--screenshot lab-output/cloth-1x10-vs-10x1.png"),
     Picture("explicit-vs-implicit.png",
             "python -m app --headless --scene mass_spring_cloth --try 'Explicit vs implicit at 60 Hz' "
-            "--seconds 1 --width 960", code=1),
+            "--seconds 1 --width 960 --screenshot lab-output/explicit-vs-implicit.png", code=1),
     Picture("integrators-hertz-4.png",
             "python -m app --headless --scene integrators --try 'hertz 4: past Verlet' "
-            "--seconds 4 --width 960"),
+            "--seconds 4 --width 960 --screenshot lab-output/integrators-hertz-4.png"),
     Picture("particle-dance-all-pairs-vs-grid.png",
             "python -m app --headless --scene particle_dance --try 'All pairs vs grid' "
-            "--seconds 1 --width 960"),
+            "--seconds 1 --width 960 "
+            "--screenshot lab-output/particle-dance-all-pairs-vs-grid.png"),
 )
 
 

@@ -3,8 +3,8 @@ axes, written as PNG and SVG side by side, used by the benchmarks (`python -m ap
 
     chart = LineChart("ms per step vs iterations", "iterations", "time per step (ms)", logy=True)
     chart.add("64x64", xs, ys)
-    chart.save("bench-results/cloth.png")        # also writes bench-results/cloth.svg
-    save_grid([chart, other], "bench-results/both.png", cols=2)   # several charts, one slide
+    chart.save("lab-output/bench/cloth.png")        # also writes lab-output/bench/cloth.svg
+    save_grid([chart, other], "lab-output/bench/both.png", cols=2)   # several charts, one slide
 
 What a projected slide needs, and where it is done:
   * size: every file is one 16:9 slide, 13.33 x 7.5 in at 150 dpi (2000 x 1125 px), with text

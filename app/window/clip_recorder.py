@@ -27,6 +27,7 @@ from typing import Any, Protocol
 
 import pygame
 
+from app.outputs import OUTPUT_DIR
 from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, Clip, ClipWriter, check_video, even,
                        max_gif_frames, open_clip)
 from app.draw import hud
@@ -50,7 +51,7 @@ class ClipRecorder:
     """The window's clip: start()/stop() (F9 toggles), after_draw() once per rendered frame."""
 
     def __init__(self, path: str | None = None, fps: int | None = None, width: int | None = None,
-                 folder: str | Path = "clips"):
+                 folder: str | Path = OUTPUT_DIR + "/clips"):
         self.path = Path(path) if path else None     # --video: where the clips go
         self.fps = fps or DEFAULT_FPS
         self.width = width or DEFAULT_WIDTH
