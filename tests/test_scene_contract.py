@@ -107,3 +107,15 @@ def test_every_try_card_is_valid_and_its_label_fits_a_card():
                 cls.resolve({**card.settings, **variant})
             assert 0 < len(card.label) <= 30, (cls.name, card.label)
             assert card.watch.strip(), (cls.name, card.label)
+
+
+def test_no_module_in_app_or_scenes_is_over_500_lines():
+    """A reader finds what they look for in a file they can read through: no module of the app
+    or of a scene over 500 lines (scenes/mass_spring_cloth.py was split: its words live in
+    scenes/mass_spring_words.py)."""
+    from pathlib import Path
+    root = Path(__file__).resolve().parents[1]
+    long = {str(p.relative_to(root)): n for p in [*root.joinpath("app").rglob("*.py"),
+                                                   *root.joinpath("scenes").rglob("*.py")]
+            if (n := len(p.read_text().splitlines())) > 500}
+    assert not long, long
