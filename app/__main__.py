@@ -29,8 +29,9 @@ from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, MAX_FPS, MAX_WIDTH, MIN_WIDTH
 from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras,
                           InputFileError, check_output_path, load_events, run_headless,
                           screenshot_path, steps_for)
-from app.cli_checks import UsageError, check_plot, compare_variants, instrument_problem
-from app.outputs import OutputError, clash, discard_all, one_line, shown
+from app.cli_checks import (UsageError, check_outputs, check_plot, compare_variants,
+                            instrument_problem)
+from app.outputs import OutputError, discard_all, one_line, shown
 from app.scene import plain_number, shown_text
 
 
@@ -267,28 +268,8 @@ def app_main(argv: list[str]) -> int:
         except InputFileError as e:
             raise UsageError(str(e)) from None
 
-    shots = [screenshot_path(args.screenshot, c.name, len(classes) > 1) for c in classes
-             if args.headless and args.screenshot]     # the names the run will write
-    tables = [screenshot_path(args.csv, c.name, len(classes) > 1) for c in classes
-              if args.csv and len(classes) > 1]
     instrument_problem(args, classes)
-    outputs = [(args.screenshot, "--screenshot"), (args.record, "--record"),
-               *(((args.csv, "--csv"),) if not tables else ()), *((t, "--csv") for t in tables),
-               *((shot, "--screenshot") for shot in shots if shot != args.screenshot),
-               *((clip, "--video") for clip in clip_paths(args, classes))]
-    if shots and shots != [args.screenshot]:
-        outputs = [o for o in outputs if o != (args.screenshot, "--screenshot")]
-    inputs = [(args.input, "--input")]
-    if args.scene and args.scene.startswith("exercise:") and args.scene.endswith(".py"):
-        inputs.append((args.scene.removeprefix("exercise:"), "the exercise file"))
-    problem = clash([o for o in outputs if o[0]], [i for i in inputs if i[0]])
-    if problem:                       # before anything is written: nothing is lost
-        raise UsageError(problem)
-    for path, what in outputs:
-        if path is not None:
-            problem = check_output_path(path, what)      # last: it may create the folder
-            if problem:
-                raise UsageError(problem)
+    check_outputs(args, classes, clip_paths(args, classes))   # last: it may create folders
 
     for cls in classes:     # an exercise's scene imports the student's file in this process
         problem = cls.import_problem() if hasattr(cls, "import_problem") else None
