@@ -441,14 +441,18 @@ def open_clip(path: str, size: tuple[int, int], fps: int, what: str = "the clip"
 
 
 def record_run(runner: "SceneRunner", steps: int, fps: int,
-               capture: Callable[[], "pygame.Surface"], writer: ClipWriter) -> None:
+               capture: Callable[[], "pygame.Surface"], writer: ClipWriter,
+               progress=None) -> None:
     """Run `steps` fixed steps with `runner`, adding `capture()` (a new surface each time) to
     `writer` at each frame's step (frame_steps); stop capturing if the run stops early
-    (non-finite, a SceneError). The runner runs exactly the steps it would without a clip."""
+    (non-finite, a SceneError). The runner runs exactly the steps it would without a clip.
+    `progress` (app.progress.Progress over the frames) is told of each frame."""
     dt = runner.tick if hasattr(runner, "tick") else runner.scene.dt   # a comparison's clock
     for at in frame_steps(steps, dt, fps):
         runner.run(at - runner.steps)
         if runner.stopped:
             break
         writer.add_surface(capture(), fresh=True)
+        if progress is not None:
+            progress.update(1)
     runner.run(steps - runner.steps)

@@ -243,10 +243,13 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card); with
     `extras` the CSV, the plot and the arrows (app/instruments.py). With `video`, record a clip
     of each run (app/clips.py) at `fps`, `width` px wide."""
+    from app.progress import Progress
     nonfinite = unsaved = False
     extras = extras or Extras()
     several = len(scene_classes) > 1
+    bar = Progress(len(scene_classes) if several else 0, "scenes", "scenes")
     for cls in scene_classes:
+        bar.update(0, note=cls.name)
         scene = cls(cls.own_settings(overrides))
         if card is not None:
             scene.apply_card(card)
@@ -285,6 +288,8 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
         else:
             print(describe(result), flush=True)
         nonfinite = report_stop(runner, scene.name) or nonfinite
+        bar.update(1)
+    bar.close()
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
@@ -374,8 +379,9 @@ def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path:
     """Run `steps` steps of `scene` (as run_scene; or of `runner`, a SceneRunner or a
     comparison's CompareRunner) while recording a clip of frame() to `path`; return the runner
     and the Clip written, or a one-line message if it was not."""
-    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, open_clip, record_run
+    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, frame_count, open_clip, record_run
     from app.frames import picture_size
+    from app.progress import Progress
     fps = fps or DEFAULT_FPS
     runner = runner or SceneRunner(scene, events, keep_all_times=True)
     runners = runner.runners if compare else [runner]
@@ -386,13 +392,16 @@ def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path:
     except OutputError as e:
         runner.run(steps)
         return runner, str(e)
+    dt = runner.tick if compare else scene.dt
     try:
-        try:
-            record_run(runner, steps, fps,
-                       lambda: frame(runners, size[0], clean, inst, compare), writer)
-        except SceneError as e:            # a student's drawing code failed: the frames so far
-            for r in runners:              # are the clip, the run stops (exit 1)
-                r.fail(e)
+        with Progress(frame_count(steps, dt, fps), f"{scene.name}: clip", "frames") as bar:
+            try:
+                record_run(runner, steps, fps,
+                           lambda: frame(runners, size[0], clean, inst, compare), writer, bar)
+                bar.update(0, note="encoding")
+            except SceneError as e:        # a student's drawing code failed: the frames so far
+                for r in runners:          # are the clip, the run stops (exit 1)
+                    r.fail(e)
         return runner, writer.close()      # OutputError if the file is not whole
     except OutputError as e:
         return runner, str(e)

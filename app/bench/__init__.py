@@ -42,9 +42,15 @@ class Report:
     def _out(self):
         return sys.stderr if self.as_json else sys.stdout
 
+    bar = None          # app.progress.Progress over the benchmarks run (set by run_benchmarks)
+
     def progress(self, msg: str) -> None:
-        """One line of progress on stderr (never mixed into --json output)."""
-        print(f"  .. {msg}", file=sys.stderr, flush=True)
+        """One line of progress on stderr (never mixed into --json output; on a terminal,
+        above the bar)."""
+        if self.bar is not None:
+            self.bar.say(f"  .. {msg}")
+        else:
+            print(f"  .. {msg}", file=sys.stderr, flush=True)
 
     def say(self, msg: str = "") -> None:
         print(msg, file=self._out(), flush=True)
@@ -103,13 +109,19 @@ def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "lab-output
     names = list(BENCHMARKS) if which == "all" else [which]
     report = Report(out_dir, as_json, quick)
     results: dict[str, Any] = {}
+    from app.progress import Progress
     report.say(machine_note())
-    for name in names:
-        module = importlib.import_module(BENCHMARKS[name])
-        report.say(f"=== bench {name} ===")
-        t0 = time.perf_counter()
-        results[name] = module.run(report)
-        report.progress(f"{name} done in {time.perf_counter() - t0:.1f} s")
+    with Progress(len(names), "benchmarks", "benchmarks") as bar:
+        report.bar = bar
+        for name in names:
+            module = importlib.import_module(BENCHMARKS[name])
+            bar.update(0, note=name)
+            report.say(f"=== bench {name} ===")
+            t0 = time.perf_counter()
+            results[name] = module.run(report)
+            report.progress(f"{name} done in {time.perf_counter() - t0:.1f} s")
+            bar.update(1)
+        report.bar = None
     if report.charts:
         report.say("\ncharts (each PNG has an SVG beside it): " + ", ".join(report.charts))
     if as_json:

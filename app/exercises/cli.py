@@ -44,15 +44,19 @@ def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
     """Grade each exercise on its file (None: the lab's reference), several at once; print the
     reports in order (what the student's code printed first, on stderr, capped), and a summary
     table for more than one."""
+    from app.progress import Progress
     reports: list[Report] = []
+    bar = Progress(len(exercises) if len(exercises) > 1 else 0, "exercises checked")
     for report in grade_many(list(zip(exercises, paths)), timeout):
         reports.append(report)
+        bar.update(1, note=report.exercise)
         if report.output_bytes:
-            print(report.output_text(), file=sys.stderr, flush=True)
+            bar.say(report.output_text())
         if as_json:
             print(json.dumps(report.to_json()), flush=True)
         else:
             print(report.text() + "\n", flush=True)
+    bar.close()
     if len(reports) > 1 and not as_json:
         print(f"{'exercise':18} {'checks':>7}  result")
         for r in reports:
