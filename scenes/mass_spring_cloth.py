@@ -289,6 +289,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         if names is None or names - {"solver"}:
             self._solve_ms.clear()                   # the costs measured no longer hold
         self._energy.clear()
+        self._energy_start = c.energy()      # what implicit Euler may not climb above, undriven
         if names is None or names - STEP_SETTINGS:
             self.watch.forget()
         self._estimate_mode(iterations=60)
@@ -345,6 +346,7 @@ class MassSpringClothScene(MassSpringWords, Scene):
         self._stretch = None
         if event.kind.startswith("mouse"):
             self.mouse = clamp_point(event.pos, c.world)
+            self._energy_start = None            # a hand did work on the cloth: no bound now
         if event.kind == "mouse_down" and event.button == 1:
             cell = nearest_cell(c.x, self.mouse, self.grab_radius)
             if cell is not None:
