@@ -18,11 +18,11 @@ The clips are kept in <out>/clips/ so they can be looked at.
 from __future__ import annotations
 
 import os
-import statistics
 import time
 from typing import Any
 
 from app.bench import Report
+from app.bench import Timing
 from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, mp4_problem
 
 
@@ -70,15 +70,15 @@ def run(report: Report) -> dict[str, Any]:
     rows, out = [], {"seconds": seconds, "repeats": repeats, "clips": []}
     for cls in SCENES:
         report.progress(f"{cls.name}: physics alone")
-        physics = statistics.median(physics_seconds(cls, seconds) for _ in range(repeats))
+        physics = Timing.of([physics_seconds(cls, seconds) for _ in range(repeats)])
         for fmt in formats:
             path = os.path.join(folder, f"{cls.name}{fmt}")
             runs = []
             for k in range(repeats):
                 report.progress(f"{cls.name}{fmt} ({k + 1}/{repeats})")
                 runs.append(make_clip(cls, seconds, path))
-            wall = statistics.median(r["wall"] for r in runs)
-            cpu = statistics.median(r["cpu"] for r in runs)
+            wall = Timing.of([r["wall"] for r in runs])
+            cpu = Timing.of([r["cpu"] for r in runs])
             last = runs[-1]
             entry = {"scene": cls.name, "format": fmt[1:], "frames": last["frames"],
                      "size": last["size"], "mb": last["bytes"] / 1e6, "wall_s": wall,

@@ -36,6 +36,8 @@ import time
 from typing import Any, Callable
 
 import numpy as np
+
+from app.bench import Timing
 from scipy import sparse
 from scipy.sparse.linalg import spilu
 
@@ -90,9 +92,9 @@ def targets(report: Report, quick: bool) -> list[dict[str, Any]]:
                                                                                  REPEATS)]
         ms = np.concatenate([r["ms"] for r in runs])
         its = np.concatenate([r["its"] for r in runs])
-        median = float(np.median(ms))
-        forces = float(np.median([r["forces_ms"] for r in runs]))
-        solve = float(np.median([r["solve_ms"] for r in runs]))
+        median = Timing.of(ms)                       # every step's ms: median, IQR, count
+        forces = Timing.of([r["forces_ms"] for r in runs])
+        solve = Timing.of([r["solve_ms"] for r in runs])
         per_iteration = solve / max(float(its.mean()), 1.0)
         met = median <= target
         reason = "" if met else (
