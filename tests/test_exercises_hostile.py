@@ -33,6 +33,11 @@ HOSTILE = ROOT / "tests" / "exercise_answers" / "hostile"
 VERLET = get_exercise("verlet")
 
 
+# A hang guard, not a speed claim (issue 27: a suite that passes under load): what is checked is
+# what waited (the report's "still running after 0.3 s", "not run"); the wall clock only catches
+# a grader that waits for ever, with room for a machine loaded to 20 on 2 cores.
+HANG = 60.0
+
 def run_cli(*args: str, env: dict | None = None,
             timeout: float = 60) -> subprocess.CompletedProcess:
     full = dict(os.environ, SDL_VIDEODRIVER="dummy", SDL_AUDIODRIVER="dummy", **(env or {}))
@@ -82,7 +87,8 @@ def test_a_hostile_file_ends_quickly_with_failed_checks(name):
         assert all(words in f"{c.measured} {c.error}" for c in failed), report.text()
     else:
         assert not checks[where].passed, report.text()
-    assert "Traceback" not in report.text() and seconds < 5.0       # no check's time limit hit
+    assert "Traceback" not in report.text() and seconds < HANG      # no check hung
+    assert "still running after" not in report.text()   # none ran into its time limit
 
 
 def test_patching_the_grader_from_inside_changes_no_verdict():
@@ -102,7 +108,7 @@ def test_an_endless_import_is_stopped_at_the_limit_and_nothing_else_waits():
     report, seconds = graded("verlet_endless_import", timeout=0.3)
     assert report.checks[0].measured == "still running after 0.3 s"
     assert all(c.measured == "not run" for c in report.checks[1:])
-    assert seconds < 3.0
+    assert seconds < HANG
 
 
 def test_several_endless_files_through_check_all_each_cost_one_time_limit(tmp_path, capsys):
@@ -119,7 +125,7 @@ def test_several_endless_files_through_check_all_each_cost_one_time_limit(tmp_pa
     seconds = time.monotonic() - start
     out = capsys.readouterr().out
     assert out.count("still running after 0.3 s") == 3 and "ran out of time" in out
-    assert seconds < 6.0, seconds
+    assert seconds < HANG, seconds
 
 
 @pytest.mark.slow
@@ -187,7 +193,7 @@ def test_a_name_linked_to_dev_zero_is_refused_not_read(tmp_path, capsys):
     (folder / "verlet.py").symlink_to("/dev/zero")
     start = time.monotonic()
     assert main(["exercise", "check", "all", "--path", str(folder), "--timeout", "5"]) == 1
-    assert time.monotonic() - start < 5
+    assert time.monotonic() - start < HANG
     out = capsys.readouterr().out
     assert "is not a regular file" in out
     assert main(["exercise", "check", "verlet", "--path", str(folder / "verlet.py")]) == 2
@@ -335,14 +341,14 @@ def none_alive(pids: list[int], within: float = 5.0) -> bool:
 
 def test_a_process_that_stops_itself_is_ended_at_the_time_limit():
     report, seconds = graded("verlet_sigstop", timeout=0.15)
-    assert report.checks[0].measured == "still running after 0.15 s" and seconds < 3.0
+    assert report.checks[0].measured == "still running after 0.15 s" and seconds < HANG
 
 
 def test_sleeping_processes_forked_at_import_are_all_ended(tmp_path, monkeypatch):
     pid_file = tmp_path / "pids"
     monkeypatch.setenv("LAB_TEST_PID_FILE", str(pid_file))
     report, seconds = graded("verlet_fork_flood")
-    assert report.passed and seconds < 5.0, report.text()      # its step is right
+    assert report.passed and seconds < HANG, report.text()      # its step is right
     pids = pids_in(pid_file)
     assert len(pids) == 20 and none_alive(pids)
 
@@ -366,7 +372,7 @@ def test_a_runaway_allocation_is_a_memory_error_at_the_childs_cap(monkeypatch):
     start = time.monotonic()
     report = grade(VERLET, str(HOSTILE / "verlet_memory_creep.py"), timeout=5.0,
                    only=("free fall",))
-    assert "MemoryError" in report.checks[0].error and time.monotonic() - start < 5.0
+    assert "MemoryError" in report.checks[0].error and time.monotonic() - start < HANG
 
 
 @pytest.mark.parametrize("name, only", [
@@ -398,7 +404,7 @@ def test_what_a_students_file_leaves_at_exit_neither_hangs_the_scene_nor_follows
         os.close(write)
     summary = json.loads(r.stdout)                      # the JSON alone: nothing after it
     assert "EOFError" in summary["error"] and summary["steps"] == 2
-    assert r.returncode == 1 and seconds < 20, (r.returncode, seconds)
+    assert r.returncode == 1 and seconds < HANG, (r.returncode, seconds)
 
 
 def test_the_labs_code_failing_on_a_students_build_is_named_as_the_labs():
