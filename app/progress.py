@@ -48,6 +48,7 @@ class Progress:
                  clock=time.monotonic):
         self.total, self.what, self.unit = max(0, int(total)), what, unit
         self.stream = stream or sys.stderr
+        self.out = self.stream          # where say() prints, bar or not
         self.done = 0
         self.note = ""
         self._clock = clock
@@ -97,9 +98,9 @@ class Progress:
     def say(self, text: str) -> None:
         """A line on the stream that does not tear the bar."""
         if self._bar is not None:
-            self._bar.write(text, file=self.stream)
-        elif self.stream is not None:
-            print(text, file=self.stream, flush=True)
+            self._bar.write(text, file=self.out)
+        else:
+            print(text, file=self.out, flush=True)
 
     def close(self) -> None:
         if self._bar is not None:

@@ -60,4 +60,6 @@ def test_it_can_be_turned_off(monkeypatch):
     with Progress(3, "benchmarks", stream=out, clock=clock) as bar:
         clock.t = 1000
         bar.update(1)
-    assert out.getvalue() == ""
+        assert out.getvalue() == ""
+        bar.say("  .. a line of the work's own")        # still said: it is not the bar
+    assert out.getvalue() == "  .. a line of the work's own\n"
