@@ -371,6 +371,8 @@ class Mp4Writer(ClipWriter):
                *mp4_quality_params(), "-tune", "animation",
                "-movflags", "+faststart", "-map_metadata", "-1",
                "-fflags", "+bitexact", "-flags:v", "+bitexact", self.tmp]
+        self._proc = None
+        self.pending.stop.append(self._kill)     # Ctrl-C at any moment: ffmpeg goes too
         try:
             self._proc = subprocess.Popen(cmd, stdin=subprocess.PIPE,
                                           stdout=subprocess.DEVNULL, stderr=self._log,
@@ -420,13 +422,19 @@ class Mp4Writer(ClipWriter):
         self._log.close()
         return self.finish()
 
-    def abandon(self) -> None:
-        if self._proc.poll() is None:
+    def _kill(self) -> None:
+        """Stop ffmpeg now (it runs in a session of its own: Ctrl-C does not reach it, and left
+        alone it would finish the temporary file after the lab is gone)."""
+        if self._proc is not None and self._proc.poll() is None:
             self._proc.kill()
             self._proc.wait()
-        for f in (self._proc.stdin, self._log):
+
+    def abandon(self) -> None:
+        self._kill()
+        for f in (self._proc.stdin if self._proc else None, self._log):
             try:
-                f.close()
+                if f is not None:
+                    f.close()
             except OSError:
                 pass
         self.pending.discard()

@@ -94,6 +94,7 @@ class Pending:
     def __init__(self, path: str | os.PathLike, what: str = "output"):
         self.path = os.fspath(path)
         self.what = what
+        self.stop: list = []      # what writes the file (an encoder process): stopped first
         folder = os.path.dirname(os.path.abspath(self.path))
         root, ext = os.path.splitext(os.path.basename(self.path))
         try:
@@ -101,12 +102,12 @@ class Pending:
             # the extension stays last: writers that pick a format by name (ffmpeg) see it
             fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=f".{root[:40]}.",
                                             suffix=f".part{ext[:12]}")
+            _PENDING.add(self)        # at once: a Ctrl-C from here on removes it
             os.close(fd)
         except OSError as e:
             raise OutputError(self.failed(e)) from None
         self.replaced = os.path.exists(self.path)
         self.done = False
-        _PENDING.add(self)
 
     def left(self) -> str:
         return ("the file that was there is left as it was" if os.path.exists(self.path)
@@ -144,8 +145,14 @@ class Pending:
             _PENDING.discard(self)
 
     def discard(self) -> None:
-        """Remove the temporary file: the target stays as it was."""
+        """Stop what writes the temporary file (an encoder that outlived the run would write
+        it again), then remove it: the target stays as it was."""
         _PENDING.discard(self)
+        for stop in self.stop:
+            try:
+                stop()
+            except Exception:
+                pass
         try:
             os.remove(self.tmp)
         except FileNotFoundError:
