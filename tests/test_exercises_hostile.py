@@ -124,7 +124,9 @@ def test_several_endless_files_through_check_all_each_cost_one_time_limit(tmp_pa
     assert main(["exercise", "check", "all", "--path", str(folder), "--timeout", "0.3"]) == 1
     seconds = time.monotonic() - start
     out = capsys.readouterr().out
-    assert out.count("still running after 0.3 s") == 3 and "ran out of time" in out
+    # the three endless files each hit the limit (on a loaded machine a starter's import may
+    # pass 0.3 s too: at least three, not exactly)
+    assert out.count("still running after 0.3 s") >= 3 and "ran out of time" in out
     assert seconds < HANG, seconds
 
 
@@ -358,8 +360,9 @@ def test_a_chain_of_forks_racing_the_kill_leaves_no_process(tmp_path, monkeypatc
     # one alive at the time limit, and no new one is born after
     pid_file = tmp_path / "pids"
     monkeypatch.setenv("LAB_TEST_PID_FILE", str(pid_file))
-    report, _ = graded("verlet_fork_race", timeout=0.2)
-    assert report.checks[0].measured == "still running after 0.2 s"
+    # 2 s, not 0.2: on a loaded machine the file had not forked once within 0.2 s
+    report, _ = graded("verlet_fork_race", timeout=2.0)
+    assert report.checks[0].measured == "still running after 2 s"
     pids = pids_in(pid_file)
     assert pids and none_alive(pids)
     time.sleep(0.2)
