@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from app.__main__ import build_bench_parser, build_exercise_parser, build_parser, main
+from app.__main__ import build_bench_parser, build_exercise_parser, main
 from app.docs.__main__ import MARKER, ROOT, doc_files, stale_blocks
 
 DOCS = doc_files()

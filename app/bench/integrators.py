@@ -26,7 +26,6 @@ import math
 import time
 from typing import Any
 
-import numpy as np
 
 from app.bench import Report, median_time
 from app.draw.palette import INTEGRATOR_COLORS as COLORS
