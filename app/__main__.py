@@ -19,100 +19,20 @@ Bad usage prints one line on stderr that names the problem and the accepted valu
 from __future__ import annotations
 
 import argparse
-import math
 import os
 import sys
 from typing import NoReturn
 
-from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, MAX_FPS, MAX_WIDTH, MIN_WIDTH, check_video,
-                       frame_count)
+from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, check_video, frame_count
 from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras,
                           InputFileError, check_output_path, load_events, run_headless,
                           screenshot_path, steps_for)
-from app.cli_checks import UsageError, check_plot, compare_variants, instrument_problem
-from app.scene import plain_number, shown_text
-
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse, but an error is one line and exit code 2 (no usage block)."""
-
-    def error(self, message: str) -> NoReturn:
-        # argparse echoes what it refuses: cut a pasted wall of text to one readable line
-        raise UsageError(message if len(message) <= 300 else message[:280] + " ...")
-
-
-def _positive_float(text: str) -> float:
-    try:
-        if not plain_number(text):      # '1_0', '١': plain ASCII only (docs/reference.md)
-            raise ValueError(text)
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not a number in plain ASCII; "
-                                         "accepted: seconds > 0")
-    if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: a finite "
-                                         "number of seconds > 0")
-    return value
-
-
-MAX_TIMEOUT = 3600.0        # seconds: a check's time limit (a larger wait overflows the timer)
-
-
-def _timeout(text: str) -> float:
-    value = _positive_float(text)
-    if value > MAX_TIMEOUT:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: seconds "
-                                         f"> 0 and at most {MAX_TIMEOUT:g}")
-    return value
-
-
-def _seed(text: str) -> int:
-    """--seed: the exercise checks' random cases (a whole number, 0 to 2**32 - 1)."""
-    return _int_in(text, 0, 2 ** 32 - 1, "a seed")
-
-
-def _int_in(text: str, lo: int, hi: int, what: str) -> int:
-    try:
-        if not plain_number(text):
-            raise ValueError(text)
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not an integer in plain ASCII; "
-                                         f"accepted: {what} from {lo} to {hi}")
-    if not lo <= value <= hi:
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; accepted: {what} "
-                                         f"from {lo} to {hi}")
-    return value
-
-
-def _fps(text: str) -> int:
-    return _int_in(text, 1, MAX_FPS, "frames per second")
-
-
-def _width(text: str) -> int:
-    return _int_in(text, MIN_WIDTH, MAX_WIDTH, "a width in pixels")
-
-
-def _positive_int(text: str) -> int:
-    return _int_in(text, 1, MAX_STEPS, "steps")
-
-
-MIN_WINDOW, MAX_WINDOW = (640, 480), (7680, 4320)     # --size: the smallest and largest window
-
-
-def _window_size(text: str) -> tuple[int, int]:
-    """--size WxH: a window of W by H pixels (e.g. 1920x1080)."""
-    accepted = (f"accepted: WIDTHxHEIGHT in pixels, e.g. 1920x1080, from {MIN_WINDOW[0]}x"
-                f"{MIN_WINDOW[1]} to {MAX_WINDOW[0]}x{MAX_WINDOW[1]}")
-    w, sep, h = text.strip().lower().partition("x")
-    if not sep or not (plain_number(w) and plain_number(h) and w.isdigit() and h.isdigit()):
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not a size; {accepted}")
-    size = (int(w), int(h))
-    if not all(lo <= v <= hi for v, lo, hi in zip(size, MIN_WINDOW, MAX_WINDOW)):
-        raise argparse.ArgumentTypeError(f"{shown_text(text)} is not accepted; {accepted}")
-    return size
-
+from app.cli_checks import (UsageError, check_outputs, check_plot, compare_variants,
+                            instrument_problem)
+from app.outputs import OutputError, discard_all, one_line, shown
+from app.scene import shown_text
+from app.cli_args import (_Parser, _fps, _int_in, _positive_float, _positive_int, _seed,
+                          _timeout, _width, _window_size, parse_sets, use_dummy_video)
 
 def build_parser() -> argparse.ArgumentParser:
     # allow_abbrev=False: --scen is not --scene (a stable command line; docs/reference.md)
@@ -161,27 +81,10 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-def use_dummy_video() -> None:
-    """Headless runs and benchmarks draw off-screen: no window, no sound."""
-    os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
-    os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
-
-
-def parse_sets(pairs: list[str]) -> dict[str, str]:
-    out: dict[str, str] = {}
-    for pair in pairs:
-        key, sep, value = pair.partition("=")
-        if not sep or not key.strip():
-            raise UsageError(f"--set {shown_text(pair)}: expected KEY=VALUE, e.g. --set "
-                             "substeps=4")
-        if key.strip() in out:
-            raise UsageError(f"--set {key.strip()} is given twice; give it once")
-        out[key.strip()] = value.strip()
-    return out
-
-
 def main(argv: list[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
+    from app.physics.linear_solve import one_blas_thread
+    one_blas_thread()           # threads only wait for a core here (measured: linear_solve.py)
     try:
         if argv and argv[0] == "bench":
             return bench_main(argv[1:])
@@ -190,12 +93,31 @@ def main(argv: list[str] | None = None) -> int:
         if argv and argv[0] == "scene":
             return scene_main(argv[1:])
         return app_main(argv)
-    except UsageError as e:
-        print(f"python -m app: error: {e}", file=sys.stderr)
+    except (UsageError, OutputError) as e:    # bad usage, or a file that could not be written
+        print(f"python -m app: error: {one_line(str(e))}", file=sys.stderr)
         return EXIT_USAGE
     except BrokenPipeError:     # stdout closed early (`... --json | head -1`): stop quietly
+        discard_all()
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())   # no error at exit
         return EXIT_OK
+    except KeyboardInterrupt:   # Ctrl-C: one line, no traceback; no half-written file is left
+        return interrupted()
+
+
+def interrupted() -> int:
+    """Ctrl-C: remove the outputs being written (the files that were there stay as they were),
+    say so in one line, exit code 130."""
+    discard_all()
+    try:
+        print("python -m app: interrupted (Ctrl-C); no output was left half-written: files being "
+              "written were not, and files that were there are as they were", file=sys.stderr,
+              flush=True)
+    except (OSError, ValueError):
+        pass
+    return EXIT_INTERRUPTED
+
+
+EXIT_INTERRUPTED = 130          # 128 + SIGINT, as shells report it
 
 
 def app_main(argv: list[str]) -> int:
@@ -228,7 +150,7 @@ def app_main(argv: list[str]) -> int:
         student_file = args.scene.removeprefix("exercise:")
         if student_file != args.scene and student_file.endswith(".py") and not os.path.isfile(
                 student_file):
-            raise UsageError(f"--scene {args.scene}: no such file '{student_file}'; accepted: "
+            raise UsageError(f"--scene {shown(args.scene)}: no such file; accepted: "
                              "exercise:NAME, or exercise:PATH/NAME.py of a file that exists")
         try:
             cls = get_scene(args.scene)
@@ -279,19 +201,8 @@ def app_main(argv: list[str]) -> int:
         except InputFileError as e:
             raise UsageError(str(e)) from None
 
-    shots = [screenshot_path(args.screenshot, c.name, len(classes) > 1) for c in classes
-             if args.headless and args.screenshot]     # the names the run will write
-    tables = [screenshot_path(args.csv, c.name, len(classes) > 1) for c in classes
-              if args.csv and len(classes) > 1]
     instrument_problem(args, classes)
-    for path, what in ((args.screenshot, "--screenshot"), (args.record, "--record"),
-                       (args.csv, "--csv"), *((t, "--csv") for t in tables),
-                       *((shot, "--screenshot") for shot in shots if shot != args.screenshot),
-                       *((clip, "--video") for clip in clip_paths(args, classes))):
-        if path is not None:
-            problem = check_output_path(path, what)      # last: it may create the folder
-            if problem:
-                raise UsageError(problem)
+    check_outputs(args, classes, clip_paths(args, classes))   # last: it may create folders
 
     for cls in classes:     # an exercise's scene imports the student's file in this process
         problem = cls.import_problem() if hasattr(cls, "import_problem") else None
@@ -386,7 +297,7 @@ def writable_folder(path: str, what: str, example: str, probe: str) -> None:
     if not path.strip():
         raise UsageError(f"{what} needs a folder name, e.g. {example}")
     if os.path.exists(path) and not os.path.isdir(path):
-        raise UsageError(f"{what} '{path}' is a file; accepted: a folder")
+        raise UsageError(f"{what} {shown(path)} is a file; accepted: a folder")
     problem = check_output_path(os.path.join(path, probe), f"{what} folder")
     if problem:
         raise UsageError(problem)
@@ -398,8 +309,10 @@ def build_bench_parser(choices: list[str]) -> argparse.ArgumentParser:
     p.add_argument("which", nargs="?", default="all",
                    help=f"what to measure; accepted: {', '.join(choices)}")
     p.add_argument("--json", action="store_true", help="print the numbers as JSON on stdout")
-    p.add_argument("--out", default="bench-results", help="folder for the PNG charts")
+    p.add_argument("--out", default="lab-output/bench", help="folder for the PNG charts")
     p.add_argument("--quick", action="store_true", help="tiny sizes and few repeats (a smoke run)")
+    p.add_argument("--full", action="store_true", help="the whole sweeps (mass_spring: every "
+                   "material and stiffness; minutes)")
     return p
 
 
@@ -410,9 +323,11 @@ def bench_main(argv: list[str]) -> int:
     if args.which not in choices:
         raise UsageError(f"unknown benchmark {shown_text(args.which)}; accepted: "
                          f"{', '.join(choices)}")
-    writable_folder(args.out, "--out", "--out bench-results", "chart.png")
+    writable_folder(args.out, "--out", "--out lab-output/bench", "chart.png")
     use_dummy_video()
-    return run_benchmarks(args.which, args.json, args.out, args.quick)
+    if args.quick and args.full:
+        raise UsageError("--quick and --full ask for opposite sweeps; give one")
+    return run_benchmarks(args.which, args.json, args.out, args.quick, args.full)
 
 
 def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
@@ -473,7 +388,7 @@ def exercise_main(argv: list[str]) -> int:
         writable_folder(args.folder, "copy", "exercise copy mywork", "verlet.py")
         taken = cli.existing_copies(args.folder)
         if taken:
-            raise UsageError(f"copy: '{taken[0]}' exists; nothing copied (your work is never "
+            raise UsageError(f"copy: {shown(taken[0])} exists; nothing copied (your work is never "
                              "overwritten): pick another folder or move it away")
         return cli.copy(args.folder)
     if args.name != "all" and get_exercise(args.name) is None:
@@ -489,14 +404,15 @@ def exercise_main(argv: list[str]) -> int:
     elif args.name == "all":
         folder = args.path
         if folder is not None and not os.path.isdir(folder):
-            raise UsageError(f"--path '{folder}': with 'all' it names a folder of NAME.py files")
+            raise UsageError(f"--path {shown(folder)}: with 'all' it names a folder of NAME.py "
+                             "files")
         paths = [shown(os.path.join(folder, f"{e.name}.py")) if folder else
                  shown(starter_path(e.name)) for e in chosen]
     else:
         paths = [args.path or shown(starter_path(args.name))]
         if not os.path.isfile(paths[0]):
-            raise UsageError(f"--path '{paths[0]}': no such file; accepted: a .py file, e.g. "
-                             f"exercises/{args.name}.py")
+            raise UsageError(f"--path {shown(paths[0])}: no such file; accepted: a .py file, "
+                             f"e.g. exercises/{args.name}.py")
     return cli.check(chosen, paths, args.json, args.timeout, args.seed)
 
 
@@ -573,4 +489,8 @@ def leave(code: int) -> NoReturn:
 
 if __name__ == "__main__":
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    leave(main())
+    try:
+        code = main()
+    except KeyboardInterrupt:      # Ctrl-C between main's own handlers (at exit)
+        code = interrupted()
+    leave(code)

@@ -66,3 +66,30 @@ def check_plot(text: str | None, classes: list, shared: dict) -> list[str]:
         raise UsageError(f"--plot {shown_text(unknown[0])}: {cls.name} reports no such number; "
                          f"accepted: {', '.join(accepted)}")
     return list(dict.fromkeys(names))
+
+
+def check_outputs(args: argparse.Namespace, classes: list, clips: list[str]) -> None:
+    """Refuse (UsageError, one line) before the run: one path named for two outputs, an output
+    that is also an input (--input, the exercise file), and an output that cannot be written
+    (a folder, a FIFO, a device, a folder that cannot be made). `clips`: the --video files."""
+    from app.headless import check_output_path, screenshot_path
+    from app.outputs import clash
+    several = len(classes) > 1
+    shots = [screenshot_path(args.screenshot, c.name, several) for c in classes
+             if args.headless and args.screenshot]     # the names the run will write
+    tables = [screenshot_path(args.csv, c.name, several) for c in classes
+              if args.csv and several]
+    outputs = [*((s, "--screenshot") for s in (shots or [args.screenshot])),
+               (args.record, "--record"), *((t, "--csv") for t in (tables or [args.csv])),
+               *((clip, "--video") for clip in clips)]
+    outputs = [o for o in outputs if o[0] is not None]
+    inputs = [(args.input, "--input")]
+    if args.scene and args.scene.startswith("exercise:") and args.scene.endswith(".py"):
+        inputs.append((args.scene.removeprefix("exercise:"), "the exercise file"))
+    problem = clash([o for o in outputs if o[0]], [i for i in inputs if i[0]])
+    if problem:                       # before anything is written: nothing is lost
+        raise UsageError(problem)
+    for path, what in outputs:
+        problem = check_output_path(path, what)
+        if problem:
+            raise UsageError(problem)

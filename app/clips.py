@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import sys
 import zlib
 from abc import ABC, abstractmethod
@@ -54,7 +55,10 @@ MAX_GIF_FPS = 50              # browsers and slide programs play GIF frames shor
                               # at 100 ms: a 60 fps GIF would crawl
 GIF_MEGAPIXELS = 450          # frames x pixels of a GIF (~1 GB while Pillow writes it)
 MP4_INSTALL = "pip install imageio-ffmpeg"
-MP4_CRF = 18                  # x264 quality: 18 is visually lossless for flat-coloured scenes
+MP4_CRF = 30                  # x264 quality, sized for slides: the busiest clip, `--scene cloth
+                              # --set wind=on` 10 s at 1280x960, is 3.1 MB (14.3 MB at crf 18, 4.9
+                              # at 28), SSIM 0.963 against crf 18 (luma 0.98), its HUD text and
+                              # rods sharp to the eye (measured 2026-11-26, load ~12)
 MP4_PRESET = "veryfast"       # x264: half the CPU of "medium" for 5% larger files (measured)
 
 
@@ -136,25 +140,46 @@ def clip_size(scene: "Scene", width: int, clean: bool) -> tuple[int, int]:
 
 @dataclass
 class Clip:
-    """A clip written: where, how many frames, how many bytes; `stored`: the frames in the file
-    if fewer (a GIF stores a run of identical frames, a pause, as one frame held longer)."""
+    """A clip written: where, how many frames and seconds (counted back from the file, not from
+    what was sent), how many bytes, and whether it replaced a file that was there."""
     path: str
     frames: int
     size: tuple[int, int]
     fps: int
     bytes: int
-    stored: int | None = None
-
-    def frames_text(self) -> str:
-        """'37 frames' or '37 frames (9 stored: repeated frames are held longer)'."""
-        if self.stored is None or self.stored == self.frames:
-            return f"{self.frames} frames"
-        return (f"{self.frames} frames ({self.stored} stored: repeated frames are held "
-                "longer)")
+    seconds: float = 0.0
+    replaced: bool = False
 
     def text(self) -> str:
-        return (f"{self.path} ({self.frames_text()}, {self.size[0]}x{self.size[1]}, "
-                f"{self.frames / self.fps:.3g} s at {self.fps} fps, {self.bytes / 1e6:.2f} MB)")
+        return (f"{self.path} ({self.frames} frames, {self.size[0]}x{self.size[1]}, "
+                f"{self.seconds:.3g} s at {self.fps} fps, {self.bytes / 1e6:.2f} MB"
+                + (", replaced the file that was there)" if self.replaced else ")"))
+
+
+def read_back(path: str) -> tuple[int, float]:
+    """(frames, seconds) of a clip file, as a player reads them: a GIF's frames and the sum of
+    their durations (Pillow), an MP4's video frames and duration (ffmpeg, stream copied, no
+    decoding). OSError if the file cannot be read as a clip."""
+    if video_format(path) == ".gif":
+        from PIL import Image, UnidentifiedImageError
+        try:
+            with Image.open(path) as im:
+                frames, ms = 0, 0
+                for k in range(getattr(im, "n_frames", 1)):
+                    im.seek(k)
+                    frames += 1
+                    ms += im.info.get("duration", 0)
+        except (UnidentifiedImageError, EOFError, ValueError) as e:
+            raise OSError(0, f"the GIF written cannot be read back ({e})") from None
+        return frames, ms / 1000
+    import subprocess
+
+    import imageio_ffmpeg
+    try:
+        return imageio_ffmpeg.count_frames_and_secs(path)
+    except (RuntimeError, subprocess.CalledProcessError, ValueError) as e:
+        raise OSError(0, f"the MP4 written cannot be read back ({str(e).splitlines()[0]})") \
+            from None
 
 
 RAW = "BGRX" if sys.byteorder == "little" else "XRGB"     # a 32-bit pygame surface's bytes
@@ -177,11 +202,35 @@ def raw_frame(surface: "pygame.Surface", fresh: bool = False) -> bytes | memoryv
 
 class ClipWriter(ABC):
     """Frames in, a clip file out: add_surface(surface) for each frame, then close().
-    open_clip() picks the writer for the file's extension."""
+    open_clip() picks the writer for the file's extension. The file is written beside `path`
+    and renamed into place by close() once it is complete and reads back (app/outputs.py):
+    a clip that fails or is interrupted leaves the old file as it was."""
 
-    def __init__(self, path: str, size: tuple[int, int], fps: int):
+    def __init__(self, path: str, size: tuple[int, int], fps: int, what: str = "the clip"):
+        from app.outputs import Pending
         self.path, self.size, self.fps = path, size, fps
         self.frames = 0
+        self.pending = Pending(path, what)
+        self.tmp = self.pending.tmp
+
+    def failed(self, e: BaseException | str) -> str:
+        """The one line that says the clip could not be written, and why."""
+        return self.pending.failed(e)
+
+    def finish(self) -> Clip:
+        """Check the temporary file (frames and seconds read back from it: what a player will
+        show) and rename it into place; OutputError if it holds no frame or cannot be read."""
+        from app.outputs import OutputError
+        try:
+            frames, seconds = read_back(self.tmp)
+            if frames == 0:
+                raise OSError(0, "the file written holds no frame")
+            size = os.path.getsize(self.tmp)
+        except OSError as e:
+            self.pending.discard()
+            raise OutputError(self.failed(e)) from None
+        self.pending.commit()
+        return Clip(self.path, frames, self.size, self.fps, size, seconds, self.pending.replaced)
 
     def add_surface(self, surface: "pygame.Surface", fresh: bool = False) -> None:
         """Add a pygame surface as the next frame (scaled to the clip's size if it differs);
@@ -219,8 +268,8 @@ class GifWriter(ClipWriter):
 
     PALETTE_FRAMES = 8      # frames, spread over the clip, whose colours choose the palette
 
-    def __init__(self, path: str, size: tuple[int, int], fps: int):
-        super().__init__(path, size, fps)
+    def __init__(self, path: str, size: tuple[int, int], fps: int, what: str = "the clip"):
+        super().__init__(path, size, fps, what)
         self._pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="gif-frames")
         self._packed: list[Future[bytes]] = []
 
@@ -257,6 +306,8 @@ class GifWriter(ClipWriter):
 
     def close(self) -> Clip:
         from PIL import Image
+
+        from app.outputs import OutputError
         try:
             if not self.frames:
                 raise ValueError("no frame to write")
@@ -267,18 +318,24 @@ class GifWriter(ClipWriter):
             with ThreadPoolExecutor(max_workers=2, thread_name_prefix="gif-palette") as pool:
                 frames = _ahead(pool, indexed, self.frames, 4)
                 first = next(frames)
-                first.save(self.path, format="GIF", save_all=True, append_images=frames,
+                first.save(self.tmp, format="GIF", save_all=True, append_images=frames,
                            duration=self.durations(), loop=0, optimize=True, disposal=1)
-        finally:
+        except (OSError, ValueError, RuntimeError) as e:
             self.abandon()
-        with Image.open(self.path) as written:      # Pillow merges identical frames
-            stored = written.n_frames
-        return Clip(self.path, self.frames, self.size, self.fps, os.path.getsize(self.path),
-                    stored)
+            raise OutputError(self.failed(e)) from None
+        except BaseException:
+            self.abandon()
+            raise
+        self._free()
+        return self.finish()
+
+    def _free(self) -> None:
+        self._pool.shutdown(wait=True, cancel_futures=True)
+        self._packed = []
 
     def abandon(self) -> None:
-        self._pool.shutdown(wait=True)
-        self._packed = []
+        self._free()
+        self.pending.discard()
 
 
 def _ahead(pool: ThreadPoolExecutor, fn: Callable, n: int, lookahead: int):
@@ -295,47 +352,118 @@ def _ahead(pool: ThreadPoolExecutor, fn: Callable, n: int, lookahead: int):
 
 class Mp4Writer(ClipWriter):
     """MP4 (H.264) through imageio-ffmpeg's ffmpeg: frames stream to it as they come (as raw
-    surface bytes: ffmpeg converts them to yuv420p in its own process)."""
+    surface bytes: ffmpeg converts them to yuv420p in its own process). ffmpeg runs in a
+    session of its own (Ctrl-C reaches the lab, which stops it), its messages go to a
+    temporary file, not to the terminal, and its exit status is checked: the last of its
+    messages is the reason a clip failed."""
 
-    def __init__(self, path: str, size: tuple[int, int], fps: int):
-        super().__init__(path, size, fps)
+    def __init__(self, path: str, size: tuple[int, int], fps: int, what: str = "the clip"):
+        import subprocess
+        import tempfile
+
         import imageio_ffmpeg
-        self._gen = imageio_ffmpeg.write_frames(
-            path, size, fps=fps, codec="libx264", pix_fmt_in=_FFMPEG_RAW[RAW],
-            pix_fmt_out="yuv420p", quality=None, macro_block_size=2, ffmpeg_log_level="error",
-            output_params=["-crf", str(MP4_CRF), "-preset", MP4_PRESET, "-tune", "animation",
-                           "-movflags", "+faststart", "-map_metadata", "-1",
-                           "-fflags", "+bitexact", "-flags:v", "+bitexact"])
-        self._gen.send(None)
+        super().__init__(path, size, fps, what)
+        self._log = tempfile.TemporaryFile()
+        cmd = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-nostats", "-hide_banner",
+               "-loglevel", "error", "-f", "rawvideo", "-vcodec", "rawvideo",
+               "-s", f"{size[0]}x{size[1]}", "-pix_fmt", _FFMPEG_RAW[RAW], "-r", str(fps),
+               "-i", "-", "-an", "-vcodec", "libx264", "-pix_fmt", "yuv420p",
+               *mp4_quality_params(), "-tune", "animation",
+               "-movflags", "+faststart", "-map_metadata", "-1",
+               "-fflags", "+bitexact", "-flags:v", "+bitexact", self.tmp]
+        self._proc = None
+        self.pending.stop.append(self._kill)     # Ctrl-C at any moment: ffmpeg goes too
+        try:
+            self._proc = subprocess.Popen(cmd, stdin=subprocess.PIPE,
+                                          stdout=subprocess.DEVNULL, stderr=self._log,
+                                          start_new_session=True)
+        except OSError as e:
+            self.pending.discard()
+            self._log.close()
+            from app.outputs import OutputError
+            raise OutputError(self.failed(e)) from None
 
     def add(self, raw: bytes | memoryview) -> None:
-        self._gen.send(raw)
+        try:
+            self._proc.stdin.write(raw)
+        except (BrokenPipeError, OSError):
+            self._proc.wait()
+            raise OSError(0, self._why())
         self.frames += 1
 
+    def _why(self) -> str:
+        """ffmpeg's last message (why it stopped), or its exit status."""
+        self._log.seek(0)
+        lines = [re.sub(r"^(\[[^\]]*\]\s*)+", "", ln.strip())    # '[out#0/mp4 @ 0x..] '
+                 for ln in self._log.read().decode("utf-8", "replace").splitlines()
+                 if ln.strip()]
+        code = self._proc.returncode
+        what = f"ffmpeg stopped (exit status {code})" if code else "ffmpeg stopped"
+        return f"{what}: {lines[-1]}" if lines else what
+
     def close(self) -> Clip:
-        self._gen.close()               # waits for ffmpeg to finish the file
-        if not self.frames:
-            raise ValueError("no frame to write")
-        return Clip(self.path, self.frames, self.size, self.fps, os.path.getsize(self.path))
+        from app.outputs import OutputError
+        try:
+            try:
+                self._proc.stdin.close()            # ffmpeg finishes the file and exits
+            except OSError:
+                pass
+            code = self._proc.wait()
+            if not self.frames:
+                raise OSError(0, "no frame to write")
+            if code != 0:
+                raise OSError(0, self._why())
+        except OSError as e:
+            self.abandon()
+            raise OutputError(self.failed(e)) from None
+        except BaseException:
+            self.abandon()
+            raise
+        self._log.close()
+        return self.finish()
+
+    def _kill(self) -> None:
+        """Stop ffmpeg now (it runs in a session of its own: Ctrl-C does not reach it, and left
+        alone it would finish the temporary file after the lab is gone)."""
+        if self._proc is not None and self._proc.poll() is None:
+            self._proc.kill()
+            self._proc.wait()
 
     def abandon(self) -> None:
-        self._gen.close()
+        self._kill()
+        for f in (self._proc.stdin if self._proc else None, self._log):
+            try:
+                if f is not None:
+                    f.close()
+            except OSError:
+                pass
+        self.pending.discard()
 
 
-def open_clip(path: str, size: tuple[int, int], fps: int) -> ClipWriter:
-    """The writer for `path`'s extension (.gif or .mp4; check_video first)."""
-    return (Mp4Writer if video_format(path) == ".mp4" else GifWriter)(path, size, fps)
+def mp4_quality_params() -> list[str]:
+    """x264's settings: quality (crf) and speed (preset)."""
+    return ["-crf", str(MP4_CRF), "-preset", MP4_PRESET]
+
+
+def open_clip(path: str, size: tuple[int, int], fps: int, what: str = "the clip") -> ClipWriter:
+    """The writer for `path`'s extension (.gif or .mp4; check_video first). OutputError (one
+    line) if it cannot start."""
+    return (Mp4Writer if video_format(path) == ".mp4" else GifWriter)(path, size, fps, what)
 
 
 def record_run(runner: "SceneRunner", steps: int, fps: int,
-               capture: Callable[[], "pygame.Surface"], writer: ClipWriter) -> None:
+               capture: Callable[[], "pygame.Surface"], writer: ClipWriter,
+               progress=None) -> None:
     """Run `steps` fixed steps with `runner`, adding `capture()` (a new surface each time) to
     `writer` at each frame's step (frame_steps); stop capturing if the run stops early
-    (non-finite, a SceneError). The runner runs exactly the steps it would without a clip."""
+    (non-finite, a SceneError). The runner runs exactly the steps it would without a clip.
+    `progress` (app.progress.Progress over the frames) is told of each frame."""
     dt = runner.tick if hasattr(runner, "tick") else runner.scene.dt   # a comparison's clock
     for at in frame_steps(steps, dt, fps):
         runner.run(at - runner.steps)
         if runner.stopped:
             break
         writer.add_surface(capture(), fresh=True)
+        if progress is not None:
+            progress.update(1)
     runner.run(steps - runner.steps)

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from app.clips import Clip
+from app.outputs import OutputError, input_problem, one_line, output_problem, shown
 from app.runner import SceneRunner, advice, deliver, run_scene   # noqa: F401 (deliver: for importers)
 from app.scene import InputEvent, Scene, SceneError, Try
 from app.series import MAX_WINDOW, clean
@@ -118,26 +119,30 @@ def load_events(path: str) -> list[InputEvent]:
     """Read and validate an --input file."""
     if not path.strip():
         raise InputFileError("--input needs a file name (a JSON list of events)")
+    problem = input_problem(path, "--input")     # a FIFO would block for ever: refused first
+    if problem:
+        raise InputFileError(problem)
+    path_text = shown(path)
     try:
         with open(path, encoding="utf-8") as f:
             text = f.read(MAX_INPUT_BYTES + 1)
         data = json.loads(text) if len(text) <= MAX_INPUT_BYTES else None
     except OSError as e:
-        raise InputFileError(f"cannot read --input file '{path}': {e.strerror or e}") from None
+        raise InputFileError(f"cannot read --input file {path_text}: {e.strerror or shown(str(e))}") from None
     except RecursionError:
-        raise InputFileError(f"--input file '{path}' nests lists or objects too deeply; accepted: "
+        raise InputFileError(f"--input file {path_text} nests lists or objects too deeply; accepted: "
                              "a flat list of event objects") from None
     except UnicodeDecodeError as e:
-        raise InputFileError(f"--input file '{path}' is not UTF-8 text ({e.reason})") from None
+        raise InputFileError(f"--input file {path_text} is not UTF-8 text ({e.reason})") from None
     except json.JSONDecodeError as e:
-        raise InputFileError(f"--input file '{path}' is not valid JSON: {e}") from None
+        raise InputFileError(f"--input file {path_text} is not valid JSON: {e.msg} (line {e.lineno}, column {e.colno})") from None
     except ValueError:           # e.g. an integer of more than 4300 digits (Python's own limit)
-        raise InputFileError(f"--input file '{path}' holds a number too long to read (over 4300 "
+        raise InputFileError(f"--input file {path_text} holds a number too long to read (over 4300 "
                              "digits); accepted: numbers of at most 300 digits") from None
     if len(text) > MAX_INPUT_BYTES:
-        raise InputFileError(f"--input file '{path}' is larger than {MAX_INPUT_BYTES >> 20} MB; "
+        raise InputFileError(f"--input file {path_text} is larger than {MAX_INPUT_BYTES >> 20} MB; "
                              "accepted: a JSON list of events up to that size")
-    return parse_events(data, f"--input file '{path}'")
+    return parse_events(data, f"--input file {path_text}")
 
 
 def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:
@@ -180,14 +185,10 @@ def frame(runners: list, width: int | None = None, clean: bool = False, inst=Non
 
 def render(runners: list, path: str, width: int | None = None, clean: bool = False, inst=None,
            compare: bool = False) -> None:
-    """Save frame() as a PNG. Raises OSError if it cannot."""
-    import pygame
-
+    """Save frame() as a PNG (whole or not at all: app/outputs.py). Raises OutputError (one
+    line) if it cannot."""
     from app.draw import save_png
-    try:
-        save_png(frame(runners, width, clean, inst, compare), path)
-    except pygame.error as e:
-        raise OSError(str(e)) from None
+    save_png(frame(runners, width, clean, inst, compare), path, what="--screenshot")
 
 
 def steps_for(seconds: float | None, dt: float) -> int:
@@ -197,26 +198,11 @@ def steps_for(seconds: float | None, dt: float) -> int:
 
 def check_output_path(path: str, what: str) -> str | None:
     """None if a file can be written at `path`, else a one-line reason (checked before a run, so
-    a long run is not lost to a typo in the output path)."""
-    if not path.strip():
-        return f"{what} needs a file name"
-    if what == "--screenshot" and not path.lower().endswith(".png"):
-        return f"{what} '{path}': accepted: a file name ending in .png"
-    if os.path.isdir(path):
-        return f"{what} '{path}' is a folder; give a file name such as {path.rstrip('/')}/out.png"
-    folder = os.path.dirname(os.path.abspath(path))
-    try:                                  # the honest test: make the folder, open the very file
-        os.makedirs(folder, exist_ok=True)   # (a name too long for the file system fails here)
-        if os.path.exists(path):
-            with open(path, "ab"):            # writable; left as it was
-                pass
-        else:
-            with open(path, "xb"):
-                pass
-            os.remove(path)
-    except OSError as e:
-        return f"{what} '{path}': cannot write in '{folder}' ({e.strerror or e})"
-    return None
+    a long run is not lost to a typo in the output path): app.outputs.output_problem, and a
+    screenshot's name must end in .png."""
+    if path.strip() and what == "--screenshot" and not path.lower().endswith(".png"):
+        return f"{what} {shown(path)}: accepted: a file name ending in .png"
+    return output_problem(path, what)
 
 
 def screenshot_path(screenshot: str, scene_name: str, several: bool) -> str:
@@ -257,10 +243,13 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
     `card` (--try) the one scene gets the card as a click gives it (Scene.apply_card); with
     `extras` the CSV, the plot and the arrows (app/instruments.py). With `video`, record a clip
     of each run (app/clips.py) at `fps`, `width` px wide."""
+    from app.progress import Progress
     nonfinite = unsaved = False
     extras = extras or Extras()
     several = len(scene_classes) > 1
+    bar = Progress(len(scene_classes) if several else 0, "scenes", "scenes")
     for cls in scene_classes:
+        bar.update(0, note=cls.name)
         scene = cls(cls.own_settings(overrides))
         if card is not None:
             scene.apply_card(card)
@@ -292,25 +281,57 @@ def run_headless(scene_classes: list[type[Scene]], overrides: dict[str, str], st
             unsaved = not save_screenshot(path, scene.name, result, [runner], inst, width=width,
                                           clean=clean) or unsaved
         if inst is not None and inst.csv is not None:
-            result.update(csv=csv_path, csv_rows=inst.csv.rows)
-            inst.close_csv()
+            unsaved = not finish_csv(inst, [result], csv_path, scene.name) or unsaved
+        note_replaced(result)
         if as_json:
             print(json.dumps(result, allow_nan=False), flush=True)
         else:
             print(describe(result), flush=True)
         nonfinite = report_stop(runner, scene.name) or nonfinite
+        bar.update(1)
+    bar.close()
     # a run that went non-finite says so first; a screenshot that could not be saved is bad usage
     return EXIT_NONFINITE if nonfinite else EXIT_USAGE if unsaved else EXIT_OK
 
 
 def note_clip(result: dict, clip: Any, name: str) -> bool:
-    """Put the clip written (or null) in `result`; False (and a line on stderr) if it was not."""
+    """Put the clip written (or null) in `result`: its frames and seconds as counted back from
+    the file; False (and a line on stderr) if it was not written."""
     done = isinstance(clip, Clip)
     result.update(video=clip.path if done else None, video_frames=clip.frames if done
-                  else None, video_bytes=clip.bytes if done else None)
+                  else None, video_seconds=round(clip.seconds, 6) if done else None,
+                  video_bytes=clip.bytes if done else None)
+    if done and clip.replaced:
+        result.setdefault("_replaced", []).append(clip.path)
     if not done:
         print(f"python -m app: error: {name}: {clip}", file=sys.stderr)
     return done
+
+
+def finish_csv(inst: Any, results: list[dict], path: str, name: str) -> bool:
+    """Close the run's --csv file (renamed into place) and note it in each result; False (and
+    one line on stderr) if it could not be written."""
+    rows = inst.csv.rows
+    try:
+        replaced = inst.close_csv()
+    except OutputError as e:
+        print(f"python -m app: error: {name}: {e}", file=sys.stderr)
+        for result in results:
+            result.update(csv=None, csv_rows=None)
+        return False
+    for result in results:
+        result.update(csv=path, csv_rows=rows)
+        if replaced:
+            result.setdefault("_replaced", []).append(path)
+    return True
+
+
+def note_replaced(result: dict) -> None:
+    """`replaced`: the outputs of this run that replaced a file that was there (the summary
+    says so; an empty list if none did). Only in a run that writes a file."""
+    written = result.pop("_replaced", [])
+    if any(result.get(k) is not None for k in ("video", "screenshot", "csv")) or written:
+        result["replaced"] = written
 
 
 def card_json(card: Try) -> dict[str, Any]:
@@ -324,13 +345,15 @@ def save_screenshot(path: str, name: str, result: dict, runners: list, inst,
                     compare: bool = False, width: int | None = None, clean: bool = False) -> bool:
     """Render and save the screenshot; note it in `result`; False (and a line on stderr) if it
     could not be saved."""
+    existed = os.path.exists(path)
     try:
         render(runners, path, width, clean, inst, compare)
         result["screenshot"] = path
+        if existed:
+            result.setdefault("_replaced", []).append(path)
         return True
-    except OSError as e:
-        print(f"python -m app: error: {name}: could not save the screenshot '{path}': {e}",
-              file=sys.stderr)
+    except OutputError as e:
+        print(f"python -m app: error: {name}: {e}", file=sys.stderr)
         result["screenshot"] = None
         return False
 
@@ -356,29 +379,38 @@ def record_clip(scene: Scene, steps: int, events: list[InputEvent] | None, path:
     """Run `steps` steps of `scene` (as run_scene; or of `runner`, a SceneRunner or a
     comparison's CompareRunner) while recording a clip of frame() to `path`; return the runner
     and the Clip written, or a one-line message if it was not."""
-    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, open_clip, record_run
+    from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, frame_count, open_clip, record_run
     from app.frames import picture_size
+    from app.progress import Progress
     fps = fps or DEFAULT_FPS
     runner = runner or SceneRunner(scene, events, keep_all_times=True)
     runners = runner.runners if compare else [runner]
     plotting = inst is not None and bool(inst.plot)
     size = picture_size(scene, width or DEFAULT_WIDTH, clean, compare, plotting)
     try:
-        writer = open_clip(path, size, fps)
-    except (OSError, RuntimeError) as e:
+        writer = open_clip(path, size, fps, what="--video")
+    except OutputError as e:
         runner.run(steps)
-        return runner, f"could not start the clip '{path}': {e}"
+        return runner, str(e)
+    dt = runner.tick if compare else scene.dt
     try:
-        try:
-            record_run(runner, steps, fps,
-                       lambda: frame(runners, size[0], clean, inst, compare), writer)
-        except SceneError as e:            # a student's drawing code failed: the frames so far
-            for r in runners:              # are the clip, the run stops (exit 1)
-                r.fail(e)
-        return runner, writer.close()
+        with Progress(frame_count(steps, dt, fps), f"{scene.name}: clip", "frames") as bar:
+            try:
+                record_run(runner, steps, fps,
+                           lambda: frame(runners, size[0], clean, inst, compare), writer, bar)
+                bar.update(0, note="encoding")
+            except SceneError as e:        # a student's drawing code failed: the frames so far
+                for r in runners:          # are the clip, the run stops (exit 1)
+                    r.fail(e)
+        return runner, writer.close()      # OutputError if the file is not whole
+    except OutputError as e:
+        return runner, str(e)
     except (OSError, RuntimeError, ValueError) as e:
         writer.abandon()
-        return runner, f"could not write the clip '{path}': {e}"
+        return runner, writer.failed(e)
+    except BaseException:                  # Ctrl-C: the old file stays as it was
+        writer.abandon()
+        raise
 
 
 def describe(summary: dict[str, Any]) -> str:
@@ -392,12 +424,14 @@ def describe(summary: dict[str, Any]) -> str:
     if summary.get("try"):
         lines.append(f"  try: {summary['try']['label']}: watch: {summary['try']['watch']}")
     if summary.get("screenshot"):
-        lines.append(f"  screenshot: {summary['screenshot']}")
+        lines.append(f"  screenshot: {one_line(summary['screenshot'])}")
     if summary.get("csv"):
-        lines.append(f"  csv: {summary['csv']} ({summary['csv_rows']} rows)")
+        lines.append(f"  csv: {one_line(summary['csv'])} ({summary['csv_rows']} rows)")
     if summary.get("video"):
-        lines.append(f"  video: {summary['video']} ({summary['video_frames']} frames, "
-                     f"{summary['video_bytes'] / 1e6:.2f} MB)")
+        lines.append(f"  video: {one_line(summary['video'])} ({summary['video_frames']} frames, "
+                     f"{summary['video_seconds']:.3g} s, {summary['video_bytes'] / 1e6:.2f} MB)")
+    for path in summary.get("replaced") or ():
+        lines.append(f"  replaced: {one_line(path)} (the file that was there)")
     if summary.get("error"):
         lines.append(f"  error: {summary['error'].splitlines()[-1]} (details on stderr)")
     return "\n".join(lines)

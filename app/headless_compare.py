@@ -22,8 +22,8 @@ from typing import Any
 
 from app.compare import TAGS, CompareRunner, Variant, labels, resolve_variants
 from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, Extras, card_json, describe,
-                          note_clip, record_clip, report_stop, save_screenshot, steps_for,
-                          summary)
+                          finish_csv, note_clip, note_replaced, record_clip, report_stop,
+                          save_screenshot, steps_for, summary)
 from app.scene import InputEvent, Scene, Try
 from app.series import clean as json_clean
 
@@ -83,11 +83,11 @@ def run_compare(cls: type[Scene], shared: dict[str, Any], variants: list[Variant
         unsaved = not save_screenshot(screenshot, cls.name, shared_out, runner.runners, inst,
                                       True, width, clean) or unsaved
     for result in results:
-        result.update(shared_out)
+        result.update({k: list(v) if k == "_replaced" else v for k, v in shared_out.items()})
     if inst is not None and inst.csv is not None:
-        for result in results:
-            result.update(csv=extras.csv, csv_rows=inst.csv.rows)
-        inst.close_csv()
+        unsaved = not finish_csv(inst, results, extras.csv, cls.name) or unsaved
+    for result in results:
+        note_replaced(result)
     nonfinite = False
     for r, v, result in zip(runner.runners, variants, results):
         print(json.dumps(result, allow_nan=False) if as_json else

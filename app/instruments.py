@@ -104,10 +104,14 @@ class Instruments:
         self.close_csv()
         self.csv = CsvLog(path, compare, warn)
 
-    def close_csv(self) -> None:
-        if self.csv is not None:
-            self.csv.close()
-            self.csv = None
+    def close_csv(self) -> bool:
+        """Finish the --csv file and rename it into place; True if it replaced a file that
+        was there. OutputError (one line) if it could not be written."""
+        csv, self.csv = self.csv, None
+        if csv is None:
+            return False
+        csv.close()
+        return csv.replaced
 
     # --- sampling ----------------------------------------------------------------------------
     def sample(self) -> None:

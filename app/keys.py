@@ -72,8 +72,8 @@ KEYS: tuple[ShellKey, ...] = (
              "the total against its start, with the zero of each (scenes with an energy)"),
     ShellKey(("f9",), "F9", "toggle_clip", "start / stop a clip of the scene area (GIF, or "
              "--video's file; the message gives the full path)"),
-    ShellKey(("f12",), "F12", "screenshot", "screenshot to screenshots/ (the message gives the "
-             "full path)"),
+    ShellKey(("f12",), "F12", "screenshot", "screenshot to lab-output/screenshots/ (the message "
+             "gives the full path)"),
     ShellKey(("escape",), "Esc", "escape", "close the help; else back to the menu; in the menu: "
              "quit"),
 )

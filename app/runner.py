@@ -146,6 +146,9 @@ class SceneRunner:
     step's wall seconds (`step_times`, for the headless summary); `rollback` takes snapshots
     and rolls back on a non-finite state instead of stopping (the window)."""
 
+    failures = 0        # SceneErrors (a student's code raised) in this process: the window's
+                        # exit code is 1 if one happened while it was open, as headless
+
     def __init__(self, scene: Scene, events: list[InputEvent] | None = None,
                  rollback: bool = False, keep_all_times: bool = False,
                  timeline: bool | None = None):
@@ -272,6 +275,7 @@ class SceneRunner:
     def fail(self, error: SceneError) -> None:
         """A SceneError from the scene: keep its message and stop stepping."""
         self.error = str(error) or type(error).__name__
+        SceneRunner.failures += 1
 
     def clear_error(self) -> None:
         self.error = None

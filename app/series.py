@@ -104,20 +104,33 @@ class History:
 class CsvLog:
     """The --csv file: a header from the first row's metrics, then a row per call. A metric that
     first appears later has no column: `warn` is told once per such name (nothing is lost
-    silently)."""
+    silently). The rows go to a temporary file beside `path` (app/outputs.py), renamed into
+    place by close(): a run that fails or is interrupted leaves the old file as it was. A write
+    that fails (a full disk) stops the rows; close() then raises OutputError, one line."""
 
     def __init__(self, path: str, compare: bool = False,
                  warn: Callable[[str], None] | None = None):
+        from app.outputs import Pending
         self.path = path
         self.compare = compare
         self.warn = warn
-        self.file = open(path, "w", newline="", encoding="utf-8")
+        self.pending = Pending(path, "--csv")
+        self.file = open(self.pending.tmp, "w", newline="", encoding="utf-8")
         self.writer = csv.writer(self.file)
+        self.error: OSError | None = None      # the write that failed, if one did
         self.columns: list[str] | None = None
         self.rows = 0
         self._warned: set[str] = set()
 
     def row(self, step: int, t: float, metrics: Mapping[str, Any], variant: str = "") -> None:
+        if self.error is not None:
+            return
+        try:
+            self._row(step, t, metrics, variant)
+        except OSError as e:            # a full disk: the run goes on, close() says so
+            self.error = e
+
+    def _row(self, step: int, t: float, metrics: Mapping[str, Any], variant: str) -> None:
         if self.columns is None:
             self.columns = list(metrics)
             self.writer.writerow((["variant"] if self.compare else []) + ["step", "t"]
@@ -131,13 +144,40 @@ class CsvLog:
                              + [cell(metrics.get(k)) for k in self.columns])
         self.rows += 1
 
+    @property
+    def replaced(self) -> bool:
+        """True if the file renamed into place replaced one that was there."""
+        return self.pending.replaced
+
     def flush(self) -> None:
-        if not self.file.closed:
-            self.file.flush()
+        if not self.file.closed and self.error is None:
+            try:
+                self.file.flush()
+            except OSError as e:
+                self.error = e
 
     def close(self) -> None:
-        if not self.file.closed:
+        """Finish the file and rename it into place; OutputError (one line) if a write failed:
+        then the old file is left as it was."""
+        from app.outputs import OutputError
+        if self.file.closed:
+            return
+        try:
             self.file.close()
+        except OSError as e:
+            self.error = self.error or e
+        if self.error is not None:
+            self.pending.discard()
+            raise OutputError(self.pending.failed(self.error))
+        self.pending.commit(allow_empty=True)
+
+    def discard(self) -> None:
+        """Stop without writing: the old file is left as it was."""
+        try:
+            self.file.close()
+        except OSError:
+            pass
+        self.pending.discard()
 
 
 __all__ = ["clean", "cell", "plottable", "History", "CsvLog", "MAX_WINDOW"]

@@ -20,8 +20,8 @@ energy leaps from 0 to ~1.9e7 J at t = 3 s before the damping wins: within a min
 to a few tens of J (where exactly depends on rounding: a 1e-12 px nudge of the start, or another
 CPU's BLAS, moves it from -30 to +30 J; CG stops at 1e-2 of the residual, and a step this large
 amplifies what that leaves). With cg_tolerance 1e-10 (exact: the sparse LU takes over where CG
-cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -47 J, hanging lower than it
-started, from 10 s on, on every machine.
+cannot get there) the energy peaks at 4.7e7 J at t = 2 s and is -44 to -50 J (-45.6 measured),
+hanging lower than it started, from 10 s on, on every machine.
 Is the implicit step worth its solve? Measured (`python -m app bench mass_spring`: a 16x16 cloth,
 wall time per simulated second, implicit Euler at 1/60 s against the cheapest explicit integrator at
 its own measured limit; four runs at load 1-3, 2026-11-24): for stiff cloth by far (leather 33-38x
@@ -297,6 +297,7 @@ class MassSpringClothScene(MassSpringContact, MassSpringWords, Scene):
         if names is None or names - {"solver"}:
             self._solve_ms.clear()                   # the costs measured no longer hold
         self._energy.clear()
+        self._energy_start = c.energy()      # what implicit Euler may not climb above, undriven
         if names is None or names - STEP_SETTINGS:
             self.watch.forget()
         self._estimate_mode(iterations=60)
@@ -355,6 +356,7 @@ class MassSpringClothScene(MassSpringContact, MassSpringWords, Scene):
         self._stretch = None
         if event.kind.startswith("mouse"):
             self.mouse = clamp_point(event.pos, c.world)
+            self._energy_start = None            # a hand did work on the cloth: no bound now
         if self.contact_event(event):                # a press inside an obstacle drags it
             return
         if event.kind == "mouse_down" and event.button == 1:

@@ -11,10 +11,15 @@ import math
 from app.loop import FPS_CAP, FixedStepClock
 from app.physics.blender_cloth import PX_PER_M
 from app.physics.integrators import INTEGRATORS
+from app.physics.blender_cloth import PX_PER_M
 from app.physics.mass_spring_cost import frame_cost
 from app.physics.mass_spring_stability import ESTIMATE_EVERY, ESTIMATE_EVERY_IMPLICIT, marginal
 
 SOLVER_WORDS = {"cg": "CG", "direct": "direct LU"}
+ENERGY_GAIN_SHOWN = 0.01     # J above the start before the HUD says the step added energy (an
+                             # exact solve overshoots by ~0.004 J at the sliders' stiffest corner)
+EXACT_TOLERANCE = 1e-10      # the cg_tolerance slider's least: the solve is exact (LU takes over)
+JOULE = PX_PER_M ** 2        # the energy's JSON unit per J (as scenes/mass_spring_cloth.py)
 BAND_WORDS = {
     "stable": "stable",
     "marginal": "MARGINAL: safe only below {m:g}x of it, the limit falls as the cloth deforms",
@@ -74,6 +79,23 @@ class MassSpringWords:
         change = self.shown("energy", e1 - e0)
         return f" ({'' if change.startswith('-') else '+'}{change} in {t1 - t0:.2g} s)"
 
+    def energy_gain_words(self, energy: float) -> str:
+        """Implicit Euler, undriven (wind off, no hand on the cloth since the settings last
+        changed), with more energy than it started with: the step added it, not the physics.
+        Say why: CG's loose tolerance (a step this stiff amplifies what it leaves) or, solved
+        exactly, the one linearised Newton step; '' otherwise."""
+        p, start = self.p, getattr(self, "_energy_start", None)
+        if INTEGRATORS[p["integrator"]].explicit or start is None or "wind" in self.on \
+                or energy - start <= ENERGY_GAIN_SHOWN * JOULE:
+            return ""
+        gain = self.shown("energy", energy - start)
+        if p["cg_tolerance"] > EXACT_TOLERANCE:
+            return (f"energy {gain} above its start: not physics, the solve: CG stops at "
+                    f"cg_tolerance {p['cg_tolerance']:g} and a step this stiff amplifies what "
+                    f"it leaves (cg_tolerance {EXACT_TOLERANCE:g}: exact, drains it)")
+        return (f"energy {gain} above its start: one linearised step this large overshoots "
+                "(a higher hertz or more substeps: smaller steps)")
+
     def _where(self) -> str:
         """Where the step is against the explicit limit and in which band: 'h = 16.667 ms =
         33x symplectic Euler's limit (...): PAST THE LIMIT ...' (the line a class reads)."""
@@ -123,6 +145,10 @@ class MassSpringWords:
         if slow:
             from app.draw.hud import WARN_COLOR, Line
             lines.append(Line(slow, WARN_COLOR))
+        gain = self.energy_gain_words(m["energy"])
+        if gain:
+            from app.draw.hud import WARN_COLOR, Line
+            lines.append(Line(gain, WARN_COLOR))
         if self._cg_failure_t is not None:          # a solve that stopped short, in words
             n = c.ps.cg_failures
             lines.append(f"t = {self._cg_failure_t:.2f} s ({n} step{'s' if n > 1 else ''} so "

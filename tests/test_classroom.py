@@ -402,8 +402,9 @@ def test_the_cradles_verdict_says_which_setting_breaks_it():
 FLOORS = {"app.keys": 0, "app.units": 0, "app.loop": 0, "app.physics": 0, "app.params": 0,
           "app.scene": 1, "app.draw": 2, "app.runner": 2, "app.catalogue": 2,
           "app.vectors": 0, "app.series": 0, "app.equations": 0, "app.energy": 0,
-          "app.timeline": 0, "app.compare": 3, "app.instruments": 3,
-          "app.frames": 3, "app.headless_compare": 3, "app.cli_checks": 3,
+          "app.timeline": 0, "app.outputs": 0, "app.progress": 0, "app.compare": 3,
+          "app.instruments": 3,
+          "app.frames": 3, "app.headless_compare": 3, "app.cli_checks": 3, "app.cli_args": 3,
           "app.pymunk_scene": 3, "app.headless": 3, "scenes": 4, "app.bench": 5,
           "app.scenefile": 3,      # scene files: a pymunk scene made from data
           "app.window": 5, "app.clips": 3, "app.exercises": 5, "app.__main__": 6,

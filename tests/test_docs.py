@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from app.__main__ import build_bench_parser, build_exercise_parser, build_parser, main
+from app.__main__ import build_bench_parser, build_exercise_parser, main
 from app.docs.__main__ import MARKER, ROOT, doc_files, stale_blocks
 
 DOCS = doc_files()
@@ -144,30 +144,21 @@ def expected_code(comment: str) -> int:
     return int(m.group(1)) if m else 0
 
 
-def shortened(args: list[str], code: int) -> list[str]:
-    """A scene command run headless and short: two steps (twenty when it must fail), window-only
-    options dropped, a window command's last frame drawn (its plot and arrows too), clips and
-    screenshots at the smallest width, input files from the repo."""
-    out, skip = [], 0
-    for i, a in enumerate(args):
-        if skip:
-            skip -= 1
-            continue
-        if a in ("--seconds", "--steps", "--record", "--width"):
-            skip = 1
-            continue
-        if a == "--large-text":
-            continue
-        if i and args[i - 1] == "--input":
-            a = str(ROOT / a)
-        out.append(a)
-    if "--headless" not in out:            # a window command: its last frame drawn headless
-        out.append("--headless")
-        if "--screenshot" not in out and "--video" not in out:
-            out += ["--screenshot", "window.png"]
-    out += ["--steps", "20" if code else "2"]
-    if "--video" in out or "--screenshot" in out:
-        out += ["--width", "160"]
+SHORT_SECONDS = "0.1"     # a headless command's --seconds, unless it must blow up (exit code 1)
+WINDOW_FRAMES = 12        # frames a window command draws before the test closes its window
+WINDOW_FRAMES_TO_FAIL = 60   # ... and one that must exit 1 (a student's code at hertz 2 runs
+                             # its first step after half a simulated second)
+
+
+def as_run(args: list[str], code: int) -> list[str]:
+    """The command as the docs print it, every option kept: only a headless run's --seconds is
+    made short (its value, not the option: the run is the same, shorter), unless the command
+    must blow up (exit code 1), which runs as long as written."""
+    out = list(args)
+    if "--headless" in out and code == 0:
+        for i, a in enumerate(out[:-1]):
+            if a == "--seconds":
+                out[i + 1] = SHORT_SECONDS
     return out
 
 
@@ -178,61 +169,88 @@ def test_the_docs_commands_are_found():
     assert len(found) > 60
 
 
-def test_every_command_in_the_docs_parses_and_runs(tmp_path, monkeypatch, capsys):
-    """Scene commands run headless for two steps (the window's commands too, with the same
-    scene, settings, cards and comparisons); exercise commands run on a fresh copy of the
-    starters; benchmarks and `exercise check all` are parsed here (their runs are
-    tests/test_bench*.py's and tests/test_exercises.py's: tens of seconds); `python -m app.keys`
-    prints the table reference.md shows."""
-    monkeypatch.chdir(tmp_path)
-    assert main(["exercise", "copy", "mywork"]) == 0
-    seen, ran = set(), 0
+def unique_commands() -> list[tuple[str, str, str]]:
+    seen, out = set(), []
     for doc, command, comment in commands():
-        if command in seen:
-            continue
-        seen.add(command)
-        words = shlex.split(command)
-        module, args, code = words[2], words[3:], expected_code(comment)
-        where = f"{doc}: {command}"
-        if module == "app.docs":
-            assert set(args) <= {"--check", "--images"}, where
-            continue
-        if module == "app.keys":
-            out = io.StringIO()
-            with contextlib.redirect_stdout(out):
-                runpy.run_path(str(ROOT / "app" / "keys.py"), run_name="__main__")
-            assert out.getvalue().strip() in text_of("docs/reference.md"), where
-            continue
-        assert module == "app", where
-        if args and args[0] == "bench":
-            from app.bench import BENCHMARKS
-            parsed = build_bench_parser(list(BENCHMARKS) + ["all"]).parse_args(args[1:])
-            assert parsed.which in list(BENCHMARKS) + ["all"], where
-            continue
-        if args and args[0] == "scene":          # scene check FILE: run as written
-            from app.__main__ import build_scene_parser
-            build_scene_parser().parse_args(args[1:])
-            assert main(args) == code, where
-            ran += 1
-            continue
-        if args and args[0] == "exercise":
-            from app.exercises import exercise_names
-            parsed = build_exercise_parser(exercise_names()).parse_args(args[1:])
-            if parsed.command == "check" and parsed.name == "all":
-                continue
-            if parsed.command == "grade":        # tests/test_exercises_class.py runs it
-                continue
-            if parsed.command == "copy":
-                args = ["exercise", "copy", str(tmp_path / "another")]
-        else:
-            build_parser().parse_args(args)
-            if "--list" not in args:
-                args = shortened(args, code)
-        got = main(args)
-        assert got == code, (where, got, capsys.readouterr().err[-2000:])
-        ran += 1
-    assert ran > 40
-    capsys.readouterr()
+        if command not in seen:
+            seen.add(command)
+            out.append((doc, command, comment))
+    return out
+
+
+@pytest.fixture
+def docs_folder(tmp_path, monkeypatch):
+    """A folder like the repository's root (docs/ and exercises/ are there, as when a reader
+    runs the docs' commands at the root) with a fresh copy of the starters in mywork/."""
+    for name in ("docs", "exercises", "scenes"):
+        (tmp_path / name).symlink_to(ROOT / name)
+    monkeypatch.chdir(tmp_path)
+    with contextlib.redirect_stdout(io.StringIO()):
+        assert main(["exercise", "copy", "mywork"]) == 0
+    return tmp_path
+
+
+def close_the_window_after(monkeypatch, frames: int) -> None:
+    """The window's event queue says QUIT after `frames` frames (as closing it would)."""
+    import pygame
+    real, calls = pygame.event.get, [0]
+
+    def get(*args, **kwargs):
+        calls[0] += 1
+        events = real(*args, **kwargs)
+        return events + [pygame.event.Event(pygame.QUIT)] if calls[0] >= frames else events
+    monkeypatch.setattr(pygame.event, "get", get)
+
+
+@pytest.mark.parametrize("doc,command,comment", unique_commands(),
+                         ids=[f"{d}:{c[14:60]}" for d, c, _ in unique_commands()])
+def test_every_command_in_the_docs_runs_as_written(doc, command, comment, docs_folder,
+                                                   monkeypatch, capsys):
+    """Each command as printed, every option kept (as_run), in a folder like the repository's
+    root: headless ones headless (their --seconds short), window ones in a window (the dummy
+    video driver) closed after a few frames, exercise commands on a fresh copy of the starters;
+    benchmarks and `exercise check all` are parsed here (their runs are tests/test_bench*.py's and
+    tests/test_exercises.py's: tens of seconds); `python -m app.keys` prints the table
+    reference.md shows. The exit code is the one the docs give ("exit code N"), else 0. Their
+    outputs land in lab-output/ (one folder the docs name, in .gitignore)."""
+    words = shlex.split(command)
+    module, args, code = words[2], words[3:], expected_code(comment)
+    where = f"{doc}: {command}"
+    if module == "app.docs":
+        assert set(args) <= {"--check", "--images"}, where
+        return
+    if module == "app.keys":
+        out = io.StringIO()
+        with contextlib.redirect_stdout(out):
+            runpy.run_path(str(ROOT / "app" / "keys.py"), run_name="__main__")
+        assert out.getvalue().strip() in text_of("docs/reference.md"), where
+        return
+    assert module == "app", where
+    if args and args[0] == "bench":
+        from app.bench import BENCHMARKS
+        parsed = build_bench_parser(list(BENCHMARKS) + ["all"]).parse_args(args[1:])
+        assert parsed.which in list(BENCHMARKS) + ["all"], where
+        return
+    if args and args[0] == "scene":              # scene check FILE: parsed, then run as written
+        from app.__main__ import build_scene_parser
+        build_scene_parser().parse_args(args[1:])
+    elif args and args[0] == "exercise":
+        from app.exercises import exercise_names
+        parsed = build_exercise_parser(exercise_names()).parse_args(args[1:])
+        if parsed.command == "check" and parsed.name == "all":
+            return
+        if parsed.command == "grade":            # tests/test_exercises_class.py runs it
+            return
+        if parsed.command == "copy":
+            args = ["exercise", "copy", "another"]       # mywork/ holds the copy already
+    elif "--headless" not in args and "--list" not in args:
+        close_the_window_after(monkeypatch, WINDOW_FRAMES_TO_FAIL if code else WINDOW_FRAMES)
+    got = main(as_run(args, code))
+    err = capsys.readouterr().err
+    assert got == code, (where, got, err[-2000:])
+    written = [p.name for p in docs_folder.iterdir()
+               if p.name not in ("docs", "exercises", "mywork", "another", "lab-output")]
+    assert written == [], (where, "writes outside lab-output/", written)
 
 
 def test_the_input_example_grabs_the_corner_as_reference_md_says(capsys):

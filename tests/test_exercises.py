@@ -579,7 +579,7 @@ def test_the_window_and_a_headless_screenshot_survive_every_untouched_starter(na
                                                                            capsys):
     shot = tmp_path / "starter.png"                 # the window pauses and shows the message
     assert main(["--scene", f"exercise:{name}", "--screenshot", str(shot), "--seconds",
-                 "0.2"]) == 0
+                 "1"]) == 1     # a student's code raised: exit 1, as headless (docs)
     assert shot.exists()
     shot.unlink()                                   # headless: the summary and the picture
     assert main(["--headless", "--scene", f"exercise:{name}", "--steps", "3", "--json",

@@ -33,6 +33,11 @@ HOSTILE = ROOT / "tests" / "exercise_answers" / "hostile"
 VERLET = get_exercise("verlet")
 
 
+# A hang guard, not a speed claim (issue 27: a suite that passes under load): what is checked is
+# what waited (the report's "still running after 0.3 s", "not run"); the wall clock only catches
+# a grader that waits for ever, with room for a machine loaded to 20 on 2 cores.
+HANG = 60.0
+
 def run_cli(*args: str, env: dict | None = None,
             timeout: float = 60) -> subprocess.CompletedProcess:
     full = dict(os.environ, SDL_VIDEODRIVER="dummy", SDL_AUDIODRIVER="dummy", **(env or {}))
@@ -106,7 +111,7 @@ def test_an_endless_import_is_stopped_at_the_limit_and_nothing_else_waits():
     report, seconds = graded("verlet_endless_import", timeout=0.3)
     assert report.checks[0].measured == "still running after 0.3 s"
     assert all(c.measured == "not run" for c in report.checks[1:])
-    assert seconds < 3.0
+    assert seconds < HANG
 
 
 def test_several_endless_files_through_check_all_each_cost_one_time_limit(tmp_path, capsys):
@@ -422,7 +427,7 @@ def test_what_a_students_file_leaves_at_exit_neither_hangs_the_scene_nor_follows
         os.close(write)
     summary = json.loads(r.stdout)                      # the JSON alone: nothing after it
     assert "EOFError" in summary["error"] and summary["steps"] == 2
-    assert r.returncode == 1 and seconds < 20, (r.returncode, seconds)
+    assert r.returncode == 1 and seconds < HANG, (r.returncode, seconds)
 
 
 def test_the_labs_code_failing_on_a_students_build_is_named_as_the_labs():

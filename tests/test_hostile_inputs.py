@@ -196,9 +196,18 @@ def test_an_endless_input_stream_is_refused_after_a_bounded_read(tmp_path, monke
     path.write_text(json.dumps([{"t": 0, "type": "key_down", "key": "x"}] * 100))
     with pytest.raises(headless.InputFileError, match="larger than"):
         headless.load_events(str(path))
-    if os.path.exists("/dev/zero"):
-        with pytest.raises(headless.InputFileError, match="larger than"):
+    if os.path.exists("/dev/zero"):         # a device is refused before it is opened
+        with pytest.raises(headless.InputFileError, match="is a device, not a file"):
             headless.load_events("/dev/zero")
+
+
+def test_an_input_fifo_is_refused_without_waiting_for_a_writer(tmp_path):
+    # once: --input pointing at a FIFO blocked for ever (open waits for a writer)
+    import app.headless as headless
+    fifo = tmp_path / "events.json"
+    os.mkfifo(fifo)
+    with pytest.raises(headless.InputFileError, match="is a FIFO"):
+        headless.load_events(str(fifo))
 
 
 def test_a_screenshot_name_too_long_for_the_file_system_is_refused_before_the_run(capsys,

@@ -33,18 +33,27 @@ BENCHMARKS = {           # name -> module (imported only when run)
 class Report:
     """Where a benchmark prints tables, shows progress and saves charts."""
 
-    def __init__(self, out_dir: str = "bench-results", as_json: bool = False, quick: bool = False):
+    def __init__(self, out_dir: str = "lab-output/bench", as_json: bool = False,
+                 quick: bool = False, full: bool = False):
         self.out_dir = out_dir
         self.as_json = as_json        # with --json, tables go to stderr and JSON to stdout
         self.quick = quick            # fewer repeats and sizes (used by the tests)
+        self.full = full and not quick   # the whole sweeps (minutes); default: what a user
+                                         # can wait for
         self.charts: list[str] = []
 
     def _out(self):
         return sys.stderr if self.as_json else sys.stdout
 
+    bar = None          # app.progress.Progress over the benchmarks run (set by run_benchmarks)
+
     def progress(self, msg: str) -> None:
-        """One line of progress on stderr (never mixed into --json output)."""
-        print(f"  .. {msg}", file=sys.stderr, flush=True)
+        """One line of progress on stderr (never mixed into --json output; on a terminal,
+        above the bar)."""
+        if self.bar is not None:
+            self.bar.say(f"  .. {msg}")
+        else:
+            print(f"  .. {msg}", file=sys.stderr, flush=True)
 
     def say(self, msg: str = "") -> None:
         print(msg, file=self._out(), flush=True)
@@ -70,11 +79,60 @@ class Report:
 
 def _cell(v: Any) -> str:
     from app.draw.hud import fmt_number
+    if isinstance(v, Timing):
+        return v.text()         # the median, its interquartile range, the repeats
     return fmt_number(v) if isinstance(v, float) else str(v)
 
 
-def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1, number: int = 1) -> float:
-    """Median wall time in seconds of `number` calls of fn, over `repeats` runs (after warm-up)."""
+class Timing(float):
+    """A median time (it is that float) with its spread: the interquartile range `lo`-`hi` and
+    the number of `repeats` it is the median of. Multiplied or divided by a plain number (ms,
+    per step) it keeps its spread; tables print it as 1.67 (1.5-1.9, n=7)."""
+
+    lo: float
+    hi: float
+    repeats: int
+
+    def __new__(cls, median: float, lo: float, hi: float, repeats: int) -> "Timing":
+        t = super().__new__(cls, median)
+        t.lo, t.hi, t.repeats = lo, hi, repeats
+        return t
+
+    @classmethod
+    def of(cls, values: Sequence[float]) -> "Timing":
+        """The median of `values` with their quartiles (the extremes for fewer than 4)."""
+        xs = sorted(values)
+        if len(xs) >= 4:
+            q = statistics.quantiles(xs, n=4, method="inclusive")
+            lo, hi = q[0], q[2]
+        else:
+            lo, hi = xs[0], xs[-1]
+        return cls(statistics.median(xs), lo, hi, len(xs))
+
+    def _scaled(self, k: float) -> "Timing":
+        a, b = sorted((self.lo * k, self.hi * k))
+        return Timing(float(self) * k, a, b, self.repeats)
+
+    def __mul__(self, k):
+        return self._scaled(k) if isinstance(k, (int, float)) and not isinstance(k, Timing) \
+            else float(self) * k
+
+    __rmul__ = __mul__
+
+    def __truediv__(self, k):
+        return self._scaled(1.0 / k) if isinstance(k, (int, float)) and \
+            not isinstance(k, Timing) else float(self) / k
+
+    def text(self) -> str:
+        from app.draw.hud import fmt_number
+        return f"{fmt_number(float(self))} ({fmt_number(self.lo)}-{fmt_number(self.hi)}, " \
+               f"n={self.repeats})"
+
+
+def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1,
+                number: int = 1) -> Timing:
+    """Median wall time in seconds of `number` calls of fn, over `repeats` runs (after warm-up),
+    with its interquartile range and repeat count (a Timing: a float)."""
     for _ in range(warmup):
         fn()
     times = []
@@ -83,7 +141,7 @@ def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1, number
         for _ in range(number):
             fn()
         times.append((time.perf_counter() - t0) / number)
-    return statistics.median(times)
+    return Timing.of(times)
 
 
 def machine_note() -> str:
@@ -97,19 +155,25 @@ def machine_note() -> str:
     return f"{cores} cores, load average {load:.2f} over the last minute{busy}"
 
 
-def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "bench-results",
-                   quick: bool = False) -> int:
+def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "lab-output/bench",
+                   quick: bool = False, full: bool = False) -> int:
     """Run one benchmark or all; print tables (or JSON); return an exit code."""
     names = list(BENCHMARKS) if which == "all" else [which]
-    report = Report(out_dir, as_json, quick)
+    report = Report(out_dir, as_json, quick, full)
     results: dict[str, Any] = {}
+    from app.progress import Progress
     report.say(machine_note())
-    for name in names:
-        module = importlib.import_module(BENCHMARKS[name])
-        report.say(f"=== bench {name} ===")
-        t0 = time.perf_counter()
-        results[name] = module.run(report)
-        report.progress(f"{name} done in {time.perf_counter() - t0:.1f} s")
+    with Progress(len(names), "benchmarks", "benchmarks") as bar:
+        report.bar = bar
+        for name in names:
+            module = importlib.import_module(BENCHMARKS[name])
+            bar.update(0, note=name)
+            report.say(f"=== bench {name} ===")
+            t0 = time.perf_counter()
+            results[name] = module.run(report)
+            report.progress(f"{name} done in {time.perf_counter() - t0:.1f} s")
+            bar.update(1)
+        report.bar = None
     if report.charts:
         report.say("\ncharts (each PNG has an SVG beside it): " + ", ".join(report.charts))
     if as_json:

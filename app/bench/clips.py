@@ -1,7 +1,8 @@
 """`python -m app bench clips`: how fast a headless clip of each scene is made, against real time.
 
 For every scene of the registry, at its default settings, and for each format (GIF always, MP4
-when imageio-ffmpeg is installed), it records a 10 s clip (1 s with --quick) exactly as
+when imageio-ffmpeg is installed), it records a 3 s clip twice (10 s three times with --full, 1 s
+once with --quick) exactly as
 `python -m app --headless --scene NAME --seconds 10 --video OUT` does (1280 px wide, 30 fps,
 HUD in) and reports
 
@@ -18,11 +19,11 @@ The clips are kept in <out>/clips/ so they can be looked at.
 from __future__ import annotations
 
 import os
-import statistics
 import time
 from typing import Any
 
 from app.bench import Report
+from app.bench import Timing
 from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, mp4_problem
 
 
@@ -57,9 +58,10 @@ def physics_seconds(cls, seconds: float) -> float:
 
 def run(report: Report) -> dict[str, Any]:
     from scenes import SCENES
-    quick = report.quick
-    seconds = 1.0 if quick else 10.0
-    repeats = 1 if quick else 3
+    quick, full = report.quick, report.full
+    # 10 s clips three times each is 48 clips (minutes): behind --full; by default 3 s, twice
+    seconds = 1.0 if quick else 10.0 if full else 3.0
+    repeats = 1 if quick else 3 if full else 2
     formats = [".gif"] + ([".mp4"] if mp4_problem() is None else [])
     if ".mp4" not in formats:
         report.say(f"MP4 left out: {mp4_problem()}")
@@ -70,15 +72,15 @@ def run(report: Report) -> dict[str, Any]:
     rows, out = [], {"seconds": seconds, "repeats": repeats, "clips": []}
     for cls in SCENES:
         report.progress(f"{cls.name}: physics alone")
-        physics = statistics.median(physics_seconds(cls, seconds) for _ in range(repeats))
+        physics = Timing.of([physics_seconds(cls, seconds) for _ in range(repeats)])
         for fmt in formats:
             path = os.path.join(folder, f"{cls.name}{fmt}")
             runs = []
             for k in range(repeats):
                 report.progress(f"{cls.name}{fmt} ({k + 1}/{repeats})")
                 runs.append(make_clip(cls, seconds, path))
-            wall = statistics.median(r["wall"] for r in runs)
-            cpu = statistics.median(r["cpu"] for r in runs)
+            wall = Timing.of([r["wall"] for r in runs])
+            cpu = Timing.of([r["cpu"] for r in runs])
             last = runs[-1]
             entry = {"scene": cls.name, "format": fmt[1:], "frames": last["frames"],
                      "size": last["size"], "mb": last["bytes"] / 1e6, "wall_s": wall,
@@ -97,9 +99,9 @@ def run(report: Report) -> dict[str, Any]:
     report.say(f"\nslowest: {out['slowest']} at {slowest['speed_x_real_time']:.2f}x real time "
                f"({'faster' if out['all_faster_than_real_time'] else 'SLOWER'} than real time); "
                f"clips in {folder}")
-    if quick:
-        report.say("  (--quick: 1 s clips, where starting up (fonts, threads, ffmpeg, the GIF's "
-                   "palette) weighs most; run without --quick to measure 10 s clips)")
+    if not full:
+        report.say("  (short clips, where starting up (fonts, threads, ffmpeg, the GIF's "
+                   "palette) weighs most; --full measures 10 s clips)")
     return out
 
 

@@ -28,7 +28,6 @@ import math
 import time
 from typing import Any
 
-import numpy as np
 
 from app.bench import Report, median_time
 from app.draw.palette import INTEGRATOR_COLORS as COLORS
@@ -69,7 +68,8 @@ def sweep(problem, name: str, quick: bool) -> list[dict[str, float]]:
                        "us_per_step": us, "error": error})
     # A step costs the same at every h for these small systems: one median over all the batch
     # medians is the least noisy figure on a busy machine.
-    us = float(np.median([p["us_per_step"] for p in points]))
+    from app.bench import Timing
+    us = Timing.of([p["us_per_step"] for p in points])     # its spread: over the batches
     for p in points:
         p["us_per_step"], p["wall_ms"] = us, p["steps"] * us / 1000.0
     return points

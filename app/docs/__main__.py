@@ -22,6 +22,8 @@ import re
 import sys
 from pathlib import Path
 
+from app.outputs import write_text
+
 ROOT = Path(__file__).resolve().parents[2]
 MARKER = re.compile(r"(<!-- generated: (?P<name>[\w-]+) \(python -m app\.docs\) -->\n)"
                     r"(?P<body>.*?)"
@@ -78,7 +80,7 @@ def main(argv: list[str] | None = None) -> int:
     for path, text in texts.items():
         new = filled(text, made)
         if new != text:
-            path.write_text(new)
+            write_text(path, new, what="the docs")    # whole or not at all
             print(f"rewrote {path.relative_to(ROOT)}")
     if args.images:
         from app.docs.images import make_images

@@ -31,7 +31,10 @@ class Picture:
     code: int = 0
 
     def argv(self, out: Path) -> list[str]:
-        return shlex.split(self.command)[3:] + ["--screenshot", str(out)]
+        """The command's arguments, its screenshot written to `out` (the docs print it writing
+        to lab-output/, the folder their commands write to)."""
+        args = shlex.split(self.command)[3:]
+        return [str(out) if a == f"lab-output/{self.file}" else a for a in args]
 
 
 # the README's tour: one tile per scene (the scene alone, 400 px wide), in the registry's order
@@ -50,16 +53,18 @@ TOUR: dict[str, str] = {
 
 PICTURES: tuple[Picture, ...] = (
     Picture("cloth-1x10-vs-10x1.png",
-            "python -m app --headless --scene cloth --try '1x10 vs 10x1' --seconds 2 --width 960"),
+            "python -m app --headless --scene cloth --try '1x10 vs 10x1' --seconds 2 --width 960 "
+            "--screenshot lab-output/cloth-1x10-vs-10x1.png"),
     Picture("explicit-vs-implicit.png",
             "python -m app --headless --scene mass_spring_cloth --try 'Explicit vs implicit at 60 Hz' "
-            "--seconds 1 --width 960", code=1),
+            "--seconds 1 --width 960 --screenshot lab-output/explicit-vs-implicit.png", code=1),
     Picture("integrators-hertz-4.png",
             "python -m app --headless --scene integrators --try 'hertz 4: past Verlet' "
-            "--seconds 4 --width 960"),
+            "--seconds 4 --width 960 --screenshot lab-output/integrators-hertz-4.png"),
     Picture("particle-dance-all-pairs-vs-grid.png",
             "python -m app --headless --scene particle_dance --try 'All pairs vs grid' "
-            "--seconds 1 --width 960"),
+            "--seconds 1 --width 960 "
+            "--screenshot lab-output/particle-dance-all-pairs-vs-grid.png"),
 )
 
 
@@ -86,6 +91,8 @@ def _run(argv: list[str], code: int) -> None:
 def make_tour(out: Path) -> None:
     """Every scene in one picture: rows of 4 tiles, each scene's name under it."""
     import pygame
+
+    from app.draw import save_png
     from app.draw.text import font
     cols, cell_h, label_h = 4, 300, 26
     with tempfile.TemporaryDirectory() as tmp:
@@ -107,7 +114,7 @@ def make_tour(out: Path) -> None:
                               y0 + (cell_h - tile.get_height()) // 2))
             label = font(24).render(scene, True, (230, 230, 235))
             sheet.blit(label, (x0 + (TOUR_TILE - label.get_width()) // 2, y0 + cell_h + 2))
-        pygame.image.save(sheet, str(out))
+        save_png(sheet, out, what="the picture")     # whole or not at all
 
 
 def make_images(folder: Path = IMAGES) -> None:

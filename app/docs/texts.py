@@ -183,6 +183,9 @@ SUMMARY_FIELDS: dict[str, str] = {
     "reference_error": "--compare: the scene's error against its reference: `what`, `metric`, "
                        "`value` (null where the scene has none)",
     "video": "--video: the clip's path",
-    "video_frames": "--video: frames written",
+    "video_frames": "--video: frames in the file (read back: a GIF merges equal frames)",
+    "video_seconds": "--video: the clip's duration, s, as read back from the file",
     "video_bytes": "--video: the file's size",
+    "replaced": "the outputs of this run (--csv, --screenshot, --video) that replaced a file that "
+                "was there (their paths; [] if none did)",
 }

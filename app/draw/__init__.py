@@ -8,9 +8,12 @@ import os
 import pygame
 
 
-def save_png(surface: pygame.Surface, path: str | os.PathLike) -> None:
-    """Save a surface as a PNG, creating the folder as needed (raises pygame.error, OSError)."""
-    folder = os.path.dirname(os.fspath(path))
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    pygame.image.save(surface, os.fspath(path))
+def save_png(surface: pygame.Surface, path: str | os.PathLike, what: str = "the screenshot") -> None:
+    """Save a surface as a PNG, whole or not at all (app/outputs.py), creating the folder as
+    needed; OutputError (one line) if it cannot."""
+    from app.outputs import atomic_path
+    with atomic_path(path, what) as tmp:
+        try:
+            pygame.image.save(surface, tmp, "png")
+        except pygame.error as e:
+            raise OSError(0, str(e)) from None

@@ -3,8 +3,8 @@ axes, written as PNG and SVG side by side, used by the benchmarks (`python -m ap
 
     chart = LineChart("ms per step vs iterations", "iterations", "time per step (ms)", logy=True)
     chart.add("64x64", xs, ys)
-    chart.save("bench-results/cloth.png")        # also writes bench-results/cloth.svg
-    save_grid([chart, other], "bench-results/both.png", cols=2)   # several charts, one slide
+    chart.save("lab-output/bench/cloth.png")        # also writes lab-output/bench/cloth.svg
+    save_grid([chart, other], "lab-output/bench/both.png", cols=2)   # several charts, one slide
 
 What a projected slide needs, and where it is done:
   * size: every file is one 16:9 slide, 13.33 x 7.5 in at 150 dpi (2000 x 1125 px), with text
@@ -67,12 +67,15 @@ class LineChart:
     def add(self, label: str, xs, ys, color=None, markers: bool = True) -> None:
         """A series. Without a colour, a label that starts with an integrator's name
         ("rk4", "implicit_euler h=1/30") takes that integrator's colour in the lab
-        (app/draw/palette.py), dashed if an earlier series has it; others take the next of
-        PALETTE."""
+        (app/draw/palette.py), dashed if an earlier series has it, and is written with the
+        integrator's title ("implicit Euler h=1/30"); others take the next of PALETTE."""
         from app.draw.palette import INTEGRATOR_COLORS
+        from app.physics.integrators import INTEGRATORS
+        name, _, rest = label.partition(" ")
         if color is None:
-            color = INTEGRATOR_COLORS.get(label.split(" ")[0]) or \
-                PALETTE[len(self.series) % len(PALETTE)]
+            color = INTEGRATOR_COLORS.get(name) or PALETTE[len(self.series) % len(PALETTE)]
+        if name in INTEGRATORS:        # a legend in the words a class reads: "symplectic Euler"
+            label = " ".join(filter(None, (INTEGRATORS[name].title, rest)))
         dashed = any(s.color == tuple(color) for s in self.series)
         self.series.append(Series(label, [float(x) for x in xs], [float(y) for y in ys],
                                   tuple(color), markers, dashed))
@@ -119,8 +122,9 @@ def figure(charts: Sequence[LineChart], cols: int = 2, size: tuple[float, float]
         for ax in axes.flat[len(charts):]:
             ax.set_visible(False)
         if shared and len(shared) > 1:
+            rows = math.ceil(len(shared) / 6)          # as few rows as 6 a row need, filled
             fig.legend([handles[k] for k in shared], shared, loc="outside lower center",
-                       ncols=min(len(shared), 6), frameon=False)
+                       ncols=math.ceil(len(shared) / rows), frameon=False)   # evenly: none alone
         _fit_texts(fig, texts)
         outside = False
         if not shared:
@@ -135,15 +139,17 @@ def figure(charts: Sequence[LineChart], cols: int = 2, size: tuple[float, float]
 
 def save_figure(fig, path: str) -> str:
     """Write `fig` as PNG at `path` and as SVG beside it (folders made as needed; no date or
-    software version inside, so the same chart gives the same files); return the PNG's path."""
+    software version inside, so the same chart gives the same files); return the PNG's path.
+    OutputError (one line) if one cannot be written: the old file is left as it was."""
     from matplotlib import rc_context
+
+    from app.outputs import atomic_path
     root, _ = os.path.splitext(os.fspath(path))
-    folder = os.path.dirname(root)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    with rc_context(_STYLE):
-        fig.savefig(root + ".png", metadata={"Software": None})
-        fig.savefig(root + ".svg", metadata={"Date": None})
+    with rc_context(_STYLE):          # each file whole or not at all (app/outputs.py)
+        with atomic_path(root + ".png", "the chart") as tmp:
+            fig.savefig(tmp, format="png", metadata={"Software": None})
+        with atomic_path(root + ".svg", "the chart") as tmp:
+            fig.savefig(tmp, format="svg", metadata={"Date": None})
     return root + ".png"
 
 
@@ -182,14 +188,17 @@ def _draw(chart: LineChart, ax) -> dict[str, Any]:
                               (chart.logy, ax.yaxis, [y for s in chart.series for y in s.ys])):
         counts = bool(values) and all(math.isfinite(v) and v >= 1 and v == int(v) and v < 1e5
                                       for v in values)
+        shown = [v for v in values if math.isfinite(v) and v > 0]
+        plain = bool(shown) and all(1e-3 <= v < 1e5 for v in shown)   # ms, s: 0.5, 2, 200
         if log:
             # major ticks at powers of ten, labelled 10^k; on an axis spanning under two
             # decades the 2x10^k and 5x10^k ticks are labelled too.
             # An axis of counts (substeps, balls) reads 1, 2, 5, 10, 100 instead of 10^0.
             (ax.set_xscale if axis is ax.xaxis else ax.set_yscale)("log")
             axis.set_minor_locator(LogLocator(subs=(2.0, 5.0)))   # minor ticks at 2 and 5
-            axis.set_minor_formatter(_MinorLabels(axis, counts))
-            axis.set_major_formatter(_count_label if counts else _power_label)
+            axis.set_minor_formatter(_MinorLabels(axis, counts, plain))
+            axis.set_major_formatter(_count_label if counts else _plain_label if plain
+                                     else _power_label)
         elif counts:
             axis.set_major_locator(MaxNLocator(integer=True, steps=[1, 2, 5, 10]))    # 1, 2, 3: no 1.5 iterations
     ax.set_xlabel(chart.xlabel)
@@ -202,6 +211,19 @@ def _draw(chart: LineChart, ax) -> dict[str, Any]:
 
 def _count_label(value: float, pos=None) -> str:
     return f"{value:.0f}"
+
+
+def plain_number(value: float) -> str:
+    """A tick of a log axis of times or sizes as a plain number: 0.005, 0.5, 2, 200, 10000
+    (no 10^k to decode at a glance)."""
+    if value <= 0:
+        return ""
+    k = math.floor(math.log10(value) + 1e-9)
+    return f"{value:.{max(0, -k)}f}"
+
+
+def _plain_label(value: float, pos=None) -> str:
+    return plain_number(value)
 
 
 _SUPERSCRIPT = str.maketrans("-0123456789", "\u207b\u2070\u00b9\u00b2\u00b3\u2074\u2075\u2076"
@@ -248,9 +270,10 @@ class _MinorLabels:
     the plain count) when the axis spans fewer than two decades, none otherwise (the 10^k say
     enough)."""
 
-    def __init__(self, axis, counts: bool = False):
+    def __init__(self, axis, counts: bool = False, plain: bool = False):
         self.axis = axis
         self.counts = counts
+        self.plain = plain
 
     def __call__(self, value: float, pos=None) -> str:
         lo, hi = sorted(self.axis.get_view_interval())
@@ -261,7 +284,8 @@ class _MinorLabels:
         m = round(value / 10.0 ** k)
         if m not in (2, 5):
             return ""
-        return f"{value:.0f}" if self.counts else power(m, k)
+        return f"{value:.0f}" if self.counts else plain_number(value) if self.plain \
+            else power(m, k)
 
 
 def _shown(v: float, log: bool) -> bool:

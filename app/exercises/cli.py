@@ -9,13 +9,13 @@ from __future__ import annotations
 import functools
 import json
 import os
-import shutil
 import sys
 from typing import Callable
 
 from app.exercises import EXERCISES, Exercise
 from app.exercises.grade import CHECK_TIMEOUT, Report, grade_many
 from app.exercises.loading import shown, starter_path
+from app.outputs import shown as shown_value, write_bytes
 
 
 def quiet_pipe(command: Callable[..., int]) -> Callable[..., int]:
@@ -44,15 +44,19 @@ def check(exercises: list[Exercise], paths: list[str | None], as_json: bool,
     """Grade each exercise on its file (None: the lab's reference), several at once, on the
     random cases of `seed` (None: a new one, printed); print the reports in order (what the
     student's code printed first, on stderr, capped), and a summary table for more than one."""
+    from app.progress import Progress
     reports: list[Report] = []
+    bar = Progress(len(exercises) if len(exercises) > 1 else 0, "exercises checked")
     for report in grade_many(list(zip(exercises, paths)), timeout, seed=seed):
         reports.append(report)
+        bar.update(1, note=report.exercise)
         if report.output_bytes:
-            print(report.output_text(), file=sys.stderr, flush=True)
+            bar.say(report.output_text())
         if as_json:
             print(json.dumps(report.to_json()), flush=True)
         else:
             print(report.text() + "\n", flush=True)
+    bar.close()
     if len(reports) > 1 and not as_json:
         print(f"{'exercise':18} {'checks':>7}  result")
         for r in reports:
@@ -72,11 +76,13 @@ def copy(folder: str) -> int:
     """Copy every starter into `folder` (the caller has checked that none exists there yet)."""
     try:
         os.makedirs(folder, exist_ok=True)
-        for e in EXERCISES:
-            shutil.copyfile(starter_path(e.name), os.path.join(folder, f"{e.name}.py"))
+        for e in EXERCISES:         # each file whole or not at all (app/outputs.py)
+            with open(starter_path(e.name), "rb") as f:
+                write_bytes(os.path.join(folder, f"{e.name}.py"), f.read(), what="copy")
     except OSError as e:            # bad usage: one line, exit 2 (the files copied so far stay)
-        print(f"python -m app: error: copy: cannot write to '{folder}' ({e.strerror}); "
-              "accepted: a folder you can write to", file=sys.stderr)
+        print(f"python -m app: error: copy: cannot write to {shown_value(folder)} "
+              f"({getattr(e, 'strerror', None) or e}); accepted: a folder you can write to",
+              file=sys.stderr)
         return 2
     where = shown(folder)
     print(f"copied {len(EXERCISES)} exercises to {where}/: "

@@ -35,6 +35,19 @@ from typing import Callable
 
 import numpy as np
 
+
+def one_blas_thread() -> None:
+    """Run NumPy's BLAS on one thread for the rest of the process (threadpoolctl). The lab's
+    vectors are small to medium (a 128x128 cloth: 32,768 unknowns), and on a busy 2-core machine
+    BLAS's second thread waits for a core: np.vdot of 32,768 doubles took 450-510 us with two
+    threads against 32 us with one (median of 7, load ~18, 2026-11-26), so a CG iteration ran
+    many times slower. Threads never paid here: pinned once, for every step, solve and bench."""
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:              # not installed: BLAS keeps its own threads
+        return
+    threadpool_limits(limits=1, user_api="blas")
+
 Product = Callable[[np.ndarray], np.ndarray]
 Preconditioner = Callable[[np.ndarray], np.ndarray]     # r -> z, an approximation of A^-1 r
 DENSE_LIMIT = 400       # unknowns up to which dense_solve builds the matrix (400 products + LU)

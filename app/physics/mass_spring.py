@@ -172,7 +172,7 @@ class ImplicitSystem(NamedTuple):
 # second, at most 0.04 px (0.03); in a fling, the grabbed particle moved 32 px a step (1920 px/s,
 # the cloth up to ~2700 px/s), 0.5-5.7 px (0.7-8.3): a few per cent of a step of 32 px. Below a
 # pixel except in a fling, and smaller than the O(h^2) error of linearising once per step, in
-# 11-53 iterations at 32x32 (to 1e-10: 145-339).
+# 11-53 iterations at 32x32 (to 1e-10: 145-341).
 CG_TOLERANCE = 1e-2
 
 

@@ -27,6 +27,7 @@ from typing import Any, Protocol
 
 import pygame
 
+from app.outputs import OUTPUT_DIR
 from app.clips import (DEFAULT_FPS, DEFAULT_WIDTH, Clip, ClipWriter, check_video, even,
                        max_gif_frames, open_clip)
 from app.draw import hud
@@ -50,7 +51,7 @@ class ClipRecorder:
     """The window's clip: start()/stop() (F9 toggles), after_draw() once per rendered frame."""
 
     def __init__(self, path: str | None = None, fps: int | None = None, width: int | None = None,
-                 folder: str | Path = "clips"):
+                 folder: str | Path = OUTPUT_DIR + "/clips"):
         self.path = Path(path) if path else None     # --video: where the clips go
         self.fps = fps or DEFAULT_FPS
         self.width = width or DEFAULT_WIDTH
@@ -105,8 +106,8 @@ class ClipRecorder:
         size = (even(w), even(area.height * w / area.width))
         try:
             self.writer = open_clip(str(path), size, self.fps)
-        except (OSError, RuntimeError) as e:
-            window.flash(f"could not start the clip '{path.resolve()}': {e}", hud.ERROR_COLOR)
+        except OSError as e:                    # OutputError: one line, the path in it
+            window.flash(str(e), hud.ERROR_COLOR)
             return
         self.made += 1
         self._view, self._area = view, area.copy()
@@ -163,8 +164,7 @@ class ClipRecorder:
             self.stop(window, f"a GIF of this size holds at most {most} frames (for longer "
                       "clips: --video OUT.mp4): ")
             return
-        panel = getattr(view, "panel", None)
-        self._draw_box(screen, _text_boxes(view), panel.rect if panel is not None else None)
+        self._draw_box(screen, _text_boxes(view))
 
     def _fitted(self, area: pygame.Surface, background) -> pygame.Surface:
         """The scene area as a frame of the clip's size: as it is if its shape is the clip's
@@ -182,23 +182,14 @@ class ClipRecorder:
         frame.blit(scaled, ((w - scaled.get_width()) // 2, (h - scaled.get_height()) // 2))
         return frame
 
-    def _draw_box(self, screen: pygame.Surface, text_boxes: list[pygame.Rect],
-                  panel: pygame.Rect | None = None) -> None:
-        """The REC box at the bottom of the panel (off the scene, which the class watches); with
-        the panel hidden, at the top right of the scene area, moved down below any text box it
+    def _draw_box(self, screen: pygame.Surface, text_boxes: list[pygame.Rect]) -> None:
+        """The REC box at the top right of the scene area, moved down below any text box it
         would cover (the HUD, compare mode's header and panes' HUDs: a narrow window, large
         text); at the bottom right if no room is left under them."""
         seconds = self.writer.frames / self.fps
         lines = [hud.Line(f"REC clip {seconds:.1f} s ({self.writer.frames} frames): F9 stops",
                           hud.ERROR_COLOR),
                  hud.Line(str(Path(self.writer.path).resolve()), hud.DIM_COLOR)]
-        if panel is not None and panel.width > 16:
-            width = panel.width - 16
-            w, h = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
-            self.box = pygame.Rect(panel.left + 8, panel.bottom - h - 8, w, h)
-            screen.fill((21, 24, 29), self.box.inflate(16, 16).clip(panel))
-            hud.text_box(screen, lines, self.box.topleft, hud.HUD_SIZE, max_width=width)
-            return
         width = max(1, min(self._area.width - 16, 620))
         w, h = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
         box = pygame.Rect(self._area.right - w - 8, self._area.top + 8, w, h)
@@ -244,7 +235,8 @@ def _text_boxes(view) -> list[pygame.Rect]:
 
 def _saved_text(result: dict) -> str:
     if "error" in result:
-        return f"the clip {result['path']} could not be written: {result['error']}"
+        return result["error"]           # OutputError's line: the path, why, what was left
     clip: Clip = result["clip"]
-    return (f"clip saved: {result['path']} ({clip.frames_text()}, {clip.size[0]}x{clip.size[1]}"
-            f", {clip.frames / clip.fps:.1f} s, {clip.bytes / 1e6:.2f} MB)")
+    return (f"clip saved: {result['path']} ({clip.frames} frames, {clip.size[0]}x{clip.size[1]}"
+            f", {clip.seconds:.1f} s, {clip.bytes / 1e6:.2f} MB"
+            + (", replaced the file that was there)" if clip.replaced else ")"))

@@ -9,6 +9,8 @@ of the world area, the velocity and force arrows over the scenes, and the `--csv
 
 from __future__ import annotations
 
+import sys
+
 import pygame
 
 from app.draw import hud
@@ -41,7 +43,12 @@ class InstrumentHost:
 
     def close_instruments(self) -> None:
         if hasattr(self, "inst"):
-            self.inst.close_csv()
+            from app.outputs import OutputError
+            try:
+                self.inst.close_csv()
+            except OutputError as e:      # a full disk: said on screen and on stderr
+                self.window.flash(str(e), hud.ERROR_COLOR, topic="csv")
+                print(f"python -m app: error: {e}", file=sys.stderr)
             self.inst.detach()
 
     # --- the plot ----------------------------------------------------------------------------

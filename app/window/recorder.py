@@ -85,10 +85,13 @@ class Recorder:
         s = self.session
         events = s.events if s is not None else []
         body = ",\n".join(" " + json.dumps(e) for e in events)
-        self.path.write_text("[\n" + body + ("\n" if body else "") + "]\n")
+        from app.outputs import write_text          # whole or not at all: OutputError
+        replaced = write_text(self.path, "[\n" + body + ("\n" if body else "") + "]\n",
+                              what="--record")
         if s is None:
             return f"recorded nothing (no scene was opened) to {self.path}"
-        line = (f"recorded {len(events)} events of {s.scene} over {s.steps} steps; replay: "
+        line = (f"recorded {len(events)} events of {s.scene} over {s.steps} steps"
+                f"{' (replaced the file that was there)' if replaced else ''}; replay: "
                 f"{s.command(self.path)}")
         if s.not_replayed:
             line += (f"\n  (panel changes made after the first press are not in it: "

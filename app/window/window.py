@@ -32,8 +32,9 @@ from typing import Any, NamedTuple, Sequence
 import pygame
 
 from app.draw import hud, menu, save_png
+from app.outputs import OUTPUT_DIR
 from app.draw.text import TEXT
-from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY
+from app.runner import NONFINITE_TEXT, SNAPSHOT_EVERY, SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError
 from app.window.clip_recorder import ClipRecorder
 from app.window.display import open_display as _open_display
@@ -74,7 +75,8 @@ class Window:
 
     def __init__(self, screen: pygame.Surface, scenes: Sequence[type[Scene]] | None = None,
                  large_text: bool = False, events: list[InputEvent] | None = None,
-                 screenshot_dir: str | Path = "screenshots", record: str | Path | None = None):
+                 screenshot_dir: str | Path = OUTPUT_DIR + "/screenshots",
+                 record: str | Path | None = None):
         if scenes is None:
             from scenes import SCENES
             scenes = SCENES
@@ -139,6 +141,7 @@ class Window:
         try:
             scene = scene_cls(overrides or {})
         except (ParamError, SceneError) as e:     # refused settings, or a student's code failed
+            SceneRunner.failures += isinstance(e, SceneError)
             self._to_menu(f"{scene_cls.name}: {e}")
             return False
         except Exception as e:     # a broken scene must not close the classroom's window
@@ -169,6 +172,7 @@ class Window:
             overrides = resolve_variants(scene_cls, shared, variants)
             scenes = [scene_cls(o) for o in overrides]
         except (ParamError, SceneError) as e:
+            SceneRunner.failures += isinstance(e, SceneError)
             if self.scene_view is None:
                 self._to_menu(f"{scene_cls.name}: {e}")
             else:
@@ -451,6 +455,7 @@ async def window_main(scene_name: str | None, overrides: dict[str, str],
         seconds = 2.0
     fps_clock = pygame.time.Clock()
     start = time.perf_counter()
+    failures = SceneRunner.failures
     try:
         while window.running:
             frame_seconds = min(fps_clock.tick(FPS_CAP) / 1000.0, 0.25)
@@ -465,8 +470,12 @@ async def window_main(scene_name: str | None, overrides: dict[str, str],
         if screenshot:
             window.render()
             window.save_screenshot(screenshot)
-    except KeyboardInterrupt:
-        pass
+    except KeyboardInterrupt:      # Ctrl-C in the terminal: the recording and clips are still
+        code = 130                 # saved (every way out), then exit code 130 and one line
+        print("python -m app: interrupted (Ctrl-C); the window closed as Esc would close it",
+              file=sys.stderr, flush=True)
+    else:                          # a student's code that raised while the window was open:
+        code = 1 if SceneRunner.failures > failures else 0     # exit code 1, as headless
     finally:
         window.close()
         line = window.recorder.write()
@@ -475,4 +484,4 @@ async def window_main(scene_name: str | None, overrides: dict[str, str],
         for line in window.clips.finish(window):
             print(line, flush=True)
         pygame.display.quit()      # not pygame.quit(): app.draw.text caches fonts
-    return 0
+    return code
