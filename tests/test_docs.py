@@ -249,7 +249,8 @@ def test_every_command_in_the_docs_runs_as_written(doc, command, comment, docs_f
     err = capsys.readouterr().err
     assert got == code, (where, got, err[-2000:])
     written = [p.name for p in docs_folder.iterdir()
-               if p.name not in ("docs", "exercises", "mywork", "another", "lab-output")]
+               if p.name not in ("docs", "exercises", "scenes", "mywork", "another",
+                                  "lab-output")]
     assert written == [], (where, "writes outside lab-output/", written)
 
 

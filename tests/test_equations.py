@@ -47,7 +47,7 @@ def test_the_mass_spring_cloth_shows_the_update_of_the_integrator_in_use():
 
 
 def test_the_formula_box_fits_its_room_at_both_text_sizes():
-    from app.draw import hud
+    from app.draw.formula import formula_box
     from app.draw.text import TEXT
     cls = next(c for c in scenes.SCENES if c.name == "mass_spring_cloth")
     scene = cls()
@@ -56,7 +56,7 @@ def test_the_formula_box_fits_its_room_at_both_text_sizes():
     for scale in (1.0, 1.6):
         TEXT.scale = scale
         try:
-            box = hud.formula_box(screen, area, pygame.Rect(8, 8, 300, 400), 650, scene)
+            box = formula_box(screen, area, pygame.Rect(8, 8, 300, 400), 650, scene)
         finally:
             TEXT.scale = 1.0
         assert area.contains(box) and box.bottom == 650, (scale, box)

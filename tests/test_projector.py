@@ -195,7 +195,7 @@ def test_the_window_loop_is_one_coroutine_that_yields_once_a_frame(monkeypatch, 
             raise KeyboardInterrupt
     monkeypatch.setattr(win.asyncio, "sleep", counted_sleep)
     monkeypatch.setattr(pygame.display, "flip", counted_flip)
-    assert run_window("tiny", {}) == 0
+    assert run_window("tiny", {}) == 130     # Ctrl+C: exit code 130, one line (issue 27)
     assert len(frames) == 4 and len(yields) == 3 and set(yields) == {0}
 
 

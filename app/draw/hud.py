@@ -23,7 +23,6 @@ HELP_SIZE = 28
 TITLE_SIZE = 44
 MENU_SIZE = 32
 BOX_COLOR = (8, 10, 14, 160)     # see-through enough to show the world behind the HUD
-FORMULA_BOX_COLOR = (8, 10, 14, 235)   # formulas: nearly opaque, nothing shows through them
 TEXT_COLOR = (235, 235, 235)
 DIM_COLOR = (170, 178, 190)
 WARN_COLOR = (255, 200, 90)
@@ -321,42 +320,6 @@ def scene_lines(scene, status: list, notes: list = (), details: bool = False,
             lines += [Line(text, DIM_COLOR, swatch=color) for color, text in key]
         lines += [x if isinstance(x, Line) else Line(str(x), DIM_COLOR) for x in more]
     return lines
-
-
-def formula_lines(scene) -> list[Line]:
-    """The scene's governing formulas (app/equations.py), each a caption and its picture."""
-    from app.equations import equations_for
-    lines: list[Line] = []
-    for eq in equations_for(scene):
-        if eq.caption:
-            lines.append(Line(eq.caption, DIM_COLOR))
-        lines.append(Line("", TEXT_COLOR, tex=eq.tex))
-    return lines
-
-
-def formula_box(surface: pygame.Surface, area: pygame.Rect, avoid: pygame.Rect, bottom: int,
-                scene, size: int = HUD_SIZE) -> pygame.Rect:
-    """The second page's formulas (app/equations.py) in a box at the bottom right of `area`,
-    ending at `bottom`, beside the HUD box `avoid` where there is room for them (else across the
-    area's width, over the HUD's foot); nothing for a scene without formulas."""
-    lines = formula_lines(scene)
-    if not lines:
-        return pygame.Rect(area.right, bottom, 0, 0)
-    room = scene.formula_room() if hasattr(scene, "formula_room") else None
-    if room is not None and room.width > 80 and room.height > 40:   # the scene's own place
-        surface.fill(FORMULA_BOX_COLOR[:3], room)
-        clip = surface.get_clip()
-        surface.set_clip(room.clip(clip))       # one size (no size is tried and thrown away)
-        try:
-            return text_box(surface, lines, room.topleft, int(size * 0.8), max_width=room.width,
-                            color=FORMULA_BOX_COLOR).clip(room)
-        finally:
-            surface.set_clip(clip)
-    beside = area.right - max(avoid.right, area.left) - 24
-    width = beside if beside >= 0.45 * area.width else area.width - 16
-    w, h = box_size(lines, size, max_width=width)
-    return text_box(surface, lines, (area.right - 8 - w, bottom), size, max_width=width,
-                    from_bottom=True, color=FORMULA_BOX_COLOR)
 
 
 def ms_text(ms: float | None) -> str:
