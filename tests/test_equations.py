@@ -47,7 +47,7 @@ def test_the_mass_spring_cloth_shows_the_update_of_the_integrator_in_use():
 
 
 def test_the_formula_box_fits_its_room_at_both_text_sizes():
-    from app.draw.formula import formula_box
+    from app.draw.formula_box import formula_box
     from app.draw.text import TEXT
     cls = next(c for c in scenes.SCENES if c.name == "mass_spring_cloth")
     scene = cls()

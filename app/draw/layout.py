@@ -238,5 +238,5 @@ def draw_scene(surface: pygame.Surface, layout: Layout, scene, lines: list | Non
                        max_width=layout.hud_width)
     if strip:
         top = hud.draw_metrics(surface, area, scene, layout.hud_text).top
-        from app.draw.formula import formula_box
+        from app.draw.formula_box import formula_box
         formula_box(surface, area, box, min(top, area.bottom) - 6, scene, layout.hud_text)

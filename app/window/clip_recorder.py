@@ -164,7 +164,8 @@ class ClipRecorder:
             self.stop(window, f"a GIF of this size holds at most {most} frames (for longer "
                       "clips: --video OUT.mp4): ")
             return
-        self._draw_box(screen, _text_boxes(view))
+        panel = getattr(view, "panel", None)
+        self._draw_box(screen, _text_boxes(view), panel.rect if panel is not None else None)
 
     def _fitted(self, area: pygame.Surface, background) -> pygame.Surface:
         """The scene area as a frame of the clip's size: as it is if its shape is the clip's
@@ -182,14 +183,23 @@ class ClipRecorder:
         frame.blit(scaled, ((w - scaled.get_width()) // 2, (h - scaled.get_height()) // 2))
         return frame
 
-    def _draw_box(self, screen: pygame.Surface, text_boxes: list[pygame.Rect]) -> None:
-        """The REC box at the top right of the scene area, moved down below any text box it
+    def _draw_box(self, screen: pygame.Surface, text_boxes: list[pygame.Rect],
+                  panel: pygame.Rect | None = None) -> None:
+        """The REC box at the bottom of the panel (off the scene, which the class watches); with
+        the panel hidden, at the top right of the scene area, moved down below any text box it
         would cover (the HUD, compare mode's header and panes' HUDs: a narrow window, large
         text); at the bottom right if no room is left under them."""
         seconds = self.writer.frames / self.fps
         lines = [hud.Line(f"REC clip {seconds:.1f} s ({self.writer.frames} frames): F9 stops",
                           hud.ERROR_COLOR),
                  hud.Line(str(Path(self.writer.path).resolve()), hud.DIM_COLOR)]
+        if panel is not None and panel.width > 16:
+            width = panel.width - 16
+            w, h = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
+            self.box = pygame.Rect(panel.left + 8, panel.bottom - h - 8, w, h)
+            screen.fill((21, 24, 29), self.box.inflate(16, 16).clip(panel))
+            hud.text_box(screen, lines, self.box.topleft, hud.HUD_SIZE, max_width=width)
+            return
         width = max(1, min(self._area.width - 16, 620))
         w, h = hud.box_size(lines, hud.HUD_SIZE, max_width=width)
         box = pygame.Rect(self._area.right - w - 8, self._area.top + 8, w, h)
