@@ -33,33 +33,33 @@ along. Every report's first line says which walls are in force and which this ma
 child is a plain fork of this process, unconfined, and the report says so (Windows cannot fork:
 there the checks run in the grader's process, which still catches every exception but cannot
 stop an endless loop nor keep a verdict out of the student's reach).
+
+Starting and stopping a child (forked, or a keeper in the sandbox) is app/exercises/spawn.py's
+ChildLife, which Session inherits; LIMIT_FACTOR, STARTUP, CAN_FORK and SANDBOXED are defined
+there and imported here. What the child sends, the verdicts and the time limits are this module's.
 """
 
 from __future__ import annotations
 
 import json
 import os
-import secrets
-import select
 import selectors
 import signal
-import sys
 import time
-from dataclasses import dataclass, field
 from typing import Iterator
 
 from app.exercises import base, sandbox
 from app.exercises.base import Check, Exercise, plain
-from app.exercises.channel import ChannelError, Frame, FrameReader, parse
-from app.exercises.child import CHANNEL_LOST, READY, child_main, import_answer, outcome
-from app.exercises.loading import NotASourceFile, read_source, shown, starter_path
+from app.exercises.channel import ChannelError, Frame, parse
+from app.exercises.child import CHANNEL_LOST, READY, import_answer, outcome
+from app.exercises.loading import shown, starter_path
 from app.exercises.report import OUTPUT_SHOWN, CheckReport, Report, not_run, verdict
+from app.exercises.spawn import (CAN_FORK, LIMIT_FACTOR, SANDBOXED, STARTUP, Child,
+                                 ChildLife)
 
 CHECK_TIMEOUT = 10.0        # seconds a check may run at least (the floor of its time limit)
-LIMIT_FACTOR = 20           # ... and at least this many times the reference's own time
-STARTUP = 60.0              # seconds a sandboxed child may take to start (Python, NumPy, pymunk)
-CAN_FORK = hasattr(os, "fork")
-SANDBOXED = CAN_FORK and sys.platform.startswith("linux") and hasattr(os, "pidfd_open")
+#                             LIMIT_FACTOR (app/exercises/spawn.py): ... and at least this many
+#                             times the reference's own time
 JOBS = max(1, min(4, os.cpu_count() or 1))   # exercises graded at once by `check all`
 READ = 1 << 16
 
@@ -76,23 +76,6 @@ SETUP = ("the grader's sandbox could not be set up, so your code was not run (a 
 
 
 # ----- one exercise: its child (or children) and what came back --------------------------------
-@dataclass
-class Child:
-    pid: int
-    token: str
-    channel: int
-    output: int
-    pidfd: int | None
-    expected: int                # the check whose frame comes next (-1: the import; -2: ready)
-    first: int                   # the first check this child runs
-    deadline: float
-    reader: FrameReader = field(default_factory=FrameReader)
-    exited: bool = False
-    control: int | None = None   # the keeper's control pipe (closed: the keeper ends the child)
-    folder: str | None = None    # the child's own temporary folder
-    started: float = 0.0         # when the running check (or the import) started
-
-
 REFERENCE_TIMES: dict[tuple[str, str, object], float | None] = {}
 
 
@@ -113,7 +96,7 @@ def reference_time(exercise: Exercise, check: Check) -> float | None:
     return REFERENCE_TIMES[key]
 
 
-class Session:
+class Session(ChildLife):
     """Grading one exercise: starts children, reads their frames and output, keeps the reports."""
 
     def __init__(self, exercise: Exercise, path: str | None, timeout: float,
@@ -139,159 +122,6 @@ class Session:
         if ref is None:
             return self.timeout, None
         return max(self.timeout, LIMIT_FACTOR * ref), ref
-
-    # --- the child's life ------------------------------------------------------------------------
-    def start(self, sel: selectors.BaseSelector, first: int) -> None:
-        from app.exercises import NAMES
-        if SANDBOXED and self.exercise.name in NAMES:   # (a test's made-up exercise: forked)
-            self.start_sandboxed(sel, first)
-            return
-        self.sel = sel
-        token = secrets.token_hex(16)
-        chan_r, chan_w = os.pipe()
-        out_r, out_w = os.pipe()
-        sys.stdout.flush()
-        sys.stderr.flush()
-        pid = os.fork()
-        if pid == 0:                      # the child: never returns
-            child_main(self.exercise, self.path,
-                       [(k, self.checks[k]) for k in range(first, len(self.checks))],
-                       token, chan_w, out_w)
-        os.close(chan_w)
-        os.close(out_w)
-        try:
-            os.setpgid(pid, pid)          # the child does it too: whoever runs first
-        except OSError:
-            pass
-        for fd in (chan_r, out_r):
-            os.set_blocking(fd, False)
-        try:
-            pidfd = os.pidfd_open(pid)    # readable when the child ends (Linux 5.3+)
-        except (AttributeError, OSError):
-            pidfd = None
-        self.child = Child(pid, token, chan_r, out_r, pidfd, -1, first,
-                           time.monotonic() + self.timeout)
-        sel.register(chan_r, selectors.EVENT_READ, self.on_channel)
-        sel.register(out_r, selectors.EVENT_READ, self.on_output)
-        if pidfd is not None:
-            sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
-
-    def start_sandboxed(self, sel: selectors.BaseSelector, first: int) -> None:
-        """A child in the operating system's walls (app/exercises/sandbox.py): a keeper forked
-        from here, and in it a fresh Python that imports the harness and the student's file."""
-        self.sel = sel
-        p = sandbox.protections()
-        data = None
-        if self.path is not None and self.refused is None:
-            try:
-                data = read_source(self.path)
-            except NotASourceFile as e:
-                self.refused = str(e)
-        if self.refused is not None and first == 0:    # nothing to run: no child
-            self.import_failed(CheckReport("imports", False, "not read", "a Python file",
-                                           error=self.refused))
-            return
-        folder = sandbox.new_folder(p)
-        copy = None
-        if data is not None:
-            try:
-                copy = os.path.join(folder, os.path.basename(self.path))
-                with open(copy, "wb") as f:
-                    f.write(data)
-                if p.uid is not None:
-                    os.chown(copy, p.uid, p.uid)
-            except OSError as e:
-                self.refused, copy = f"the grader could not copy the file: {e}", None
-        token = secrets.token_hex(16)
-        n = max(1, len(self.checks) - first)
-        argument = json.dumps({"exercise": self.exercise.name, "path": self.path, "copy": copy,
-                               "refused": self.refused, "token": token, "first": first,
-                               "only": [c.name for c in self.checks],
-                               "seed": getattr(base, "SEED", None)})
-        box = sandbox.Box(sandbox.harness(self.exercise.name, stub=self.path is not None), folder,
-                          argument, int(STARTUP + self.timeout * LIMIT_FACTOR * (n + 1)), p)
-        chan_r, chan_w = os.pipe()
-        out_r, out_w = os.pipe()
-        ctl_r, ctl_w = os.pipe()
-        sys.stdout.flush()
-        sys.stderr.flush()
-        pid = os.fork()
-        if pid == 0:                      # the keeper: never returns
-            sandbox.keeper(box, chan_w, out_w, ctl_r)
-        for fd in (chan_w, out_w, ctl_r):
-            os.close(fd)
-        for fd in (chan_r, out_r):
-            os.set_blocking(fd, False)
-        pidfd = os.pidfd_open(pid)
-        now = time.monotonic()
-        self.child = Child(pid, token, chan_r, out_r, pidfd, READY, first, now + STARTUP,
-                           control=ctl_w, folder=folder, started=now)
-        sel.register(chan_r, selectors.EVENT_READ, self.on_channel)
-        sel.register(out_r, selectors.EVENT_READ, self.on_output)
-        sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
-
-    def fds(self) -> list[int]:
-        c = self.child
-        if c is None:
-            return []
-        return [fd for fd in (c.channel, c.output, c.pidfd) if fd is not None and fd >= 0]
-
-    def _unregister(self, fd: int) -> None:
-        try:
-            self.sel.unregister(fd)
-        except (KeyError, ValueError):
-            pass
-
-    def stop_child(self) -> None:
-        """Kill the child's whole process group, reap it, keep the output it left, close."""
-        c = self.child
-        if c is None:
-            return
-        if c.control is not None:
-            self.stop_keeper(c)
-            return
-        try:
-            os.killpg(c.pid, signal.SIGKILL)     # the student's background processes too
-        except OSError:
-            pass
-        if not c.exited:
-            try:
-                os.kill(c.pid, signal.SIGKILL)
-            except OSError:
-                pass
-            try:
-                os.waitpid(c.pid, 0)
-            except ChildProcessError:
-                pass
-        self.read_output(c.output, drain=True)
-        for fd in self.fds():
-            self._unregister(fd)
-            os.close(fd)
-        self.child = None
-
-    def stop_keeper(self, c: Child) -> None:
-        """Close the keeper's control pipe (it kills the child, and the kernel every process in
-        the child's PID namespace), reap the keeper, keep the output, remove the folder."""
-        os.close(c.control)
-        c.control = None
-        if not c.exited:
-            ready, _, _ = select.select([c.pidfd], [], [], 10.0)
-            if not ready:                        # a keeper that hangs: should never happen
-                try:
-                    signal.pidfd_send_signal(c.pidfd, signal.SIGKILL)
-                except OSError:
-                    pass
-            try:
-                os.waitpid(c.pid, 0)
-            except ChildProcessError:
-                pass
-        self.read_output(c.output, drain=True)
-        for fd in self.fds():
-            self._unregister(fd)
-            os.close(fd)
-        if c.folder:
-            sandbox.remove_folder(c.folder)
-        self.child = None
 
     # --- events --------------------------------------------------------------------------------
     def on_output(self, fd: int) -> None:
