@@ -317,6 +317,32 @@ def test_the_integrator_labs_labels_never_overlap_and_grow_with_large_text(probl
     assert heights[(1920, 1080), True][1] > heights[(1920, 1080), False][1]
 
 
+def test_the_integrator_lab_at_1024x768_with_large_text_gives_the_picture_the_room(tmp_path):
+    """At 1024x768 with F2 the springs were ~10 px tall, the phase portrait a 60 px flat ellipse
+    under a ~170 px blank band: the springs panel and the phase portrait are each at least
+    150 px tall, start right under the HUD (no band over 40 px), the springs' drawing and the
+    phase curve fill over half of their panels, and the table ends above the scrub bar."""
+    w = open_window(get_scene("integrators"), tmp_path, size=(1024, 768))
+    for _ in range(10):
+        w.update(1 / 20)
+    try:
+        for scale in (1.6, 1.0):
+            TEXT.scale = scale
+            w.scene_view.pane.forget()
+            w.render()
+            r, d = w.scene.drawing.rects, w.scene.drawing
+            hud = w.scene_view.layout.hud
+            assert r.systems.height >= 150 and r.phase.height >= 150, (scale, r)
+            assert r.systems.top - hud.bottom <= 40, (scale, hud, r.systems)
+            assert d.springs_box.height >= 0.5 * r.systems.height, (scale, d.springs_box)
+            assert d.phase_curve.height >= 0.55 * r.phase.height, (scale, d.phase_curve)
+            assert r.energy.height >= 80, (scale, r.energy)
+            bar = w.scene_view.timeline_bar()
+            assert bar is None or r.table.bottom <= bar.top, (scale, r.table, bar)
+    finally:
+        TEXT.scale = 1.0
+
+
 # ----- 5. the share of the window the scene gets ---------------------------------------------
 SHARE_SIZES = ((1024, 768), (1920, 1080))
 

@@ -37,6 +37,7 @@ TABLE_SIZE = 24
 SMALL_SIZE = 20
 SMALLEST_TEXT = 16       # the table shrinks no further (11 px glyphs): narrow panes
 GAP = 8                  # px between panels
+TOP_SHARE = 0.55         # the systems and the phase portrait: at least this share of the height
 # the systems' own coordinates (px of the problem, the lab's units): the panel shows this box
 SYSTEM_BOX = (0.0, 0.0, 480.0, 300.0)
 SPRING_DRAW_SCALE = 0.8  # the spring column is drawn at 80 % so the bobs fit the box
@@ -129,11 +130,17 @@ class LabDrawing:
             energy = pygame.Rect(bottom.left, bottom.top, bottom.width - need_w - GAP, chart_h)
             top_bottom = bottom.top - GAP
         else:                                             # energy chart above the table
+            # the systems and the phase portrait keep at least TOP_SHARE of the height: they
+            # are the picture (at 1024x768 with F2 they had 40 %: springs 10 px tall); the
+            # table's text shrinks (never below SMALLEST_TEXT) before the energy chart goes
+            # below its least height, and the chart gets what is left, up to 30 %
+            below = rect.height - int(TOP_SHARE * rect.height) - 2 * GAP
+            energy_least = max(int(70 * s), 80)
+            while need_h > below - energy_least and size > SMALLEST_TEXT:
+                size = max(SMALLEST_TEXT, size - 1)
+                need_w, need_h = self.table_need(rows, size)
             table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
-            # the systems and the phase portrait keep at least 40 % of the height: they are
-            # the picture; the chart gets what is left, between 90*s and 30 % of the height
-            left = rect.height - need_h - 2 * GAP - int(0.4 * rect.height)
-            energy_h = min(max(left, int(90 * s)), int(0.3 * rect.height))
+            energy_h = min(max(below - need_h, energy_least), int(0.3 * rect.height))
             energy = pygame.Rect(rect.left, table.top - GAP - energy_h, rect.width, energy_h)
             top_bottom = energy.top - GAP
         top = pygame.Rect(rect.left, rect.top, rect.width, max(top_bottom - rect.top, 1))
@@ -201,6 +208,7 @@ class LabDrawing:
         k = 1.0 if bounce else SPRING_DRAW_SCALE
         drawn = pygame.Rect(view.pt(SYSTEM_BOX[:2]), (round(view.len(SYSTEM_BOX[2])),
                                                        round(view.len(SYSTEM_BOX[3]))))
+        self.springs_box = drawn                        # (tests: how much room it has)
         names_row = pygame.Rect(box.left, drawn.bottom, box.width, names_h)
         column = int(view.len(80.0))
         names = list(SHORT.values()) + ["blew up", "t=88.88s"]
@@ -270,12 +278,15 @@ class LabDrawing:
         c = scene.curve
         qlo, qhi = c[:, 0].min(), c[:, 0].max()
         plo, phi = c[:, 1].min(), c[:, 1].max()
-        qpad, ppad = 0.35 * (qhi - qlo), 0.35 * (phi - plo)
+        qpad, ppad = 0.15 * (qhi - qlo), 0.15 * (phi - plo)   # the curve fills the panel
         plot = inner.inflate(-12, -8)
         to_px = _mapper(plot, qlo - qpad, qhi + qpad, plo - ppad, phi + ppad)
         old_clip = surface.get_clip()
         surface.set_clip(inner.clip(old_clip))
-        pygame.draw.lines(surface, GHOST, True, to_px(c[:, 0], c[:, 1]), px(1))
+        curve = to_px(c[:, 0], c[:, 1])
+        self.phase_curve = pygame.Rect(curve[0], (0, 0)).unionall(
+            [pygame.Rect(p, (1, 1)) for p in curve])     # the exact curve's extent (tests)
+        pygame.draw.lines(surface, GHOST, True, curve, px(1))
         for run in scene.runs:
             if len(run.phase) > 1:
                 pts = run.phase.values()
