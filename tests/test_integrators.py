@@ -342,3 +342,26 @@ def test_bounce_card_rk4_is_no_better_than_verlet_where_on_the_spring_it_is_far_
         errors[problem] = m["rk4_error"] / m["verlet_error"]
     assert errors["bounce"] > 0.5
     assert errors["spring"] < 1e-3
+
+
+def test_orbit_card_implicit_euler_is_drawn_in_then_flung_out_as_the_card_says():
+    """'Orbit at hertz 60' said the bodies spiral in, while the table showed E/E0 = -6.1: they
+    are drawn together (E/E0 rises above 2: more tightly bound) until the close pass at
+    t = 0.57 s breaks CG, and the step flings them apart, unbound (E/E0 < 0, far apart)."""
+    from scenes import get_scene
+    cls = get_scene("integrators")
+    card = cls.find_card("Orbit at hertz 60")
+    assert "0.57 s" in card.watch and "unbound" in card.watch
+    scene = cls(card.settings)
+    run = next(r for r in scene.runs if r.name == "implicit_euler")
+    h = 1.0 / scene.p["hertz"]
+    while scene.t < 0.5 - h / 2:
+        scene.step(h)
+    scene._refresh()
+    assert run.energy_ratio > 2.0 and run.cg_failure_t is None
+    while scene.t < 2.0 - h / 2:
+        scene.step(h)
+    scene._refresh()
+    assert run.cg_failure_t == pytest.approx(0.57, abs=0.01)
+    assert run.energy_ratio < 0.0 and run.blew_up_t is None
+    assert scene.problem.phase(run.ps.x, run.ps.v)[0] > 1000.0      # the panel is ~300 px
