@@ -63,10 +63,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import pygame
 
+from app.draw import hud
 from app.draw.integrator_lab import SHORT
 from app.draw.palette import INTEGRATOR_COLORS
 from app.draw.ring import Ring
-from app.draw.text import px
+from app.draw.text import font, px
 from app.draw.view import View
 from app.physics.integrators import INTEGRATORS, Integrator
 from app.physics.particles import ParticleSystem
@@ -321,6 +322,7 @@ class IntegratorsScene(Scene):
         x0, y0 = view.pt((0.0, 0.0))
         x1, y1 = view.pt(self.content_bounds()[2:])
         # the window's scrub bar (app/window/timeline_host.py) lies over the bottom of the
-        # scene's room: the table ends above it (it hid implicit Euler's row at 1024x768, F2)
-        bar = max(8, px(10)) + px(6) + 4
+        # scene's room, its "7 s kept" label over it: the table ends above both (they hid
+        # implicit Euler's row and note at 1024x768, F2)
+        bar = max(8, px(10)) + px(6) + 4 + font(hud.HUD_SIZE * 3 // 4).get_height()
         self.drawing.draw(surface, pygame.Rect(x0, y0, x1 - x0, max(y1 - y0 - bar, 1)), self)

@@ -143,6 +143,9 @@ class LabDrawing:
             energy_h = min(max(below - need_h, energy_least), int(0.3 * rect.height))
             energy = pygame.Rect(rect.left, table.top - GAP - energy_h, rect.width, energy_h)
             top_bottom = energy.top - GAP
+            if below - need_h < energy_least // 2:       # a tall HUD (a CG message at F2):
+                energy = pygame.Rect(rect.left, table.top, rect.width, 0)   # no chart (the
+                top_bottom = table.top - GAP             # table has E/E0): the picture first
         top = pygame.Rect(rect.left, rect.top, rect.width, max(top_bottom - rect.top, 1))
         if top.height > 1.3 * top.width / 2:             # tall and narrow: one above the other
             half = (top.height - GAP) // 2
@@ -161,7 +164,8 @@ class LabDrawing:
         r = self.rects = self.layout(rect, table_rows(scene))
         self.draw_systems(surface, r.systems, scene)
         self.draw_phase(surface, r.phase, scene)
-        self.draw_energy(surface, r.energy, scene)
+        if r.energy.height > 0:
+            self.draw_energy(surface, r.energy, scene)
         self.draw_table(surface, r.table, self.rows, r.table_size)
 
     def frame(self, surface, r: pygame.Rect, title: str, bottom: bool = False) -> pygame.Rect:
