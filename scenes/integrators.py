@@ -253,8 +253,11 @@ class IntegratorsScene(Scene):
         for run in self.runs:                   # a linear solve that stopped short, in words
             if run.cg_failure_t is not None:
                 n = run.ps.cg_failures
+                what, _, used = run.ps.last_cg_failure.words().partition("; ")
+                short = what.partition(", residual")[0] + (
+                    "; " + used.partition(" (residual")[0] if used else "")  # F4: residuals
                 lines.append(f"implicit Euler, t = {run.cg_failure_t:.2f} s ({n} step"
-                             f"{'s' if n > 1 else ''} so far): {run.ps.last_cg_failure.words()}")
+                             f"{'s' if n > 1 else ''} so far): {short}")
         return lines
 
     def bounce_words(self) -> list[str]:
@@ -271,8 +274,10 @@ class IntegratorsScene(Scene):
                     "averaged over 8 start times within a step); on the smooth problems "
                     "1, 1, 2, 2, 4, 1. The step that straddles a touch-down sees the wrong "
                     "force for part of h: an O(h) error, whatever the method"]
+        cg = [f"implicit Euler's linear solve: {r.ps.last_cg_failure.words()}"
+              for r in self.runs if r.cg_failure_t is not None]      # with its residuals
         return ["h = dt/substeps: the step each integrator takes; omega: the problem's "
-                "angular frequency (on the orbit its mean motion)"]
+                "angular frequency (on the orbit its mean motion)"] + cg
 
     def state_arrays(self):
         """The live runs' states only: a run that blew up is frozen and reported, so the scene
