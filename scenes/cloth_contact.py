@@ -28,7 +28,7 @@ import numpy as np
 
 from app.physics.cloth_contact import SELF_DISTANCE, SELF_METHODS, self_overlaps
 from app.physics.obstacles import (Box, Circle, HalfPlane, Obstacle, Segment, floor,
-                                   penetration_max)
+                                   obstacle_at, penetration_max)
 from app.scene import Effect, InputEvent, Param, Unit
 
 OBSTACLE_SETS = ("none", "ball", "box", "table", "floor", "bar")
@@ -36,7 +36,6 @@ STARTS = ("flat", "folded", "crumpled")
 MU = 0.5                       # Coulomb coefficient: holds a cloth on a slope up to atan(0.5) = 27 deg
 BOX_ANGLE = 20.0               # degrees
 BAR_THICKNESS = 2.0            # px: the thin bar that fast particles would tunnel through
-PICK_THIN = 5.0                # px: a press this close to a thin rod picks it
 
 CONTACT_PARAMS = (
     Param("obstacles", "none", str, choices=OBSTACLE_SETS,
@@ -166,13 +165,8 @@ class ClothContact:
 
     # ----- the mouse ----------------------------------------------------------------------------
     def obstacle_at(self, pos: tuple[float, float]) -> int | None:
-        """The obstacle a press at pos picks: one it is inside (a thin rod: within PICK_THIN)."""
-        point = np.array([pos], float)
-        for k, ob in enumerate(self.obstacles):
-            slack = PICK_THIN if isinstance(ob, Segment) else 0.0
-            if ob.signed_distance(point)[0][0] < slack:
-                return k
-        return None
+        """The obstacle a press at pos picks (app/physics/obstacles.py: obstacle_at)."""
+        return obstacle_at(self.obstacles, pos)
 
     def contact_event(self, event: InputEvent) -> bool:
         """Start, move or end an obstacle drag; True if the event was the obstacle's."""

@@ -23,7 +23,7 @@ import numpy as np
 
 from app.physics.mass_spring_contact import (CONTACT_METHODS, PenaltyContact, contact_limit,
                                              penalty_friction, project_and_filter, touching)
-from app.physics.obstacles import Segment, penetration_max
+from app.physics.obstacles import obstacle_at, penetration_max
 from app.physics.spring_forces import Timed
 from app.scene import Effect, InputEvent, Param, Try, Unit
 from scenes.cloth_contact import BOX_ANGLE, MU, OBSTACLE_SETS, obstacle_layout
@@ -31,7 +31,6 @@ from scenes.cloth_contact import BOX_ANGLE, MU, OBSTACLE_SETS, obstacle_layout
 # kg/s^2: the cards' cotton strip's lightest particle (a corner, 0.029 kg) has the contact limit
 # 2 sqrt(m/k_c) = 20 ms at this stiffness, above the default step of 16.7 ms
 PENALTY_K = 300.0
-PICK_THIN = 5.0         # px: a press this close to a thin rod picks it
 
 MS_CONTACT_PARAMS = (
     Param("obstacles", "none", str, choices=OBSTACLE_SETS,
@@ -134,13 +133,9 @@ class MassSpringContact:
                                                         self.start).count
 
     # ----- the mouse ----------------------------------------------------------------------------
-    def obstacle_at(self, pos) -> int | None:
-        point = np.array([pos], float)
-        for k, ob in enumerate(self.obstacles):
-            slack = PICK_THIN if isinstance(ob, Segment) else 0.0
-            if ob.signed_distance(point)[0][0] < slack:
-                return k
-        return None
+    def obstacle_at(self, pos: tuple[float, float]) -> int | None:
+        """The obstacle a press at pos picks (app/physics/obstacles.py: obstacle_at)."""
+        return obstacle_at(self.obstacles, pos)
 
     def contact_event(self, event: InputEvent) -> bool:
         """Start, move or end an obstacle drag; True if the event was the obstacle's."""

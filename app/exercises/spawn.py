@@ -179,11 +179,15 @@ class ChildLife:
                 os.waitpid(c.pid, 0)
             except ChildProcessError:
                 pass
+        self._close_pipes(c)
+        self.child = None
+
+    def _close_pipes(self, c: Child) -> None:
+        """Keep what the child printed, then close and forget its pipes."""
         self.read_output(c.output, drain=True)
         for fd in self.fds():
             self._unregister(fd)
             os.close(fd)
-        self.child = None
 
     def stop_keeper(self, c: Child) -> None:
         """Close the keeper's control pipe (it kills the child, and the kernel every process in
@@ -201,10 +205,7 @@ class ChildLife:
                 os.waitpid(c.pid, 0)
             except ChildProcessError:
                 pass
-        self.read_output(c.output, drain=True)
-        for fd in self.fds():
-            self._unregister(fd)
-            os.close(fd)
+        self._close_pipes(c)
         if c.folder:
             sandbox.remove_folder(c.folder)
         self.child = None

@@ -335,6 +335,20 @@ def nearest(obstacles, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     return best, normal, index
 
 
+PICK_THIN = 5.0          # px: a press this close to a thin rod picks it (the mouse's slack)
+
+
+def obstacle_at(obstacles, pos: tuple[float, float], thin: float = PICK_THIN) -> int | None:
+    """The index of the obstacle a mouse press at `pos` picks: the first it is inside (a thin
+    rod, a Segment: within `thin` px of it), or None. Both cloths' scenes drag obstacles by it."""
+    point = np.array([pos], float)
+    for k, ob in enumerate(obstacles):
+        slack = thin if isinstance(ob, Segment) else 0.0
+        if ob.signed_distance(point)[0][0] < slack:
+            return k
+    return None
+
+
 def penetration_max(obstacles, points: np.ndarray, mask: np.ndarray | None = None) -> float:
     """How deep the deepest point (among `mask`, if given) lies inside any obstacle, px; 0.0 if
     none is inside."""
@@ -449,6 +463,6 @@ def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
     return False
 
 
-__all__ = ["OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
+__all__ = ["PICK_THIN", "obstacle_at", "OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
            "nearest", "penetration_max", "Contacts", "project", "near_bounds", "coulomb_friction",
            "verlet_friction", "obstacles_may_touch"]
