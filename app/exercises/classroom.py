@@ -24,7 +24,9 @@ import inspect
 import io
 import json
 import os
+import signal
 import sys
+import threading
 import time
 from dataclasses import dataclass
 from typing import Any, Iterator
@@ -194,19 +196,42 @@ def _grade_many(jobs, timeout, parallel, seed) -> Iterator[Report]:
     return grade_many(jobs, timeout, None, parallel)
 
 
+class _CtrlC:
+    """Ctrl-C while a class is graded: raised as KeyboardInterrupt and also remembered. Python
+    drops a KeyboardInterrupt raised inside some of its own hooks (at a fork: "Exception ignored
+    in ..."); the remembered one is raised again at the next student's report."""
+
+    def __init__(self) -> None:
+        self.seen = False
+
+    def __call__(self, sig, frame) -> None:
+        self.seen = True
+        raise KeyboardInterrupt
+
+    def check(self) -> None:
+        if self.seen:
+            raise KeyboardInterrupt
+
+
 def grade_class(class_dir: str, jobs: int, out: str | None = None, gradescope: bool = False,
                 timeout: float = CHECK_TIMEOUT, seed: int | None = None) -> int:
     """Grade every student of `class_dir`; return 0 (done) or 130 (interrupted: Ctrl-C)."""
     out = out or os.path.join(class_dir, "gradebook.csv")
+    ctrl_c = _CtrlC()
+    main_thread = threading.current_thread() is threading.main_thread()
+    before = signal.signal(signal.SIGINT, ctrl_c) if main_thread else None
     try:
-        return _grade_class(class_dir, jobs, out, gradescope, timeout, seed)
+        return _grade_class(class_dir, jobs, out, gradescope, timeout, seed, ctrl_c)
     except KeyboardInterrupt:        # before the first student or after the last: still one line
         print(f"interrupted (in {out}); the same command goes on from there", file=sys.stderr)
         return EXIT_INTERRUPTED
+    finally:
+        if before is not None:
+            signal.signal(signal.SIGINT, before)
 
 
 def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout: float,
-                 seed: int | None) -> int:
+                 seed: int | None, ctrl_c: _CtrlC) -> int:
     from app.exercises import sandbox
     folder = reports_folder(out)
     os.makedirs(folder, exist_ok=True)
@@ -237,6 +262,7 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
             got = []
             for _ in EXERCISES:
                 got.append(next(reports))
+                ctrl_c.check()
                 progress.step()
             result = as_result(s, seed, fp, got)
             results[s] = result
