@@ -166,11 +166,26 @@ def fixed_seed(monkeypatch):
     monkeypatch.setattr(base, "new_seed", lambda: 1)
 
 
+@pytest.fixture(autouse=True)
+def forked_unless_sandboxed(request, monkeypatch):
+    """What a grader decides (its checks, random cases, hints) is tested in plain forked children
+    (a few ms each). The operating system's sandbox (app/exercises/sandbox.py) starts a fresh
+    Python and NumPy per child, ~0.3 s of CPU: through it every test here took 80 s of CPU in
+    all, 26 s without. The sandbox path is tested by the tests marked `sandboxed` (every
+    exercise's reference and starter, the file and line of an error, imports, endless loops, a
+    process that dies), by test_exercises_hostile.py and test_exercises_class.py, and in full
+    (every right and wrong answer, on several seeds) by the slow sweep."""
+    if request.node.get_closest_marker("sandboxed") is None:
+        import app.exercises.spawn as spawn
+        monkeypatch.setattr(spawn, "SANDBOXED", False)
+
+
 def checks_of(report) -> dict:
     return {c.name: c for c in report.checks}
 
 
 # ----- the three ways ----------------------------------------------------------------------------
+@pytest.mark.sandboxed
 @pytest.mark.parametrize("name", NAMES)
 def test_the_reference_passes_every_check(name):
     report = grade(get_exercise(name), None)
@@ -178,6 +193,7 @@ def test_the_reference_passes_every_check(name):
     assert len(report.checks) == len(get_exercise(name).checks) >= 3
 
 
+@pytest.mark.sandboxed
 @pytest.mark.parametrize("name", NAMES)
 def test_the_untouched_starter_fails_every_check_cleanly(name):
     path = str(starter_path(name))
@@ -274,6 +290,7 @@ def test_right_answers_pass_the_random_checks_on_every_seed(path):
             assert report.passed, report.text()
 
 
+@pytest.mark.sandboxed
 @pytest.mark.slow
 def test_no_wrong_answer_passes_and_no_right_answer_fails_on_several_seeds():
     """The measurement of issue 23 (python -m pytest -m slow): every file of
@@ -357,6 +374,7 @@ def test_every_exercise_has_two_wrong_answers_and_a_starter_that_names_its_funct
 
 
 # ----- robustness --------------------------------------------------------------------------------
+@pytest.mark.sandboxed
 def test_a_syntax_error_is_a_failed_check_with_the_file_and_line():
     path = str(ANSWERS / "verlet_syntax_error.py")
     report = grade(get_exercise("verlet"), path)
@@ -367,6 +385,7 @@ def test_a_syntax_error_is_a_failed_check_with_the_file_and_line():
     assert rest and all(not c.passed and "not run" in c.error for c in rest)
 
 
+@pytest.mark.sandboxed
 def test_a_missing_package_is_a_failed_check_with_the_file_and_line():
     path = str(ANSWERS / "verlet_missing_package.py")
     first = grade(get_exercise("verlet"), path).checks[0]
@@ -386,6 +405,7 @@ def test_an_exception_in_one_check_fails_that_check_and_the_others_still_run():
     assert all(c.passed for c in report.values())
 
 
+@pytest.mark.sandboxed
 def test_an_endless_loop_is_stopped_and_the_rest_of_that_exercise_skipped():
     report = grade(get_exercise("verlet"), str(HOSTILE / "verlet_endless.py"), timeout=0.2)
     first, rest = report.checks[0], report.checks[1:]
@@ -407,6 +427,7 @@ def test_returning_nothing_is_named_as_such():
     assert "no return statement?" in failed.error
 
 
+@pytest.mark.sandboxed
 def test_a_runaway_recursion_shows_its_frame_once_and_a_count():
     path = str(HOSTILE / "verlet_recursion.py")
     failed = grade(get_exercise("verlet"), path, only=("free fall",)).checks[-1]
@@ -459,6 +480,7 @@ def test_exercise_list_names_every_exercise_and_its_slide(capsys):
     assert out.count("slide:") == len(EXERCISES)
 
 
+@pytest.mark.sandboxed
 def test_check_exit_codes_and_json(capsys):
     assert main(["exercise", "check", "spring", "--reference", "--json"]) == 0
     report = json.loads(capsys.readouterr().out)
@@ -504,6 +526,7 @@ def test_copy_then_check_with_path(tmp_path, capsys):
         "drag loses energy", "terminal speed with drag", "random particles and steps"]
 
 
+@pytest.mark.sandboxed
 def test_check_all_prints_a_summary_table(tmp_path, capsys):
     folder = tmp_path / "w"
     folder.mkdir()
@@ -608,6 +631,7 @@ def test_rk4_scene_docstring_numbers_at_hertz_2():
     assert round(m["rk4_energy_ratio"], 2) == 0.92
 
 
+@pytest.mark.sandboxed
 def test_a_process_that_dies_is_a_failed_check_not_a_crash():
     # pymunk aborts the whole process on some values; os._exit stands in for it here
     report = grade(get_exercise("verlet"), str(HOSTILE / "verlet_exits.py"))
