@@ -228,7 +228,17 @@ class FallingBallsScene(PymunkScene):
         if index:          # add_balls indexes once at the end
             self._ids = np.append(self._ids, body.id)
             self._xy = np.vstack((self._xy, pos))
+            awake = self._awake
             self._tables_changed()
+            if awake is not None:
+                # Chipmunk appends a new body to its awake bodies: the next batch read lists the
+                # awake ones as before plus this one (if not, check_balls sees other ids and
+                # looks at every ball, as after any other change)
+                ids, rows, k, L_row, _ = awake
+                ids = np.append(ids, body.id)
+                rows = None if rows is None else np.append(rows, True)
+                self._awake = (ids, rows, np.append(k, len(self.balls) - 1), L_row,
+                               ids.tobytes())
         self.counts["spawned"] += 1
         return shape
 
