@@ -165,9 +165,7 @@ class FallingBallsScene(PymunkScene):
     def _tables_changed(self) -> None:
         self._sorted = None                       # (sorted ids, ball index of each), lazily
         self._last = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))
-        # (ids, ball rows (None: all), ball indices, the L's row (None: not awake), ids as
-        # bytes) of the awake bodies
-        self._awake = None
+        self._awake = None  # (ids, ball rows (None: all), ball indices, L's row, ids as bytes)
         self._heights = None        # (the L's pose, heights of the awake balls over its arm)
         self._frame_cache = []      # [(pose, frame)] of the L, the last two (_frame)
         self._L_id = self.L_body.id
@@ -230,11 +228,8 @@ class FallingBallsScene(PymunkScene):
             self._xy = np.vstack((self._xy, pos))
             awake = self._awake
             self._tables_changed()
-            if awake is not None:
-                # Chipmunk appends a new body to its awake bodies: the next batch read lists the
-                # awake ones as before plus this one (if not, check_balls sees other ids and
-                # looks at every ball, as after any other change)
-                ids, rows, k, L_row, _ = awake
+            if awake is not None:   # Chipmunk appends a new body to the awake ones (if not,
+                ids, rows, k, L_row, _ = awake  # check_balls sees other ids: every ball)
                 ids = np.append(ids, body.id)
                 rows = None if rows is None else np.append(rows, True)
                 self._awake = (ids, rows, np.append(k, len(self.balls) - 1), L_row,
@@ -314,8 +309,7 @@ class FallingBallsScene(PymunkScene):
             self._L_after = None
             self.spawn(h)
             return
-        # the L's pose before the step: where the last step left it, unless something changed
-        # the world since (every such change goes through wake())
+        # the L's pose before the step: where the last step left it, unless woken since
         L0 = self._L_known or self.L_pose()
         super().step(h)
         self._L_after = self._L_known = self.check_balls(L0)   # (pivoting_l's joints use it)
