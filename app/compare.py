@@ -99,7 +99,15 @@ def differing(scenes: Sequence[Scene]) -> list[str]:
     scene's order."""
     all_settings = [s.settings() for s in scenes]
     names = list(all_settings[0])
-    return [n for n in names if any(a.get(n) != all_settings[0].get(n) for a in all_settings)]
+    first = all_settings[0].items()
+    try:                  # the names in any pane's (name, value) pairs that pane A lacks, or
+        # the reverse: a few set operations (a compare frame asks three times per pane)
+        pairs = set().union(*(first ^ a.items() for a in all_settings[1:]))
+    except TypeError:     # (a value that cannot be hashed: compared one by one)
+        return [n for n in names
+                if any(a.get(n) != all_settings[0].get(n) for a in all_settings)]
+    differ = {n for n, _ in pairs}
+    return [n for n in names if n in differ]
 
 
 def labels(scenes: Sequence[Scene]) -> list[str]:

@@ -296,10 +296,11 @@ class Scene:
     def advance(self) -> None:
         """One fixed step of dt: `substeps` calls of step(dt / substeps), then after_step()."""
         n = self.p["substeps"]
-        h = self.dt / n
+        dt = self.dt
+        h = dt / n
         for _ in range(n):
             self.step(h)
-        self.time += self.dt
+        self.time += dt
         self.steps += 1
         self.after_step()
 

@@ -268,14 +268,22 @@ class DoublePendulumScene(PymunkScene):
         g, l1, l2 = self.gravity(), self.p["length1"], self.p["length2"]
         lowest = (PIVOT[1] + l1, PIVOT[1] + l1 + l2)
         e = 0.0
-        for body, y0 in zip(self.bobs, lowest):
-            (vx, vy), w = body.velocity, body.angular_velocity
+        # each bob's (x, y, angle, vx, vy, w) from the step's one batch read, its mass and
+        # moment as built (read once per bobs list: after a build or a restore)
+        for (_, y, _, vx, vy, w), (mass, moment), y0 in zip(
+                self.rows_of(self.bobs).tolist(), self.bob_masses(), lowest):
             # x * x, not x ** 2: a float ** overflows with an exception, * gives inf
             # a bob of infinite moment (it cannot spin) has no spin energy (inf * 0 is NaN)
-            spin = 0.5 * body.moment * w * w if math.isfinite(body.moment) else 0.0
-            e += (0.5 * body.mass * (vx * vx + vy * vy) + spin
-                  + body.mass * g * (y0 - body.position.y))
+            spin = 0.5 * moment * w * w if math.isfinite(moment) else 0.0
+            e += 0.5 * mass * (vx * vx + vy * vy) + spin + mass * g * (y0 - y)
         return e
+
+    def bob_masses(self) -> list[tuple[float, float]]:
+        """(mass, moment) of each bob, read from pymunk once per bobs list."""
+        cache = getattr(self, "_bob_masses", None)
+        if cache is None or cache[0] is not self.bobs:
+            cache = self._bob_masses = (self.bobs, [(b.mass, b.moment) for b in self.bobs])
+        return cache[1]
 
     def energy_drift(self) -> float:
         e0 = self.track["energy0"]

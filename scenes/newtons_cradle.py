@@ -201,6 +201,8 @@ class NewtonsCradleScene(PymunkScene):
         self.strings: list[pymunk.PinJoint] = [joint for joint, _ in strings]
         self.anchors = np.array([anchor for _, anchor in strings])
         self.rest = self.anchors + np.array([(0.0, s.distance) for s in self.strings])
+        self._rest_x = self.rest[:, 0].copy()
+        self._groups_cache = None
         self.arm(self.p["lifted"])
 
     def add_balls(self, space: pymunk.Space) -> list[pymunk.Body]:
@@ -246,8 +248,8 @@ class NewtonsCradleScene(PymunkScene):
 
     def xv(self) -> tuple[np.ndarray, np.ndarray]:
         """Positions (n, 2) and velocities (n, 2) of the balls, in order along the row."""
-        rows = np.array([(*b.position, *b.velocity) for b in self.bodies])
-        return rows[:, :2], rows[:, 2:]
+        rows = self.rows_of(self.bodies)        # (one batch read a step, shared)
+        return rows[:, :2], rows[:, 3:5]
 
     def displacements(self) -> np.ndarray:
         """Each ball's horizontal distance from its rest position, px (+ = to the right)."""
@@ -256,27 +258,39 @@ class NewtonsCradleScene(PymunkScene):
     def groups(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Index arrays of the lifted balls, the far balls expected out, and the middle balls
         (neither; empty when 2k >= N), for the current measurement."""
-        k, n = self.track["lifted"], len(self.bodies)
-        left, right = np.arange(k), np.arange(n - k, n)
-        middle = np.arange(k, max(k, n - k))
-        return (left, right, middle) if self.track["side"] > 0 else (right, left, middle)
+        return self._groups()[:3]
+
+    def _groups(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, slice, np.ndarray]:
+        """groups(), the middle balls as a slice, and a mask of the balls not lifted: made once
+        per measurement (observe reads them every step)."""
+        k, n, side = self.track["lifted"], len(self.bodies), self.track["side"]
+        cache = self._groups_cache
+        if cache is None or cache[0] != (k, n, side):
+            left, right = np.arange(k), np.arange(n - k, n)
+            middle = np.arange(k, max(k, n - k))
+            lifted, far = (left, right) if side > 0 else (right, left)
+            others = np.ones(n, dtype=bool)
+            others[lifted] = False
+            cache = self._groups_cache = ((k, n, side), (lifted, far, middle,
+                                                         slice(k, max(k, n - k)), others))
+        return cache[1]
 
     def observe(self) -> None:
         """Per step bookkeeping for the metrics: the first impact, the release speed, who swings
         out in the half-swing after it, and the middle balls' drift."""
         t = self.track
-        lifted, _, middle = self.groups()
-        xy, v = self.xv()
-        speed = np.hypot(v[:, 0], v[:, 1])
-        onwards = t["side"] * (xy[:, 0] - self.rest[:, 0])   # displacement in the swing's direction
+        lifted, _, middle, middle_slice, not_lifted = self._groups()
+        rows = self.rows_of(self.bodies)         # (x, y, angle, vx, vy, w) of each ball
+        speed = np.hypot(rows[:, 3], rows[:, 4])
+        onwards = t["side"] * (rows[:, 0] - self._rest_x)   # displacement in the swing's direction
         if len(middle):
             t["middle_max_drift"] = max(t["middle_max_drift"],
-                                        float(np.abs(onwards[middle]).max()))
+                                        float(np.abs(onwards[middle_slice]).max()))
         if t["impact_time"] is None and len(lifted):
             # The impact: the lifted group is at the bottom (its leading ball within half a
             # radius of rest) and a ball outside it has picked up speed.
             lead = lifted[-1] if t["side"] > 0 else lifted[0]
-            others = np.delete(speed, lifted)
+            others = speed[not_lifted]
             if (abs(onwards[lead]) < 0.5 * RADIUS
                     and others.max() > max(0.25 * t["last_speed"], 1.0)):
                 t["impact_time"] = self.time

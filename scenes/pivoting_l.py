@@ -159,11 +159,52 @@ class PivotingLScene(FallingBallsScene):
 
     def step(self, h: float) -> None:
         super().step(h)
-        d = self.slide_distance()
+        pose = self._L_after          # the L's (x, y, angle) after this substep
+        if pose is None:              # the world rests: nothing moved, nothing new to record
+            return
+        d, pin = self.joint_distances(pose)
         r = self.record
-        r["slide_seen_min"] = min(r["slide_seen_min"], d)
-        r["slide_seen_max"] = max(r["slide_seen_max"], d)
-        r["pin_error"] = max(r["pin_error"], self.pin_error())
+        if d < r["slide_seen_min"]:
+            r["slide_seen_min"] = d
+        if d > r["slide_seen_max"]:
+            r["slide_seen_max"] = d
+        if pin > r["pin_error"]:
+            r["pin_error"] = pin
+
+    def joint_distances(self, pose: tuple[float, float, float]) -> tuple[float, float]:
+        """(slide_distance(), pin_error()) with the L at pose, computed without a call into
+        pymunk: each joint joins a point fixed on the L to a fixed point in the world (a static
+        body's anchor), so its length is |p + R(angle) (anchor - cog) - fixed point|, what
+        Body.local_to_world gives (a test compares the two). A joint built otherwise (a student's
+        add_L may) is read from pymunk."""
+        x, y, a = pose
+        c, s = math.cos(a), math.sin(a)
+        out = []
+        for joint, points in zip((self.slide, self.pin), self._joint_points):
+            if points is None:
+                out.append(self.anchor_distance(joint))
+                continue
+            vx, vy, fx, fy = points
+            dx, dy = c * vx - s * vy + x - fx, s * vx + c * vy + y - fy
+            out.append(math.sqrt(dx * dx + dy * dy))
+        return out[0], out[1]
+
+    def restored(self) -> None:
+        super().restored()
+        self._joint_points = tuple(self.fixed_points(j) for j in (self.slide, self.pin))
+
+    def fixed_points(self, joint: pymunk.Constraint) -> tuple[float, float, float, float] | None:
+        """(vx, vy, fx, fy): the joint's anchor on the L less the L's centre of gravity (v) and
+        its other anchor in the world, on a static body (f); None if it is not such a joint."""
+        L = self.L_body
+        if joint.a is L and joint.b.body_type == pymunk.Body.STATIC:
+            on_L, other = joint.anchor_a, joint.b.local_to_world(joint.anchor_b)
+        elif joint.b is L and joint.a.body_type == pymunk.Body.STATIC:
+            on_L, other = joint.anchor_b, joint.a.local_to_world(joint.anchor_a)
+        else:
+            return None
+        cog = L.center_of_gravity
+        return on_L.x - cog.x, on_L.y - cog.y, other.x, other.y
 
     # ----- drawing and reporting --------------------------------------------------------------
     def draw_L(self, surface: pygame.Surface, view) -> None:

@@ -184,3 +184,18 @@ def test_the_verdict_waits_for_the_swing_and_for_the_hand():
     scene.handle_event(InputEvent("mouse_down", tuple(ball.position), 1))
     assert scene.mouse_joint is not None
     assert scene.hud_lines() == ["held by the mouse: no verdict while your hand moves the balls"]
+
+
+def test_rows_of_reads_what_each_body_says_in_the_lists_order():
+    # The shared batch read (PymunkScene.rows_of) against pymunk's per-body properties, in the
+    # order asked for, a body outside the space included (read from the body itself).
+    import pymunk
+    scene = NewtonsCradleScene({"lifted": 2})
+    for _ in range(20):
+        scene.advance()
+    loose = pymunk.Body(1, 1)
+    loose.position, loose.velocity, loose.angular_velocity = (3, 4), (5, 6), 7
+    for bodies in (scene.bodies[::-1], [loose] + scene.bodies[:2]):
+        rows = scene.rows_of(bodies)
+        want = [(*b.position, b.angle, *b.velocity, b.angular_velocity) for b in bodies]
+        assert np.array_equal(rows, np.array(want))

@@ -132,3 +132,18 @@ def test_the_hud_says_why_the_slide_reads_past_its_max():
     assert scene.hud_lines()[0].endswith(f"(range 0..{top:g}, 0.2 px past: a soft joint)")
     scene.slide_distance = lambda: top - 1.0
     assert scene.hud_lines()[0].endswith(f"(range 0..{top:g})")
+
+
+@pytest.mark.parametrize("pivot", ["pin", "pivot"])
+def test_the_joint_lengths_each_substep_records_are_pymunks_own(pivot):
+    # step() computes both joints' anchor distances from the L's pose (no call into pymunk);
+    # they must be what Body.local_to_world gives, with the L tipped and moving, and the
+    # record must hold the extremes of them.
+    scene = run(3.0, pivot=pivot)
+    for _ in range(30):
+        scene.advance()
+        slide, pin = scene.joint_distances(scene.L_pose())
+        assert slide == pytest.approx(scene.slide_distance(), rel=1e-12, abs=1e-9)
+        assert pin == pytest.approx(scene.pin_error(), rel=1e-12, abs=1e-9)
+        assert scene.record["slide_seen_max"] >= slide and scene.record["pin_error"] >= pin
+    assert abs(scene.metrics()["angle_deg"]) > 1          # (it did tip: the angle matters)

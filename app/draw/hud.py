@@ -15,7 +15,7 @@ from functools import lru_cache
 
 import pygame
 
-from app.draw.text import TEXT, font
+from app.draw.text import TEXT, font, rendered, text_width
 from app.units import fmt_number  # noqa: F401  (the HUD's number format; importers use it)
 
 HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 px lines
@@ -86,13 +86,13 @@ def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
             continue
         line = indent + words[0]
         for w in words[1:] + [None]:
-            while f.size(line)[0] > width and len(line) > 1:
+            while text_width(f, line) > width and len(line) > 1:
                 head, line = _cut(line, f, width)
                 lines.append(head)
             if w is None:
                 break
             candidate = line + " " + w
-            if f.size(candidate)[0] <= width:
+            if text_width(f, candidate) <= width:
                 line = candidate
             else:
                 lines.append(line)
@@ -105,7 +105,7 @@ def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") 
     """Join items with `sep` into lines no wider than `width`, never splitting an item."""
     lines: list[str] = []
     for item in items:
-        if lines and f.size(lines[-1] + sep + item)[0] <= width:
+        if lines and text_width(f, lines[-1] + sep + item) <= width:
             lines[-1] += sep + item
         else:
             lines.append(item)
@@ -132,7 +132,7 @@ def _as_line(item) -> Line:
 
 def _key_width(f: pygame.font.Font, key: tuple) -> int:
     color, text = key
-    return (_swatch_w(f) if color is not None else 0) + f.size(text + "  ")[0]
+    return (_swatch_w(f) if color is not None else 0) + text_width(f, text + "  ")
 
 
 def _line_width(f: pygame.font.Font, it: Line) -> int:
@@ -140,8 +140,8 @@ def _line_width(f: pygame.font.Font, it: Line) -> int:
         return it.image.get_width()
     if it.keys:
         return sum(_key_width(f, k) for k in it.keys)
-    hint = f.size("   " + it.hint)[0] if it.hint else 0
-    return f.size(it.text)[0] + (_swatch_w(f) if it.swatch else 0) + hint
+    hint = text_width(f, "   " + it.hint) if it.hint else 0
+    return text_width(f, it.text) + (_swatch_w(f) if it.swatch else 0) + hint
 
 
 def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int) -> list[Line]:
@@ -171,7 +171,7 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
         room = max_width - 2 * pad - (_swatch_w(f) if item.swatch else 0)
         rows = wrap(item.text, f, room)
         hint = item.hint
-        if hint and f.size(rows[-1] + "   " + hint)[0] > room:
+        if hint and text_width(f, rows[-1] + "   " + hint) > room:
             hint = ""                       # no row of its own for a hint (the help has it)
         for i, t in enumerate(rows):
             wrapped.append(Line(t, item.color, item.swatch if i == 0 else None,
@@ -182,16 +182,21 @@ def _box_lines(lines: list, f: pygame.font.Font, max_width: int | None, pad: int
 def _key_rows(keys: tuple, f: pygame.font.Font, width: int) -> list[list]:
     """Key items in rows no wider than `width`: as few rows as fit, then as even as can be
     (never '>20%' alone on a second row under eight items)."""
+    widths = [_key_width(f, k) for k in keys]
+
     def pack(limit: float) -> list[list]:
         rows: list[list] = [[]]
-        for k in keys:
-            if rows[-1] and sum(_key_width(f, x) for x in rows[-1] + [k]) > limit:
+        used = 0                          # the width of the row so far
+        for k, w in zip(keys, widths):
+            if rows[-1] and used + w > limit:
                 rows.append([])
+                used = 0
             rows[-1].append(k)
+            used += w
         return rows
     rows = pack(width)
     if len(rows) > 1:
-        total = sum(_key_width(f, k) for k in keys)
+        total = sum(widths)
         limit = total / len(rows)
         while limit < width:              # the narrowest limit that needs no more rows
             even = pack(limit)
@@ -248,17 +253,17 @@ def text_box(surface: pygame.Surface, lines: list, pos: tuple[int, int], size: i
                 side = f.get_height() * 3 // 4
                 pygame.draw.rect(surface, color, (x, y + (f.get_height() - side) // 2, side, side))
                 x += _swatch_w(f)
-            surface.blit(f.render(text, True, it.color), (x, y))
-            x += f.size(text + "  ")[0]
+            surface.blit(rendered(f, text, it.color), (x, y))
+            x += text_width(f, text + "  ")
         if it.swatch:
             side = f.get_height() * 3 // 4
             pygame.draw.rect(surface, it.swatch, (x, y + (f.get_height() - side) // 2, side, side))
             x += _swatch_w(f)
-        surface.blit(f.render(it.text, True, (0, 0, 0)), (x + 1, y + 1))
-        surface.blit(f.render(it.text, True, it.color), (x, y))
+        surface.blit(rendered(f, it.text, (0, 0, 0)), (x + 1, y + 1))
+        surface.blit(rendered(f, it.text, it.color), (x, y))
         if it.hint:
-            x += f.size(it.text + "   ")[0] if it.text else 0
-            surface.blit(f.render(it.hint, True, DIM_COLOR), (x, y))
+            x += text_width(f, it.text + "   ") if it.text else 0
+            surface.blit(rendered(f, it.hint, DIM_COLOR), (x, y))
         y += f.get_linesize()
     return pygame.Rect(pos, (w, h))
 
@@ -271,7 +276,7 @@ def banner(surface: pygame.Surface, text: str, area: pygame.Rect, color=WARN_COL
     width = min(area.width - 40, int(900 * max(1.0, f.get_linesize() / 20)))
     lines = wrap(text, f, width - 24)
     h = len(lines) * f.get_linesize() + 24
-    w = max(f.size(t)[0] for t in lines) + 24
+    w = max(text_width(f, t) for t in lines) + 24
     top = (area.bottom if bottom is None else bottom) - h - 20 if y is None else y
     rect = pygame.Rect(area.centerx - w // 2, top, w, h)
     box = pygame.Surface(rect.size, pygame.SRCALPHA)
@@ -280,7 +285,7 @@ def banner(surface: pygame.Surface, text: str, area: pygame.Rect, color=WARN_COL
     pygame.draw.rect(surface, color, rect, 2)
     yy = rect.top + 12
     for t in lines:
-        surface.blit(f.render(t, True, color), (rect.left + 12, yy))
+        surface.blit(rendered(f, t, color), (rect.left + 12, yy))
         yy += f.get_linesize()
     return rect
 
