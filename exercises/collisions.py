@@ -28,11 +28,12 @@ sliding. Particles that did not touch (depth 0) are not touched by friction eith
 
 Write `push_out` and `friction`. x, x_prev: float arrays (n, 2), one row (x, y) per particle;
 w: inverse masses (n,), 0 = pinned; center: (cx, cy) as an array (2,); radius > 0; depth:
-what push_out returned (n,); mu >= 0. Both CHANGE x IN PLACE (x[...] = ..., x += ...: the
-cloth's own array, which the caller goes on using); push_out returns depth, friction nothing.
+what push_out returned (n,); mu >= 0 (any: the scene's slider stops at 2). Both CHANGE x IN
+PLACE (x[...] = ..., x += ...: the cloth's own array, which the caller goes on using); push_out
+returns depth, friction nothing.
 
 Check it:   python -m app exercise check collisions
-Watch it:   python -m app --scene exercise:collisions   (your cloth left, the lab's right; drag
+Watch it:   python -m app --scene exercise:collisions   (your rope left, the lab's right; drag
             a ball with the mouse)
 
 What the grader measures: particles inside end on the surface and report how far they moved;
@@ -41,7 +42,7 @@ centre leaves through the top; friction stops a slow slide (static), slows a fas
 mu * depth (kinetic) without reversing it or touching the normal travel, and leaves particles
 that did not touch alone; x_prev, w, center and depth are not changed. Then random circles and
 particles (seeded: the seed is printed, --seed N repeats it): any centre and radius, 1 to 60
-particles inside, on, outside and at the centre, pinned ones, any travel and mu from 0 to 2,
+particles inside, on, outside and at the centre, pinned ones, any travel and any mu,
 compared with the lab's answer (app/physics/circle_contact.py) within float64 rounding. The
 depth you return is checked against how far the grader sees each particle move.
 

@@ -23,11 +23,12 @@ r = 100:
   inputs kept        w, center (push_out) and x_prev, center, depth (friction) unchanged
 The depth push_out reports is checked against how far the grader sees each particle move: the
 grader believes no number the student's code states about its own work.
-  random circles and particles  RANDOM_CASES circles (seeded) anywhere, radius 1 to 1000 px, 1 to
+  random circles and particles  RANDOM_CASES circles (seeded) anywhere, radius 0.1 to 1000 px, 1 to
                      60 particles inside, on, outside, at the centre, some pinned: x and depth
                      within the lab's float64 rounding
   random travels and mu  the same circles' particles pushed by the lab, any travel (0.01 to 1000
-                     px a step), mu from 0 to 2: x within the lab's rounding
+                     px a step), mu from 0 to 2 (and one case 2 to 20): x within the lab's
+                     rounding
 """
 
 from __future__ import annotations
@@ -55,7 +56,7 @@ def reference() -> SimpleNamespace:
     return SimpleNamespace(push_out=push_out, friction=friction)
 
 
-# ----- calling the student's functions (in the child) ----------------------------------------------
+# ----- calling the student's functions (in the child) -------------------------------------------
 def call_push(m: Student, x, w, c, r) -> dict:
     """push_out on copies; what it left in x and w, center and the depth it returned."""
     x, w, c = np.array(x, dtype=float), np.array(w, dtype=float), np.array(c, dtype=float)
@@ -204,12 +205,12 @@ def judge_inputs(raw: Raw) -> Result:
                   "write into them: the cloth's x_prev and the circle are the caller's.")
 
 
-# ----- random circles, particles, travels and mu (a new seed each run) ----------------------------
+# ----- random circles, particles, travels and mu (a new seed each run) ---------------------------
 RANDOM_CASES = 6
 
 
 def random_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, float]]:
-    """(x, w, center, radius): a centre anywhere in +-2000 px, a radius of 1 to 1000 px, 1 to 60
+    """(x, w, center, radius): a centre anywhere in +-2000 px, a radius of 0.1 to 1000 px, 1 to 60
     particles: inside (any depth), on the surface (up to rounding), outside (to 3 r away),
     exactly at the centre; about a fifth pinned (w = 0), the others any w > 0. The first case
     has one particle, the second every kind at once."""
@@ -218,7 +219,7 @@ def random_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, float]]:
     for k in range(RANDOM_CASES):
         n = 1 if k == 0 else int(rng.integers(5 if k == 1 else 2, 61))
         c = rng.uniform(-2000.0, 2000.0, 2)
-        r = float(10 ** rng.uniform(0.0, 3.0))
+        r = float(10 ** rng.uniform(-1.0, 3.0))
         kind = rng.integers(0, 4, n) if k != 1 else np.arange(n) % 4
         angle = rng.uniform(0.0, 2 * math.pi, n)
         rho = np.select([kind == 0, kind == 1, kind == 2],
@@ -286,7 +287,8 @@ def friction_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarra
         x = np.where(touching[:, None], surface, x)
         depth = np.where(touching, r * rng.uniform(1e-6, 1.0, n), 0.0)
         v = rng.normal(0.0, 1.0, (n, 2)) * 10 ** rng.uniform(-2.0, 3.0, (n, 1))
-        mu = {0: 0.0, 1: 2.0}.get(k, float(rng.uniform(0.0, 2.0)))
+        mu = {0: 0.0, 1: 2.0, 2: float(10 ** rng.uniform(0.3, 1.3))}.get(
+            k, float(rng.uniform(0.0, 2.0)))
         cases.append((x, x - v, c, depth, mu))
     return cases
 

@@ -1,8 +1,9 @@
 """The `collisions` exercise's scene: `python -m app --scene exercise:collisions`.
 
-A small Verlet cloth dropped onto a ball, twice: on the left the student's push_out and friction
-keep it out of the ball, on the right the lab's (app/physics/circle_contact.py). Both cloths use
-the lab's Verlet step and rods (app/physics/jakobsen.py); the mouse drags both balls at once.
+A Verlet rope (a cloth seen edge-on: 25 particles joined by rods) dropped onto a ball, twice: on
+the left the student's push_out and friction keep it out of the ball, on the right the lab's
+(app/physics/circle_contact.py). Both ropes use the lab's Verlet step and rods
+(app/physics/jakobsen.py); the mouse drags both balls at once.
 """
 
 from __future__ import annotations
@@ -23,14 +24,15 @@ G = np.array([0.0, 900.0])
 
 
 class _Drop:
-    """A cloth of cols x rows particles falling onto a ball, stepped by the lab's Verlet and
-    rods, kept out of the ball by impl.push_out and impl.friction."""
+    """A rope (or a net: rows > 1) of cols x rows particles falling onto a ball, stepped by the
+    lab's Verlet and rods, kept out of the ball by impl.push_out and impl.friction, then out of
+    the floor by the lab's projection."""
 
     radius = 3.0
     ring = False                # the lab's cloth falls beside yours
 
-    def __init__(self, impl, left: float, offset: float, mu: float, iterations: int,
-                 cols: int = 17, rows: int = 6, spacing: float = 16.0):
+    def __init__(self, impl, shift: float, offset: float, mu: float, iterations: int,
+                 cols: int = 25, rows: int = 1, spacing: float = 12.0, left: float = 70.0):
         self.push_out, self.friction = impl.push_out, impl.friction
         self.mu, self.iterations = mu, iterations
         r, c = np.mgrid[0:rows, 0:cols]
@@ -47,6 +49,7 @@ class _Drop:
         self.ball = 70.0
         self.depth = np.zeros(len(self.x))
         self.fixed = np.empty((0, 2))
+        self.shift = np.array([shift, 0.0])     # where it is drawn: both fall in one place
 
     def step(self, h: float) -> None:
         from app.physics.jakobsen import satisfy_rods, verlet_step
@@ -68,17 +71,18 @@ class _Drop:
         return float(max(0.0, inside.max())) if inside.size else 0.0
 
     def points(self) -> np.ndarray:
-        return self.x
+        return self.x + self.shift
 
 
 class CollisionsExercise(StudentCode, ParticleExercise):
-    """Exercise `collisions`: a Verlet cloth dropped onto a ball. Left: YOUR push_out and
-    friction keep it out of the ball (blue); right: the lab's (orange). Both use the lab's
-    Verlet step and rods. With mu 0 the cloth slides off the ball; with friction it stays
-    draped over it. Drag a ball with the mouse: both move.
+    """Exercise `collisions`: a Verlet rope (a cloth seen edge-on) dropped onto a ball, a little
+    off its middle. Left: YOUR push_out and friction keep it out of the ball (blue); right: the
+    lab's (orange). Both use the lab's Verlet step and rods. At the default mu 0.5 the rope stays
+    draped over the ball; at mu 0.3 or less it slides off its longer side to the floor. Drag a
+    ball with the mouse: both move.
 
     HUD: contacts (particles your push_out moved this step) and the deepest particle left inside
-    the ball after the step, yours and the lab's, and the largest distance between your cloth and
+    the ball after the step, yours and the lab's, and the largest distance between your rope and
     the lab's.
     """
 
@@ -87,21 +91,17 @@ class CollisionsExercise(StudentCode, ParticleExercise):
     params = (Param("mu", 0.5, float, 0.0, 2.0, help="Coulomb friction coefficient: static "
                     "where |v_t| <= mu * depth", rebuild=False),
               Param("offset", 30.0, float, -80.0, 80.0, help="px the ball sits right of the "
-                    "cloth's middle"),
+                    "rope's middle"),
               Param("iterations", 10, int, 1, 50, help="rod relaxation sweeps per step",
                     rebuild=False))
     live = ("mu", "iterations")
     dragging: tuple[float, float] | None = None     # the grip: ball centre - mouse
 
     def make(self, impl):
+        self.dragging = None
         mine = impl is self.impl
-        return _Drop(impl, 60.0 if mine else 60.0 + SHIFT, self.p["offset"], self.p["mu"],
+        return _Drop(impl, 0.0 if mine else SHIFT, self.p["offset"], self.p["mu"],
                      self.p["iterations"])
-
-    def apart(self) -> float:
-        """Largest distance between a particle of yours and the lab's (shifted onto yours)."""
-        d = np.abs(np.asarray(self.mine.x, dtype=float) + (SHIFT, 0.0) - self.lab.x)
-        return float(d.max()) if np.isfinite(d).all() else float("nan")
 
     def measure(self) -> dict[str, float]:
         return {"apart_px": self.apart(), "contacts": self.mine.contacts(),
@@ -114,19 +114,22 @@ class CollisionsExercise(StudentCode, ParticleExercise):
                 f"{m['penetration_max_lab']:.3g} px\nyours vs the lab's: {m['apart_px']:.3g} px "
                 "apart; drag a ball with the mouse")
 
+    def rest_bounds(self, seconds: float = 3.0) -> tuple[float, float, float, float]:
+        """Both cloths, both balls wherever the offset puts them, and the floor."""
+        return (10.0, 60.0, 2 * 60.0 + 256.0 + SHIFT - 20.0, FLOOR + 30.0 - 60.0)
+
     def handle_event(self, event: InputEvent) -> None:
         if self.error:
             return
         if event.kind == "mouse_down" and event.button == 1:
-            for sim, shift in ((self.mine, 0.0), (self.lab, SHIFT)):
-                if math.dist(event.pos, sim.center) < sim.ball:
-                    self.dragging = (sim.center[0] - shift - event.pos[0],
-                                     sim.center[1] - event.pos[1])
-                    self.shift = shift
-                    self.target = sim.center - (shift, 0.0)
+            for sim in (self.mine, self.lab):       # either ball picks both (they share a place)
+                pos = np.asarray(event.pos, float) - sim.shift
+                if math.dist(pos, sim.center) < sim.ball:
+                    self.dragging = tuple(sim.center - pos)
+                    self.grip_shift = sim.shift
+                    self.target = sim.center.copy()
         elif self.dragging is not None and event.kind == "mouse_move":
-            self.target = np.array([event.pos[0] - self.shift + self.dragging[0],
-                                    event.pos[1] + self.dragging[1]])
+            self.target = np.asarray(event.pos, float) - self.grip_shift + self.dragging
         elif event.kind == "mouse_up" and event.button == 1:
             self.dragging = None
 
@@ -144,9 +147,10 @@ class CollisionsExercise(StudentCode, ParticleExercise):
     def draw(self, surface, view) -> None:
         sims = (self.lab,) if self.is_demo else (self.mine, self.lab)
         for sim in sims:
-            pygame.draw.circle(surface, FIXED, view.pt(tuple(sim.center)),
+            pygame.draw.circle(surface, FIXED, view.pt(tuple(sim.center + sim.shift)),
                                max(2.0, view.len(sim.ball)), 2)
-        left, right = view.pt((0.0, FLOOR)), view.pt((60.0 + 2 * SHIFT, FLOOR))
+        x0, _, w, _ = self.rest_bounds()
+        left, right = view.pt((x0, FLOOR)), view.pt((x0 + w, FLOOR))
         pygame.draw.line(surface, LINK, left, right, 1)
         super().draw(surface, view)
 
