@@ -72,7 +72,10 @@ def call_friction(m: Student, x, x_prev, c, depth, mu) -> dict:
     out = m.friction(x, x_prev, c, depth, float(mu))
     returned = None
     if isinstance(out, np.ndarray) and out.shape == x.shape:
-        returned = np.asarray(out, dtype=float)
+        try:
+            returned = np.array(out, dtype=float)
+        except (TypeError, ValueError):     # an array of something else: no hint from it
+            returned = None
     return {"x": x, "x_prev": x_prev, "center": c, "depth": depth, "returned": returned}
 
 
@@ -88,7 +91,7 @@ PINNED = (np.array([[450.0, 300.0], [400.0, 300.0], [370.0, 260.0]]), np.array([
           np.array([[450.0, 300.0], [400.0, 300.0], [340.0, 220.0]]), np.array([0.0, 0.0, 50.0]))
 
 PUSH_KINDS = ("only first", "new array", "half", "twice", "inward", "to depth", "outside too",
-              "pins ignored", "centre NaN", "centre kept", "centre down")
+              "pins ignored", "w is 1", "centre NaN", "centre kept", "centre down")
 
 
 def push_measure(case):

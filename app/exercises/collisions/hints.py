@@ -33,7 +33,7 @@ def push_with(kind: str, x, w, c, r):
     d, n = _normals(x, c, top)
     inside = d < r_used
     if kind != "pins ignored":
-        inside &= np.asarray(w) > 0
+        inside &= (np.asarray(w) == 1) if kind == "w is 1" else (np.asarray(w) > 0)
     if kind == "only first":                  # the first particle that is inside and free
         inside[np.flatnonzero(inside)[1:]] = False
     if kind == "outside too":
@@ -61,6 +61,8 @@ PUSH_HINTS = {
                  "changing the caller's x in place (x[inside] += ..., x[...] = ...).",
     "outside too": "particles OUTSIDE the circle were pulled onto its surface: move only those "
                    "with d < r (inside).",
+    "w is 1": "a particle with w = 0.5 was not moved: w is the inverse mass, and every w > 0 is "
+              "free (only w = 0 is pinned): inside = (d < r) & (w > 0).",
     "pins ignored": "a pinned particle (w = 0) was moved: leave every particle with w = 0 where "
                     "it is (inside = (d < r) & (w > 0)).",
     "centre NaN": "the particle at the centre became NaN: there d = |x - c| = 0 and (x - c) / d "

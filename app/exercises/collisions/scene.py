@@ -100,7 +100,8 @@ class CollisionsExercise(StudentCode, ParticleExercise):
     def make(self, impl):
         self.dragging = None
         mine = impl is self.impl
-        return _Drop(impl, 0.0 if mine else SHIFT, self.p["offset"], self.p["mu"],
+        shift = 0.0 if mine or self.is_demo else SHIFT     # the demo: the lab's copy alone
+        return _Drop(impl, shift, self.p["offset"], self.p["mu"],
                      self.p["iterations"])
 
     def measure(self) -> dict[str, float]:
@@ -115,8 +116,10 @@ class CollisionsExercise(StudentCode, ParticleExercise):
                 "apart; drag a ball with the mouse")
 
     def rest_bounds(self, seconds: float = 3.0) -> tuple[float, float, float, float]:
-        """Both cloths, both balls wherever the offset puts them, and the floor."""
-        return (10.0, 60.0, 2 * 60.0 + 256.0 + SHIFT - 20.0, FLOOR + 30.0 - 60.0)
+        """Both ropes, both balls wherever the offset puts them, and the floor (the demo beside
+        an error: the lab's copy alone, on the left)."""
+        return (10.0, 60.0, 2 * 60.0 + 256.0 - 20.0 + (0.0 if self.is_demo else SHIFT),
+                FLOOR + 30.0 - 60.0)
 
     def handle_event(self, event: InputEvent) -> None:
         if self.error:
@@ -145,6 +148,9 @@ class CollisionsExercise(StudentCode, ParticleExercise):
         super().step(h)
 
     def draw(self, surface, view) -> None:
+        if self.error:                  # the message and the demo (StudentCode.draw)
+            super().draw(surface, view)
+            return
         sims = (self.lab,) if self.is_demo else (self.mine, self.lab)
         for sim in sims:
             pygame.draw.circle(surface, FIXED, view.pt(tuple(sim.center + sim.shift)),
