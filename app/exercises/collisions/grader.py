@@ -23,12 +23,13 @@ r = 100:
   inputs kept        w, center (push_out) and x_prev, center, depth (friction) unchanged
 The depth push_out reports is checked against how far the grader sees each particle move: the
 grader believes no number the student's code states about its own work.
-  random circles and particles  RANDOM_CASES circles (seeded) anywhere, radius 0.1 to 1000 px, 1 to
-                     60 particles inside, on, outside, at the centre, some pinned: x and depth
-                     within the lab's float64 rounding
-  random travels and mu  the same circles' particles pushed by the lab, any travel (0.01 to 1000
-                     px a step), mu from 0 to 2 (and one case 2 to 20): x within the lab's
-                     rounding
+  random circles and particles  RANDOM_CASES circles (seeded) anywhere, radius 0.1 to 1000
+                     px, 1 to 60 particles inside, on, outside, at the centre, some pinned: x
+                     and depth within the lab's float64 rounding
+  random travels and mu  on the same circles, about 70% of the particles on the surface with a
+                     depth of up to r (as push_out leaves them), the others anywhere with depth
+                     0; any travel (0.01 to 1000 px a step), mu from 0 to 2 (one case 2 to 20):
+                     x within the lab's rounding
 """
 
 from __future__ import annotations

@@ -145,7 +145,9 @@ class CollisionsExercise(StudentCode, ParticleExercise):
                 move *= cap / dist
             self.mine.center = self.mine.center + move
             self.lab.center = self.lab.center + move
-        super().step(h)
+        for sim in (self.lab,) if self.is_demo else (self.mine, self.lab):   # the demo draws
+            sim.mu, sim.iterations = self.p["mu"], self.p["iterations"]      # the lab's alone
+            sim.step(h)
 
     def draw(self, surface, view) -> None:
         if self.error:                  # the message and the demo (StudentCode.draw)
