@@ -29,7 +29,7 @@ class _Drop:
     the floor by the lab's projection."""
 
     radius = 3.0
-    ring = False                # the lab's cloth falls beside yours
+    ring = False                # the lab's rope falls beside yours
 
     def __init__(self, impl, shift: float, offset: float, mu: float, iterations: int,
                  cols: int = 25, rows: int = 1, spacing: float = 12.0, left: float = 70.0):
