@@ -36,12 +36,12 @@ def test_the_readme_is_short_and_links_into_docs():
 
 
 def test_the_readmes_counts_are_the_codes():
-    """'ten graded exercises', 'Up to 5000 particles', a table row per scene."""
+    """'eleven graded exercises', 'Up to 5000 particles', a table row per scene."""
     from app.exercises import exercise_names
     from scenes import SCENES
     from scenes.particle_dance import ParticleDanceScene
     readme = text_of("README.md")
-    assert "ten graded exercises" in readme and len(exercise_names()) == 10
+    assert "eleven graded exercises" in readme and len(exercise_names()) == 11
     assert "Up to 5000 particles" in readme
     assert next(p for p in ParticleDanceScene.all_params() if p.name == "particles").hi == 5000
     tour = readme.split("## A tour of the scenes", 1)[1].split("\n## ", 1)[0]

@@ -137,6 +137,10 @@ WRONG = {
     "solver_mass_twice": ("solver_interface", "a = f / m", "divided by the mass twice"),
     "l_limit_dynamic": ("pivoting_l", "the L", "limit body is not STATIC"),
     "l_limit_at_origin": ("pivoting_l", "the L", "ORIGIN + SLIDE_ANCHOR"),
+    # the collisions exercise (its other wrong answers: tests/test_exercise_collisions.py, graded
+    # in the test's own process, with the same assertions)
+    "collisions_half_push": ("collisions", "inside pushed to the surface", "HALF the way out"),
+    "collisions_friction_reverses": ("collisions", "a slow slide sticks", "slide REVERSED"),
     # issue 23: wrong answers that passed the fixed examples, each now failing a check over
     # random inputs (tests below: over several seeds)
     "grid_invented_count": ("neighbour_grid", "pair tests", "the count of no cell grid"),

@@ -30,7 +30,7 @@ import importlib
 from app.exercises.base import Check, Exercise, Result
 
 NAMES = ("verlet", "constraints", "spring", "rk4", "solver_interface", "implicit_spring",
-         "neighbour_grid", "newtons_cradle", "double_pendulum", "pivoting_l")
+         "neighbour_grid", "newtons_cradle", "double_pendulum", "pivoting_l", "collisions")
 
 
 def _grader(name: str):

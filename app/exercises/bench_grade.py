@@ -31,7 +31,7 @@ OUT = "bench-results"
 PREFIX = {"verlet": "verlet_", "constraints": "constraints_", "spring": "spring_",
           "rk4": "rk4_", "solver_interface": "solver_", "implicit_spring": "implicit_",
           "neighbour_grid": "grid_", "newtons_cradle": "cradle_",
-          "double_pendulum": "pendulum_", "pivoting_l": "l_"}
+          "double_pendulum": "pendulum_", "pivoting_l": "l_", "collisions": "collisions_"}
 HOSTILE = ("verlet_kills_grader", "verlet_daemon", "verlet_fork_flood")
 
 
