@@ -65,7 +65,8 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
     mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
     my = ys[ids].astype(np.float64) - x_prev[ids, 1]
-    if h and len(obstacles):                   # ...relative to the surface it touches
+    if h and any(vx or vy for vx, vy in (ob.velocity for ob in obstacles)):
+        # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
         mx -= carry[contacts.index[ids], 0]
         my -= carry[contacts.index[ids], 1]

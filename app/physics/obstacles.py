@@ -82,6 +82,8 @@ from app.physics.friction import Contacts, coulomb_friction, verlet_friction
 
 OBSTACLE_KINDS = ("circle", "box", "half_plane", "segment")
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
+NEAR_SLACK = 0.01     # px: the broad phase (near_bounds) reads float32 positions; this slack
+                      # keeps a point its rounding puts just outside in the exact test
 
 
 def _xy(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -128,6 +130,10 @@ class Obstacle:
         """The same from the points' x and y columns: (d, normal x, normal y), each (n,)."""
         raise NotImplementedError
 
+    def distance(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """The signed distance alone (n,), for tests that need no normal (cheaper per shape)."""
+        return self.distance_xy(x, y)[0]
+
     def move_by(self, dx: float, dy: float) -> None:
         raise NotImplementedError
 
@@ -149,6 +155,23 @@ class Obstacle:
         """True where a point is strictly inside (d < 0)."""
         return self.signed_distance(points)[0] < 0
 
+    def half_width(self) -> float:
+        """Half the obstacle's thinnest width (a ball: its radius): a point that starts outside
+        has to travel at least this far to get past its middle (0: not known, always check)."""
+        return 0.0
+
+    def entry(self, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, ey: np.ndarray
+              ) -> np.ndarray:
+        """Where each straight path a + t e (0 <= t <= 1) first meets the surface: its t, for
+        paths that start outside (d >= 0) and reach inside. Each shape below solves it exactly
+        (a circle: a quadratic; a box: slab clipping); this fallback halves [0, 1] 30 times."""
+        lo, hi = np.zeros(len(ax)), np.ones(len(ax))
+        for _ in range(30):                     # d >= 0 at lo, d < 0 at hi
+            mid = (lo + hi) / 2
+            out = self.distance_xy(ax + mid * ex, ay + mid * ey)[0] >= 0
+            lo, hi = np.where(out, mid, lo), np.where(out, hi, mid)
+        return lo
+
 
 @dataclass
 class Circle(Obstacle):
@@ -165,6 +188,9 @@ class Circle(Obstacle):
         nx, ny = _unit_or(dx, dy, r, (0.0, -1.0))        # at the centre: out through the top
         return r - self.radius, nx, ny
 
+    def distance(self, x, y):
+        return np.hypot(x - self.cx, y - self.cy) - self.radius
+
     def move_by(self, dx, dy):
         self.cx += dx
         self.cy += dy
@@ -176,6 +202,12 @@ class Circle(Obstacle):
     def bounds(self):
         r = self.radius
         return (self.cx - r, self.cy - r, self.cx + r, self.cy + r)
+
+    def half_width(self):
+        return self.radius
+
+    def entry(self, ax, ay, ex, ey):
+        return _circle_entry(ax - self.cx, ay - self.cy, ex, ey, self.radius)[0]
 
 
 @dataclass
@@ -219,6 +251,14 @@ class Box(Obstacle):
         gy = np.where(out > 0, oy / safe, ~face_x) * np.copysign(1.0, ly)
         return d, gx * ux + gy * vx, gx * uy + gy * vy
 
+    def distance(self, x, y):
+        (ux, uy), (vx, vy) = self.axes()
+        dx, dy = x - self.cx, y - self.cy
+        qx = np.abs(dx * ux + dy * uy) - self.half_w
+        qy = np.abs(dx * vx + dy * vy) - self.half_h
+        return np.hypot(np.maximum(qx, 0.0), np.maximum(qy, 0.0)) + \
+            np.minimum(np.maximum(qx, qy), 0.0)
+
     def move_by(self, dx, dy):
         self.cx += dx
         self.cy += dy
@@ -226,6 +266,15 @@ class Box(Obstacle):
     @property
     def center(self):
         return (self.cx, self.cy)
+
+    def half_width(self):
+        return min(self.half_w, self.half_h)
+
+    def entry(self, ax, ay, ex, ey):
+        (ux, uy), (vx, vy) = self.axes()
+        dx, dy = ax - self.cx, ay - self.cy           # the path in the box's own frame
+        return _slab_entry(dx * ux + dy * uy, dx * vx + dy * vy, ex * ux + ey * uy,
+                           ex * vx + ey * vy, self.half_w, self.half_h)[0]
 
     def bounds(self):
         c, s = abs(math.cos(self.angle)), abs(math.sin(self.angle))
@@ -253,6 +302,14 @@ class HalfPlane(Obstacle):
     def distance_xy(self, x, y):
         d = (x - self.px) * self.nx + (y - self.py) * self.ny
         return d, np.full(len(d), self.nx), np.full(len(d), self.ny)
+
+    def half_width(self):
+        return math.inf
+
+    def entry(self, ax, ay, ex, ey):
+        d0 = (ax - self.px) * self.nx + (ay - self.py) * self.ny
+        fall = -(ex * self.nx + ey * self.ny)           # how much d drops over the whole path
+        return np.clip(d0 / np.maximum(fall, TINY), 0.0, 1.0)
 
     def move_by(self, dx, dy):
         self.px += dx
@@ -311,10 +368,56 @@ class Segment(Obstacle):
     def center(self):
         return ((self.ax + self.bx) / 2, (self.ay + self.by) / 2)
 
+    def half_width(self):
+        return self.thickness
+
+    def entry(self, ax, ay, ex, ey):
+        # the capsule is a rectangle (the core, `thickness` each side) and a disc at either end:
+        # the path enters it where it first enters one of the three
+        sx, sy = self.bx - self.ax, self.by - self.ay
+        length = math.hypot(sx, sy)
+        ux, uy = (sx / length, sy / length) if length > 0 else (1.0, 0.0)
+        dx, dy = ax - (self.ax + self.bx) / 2, ay - (self.ay + self.by) / 2
+        t, hit = _slab_entry(dx * ux + dy * uy, -dx * uy + dy * ux, ex * ux + ey * uy,
+                             -ex * uy + ey * ux, length / 2, self.thickness)
+        t = np.where(hit, t, np.inf)
+        for px, py in ((self.ax, self.ay), (self.bx, self.by)):
+            tc, hc = _circle_entry(ax - px, ay - py, ex, ey, self.thickness)
+            t = np.where(hc & (tc < t), tc, t)
+        return np.where(np.isfinite(t), t, 0.0)
+
     def bounds(self):
         t = self.thickness
         return (min(self.ax, self.bx) - t, min(self.ay, self.by) - t,
                 max(self.ax, self.bx) + t, max(self.ay, self.by) + t)
+
+
+def _circle_entry(fx, fy, ex, ey, r):
+    """(t, hit): the first t in [0, 1] at which f + t e (f: the start relative to the centre)
+    is r from the centre, i.e. the smaller root of |f + t e|^2 = r^2; t = 0 for a start
+    inside; hit False where the path misses the disc."""
+    a = np.maximum(ex * ex + ey * ey, TINY)
+    b = fx * ex + fy * ey                                # half the linear coefficient
+    c = fx * fx + fy * fy - r * r
+    disc = b * b - a * c
+    t = (-b - np.sqrt(np.maximum(disc, 0.0))) / a
+    t = np.where(c <= 0, 0.0, t)
+    return np.clip(t, 0.0, 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
+
+
+def _slab_entry(sx, sy, ex, ey, half_x, half_y):
+    """(t, hit): where the path s + t e (in a box's own frame) first enters |x| <= half_x,
+    |y| <= half_y, by slab clipping: on each axis the path is between the two faces for t in
+    [t_near, t_far]; it is inside the box where all those intervals overlap."""
+    lo, hi = np.zeros(len(sx)), np.ones(len(sx))
+    for s0, ds, half in ((sx, ex, half_x), (sy, ey, half_y)):
+        flat = np.abs(ds) < TINY                         # parallel to this axis' faces
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t1, t2 = (-half - s0) / ds, (half - s0) / ds
+        lo = np.where(flat, np.where(np.abs(s0) <= half, lo, np.inf), np.maximum(lo, np.minimum(t1, t2)))
+        hi = np.where(flat, hi, np.minimum(hi, np.maximum(t1, t2)))
+    hit = lo <= hi
+    return np.where(hit, lo, 0.0), hit
 
 
 # ----- distances to several obstacles -------------------------------------------------------------
@@ -401,25 +504,25 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
     return Contacts(hit, depth, normal, index)
 
 
-def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start, halvings: int = 20):
+def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start):
     """project()'s guard against popping out of the far side: the points `ids` (inside `ob`,
     at distance d with normal (nx, ny)) whose start was outside with a normal against theirs
-    are moved to where the straight path start -> now met the surface (bisection); returns
-    their new d and normal (the others' unchanged)."""
+    are moved to where the straight path start -> now met the surface (Obstacle.entry);
+    returns their new d and normal (the others' unchanged). Only points that travelled more
+    than the obstacle's half width can have crossed its middle: the others are not looked at."""
     sx, sy = start[0][ids].astype(np.float64), start[1][ids].astype(np.float64)
-    d0, n0x, n0y = ob.distance_xy(sx, sy)
-    crossed = (d0 >= 0) & (n0x * nx + n0y * ny < 0)
-    if not crossed.any():
+    tx, ty = px[ids] - sx, py[ids] - sy
+    far = np.flatnonzero(tx * tx + ty * ty > ob.half_width() ** 2)
+    if far.size == 0:
         return d, nx, ny
-    c = np.flatnonzero(crossed)
+    d0, n0x, n0y = ob.distance_xy(sx[far], sy[far])
+    c = far[(d0 >= 0) & (n0x * nx[far] + n0y * ny[far] < 0)]     # it crossed the middle
+    if c.size == 0:
+        return d, nx, ny
     ax, ay = sx[c], sy[c]
     ex, ey = px[ids[c]] - ax, py[ids[c]] - ay
-    lo, hi = np.zeros(c.size), np.ones(c.size)
-    for _ in range(halvings):               # d >= 0 at lo, d < 0 at hi
-        mid = (lo + hi) / 2
-        out = ob.distance_xy(ax + mid * ex, ay + mid * ey)[0] >= 0
-        lo, hi = np.where(out, mid, lo), np.where(out, hi, mid)
-    qx, qy = ax + lo * ex, ay + lo * ey
+    t = ob.entry(ax, ay, ex, ey)
+    qx, qy = ax + t * ex, ay + t * ey
     px[ids[c]], py[ids[c]] = qx, qy
     dq, nqx, nqy = ob.distance_xy(qx, qy)
     d, nx, ny = d.copy(), nx.copy(), ny.copy()
@@ -431,9 +534,11 @@ def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.
                 movable: np.ndarray | None = None) -> np.ndarray:
     """Indices of the points (x and y columns) within `margin` of the obstacle's bounds (and
     `movable`, if given): the only ones that can be inside or within the margin."""
+    margin += NEAR_SLACK
+    if isinstance(ob, HalfPlane):                # no box: the plane's own test, as cheap
+        near = (px - ob.px) * ob.nx + (py - ob.py) * ob.ny < margin
+        return np.flatnonzero(near & movable if movable is not None else near)
     x0, y0, x1, y1 = ob.bounds()
-    if math.isinf(x0) and movable is None:
-        return np.arange(len(px))
     near = (px > x0 - margin) & (px < x1 + margin) & (py > y0 - margin) & (py < y1 + margin)
     if movable is not None:
         near &= movable
