@@ -93,6 +93,7 @@ class ContactState:
     self_tests: int = 0                   # pair tests the last search took
     start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
     crowded: bool = False                 # two obstacles meet (then corners are settled)
+    grid_coords: tuple | None = None      # each particle's (row, column), flat (self-collision)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -209,36 +210,50 @@ def rub_and_settle(c, h: float) -> None:
 def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
     """(i, j, dx, dy, r2, tests): pairs of particles closer than `distance` (flat indices, each
     pair once), not joined by a rod of an active set, with d = x_j - x_i and |d|^2."""
-    pts = _points(c.x).astype(np.float64)
+    pts = _points(c.x)
     if method == "all_pairs":
         blocks = list(all_pair_blocks(pts, distance))
         tests = len(pts) * (len(pts) - 1) // 2
     else:
         lo = pts.min(0)
         local = pts - lo                                # the grid covers the cloth's own box
-        box = tuple(np.maximum(local.max(0), distance) * (1 + 1e-9) + 1e-9)
+        box = tuple(np.maximum(local.max(0), distance) * (1 + 1e-6) + 1e-6)
         cell = max(distance, max(box) / MAX_CELLS)      # a flung cloth: bigger cells, not more
         cells = sort_into_cells(local, cell, box)
         blocks = list(grid_pair_blocks(local, cell, box, cells))
         tests = cells.tests
-    if blocks:
+    if blocks:                                          # (every block holds only pairs < distance)
         i, j, dx, dy, r2 = (np.concatenate([getattr(b, k) for b in blocks])
                             for k in ("i", "j", "dx", "dy", "r2"))
     else:
         i = j = np.zeros(0, np.intp)
         dx = dy = r2 = np.zeros(0)
-    near = r2 < distance * distance
-    i, j, dx, dy, r2 = i[near], j[near], dx[near], dy[near], r2[near]
-    ri, ci = np.divmod(i, c.cols)
-    rj, cj = np.divmod(j, c.cols)
-    dr, dc = np.abs(ri - rj), np.abs(ci - cj)
-    joined = dr + dc == 1                   # a cell's sides and its diagonals: always left out
-    joined |= (dr == 1) & (dc == 1)
+    # the pair's offset in the grid of particles, (rows apart, columns apart), capped at 3:
+    # a table says which offsets are a rod of an active set (or a cell's side or diagonal)
+    row, col = _grid_coords(c)
+    dr = np.minimum(np.abs(row.take(i) - row.take(j)), 3)
+    dc = np.minimum(np.abs(col.take(i) - col.take(j)), 3)
+    keep = ~_joined_table(c).take(dr * 4 + dc)
+    return i[keep], j[keep], dx[keep], dy[keep], r2[keep], tests
+
+
+def _grid_coords(c) -> tuple[np.ndarray, np.ndarray]:
+    """Each particle's (row, column) in the cloth's grid, flat (computed once per cloth)."""
+    st = c.contact
+    if st.grid_coords is None or st.grid_coords[0].size != c.rows * c.cols:
+        st.grid_coords = np.divmod(np.arange(c.rows * c.cols), c.cols)
+    return st.grid_coords
+
+
+def _joined_table(c) -> np.ndarray:
+    """(16,) bool, at dr * 4 + dc (each capped at 3): True where two particles that far apart
+    in the grid are never pushed apart: a cell's sides and diagonals, or a rod of an active set."""
+    table = np.zeros((4, 4), bool)
+    table[0, 1] = table[1, 0] = table[1, 1] = True
     for rs in c.active_sets:
         for a, b in ROD_OFFSETS[rs.name]:
-            joined |= (dr == a) & (dc == b)
-    keep = ~joined
-    return i[keep], j[keep], dx[keep], dy[keep], r2[keep], tests
+            table[a, b] = True
+    return table.ravel()
 
 
 def self_collide(c, h: float) -> None:
@@ -250,13 +265,20 @@ def self_collide(c, h: float) -> None:
     if len(i) == 0:
         return
     x = c.x.reshape(2, -1)
-    w = c.w.ravel().astype(np.float64)
+    xs, ys = x[0], x[1]                                 # views: writing moves the cloth
+    w = c.w.ravel()
     total = w[i] + w[j]
     ok = total > 0
     i, j, total = i[ok], j[ok], total[ok]
-    si, sj = w[i] / total, w[j] / total
-    n = x.shape[1]
-    count = np.maximum(np.bincount(i, minlength=n) + np.bincount(j, minlength=n), 1)
+    n, m = xs.size, i.size
+    # one bincount a sweep gathers every particle's corrections, x and y: entries j, i (x) and
+    # j + n, i + n (y), weighted by each end's share, + w_j/(w_i+w_j) at j and - w_i/(...) at i;
+    # it replaces `for pair: x[j] += share_j * move; x[i] -= share_i * move`
+    ends = np.concatenate((j, i, j + n, i + n))
+    share = np.concatenate((w[j] / total, -w[i] / total))
+    share = np.concatenate((share, share))
+    count = np.bincount(ends[:2 * m], minlength=n)     # pairs per particle
+    scale = (OVER_RELAX / np.maximum(count, 1)).astype(x.dtype)   # Jacobi's average, over-relaxed
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     movable = c.free.ravel() > 0
@@ -265,16 +287,18 @@ def self_collide(c, h: float) -> None:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # between the sweeps lets the upper one take the whole correction, as on a floor
             project(st.obstacles, x.T, st.margin, movable)
-        d = (x[:, j] - x[:, i]).astype(np.float64)      # (2, pairs): x_j - x_i
-        r = np.sqrt(d[0] * d[0] + d[1] * d[1])
+        dx = xs.take(j) - xs.take(i)                    # d = x_j - x_i, for every pair
+        dy = ys.take(j) - ys.take(i)
+        r = np.sqrt(dx * dx + dy * dy)
         same = r < 1e-6 * dmin                          # at one point: part them along x
-        d[0] = np.where(same, 1.0, d[0])
-        r = np.where(same, 1.0, r)
+        if same.any():
+            dx[same], r[same] = 1.0, 1.0
         push = np.maximum(dmin - r, 0.0) / r            # the overlap, per unit of d
-        for axis in (0, 1):
-            move = d[axis] * push
-            x[axis] += ((np.bincount(j, move * sj, n) - np.bincount(i, move * si, n))
-                        * (OVER_RELAX / count)).astype(x.dtype)
+        mx, my = dx * push, dy * push
+        move = np.concatenate((mx, mx, my, my)) * share
+        moved = np.bincount(ends, move, 2 * n).astype(x.dtype)
+        xs += moved[:n] * scale
+        ys += moved[n:] * scale
 
 
 def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERLAP_SLACK) -> int:
