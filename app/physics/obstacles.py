@@ -487,10 +487,11 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         if ids.size == 0:
             continue
         d, nx, ny = ob.distance_xy(px[ids].astype(np.float64), py[ids].astype(np.float64))
-        inside = d < margin
-        if not inside.any():
+        inside = np.flatnonzero(d < margin)
+        if inside.size == 0:
             continue
-        ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]   # usually few
+        if inside.size < ids.size:                                # usually few
+            ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]
         if start is not None and not isinstance(ob, HalfPlane):
             d, nx, ny = _back_to_entry(ob, ids, d, nx, ny, px, py, start)
         push = margin - d

@@ -197,10 +197,13 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
     moving = length2 > (0.0 if past_middle else (2 * tolerance) ** 2)
     if movable is not None:
         moving &= movable
-    fast = np.flatnonzero(moving)
-    if fast.size == 0:
-        return Sweep(mask, entry, index, deep)
-    ax_, ay_, ex_, ey_, length2 = ax_[fast], ay_[fast], ex_[fast], ey_[fast], length2[fast]
+    if moving.all():                               # (a caller that picked the paths already)
+        fast = np.arange(n)
+    else:
+        fast = np.flatnonzero(moving)
+        if fast.size == 0:
+            return Sweep(mask, entry, index, deep)
+        ax_, ay_, ex_, ey_, length2 = ax_[fast], ay_[fast], ex_[fast], ey_[fast], length2[fast]
     lo_x, hi_x = np.minimum(ax_, ax_ + ex_), np.maximum(ax_, ax_ + ex_)
     lo_y, hi_y = np.minimum(ay_, ay_ + ey_), np.maximum(ay_, ay_ + ey_)
     done = np.zeros(fast.size, bool)               # caught by an earlier obstacle
@@ -217,8 +220,19 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         if sel.size == 0:
             continue
         ax, ay, ex, ey = ax_[sel], ay_[sel], ex_[sel], ey_[sel]
-        d0, d1 = ob.distance(ax, ay), ob.distance(ax + ex, ay + ey)
-        length = np.sqrt(length2[sel])
+        # the end first: a path from outside (d0 >= 0) can only dip `tolerance` deep if
+        # d1 < L - 2 tolerance, and only cross the middle if it is longer than the half width;
+        # the start's distance is needed for the others only
+        d1, length = ob.distance(ax + ex, ay + ey), np.sqrt(length2[sel])
+        wanted = (d1 >= 0) & (d1 < length - 2 * tolerance)
+        if past_middle:
+            wanted |= (d1 < 0) & (length > ob.half_width())
+        keep = np.flatnonzero(wanted)
+        if keep.size == 0:
+            continue
+        sel, ax, ay, ex, ey, d1, length = (sel[keep], ax[keep], ay[keep], ex[keep], ey[keep],
+                                           d1[keep], length[keep])
+        d0 = ob.distance(ax, ay)
         suspect = (d0 >= 0) & (d1 >= 0) & ((d0 + d1 - length) / 2 < -tolerance)
         hit = np.zeros(sel.size, bool)
         t_in = np.ones(sel.size)
