@@ -34,8 +34,9 @@ Self-collision needs the pairs closer than the minimum distance: the particle da
 grid finds them (app/physics/neighbours.py, cells `self_distance` wide), or all pairs, the O(n^2)
 reference (`self_method`). Pairs of one grid cell (its sides and diagonals) and pairs joined by
 a rod of an active set are left out: the rods keep them apart, and a cell may shear freely (as
-it does without self-collision). Between sweeps the obstacles are projected again (if on), so a
-pair resting on a floor is parted by moving the upper particle, not by pushing the lower one in. All pairs found are pushed apart at once (Jacobi: each particle
+it does without self-collision). Before each of its sweeps the obstacles are projected (if on),
+so a pair resting on a floor is parted by moving the upper particle, not by pushing the lower one
+in. All pairs found are pushed apart at once (Jacobi: each particle
 moves by the average of its pairs' corrections, times OVER_RELAX, so a particle in many pairs is
 not thrown out), SELF_SWEEPS times, reusing the pairs found.
 
@@ -148,7 +149,7 @@ def _may_touch(st: ContactState) -> bool:
 def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:
     """Where obstacles meet (a table's leg on the floor), a particle pushed out of one may sit
     in the next: project the touching particles again, a few passes (only those: cheap)."""
-    ids = np.flatnonzero(st.contacts.mask)
+    ids = st.contacts.mask.nonzero()[0]
     for _ in range(passes):
         if ids.size == 0:
             return
@@ -174,7 +175,7 @@ def _catch_tunnelling(st: ContactState, start: np.ndarray, x: np.ndarray,
     if math.isinf(shortest):
         return                                  # half-planes only: nothing to go through
     dx, dy = x[:, 0] - start[0], x[:, 1] - start[1]
-    fast = np.flatnonzero((dx * dx + dy * dy > shortest * shortest) & movable)
+    fast = ((dx * dx + dy * dy > shortest * shortest) & movable).nonzero()[0]
     if fast.size == 0:
         return
     s0 = start[:, fast].T
@@ -198,7 +199,7 @@ def rub_and_settle(c, h: float) -> None:
     and its leg.)"""
     rub(c, h)
     st = c.contact
-    ids = np.flatnonzero(st.contacts.mask)
+    ids = st.contacts.mask.nonzero()[0]
     if ids.size and st.crowded:
         x = _points(c.x)
         sub = x[ids].copy()
@@ -283,9 +284,9 @@ def self_collide(c, h: float) -> None:
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     movable = c.free.ravel() > 0
     for sweep in range(SELF_SWEEPS):
-        if floor_too and sweep:
+        if floor_too:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
-            # between the sweeps lets the upper one take the whole correction, as on a floor
+            # before each sweep lets the upper one take the whole correction, as on a floor
             project(st.obstacles, x.T, st.margin, movable)
         dx = xs.take(j) - xs.take(i)                    # d = x_j - x_i, for every pair
         dy = ys.take(j) - ys.take(i)

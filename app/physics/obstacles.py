@@ -487,7 +487,7 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         if ids.size == 0:
             continue
         d, nx, ny = ob.distance_xy(px[ids].astype(np.float64), py[ids].astype(np.float64))
-        inside = np.flatnonzero(d < margin)
+        inside = (d < margin).nonzero()[0]
         if inside.size == 0:
             continue
         if inside.size < ids.size:                                # usually few
@@ -513,7 +513,7 @@ def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start):
     than the obstacle's half width can have crossed its middle: the others are not looked at."""
     sx, sy = start[0][ids].astype(np.float64), start[1][ids].astype(np.float64)
     tx, ty = px[ids] - sx, py[ids] - sy
-    far = np.flatnonzero(tx * tx + ty * ty > ob.half_width() ** 2)
+    far = (tx * tx + ty * ty > ob.half_width() ** 2).nonzero()[0]
     if far.size == 0:
         return d, nx, ny
     d0, n0x, n0y = ob.distance_xy(sx[far], sy[far])
@@ -536,14 +536,16 @@ def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.
     """Indices of the points (x and y columns) within `margin` of the obstacle's bounds (and
     `movable`, if given): the only ones that can be inside or within the margin."""
     margin += NEAR_SLACK
+    # (mask.nonzero()[0] is np.flatnonzero(mask) for a 1-D mask, without its Python wrappers:
+    # the contact passes call it a dozen times a step, on small arrays)
     if isinstance(ob, HalfPlane):                # no box: the plane's own test, as cheap
         near = (px - ob.px) * ob.nx + (py - ob.py) * ob.ny < margin
-        return np.flatnonzero(near & movable if movable is not None else near)
+        return (near & movable if movable is not None else near).nonzero()[0]
     x0, y0, x1, y1 = ob.bounds()
     near = (px > x0 - margin) & (px < x1 + margin) & (py > y0 - margin) & (py < y1 + margin)
     if movable is not None:
         near &= movable
-    return np.flatnonzero(near)
+    return near.nonzero()[0]
 
 
 def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:

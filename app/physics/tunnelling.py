@@ -200,7 +200,7 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
     if moving.all():                               # (a caller that picked the paths already)
         fast = np.arange(n)
     else:
-        fast = np.flatnonzero(moving)
+        fast = moving.nonzero()[0]
         if fast.size == 0:
             return Sweep(mask, entry, index, deep)
         ax_, ay_, ex_, ey_, length2 = ax_[fast], ay_[fast], ex_[fast], ey_[fast], length2[fast]
@@ -216,7 +216,7 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         x0, y0, x1, y1 = ob.bounds()
         near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1) & ~done
         near &= length2 > shortest * shortest         # too short to have gone through
-        sel = np.flatnonzero(near)
+        sel = near.nonzero()[0]
         if sel.size == 0:
             continue
         ax, ay, ex, ey = ax_[sel], ay_[sel], ex_[sel], ey_[sel]
@@ -227,7 +227,7 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         wanted = (d1 >= 0) & (d1 < length - 2 * tolerance)
         if past_middle:
             wanted |= (d1 < 0) & (length > ob.half_width())
-        keep = np.flatnonzero(wanted)
+        keep = wanted.nonzero()[0]
         if keep.size == 0:
             continue
         sel, ax, ay, ex, ey, d1, length = (sel[keep], ax[keep], ay[keep], ex[keep], ey[keep],
@@ -237,7 +237,7 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         hit = np.zeros(sel.size, bool)
         t_in = np.ones(sel.size)
         if suspect.any():
-            ids = np.flatnonzero(suspect)
+            ids = suspect.nonzero()[0]
             a, b = np.column_stack((ax[ids], ay[ids])), np.column_stack((ax[ids] + ex[ids],
                                                                          ay[ids] + ey[ids]))
             through, t = dips_below(ob, a, b, tolerance)
