@@ -57,7 +57,7 @@ import numpy as np
 from app.physics.neighbours import all_pair_blocks, grid_pair_blocks, sort_into_cells
 from app.physics.obstacles import (Contacts, Obstacle, obstacles_may_touch, project,
                                    verlet_friction)
-from app.physics.tunnelling import shortest_dip, swept
+from app.physics.tunnelling import shortest_dip, swept_xy
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -178,8 +178,9 @@ def _catch_tunnelling(st: ContactState, start: np.ndarray, x: np.ndarray,
     fast = ((dx * dx + dy * dy > shortest * shortest) & movable).nonzero()[0]
     if fast.size == 0:
         return
-    s0 = start[:, fast].T
-    sw = swept(st.obstacles, s0, x[fast], st.tolerance, past_middle=True)
+    a = start.take(fast, axis=1).astype(np.float64)       # (2, fast): rows, not (fast, 2)
+    b = x.T.take(fast, axis=1).astype(np.float64)
+    sw = swept_xy(st.obstacles, a[0], a[1], b[0], b[1], st.tolerance, past_middle=True)
     back = sw.mask | sw.deep
     if back.any():
         x[fast[back]] = sw.entry[back]

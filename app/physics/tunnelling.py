@@ -184,15 +184,23 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
     before projecting (a shorter path is pushed out the near side by the projection alone)."""
     p0 = np.asarray(p0, np.float64)
     p1 = np.asarray(p1, np.float64)
-    n = len(p0)
+    return swept_xy(obstacles, p0[:, 0], p0[:, 1], p1[:, 0], p1[:, 1], tolerance, movable,
+                    find_entry, past_middle)
+
+
+def swept_xy(obstacles, ax_: np.ndarray, ay_: np.ndarray, bx_: np.ndarray, by_: np.ndarray,
+             tolerance: float = 0.5, movable: np.ndarray | None = None, find_entry: bool = True,
+             past_middle: bool = False) -> Sweep:
+    """swept() for paths given by the x and y columns of their starts (ax, ay) and ends
+    (bx, by): the same test, without building (n, 2) arrays (the cloth hands over its rows)."""
+    n = len(ax_)
     mask = np.zeros(n, bool)
     deep = np.zeros(n, bool) if past_middle else None
     entry = np.full((n, 2), np.nan)
     index = np.full(n, -1)
     # a path that ends outside yet dips `tolerance` deep is at least 2 x tolerance long (|grad d|
     # = 1: it must go down and come back up): the short ones, nearly all, are done at once
-    ax_, ay_ = p0[:, 0], p0[:, 1]
-    ex_, ey_ = p1[:, 0] - ax_, p1[:, 1] - ay_
+    ex_, ey_ = bx_ - ax_, by_ - ay_
     length2 = ex_ * ex_ + ey_ * ey_
     moving = length2 > (0.0 if past_middle else (2 * tolerance) ** 2)
     if movable is not None:
@@ -207,6 +215,7 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
     lo_x, hi_x = np.minimum(ax_, ax_ + ex_), np.maximum(ax_, ax_ + ex_)
     lo_y, hi_y = np.minimum(ay_, ay_ + ey_), np.maximum(ay_, ay_ + ey_)
     done = np.zeros(fast.size, bool)               # caught by an earlier obstacle
+    any_done = False
     for k, ob in enumerate(obstacles):
         shortest = shortest_dip(ob, tolerance)
         if past_middle:
@@ -214,8 +223,10 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         if math.isinf(shortest):
             continue                                  # a half-plane: never gone through
         x0, y0, x1, y1 = ob.bounds()
-        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1) & ~done
+        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1)
         near &= length2 > shortest * shortest         # too short to have gone through
+        if any_done:
+            near &= ~done
         sel = near.nonzero()[0]
         if sel.size == 0:
             continue
@@ -233,15 +244,15 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
         sel, ax, ay, ex, ey, d1, length = (sel[keep], ax[keep], ay[keep], ex[keep], ey[keep],
                                            d1[keep], length[keep])
         d0 = ob.distance(ax, ay)
-        suspect = (d0 >= 0) & (d1 >= 0) & ((d0 + d1 - length) / 2 < -tolerance)
-        hit = np.zeros(sel.size, bool)
-        t_in = np.ones(sel.size)
-        if suspect.any():
-            ids = suspect.nonzero()[0]
+        hit = (d0 >= 0) & (d1 >= 0) & ((d0 + d1 - length) / 2 < -tolerance)   # suspects
+        t_in = None
+        if hit.any():
+            ids = hit.nonzero()[0]
             a, b = np.column_stack((ax[ids], ay[ids])), np.column_stack((ax[ids] + ex[ids],
                                                                          ay[ids] + ey[ids]))
             through, t = dips_below(ob, a, b, tolerance)
-            hit[ids[through]] = True
+            hit[ids[~through]] = False
+            t_in = np.ones(sel.size)
             t_in[ids[through]] = t[through]
             mask[fast[sel[ids[through]]]] = True
         if past_middle:
@@ -251,19 +262,24 @@ def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
             crossed = (d0 >= 0) & (d1 < 0) & (length > ob.half_width())
             deep[fast[sel[crossed]]] = True
             hit |= crossed
-        if not hit.any():
+        hits = hit.nonzero()[0]
+        if hits.size == 0:
             continue
-        sel, ax, ay, ex, ey, t_in = sel[hit], ax[hit], ay[hit], ex[hit], ey[hit], t_in[hit]
+        sel, ax, ay, ex, ey = sel[hits], ax[hits], ay[hits], ex[hits], ey[hits]
         done[sel] = True
+        any_done = True
         index[fast[sel]] = k
         if not find_entry:
             continue
         # the entry: where the path first meets the surface (the shape's exact `entry`; convex,
         # so it is the one crossing before the deepest point t_in)
-        t = np.minimum(ob.entry(ax, ay, ex, ey), t_in)
+        t = ob.entry(ax, ay, ex, ey)
+        if t_in is not None:
+            t = np.minimum(t, t_in[hits])
         entry[fast[sel], 0] = ax + t * ex
         entry[fast[sel], 1] = ay + t * ey
     return Sweep(mask, entry, index, deep)
 
 
-__all__ = ["path_min_distance", "dips_below", "shortest_dip", "Sweep", "swept", "GOLDEN"]
+__all__ = ["path_min_distance", "dips_below", "shortest_dip", "Sweep", "swept", "swept_xy",
+           "GOLDEN"]
