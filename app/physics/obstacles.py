@@ -64,7 +64,10 @@ What a step does with them (the Verlet cloth; the mass-spring cloth uses the sam
 3. `penetration_max(obstacles, points)`: the deepest point inside any obstacle, px (0 if none):
    after a step with projection, a measure of what the projection did not fix.
 4. Tunnelling: projection only sees where a particle ends, so a fast particle can pass right
-   through a thin obstacle in one step. app/physics/tunnelling.py finds such paths (`swept`).
+   through a thin obstacle in one step. app/physics/tunnelling.py finds such paths (`swept`);
+   each shape's `entry` says where a straight path first meets its surface, solved exactly (a
+   quadratic for a ball, slab clipping for a box, both for a capsule's three pieces), and
+   `distance` gives d alone where no normal is needed (cheaper).
 
 Obstacles are small mutable objects: a scene drags one by `move_by(dx, dy)` (or `move_to`) and
 sets its `velocity` (px/s) so that friction carries what rests on it.
