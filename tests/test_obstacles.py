@@ -224,11 +224,11 @@ def test_entry_is_where_a_path_from_outside_first_meets_the_surface(ob):
     paths from outside to inside, the same t to the bisection's 1e-9."""
     from app.physics.obstacles import Obstacle
     rng = np.random.default_rng(RNG_SEED)
-    a, b = rng.uniform(-50.0, 600.0, (2, 40000, 2))
+    a, b = rng.uniform(-50.0, 600.0, (2, 20000, 2))
     d0 = ob.signed_distance(a)[0]
     d1 = ob.signed_distance(b)[0]
     k = (d0 >= 0) & (d1 < 0)
-    assert k.sum() > 20
+    assert k.sum() > 5
     a, e = a[k], (b - a)[k]
     t = ob.entry(a[:, 0], a[:, 1], e[:, 0], e[:, 1])
     assert np.allclose(t, Obstacle.entry(ob, a[:, 0], a[:, 1], e[:, 0], e[:, 1]), atol=1e-8)
@@ -245,9 +245,9 @@ def test_no_path_shorter_than_shortest_dip_dips_the_tolerance_deep(ob):
     length = 0.999 * shortest_dip(ob, tol)
     rng = np.random.default_rng(RNG_SEED)
     x0, y0, x1, y1 = ob.bounds()
-    a = rng.uniform((x0 - 5, y0 - 5), (x1 + 5, y1 + 5), (20000, 2))
-    angle = rng.uniform(0, 2 * math.pi, 20000)
+    a = rng.uniform((x0 - 5, y0 - 5), (x1 + 5, y1 + 5), (8000, 2))
+    angle = rng.uniform(0, 2 * math.pi, 8000)
     b = a + length * np.column_stack((np.cos(angle), np.sin(angle)))
     out = (ob.signed_distance(a)[0] >= 0) & (ob.signed_distance(b)[0] >= 0)
     dmin, _ = path_min_distance(ob, a[out], b[out])
-    assert out.sum() > 1000 and dmin.min() > -tol
+    assert out.sum() > 500 and dmin.min() > -tol
