@@ -58,8 +58,7 @@ from typing import Callable
 import numpy as np
 
 from app.physics.neighbours import all_pair_blocks, grid_pair_blocks, sort_into_cells
-from app.physics.obstacles import (Contacts, Obstacle, obstacles_may_touch, project,
-                                   verlet_friction)
+from app.physics.obstacles import Contacts, HalfPlane, Obstacle, project, verlet_friction
 from app.physics.tunnelling import shortest_dip, swept_xy
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
@@ -147,6 +146,29 @@ def _may_touch(st: ContactState) -> bool:
     if st.touch_key != key:
         st.touch_key, st.touch_value = key, obstacles_may_touch(st.obstacles, st.margin)
     return st.touch_value
+
+
+def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
+    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
+    bounds reach it): only then can a particle pushed out of one land in another."""
+    grown = [ob.bounds() for ob in obstacles]
+    for a in range(len(obstacles)):
+        for b in range(a + 1, len(obstacles)):
+            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
+            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
+                         None)
+            if plane is not None:
+                other = grown[b] if plane is obstacles[a] else grown[a]
+                if math.isinf(other[0]):
+                    return True                                 # two half-planes
+                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
+                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
+                if lowest < 2 * margin:
+                    return True
+            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
+                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
+                return True
+    return False
 
 
 def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:

@@ -80,13 +80,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-# Contacts and the friction rules live in app/physics/friction.py; imported from here like the rest
+# imported from here like the rest: Contacts, the friction rules; path entries, project()'s guard
 from app.physics.friction import Contacts, coulomb_friction, verlet_friction
+from app.physics.paths import back_to_entry, circle_entry, slab_entry
 
 OBSTACLE_KINDS = ("circle", "box", "half_plane", "segment")
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
-NEAR_SLACK = 0.01     # px: the broad phase (near_bounds) reads float32 positions; this slack
-                      # keeps a point its rounding puts just outside in the exact test
+NEAR_SLACK = 0.01     # px: near_bounds reads float32 positions: no point lost to their rounding
 
 
 def _xy(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -210,7 +210,7 @@ class Circle(Obstacle):
         return self.radius
 
     def entry(self, ax, ay, ex, ey):
-        return _circle_entry(ax - self.cx, ay - self.cy, ex, ey, self.radius)[0]
+        return circle_entry(ax - self.cx, ay - self.cy, ex, ey, self.radius)[0]
 
 
 @dataclass
@@ -276,7 +276,7 @@ class Box(Obstacle):
     def entry(self, ax, ay, ex, ey):
         (ux, uy), (vx, vy) = self.axes()
         dx, dy = ax - self.cx, ay - self.cy           # the path in the box's own frame
-        return _slab_entry(dx * ux + dy * uy, dx * vx + dy * vy, ex * ux + ey * uy,
+        return slab_entry(dx * ux + dy * uy, dx * vx + dy * vy, ex * ux + ey * uy,
                            ex * vx + ey * vy, self.half_w, self.half_h)[0]
 
     def bounds(self):
@@ -381,11 +381,11 @@ class Segment(Obstacle):
         length = math.hypot(sx, sy)
         ux, uy = (sx / length, sy / length) if length > 0 else (1.0, 0.0)
         dx, dy = ax - (self.ax + self.bx) / 2, ay - (self.ay + self.by) / 2
-        t, hit = _slab_entry(dx * ux + dy * uy, -dx * uy + dy * ux, ex * ux + ey * uy,
+        t, hit = slab_entry(dx * ux + dy * uy, -dx * uy + dy * ux, ex * ux + ey * uy,
                              -ex * uy + ey * ux, length / 2, self.thickness)
         t = np.where(hit, t, np.inf)
         for px, py in ((self.ax, self.ay), (self.bx, self.by)):
-            tc, hc = _circle_entry(ax - px, ay - py, ex, ey, self.thickness)
+            tc, hc = circle_entry(ax - px, ay - py, ex, ey, self.thickness)
             t = np.where(hc & (tc < t), tc, t)
         return np.where(np.isfinite(t), t, 0.0)
 
@@ -393,34 +393,6 @@ class Segment(Obstacle):
         t = self.thickness
         return (min(self.ax, self.bx) - t, min(self.ay, self.by) - t,
                 max(self.ax, self.bx) + t, max(self.ay, self.by) + t)
-
-
-def _circle_entry(fx, fy, ex, ey, r):
-    """(t, hit): the first t in [0, 1] at which f + t e (f: the start relative to the centre)
-    is r from the centre, i.e. the smaller root of |f + t e|^2 = r^2; t = 0 for a start
-    inside; hit False where the path misses the disc."""
-    a = np.maximum(ex * ex + ey * ey, TINY)
-    b = fx * ex + fy * ey                                # half the linear coefficient
-    c = fx * fx + fy * fy - r * r
-    disc = b * b - a * c
-    t = (-b - np.sqrt(np.maximum(disc, 0.0))) / a
-    t = np.where(c <= 0, 0.0, t)
-    return np.clip(t, 0.0, 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
-
-
-def _slab_entry(sx, sy, ex, ey, half_x, half_y):
-    """(t, hit): where the path s + t e (in a box's own frame) first enters |x| <= half_x,
-    |y| <= half_y, by slab clipping: on each axis the path is between the two faces for t in
-    [t_near, t_far]; it is inside the box where all those intervals overlap."""
-    lo, hi = np.zeros(len(sx)), np.ones(len(sx))
-    for s0, ds, half in ((sx, ex, half_x), (sy, ey, half_y)):
-        flat = np.abs(ds) < TINY                         # parallel to this axis' faces
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t1, t2 = (-half - s0) / ds, (half - s0) / ds
-        lo = np.where(flat, np.where(np.abs(s0) <= half, lo, np.inf), np.maximum(lo, np.minimum(t1, t2)))
-        hi = np.where(flat, hi, np.minimum(hi, np.maximum(t1, t2)))
-    hit = lo <= hi
-    return np.where(hit, lo, 0.0), hit
 
 
 # ----- distances to several obstacles -------------------------------------------------------------
@@ -496,7 +468,7 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         if inside.size < ids.size:                                # usually few
             ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]
         if start is not None and not isinstance(ob, HalfPlane):
-            d, nx, ny = _back_to_entry(ob, ids, d, nx, ny, px, py, start)
+            d, nx, ny = back_to_entry(ob, ids, d, nx, ny, px, py, start)
         push = margin - d
         px[ids] += (push * nx).astype(points.dtype, copy=False)
         py[ids] += (push * ny).astype(points.dtype, copy=False)
@@ -508,39 +480,11 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
     return Contacts(hit, depth, normal, index)
 
 
-def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start):
-    """project()'s guard against popping out of the far side: the points `ids` (inside `ob`,
-    at distance d with normal (nx, ny)) whose start was outside with a normal against theirs
-    are moved to where the straight path start -> now met the surface (Obstacle.entry);
-    returns their new d and normal (the others' unchanged). Only points that travelled more
-    than the obstacle's half width can have crossed its middle: the others are not looked at."""
-    sx, sy = start[0][ids].astype(np.float64), start[1][ids].astype(np.float64)
-    tx, ty = px[ids] - sx, py[ids] - sy
-    far = (tx * tx + ty * ty > ob.half_width() ** 2).nonzero()[0]
-    if far.size == 0:
-        return d, nx, ny
-    d0, n0x, n0y = ob.distance_xy(sx[far], sy[far])
-    c = far[(d0 >= 0) & (n0x * nx[far] + n0y * ny[far] < 0)]     # it crossed the middle
-    if c.size == 0:
-        return d, nx, ny
-    ax, ay = sx[c], sy[c]
-    ex, ey = px[ids[c]] - ax, py[ids[c]] - ay
-    t = ob.entry(ax, ay, ex, ey)
-    qx, qy = ax + t * ex, ay + t * ey
-    px[ids[c]], py[ids[c]] = qx, qy
-    dq, nqx, nqy = ob.distance_xy(qx, qy)
-    d, nx, ny = d.copy(), nx.copy(), ny.copy()
-    d[c], nx[c], ny[c] = dq, nqx, nqy
-    return d, nx, ny
-
-
 def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.0,
                 movable: np.ndarray | None = None) -> np.ndarray:
     """Indices of the points (x and y columns) within `margin` of the obstacle's bounds (and
     `movable`, if given): the only ones that can be inside or within the margin."""
-    margin += NEAR_SLACK
-    # (mask.nonzero()[0] is np.flatnonzero(mask) for a 1-D mask, without its Python wrappers:
-    # the contact passes call it a dozen times a step, on small arrays)
+    margin += NEAR_SLACK           # (m.nonzero()[0]: np.flatnonzero(m) without its wrappers)
     if isinstance(ob, HalfPlane):                # no box: the plane's own test, as cheap
         near = (px - ob.px) * ob.nx + (py - ob.py) * ob.ny < margin
         return (near & movable if movable is not None else near).nonzero()[0]
@@ -551,29 +495,6 @@ def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.
     return near.nonzero()[0]
 
 
-def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
-    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
-    bounds reach it): only then can a particle pushed out of one land in another."""
-    grown = [ob.bounds() for ob in obstacles]
-    for a in range(len(obstacles)):
-        for b in range(a + 1, len(obstacles)):
-            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
-            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
-                         None)
-            if plane is not None:
-                other = grown[b] if plane is obstacles[a] else grown[a]
-                if math.isinf(other[0]):
-                    return True                                 # two half-planes
-                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
-                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
-                if lowest < 2 * margin:
-                    return True
-            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
-                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
-                return True
-    return False
-
-
 __all__ = ["PICK_THIN", "obstacle_at", "OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
            "nearest", "penetration_max", "Contacts", "project", "near_bounds", "coulomb_friction",
-           "verlet_friction", "obstacles_may_touch"]
+           "verlet_friction"]
