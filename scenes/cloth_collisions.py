@@ -70,7 +70,8 @@ class ClothCollisionsScene(ClothScene):
         Try("Drop onto a thin bar", {"obstacles": "bar", "cols": 50, "hertz": 15},
             "at 15 Hz the strip hits a bar 4 px thick at ~40 px a step, and even resting on it "
             "gravity moves it g h^2 = 4.4 px a step: the sweep test catches each path through "
-            "the bar (tunneled in the HUD, ~50 a step) and puts it back where it entered"),
+            "the bar (tunneled in the HUD, ~100 a step: every particle of the strip) and puts "
+            "it back where it entered"),
     )
     comparisons = (
         Try("Slope: friction off vs on", {"obstacles": "box", "cols": 30},

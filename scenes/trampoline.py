@@ -24,6 +24,16 @@ no pins it stays constant through every bounce (a test checks it to 1e-4 of the 
 `coupling` = one-way shows the other half: the cloth is pushed out of the body but the body feels
 nothing, so nothing stops it.
 
+Energy bars (E): the body's kinetic (with its spin) and potential energy, the cloth's (its free
+particles, v = (x - x_prev)/h), potentials zero on the pins' line; and what three causes took out
+since the bars were first shown (the account starts then, and costs nothing before), each
+measured where it acts: the cloth's drag (1/2 m v^2 (1 - k^2) a step), the
+rods' sweeps (the change of the cloth's energy across them), the coupling (the change of cloth +
+body across it). The rods are hard constraints and store no energy, so there is no elastic part:
+while the band is pressed down the coupling takes energy out, and as it snaps back the rods' bar
+goes below zero, giving most of it back. What is left (`other`) is the floor and pymunk's own
+integration.
+
 Only particles collide, never the rods between them: a heavy body on a stiff band pushes the
 particles aside and slips between them (card "Stiff band lets it through", comparison "Heavy
 ball: soft vs stiff").
@@ -69,8 +79,6 @@ class TrampolineScene(PymunkScene):
     """
 
     name = "trampoline"
-    no_energy_words = ("its bars are not built yet: the ball's and the cloth's energies are "
-                       "not summed here (momentum_x, momentum_y are)")
     title = "Trampoline: pymunk bodies on a Verlet cloth"
     category = "Cloth"
     arrow_name = "body"
@@ -102,7 +110,7 @@ class TrampolineScene(PymunkScene):
         Effect("drag", True, "the cloth's velocity damping (Verlet 2 -> 1.99)"),
         Effect("collisions", True, "cloth and body push each other (off: it falls through)"),
     )
-    world_keys = ("space", "body", "shape", "floor", "cloth", "last")
+    world_keys = ("space", "body", "shape", "floor", "cloth", "last", "account")
     error_metric, error_label = "penetration_max", "deepest particle in a body"
     metric_units = {"penetration_max": Unit("px", resolution=0.01),
                     "coupling_impulse": Unit("kg px/s", resolution=1e-3)}
@@ -162,6 +170,7 @@ class TrampolineScene(PymunkScene):
         space.add(self.body, self.shape)
         self.cloth = self.make_cloth()
         self.last = {"impulse": 0.0, "contacts": 0, "depth": 0.0}
+        self.account: dict[str, float] | None = None     # the energy account: from the bars' first look
 
     def make_cloth(self) -> Cloth:
         """A band of rows x cols particles whose rods are (1 + slack) times the gap between its
@@ -208,9 +217,17 @@ class TrampolineScene(PymunkScene):
     def step(self, h: float) -> None:
         super().step(h)                                   # pymunk: the body moves
         self.sync_cloth()
+        if self.account is None:                          # no bars asked for: nothing measured
+            self.cloth.step(h)
+            if self.coupled:
+                self.couple(h)
+            return
+        before = self.cloth_energy()
         self.cloth.step(h)                                # Verlet step and the rods' sweeps
+        after = self.cloth_energy()
+        self.account_cloth_step(h, before, after)
         if self.coupled:                                  # off: nothing computed at all
-            self.couple(h)
+            self.couple(h, after)
 
     @property
     def coupled(self) -> bool:
@@ -226,12 +243,14 @@ class TrampolineScene(PymunkScene):
             shape = Box(x, y, BOX_ASPECT * size, size, b.angle)
         return Body(shape, b.mass, b.moment, (x, y))
 
-    def couple(self, h: float) -> None:
+    def couple(self, h: float, cloth_before: tuple[float, float] | None = None) -> None:
         """Project the particles out of the body and give the body the opposite impulse
         (app/physics/coupling.py); one-way: the body is left as it was."""
         c = self.cloth
         points = c.x.reshape(2, -1).T                     # a view: writing moves the cloth
         movable = (c.w > 0).ravel()
+        counting = self.account is not None and cloth_before is not None
+        body_before = self.body_energy() if counting else (0.0, 0.0)   # for the energy account
         ex: Exchange = couple(points, movable, self.particle_mass, self.rigid(), h)
         if self.p["coupling"] == "two-way" and ex.contacts:
             if not (np.isfinite(ex.dv).all() and math.isfinite(ex.dw)):
@@ -243,10 +262,83 @@ class TrampolineScene(PymunkScene):
             b.angle += ex.turn
         self.last["impulse"] += float(np.hypot(*ex.impulse))
         self.last["contacts"] = ex.contacts
+        if ex.contacts and counting:      # what the exchange took out of the two (< 0: put in)
+            self.account["coupling"] += (sum(cloth_before) + sum(body_before)
+                                         - sum(self.cloth_energy()) - sum(self.body_energy()))
 
     def advance(self) -> None:
         self.last["impulse"] = 0.0                        # summed over this step's substeps
         super().advance()
+
+    # ----- energy --------------------------------------------------------------------------------
+    # kg px^2/s^2; potentials m g (PIN_Y - y), zero on the pins' line (y points down)
+    def body_energy(self) -> tuple[float, float]:
+        """The body's (kinetic, with its spin; potential in gravity)."""
+        b = self.body
+        kinetic = 0.5 * b.mass * b.velocity.length_squared + \
+            0.5 * b.moment * b.angular_velocity ** 2
+        return kinetic, b.mass * self.gravity() * (PIN_Y - b.position.y)
+
+    def cloth_energy(self) -> tuple[float, float]:
+        """The cloth's (kinetic, potential): its free particles only (a pinned one never moves),
+        mass cloth_mass / particles each, v = (x - x_prev)/h."""
+        c = self.cloth
+        x = c.x
+        h = self.dt / self.p["substeps"]
+        free = c.w > 0
+        v = (x.astype(np.float64) - c.x_prev) / h
+        m = self.particle_mass
+        kinetic = 0.5 * m * float(np.sum(free * (v[0] * v[0] + v[1] * v[1])))
+        return kinetic, m * self.gravity() * float(np.sum(free * (PIN_Y - x[1].astype(np.float64))))
+
+    def energy(self) -> float:
+        return sum(self.body_energy()) + sum(self.cloth_energy())
+
+    def fresh_account(self) -> dict[str, float]:
+        """The energy now as the start, nothing taken out yet."""
+        return {"start": self.energy(), "drag": 0.0, "rods": 0.0, "coupling": 0.0}
+
+    def account_cloth_step(self, h: float, before: tuple[float, float],
+                           after: tuple[float, float]) -> None:
+        """What the cloth's step took out of its energy, split: the drag scales every velocity
+        by k = (1 - drag)^(60 h) (app/physics/cloth.py), so it takes 1/2 m v^2 (1 - k^2) of
+        each particle's kinetic energy; the rest of the change is the rods' projection (and
+        Verlet's own drift, 1/2 m g^2 h^2 a particle a substep: a few 0.1 % of a bounce)."""
+        drag = 0.0
+        if "drag" in self.cloth.on:
+            k = (1.0 - self.cloth.drag) ** (h * 60.0)
+            drag = before[0] * (1.0 - k * k)
+        self.account["drag"] += drag
+        self.account["rods"] += sum(before) - sum(after) - drag
+
+    def gravity_changed(self) -> None:
+        """A new g changes every potential: the account starts again from the energy now."""
+        if getattr(self, "account", None) is not None:
+            self.account = self.fresh_account()
+
+    def energies(self):
+        """Energy bars: the body's and the cloth's kinetic and potential energy, and what the
+        cloth's drag, its rods and the coupling took out since the bars were first shown (the
+        account starts then: until the bars are asked for, the step measures nothing)."""
+        from app.energy import Energies
+        if self.account is None:
+            self.account = self.fresh_account()
+        body = self.p["body"]
+        (bk, bg), (ck, cg) = self.body_energy(), self.cloth_energy()
+        a = self.account
+        return Energies(
+            ((f"KE {body}", bk), (f"PE {body}", bg), ("KE band", ck), ("PE band", cg)),
+            a["start"],
+            zero=f"KE (kinetic): at rest; PE (gravity): on the pins' line (y = {PIN_Y:g} px); drag, rods, "
+                 "coupling: what each has taken out since the bars were first shown (< 0: put "
+                 "in). The rods are hard constraints: they store no energy, so the band has no elastic part. "
+                 f"While the band is pressed down, the coupling's projection takes energy out "
+                 f"(the {body} slows); as the band snaps back, the rods' projection puts most of "
+                 "it back (its bar goes below zero): that pair is the trampoline's spring",
+            losses="other: the floor's inelastic bounce, pymunk's own integration; the mouse "
+                   "puts energy in",
+            unit="kg px^2/s^2",
+            removed=tuple((k, a[k]) for k in ("drag", "rods", "coupling")))
 
     # ----- reports -------------------------------------------------------------------------------
     def momentum(self) -> np.ndarray:

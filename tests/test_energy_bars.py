@@ -14,7 +14,7 @@ from app.energy import Energies
 
 BY_NAME = {c.name: c for c in scenes.SCENES}
 WITH_BARS = ("cloth", "cloth_collisions", "mass_spring_cloth", "mass_spring_collisions",
-             "newtons_cradle", "double_pendulum", "particle_dance")
+             "newtons_cradle", "double_pendulum", "particle_dance", "trampoline")
 
 
 def _run(scene, seconds: float) -> None:

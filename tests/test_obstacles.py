@@ -216,3 +216,38 @@ def test_a_point_that_crossed_the_middle_of_a_thin_box_goes_back_out_the_side_it
     plain = np.array([[0.0, 3.0]])
     project([top], plain, 0.25)                              # without start: the nearer face
     assert plain[0, 1] == pytest.approx(5.25)
+
+
+@pytest.mark.parametrize("ob", shapes(), ids=lambda ob: ob.kind)
+def test_entry_is_where_a_path_from_outside_first_meets_the_surface(ob):
+    """Each shape's exact entry against the plain bisection on its signed distance: random
+    paths from outside to inside, the same t to the bisection's 1e-9."""
+    from app.physics.obstacles import Obstacle
+    rng = np.random.default_rng(RNG_SEED)
+    a, b = rng.uniform(-50.0, 600.0, (2, 20000, 2))
+    d0 = ob.signed_distance(a)[0]
+    d1 = ob.signed_distance(b)[0]
+    k = (d0 >= 0) & (d1 < 0)
+    assert k.sum() > 5
+    a, e = a[k], (b - a)[k]
+    t = ob.entry(a[:, 0], a[:, 1], e[:, 0], e[:, 1])
+    assert np.allclose(t, Obstacle.entry(ob, a[:, 0], a[:, 1], e[:, 0], e[:, 1]), atol=1e-8)
+    assert np.abs(ob.signed_distance(a + t[:, None] * e)[0]).max() < 1e-6 * (1 + np.abs(e).max())
+
+
+@pytest.mark.parametrize("ob", [s for s in shapes() if s.kind != "half_plane"],
+                         ids=lambda ob: ob.kind)
+def test_no_path_shorter_than_shortest_dip_dips_the_tolerance_deep(ob):
+    """shortest_dip is a bound: paths from outside to outside, just shorter than it, anywhere
+    around the shape, never reach `tolerance` inside (golden-section search along each)."""
+    from app.physics.tunnelling import shortest_dip
+    tol = 1.0
+    length = 0.999 * shortest_dip(ob, tol)
+    rng = np.random.default_rng(RNG_SEED)
+    x0, y0, x1, y1 = ob.bounds()
+    a = rng.uniform((x0 - 5, y0 - 5), (x1 + 5, y1 + 5), (8000, 2))
+    angle = rng.uniform(0, 2 * math.pi, 8000)
+    b = a + length * np.column_stack((np.cos(angle), np.sin(angle)))
+    out = (ob.signed_distance(a)[0] >= 0) & (ob.signed_distance(b)[0] >= 0)
+    dmin, _ = path_min_distance(ob, a[out], b[out])
+    assert out.sum() > 500 and dmin.min() > -tol

@@ -17,7 +17,8 @@ from app.energy import Energies
 from app.units import fmt_number
 
 PART_COLORS = {"kinetic": (255, 170, 60), "potential": (90, 160, 255), "gravity": (90, 160, 255),
-               "elastic": (110, 210, 120), "springs": (110, 210, 120), "pairs": (200, 130, 255)}
+               "elastic": (110, 210, 120), "springs": (110, 210, 120), "pairs": (200, 130, 255),
+               "KE": (255, 170, 60), "PE": (90, 160, 255)}    # short labels: "KE ball", "PE band"
 LOST_COLOR = (200, 90, 90)
 TOTAL_COLOR = (235, 235, 235)
 START_COLOR = (255, 220, 90)
@@ -28,9 +29,15 @@ def _color(name: str) -> tuple[int, int, int]:
 
 
 def bars(e: Energies) -> list[tuple[str, float, tuple[int, int, int]]]:
-    """(label, value in the shown unit, colour) of every bar, in order: the parts, lost, total."""
+    """(label, value in the shown unit, colour) of every bar, in order: the parts, lost (or
+    the named `removed` parts and the other rest), total."""
     rows = [(name, e.shown(v), _color(name)) for name, v in e.parts]
-    return rows + [("lost", e.shown(e.lost), LOST_COLOR), ("total", e.shown(e.total), TOTAL_COLOR)]
+    if e.removed:                          # lost, split into what was measured and the rest
+        rows += [(name, e.shown(v), LOST_COLOR) for name, v in e.removed]
+        rows.append(("other", e.shown(e.other), LOST_COLOR))
+    else:
+        rows.append(("lost", e.shown(e.lost), LOST_COLOR))
+    return rows + [("total", e.shown(e.total), TOTAL_COLOR)]
 
 
 def draw_energy_bars(surface: pygame.Surface, area: pygame.Rect, e: Energies,

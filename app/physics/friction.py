@@ -39,7 +39,7 @@ def coulomb_friction(motion: np.ndarray, normal: np.ndarray, normal_change: np.n
     Returns the change to add to `motion` (n, 2): minus the removed tangential part; zero
     outside the mask. It never reverses the sliding: the factor applied to m_t is in [0, 1]."""
     change = np.zeros(motion.shape, np.float64)
-    ids = np.flatnonzero(mask)
+    ids = mask.nonzero()[0]
     if ids.size == 0 or mu <= 0:
         return change
     m = motion[ids].astype(np.float64)
@@ -59,13 +59,14 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     particle in contact, the sliding x - x_prev (minus the surface's own motion, velocity * h,
     of the obstacle it touches) loses at most mu * depth along the surface, by moving x back
     along it. Writes into x ((n, 2) arrays, views welcome)."""
-    ids = np.flatnonzero(contacts.mask)
+    ids = contacts.mask.nonzero()[0]
     if ids.size == 0 or mu <= 0:
         return
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
     mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
     my = ys[ids].astype(np.float64) - x_prev[ids, 1]
-    if h and len(obstacles):                   # ...relative to the surface it touches
+    if h and any(vx or vy for vx, vy in (ob.velocity for ob in obstacles)):
+        # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
         mx -= carry[contacts.index[ids], 0]
         my -= carry[contacts.index[ids], 1]

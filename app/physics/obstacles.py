@@ -64,7 +64,10 @@ What a step does with them (the Verlet cloth; the mass-spring cloth uses the sam
 3. `penetration_max(obstacles, points)`: the deepest point inside any obstacle, px (0 if none):
    after a step with projection, a measure of what the projection did not fix.
 4. Tunnelling: projection only sees where a particle ends, so a fast particle can pass right
-   through a thin obstacle in one step. app/physics/tunnelling.py finds such paths (`swept`).
+   through a thin obstacle in one step. app/physics/tunnelling.py finds such paths (`swept`);
+   each shape's `entry` says where a straight path first meets its surface, solved exactly (a
+   quadratic for a ball, slab clipping for a box, both for a capsule's three pieces), and
+   `distance` gives d alone where no normal is needed (cheaper).
 
 Obstacles are small mutable objects: a scene drags one by `move_by(dx, dy)` (or `move_to`) and
 sets its `velocity` (px/s) so that friction carries what rests on it.
@@ -77,11 +80,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-# Contacts and the friction rules live in app/physics/friction.py; imported from here like the rest
+# imported from here like the rest: Contacts, the friction rules; path entries, project()'s guard
 from app.physics.friction import Contacts, coulomb_friction, verlet_friction
+from app.physics.paths import back_to_entry, circle_entry, slab_entry
 
 OBSTACLE_KINDS = ("circle", "box", "half_plane", "segment")
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
+NEAR_SLACK = 0.01     # px: near_bounds reads float32 positions: no point lost to their rounding
 
 
 def _xy(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -128,6 +133,10 @@ class Obstacle:
         """The same from the points' x and y columns: (d, normal x, normal y), each (n,)."""
         raise NotImplementedError
 
+    def distance(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """The signed distance alone (n,), for tests that need no normal (cheaper per shape)."""
+        return self.distance_xy(x, y)[0]
+
     def move_by(self, dx: float, dy: float) -> None:
         raise NotImplementedError
 
@@ -149,6 +158,23 @@ class Obstacle:
         """True where a point is strictly inside (d < 0)."""
         return self.signed_distance(points)[0] < 0
 
+    def half_width(self) -> float:
+        """Half the obstacle's thinnest width (a ball: its radius): a point that starts outside
+        has to travel at least this far to get past its middle (0: not known, always check)."""
+        return 0.0
+
+    def entry(self, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, ey: np.ndarray
+              ) -> np.ndarray:
+        """Where each straight path a + t e (0 <= t <= 1) first meets the surface: its t, for
+        paths that start outside (d >= 0) and reach inside. Each shape below solves it exactly
+        (a circle: a quadratic; a box: slab clipping); this fallback halves [0, 1] 30 times."""
+        lo, hi = np.zeros(len(ax)), np.ones(len(ax))
+        for _ in range(30):                     # d >= 0 at lo, d < 0 at hi
+            mid = (lo + hi) / 2
+            out = self.distance_xy(ax + mid * ex, ay + mid * ey)[0] >= 0
+            lo, hi = np.where(out, mid, lo), np.where(out, hi, mid)
+        return lo
+
 
 @dataclass
 class Circle(Obstacle):
@@ -165,6 +191,9 @@ class Circle(Obstacle):
         nx, ny = _unit_or(dx, dy, r, (0.0, -1.0))        # at the centre: out through the top
         return r - self.radius, nx, ny
 
+    def distance(self, x, y):
+        return np.hypot(x - self.cx, y - self.cy) - self.radius
+
     def move_by(self, dx, dy):
         self.cx += dx
         self.cy += dy
@@ -176,6 +205,12 @@ class Circle(Obstacle):
     def bounds(self):
         r = self.radius
         return (self.cx - r, self.cy - r, self.cx + r, self.cy + r)
+
+    def half_width(self):
+        return self.radius
+
+    def entry(self, ax, ay, ex, ey):
+        return circle_entry(ax - self.cx, ay - self.cy, ex, ey, self.radius)[0]
 
 
 @dataclass
@@ -219,6 +254,14 @@ class Box(Obstacle):
         gy = np.where(out > 0, oy / safe, ~face_x) * np.copysign(1.0, ly)
         return d, gx * ux + gy * vx, gx * uy + gy * vy
 
+    def distance(self, x, y):
+        (ux, uy), (vx, vy) = self.axes()
+        dx, dy = x - self.cx, y - self.cy
+        qx = np.abs(dx * ux + dy * uy) - self.half_w
+        qy = np.abs(dx * vx + dy * vy) - self.half_h
+        return np.hypot(np.maximum(qx, 0.0), np.maximum(qy, 0.0)) + \
+            np.minimum(np.maximum(qx, qy), 0.0)
+
     def move_by(self, dx, dy):
         self.cx += dx
         self.cy += dy
@@ -226,6 +269,15 @@ class Box(Obstacle):
     @property
     def center(self):
         return (self.cx, self.cy)
+
+    def half_width(self):
+        return min(self.half_w, self.half_h)
+
+    def entry(self, ax, ay, ex, ey):
+        (ux, uy), (vx, vy) = self.axes()
+        dx, dy = ax - self.cx, ay - self.cy           # the path in the box's own frame
+        return slab_entry(dx * ux + dy * uy, dx * vx + dy * vy, ex * ux + ey * uy,
+                           ex * vx + ey * vy, self.half_w, self.half_h)[0]
 
     def bounds(self):
         c, s = abs(math.cos(self.angle)), abs(math.sin(self.angle))
@@ -253,6 +305,14 @@ class HalfPlane(Obstacle):
     def distance_xy(self, x, y):
         d = (x - self.px) * self.nx + (y - self.py) * self.ny
         return d, np.full(len(d), self.nx), np.full(len(d), self.ny)
+
+    def half_width(self):
+        return math.inf
+
+    def entry(self, ax, ay, ex, ey):
+        d0 = (ax - self.px) * self.nx + (ay - self.py) * self.ny
+        fall = -(ex * self.nx + ey * self.ny)           # how much d drops over the whole path
+        return np.clip(d0 / np.maximum(fall, TINY), 0.0, 1.0)
 
     def move_by(self, dx, dy):
         self.px += dx
@@ -310,6 +370,24 @@ class Segment(Obstacle):
     @property
     def center(self):
         return ((self.ax + self.bx) / 2, (self.ay + self.by) / 2)
+
+    def half_width(self):
+        return self.thickness
+
+    def entry(self, ax, ay, ex, ey):
+        # the capsule is a rectangle (the core, `thickness` each side) and a disc at either end:
+        # the path enters it where it first enters one of the three
+        sx, sy = self.bx - self.ax, self.by - self.ay
+        length = math.hypot(sx, sy)
+        ux, uy = (sx / length, sy / length) if length > 0 else (1.0, 0.0)
+        dx, dy = ax - (self.ax + self.bx) / 2, ay - (self.ay + self.by) / 2
+        t, hit = slab_entry(dx * ux + dy * uy, -dx * uy + dy * ux, ex * ux + ey * uy,
+                             -ex * uy + ey * ux, length / 2, self.thickness)
+        t = np.where(hit, t, np.inf)
+        for px, py in ((self.ax, self.ay), (self.bx, self.by)):
+            tc, hc = circle_entry(ax - px, ay - py, ex, ey, self.thickness)
+            t = np.where(hc & (tc < t), tc, t)
+        return np.where(np.isfinite(t), t, 0.0)
 
     def bounds(self):
         t = self.thickness
@@ -384,12 +462,13 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
         if ids.size == 0:
             continue
         d, nx, ny = ob.distance_xy(px[ids].astype(np.float64), py[ids].astype(np.float64))
-        inside = d < margin
-        if not inside.any():
+        inside = (d < margin).nonzero()[0]
+        if inside.size == 0:
             continue
-        ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]   # usually few
+        if inside.size < ids.size:                                # usually few
+            ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]
         if start is not None and not isinstance(ob, HalfPlane):
-            d, nx, ny = _back_to_entry(ob, ids, d, nx, ny, px, py, start)
+            d, nx, ny = back_to_entry(ob, ids, d, nx, ny, px, py, start)
         push = margin - d
         px[ids] += (push * nx).astype(points.dtype, copy=False)
         py[ids] += (push * ny).astype(points.dtype, copy=False)
@@ -401,68 +480,21 @@ def project(obstacles, points: np.ndarray, margin: float = 0.0,
     return Contacts(hit, depth, normal, index)
 
 
-def _back_to_entry(ob: Obstacle, ids, d, nx, ny, px, py, start, halvings: int = 20):
-    """project()'s guard against popping out of the far side: the points `ids` (inside `ob`,
-    at distance d with normal (nx, ny)) whose start was outside with a normal against theirs
-    are moved to where the straight path start -> now met the surface (bisection); returns
-    their new d and normal (the others' unchanged)."""
-    sx, sy = start[0][ids].astype(np.float64), start[1][ids].astype(np.float64)
-    d0, n0x, n0y = ob.distance_xy(sx, sy)
-    crossed = (d0 >= 0) & (n0x * nx + n0y * ny < 0)
-    if not crossed.any():
-        return d, nx, ny
-    c = np.flatnonzero(crossed)
-    ax, ay = sx[c], sy[c]
-    ex, ey = px[ids[c]] - ax, py[ids[c]] - ay
-    lo, hi = np.zeros(c.size), np.ones(c.size)
-    for _ in range(halvings):               # d >= 0 at lo, d < 0 at hi
-        mid = (lo + hi) / 2
-        out = ob.distance_xy(ax + mid * ex, ay + mid * ey)[0] >= 0
-        lo, hi = np.where(out, mid, lo), np.where(out, hi, mid)
-    qx, qy = ax + lo * ex, ay + lo * ey
-    px[ids[c]], py[ids[c]] = qx, qy
-    dq, nqx, nqy = ob.distance_xy(qx, qy)
-    d, nx, ny = d.copy(), nx.copy(), ny.copy()
-    d[c], nx[c], ny[c] = dq, nqx, nqy
-    return d, nx, ny
-
-
 def near_bounds(ob: Obstacle, px: np.ndarray, py: np.ndarray, margin: float = 0.0,
                 movable: np.ndarray | None = None) -> np.ndarray:
     """Indices of the points (x and y columns) within `margin` of the obstacle's bounds (and
     `movable`, if given): the only ones that can be inside or within the margin."""
+    margin += NEAR_SLACK           # (m.nonzero()[0]: np.flatnonzero(m) without its wrappers)
+    if isinstance(ob, HalfPlane):                # no box: the plane's own test, as cheap
+        near = (px - ob.px) * ob.nx + (py - ob.py) * ob.ny < margin
+        return (near & movable if movable is not None else near).nonzero()[0]
     x0, y0, x1, y1 = ob.bounds()
-    if math.isinf(x0) and movable is None:
-        return np.arange(len(px))
     near = (px > x0 - margin) & (px < x1 + margin) & (py > y0 - margin) & (py < y1 + margin)
     if movable is not None:
         near &= movable
-    return np.flatnonzero(near)
-
-
-def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
-    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
-    bounds reach it): only then can a particle pushed out of one land in another."""
-    grown = [ob.bounds() for ob in obstacles]
-    for a in range(len(obstacles)):
-        for b in range(a + 1, len(obstacles)):
-            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
-            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
-                         None)
-            if plane is not None:
-                other = grown[b] if plane is obstacles[a] else grown[a]
-                if math.isinf(other[0]):
-                    return True                                 # two half-planes
-                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
-                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
-                if lowest < 2 * margin:
-                    return True
-            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
-                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
-                return True
-    return False
+    return near.nonzero()[0]
 
 
 __all__ = ["PICK_THIN", "obstacle_at", "OBSTACLE_KINDS", "Obstacle", "Circle", "Box", "HalfPlane", "Segment", "floor",
            "nearest", "penetration_max", "Contacts", "project", "near_bounds", "coulomb_friction",
-           "verlet_friction", "obstacles_may_touch"]
+           "verlet_friction"]

@@ -16,8 +16,10 @@ Two facts make that cheap for the lab's convex obstacles (circle, box, half-plan
   (resting and slow particles: nearly all) need no search.
 
 A path that dips more than `tolerance` px inside while both its ends are outside went through.
-`swept` returns those paths and, for each, the entry point (where it first met the surface, by
-bisection between the start and the deepest point), where a simulation can stop the particle.
+`swept` returns those paths and, for each, the entry point (where it first met the surface,
+solved exactly per shape: Obstacle.entry), where a simulation can stop the particle. A half-plane
+is never tunnelled through: d is linear along a path, so a path with both ends outside never
+dips in (swept skips it).
 """
 
 from __future__ import annotations
@@ -30,7 +32,6 @@ import numpy as np
 from app.physics.obstacles import Box, Circle, HalfPlane, Obstacle, Segment
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0       # 0.618...: golden-section search's shrink factor
-BISECTIONS = 20     # halvings that find a path's entry point: to 1e-6 of the path
 
 
 def path_min_distance(obstacle: Obstacle, p0: np.ndarray, p1: np.ndarray,
@@ -64,15 +65,35 @@ def path_min_distance(obstacle: Obstacle, p0: np.ndarray, p1: np.ndarray,
     return cand.min(0), np.choose(pick, [t, np.zeros_like(t), np.ones_like(t)])
 
 
+def shortest_dip(ob: Obstacle, depth: float) -> float:
+    """The length of the shortest straight path that starts and ends outside `ob` and yet
+    reaches more than `depth` px inside it: a shorter path cannot have gone through, and the
+    sweep test skips it. A ball of radius r: the chord (r - depth) from its centre,
+    2 sqrt(2 r depth - depth^2), and a capsule the same at its end discs; a box: a cut across
+    a corner at 45 degrees, 2 sqrt(2) depth, or straight across its thinner side; a half-plane:
+    none (d is linear along a path: both ends outside, so is all of it)."""
+    w = ob.half_width()
+    if isinstance(ob, HalfPlane) or depth >= w > 0:
+        return math.inf
+    if isinstance(ob, (Circle, Segment)):
+        return 2.0 * math.sqrt(max(2.0 * w * depth - depth * depth, 0.0))
+    if isinstance(ob, Box):
+        return min(2.0 * math.sqrt(2.0) * depth, 2.0 * w)
+    return 2.0 * depth
+
+
 @dataclass
 class Sweep:
     """Paths that passed through an obstacle in one step: `mask` per point, and for those, the
     first point of the path on the obstacle's surface (`entry`, (n, 2), NaN elsewhere) and the
-    obstacle's index."""
+    obstacle's index. With swept(past_middle=True), `deep` marks the paths that came in from
+    outside and end inside, longer than its half width (their entry is given too; not in
+    `count`)."""
 
     mask: np.ndarray
     entry: np.ndarray
     index: np.ndarray
+    deep: np.ndarray | None = None
 
     @property
     def count(self) -> int:
@@ -145,63 +166,120 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
 
 
 def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
-          movable: np.ndarray | None = None, find_entry: bool = True) -> Sweep:
-    """Which paths p0 -> p1 ((n, 2)) start and end no more than `tolerance` inside every
-    obstacle, and pass more than `tolerance` px deep through one on the way: tunnelling, which
-    a projection at the end of the step cannot see. Only paths whose bounding box meets the
-    obstacle's and that fail the bound (d0 + d1 - L)/2 >= -tolerance are tested (see the module
-    docstring), so resting and slow particles cost almost nothing. Returns a Sweep with each
-    such path's entry point (where it first reached the surface, by bisection; NaN with
-    find_entry=False, for a caller that only needs which paths went through)."""
+          movable: np.ndarray | None = None, find_entry: bool = True,
+          past_middle: bool = False) -> Sweep:
+    """Which paths p0 -> p1 ((n, 2)) start and end outside an obstacle (a path that ends
+    inside is the projection's), and pass more than `tolerance` px deep through it on the way:
+    tunnelling, which a projection at the end of the step cannot see. Only paths whose
+    bounding box meets the obstacle's, that are longer than `shortest_dip` and that fail the
+    bound (d0 + d1 - L)/2 >= -tolerance are tested (see the module docstring), so resting and
+    slow particles cost almost nothing. Returns a Sweep with each
+    such path's entry point (where it first reached the surface: Obstacle.entry; NaN with
+    find_entry=False, for a caller that only needs which paths went through).
+
+    past_middle: also find the paths that came in from outside and end inside, and that are
+    longer than the obstacle's half width: only they can have crossed its middle (a 6 px step
+    into a 10 px table top), where the shortest way out is through the far side. They are in
+    `deep`, with their entry, so that the caller puts them back on the side they came from
+    before projecting (a shorter path is pushed out the near side by the projection alone)."""
     p0 = np.asarray(p0, np.float64)
     p1 = np.asarray(p1, np.float64)
-    n = len(p0)
+    return swept_xy(obstacles, p0[:, 0], p0[:, 1], p1[:, 0], p1[:, 1], tolerance, movable,
+                    find_entry, past_middle)
+
+
+def swept_xy(obstacles, ax_: np.ndarray, ay_: np.ndarray, bx_: np.ndarray, by_: np.ndarray,
+             tolerance: float = 0.5, movable: np.ndarray | None = None, find_entry: bool = True,
+             past_middle: bool = False) -> Sweep:
+    """swept() for paths given by the x and y columns of their starts (ax, ay) and ends
+    (bx, by): the same test, without building (n, 2) arrays (the cloth hands over its rows)."""
+    n = len(ax_)
     mask = np.zeros(n, bool)
+    deep = np.zeros(n, bool) if past_middle else None
     entry = np.full((n, 2), np.nan)
     index = np.full(n, -1)
     # a path that ends outside yet dips `tolerance` deep is at least 2 x tolerance long (|grad d|
     # = 1: it must go down and come back up): the short ones, nearly all, are done at once
-    step = p1 - p0
-    moving = step[:, 0] ** 2 + step[:, 1] ** 2 > (2 * tolerance) ** 2
+    ex_, ey_ = bx_ - ax_, by_ - ay_
+    length2 = ex_ * ex_ + ey_ * ey_
+    moving = length2 > (0.0 if past_middle else (2 * tolerance) ** 2)
     if movable is not None:
         moving &= movable
-    fast = np.flatnonzero(moving)
-    if fast.size == 0:
-        return Sweep(mask, entry, index)
-    q0, q1 = p0[fast], p1[fast]
-    lo_x, hi_x = np.minimum(q0[:, 0], q1[:, 0]), np.maximum(q0[:, 0], q1[:, 0])
-    lo_y, hi_y = np.minimum(q0[:, 1], q1[:, 1]), np.maximum(q0[:, 1], q1[:, 1])
+    if moving.all():                               # (a caller that picked the paths already)
+        fast = np.arange(n)
+    else:
+        fast = moving.nonzero()[0]
+        if fast.size == 0:
+            return Sweep(mask, entry, index, deep)
+        ax_, ay_, ex_, ey_, length2 = ax_[fast], ay_[fast], ex_[fast], ey_[fast], length2[fast]
+    lo_x, hi_x = np.minimum(ax_, ax_ + ex_), np.maximum(ax_, ax_ + ex_)
+    lo_y, hi_y = np.minimum(ay_, ay_ + ey_), np.maximum(ay_, ay_ + ey_)
+    done = np.zeros(fast.size, bool)               # caught by an earlier obstacle
+    any_done = False
     for k, ob in enumerate(obstacles):
+        shortest = shortest_dip(ob, tolerance)
+        if past_middle:
+            shortest = min(shortest, ob.half_width())
+        if math.isinf(shortest):
+            continue                                  # a half-plane: never gone through
         x0, y0, x1, y1 = ob.bounds()
-        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1) & ~mask[fast]
-        ids = fast[near]
-        if ids.size == 0:
+        near = (hi_x > x0) & (lo_x < x1) & (hi_y > y0) & (lo_y < y1)
+        near &= length2 > shortest * shortest         # too short to have gone through
+        if any_done:
+            near &= ~done
+        sel = near.nonzero()[0]
+        if sel.size == 0:
             continue
-        a, b = p0[ids], p1[ids]
-        d0, d1 = ob.distance_xy(a[:, 0], a[:, 1])[0], ob.distance_xy(b[:, 0], b[:, 1])[0]
-        length = np.hypot(*(b - a).T)
-        suspect = (d0 >= -tolerance) & (d1 >= -tolerance) & ((d0 + d1 - length) / 2 < -tolerance)
-        ids, a, b = ids[suspect], a[suspect], b[suspect]
-        if ids.size == 0:
+        ax, ay, ex, ey = ax_[sel], ay_[sel], ex_[sel], ey_[sel]
+        # the end first: a path from outside (d0 >= 0) can only dip `tolerance` deep if
+        # d1 < L - 2 tolerance, and only cross the middle if it is longer than the half width;
+        # the start's distance is needed for the others only
+        d1, length = ob.distance(ax + ex, ay + ey), np.sqrt(length2[sel])
+        wanted = (d1 >= 0) & (d1 < length - 2 * tolerance)
+        if past_middle:
+            wanted |= (d1 < 0) & (length > ob.half_width())
+        keep = wanted.nonzero()[0]
+        if keep.size == 0:
             continue
-        through, t_in = dips_below(ob, a, b, tolerance)
-        ids, a, b, t_in = ids[through], a[through], b[through], t_in[through]
-        if ids.size == 0:
+        sel, ax, ay, ex, ey, d1, length = (sel[keep], ax[keep], ay[keep], ex[keep], ey[keep],
+                                           d1[keep], length[keep])
+        d0 = ob.distance(ax, ay)
+        hit = (d0 >= 0) & (d1 >= 0) & ((d0 + d1 - length) / 2 < -tolerance)   # suspects
+        t_in = None
+        if hit.any():
+            ids = hit.nonzero()[0]
+            a, b = np.column_stack((ax[ids], ay[ids])), np.column_stack((ax[ids] + ex[ids],
+                                                                         ay[ids] + ey[ids]))
+            through, t = dips_below(ob, a, b, tolerance)
+            hit[ids[~through]] = False
+            t_in = np.ones(sel.size)
+            t_in[ids[through]] = t[through]
+            mask[fast[sel[ids[through]]]] = True
+        if past_middle:
+            # every such path is stopped where it came in (what a continuous collision test does
+            # at its time of impact); a path shorter than the half width cannot have crossed
+            # the middle, and the projection pushes it out the near side anyway
+            crossed = (d0 >= 0) & (d1 < 0) & (length > ob.half_width())
+            deep[fast[sel[crossed]]] = True
+            hit |= crossed
+        hits = hit.nonzero()[0]
+        if hits.size == 0:
             continue
-        mask[ids] = True
-        index[ids] = k
+        sel, ax, ay, ex, ey = sel[hits], ax[hits], ay[hits], ex[hits], ey[hits]
+        done[sel] = True
+        any_done = True
+        index[fast[sel]] = k
         if not find_entry:
             continue
-        # the entry: where d first reaches 0 on [0, t_in] (d < 0 at t_in), by bisection
-        lo, hi = np.zeros(ids.size), t_in
-        step = b - a
-        for _ in range(BISECTIONS):
-            mid = (lo + hi) / 2
-            outside = ob.distance_xy(a[:, 0] + mid * step[:, 0], a[:, 1] + mid * step[:, 1])[0] >= 0
-            lo = np.where(outside, mid, lo)
-            hi = np.where(outside, hi, mid)
-        entry[ids] = a + lo[:, None] * step
-    return Sweep(mask, entry, index)
+        # the entry: where the path first meets the surface (the shape's exact `entry`; convex,
+        # so it is the one crossing before the deepest point t_in)
+        t = ob.entry(ax, ay, ex, ey)
+        if t_in is not None:
+            t = np.minimum(t, t_in[hits])
+        entry[fast[sel], 0] = ax + t * ex
+        entry[fast[sel], 1] = ay + t * ey
+    return Sweep(mask, entry, index, deep)
 
 
-__all__ = ["path_min_distance", "dips_below", "Sweep", "swept", "GOLDEN"]
+__all__ = ["path_min_distance", "dips_below", "shortest_dip", "Sweep", "swept", "swept_xy",
+           "GOLDEN"]
