@@ -310,20 +310,66 @@ def test_a_held_pane_says_one_headline_and_its_text_is_the_size_of_its_neighbour
         TEXT.scale = 1.0
 
 
-def test_four_panes_share_one_text_size_and_a_tag_breaks_at_its_equals_sign(tmp_path):
+def _tag_rows_end_at_word_ends(tag: str, rows: list[str]) -> bool:
+    """Rows of a wrapped tag each end where a word ends (a space, or after '=' or ',')."""
+    at = 0
+    for row in rows[:-1]:
+        at = tag.index(row, at) + len(row)
+        if not (tag[at - 1] in "=," or tag[at:at + 1] == " "):
+            return False
+    return True
+
+
+@pytest.mark.parametrize("size", [(1024, 768), (1920, 1080)])
+def test_four_panes_at_f2_are_two_by_two_one_text_size_and_no_tag_cut_mid_word(tmp_path, size):
+    """Issue 26, defect 3: four panes at F2 went to one row of four narrow columns (three in
+    small text, one large) and a tag broke mid-word ('integrator=implicit_e' / 'uler')."""
     from app.draw import hud
     from app.draw.text import TEXT, font
     from scenes import get_scene
-    w = _compare_window(tmp_path, get_scene("cloth"), ["iterations=2", "iterations=5",
-                                                       "iterations=10", "iterations=20"],
-                        (1024, 768), frames=3)
+    w = _compare_window(tmp_path, get_scene("mass_spring_cloth"),
+                        ["integrator=symplectic_euler", "integrator=implicit_euler",
+                         "integrator=rk4", "integrator=verlet"], size, frames=2)
     try:
         cv = w.scene_view
+        cells = cv.grid.cells
+        assert len({c.left for c in cells}) == 2 and len({c.top for c in cells}) == 2   # 2x2
         assert len({p.layout.hud_text for p in cv.grid.panes}) == 1
+        for p, lines in zip(cv.grid.panes, cv.grid.used):
+            tag = lines[0].text
+            rows = hud.wrap(tag, font(p.layout.hud_text), p.layout.hud_width - 2 * 8)
+            assert _tag_rows_end_at_word_ends(tag, rows), rows
+            assert p.layout.hud.bottom <= p.layout.area.bottom        # the box in its pane
     finally:
         TEXT.scale = 1.0
     rows = hud.wrap("B: integrator=implicit_euler", font(28), font(28).size("B: integrator=impl")[0])
     assert rows == ["B:", "integrator=", "implicit_euler"]
+    assert _tag_rows_end_at_word_ends("B: integrator=implicit_euler", rows)
+    assert not _tag_rows_end_at_word_ends("B: integrator=implicit_euler",
+                                          ["B: integrator=implicit_e", "uler"])
+
+
+@pytest.mark.parametrize("large", [False, True])
+def test_the_plot_picker_opens_over_the_panel_not_over_a_pane(tmp_path, large):
+    """Issue 26, defect 10: at 1920x1080 in compare mode the metric list covered pane B (its
+    hint, one line as wide as half the window, made the box that wide)."""
+    from app.draw.text import TEXT
+    from app.window.plot_picker import PlotPicker
+    from scenes import get_scene
+    from tests.test_window import key
+    w = _compare_window(tmp_path, get_scene("cloth"), ["iterations=2", "iterations=20"],
+                        (1920, 1080), large_text=large, frames=1)
+    try:
+        key(w, pygame.K_p)
+        w.update(1 / 60)
+        w.render()
+        picker = w.current_view
+        assert isinstance(picker, PlotPicker) and picker.box.width > 0
+        cells = picker.under.grid.cells
+        assert len(cells) == 2 and not any(picker.box.colliderect(c) for c in cells)
+        assert picker.box.bottom <= 1080 and len(picker.rows) == len(picker.items())
+    finally:
+        TEXT.scale = 1.0
 
 
 def test_a_gif_of_repeated_frames_says_how_many_it_stores(tmp_path):

@@ -1,6 +1,6 @@
 """Compare mode's picture: a header across the top (the scene, the shared clock, the messages)
-and one `Pane` per variant below it, side by side in a wide area and stacked in a tall one (with
-four, two by two if that shows them larger). The window and the headless screenshot draw the same
+and one `Pane` per variant below it, side by side in a wide area and stacked in a tall one (four
+are two by two, unless the area is a strip). The window and the headless screenshot draw the same
 picture with the same code.
 
 Each pane's HUD box opens with its tag and what differs ("B: iterations=20") in the pane's colour
@@ -28,8 +28,22 @@ PANE_BORDER = (60, 66, 76)
 HEADER_SHARE = 0.3            # the header's text shrinks (to the normal size) above this share
 
 
-def grids(n: int) -> list[tuple[int, int]]:
-    """The (columns, rows) arrangements tried for n panes."""
+STRIP_ASPECT = 3.0            # four panes leave 2x2 for a row (a column) only in an area this
+                              # many times wider than tall (taller than wide)
+
+
+def grids(n: int, area: pygame.Rect | None = None) -> list[tuple[int, int]]:
+    """The (columns, rows) arrangements tried for n panes in `area`. Four panes are two by two:
+    a row of four narrow columns shows each cloth a little larger but wraps every tag and
+    headline into a tall thin box a class cannot read (issue 26, defect 3), unless the area
+    is a strip (STRIP_ASPECT) where 2x2 would be as thin."""
+    if n == 4:
+        out = [(2, 2)]
+        if area is not None and area.width >= STRIP_ASPECT * area.height:
+            out.append((4, 1))
+        if area is not None and area.height >= STRIP_ASPECT * area.width:
+            out.append((1, 4))
+        return out
     out = [(n, 1), (1, n)]
     if n >= 3:
         out.append((2, 2))
@@ -145,7 +159,7 @@ class PaneGrid:
         lines where the full ones spill) and whose smallest pane shows the most content (on a
         near tie, the first tried: side by side)."""
         best, best_key = None, (-float("inf"), 0.0)
-        for cols, rows in grids(len(self.panes)):
+        for cols, rows in grids(len(self.panes), rest):
             cells = split(rest, cols, rows, len(self.panes))
             layouts = []
             for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
