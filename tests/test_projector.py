@@ -523,3 +523,48 @@ def test_a_colour_key_wraps_into_even_rows_never_one_item_alone():
     assert len(rows) == 2 and min(len(r) for r in rows) >= 3
     assert all(sum(hud._key_width(f, k) for k in r) <= int(full * 0.9) for r in rows)
     assert hud._key_rows(keys, f, full + 1) == [list(keys)]
+
+
+# --- issue 26, defect 11: a small cloth reads as a cloth, the cradle's strings are smooth -------
+@pytest.mark.parametrize("spacing_px, filled", [(3.0, True), (16.0, False)])
+def test_a_cloth_a_few_pixels_a_cell_is_drawn_filled_not_as_a_moire_of_rods(spacing_px, filled):
+    """Three cloth panes at 1024x768 with F2 drew ~150 px cloths as rods 3 px apart, each its own
+    colour: a moire. Under FILL_BELOW px a cell the cloth is a filled mesh (no background shows
+    through); at its usual size its rods are drawn apart."""
+    import numpy as np
+    from app.draw.cloth_draw import FILL_BELOW, draw_cloth
+    from scenes.cloth import ClothScene
+    scene = ClothScene()
+    for _ in range(30):
+        scene.step(1 / 60)
+    c = scene.cloth
+    view = View(spacing_px / c.spacing, (0.0, 0.0))
+    assert (spacing_px < FILL_BELOW) == filled
+    x0, y0, x1, y1 = (c.x[0].min(), c.x[1].min(), c.x[0].max(), c.x[1].max())
+    size = (int(x1 * view.scale) + 20, int(y1 * view.scale) + 20)
+    surface = pygame.Surface(size)
+    surface.fill((0, 0, 0))
+    draw_cloth(surface, view, c)
+    # the middle of the cloth (30 % in from its bounding box at the sides and top: inside the sag)
+    (a, b), (d, e) = view.pt((x0 + 0.3 * (x1 - x0), y0 + 0.3 * (y1 - y0))), \
+        view.pt((x0 + 0.7 * (x1 - x0), y0 + 0.6 * (y1 - y0)))
+    inner = pygame.surfarray.array3d(surface)[a:d, b:e]
+    background = float(np.mean(inner.sum(axis=2) == 0))
+    assert (background < 0.02) if filled else (background > 0.3), background
+
+
+@pytest.mark.skipif(not __import__("app.draw.pymunk_draw", fromlist=["_"])._AA_WIDTH,
+                    reason="this pygame-ce's aaline takes no width (the quad fallback is drawn)")
+def test_a_slanting_string_is_drawn_smooth_not_in_stair_steps():
+    """The cradle's strings, nearly vertical, showed stair-step kinks (a filled quad's edges):
+    now each row's ink is centred on the true line within a quarter pixel (it was 1 px off)."""
+    import numpy as np
+    from app.draw.pymunk_draw import rod
+    surface = pygame.Surface((120, 340))
+    surface.fill((0, 0, 0))
+    rod(surface, (200, 200, 200), (60, 10), (67, 310), 4)
+    ink = pygame.surfarray.array3d(surface)[..., 0].astype(float)     # (x, y)
+    ys = np.arange(30, 290)
+    centre = (ink[:, ys] * np.arange(120)[:, None]).sum(axis=0) / ink[:, ys].sum(axis=0)
+    assert np.abs(centre - (60 + (ys - 10) * 7 / 300)).max() < 0.25
+    assert ink[:, 150].sum() / 200 >= 3.5          # still a string ~4 px wide, not a hairline
