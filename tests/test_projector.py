@@ -349,6 +349,25 @@ def test_four_panes_at_f2_are_two_by_two_one_text_size_and_no_tag_cut_mid_word(t
                                           ["B: integrator=implicit_e", "uler"])
 
 
+def test_three_panes_at_f2_put_the_header_in_the_fourth_cell_and_grow(tmp_path):
+    """Issue 26, defect 11: three cloth panes at 1024x768 with F2 were ~150 px cloths under a
+    ~200 px header band, the fourth cell empty. The header goes into that cell: the panes take
+    the whole height (the smallest cloth's box 237x139 px before, now 300x175 or more)."""
+    from app.draw.text import TEXT
+    from scenes import get_scene
+    w = _compare_window(tmp_path, get_scene("cloth"), ["iterations=2", "iterations=10",
+                                                       "iterations=50"], (1024, 768), frames=2)
+    try:
+        grid = w.scene_view.grid
+        assert grid.corner and min(c.top for c in grid.cells) == 0
+        assert not any(grid.header.colliderect(c) for c in grid.cells)
+        assert grid.header.bottom <= 768 and grid.header.left > max(c.left for c in grid.cells)
+        boxes = [p.layout.content_rect().clip(p.layout.area) for p in grid.panes]
+        assert min(b.height for b in boxes) >= 170 and min(b.width for b in boxes) >= 290
+    finally:
+        TEXT.scale = 1.0
+
+
 @pytest.mark.parametrize("large", [False, True])
 def test_the_plot_picker_opens_over_the_panel_not_over_a_pane(tmp_path, large):
     """Issue 26, defect 10: at 1920x1080 in compare mode the metric list covered pane B (its

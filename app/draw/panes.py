@@ -9,7 +9,8 @@ the scene's reference, then the scene's own lines (hud_lines) and the pane's mes
 rolled back and held, with its advice).
 
 Which arrangement: the one whose smallest pane shows the most content (scene_layout measures it
-for each candidate, HUD included), decided when the layout is redone (a resize, F2, F3, F4,
+for each candidate, HUD included; three panes may also go two by two with the header in the
+fourth cell instead of across the top), decided when the layout is redone (a resize, F2, F3, F4,
 Tab, a message that comes or goes) and kept between frames so the picture does not jump.
 """
 
@@ -98,6 +99,7 @@ class PaneGrid:
         self._for: tuple | None = None        # (area, header height) the cells were chosen for
         self.header = pygame.Rect(0, 0, 0, 0)
         self.header_size = hud.HUD_SIZE
+        self.corner = False                   # the header in the fourth cell (three panes)
         self.used: list = []
 
     def forget(self) -> None:
@@ -112,28 +114,29 @@ class PaneGrid:
 
     def fit(self, area: pygame.Rect, header: list | None, lines: list[list | None],
             strip: bool = False, brief: list[list] | None = None) -> list[Layout]:
-        """Lay out the header box at the top of `area` (None: no header) and the panes below.
-        A pane whose HUD box would run out of it (a small window, large text) takes its
-        `brief` lines instead (`used` holds the lines each pane was laid out with)."""
-        h = 0
-        self.header_size = hud.HUD_SIZE
-        if header:                  # at most HEADER_SHARE of the height: large text gives back
-            width = area.width - 2 * MARGIN                   # some of its growth (not below
-            h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]      # the normal size)
-            while h > HEADER_SHARE * area.height and \
-                    self.header_size * TEXT.scale > hud.HUD_SIZE + 1:
-                self.header_size = max(hud.HUD_SIZE / TEXT.scale, self.header_size * 0.9)
-                h = hud.box_size(header, int(round(self.header_size)), max_width=width)[1]
-        self.header = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN,
-                                  h)
-        top = self.header.bottom + MARGIN if h else area.top
-        rest = pygame.Rect(area.left, top, area.width, max(area.bottom - top, 1))
-        key = (tuple(rest), len(self.panes))
+        """Lay out the header box at the top of `area` (None: no header) and the panes below,
+        or, for three panes two by two, the header in the fourth cell (the panes then take the
+        whole height: at 1024x768 with F2 the header's ~200 px band cost each cloth a third of
+        its size) if that shows the panes larger. A pane whose HUD box would run out of it (a
+        small window, large text) takes its `brief` lines instead (`used` holds the lines each
+        pane was laid out with)."""
+        top = self._header_at_top(area, header)
+        corner = self._header_in_corner(area, header) if header and len(self.panes) == 3 \
+            else None
+        key = (tuple(top[2]), tuple(corner[0]) if corner else None, len(self.panes))
         if self.cells is None or self._for != key:
-            self.cells = self.choose(rest, lines, strip, brief)
+            cells, score = self.choose(top[2], lines, strip, brief)
+            self.corner = False
+            if corner is not None:
+                cells4 = split(area, 2, 2, 4)[:3]
+                score4 = self.score(cells4, lines, strip, brief)
+                if score4[0] > score[0] or (score4[0] == score[0] and score4[1] > 1.01 * score[1]):
+                    cells, self.corner = cells4, True
+            self.cells = cells
             self._for = key
             for p in self.panes:
                 p.forget()
+        self.header, self.header_size = (corner if self.corner else top)[:2]
         layouts, self.used = [], []
         for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, lines)):
             layout = p.fit(cell, ln, strip)
@@ -153,25 +156,62 @@ class PaneGrid:
                     layouts[k] = p.fit(cell, ln, strip, text_size=min(shown))
         return layouts
 
+    def _header_at_top(self, area: pygame.Rect, header: list | None
+                       ) -> tuple[pygame.Rect, float, pygame.Rect]:
+        """(the header's box, its text size, the room left below it) with the header across
+        the top: at most HEADER_SHARE of the height (large text gives back some of its growth,
+        not below the normal size)."""
+        h, size = 0, hud.HUD_SIZE
+        if header:
+            width = area.width - 2 * MARGIN
+            h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]
+            while h > HEADER_SHARE * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+                size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
+                h = hud.box_size(header, int(round(size)), max_width=width)[1]
+        box = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN, h)
+        top = box.bottom + MARGIN if h else area.top
+        return box, size, pygame.Rect(area.left, top, area.width, max(area.bottom - top, 1))
+
+    def _header_in_corner(self, area: pygame.Rect, header: list
+                          ) -> tuple[pygame.Rect, float] | None:
+        """(the header's box, its text size) in the fourth cell of a 2x2 grid over `area`, its
+        text shrunk (not below the normal size) to fit the cell; None if it does not."""
+        cell = split(area, 2, 2, 4)[3]
+        width, room = cell.width - 2 * MARGIN, cell.height - 2 * MARGIN
+        size = hud.HUD_SIZE
+        h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]
+        while h > room and size * TEXT.scale > hud.HUD_SIZE + 1:
+            size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
+            h = hud.box_size(header, int(round(size)), max_width=width)[1]
+        if h > room or width < 1:
+            return None
+        return pygame.Rect(cell.left + MARGIN, cell.top + MARGIN, width, h), size
+
     def choose(self, rest: pygame.Rect, lines: list, strip: bool,
-               brief: list | None = None) -> list[pygame.Rect]:
+               brief: list | None = None) -> tuple[list[pygame.Rect], tuple]:
         """The arrangement whose HUD boxes fit their panes (or spill least; with the `brief`
         lines where the full ones spill) and whose smallest pane shows the most content (on a
-        near tie, the first tried: side by side)."""
+        near tie, the first tried: side by side), and its score."""
         best, best_key = None, (-float("inf"), 0.0)
         for cols, rows in grids(len(self.panes), rest):
             cells = split(rest, cols, rows, len(self.panes))
-            layouts = []
-            for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
-                lay = scene_layout(c, p.scene, ln, strip=strip)
-                if brief is not None and ln is not None and _cramped(lay, c, strip):
-                    lay = scene_layout(c, p.scene, brief[k], strip=strip)
-                layouts.append(lay)
-            spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
-            key = (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
+            key = self.score(cells, lines, strip, brief)
             if key[0] > best_key[0] or (key[0] == best_key[0] and key[1] > 1.01 * best_key[1]):
                 best, best_key = cells, key
-        return best
+        return best, best_key
+
+    def score(self, cells: list[pygame.Rect], lines: list, strip: bool,
+              brief: list | None = None) -> tuple[float, float]:
+        """(minus the worst spill of a HUD box out of its cell, or 0; the smallest pane's
+        content area in pixels): higher is better."""
+        layouts = []
+        for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
+            lay = scene_layout(c, p.scene, ln, strip=strip)
+            if brief is not None and ln is not None and _cramped(lay, c, strip):
+                lay = scene_layout(c, p.scene, brief[k], strip=strip)
+            layouts.append(lay)
+        spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
+        return (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
 
     def draw(self, surface: pygame.Surface, area: pygame.Rect, header: list | None,
              lines: list[list | None], strip: bool = False, overlay=None,
