@@ -26,6 +26,8 @@ from app.draw.text import TEXT
 PANE_COLORS = PALETTE[:4]     # pane A, B, C, D (their lines in the live plot too)
 GAP = 6                       # pixels between panes
 PANE_BORDER = (60, 66, 76)
+CRAMPED_FREE = 0.4            # a pane's picture gets at least this share of its height, or
+                              # its HUD takes its brief lines
 HEADER_SHARE = 0.3            # the header's text shrinks (to the normal size) above this share
 
 
@@ -243,9 +245,12 @@ class PaneGrid:
 
 def _cramped(layout: Layout, cell: pygame.Rect, details: bool = False) -> bool:
     """A pane's HUD box runs out of its cell, or, on the first page, had to shrink its text
-    below the size every pane's text has (F2 given up in one pane only): it takes its brief
-    lines instead. (On the second page, F4, the details are what was asked for: they stay.)"""
-    return layout.hud.bottom > cell.bottom or (not details and layout.hud_text < hud.HUD_SIZE)
+    below the size every pane's text has (F2 given up in one pane only) or left the picture
+    under CRAMPED_FREE of the cell's height (a held pane's advice over a 10 px cloth at
+    1024x768): it takes its brief lines instead. (On the second page, F4, the details are what
+    was asked for: they stay.)"""
+    return layout.hud.bottom > cell.bottom or (not details and (
+        layout.hud_text < hud.HUD_SIZE or layout.free.height < CRAMPED_FREE * cell.height))
 
 
 def _content_area(layout: Layout, cell: pygame.Rect) -> float:
