@@ -298,6 +298,8 @@ def test_a_held_pane_says_one_headline_and_its_text_is_the_size_of_its_neighbour
         a = _texts(cv.grid.used[0])
         headline = cv.runner.held_headline[0]
         assert headline in a and cv.runner.held[0] not in a
+        own = getattr(cv.scenes[0].hud_lines()[0], "text", str(cv.scenes[0].hud_lines()[0]))
+        assert own not in a                      # nor the scene's own headline: one headline
         assert headline.startswith("Blew up at 0.0") and "x past its limit; held (F4: why)" in \
             headline
         sizes = {p.layout.hud_text for p in cv.grid.panes}
