@@ -350,6 +350,10 @@ def test_four_panes_at_f2_are_two_by_two_one_text_size_and_no_tag_cut_mid_word(t
             # the picture gets CRAMPED_FREE of the pane, or the HUD is down to its brief lines
             assert p.layout.free.height >= CRAMPED_FREE * p.layout.area.height or \
                 _texts(lines) == _texts(short)
+        from app.draw.panes import HEADER_SHARE_FOUR
+        g = cv.grid                               # the header leaves the two rows their room
+        assert g.header.height <= HEADER_SHARE_FOUR * size[1] or \
+            g.header_size * TEXT.scale <= hud.HUD_SIZE + 1
         if not large:                             # (a held pane's advice: brief at 1024x768)
             assert _texts(cv.grid.used[0]) == _texts(brief[0])
         assert 0 in cv.runner.held                # (pane A blew up and is held)

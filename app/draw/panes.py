@@ -29,6 +29,7 @@ PANE_BORDER = (60, 66, 76)
 CRAMPED_FREE = 0.4            # a pane's picture gets at least this share of its height, or
                               # its HUD takes its brief lines
 HEADER_SHARE = 0.3            # the header's text shrinks (to the normal size) above this share
+HEADER_SHARE_FOUR = 0.15      # ... with four panes, whose two rows need the height more
 
 
 STRIP_ASPECT = 3.0            # four panes leave 2x2 for a row (a column) only in an area this
@@ -161,13 +162,14 @@ class PaneGrid:
     def _header_at_top(self, area: pygame.Rect, header: list | None
                        ) -> tuple[pygame.Rect, float, pygame.Rect]:
         """(the header's box, its text size, the room left below it) with the header across
-        the top: at most HEADER_SHARE of the height (large text gives back some of its growth,
+        the top: at most HEADER_SHARE (four panes: HEADER_SHARE_FOUR) of the height (large text gives back some of its growth,
         not below the normal size)."""
         h, size = 0, hud.HUD_SIZE
         if header:
             width = area.width - 2 * MARGIN
             h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]
-            while h > HEADER_SHARE * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+            share = HEADER_SHARE_FOUR if len(self.panes) >= 4 else HEADER_SHARE
+            while h > share * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
                 size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
                 h = hud.box_size(header, int(round(size)), max_width=width)[1]
         box = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN, h)
