@@ -590,6 +590,10 @@ def test_a_cloth_a_few_pixels_a_cell_is_drawn_filled_not_as_a_moire_of_rods(spac
     inner = pygame.surfarray.array3d(surface)[a:d, b:e]
     background = float(np.mean(inner.sum(axis=2) == 0))
     assert (background < 0.02) if filled else (background > 0.3), background
+    if filled:                                # every 4th row and column as a seam: a woven grid
+        from app.draw.cloth_draw import SEAM_COLOR
+        seams = float(np.mean(np.all(inner == SEAM_COLOR, axis=2)))
+        assert 0.05 < seams < 0.5, seams
 
 
 @pytest.mark.skipif(not __import__("app.draw.pymunk_draw", fromlist=["_"])._AA_WIDTH,

@@ -43,10 +43,11 @@ def strain_buckets(stretch: np.ndarray, alive: np.ndarray) -> np.ndarray:
     return b
 
 
-def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: int) -> None:
+def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: int,
+              colors=STRAIN_COLORS) -> None:
     """Draw rods given as polylines: lines[i] holds the screen points of line i, buckets[i, j] the
-    colour of its rod j (between points j and j+1). One draw call per run of equal colour,
-    hottest runs last (on top)."""
+    colour of its rod j (between points j and j+1; -1: not drawn) in `colors`. One draw call
+    per run of equal colour, hottest runs last (on top)."""
     n_lines, n_rods = buckets.shape
     if n_rods == 0:
         return
@@ -62,7 +63,7 @@ def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: 
             continue
         line, j0 = divmod(s, n_rods)
         j1 = e - line * n_rods                               # rods j0..j1-1 -> points j0..j1
-        draw_lines(surface, STRAIN_COLORS[b], False, lines[line][j0:j1 + 1], width)
+        draw_lines(surface, colors[b], False, lines[line][j0:j1 + 1], width)
 
 
 # One pygame.draw.lines call (a run) costs about as much as writing this many raster dots
@@ -179,6 +180,7 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     b_v = strain_buckets(stretch[1], vertical.alive)
     if view.len(cloth.spacing) < FILL_BELOW and \
             raster_cells(surface, pts, cell_buckets(b_h, b_v)):
+        _draw_seams(surface, pts, b_h, b_v)
         _draw_marks(surface, view, cloth, pts, hover)
         return
     runs = int((b_h[:, 1:] != b_h[:, :-1]).sum() + (b_v[1:] != b_v[:-1]).sum())
@@ -196,6 +198,24 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         draw_runs(surface, pts.tolist(), b_h, width)
         draw_runs(surface, pts.transpose(1, 0, 2).tolist(), b_v.T, width)
     _draw_marks(surface, view, cloth, pts, hover)
+
+
+SEAM_EVERY = 4                  # a filled mesh shows every 4th row and column as a seam
+SEAM_COLOR = (25, 28, 36)
+
+
+def _draw_seams(surface: pygame.Surface, pts: np.ndarray, b_h: np.ndarray,
+                b_v: np.ndarray) -> None:
+    """Every SEAM_EVERY-th row and column of a filled mesh as a dark line (and its edges), so
+    that a sheet still reads as a woven grid, its lines far enough apart not to beat into a
+    moire; runs of torn rods are left out."""
+    rows, cols = pts.shape[:2]
+    for i in sorted({*range(0, rows, SEAM_EVERY), rows - 1}):
+        draw_runs(surface, [pts[i].tolist()], np.where(b_h[i:i + 1] < 0, -1, 0), 1,
+                  (SEAM_COLOR,))
+    for j in sorted({*range(0, cols, SEAM_EVERY), cols - 1}):
+        draw_runs(surface, [pts[:, j].tolist()], np.where(b_v[:, j][None] < 0, -1, 0), 1,
+                  (SEAM_COLOR,))
 
 
 def _draw_marks(surface: pygame.Surface, view, cloth: Cloth, pts: np.ndarray,
