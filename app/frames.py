@@ -96,8 +96,11 @@ def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = No
                                    f"others went on. {advice(s)}", hud.ERROR_COLOR))
         clock = "" if same_dt and not (held and k in held) else \
             f"t = {s.time:.2f} s | {hud.dt_text(s)}"
+        # a held pane's first page: its one headline says it all (the scene's own headline,
+        # of the state it was rolled back to, made it a 10-line paragraph at F2)
+        short_page = brief or (bool(held) and k in held and not details)
         out.append(pane_lines(s, "ABCD"[k], label, PANE_COLORS[k], runner.step_ms,
-                              own + list(extra), details, more, clock, brief))
+                              own + list(extra), details, more, clock, short_page))
     return out
 
 

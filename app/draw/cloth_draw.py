@@ -12,6 +12,12 @@ Speed matters: a 64 x 64 cloth has 8000 rods and must draw in a couple of millis
 The cheaper is estimated frame by frame (DOTS_PER_CALL): small rods on screen rasterise, long
 ones (a small cloth on a big window) draw as runs.
 Torn rods are not drawn.
+
+A cloth whose particles are under FILL_BELOW pixels apart on screen (three or four panes in a
+small window, a zoomed-out view) is drawn as a filled mesh instead: each cell in the colour of
+its most stretched rod. Rods 3 px apart, each coloured on its own, beat against the screen's
+pixels into a colour moire (and the solver's stripes, see scenes/cloth.py, cannot be told from
+it at that size; zoom in with the wheel to see them).
 """
 
 from __future__ import annotations
@@ -37,10 +43,11 @@ def strain_buckets(stretch: np.ndarray, alive: np.ndarray) -> np.ndarray:
     return b
 
 
-def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: int) -> None:
+def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: int,
+              colors=STRAIN_COLORS) -> None:
     """Draw rods given as polylines: lines[i] holds the screen points of line i, buckets[i, j] the
-    colour of its rod j (between points j and j+1). One draw call per run of equal colour,
-    hottest runs last (on top)."""
+    colour of its rod j (between points j and j+1; -1: not drawn) in `colors`. One draw call
+    per run of equal colour, hottest runs last (on top)."""
     n_lines, n_rods = buckets.shape
     if n_rods == 0:
         return
@@ -56,7 +63,7 @@ def draw_runs(surface: pygame.Surface, lines: list, buckets: np.ndarray, width: 
             continue
         line, j0 = divmod(s, n_rods)
         j1 = e - line * n_rods                               # rods j0..j1-1 -> points j0..j1
-        draw_lines(surface, STRAIN_COLORS[b], False, lines[line][j0:j1 + 1], width)
+        draw_lines(surface, colors[b], False, lines[line][j0:j1 + 1], width)
 
 
 # One pygame.draw.lines call (a run) costs about as much as writing this many raster dots
@@ -112,6 +119,51 @@ def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: 
     return True
 
 
+FILL_BELOW = 5.0        # particles closer than this on screen (px): a filled mesh, not rods
+MAX_FILL_DOTS = 8       # a cell's dots along each side (cells are under FILL_BELOW px wide)
+
+
+def cell_buckets(b_h: np.ndarray, b_v: np.ndarray) -> np.ndarray:
+    """Each grid cell's colour bucket: the hottest of its four rods (top, bottom, left, right);
+    -1 (not drawn) where one of them is torn. b_h: (rows, cols-1), b_v: (rows-1, cols)."""
+    four = np.stack([b_h[:-1], b_h[1:], b_v[:, :-1], b_v[:, 1:]])
+    return np.where(four.min(axis=0) < 0, -1, four.max(axis=0))
+
+
+def raster_cells(surface: pygame.Surface, pts: np.ndarray, buckets: np.ndarray) -> bool:
+    """Fill every grid cell (the quad of particles (i, j), (i, j+1), (i+1, j), (i+1, j+1); pts:
+    (rows, cols, 2) screen points) in STRAIN_COLORS[buckets[i, j]], skipping -1, by writing a
+    k x k lattice of dots over it (bilinear between its corners, k from its longest side on
+    screen); returns False if the surface has no pixel array to write."""
+    try:
+        pixels = pygame.surfarray.pixels2d(surface)
+    except (ValueError, pygame.error):
+        return False
+    try:
+        palette = np.array([surface.map_rgb(c) for c in STRAIN_COLORS], dtype=pixels.dtype)
+        keep = buckets >= 0
+        corners = [pts[:-1, :-1][keep], pts[:-1, 1:][keep], pts[1:, :-1][keep],
+                   pts[1:, 1:][keep]]                            # (n, 2) each
+        if not len(corners[0]):
+            return True
+        side = max(np.abs(corners[3] - corners[0]).max(), np.abs(corners[2] - corners[1]).max())
+        k = int(min(np.ceil(side) + 2, MAX_FILL_DOTS))
+        u = np.linspace(0.0, 1.0, k, dtype=np.float32)
+        uu, vv = (g.ravel()[None, :, None] for g in np.meshgrid(u, u))    # (1, k*k, 1)
+        p00, p10, p01, p11 = (c.astype(np.float32)[:, None, :] for c in corners)
+        # the loop this replaces: for each cell, for each (u, v): pixel[bilinear(u, v)] = colour
+        p = (1 - uu) * (1 - vv) * p00 + uu * (1 - vv) * p10 + (1 - uu) * vv * p01 + uu * vv * p11
+        x = (p[..., 0] + 0.5).astype(np.intp).ravel()
+        y = (p[..., 1] + 0.5).astype(np.intp).ravel()
+        colour = np.repeat(palette[buckets[keep]], k * k)
+        clip = surface.get_clip()
+        inside = (x >= clip.left) & (x < clip.right) & (y >= clip.top) & (y < clip.bottom)
+        pixels.T[y[inside], x[inside]] = colour[inside]
+    finally:
+        del pixels                                               # unlock the surface
+    return True
+
+
 def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
                hover: tuple[int, int] | None = None,
                stretch: tuple[np.ndarray, np.ndarray] | None = None) -> None:
@@ -126,6 +178,11 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         stretch = cloth.stretch(horizontal), cloth.stretch(vertical)
     b_h = strain_buckets(stretch[0], horizontal.alive)
     b_v = strain_buckets(stretch[1], vertical.alive)
+    if view.len(cloth.spacing) < FILL_BELOW and \
+            raster_cells(surface, pts, cell_buckets(b_h, b_v)):
+        _draw_seams(surface, pts, b_h, b_v)
+        _draw_marks(surface, view, cloth, pts, hover)
+        return
     runs = int((b_h[:, 1:] != b_h[:, :-1]).sum() + (b_v[1:] != b_v[:-1]).sum())
     # dots the raster would write: a dot per pixel along each rod (about its rest length on
     # screen), three per dot for 2 px lines
@@ -140,6 +197,30 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     if not drawn:
         draw_runs(surface, pts.tolist(), b_h, width)
         draw_runs(surface, pts.transpose(1, 0, 2).tolist(), b_v.T, width)
+    _draw_marks(surface, view, cloth, pts, hover)
+
+
+SEAM_EVERY = 4                  # a filled mesh shows every 4th row and column as a seam
+SEAM_COLOR = (25, 28, 36)
+
+
+def _draw_seams(surface: pygame.Surface, pts: np.ndarray, b_h: np.ndarray,
+                b_v: np.ndarray) -> None:
+    """Every SEAM_EVERY-th row and column of a filled mesh as a dark line (and its edges), so
+    that a sheet still reads as a woven grid, its lines far enough apart not to beat into a
+    moire; runs of torn rods are left out."""
+    rows, cols = pts.shape[:2]
+    for i in sorted({*range(0, rows, SEAM_EVERY), rows - 1}):
+        draw_runs(surface, [pts[i].tolist()], np.where(b_h[i:i + 1] < 0, -1, 0), 1,
+                  (SEAM_COLOR,))
+    for j in sorted({*range(0, cols, SEAM_EVERY), cols - 1}):
+        draw_runs(surface, [pts[:, j].tolist()], np.where(b_v[:, j][None] < 0, -1, 0), 1,
+                  (SEAM_COLOR,))
+
+
+def _draw_marks(surface: pygame.Surface, view, cloth: Cloth, pts: np.ndarray,
+                hover: tuple[int, int] | None) -> None:
+    """The locked particles as dots, the grabbed one as a ring, `hover` as a thin ring."""
     r_pin = max(2, int(round(view.len(cloth.spacing) * 0.16)))
     for p in pts[cloth.locked].tolist():
         pygame.draw.circle(surface, PIN_COLOR, p, r_pin)

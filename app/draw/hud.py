@@ -10,6 +10,7 @@ what to show.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -56,6 +57,14 @@ def _cut(text: str, f: pygame.font.Font, width: int) -> tuple[str, str]:
     elif joint > 0:
         n = joint + 1
     return text[:n], text[n:]
+
+
+def longest_word(text: str, size: int = HUD_SIZE) -> int:
+    """The width in pixels, at text `size`, of the widest piece `wrap` keeps whole: a word, or
+    a setting's part after '=' or ',' ("integrator=" / "implicit_euler")."""
+    f = font(size)
+    pieces = re.split(r"\s+|(?<=[=,])", text)
+    return max((f.size(p)[0] for p in pieces if p), default=0)
 
 
 def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:

@@ -129,18 +129,22 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
         widest = max(widest, int(DETAILS_WIDTH * (area.width - 2 * MARGIN)))
     # never so narrow that the status line breaks ("physics" / "5.46 ms/step"): the first
     # lines (the title, the time and cost) fit on one line each where the widest can
+    # (where even the widest breaks them, the widest: a column of half-lines is no use)
     f = font(min(hud.HUD_SIZE, text_size or hud.HUD_SIZE))
     head = max((f.size(getattr(x, "text", str(x)))[0] + 2 * 8 + 2 for x in lines[:2]
                 if "\n" not in getattr(x, "text", str(x))), default=1)
-    narrowest = head if head <= widest and not strip else 1   # (F4: the content comes first)
+    narrowest = min(head, widest) if not strip else 1   # (F4: the content comes first)
     widths = [hud_width] if hud_width else \
         sorted({max(1, narrowest, int(widest * k)) for k in HUD_WIDTHS}, reverse=True)
+    tag = getattr(lines[0], "text", str(lines[0])) if lines else ""
     best: Layout | None = None
     for width in widths:
         size = min(hud.HUD_SIZE, text_size or hud.HUD_SIZE)   # large text in a small window:
         w, h = hud.box_size(lines, int(round(size)), max_width=width)   # the HUD gives back some
         share = HUD_SHARE_DETAILS if strip and area.height >= DETAILS_TALL else HUD_SHARE
-        while h > share * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+        # ... as it does where the tag's longest word ("symplectic_euler") would be cut
+        while (h > share * area.height or hud.longest_word(tag, int(round(size))) + 2 * 8 >
+               width) and size * TEXT.scale > hud.HUD_SIZE + 1:
             size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
             w, h = hud.box_size(lines, int(round(size)), max_width=width)
         strip_h = hud.strip_height(scene, area, int(round(size))) if strip else 0

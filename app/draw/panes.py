@@ -1,6 +1,6 @@
 """Compare mode's picture: a header across the top (the scene, the shared clock, the messages)
-and one `Pane` per variant below it, side by side in a wide area and stacked in a tall one (with
-four, two by two if that shows them larger). The window and the headless screenshot draw the same
+and one `Pane` per variant below it, side by side in a wide area and stacked in a tall one (four
+are two by two, unless the area is a strip). The window and the headless screenshot draw the same
 picture with the same code.
 
 Each pane's HUD box opens with its tag and what differs ("B: iterations=20") in the pane's colour
@@ -9,7 +9,8 @@ the scene's reference, then the scene's own lines (hud_lines) and the pane's mes
 rolled back and held, with its advice).
 
 Which arrangement: the one whose smallest pane shows the most content (scene_layout measures it
-for each candidate, HUD included), decided when the layout is redone (a resize, F2, F3, F4,
+for each candidate, HUD included; three panes may also go two by two with the header in the
+fourth cell instead of across the top), decided when the layout is redone (a resize, F2, F3, F4,
 Tab, a message that comes or goes) and kept between frames so the picture does not jump.
 """
 
@@ -25,11 +26,28 @@ from app.draw.text import TEXT
 PANE_COLORS = PALETTE[:4]     # pane A, B, C, D (their lines in the live plot too)
 GAP = 6                       # pixels between panes
 PANE_BORDER = (60, 66, 76)
+CRAMPED_FREE = 0.4            # a pane's picture gets at least this share of its height, or
+                              # its HUD takes its brief lines
 HEADER_SHARE = 0.3            # the header's text shrinks (to the normal size) above this share
+HEADER_SHARE_FOUR = 0.15      # ... with four panes, whose two rows need the height more
 
 
-def grids(n: int) -> list[tuple[int, int]]:
-    """The (columns, rows) arrangements tried for n panes."""
+STRIP_ASPECT = 3.0            # four panes leave 2x2 for a row (a column) only in an area this
+                              # many times wider than tall (taller than wide)
+
+
+def grids(n: int, area: pygame.Rect | None = None) -> list[tuple[int, int]]:
+    """The (columns, rows) arrangements tried for n panes in `area`. Four panes are two by two:
+    a row of four narrow columns shows each cloth a little larger but wraps every tag and
+    headline into a tall thin box a class cannot read (issue 26, defect 3), unless the area
+    is a strip (STRIP_ASPECT) where 2x2 would be as thin."""
+    if n == 4:
+        out = [(2, 2)]
+        if area is not None and area.width >= STRIP_ASPECT * area.height:
+            out.append((4, 1))
+        if area is not None and area.height >= STRIP_ASPECT * area.width:
+            out.append((1, 4))
+        return out
     out = [(n, 1), (1, n)]
     if n >= 3:
         out.append((2, 2))
@@ -84,6 +102,7 @@ class PaneGrid:
         self._for: tuple | None = None        # (area, header height) the cells were chosen for
         self.header = pygame.Rect(0, 0, 0, 0)
         self.header_size = hud.HUD_SIZE
+        self.corner = False                   # the header in the fourth cell (three panes)
         self.used: list = []
 
     def forget(self) -> None:
@@ -98,28 +117,29 @@ class PaneGrid:
 
     def fit(self, area: pygame.Rect, header: list | None, lines: list[list | None],
             strip: bool = False, brief: list[list] | None = None) -> list[Layout]:
-        """Lay out the header box at the top of `area` (None: no header) and the panes below.
-        A pane whose HUD box would run out of it (a small window, large text) takes its
-        `brief` lines instead (`used` holds the lines each pane was laid out with)."""
-        h = 0
-        self.header_size = hud.HUD_SIZE
-        if header:                  # at most HEADER_SHARE of the height: large text gives back
-            width = area.width - 2 * MARGIN                   # some of its growth (not below
-            h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]      # the normal size)
-            while h > HEADER_SHARE * area.height and \
-                    self.header_size * TEXT.scale > hud.HUD_SIZE + 1:
-                self.header_size = max(hud.HUD_SIZE / TEXT.scale, self.header_size * 0.9)
-                h = hud.box_size(header, int(round(self.header_size)), max_width=width)[1]
-        self.header = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN,
-                                  h)
-        top = self.header.bottom + MARGIN if h else area.top
-        rest = pygame.Rect(area.left, top, area.width, max(area.bottom - top, 1))
-        key = (tuple(rest), len(self.panes))
+        """Lay out the header box at the top of `area` (None: no header) and the panes below,
+        or, for three panes two by two, the header in the fourth cell (the panes then take the
+        whole height: at 1024x768 with F2 the header's ~200 px band cost each cloth a third of
+        its size) if that shows the panes larger. A pane whose HUD box would run out of it (a
+        small window, large text) takes its `brief` lines instead (`used` holds the lines each
+        pane was laid out with)."""
+        top = self._header_at_top(area, header)
+        corner = self._header_in_corner(area, header) if header and len(self.panes) == 3 \
+            else None
+        key = (tuple(top[2]), tuple(corner[0]) if corner else None, len(self.panes))
         if self.cells is None or self._for != key:
-            self.cells = self.choose(rest, lines, strip, brief)
+            cells, score = self.choose(top[2], lines, strip, brief)
+            self.corner = False
+            if corner is not None:
+                cells4 = split(area, 2, 2, 4)[:3]
+                score4 = self.score(cells4, lines, strip, brief)
+                if score4[0] > score[0] or (score4[0] == score[0] and score4[1] > 1.01 * score[1]):
+                    cells, self.corner = cells4, True
+            self.cells = cells
             self._for = key
             for p in self.panes:
                 p.forget()
+        self.header, self.header_size = (corner if self.corner else top)[:2]
         layouts, self.used = [], []
         for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, lines)):
             layout = p.fit(cell, ln, strip)
@@ -139,25 +159,63 @@ class PaneGrid:
                     layouts[k] = p.fit(cell, ln, strip, text_size=min(shown))
         return layouts
 
+    def _header_at_top(self, area: pygame.Rect, header: list | None
+                       ) -> tuple[pygame.Rect, float, pygame.Rect]:
+        """(the header's box, its text size, the room left below it) with the header across
+        the top: at most HEADER_SHARE (four panes: HEADER_SHARE_FOUR) of the height (large text gives back some of its growth,
+        not below the normal size)."""
+        h, size = 0, hud.HUD_SIZE
+        if header:
+            width = area.width - 2 * MARGIN
+            h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]
+            share = HEADER_SHARE_FOUR if len(self.panes) >= 4 else HEADER_SHARE
+            while h > share * area.height and size * TEXT.scale > hud.HUD_SIZE + 1:
+                size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
+                h = hud.box_size(header, int(round(size)), max_width=width)[1]
+        box = pygame.Rect(area.left + MARGIN, area.top + MARGIN, area.width - 2 * MARGIN, h)
+        top = box.bottom + MARGIN if h else area.top
+        return box, size, pygame.Rect(area.left, top, area.width, max(area.bottom - top, 1))
+
+    def _header_in_corner(self, area: pygame.Rect, header: list
+                          ) -> tuple[pygame.Rect, float] | None:
+        """(the header's box, its text size) in the fourth cell of a 2x2 grid over `area`, its
+        text shrunk (not below the normal size) to fit the cell; None if it does not."""
+        cell = split(area, 2, 2, 4)[3]
+        width, room = cell.width - 2 * MARGIN, cell.height - 2 * MARGIN
+        size = hud.HUD_SIZE
+        h = hud.box_size(header, hud.HUD_SIZE, max_width=width)[1]
+        while h > room and size * TEXT.scale > hud.HUD_SIZE + 1:
+            size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
+            h = hud.box_size(header, int(round(size)), max_width=width)[1]
+        if h > room or width < 1:
+            return None
+        return pygame.Rect(cell.left + MARGIN, cell.top + MARGIN, width, h), size
+
     def choose(self, rest: pygame.Rect, lines: list, strip: bool,
-               brief: list | None = None) -> list[pygame.Rect]:
+               brief: list | None = None) -> tuple[list[pygame.Rect], tuple]:
         """The arrangement whose HUD boxes fit their panes (or spill least; with the `brief`
         lines where the full ones spill) and whose smallest pane shows the most content (on a
-        near tie, the first tried: side by side)."""
+        near tie, the first tried: side by side), and its score."""
         best, best_key = None, (-float("inf"), 0.0)
-        for cols, rows in grids(len(self.panes)):
+        for cols, rows in grids(len(self.panes), rest):
             cells = split(rest, cols, rows, len(self.panes))
-            layouts = []
-            for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
-                lay = scene_layout(c, p.scene, ln, strip=strip)
-                if brief is not None and ln is not None and _cramped(lay, c, strip):
-                    lay = scene_layout(c, p.scene, brief[k], strip=strip)
-                layouts.append(lay)
-            spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
-            key = (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
+            key = self.score(cells, lines, strip, brief)
             if key[0] > best_key[0] or (key[0] == best_key[0] and key[1] > 1.01 * best_key[1]):
                 best, best_key = cells, key
-        return best
+        return best, best_key
+
+    def score(self, cells: list[pygame.Rect], lines: list, strip: bool,
+              brief: list | None = None) -> tuple[float, float]:
+        """(minus the worst spill of a HUD box out of its cell, or 0; the smallest pane's
+        content area in pixels): higher is better."""
+        layouts = []
+        for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
+            lay = scene_layout(c, p.scene, ln, strip=strip)
+            if brief is not None and ln is not None and _cramped(lay, c, strip):
+                lay = scene_layout(c, p.scene, brief[k], strip=strip)
+            layouts.append(lay)
+        spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
+        return (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
 
     def draw(self, surface: pygame.Surface, area: pygame.Rect, header: list | None,
              lines: list[list | None], strip: bool = False, overlay=None,
@@ -189,9 +247,12 @@ class PaneGrid:
 
 def _cramped(layout: Layout, cell: pygame.Rect, details: bool = False) -> bool:
     """A pane's HUD box runs out of its cell, or, on the first page, had to shrink its text
-    below the size every pane's text has (F2 given up in one pane only): it takes its brief
-    lines instead. (On the second page, F4, the details are what was asked for: they stay.)"""
-    return layout.hud.bottom > cell.bottom or (not details and layout.hud_text < hud.HUD_SIZE)
+    below the size every pane's text has (F2 given up in one pane only) or left the picture
+    under CRAMPED_FREE of the cell's height (a held pane's advice over a 10 px cloth at
+    1024x768): it takes its brief lines instead. (On the second page, F4, the details are what
+    was asked for: they stay.)"""
+    return layout.hud.bottom > cell.bottom or (not details and (
+        layout.hud_text < hud.HUD_SIZE or layout.free.height < CRAMPED_FREE * cell.height))
 
 
 def _content_area(layout: Layout, cell: pygame.Rect) -> float:

@@ -166,17 +166,27 @@ def draw_shapes(surface: pygame.Surface, view, shapes: Iterable[pymunk.Shape], c
         draw_shape(surface, view, shape, dim(color) if asleep else color)
 
 
+_AA_WIDTH = "width" in (pygame.draw.aaline.__doc__ or "")   # aaline(..., width) exists
+
+
 def rod(surface: pygame.Surface, color: Color, pa, pb, width: int) -> None:
-    """A straight line `width` screen pixels thick as a filled quad (pygame's thick lines show
-    a visible step on nearly vertical lines)."""
+    """A straight line `width` screen pixels thick, anti-aliased: pygame-ce's thick aaline where
+    it has one (2.5.8 has), else a filled quad with anti-aliased long edges (pygame's thick
+    lines, and a filled polygon's edges alone, show stair-steps on a slanting string)."""
     dx, dy = pb[0] - pa[0], pb[1] - pa[1]
     length = math.hypot(dx, dy)
     if width <= 1 or length == 0:
         pygame.draw.aaline(surface, color, pa, pb)
         return
-    nx, ny = -dy / length * width / 2, dx / length * width / 2
-    pygame.draw.polygon(surface, color, [(pa[0] + nx, pa[1] + ny), (pb[0] + nx, pb[1] + ny),
-                                         (pb[0] - nx, pb[1] - ny), (pa[0] - nx, pa[1] - ny)])
+    if _AA_WIDTH:
+        pygame.draw.aaline(surface, color, pa, pb, width + 1)   # (its edges fade: +1 px keeps
+        return                                                   # the weight of a solid line)
+    nx, ny = -dy / length * (width - 1) / 2, dx / length * (width - 1) / 2
+    quad = [(pa[0] + nx, pa[1] + ny), (pb[0] + nx, pb[1] + ny), (pb[0] - nx, pb[1] - ny),
+            (pa[0] - nx, pa[1] - ny)]
+    pygame.draw.polygon(surface, color, quad)
+    pygame.draw.aaline(surface, color, quad[0], quad[1])
+    pygame.draw.aaline(surface, color, quad[2], quad[3])
 
 
 # ----- joints -----------------------------------------------------------------------------------

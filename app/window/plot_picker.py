@@ -37,6 +37,7 @@ class PlotPicker(ShellView):
         self.under = under
         self.selected = 0
         self.rows: list[tuple[pygame.Rect, str]] = []     # (screen rect, what the row is)
+        self.box = pygame.Rect(0, 0, 0, 0)
 
     @property
     def scene(self):
@@ -128,36 +129,41 @@ class PlotPicker(ShellView):
         return f"[{'x' if on else ' '}] {item}   {value}", ROW_ON if on else hud.TEXT_COLOR
 
     def draw(self, screen: pygame.Surface) -> None:
-        """The list at the window's top right, over the panel first (not over a pane of a
-        comparison, unless it is wider than the panel), in as many columns as its height
-        needs."""
+        """The list at the window's top right, over the panel (its hint wrapped to the panel's
+        width, its text shrunk to fit there first); over the scene or a pane of a comparison
+        only when even the smallest text is wider than the panel (or the panel is hidden), in
+        as many columns as its height needs. `box`: where it was drawn."""
         self.under.draw(screen)
         metrics = self.scene.metrics()
         items = self.items()
         texts = [self.row_text(item, metrics) for item in items]
-        area = self.under.world_area()
-        area = pygame.Rect(area.left, area.top, screen.get_width() - area.left, area.height)
+        world = self.under.world_area()
+        area = pygame.Rect(world.left, world.top, screen.get_width() - world.left, world.height)
+        panel = pygame.Rect(world.right, world.top, screen.get_width() - world.right,
+                            world.height)
+        room = panel if panel.width > 0 else area
         pad = int(12 * TEXT.scale)
         title = "Plot over time: pick what to plot"
         size = PICKER_SIZE          # large text in a small window: the list gives back some
         while True:                 # of its growth (never below the normal size)
             f = font(size)
             lh = f.get_linesize()
-            hint = hud.wrap(HINT, f, max(area.width // 2, 200))
-            room = area.height - 16 - 2 * pad - int(lh * 1.5) - (len(hint) + 1) * lh
-            per_col = max(1, room // lh)
+            hint = hud.wrap(HINT, f, max(room.width - 16 - 2 * pad, 120))
+            free = area.height - 16 - 2 * pad - int(lh * 1.5) - (len(hint) + 1) * lh
+            per_col = max(1, free // lh)
             cols = -(-len(texts) // per_col)
             per_col = -(-len(texts) // cols)
             col_w = max(f.size(t)[0] for t, _ in texts) + pad
             width = max(cols * col_w, f.size(title)[0], max(f.size(h)[0] for h in hint)) + \
                 2 * pad
-            if width <= area.width - 16 or size * TEXT.scale <= PICKER_SIZE * 0.75:
+            if width <= room.width - 16 or size * TEXT.scale <= PICKER_SIZE * 0.75:
                 break
             size = max(size * 0.9, PICKER_SIZE * 0.75 / TEXT.scale)
         width = min(width, area.width - 16)
         height = 2 * pad + int(lh * 1.5) + (per_col + 1 + len(hint)) * lh
         box = pygame.Rect(area.right - width - 8, area.top + 8, width,
                           min(height, area.height - 16))
+        self.box = box
         screen.fill(BOX, box)
         pygame.draw.rect(screen, hud.ACCENT_COLOR, box, 2)
         old_clip = screen.get_clip()
