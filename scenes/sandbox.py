@@ -19,10 +19,20 @@ Controls (keys the lab's shell does not use):
     from a point on one body to a point on another (or to empty space: a fixed point of the
     world); a pivot joins them at the point you pressed
   Delete or Backspace: delete the selected body (and its joints)
-  Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo      Ctrl+S save to sandbox-N.toml
-  Ctrl+O: open the newest sandbox-N.toml of the current folder (Ctrl+Z goes back)
+  Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo
+  Ctrl+S: save; the panel asks the name (Enter saves NAME.toml in the current folder, Esc
+    cancels; a file that is there is replaced only after a second Enter, and the line says so)
+  Ctrl+O: open a scene file; the panel asks its name (the newest sandbox-N.toml is offered;
+    Ctrl+Z goes back)
 (B and E are the shell's blow-up watch and energy bars, so the box is X and the turns Q and W.)
 While playing, the left button drags bodies as in every pymunk scene.
+
+The panel edits the selected body (the one just drawn, or clicked with M): its type, mass or
+density, friction, elasticity, size, position, angle and velocity; type a value and press
+Enter. Each value is checked as the loader checks a file (finite, in the format's range) before
+it reaches pymunk: a refused one changes nothing, and the panel says why in one line. What is
+typed there reaches the scene as an "edit" event (and the names asked as "save" and "open"
+events), which `--record` writes and `--input` replays like a mouse press.
 """
 
 from __future__ import annotations
@@ -30,14 +40,17 @@ from __future__ import annotations
 import copy
 import math
 import os
+import re
 from typing import Any
 
 import pygame
 import pymunk
 
+from app.form import Form, FormField
 from app.physics.bounds import clamp_point
 from app.scene import InputEvent
 from app.scenefile.load import check_spec, load_spec, SceneFileError
+from app.scenefile.parts import area_of
 from app.scenefile.scene import FileScene
 from app.scenefile.write import save, to_data
 
@@ -52,6 +65,11 @@ DENSITY = 0.01            # kg per px^2 of what is drawn: a ball of radius 20 is
 MIN_SIZE = 4.0            # px: a click without a drag draws nothing smaller than this
 PREVIEW = (255, 255, 255)
 SELECTED = (255, 120, 200)
+FILE_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_\-]{0,59}\Z")   # what Ctrl+S saves as NAME.toml
+# the panel's fields of a body: (field, label, where in the body's data, help)
+VECTOR_FIELDS = {"x": ("position", 0), "y": ("position", 1), "vx": ("velocity", 0),
+                 "vy": ("velocity", 1)}
+SHAPE_FIELDS = ("friction", "elasticity")         # every shape of the body gets the value
 
 
 def empty_spec(world_size: tuple[int, int]) -> dict[str, Any]:
@@ -94,6 +112,10 @@ class SandboxScene(FileScene):
         self.moving: tuple[float, float] | None = None   # grab offset of the body moved
         self._moving_undo = False
         self.message = ""
+        self.message_error = False
+        self.asking: tuple[str, str] | None = None    # an open prompt: ("save"|"open", text)
+        self.confirm: str | None = None               # the file a second Enter replaces
+        self.last_name = ""                           # saved or opened last (Ctrl+O offers it)
         self.counter = 0
         super().__init__(overrides)
 
@@ -128,7 +150,7 @@ class SandboxScene(FileScene):
         try:
             new = check_spec(to_data(new), "", "sandbox")
         except SceneFileError as e:
-            self.message = f"not drawn: {e.message}"
+            self.say(f"not drawn: {e.message}", error=True)
             return False
         self.undo.append(self.drawing)
         self.redo.clear()
@@ -181,14 +203,14 @@ class SandboxScene(FileScene):
         loader checks it (at least 3 corners, convex, an area) before pymunk sees it."""
         pts, self.corners = self.corners, []
         if len(pts) < 3:
-            self.message = "not drawn: a polygon needs at least 3 corners"
+            self.say("not drawn: a polygon needs at least 3 corners", error=True)
             return
         n = len(pts)
         cross = [pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1]
                  for i in range(n)]
         area = sum(cross) / 2
         if abs(area) < 1e-6:
-            self.message = "not drawn: the polygon's corners are on one line (no area)"
+            self.say("not drawn: the polygon's corners are on one line (no area)", error=True)
             return
         cx = sum((pts[i][0] + pts[(i + 1) % n][0]) * cross[i] for i in range(n)) / (6 * area)
         cy = sum((pts[i][1] + pts[(i + 1) % n][1]) * cross[i] for i in range(n)) / (6 * area)
@@ -267,36 +289,193 @@ class SandboxScene(FileScene):
                                                                                   j["b"])]))
         self.selected = None
 
-    def save(self) -> None:
-        """Write the drawing as sandbox-N.toml (the first N free) in the current folder."""
-        n = 1
-        while os.path.exists(f"sandbox-{n}.toml"):
-            n += 1
-        path = f"sandbox-{n}.toml"
+    def say(self, text: str, error: bool = False) -> None:
+        """The one line the HUD and the panel show: what the last action did or refused."""
+        self.message, self.message_error = text, error
+
+    # ----- saving and opening: the name asked in the panel --------------------------------------
+    def ask(self, action: str) -> None:
+        """Ctrl+S / Ctrl+O: open the panel's prompt, offering a name (save: the first free
+        sandbox-N; open: the newest sandbox-N there is)."""
+        numbers = [int(f[8:-5]) for f in os.listdir(".")
+                   if f.startswith("sandbox-") and f.endswith(".toml") and f[8:-5].isdigit()]
+        if action == "save":
+            n = 1
+            while os.path.exists(f"sandbox-{n}.toml"):
+                n += 1
+            offer = f"sandbox-{n}"
+        elif self.last_name and os.path.isfile(self.last_name + ".toml"):
+            offer = self.last_name          # the file saved or opened last
+        else:
+            offer = f"sandbox-{max(numbers)}" if numbers else ""
+        self.asking, self.confirm = (action, offer), None
+        self.say(f"{'Save as' if action == 'save' else 'Open'}: type a name in the panel; Enter "
+                 f"{'saves' if action == 'save' else 'opens'}, Esc cancels")
+
+    def answered(self, action: str, text: str) -> None:
+        """The name typed at the prompt ("save"/"open" event); "" cancels."""
+        name = text.strip()
+        if not name:
+            self.asking, self.confirm = None, None
+            self.say("not saved: cancelled" if action == "save" else "not opened: cancelled")
+            return
+        if name.endswith(".toml"):
+            name = name[:-5]
+        folder = os.path.abspath(".")
+        if not FILE_NAME.match(name):
+            self.asking = (action, text)
+            self.say(f"not {'saved' if action == 'save' else 'opened'}: {text!r} is not a name; "
+                     "accepted: letters, digits, _ and - (at most 60), as NAME.toml in "
+                     f"{folder}", error=True)
+            return
+        path = name + ".toml"
+        if action == "open":
+            self.open_file(path)
+            return
+        there = os.path.lexists(path)
+        if there and self.confirm != path:
+            self.asking, self.confirm = (action, text), path
+            self.say(f"{path} is already in {folder}: Enter again replaces it, Esc cancels")
+            return
         try:
             save(self.drawing, path)
         except OSError as e:
-            self.message = f"not saved: {e.strerror or e}"
+            self.asking = (action, text)
+            self.say(f"not saved: {path}: {e.strerror or e}", error=True)
             return
-        self.message = f"saved to {os.path.abspath(path)}"
+        self.asking, self.confirm, self.last_name = None, None, name
+        self.say(f"saved to {os.path.abspath(path)}"
+                 + (" (replaced the file that was there)" if there else ""))
 
-    def open_newest(self) -> None:
-        """Open the saved sandbox-N.toml with the greatest N in the current folder as the
-        drawing (one undo step); a file the loader refuses changes nothing and says why."""
-        numbers = [int(f[8:-5]) for f in os.listdir(".")
-                   if f.startswith("sandbox-") and f.endswith(".toml") and f[8:-5].isdigit()]
-        if not numbers:
-            self.message = "nothing to open: no sandbox-N.toml in " + os.path.abspath(".")
-            return
-        path = f"sandbox-{max(numbers)}.toml"
+    def open_file(self, path: str) -> None:
+        """Open a scene file as the drawing (one undo step); a file the loader refuses changes
+        nothing and says why."""
         try:
             spec = load_spec(path)
         except SceneFileError as e:
-            self.message = f"not opened: {e}"
+            self.asking = ("open", path[:-5])
+            self.say(f"not opened: {e}", error=True)
             return
         if self.edit(lambda d: (d.clear(), d.update(copy.deepcopy(spec)))):
-            self.selected, self.corners = None, []
-            self.message = f"opened {os.path.abspath(path)}"
+            self.selected, self.corners, self.asking = None, [], None
+            self.last_name = path[:-5]
+            self.say(f"opened {os.path.abspath(path)}")
+
+    # ----- the panel's fields of the selected body -----------------------------------------------
+    def selected_body(self) -> dict | None:
+        return next((b for b in self.drawing["body"] if b["name"] == self.selected), None)
+
+    def panel_form(self) -> Form:
+        note, bad = self.message, self.message_error
+        if self.asking is not None:
+            action, text = self.asking
+            return Form("Save the drawing" if action == "save" else "Open a scene file",
+                        prompt=("Save as (NAME.toml, this folder)" if action == "save"
+                                else "Open (NAME.toml, this folder)"),
+                        answer=text, action=action, note=note, note_is_error=bad)
+        body = self.selected_body()
+        if self.playing or body is None:
+            title = ("Playing: Enter goes back to the drawing to edit" if self.playing else
+                     "Draw a body, or click one with M, to edit it here")
+            return Form(title, note=note, note_is_error=bad)
+        return Form(f"Selected: {body['name']} ({body['shape'][0]['kind']})",
+                    rows=self.fields_of(body), note=note, note_is_error=bad)
+
+    def fields_of(self, b: dict) -> tuple[tuple[FormField, ...], ...]:
+        """The fields of body `b`, one or two a row, each value as its text box shows it."""
+        def f(name: str, label: str, value: float) -> FormField:
+            return FormField(name, label, format(value, ".6g"))
+        shape = b["shape"][0]
+        rows: list[tuple[FormField, ...]] = [(FormField(
+            "type", "type", b["type"], choices=("dynamic", "static", "kinematic")),)]
+        if b["type"] == "dynamic":
+            area = area_of(b["shape"])
+            mass = b["mass"] if b["mass"] is not None else b["density"] * area
+            rows.append((f("mass", "mass kg", mass),
+                         f("density", "density", mass / area)))
+        rows.append((f("friction", "friction", shape["friction"]),
+                     f("elasticity", "elasticity", shape["elasticity"])))
+        if shape["kind"] == "circle":
+            rows.append((f("radius", "radius px", shape["radius"]),))
+        elif shape["kind"] == "box":
+            rows.append((f("width", "width px", shape["size"][0]),
+                         f("height", "height px", shape["size"][1])))
+        rows.append((f("x", "x px", b["position"][0]),
+                     f("y", "y px", b["position"][1])))
+        rows.append((f("angle", "angle deg", b["angle"]),))
+        if b["type"] != "static":
+            rows.append((f("vx", "vx px/s", b["velocity"][0]),
+                         f("vy", "vy px/s", b["velocity"][1])))
+        return tuple(rows)
+
+    def edit_field(self, field: str, text: str) -> None:
+        """An "edit" event: set `field` of the selected body to the number (or type) typed.
+        The text must be a finite number, and the drawing with it must pass the loader's
+        checks (edit()); otherwise nothing changes and the line says why."""
+        b = self.selected_body()
+        if self.playing or b is None:
+            self.say(f"not changed: {field}: "
+                     + ("Enter goes back to the drawing first" if self.playing
+                        else "no body is selected (M, then click one)"), error=True)
+            return
+        fields = {x.name for row in self.fields_of(b) for x in row}
+        if field not in fields:
+            self.say(f"not changed: a {b['type']} {b['shape'][0]['kind']} has no field "
+                     f"{field!r}; accepted: {', '.join(sorted(fields))}", error=True)
+            return
+        name = b["name"]
+        if field == "type":
+            if text not in ("dynamic", "static", "kinematic"):
+                self.say(f"not changed: type {text!r}; accepted: dynamic, static, kinematic",
+                         error=True)
+                return
+
+            def change(d: dict) -> None:
+                body = next(x for x in d["body"] if x["name"] == name)
+                body["type"] = text
+                if text == "dynamic":
+                    if body["mass"] is None and body["density"] is None:
+                        body["density"] = DENSITY
+                else:
+                    body["mass"] = body["density"] = body["moment"] = None
+                if text == "static":
+                    body["velocity"], body["angular_velocity"] = [0.0, 0.0], 0.0
+            if self.edit(change):
+                self.say(f"{name}: type = {text}")
+            return
+        try:
+            value = float(text.strip().replace(",", "."))
+        except ValueError:
+            value = None
+        if value is None or not math.isfinite(value):
+            self.say(f"not changed: {field} = {text!r} is not a finite number", error=True)
+            return
+
+        def change(d: dict) -> None:
+            body = next(x for x in d["body"] if x["name"] == name)
+            if field in ("mass", "density"):
+                body[field] = value
+                body["density" if field == "mass" else "mass"] = None
+            elif field in SHAPE_FIELDS:
+                for sh in body["shape"]:
+                    sh[field] = value
+            elif field == "radius":
+                body["shape"][0]["radius"] = value
+            elif field in ("width", "height"):
+                size = list(body["shape"][0]["size"])
+                size[field == "height"] = value
+                body["shape"][0]["size"] = size
+            elif field == "angle":
+                body["angle"] = value
+            else:
+                key, i = VECTOR_FIELDS[field]
+                vec = list(body[key])
+                vec[i] = value
+                body[key] = vec
+        if self.edit(change):
+            self.say(f"{name}: {field} = {value:g}")
+        else:                        # edit() said what the loader refused
+            self.say(self.message.replace("not drawn:", "not changed:", 1), error=True)
 
     # ----- events -------------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
@@ -304,7 +483,11 @@ class SandboxScene(FileScene):
             event = InputEvent(event.kind, clamp_point(event.pos, self.world_size),
                                event.button, event.key, event.t)
             self.mouse = event.pos
-        if event.kind == "key_up" and event.key in CTRL:
+        if event.kind == "edit":
+            self.edit_field(event.field, event.value)
+        elif event.kind in ("save", "open"):
+            self.answered(event.kind, event.value)
+        elif event.kind == "key_up" and event.key in CTRL:
             self.ctrl = False
         elif event.kind == "key_down":
             self.key(event.key)
@@ -334,7 +517,7 @@ class SandboxScene(FileScene):
         if key in CTRL:
             self.ctrl = True
         elif self.ctrl and key == "s":
-            self.save()
+            self.ask("save")
         elif self.ctrl and key == "z" and self.undo:
             self.redo.append(self.drawing)
             self.drawing = self.undo.pop()
@@ -350,7 +533,7 @@ class SandboxScene(FileScene):
         elif key in ("delete", "backspace") and not self.playing:
             self.delete()
         elif self.ctrl and key == "o":
-            self.open_newest()
+            self.ask("open")
         elif key in TURN_KEYS and not self.playing and not self.ctrl:
             self.turn(TURN_KEYS[key] * TURN)
         elif key in TOOLS and not self.ctrl:
@@ -367,7 +550,8 @@ class SandboxScene(FileScene):
 
     def hud_details(self) -> list[str]:
         return ["drawing: nothing moves; Enter plays from the drawing, R goes back to it",
-                "saved files run as: python -m app --scene sandbox-N.toml"]
+                "the panel edits the selected body; Ctrl+S asks the name there",
+                "a saved file runs as: python -m app --scene NAME.toml"]
 
     def hud_lines(self) -> list[str]:
         mode = ("PLAYING (Enter: back to the drawing)" if self.playing else

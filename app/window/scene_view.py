@@ -289,8 +289,20 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
         self._refresh_panel()
 
     def _refresh_panel(self) -> None:
-        if self.panel is not None:
+        if self.panel is not None and self.panel.stale:
+            self.rebuild_panel()            # the scene's form changed shape (app/form.py)
+        elif self.panel is not None:
             self.panel.refresh()
+
+    def rebuild_panel(self) -> None:
+        """Build the panel again where it is (its scroll back at the top); an open prompt
+        gets the keyboard."""
+        from app.window.panel import ParamPanel
+        rect = self.panel.rect
+        self.panel.container.kill()
+        self.manager.set_focus_set(None)
+        self.panel = ParamPanel(self, self.manager, rect)
+        self.panel.form.focus_prompt()
 
     # --- events --------------------------------------------------------------------------------
     def typing(self) -> bool:
@@ -301,6 +313,10 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
         return any(type(e).__name__ == "UITextEntryLine" for e in (focus or ()))
 
     def handle_event(self, ev: pygame.event.Event) -> None:
+        if (ev.type == pygame.KEYDOWN and ev.key == pygame.K_ESCAPE and self.panel is not None
+                and self.panel.escape()):
+            self.typed_keys.add(ev.key)     # its release is the panel's too
+            return                          # Esc cancelled the panel's prompt or field
         typing_before = self.typing()
         consumed = bool(self.manager.process_events(ev)) if self.manager is not None else False
         if self.panel is not None and ev.type >= pygame.USEREVENT and self.panel.handle(ev):
