@@ -45,7 +45,7 @@ class Form:
     answer: str = ""
     action: str = "save"
     note: str = ""
-    note_is_error: bool = False
+    note_kind: str = "ok"          # "ok" (done), "warn" (what the next Enter does), "error"
 
     @property
     def fields(self) -> tuple[FormField, ...]:
@@ -56,4 +56,4 @@ class Form:
         the fields are not in it: they change in place."""
         return (self.title, tuple(tuple((f.name, f.label, f.choices) for f in row)
                                   for row in self.rows),
-                self.prompt, self.answer, self.action, self.note, self.note_is_error)
+                self.prompt, self.answer, self.action, self.note, self.note_kind)

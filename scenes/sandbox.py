@@ -112,7 +112,7 @@ class SandboxScene(FileScene):
         self.moving: tuple[float, float] | None = None   # grab offset of the body moved
         self._moving_undo = False
         self.message = ""
-        self.message_error = False
+        self.message_error = self.message_warn = False
         self.asking: tuple[str, str] | None = None    # an open prompt: ("save"|"open", text)
         self.confirm: str | None = None               # the file a second Enter replaces
         self.last_name = ""                           # saved or opened last (Ctrl+O offers it)
@@ -289,9 +289,10 @@ class SandboxScene(FileScene):
                                                                                   j["b"])]))
         self.selected = None
 
-    def say(self, text: str, error: bool = False) -> None:
-        """The one line the HUD and the panel show: what the last action did or refused."""
-        self.message, self.message_error = text, error
+    def say(self, text: str, error: bool = False, warn: bool = False) -> None:
+        """The one line the HUD and the panel show: what the last action did or refused (or,
+        `warn`, what the next Enter would do)."""
+        self.message, self.message_error, self.message_warn = text, error, warn
 
     # ----- saving and opening: the name asked in the panel --------------------------------------
     def ask(self, action: str) -> None:
@@ -309,8 +310,7 @@ class SandboxScene(FileScene):
         else:
             offer = f"sandbox-{max(numbers)}" if numbers else ""
         self.asking, self.confirm = (action, offer), None
-        self.say(f"{'Save as' if action == 'save' else 'Open'}: type a name in the panel; Enter "
-                 f"{'saves' if action == 'save' else 'opens'}, Esc cancels")
+        self.say("")                    # the HUD says what to do while the prompt is open
 
     def answered(self, action: str, text: str) -> None:
         """The name typed at the prompt ("save"/"open" event); "" cancels."""
@@ -325,8 +325,7 @@ class SandboxScene(FileScene):
         if not FILE_NAME.match(name):
             self.asking = (action, text)
             self.say(f"not {'saved' if action == 'save' else 'opened'}: {text!r} is not a name; "
-                     "accepted: letters, digits, _ and - (at most 60), as NAME.toml in "
-                     f"{folder}", error=True)
+                     "accepted: letters, digits, _ and - (no spaces, at most 60)", error=True)
             return
         path = name + ".toml"
         if action == "open":
@@ -335,7 +334,8 @@ class SandboxScene(FileScene):
         there = os.path.lexists(path)
         if there and self.confirm != path:
             self.asking, self.confirm = (action, text), path
-            self.say(f"{path} is already in {folder}: Enter again replaces it, Esc cancels")
+            self.say(f"{path} is already in {folder}: Enter again replaces it, Esc cancels",
+                     warn=True)
             return
         try:
             save(self.drawing, path)
@@ -366,20 +366,20 @@ class SandboxScene(FileScene):
         return next((b for b in self.drawing["body"] if b["name"] == self.selected), None)
 
     def panel_form(self) -> Form:
-        note, bad = self.message, self.message_error
+        note, bad = self.message, ("error" if self.message_error else
+                                   "warn" if self.message_warn else "ok")
         if self.asking is not None:
             action, text = self.asking
             return Form("Save the drawing" if action == "save" else "Open a scene file",
-                        prompt=("Save as (NAME.toml, this folder)" if action == "save"
-                                else "Open (NAME.toml, this folder)"),
-                        answer=text, action=action, note=note, note_is_error=bad)
+                        prompt=("Save as NAME.toml" if action == "save" else "Open NAME.toml"),
+                        answer=text, action=action, note=note, note_kind=bad)
         body = self.selected_body()
         if self.playing or body is None:
             title = ("Playing: Enter goes back to the drawing to edit" if self.playing else
                      "Draw a body, or click one with M, to edit it here")
-            return Form(title, note=note, note_is_error=bad)
+            return Form(title, note=note, note_kind=bad)
         return Form(f"Selected: {body['name']} ({body['shape'][0]['kind']})",
-                    rows=self.fields_of(body), note=note, note_is_error=bad)
+                    rows=self.fields_of(body), note=note, note_kind=bad)
 
     def fields_of(self, b: dict) -> tuple[tuple[FormField, ...], ...]:
         """The fields of body `b`, one or two a row, each value as its text box shows it."""
@@ -558,6 +558,10 @@ class SandboxScene(FileScene):
                 f"DRAWING with the {self.tool} tool (Enter: play)")
         lines = [mode, "C circle, X box, G polygon, L line, M move (Q/W turn), J pin, S spring, "
                        "O pivot, D slide; Del delete; Ctrl+Z/Y undo/redo; Ctrl+S save, Ctrl+O open"]
+        if self.asking is not None:
+            lines.append(f"{'Save as' if self.asking[0] == 'save' else 'Open'}: the name in "
+                         f"the panel, Enter {'saves' if self.asking[0] == 'save' else 'opens'}, "
+                         "Esc cancels")
         if self.message:
             lines.append(self.message)
         return lines

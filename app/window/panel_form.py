@@ -20,8 +20,7 @@ import pygame
 from app.draw import hud
 from app.scene import InputEvent
 
-NOTE_OK = "#form_note"
-NOTE_ERROR = "#form_error"
+NOTES = {"ok": "#form_note", "warn": "#watch", "error": "#form_error"}   # assets/theme.json
 
 
 class FormWidgets:
@@ -63,25 +62,41 @@ class FormWidgets:
 
         label(form.title, pad, w, "#section")
         y += row
+        if form.note:                   # first, under the title: always in sight (F2, 768 px)
+            style = NOTES.get(form.note_kind, NOTES["ok"])
+            box_font = m.get_theme().get_font([style])
+            lines = len(hud.wrap(form.note, box_font, w - 16))
+            height = int(lines * box_font.size("Ay")[1] * 1.25) + 12
+            UITextBox(_html(form.note), pygame.Rect(pad, y, w, height), m, container=c,
+                      object_id=style)
+            y += height + gap
+        # two fields a row where both labels and a number such as -1234.56 fit, else one
+        box_min = font.size("-1234.567")[0] + 16
+        single = max((font.size(f.label)[0] + 10 for f in form.fields), default=0)
         for fields in form.rows:
             cell = (w - gap * (len(fields) - 1)) // len(fields)
-            for i, f in enumerate(fields):
-                x = pad + i * (cell + gap)
-                if f.choices is not None:
-                    label(f.label, x, cell // 3)
-                    menu = UIDropDownMenu(list(f.choices), f.value,
-                                          pygame.Rect(x + cell // 3, y, cell - cell // 3, row),
-                                          m, container=c)
-                    self.menus[f.name] = menu
-                    continue
-                # the label takes what its text needs, up to half the cell; the box the rest
-                need = min(font.size(f.label)[0] + 10, cell // 2)
-                label(f.label, x, need)
-                box = UITextEntryLine(pygame.Rect(x + need, y, cell - need, row), m,
-                                      container=c)
-                box.set_text(f.value)
-                self.boxes[f.name] = box
-            y += row + gap
+            if any(font.size(f.label)[0] + 10 + box_min > cell for f in fields):
+                fields_in_rows = [(f,) for f in fields]
+            else:
+                fields_in_rows = [fields]
+            for line in fields_in_rows:
+                cell = (w - gap * (len(line) - 1)) // len(line)
+                for i, f in enumerate(line):
+                    x = pad + i * (cell + gap)
+                    # a lone field's label as wide as the widest (the boxes line up)
+                    need = min(single if len(line) == 1 else font.size(f.label)[0] + 10,
+                               cell // 2)
+                    label(f.label, x, need)
+                    if f.choices is not None:
+                        self.menus[f.name] = UIDropDownMenu(
+                            list(f.choices), f.value, pygame.Rect(x + need, y, cell - need, row),
+                            m, container=c)
+                        continue
+                    box = UITextEntryLine(pygame.Rect(x + need, y, cell - need, row), m,
+                                          container=c)
+                    box.set_text(f.value)
+                    self.boxes[f.name] = box
+                y += row + gap
         if form.prompt:
             label(form.prompt, pad, w)
             y += row
@@ -91,13 +106,6 @@ class FormWidgets:
             label("Enter: " + ("save" if form.action == "save" else "open") + "   Esc: cancel",
                   pad, w)
             y += row
-        if form.note:
-            box_font = m.get_theme().get_font([NOTE_ERROR if form.note_is_error else NOTE_OK])
-            lines = len(hud.wrap(form.note, box_font, w - 16))
-            height = int(lines * box_font.size("Ay")[1] * 1.25) + 12
-            UITextBox(_html(form.note), pygame.Rect(pad, y, w, height), m, container=c,
-                      object_id=NOTE_ERROR if form.note_is_error else NOTE_OK)
-            y += height + gap
         return y + gap
 
     def focus_prompt(self) -> None:
@@ -105,7 +113,9 @@ class FormWidgets:
         if self.prompt is not None:
             self.manager.set_focus_set(self.prompt)
             self.prompt.focus()
-            self.prompt.edit_position = len(self.prompt.get_text())
+            end = len(self.prompt.get_text())
+            self.prompt.select_range = [0, end]     # typing replaces the name offered
+            self.prompt.edit_position = end
 
     # --- reading the scene -----------------------------------------------------------------------
     def stale(self) -> bool:
