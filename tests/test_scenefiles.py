@@ -619,3 +619,67 @@ def test_a_sandbox_session_with_panel_edits_and_saves_replays_headless(tmp_path,
     for _ in range(35):                                  # the steps played since Enter
         played.advance()
     assert played.state_hash() == live.state_hash()
+
+
+# ----- a cloth on obstacles, coupled with bodies --------------------------------------------------
+TRAMPOLINE = str(ROOT / "scenes/files/trampoline.toml")
+TABLECLOTH = str(ROOT / "scenes/files/tablecloth.toml")
+
+
+def test_the_trampoline_file_catches_the_ball_and_throws_it_up():
+    """Two-way coupling from a file: the band stops a ball falling at 700 px/s and throws it
+    back up at more than 40 % of that; no particle is left deeper than 0.5 px inside the ball
+    or the floor (the built-in trampoline's bound); one-way, nothing stops the ball."""
+    scene = scene_class(TRAMPOLINE)()
+    impact, thrown = 0.0, 0.0
+    for _ in range(90):                                  # 1.5 s: down, caught, thrown
+        scene.advance()
+        m, vy = scene.metrics(), scene.named["ball"].velocity.y
+        if m["contacts"] and not impact:
+            impact = vy
+        thrown = min(thrown, vy)
+    assert impact > 600 and thrown < -0.4 * impact
+    assert 0 < m["penetration_max"] < 0.5
+    spec = load_spec(TRAMPOLINE)
+    spec["cloth"]["coupling"] = "one-way"
+    one_way = scene_class(TRAMPOLINE)()
+    one_way.spec = spec                                  # the same file, coupled one way
+    one_way.reset()
+    for _ in range(90):
+        one_way.advance()
+    assert one_way.named["ball"].velocity.y > -50 and one_way.metrics()["ball_y"] > 600
+
+
+def test_the_tablecloth_file_drapes_and_friction_holds_it_on_the_table():
+    """Obstacles from a file: the cloth lands on the table and the vase (nothing left inside
+    them); with friction 0.6 its longer side does not pull it off the table in 5 s, without
+    friction it slides off to the floor."""
+    cls = scene_class(TABLECLOTH)
+    held, slid = cls(), cls({"cloth_friction": 0.0})
+    for _ in range(300):
+        held.advance()
+        slid.advance()
+    assert held.metrics()["penetration_max"] < 0.5 and held.metrics()["contacts"] > 20
+    assert float(held.cloth.x[1].max()) < 660                 # hanging, well above the floor
+    assert float(slid.cloth.x[1].max()) > 690                 # on the floor (y = 696)
+    assert slid.metrics()["penetration_max"] < 0.5
+
+
+@pytest.mark.parametrize("old,new,words", [
+    ('kind = "floor"\ny = 696.0', 'kind = "floor"', "a floor needs 'y'"),
+    ('kind = "floor"\ny = 696.0', 'kind = "floor"\ny = 696.0\nradius = 3.0',
+     "a floor has no 'radius'"),
+    ('body = "table"', 'body = "tabel"', 'body "tabel" is no body'),
+    ('kind = "circle"\nposition = [480.0, 462.0]\nradius = 28.0',
+     'kind = "circle"\nposition = [480.0, 462.0]\nradius = -28.0', "out of range"),
+    ('friction = 0.6', 'friction = 0.6\ncouple = "table"', "which is static"),
+    ('friction = 0.6', 'friction = 0.6\ncouple = "nobody"', "names no body"),
+])
+def test_a_bad_cloth_obstacle_or_coupling_gets_one_line(tmp_path, old, new, words):
+    text = Path(TABLECLOTH).read_text()
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(SceneFileError) as e:
+        load_spec(str(path))
+    assert words in str(e.value) and "\n" not in str(e.value) and e.value.line is not None
