@@ -60,8 +60,10 @@ def test_the_panel_edits_the_selected_body_and_asks_the_name_to_save(tmp_path, m
         form = view.panel.form
         assert set(form.boxes) >= {"mass", "density", "friction", "elasticity", "radius", "x",
                                    "y", "angle", "vx", "vy"} and "type" in form.menus
+        where = view.panel.form.boxes["mass"].rect.copy()
         type_enter(w, view.panel.form.boxes["mass"], "abc")          # refused: nothing changes
         assert scene.message_error and "not a finite number" in scene.message
+        assert view.panel.form.boxes["mass"].rect == where    # the refusal moved no box
         assert scene.selected_body()["density"] == 0.01
         type_enter(w, view.panel.form.boxes["mass"], "4")
         assert scene.named["ball1"].mass == pytest.approx(4.0) and not view.panel.is_typing()

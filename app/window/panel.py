@@ -357,9 +357,22 @@ class ParamPanel:
         is built again (SceneView._refresh_panel)."""
         return self.form.stale()
 
-    def escape(self) -> bool:
+    def took_escape(self, ev: pygame.event.Event) -> bool:
         """Esc while the form has the keyboard (or a prompt is open): cancel; True if it did."""
-        return self.form.escape()
+        return ev.type == pygame.KEYDOWN and ev.key == pygame.K_ESCAPE and self.form.escape()
+
+    def refreshed(self) -> "ParamPanel":
+        """This panel showing the scene's values, or, if the scene's form changed its shape,
+        a new one built where it is (scrolled back to the top; an open prompt gets the
+        keyboard)."""
+        if not self.stale:
+            self.refresh()
+            return self
+        self.container.kill()
+        self.manager.set_focus_set(None)
+        panel = ParamPanel(self.host, self.manager, self.rect)
+        panel.form.focus_prompt()
+        return panel
 
     def show_watch(self, card: Try | None, clicked: bool = True) -> None:
         """Below the cards: what a card sets and what to watch for (the card clicked last, or

@@ -20,7 +20,11 @@ import pygame
 from app.draw import hud
 from app.scene import InputEvent
 
-NOTES = {"ok": "#form_note", "warn": "#watch", "error": "#form_error"}   # assets/theme.json
+NOTES = {"ok": "#form_note", "warn": "#watch", "error": "#form_error",   # assets/theme.json
+         "hint": "#form_hint"}
+HINT = "Type a value and press Enter; Esc puts the old one back."
+NOTE_LINES = 3          # room kept under the title for the note, so the boxes stay put when a
+                        # refusal appears (a second click lands on the same box)
 
 
 class FormWidgets:
@@ -62,12 +66,17 @@ class FormWidgets:
 
         label(form.title, pad, w, "#section")
         y += row
-        if form.note:                   # first, under the title: always in sight (F2, 768 px)
-            style = NOTES.get(form.note_kind, NOTES["ok"])
+        note, kind = form.note, form.note_kind
+        if not note and form.rows:
+            note, kind = HINT, "hint"
+        if note:                        # first, under the title: always in sight (F2, 768 px)
+            style = NOTES.get(kind, NOTES["ok"])
             box_font = m.get_theme().get_font([style])
-            lines = len(hud.wrap(form.note, box_font, w - 16))
+            lines = len(hud.wrap(note, box_font, w - 16))
+            if form.rows:
+                lines = max(lines, NOTE_LINES)
             height = int(lines * box_font.size("Ay")[1] * 1.25) + 12
-            UITextBox(_html(form.note), pygame.Rect(pad, y, w, height), m, container=c,
+            UITextBox(_html(note), pygame.Rect(pad, y, w, height), m, container=c,
                       object_id=style)
             y += height + gap
         # two fields a row where both labels and a number such as -1234.56 fit, else one
