@@ -131,8 +131,9 @@ def parse_events(data: Any, source: str = "input") -> list[InputEvent]:
     return events
 
 
-def load_events(path: str) -> list[InputEvent]:
-    """Read and validate an --input file."""
+def load_events(path: str, classes: list | None = None) -> list[InputEvent]:
+    """Read and validate an --input file (for `classes`: panel events only for scenes with a
+    panel form, app/form.py)."""
     if not path.strip():
         raise InputFileError("--input needs a file name (a JSON list of events)")
     problem = input_problem(path, "--input")     # a FIFO would block for ever: refused first
@@ -158,7 +159,14 @@ def load_events(path: str) -> list[InputEvent]:
     if len(text) > MAX_INPUT_BYTES:
         raise InputFileError(f"--input file {path_text} is larger than {MAX_INPUT_BYTES >> 20} MB; "
                              "accepted: a JSON list of events up to that size")
-    return parse_events(data, f"--input file {path_text}")
+    events = parse_events(data, f"--input file {path_text}")
+    form = next((e for e in events if e.kind in ("edit", "save", "open")), None)
+    plain = [c.name for c in classes or () if c.panel_form is Scene.panel_form]
+    if form is not None and plain:
+        raise InputFileError(f"--input file {path_text}: the event \"{form.kind}\" (t = {form.t:g}) "
+                             f"is typed into a scene's own panel fields, and {plain[0]} has none; "
+                             "accepted: such events for the sandbox (or a scene with a form)")
+    return events
 
 
 def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:

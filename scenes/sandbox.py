@@ -80,8 +80,10 @@ class SandboxScene(SandboxForm, FileScene):
     C circle, X box, G polygon (click corners, right-click closes), L line (static), M
     move/select (Q, W turn it); J pin, S spring, O pivot, D slide joints (drag from one body to
     another or to the world); Delete removes the selected body; Enter plays / goes back to the
-    drawing; Ctrl+Z / Ctrl+Y undo / redo; Ctrl+S saves sandbox-N.toml in the current folder,
-    Ctrl+O opens the newest one there.
+    drawing; Ctrl+Z / Ctrl+Y undo / redo. The panel edits the selected body (type, mass or
+    density, friction, elasticity, size, position, angle, velocity: type, Enter). Ctrl+S asks
+    the file's name in the panel and saves NAME.toml in the current folder; Ctrl+O asks the
+    name of one to open.
     """
 
     name = "sandbox"

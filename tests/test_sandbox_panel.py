@@ -97,3 +97,15 @@ def test_the_panel_edits_the_selected_body_and_asks_the_name_to_save(tmp_path, m
              json.loads((tmp_path / "rec.json").read_text()) if e["type"] in ("edit", "save")]
     assert kinds == [("edit", "mass"), ("edit", "mass"), ("save", "my scene"), ("save", "ramp"),
                      ("save", "")]
+
+
+def test_panel_events_for_a_scene_without_a_form_are_refused_in_one_line(tmp_path, capsys):
+    """An "edit" event replayed into a scene that has no fields of its own would change nothing
+    in silence: --input refuses it (exit 2, one line); the sandbox takes it."""
+    from app.__main__ import main
+    events = tmp_path / "edit.json"
+    events.write_text(json.dumps([{"t": 0, "type": "edit", "field": "mass", "value": "3"}]))
+    assert main(["--headless", "--scene", "cloth", "--input", str(events), "--steps", "1"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "\n" not in err and 'the event "edit"' in err and "cloth has none" in err
+    assert main(["--headless", "--scene", "sandbox", "--input", str(events), "--steps", "1"]) == 0
