@@ -22,7 +22,7 @@ import pygame
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Scene, Try
-from app.window.panel_form import FormWidgets
+from app.window.panel_form import FormWidgets, select as _select
 
 
 THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
@@ -458,17 +458,6 @@ class ParamPanel:
         return True
 
 
-
-
-def _select(dropdown, text: str) -> None:
-    """Show `text` as a drop-down's choice (pygame-gui has no setter: its menu and its closed
-    state each keep the selection; the closed state's button shows it)."""
-    option = (text, text)
-    dropdown.selected_option = option
-    closed = dropdown.menu_states["closed"]
-    closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
-    if dropdown.current_state is closed and closed.selected_option_button is not None:
-        closed.selected_option_button.set_text(text)
 
 
 def _cut(button, text: str) -> bool:

@@ -142,8 +142,7 @@ class FormWidgets:
                 box.set_text(f.value)
             menu = self.menus.get(f.name)
             if menu is not None and menu.selected_option[0] != f.value:
-                from app.window.panel import _select
-                _select(menu, f.value)
+                select(menu, f.value)
 
     def entries(self) -> list:
         return list(self.boxes.values()) + ([self.prompt] if self.prompt is not None else [])
@@ -184,6 +183,17 @@ class FormWidgets:
             self.refresh()                     # the boxes show the scene's values again
             return True
         return False
+
+
+def select(dropdown, text: str) -> None:
+    """Show `text` as a drop-down's choice (pygame-gui has no setter: its menu and its closed
+    state each keep the selection; the closed state's button shows it)."""
+    option = (text, text)
+    dropdown.selected_option = option
+    closed = dropdown.menu_states["closed"]
+    closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
+    if dropdown.current_state is closed and closed.selected_option_button is not None:
+        closed.selected_option_button.set_text(text)
 
 
 def _fit(text: str, font, width: int) -> str:
