@@ -41,7 +41,7 @@ class SandboxForm:
     # ----- saving and opening: the name asked in the panel --------------------------------------
     def ask(self, action: str) -> None:
         """Ctrl+S / Ctrl+O: open the panel's prompt, offering a name (save: the first free
-        sandbox-N; open: the newest sandbox-N there is)."""
+        sandbox-N; open: the file saved or opened last, else the newest sandbox-N there is)."""
         numbers = [int(f[8:-5]) for f in os.listdir(".")
                    if f.startswith("sandbox-") and f.endswith(".toml") and f[8:-5].isdigit()]
         if action == "save":
@@ -119,8 +119,11 @@ class SandboxForm:
                         answer=text, action=action, note=note, note_kind=bad)
         body = self.selected_body()
         if self.playing or body is None:
-            title = ("Playing: Enter goes back to the drawing to edit" if self.playing else
-                     "Draw a body, or click one with M, to edit it here")
+            title = "Playing" if self.playing else "Nothing selected"
+            if not note:             # the title is one short line; what to do goes below it
+                note, bad = ("Enter goes back to the drawing, where the panel edits a body."
+                             if self.playing else "Draw a body, or click one with M, to edit "
+                             "its fields here."), "hint"
             return Form(title, note=note, note_kind=bad)
         return Form(f"Selected: {body['name']} ({body['shape'][0]['kind']})",
                     rows=self.fields_of(body), note=note, note_kind=bad)

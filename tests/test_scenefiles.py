@@ -652,11 +652,12 @@ def test_the_trampoline_file_catches_the_ball_and_throws_it_up():
 
 def test_the_tablecloth_file_drapes_and_friction_holds_it_on_the_table():
     """Obstacles from a file: the cloth lands on the table and the vase (nothing left inside
-    them); with friction 0.6 its longer side does not pull it off the table in 5 s, without
-    friction it slides off to the floor."""
+    them); after 1.7 s the one without friction has slid off its longer side to the floor,
+    while with friction 0.6 it hangs on the table (lowest particle at y = 580; it comes to rest
+    at 628 by 3.3 s)."""
     cls = scene_class(TABLECLOTH)
     held, slid = cls(), cls({"cloth_friction": 0.0})
-    for _ in range(300):
+    for _ in range(100):
         held.advance()
         slid.advance()
     assert held.metrics()["penetration_max"] < 0.5 and held.metrics()["contacts"] > 20
