@@ -197,7 +197,7 @@ def app_main(argv: list[str]) -> int:
     events = None
     if args.input is not None:        # '' too: an empty name is refused, not ignored
         try:
-            events = load_events(args.input)
+            events = load_events(args.input, classes)
         except InputFileError as e:
             raise UsageError(str(e)) from None
 

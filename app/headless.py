@@ -25,7 +25,9 @@ from app.series import MAX_WINDOW, clean
 if TYPE_CHECKING:
     from app.instruments import Instruments
 
-EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up")
+EVENT_TYPES = ("mouse_down", "mouse_up", "mouse_move", "key_down", "key_up", "edit", "save",
+               "open")
+MAX_FORM_TEXT = 200             # characters of an "edit" value or a "save" name (a panel's text box)
 DEFAULT_SECONDS = 5.0
 EXIT_OK, EXIT_NONFINITE, EXIT_USAGE = 0, 1, 2       # the command line's exit codes (DESIGN.md)
 MAX_STEPS = 1_000_000           # a headless run longer than this is a typo, not an experiment
@@ -106,6 +108,20 @@ def parse_events(data: Any, source: str = "input") -> list[InputEvent]:
             if isinstance(button, bool) or button not in allowed:
                 raise bad("button", "1 (left), 2 or 3 (right)")
             events.append(InputEvent(kind, (xy[0], xy[1]), int(button or 0), t=t))
+        elif kind == "edit":            # a field of the scene's panel form (app/form.py)
+            field, value = item.get("field"), item.get("value")
+            if not isinstance(field, str) or not field or len(field) > 40:
+                raise bad("field", 'the name of a field of the panel, such as "mass"')
+            if not isinstance(value, str) or len(value) > MAX_FORM_TEXT:
+                raise bad("value", f"the text typed, in quotes (at most {MAX_FORM_TEXT} "
+                          "characters)")
+            events.append(InputEvent(kind, field=field, value=value, t=t))
+        elif kind in ("save", "open"):  # the name typed at the panel's prompt ("" cancels)
+            name = item.get("name")
+            if not isinstance(name, str) or len(name) > MAX_FORM_TEXT:
+                raise bad("name", f"the name typed, in quotes (at most {MAX_FORM_TEXT} "
+                          "characters; \"\" cancels)")
+            events.append(InputEvent(kind, value=name, t=t))
         else:
             key = item.get("key")
             if not isinstance(key, str) or not key:
@@ -115,8 +131,9 @@ def parse_events(data: Any, source: str = "input") -> list[InputEvent]:
     return events
 
 
-def load_events(path: str) -> list[InputEvent]:
-    """Read and validate an --input file."""
+def load_events(path: str, classes: list | None = None) -> list[InputEvent]:
+    """Read and validate an --input file (for `classes`: panel events only for scenes with a
+    panel form, app/form.py)."""
     if not path.strip():
         raise InputFileError("--input needs a file name (a JSON list of events)")
     problem = input_problem(path, "--input")     # a FIFO would block for ever: refused first
@@ -142,7 +159,14 @@ def load_events(path: str) -> list[InputEvent]:
     if len(text) > MAX_INPUT_BYTES:
         raise InputFileError(f"--input file {path_text} is larger than {MAX_INPUT_BYTES >> 20} MB; "
                              "accepted: a JSON list of events up to that size")
-    return parse_events(data, f"--input file {path_text}")
+    events = parse_events(data, f"--input file {path_text}")
+    form = next((e for e in events if e.kind in ("edit", "save", "open")), None)
+    plain = [c.name for c in classes or () if c.panel_form is Scene.panel_form]
+    if form is not None and plain:
+        raise InputFileError(f"--input file {path_text}: the event \"{form.kind}\" (t = {form.t:g}) "
+                             f"is typed into a scene's own panel fields, and {plain[0]} has none; "
+                             "accepted: such events for the sandbox (or a scene with a form)")
+    return events
 
 
 def summary(runner: SceneRunner, wall_seconds: float) -> dict[str, Any]:

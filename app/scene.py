@@ -113,7 +113,9 @@ def variant_text(settings: Mapping[str, Any]) -> str:
 class InputEvent:
     """A mouse or key event in the format of `--input` files and `--record`.
 
-    kind: "mouse_down" | "mouse_up" | "mouse_move" | "key_down" | "key_up".
+    kind: "mouse_down" | "mouse_up" | "mouse_move" | "key_down" | "key_up", or what a scene's
+    panel form sends (app/form.py): "edit" (`field` set to the text `value`), "save" and
+    "open" (the name typed, in `value`; "" cancels).
     pos: world coordinates (pixels at zoom 1, y down); button: 1 left, 3 right; key: pygame key name.
     """
 
@@ -122,6 +124,8 @@ class InputEvent:
     button: int = 0
     key: str = ""
     t: float = 0.0
+    field: str = ""
+    value: str = ""
 
     def to_json(self) -> dict:
         d: dict[str, Any] = {"t": round(self.t, 9), "type": self.kind}
@@ -129,6 +133,10 @@ class InputEvent:
             d["pos"] = [round(float(self.pos[0]), 2), round(float(self.pos[1]), 2)]
             if self.kind != "mouse_move":
                 d["button"] = self.button
+        elif self.kind == "edit":
+            d["field"], d["value"] = self.field, self.value
+        elif self.kind in ("save", "open"):
+            d["name"] = self.value
         else:
             d["key"] = self.key
         return d
@@ -356,6 +364,11 @@ class Scene:
 
     def handle_event(self, event: InputEvent) -> None:
         """React to a mouse or key event (positions already in world coordinates)."""
+
+    def panel_form(self) -> Any:
+        """An app.form.Form: fields of the scene's own the panel shows (what is typed there
+        comes back as "edit" and "save" events), or None (the default: no form)."""
+        return None
 
     def metrics(self) -> dict[str, float]:
         """Scene-specific numbers (names are part of the contract in DESIGN.md)."""

@@ -56,6 +56,8 @@ SCENE_FILES: list[str] = [
     "scenes/files/car_on_slope.toml",
     "scenes/files/cradle_unequal.toml",
     "scenes/files/curtain.toml",
+    "scenes/files/tablecloth.toml",
+    "scenes/files/trampoline.toml",
     "scenes/files/falling_balls.toml",
     "scenes/files/pivoting_l.toml",
     "scenes/files/newtons_cradle.toml",

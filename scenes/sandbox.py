@@ -19,17 +19,26 @@ Controls (keys the lab's shell does not use):
     from a point on one body to a point on another (or to empty space: a fixed point of the
     world); a pivot joins them at the point you pressed
   Delete or Backspace: delete the selected body (and its joints)
-  Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo      Ctrl+S save to sandbox-N.toml
-  Ctrl+O: open the newest sandbox-N.toml of the current folder (Ctrl+Z goes back)
+  Enter: play / back to the drawing      Ctrl+Z undo, Ctrl+Y redo
+  Ctrl+S: save; the panel asks the name (Enter saves NAME.toml in the current folder, Esc
+    cancels; a file that is there is replaced only after a second Enter, and the line says so)
+  Ctrl+O: open a scene file; the panel asks its name (the newest sandbox-N.toml is offered;
+    Ctrl+Z goes back)
 (B and E are the shell's blow-up watch and energy bars, so the box is X and the turns Q and W.)
 While playing, the left button drags bodies as in every pymunk scene.
+
+The panel edits the selected body (the one just drawn, or clicked with M): its type, mass or
+density, friction, elasticity, size, position, angle and velocity; type a value and press
+Enter. Each value is checked as the loader checks a file (finite, in the format's range) before
+it reaches pymunk: a refused one changes nothing, and the panel says why in one line. What is
+typed there reaches the scene as an "edit" event (and the names asked as "save" and "open"
+events), which `--record` writes and `--input` replays like a mouse press.
 """
 
 from __future__ import annotations
 
 import copy
 import math
-import os
 from typing import Any
 
 import pygame
@@ -37,9 +46,10 @@ import pymunk
 
 from app.physics.bounds import clamp_point
 from app.scene import InputEvent
-from app.scenefile.load import check_spec, load_spec, SceneFileError
+from app.scenefile.load import check_spec, SceneFileError
 from app.scenefile.scene import FileScene
-from app.scenefile.write import save, to_data
+from app.scenefile.write import to_data
+from scenes.sandbox_form import DENSITY, SandboxForm
 
 TOOLS = {"c": "circle", "x": "box", "g": "polygon", "l": "line", "m": "move", "j": "pin",
          "s": "spring", "o": "pivot", "d": "slide"}
@@ -48,7 +58,6 @@ TURN_KEYS = {"q": -1.0, "w": 1.0}
 SPRING_STIFFNESS, SPRING_DAMPING = 50.0, 1.0     # a soft spring: it visibly swings
 TURN = 15.0               # degrees Q and W turn the selected body
 CTRL = ("left ctrl", "right ctrl")
-DENSITY = 0.01            # kg per px^2 of what is drawn: a ball of radius 20 is 12.6 kg
 MIN_SIZE = 4.0            # px: a click without a drag draws nothing smaller than this
 PREVIEW = (255, 255, 255)
 SELECTED = (255, 120, 200)
@@ -64,15 +73,17 @@ def empty_spec(world_size: tuple[int, int]) -> dict[str, Any]:
     return check_spec(data, "", "sandbox")
 
 
-class SandboxScene(FileScene):
+class SandboxScene(SandboxForm, FileScene):
     """Sandbox: draw circles, boxes, polygons and lines with the mouse, play them, save them as
     a scene file (Ctrl+S) that the lab runs like its own, open the last one saved (Ctrl+O).
 
     C circle, X box, G polygon (click corners, right-click closes), L line (static), M
     move/select (Q, W turn it); J pin, S spring, O pivot, D slide joints (drag from one body to
     another or to the world); Delete removes the selected body; Enter plays / goes back to the
-    drawing; Ctrl+Z / Ctrl+Y undo / redo; Ctrl+S saves sandbox-N.toml in the current folder,
-    Ctrl+O opens the newest one there.
+    drawing; Ctrl+Z / Ctrl+Y undo / redo. The panel edits the selected body (type, mass or
+    density, friction, elasticity, size, position, angle, velocity: type, Enter). Ctrl+S asks
+    the file's name in the panel and saves NAME.toml in the current folder; Ctrl+O asks the
+    name of one to open.
     """
 
     name = "sandbox"
@@ -94,6 +105,10 @@ class SandboxScene(FileScene):
         self.moving: tuple[float, float] | None = None   # grab offset of the body moved
         self._moving_undo = False
         self.message = ""
+        self.message_error = self.message_warn = False
+        self.asking: tuple[str, str] | None = None    # an open prompt: ("save"|"open", text)
+        self.confirm: str | None = None               # the file a second Enter replaces
+        self.last_name = ""                           # saved or opened last (Ctrl+O offers it)
         self.counter = 0
         super().__init__(overrides)
 
@@ -128,7 +143,7 @@ class SandboxScene(FileScene):
         try:
             new = check_spec(to_data(new), "", "sandbox")
         except SceneFileError as e:
-            self.message = f"not drawn: {e.message}"
+            self.say(f"not drawn: {e.message}", error=True)
             return False
         self.undo.append(self.drawing)
         self.redo.clear()
@@ -181,14 +196,14 @@ class SandboxScene(FileScene):
         loader checks it (at least 3 corners, convex, an area) before pymunk sees it."""
         pts, self.corners = self.corners, []
         if len(pts) < 3:
-            self.message = "not drawn: a polygon needs at least 3 corners"
+            self.say("not drawn: a polygon needs at least 3 corners", error=True)
             return
         n = len(pts)
         cross = [pts[i][0] * pts[(i + 1) % n][1] - pts[(i + 1) % n][0] * pts[i][1]
                  for i in range(n)]
         area = sum(cross) / 2
         if abs(area) < 1e-6:
-            self.message = "not drawn: the polygon's corners are on one line (no area)"
+            self.say("not drawn: the polygon's corners are on one line (no area)", error=True)
             return
         cx = sum((pts[i][0] + pts[(i + 1) % n][0]) * cross[i] for i in range(n)) / (6 * area)
         cy = sum((pts[i][1] + pts[(i + 1) % n][1]) * cross[i] for i in range(n)) / (6 * area)
@@ -267,44 +282,17 @@ class SandboxScene(FileScene):
                                                                                   j["b"])]))
         self.selected = None
 
-    def save(self) -> None:
-        """Write the drawing as sandbox-N.toml (the first N free) in the current folder."""
-        n = 1
-        while os.path.exists(f"sandbox-{n}.toml"):
-            n += 1
-        path = f"sandbox-{n}.toml"
-        try:
-            save(self.drawing, path)
-        except OSError as e:
-            self.message = f"not saved: {e.strerror or e}"
-            return
-        self.message = f"saved to {os.path.abspath(path)}"
-
-    def open_newest(self) -> None:
-        """Open the saved sandbox-N.toml with the greatest N in the current folder as the
-        drawing (one undo step); a file the loader refuses changes nothing and says why."""
-        numbers = [int(f[8:-5]) for f in os.listdir(".")
-                   if f.startswith("sandbox-") and f.endswith(".toml") and f[8:-5].isdigit()]
-        if not numbers:
-            self.message = "nothing to open: no sandbox-N.toml in " + os.path.abspath(".")
-            return
-        path = f"sandbox-{max(numbers)}.toml"
-        try:
-            spec = load_spec(path)
-        except SceneFileError as e:
-            self.message = f"not opened: {e}"
-            return
-        if self.edit(lambda d: (d.clear(), d.update(copy.deepcopy(spec)))):
-            self.selected, self.corners = None, []
-            self.message = f"opened {os.path.abspath(path)}"
-
     # ----- events -------------------------------------------------------------------------------
     def handle_event(self, event: InputEvent) -> None:
         if event.kind.startswith("mouse"):
             event = InputEvent(event.kind, clamp_point(event.pos, self.world_size),
                                event.button, event.key, event.t)
             self.mouse = event.pos
-        if event.kind == "key_up" and event.key in CTRL:
+        if event.kind == "edit":
+            self.edit_field(event.field, event.value)
+        elif event.kind in ("save", "open"):
+            self.answered(event.kind, event.value)
+        elif event.kind == "key_up" and event.key in CTRL:
             self.ctrl = False
         elif event.kind == "key_down":
             self.key(event.key)
@@ -334,7 +322,7 @@ class SandboxScene(FileScene):
         if key in CTRL:
             self.ctrl = True
         elif self.ctrl and key == "s":
-            self.save()
+            self.ask("save")
         elif self.ctrl and key == "z" and self.undo:
             self.redo.append(self.drawing)
             self.drawing = self.undo.pop()
@@ -350,7 +338,7 @@ class SandboxScene(FileScene):
         elif key in ("delete", "backspace") and not self.playing:
             self.delete()
         elif self.ctrl and key == "o":
-            self.open_newest()
+            self.ask("open")
         elif key in TURN_KEYS and not self.playing and not self.ctrl:
             self.turn(TURN_KEYS[key] * TURN)
         elif key in TOOLS and not self.ctrl:
@@ -367,13 +355,18 @@ class SandboxScene(FileScene):
 
     def hud_details(self) -> list[str]:
         return ["drawing: nothing moves; Enter plays from the drawing, R goes back to it",
-                "saved files run as: python -m app --scene sandbox-N.toml"]
+                "the panel edits the selected body; Ctrl+S asks the name there",
+                "a saved file runs as: python -m app --scene NAME.toml"]
 
     def hud_lines(self) -> list[str]:
         mode = ("PLAYING (Enter: back to the drawing)" if self.playing else
                 f"DRAWING with the {self.tool} tool (Enter: play)")
         lines = [mode, "C circle, X box, G polygon, L line, M move (Q/W turn), J pin, S spring, "
                        "O pivot, D slide; Del delete; Ctrl+Z/Y undo/redo; Ctrl+S save, Ctrl+O open"]
+        if self.asking is not None:
+            lines.append(f"{'Save as' if self.asking[0] == 'save' else 'Open'}: the name in "
+                         f"the panel, Enter {'saves' if self.asking[0] == 'save' else 'opens'}, "
+                         "Esc cancels")
         if self.message:
             lines.append(self.message)
         return lines

@@ -441,6 +441,7 @@ FLOORS = {"app.keys": 0, "app.units": 0, "app.loop": 0, "app.physics": 0, "app.p
           "app.scene": 1, "app.draw": 2, "app.runner": 2, "app.catalogue": 2,
           "app.vectors": 0, "app.series": 0, "app.equations": 0, "app.energy": 0,
           "app.timeline": 0, "app.outputs": 0, "app.progress": 0, "app.compare": 3,
+          "app.form": 0,           # a scene's panel form: plain data (app/form.py)
           "app.instruments": 3,
           "app.frames": 3, "app.headless_compare": 3, "app.cli_checks": 3, "app.cli_args": 3,
           "app.pymunk_scene": 3, "app.headless": 3, "scenes": 4, "app.bench": 5,

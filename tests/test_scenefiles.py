@@ -345,6 +345,10 @@ def draw(scene, *events):
     for kind, *rest in events:
         if kind.startswith("key"):
             scene.handle_event(InputEvent(kind, key=rest[0]))
+        elif kind == "edit":                    # typed into the panel: ("edit", field, value)
+            scene.handle_event(InputEvent(kind, field=rest[0], value=rest[1]))
+        elif kind in ("save", "open"):          # the name typed at the panel's prompt
+            scene.handle_event(InputEvent(kind, value=rest[0]))
         else:
             scene.handle_event(InputEvent(kind, pos=rest[0], button=1 if kind != "mouse_move"
                                           else 0))
@@ -359,6 +363,8 @@ def test_the_sandbox_draws_saves_and_the_file_plays_the_same_world(tmp_path, mon
          ("mouse_up", (560, 340)), ("key_down", "l"), ("mouse_down", (300, 500)),
          ("mouse_up", (700, 600)), ("key_down", "left ctrl"), ("key_down", "s"),
          ("key_up", "left ctrl"))
+    assert s.panel_form().prompt and s.panel_form().answer == "sandbox-1"   # the name asked
+    draw(s, ("save", "sandbox-1"))
     assert s.metrics() == {"bodies": 4, "dynamic_bodies": 2, "joints": 0, "playing": False}
     before = s.state_hash()
     s.advance()
@@ -406,7 +412,7 @@ def test_the_sandbox_joins_bodies_and_deleting_a_body_takes_its_joints(tmp_path,
     assert kinds == [("pivot", "box1", "world"), ("damped_spring", "box1", "world"),
                      ("pin", "ball2", "world")]
     draw(s, ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl"),
-         ("key_down", "return"))
+         ("save", "sandbox-1"), ("key_down", "return"))
     played = scene_class(str(tmp_path / "sandbox-1.toml"))()
     for _ in range(60):
         s.advance()
@@ -443,11 +449,13 @@ def test_a_drawing_replayed_headless_saves_the_same_file(tmp_path, monkeypatch, 
     from scenes.sandbox import SandboxScene
     events = [("key_down", "c"), ("mouse_down", (400, 200)), ("mouse_up", (425, 200)),
               ("key_down", "l"), ("mouse_down", (300, 500)), ("mouse_up", (700, 600)),
-              ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl")]
+              ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl"),
+              ("save", "sandbox-1")]
     rows = []
     for k, (kind, what) in enumerate(events):
         row = {"t": round(0.05 * k, 2), "type": kind}
-        row.update({"key": what} if kind.startswith("key") else {"pos": list(what), "button": 1})
+        row.update({"key": what} if kind.startswith("key") else {"name": what}
+                   if kind == "save" else {"pos": list(what), "button": 1})
         rows.append(row)
     (tmp_path / "draw.json").write_text(json.dumps(rows))
     (tmp_path / "a").mkdir()
@@ -513,12 +521,15 @@ def test_the_sandbox_slide_joint_is_a_rope_and_its_file_opens_into_the_same_worl
     from app.scene import InputEvent
     s.handle_event(InputEvent("mouse_down", pos=(630, 150), button=3))
     draw(s, ("key_down", "d"), ("mouse_down", (400, 200)), ("mouse_up", (400, 100)),
-         ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl"))
+         ("key_down", "left ctrl"), ("key_down", "s"), ("key_up", "left ctrl"),
+         ("save", "sandbox-1"))
     joint = s.drawing["joint"][0]
     assert (joint["kind"], joint["a"], joint["b"]) == ("slide", "ball1", "world")
     assert (joint["min"], joint["max"]) == (0.0, 100.0)
     fresh = SandboxScene()
     draw(fresh, ("key_down", "left ctrl"), ("key_down", "o"), ("key_up", "left ctrl"))
+    assert fresh.panel_form().answer == "sandbox-1"         # the newest one is offered
+    draw(fresh, ("open", "sandbox-1"))
     assert "opened" in fresh.message and fresh.drawing == s.drawing
     draw(s, ("key_down", "return"))
     draw(fresh, ("key_down", "return"))
@@ -533,5 +544,143 @@ def test_the_sandbox_slide_joint_is_a_rope_and_its_file_opens_into_the_same_worl
     empty = SandboxScene()
     (tmp_path / "sub").mkdir()
     monkeypatch.chdir(tmp_path / "sub")
-    draw(empty, ("key_down", "left ctrl"), ("key_down", "o"))
-    assert "nothing to open" in empty.message and empty.metrics()["bodies"] == 1
+    draw(empty, ("key_down", "left ctrl"), ("key_down", "o"), ("open", "sandbox-1"))
+    assert "not opened" in empty.message and "no such file" in empty.message
+    assert empty.metrics()["bodies"] == 1 and empty.panel_form().prompt    # still asking
+
+
+def test_a_sandbox_session_with_panel_edits_and_saves_replays_headless(tmp_path, monkeypatch,
+                                                                       capsys):
+    """What is typed into the panel (a body's fields, the name Ctrl+S asks) reaches the scene
+    as "edit" and "save" events: a session recorded as the window records it (the runner
+    delivers, the Recorder writes) replays headless to the same state_hash and saves the same
+    file, and that file plays the same world. Refused values (out of range, NaN, a bad name)
+    change nothing and say why in one line."""
+    from app.runner import SceneRunner
+    from app.scene import InputEvent as E
+    from app.window.recorder import Recorder
+    from scenes.sandbox import SandboxScene
+    (tmp_path / "live").mkdir()
+    (tmp_path / "replay").mkdir()
+    monkeypatch.chdir(tmp_path / "live")
+    live = SandboxScene()
+    runner, rec = SceneRunner(live), Recorder(tmp_path / "session.json")
+    rec.start("sandbox", {})
+    ctrl_s = [E("key_down", key="left ctrl"), E("key_down", key="s"), E("key_up", key="left ctrl")]
+    script = {
+        1: [E("key_down", key="c"), E("mouse_down", (400, 200), 1), E("mouse_move", (415, 200)),
+            E("mouse_up", (420, 200), 1)],                              # ball1, selected
+        2: [E("edit", field="mass", value="5"), E("edit", field="elasticity", value="0.8"),
+            E("edit", field="radius", value="30"), E("edit", field="vx", value="120")],
+        3: [E("edit", field="mass", value="-3")],
+        4: [E("edit", field="vy", value="nan")],
+        5: [E("edit", field="elasticity", value="1.5")],
+        6: [E("key_down", key="x"), E("mouse_down", (500, 400), 1), E("mouse_up", (620, 430), 1),
+            E("edit", field="type", value="static"), E("edit", field="angle", value="-20")],
+        7: ctrl_s + [E("save", value="bad/name")],
+        8: [E("save", value="demo")],
+        9: ctrl_s + [E("save", value="demo")],                          # there: asks again
+        10: [E("save", value="demo.toml"), E("key_down", key="return")],   # replaced; play
+    }
+    said = {}
+    for step in range(45):
+        for event in script.get(step, []):
+            runner.deliver(event)
+            rec.add(event)
+        said[step] = (live.message, live.message_error)
+        runner.run(1)
+    rec.steps_run(runner.steps)
+    rec.write()
+    ball = next(b for b in live.drawing["body"] if b["name"] == "ball1")
+    assert (ball["mass"], ball["density"], ball["shape"][0]["elasticity"],
+            ball["shape"][0]["radius"], ball["velocity"]) == (5.0, None, 0.8, 30.0, [120.0, 0.0])
+    assert live.named["ball1"].mass == pytest.approx(5.0)
+    box = next(b for b in live.drawing["body"] if b["name"] == "box2")
+    assert (box["type"], box["angle"], box["mass"], box["density"]) == ("static", -20.0, None,
+                                                                         None)
+    assert said[3][1] and "mass = -3" in said[3][0] and "out of range" in said[3][0]
+    assert said[4][1] and "not a finite number" in said[4][0]
+    assert said[5][1] and "elasticity" in said[5][0] and "from 0 to 1" in said[5][0]
+    assert said[7][1] and "'bad/name' is not a name" in said[7][0]
+    assert said[8] == (f"saved to {tmp_path / 'live' / 'demo.toml'}", False)
+    assert "demo.toml is already in" in said[9][0] and "Enter again replaces it" in said[9][0]
+    assert said[10][0].endswith("(replaced the file that was there)")
+    events = json.loads((tmp_path / "session.json").read_text())
+    assert {"t": pytest.approx(2 / 60), "type": "edit", "field": "mass", "value": "5"} in events
+    assert events[-2] == {"t": pytest.approx(10 / 60), "type": "save", "name": "demo.toml"}
+    monkeypatch.chdir(tmp_path / "replay")
+    assert main(["--headless", "--scene", "sandbox", "--input", "../session.json", "--steps",
+                 "45", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["state_hash"] == live.state_hash() and out["metrics"]["playing"]
+    saved = tmp_path / "live" / "demo.toml"
+    assert saved.read_text() == (tmp_path / "replay" / "demo.toml").read_text()
+    played = scene_class(str(saved))()
+    for _ in range(35):                                  # the steps played since Enter
+        played.advance()
+    assert played.state_hash() == live.state_hash()
+
+
+# ----- a cloth on obstacles, coupled with bodies --------------------------------------------------
+TRAMPOLINE = str(ROOT / "scenes/files/trampoline.toml")
+TABLECLOTH = str(ROOT / "scenes/files/tablecloth.toml")
+
+
+def test_the_trampoline_file_catches_the_ball_and_throws_it_up():
+    """Two-way coupling from a file: the band stops a ball falling at 700 px/s and throws it
+    back up at more than 40 % of that; no particle is left deeper than 0.5 px inside the ball
+    or the floor (the built-in trampoline's bound); one-way, nothing stops the ball."""
+    scene = scene_class(TRAMPOLINE)()
+    impact, thrown = 0.0, 0.0
+    for _ in range(90):                                  # 1.5 s: down, caught, thrown
+        scene.advance()
+        m, vy = scene.metrics(), scene.named["ball"].velocity.y
+        if m["contacts"] and not impact:
+            impact = vy
+        thrown = min(thrown, vy)
+    assert impact > 600 and thrown < -0.4 * impact
+    assert 0 < m["penetration_max"] < 0.5
+    spec = load_spec(TRAMPOLINE)
+    spec["cloth"]["coupling"] = "one-way"
+    one_way = scene_class(TRAMPOLINE)()
+    one_way.spec = spec                                  # the same file, coupled one way
+    one_way.reset()
+    for _ in range(90):
+        one_way.advance()
+    assert one_way.named["ball"].velocity.y > -50 and one_way.metrics()["ball_y"] > 600
+
+
+def test_the_tablecloth_file_drapes_and_friction_holds_it_on_the_table():
+    """Obstacles from a file: the cloth lands on the table and the vase (nothing left inside
+    them); after 1.7 s the one without friction has slid off its longer side to the floor,
+    while with friction 0.6 it hangs on the table (lowest particle at y = 580; it comes to rest
+    at 628 by 3.3 s)."""
+    cls = scene_class(TABLECLOTH)
+    held, slid = cls(), cls({"cloth_friction": 0.0})
+    for _ in range(100):
+        held.advance()
+        slid.advance()
+    assert held.metrics()["penetration_max"] < 0.5 and held.metrics()["contacts"] > 20
+    assert float(held.cloth.x[1].max()) < 660                 # hanging, well above the floor
+    assert float(slid.cloth.x[1].max()) > 690                 # on the floor (y = 696)
+    assert slid.metrics()["penetration_max"] < 0.5
+
+
+@pytest.mark.parametrize("old,new,words", [
+    ('kind = "floor"\ny = 696.0', 'kind = "floor"', "a floor needs 'y'"),
+    ('kind = "floor"\ny = 696.0', 'kind = "floor"\ny = 696.0\nradius = 3.0',
+     "a floor has no 'radius'"),
+    ('body = "table"', 'body = "tabel"', 'body "tabel" is no body'),
+    ('kind = "circle"\nposition = [480.0, 462.0]\nradius = 28.0',
+     'kind = "circle"\nposition = [480.0, 462.0]\nradius = -28.0', "out of range"),
+    ('friction = 0.6', 'friction = 0.6\ncouple = "table"', "which is static"),
+    ('friction = 0.6', 'friction = 0.6\ncouple = "nobody"', "names no body"),
+])
+def test_a_bad_cloth_obstacle_or_coupling_gets_one_line(tmp_path, old, new, words):
+    text = Path(TABLECLOTH).read_text()
+    assert old in text
+    path = tmp_path / "bad.toml"
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(SceneFileError) as e:
+        load_spec(str(path))
+    assert words in str(e.value) and "\n" not in str(e.value) and e.value.line is not None

@@ -23,6 +23,7 @@ def check_all(c, spec: dict) -> None:
     _check_names(c, spec)
     _check_sliders(c, spec)
     _check_metrics(c, spec)
+    _check_cloth(c, spec)
 
 
 SHAPE_NEEDS = {"circle": ("radius",), "box": ("size",), "polygon": ("points",),
@@ -282,3 +283,70 @@ def _check_metrics(c, spec: dict) -> None:
         if m["zero_y"] is not None and m["kind"] not in ("potential_energy", "energy",
                                                          "energy_ratio", "energy_drift"):
             c.fail(where + ("zero_y",), f"{what}: zero_y is for the energies only")
+
+
+OBSTACLE_NEEDS = {"circle": ("position", "radius"), "box": ("position", "size"),
+                  "segment": ("a", "b"), "floor": ("y",), "body": ("body",)}
+OBSTACLE_TAKES = {"circle": {"position", "radius"}, "box": {"position", "size", "angle"},
+                  "segment": {"a", "b", "thickness"}, "floor": {"y"}, "body": {"body"}}
+COUPLED_SHAPES = ("circle", "box")       # what app/physics/obstacles.py has for a moving body
+
+
+def coupled_bodies(spec: dict) -> list[dict]:
+    """The bodies the cloth's `couple` names (all of them dynamic: _check_cloth)."""
+    cloth = spec["cloth"]
+    if cloth is None or not cloth["couple"]:
+        return []
+    return [b for b in spec["body"] if matches(cloth["couple"], b["name"])]
+
+
+def _check_cloth(c, spec: dict) -> None:
+    """The cloth's obstacles have what their kind needs (and nothing another kind takes); a
+    body obstacle names a static body of circle, box and segment shapes; `couple` names
+    dynamic bodies of circles and boxes without rounded corners."""
+    cloth = spec["cloth"]
+    if cloth is None:
+        return
+    bodies = {b["name"]: b for b in spec["body"]}
+    for i, ob in enumerate(cloth["obstacle"]):
+        where, kind = ("cloth", "obstacle", i), ob["kind"]
+        what = f"cloth obstacle {i + 1} ({kind})"
+        for k in OBSTACLE_NEEDS[kind]:
+            if ob[k] is None:
+                c.fail(where, f"{what}: a {kind} needs '{k}'; accepted: "
+                       f"{SECTIONS['cloth.obstacle'].key(k).accepted()}")
+        for k in _given(c, where) - {"kind"} - OBSTACLE_TAKES[kind]:
+            c.fail(where + (k,), f"{what}: a {kind} has no '{k}'; accepted: "
+                   + ", ".join(sorted(OBSTACLE_TAKES[kind] | {"kind"})))
+        if kind == "body":
+            b = bodies.get(ob["body"])
+            if b is None or b["type"] != "static":
+                c.fail(where + ("body",), f"{what}: body \"{ob['body']}\" is "
+                       + ("no body" if b is None else f"{b['type']}, not static")
+                       + "; accepted: the name of a static body: "
+                       + (", ".join(f'"{n}"' for n, x in bodies.items() if x["type"] == "static")
+                          or "none in this file"))
+            bad = next((s["kind"] for s in b["shape"] if s["kind"] == "polygon" or (
+                s["kind"] == "box" and s["radius"] > 0)), None)
+            if bad:
+                c.fail(where + ("body",), f"{what}: body '{b['name']}' has a "
+                       + ("polygon" if bad == "polygon" else "box with rounded corners")
+                       + ", which the cloth cannot collide with; accepted: a static body of "
+                       "circle, box (radius 0) and segment shapes")
+    if not cloth["couple"]:
+        return
+    found = coupled_bodies(spec)
+    if not found:
+        c.fail(("cloth", "couple"), f"[cloth]: couple \"{cloth['couple']}\" names no body; "
+               "accepted: a dynamic body's name, \"prefix*\" or \"*\"")
+    for b in found:
+        if b["type"] != "dynamic":
+            c.fail(("cloth", "couple"), f"[cloth]: couple names body '{b['name']}', which is "
+                   f"{b['type']}; accepted: dynamic bodies (a static one is an obstacle: "
+                   "[[cloth.obstacle]] kind = \"body\")")
+        for s in b["shape"]:
+            if s["kind"] not in COUPLED_SHAPES or (s["kind"] == "box" and s["radius"] > 0):
+                c.fail(("cloth", "couple"), f"[cloth]: couple names body '{b['name']}', which "
+                       f"has a {s['kind']}" + (" with rounded corners" if s["kind"] == "box"
+                                               else "")
+                       + "; accepted: bodies of circles and boxes (radius 0)")

@@ -32,7 +32,8 @@ from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Param, ParamError, Try, common
 from app.draw.scenefile_draw import draw_joint
-from app.scenefile.checks import WORLD, _targets, matches, slider_start
+from app.scenefile.checks import WORLD, _targets, coupled_bodies, matches, slider_start
+from app.scenefile.cloth_contact import couple_step, deepest, touching
 from app.scenefile.load import SceneFileError, load_spec
 from app.scenefile.parts import area_of, body_measure, joint_measure, make_shape, shape_area
 from app.scenefile.schema import field_key
@@ -105,8 +106,10 @@ class FileScene(PymunkScene):
             (j, self.add_joint(space, j)) for j in spec["joint"]]
         self.spawners = [{"spec": s, "due": s["start"], "spawned": 0, "removed": 0,
                           "alive": []} for s in spec["spawner"]]
+        self.track: dict[str, Any] = {"start": {}, "seen": {},
+                                      "coupling": {"impulse": 0.0, "contacts_last": 0}}
+        self.coupled = [b["name"] for b in coupled_bodies(spec)]
         self.cloth = self.make_cloth(spec["cloth"])
-        self.track: dict[str, Any] = {"start": {}, "seen": {}}
         self.rebaseline()
 
     def add_body(self, space: pymunk.Space, b: dict) -> pymunk.Body:
@@ -180,21 +183,38 @@ class FileScene(PymunkScene):
         if spec is None:
             return None
         from app.physics.cloth import Cloth
+        from app.scenefile.cloth_contact import obstacles_of
         cloth = Cloth(spec["rows"], spec["cols"], spec["spacing"], tuple(spec["origin"]),
-                      spec["pins"], self.cloth_effects(spec))
+                      "none" if spec["pins"] == "sides" else spec["pins"],
+                      self.cloth_effects(spec))
+        if spec["pins"] == "sides":          # a band held at both ends
+            cloth.lock_cells([(r, c) for r in range(spec["rows"])
+                              for c in (0, spec["cols"] - 1)])
         cloth.iterations = spec["iterations"]
         cloth.drag = spec["drag"]
         cloth.gravity = self.gravity()
         cloth.world = (float(self.world_size[0]), float(self.world_size[1]))
+        cloth.contact.mu = spec["friction"]
+        cloth.set_obstacles(obstacles_of(spec, self.named))
         return cloth
 
     def cloth_effects(self, spec: dict) -> set[str]:
-        """The cloth's rod sets and forces: what is off is left out (it costs nothing)."""
+        """The cloth's rod sets, forces and contact passes: what is off is left out (it costs
+        nothing): collisions only with obstacles, friction only above 0."""
         on = {"structural", "drag"}
         on |= {n for n in ("shear", "bending") if spec[n]}
         if "gravity" in self.on:
             on.add("gravity")
+        if spec["obstacle"]:
+            on.add("collisions")
+            if spec["friction"] > 0:
+                on.add("friction")
         return on
+
+    def cloth_obstacle_kinds(self) -> list[str]:
+        """The kind of each of the cloth's obstacles (a body obstacle: one per shape)."""
+        return [ob["kind"] for ob in self.data["cloth"]["obstacle"] for _ in (
+            self.named[ob["body"]].shapes if ob["kind"] == "body" else (0,))]
 
     # ----- stepping -------------------------------------------------------------------------------
     def step(self, h: float) -> None:
@@ -207,6 +227,8 @@ class FileScene(PymunkScene):
         if self.cloth is not None:
             self.cloth.gravity = self.gravity()
             self.cloth.step(h)
+            if self.coupled:                 # none named: nothing computed
+                couple_step(self, h)
         for sp in self.spawners:        # as falling_balls: remove, then spawn, after the step
             if sp["spec"]["remove_outside"] and sp["alive"]:
                 self.remove_outside(sp)
@@ -253,6 +275,10 @@ class FileScene(PymunkScene):
             self.space.remove(body, *body.shapes)
             sp["removed"] += 1
         sp["alive"] = keep
+
+    def advance(self) -> None:
+        self.track["coupling"]["impulse"] = 0.0     # summed over this step's substeps
+        super().advance()
 
     def after_step(self) -> None:
         seen = self.track["seen"]
@@ -308,6 +334,12 @@ class FileScene(PymunkScene):
             c = self.cloth
             if kind == "pinned_drift":
                 return c.pinned_drift()
+            if kind == "penetration_max":
+                return deepest(self)
+            if kind == "contacts":
+                return touching(self)
+            if kind == "coupling_impulse":
+                return self.track["coupling"]["impulse"]
             s = np.concatenate([c.stretch(f).ravel() for f in c.sets["structural"].families])
             return float(s.max() if kind == "max_stretch" else s.mean())
         if owner == "joint":
@@ -358,6 +390,11 @@ class FileScene(PymunkScene):
     def draw(self, surface: pygame.Surface, view) -> None:
         if self.cloth is not None:
             from app.draw.cloth_draw import draw_cloth
+            from app.draw.obstacle_draw import draw_obstacles
+            own = [o for o, ob in zip(self.cloth.contact.obstacles, self.cloth_obstacle_kinds())
+                   if ob != "body"]              # a body obstacle is drawn as the body
+            if own:
+                draw_obstacles(surface, view, own)
             draw_cloth(surface, view, self.cloth)
         for name, body in self.named.items():
             D.draw_shapes(surface, view, body.shapes, self.colors[name])

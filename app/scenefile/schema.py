@@ -143,7 +143,8 @@ JOINT_KINDS = ("pin", "pivot", "slide", "groove", "damped_spring", "damped_rotar
 METRIC_KINDS = ("kinetic_energy", "potential_energy", "energy", "energy_ratio", "energy_drift",
                 "momentum_x", "momentum_y", "momentum", "x", "y", "angle", "speed",
                 "angular_velocity", "count", "joint_distance", "joint_error", "joint_impulse",
-                "spawned", "removed", "max_stretch", "mean_stretch", "pinned_drift")
+                "spawned", "removed", "max_stretch", "mean_stretch", "pinned_drift",
+                "penetration_max", "contacts", "coupling_impulse")
 # What each metric kind measures, its JSON unit and what `target` names (the docs' table).
 METRIC_HELP: dict[str, tuple[str, str, str]] = {
     "kinetic_energy": ("J (lab units)", "bodies", "sum of 1/2 m v^2 + 1/2 I w^2"),
@@ -171,6 +172,11 @@ METRIC_HELP: dict[str, tuple[str, str, str]] = {
     "max_stretch": ("1", "cloth", "largest |length/rest - 1| of the cloth's rods"),
     "mean_stretch": ("1", "cloth", "mean |length/rest - 1| of the cloth's rods"),
     "pinned_drift": ("px", "cloth", "largest distance a pinned particle moved"),
+    "penetration_max": ("px", "cloth", "deepest cloth particle inside an obstacle or a coupled "
+                        "body after the step (what the projection left)"),
+    "contacts": ("count", "cloth", "cloth particles touching an obstacle or a coupled body"),
+    "coupling_impulse": ("kg px/s", "cloth", "|momentum| the cloth and the coupled bodies "
+                         "exchanged in the last step (at rest on the cloth: M g dt)"),
 }
 FIELD_SECTIONS = ("world", "body", "shape", "joint", "spawner", "cloth")
 
@@ -340,15 +346,43 @@ SCHEMA: tuple[Section, ...] = (
         Key("spacing", "float", 20.0, "rest distance between neighbours", 1.0, 200.0,
             unit="px"),
         Key("origin", "vec2", [300.0, 100.0], "the top-left particle", -COORD, COORD, unit="px"),
-        Key("pins", "choice", "top", "which particles are pinned", choices=("top", "corners",
-                                                                          "none")),
+        Key("pins", "choice", "top", "which particles are pinned (sides: the first and last "
+            "columns, a band held at both ends)", choices=("top", "corners", "sides", "none")),
         Key("iterations", "int", 10, "constraint sweeps per substep (Jakobsen)", 1, 200),
         Key("drag", "float", 0.01, "fraction of velocity lost per 1/60 s", 0.0, 1.0),
         Key("shear", "bool", False, "diagonal rods too"),
         Key("bending", "bool", False, "skip-one rods too"),
+        Key("mass", "float", 1.0, "the whole cloth's mass, shared by its particles (what a "
+            "coupled body feels)", 1e-6, BIG, unit="kg"),
+        Key("friction", "float", 0.0, "Coulomb friction of the cloth on its obstacles "
+            "(0: none, and the friction pass is not computed)", 0.0, 10.0),
+        Key("couple", "str", "", "the dynamic bodies the cloth is coupled with, both ways: a "
+            "name, \"ball*\" or \"*\" (their circle and box shapes); \"\": none"),
+        Key("coupling", "choice", "two-way", "two-way: the cloth pushes the bodies back; "
+            "one-way: only the bodies push the cloth", choices=("two-way", "one-way")),
         _color(),
     ), "a Verlet cloth (app/physics/cloth.py) beside the bodies; it falls with the world's "
-       "gravity and does not touch them (coupling comes with the collisions work)"),
+       "gravity, is kept out of its `[[cloth.obstacle]]`s (Jakobsen's projection) and pushes "
+       "and is pushed by the bodies named in `couple` (app/physics/coupling.py)"),
+    Section("cloth.obstacle", True, (
+        Key("kind", "choice", REQUIRED, "circle, box (turned by `angle`), segment (a capsule), "
+            "floor (everything below `y`), or body: the circle, box and segment shapes of a "
+            "static `[[body]]` (the same solid for the balls and the cloth)",
+            choices=("circle", "box", "segment", "floor", "body")),
+        Key("position", "vec2", None, "circle and box: the centre", -COORD, COORD, unit="px"),
+        Key("radius", "float", None, "circle: its radius", MIN_SIZE, 1e4, unit="px"),
+        Key("size", "vec2", None, "box: width and height", MIN_SIZE, 2 * COORD, unit="px"),
+        Key("angle", "float", 0.0, "box: its angle (clockwise on screen)", -3600.0, 3600.0,
+            unit="deg"),
+        Key("a", "vec2", None, "segment: one end", -COORD, COORD, unit="px"),
+        Key("b", "vec2", None, "segment: the other end", -COORD, COORD, unit="px"),
+        Key("thickness", "float", 2.0, "segment: every point this close to it is solid", 0.0,
+            1e4, unit="px"),
+        Key("y", "float", None, "floor: its height (y is down: the solid is below)", -COORD,
+            COORD, unit="px"),
+        Key("body", "str", None, "body: the name of a static body"),
+    ), "a solid the cloth is kept out of (app/physics/obstacles.py); it does not move and the "
+       "pymunk bodies do not see it (kind body: they see that body)"),
 )
 
 SECTIONS = {s.name: s for s in SCHEMA}

@@ -22,6 +22,7 @@ import pygame
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Scene, Try
+from app.window.panel_form import FormWidgets, select as _select
 
 
 THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
@@ -60,6 +61,7 @@ class PanelHost(Protocol):
     def toggle_help(self) -> None: ...
     def apply_setting(self, name: str, value: Any) -> bool: ...
     def apply_try(self, card: Try) -> bool: ...
+    def deliver(self, event: Any) -> None: ...
     def toggle_plot(self) -> None: ...
     def toggle_arrows(self) -> None: ...
 
@@ -156,6 +158,9 @@ class ParamPanel:
         self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
                                       container=self.container)
         y += row + 2 * gap
+        # the scene's own form (the sandbox's selected body, its save prompt): app/form.py
+        self.form = FormWidgets(self, host, manager, self.container, pad, inner_w, row, gap)
+        y = self.form.build(y, label)
         # a comparison: whose settings the panel shows and edits (every pane, or one)
         self.target_menu = None
         targets = host.targets() if hasattr(host, "targets") else None
@@ -320,6 +325,7 @@ class ParamPanel:
                 pos = ctl.pos_of(self._current(name))
                 if int(ctl.slider.get_current_value()) != pos:
                     ctl.slider.set_current_value(pos)
+        self.form.refresh()
         for name, d in self.dropdowns.items():      # a card or a refused value changed it
             text = str(self._current(name))
             if d.selected_option[0] != text:
@@ -343,7 +349,30 @@ class ParamPanel:
 
     def is_typing(self) -> bool:
         """True while a text box of the panel has the keyboard."""
-        return any(e.is_focused for e in self.entries.values())
+        return any(e.is_focused for e in self.entries.values()) or self.form.typing()
+
+    @property
+    def stale(self) -> bool:
+        """The scene's form changed its shape (another body, a prompt, a new note): the panel
+        is built again (SceneView._refresh_panel)."""
+        return self.form.stale()
+
+    def took_escape(self, ev: pygame.event.Event) -> bool:
+        """Esc while the form has the keyboard (or a prompt is open): cancel; True if it did."""
+        return ev.type == pygame.KEYDOWN and ev.key == pygame.K_ESCAPE and self.form.escape()
+
+    def refreshed(self) -> "ParamPanel":
+        """This panel showing the scene's values, or, if the scene's form changed its shape,
+        a new one built where it is (scrolled back to the top; an open prompt gets the
+        keyboard)."""
+        if not self.stale:
+            self.refresh()
+            return self
+        self.container.kill()
+        self.manager.set_focus_set(None)
+        panel = ParamPanel(self.host, self.manager, self.rect)
+        panel.form.focus_prompt()
+        return panel
 
     def show_watch(self, card: Try | None, clicked: bool = True) -> None:
         """Below the cards: what a card sets and what to watch for (the card clicked last, or
@@ -364,8 +393,8 @@ class ParamPanel:
         leaves the manager believing it is still focused, and then a second click on the same
         box does not focus it (the keys went to the shell)."""
         self.manager.set_focus_set(None)
-        for entry in self.entries.values():      # one focused without the manager (a test)
-            if entry.is_focused:
+        for entry in list(self.entries.values()) + self.form.entries():   # one focused without
+            if entry.is_focused:                                          # the manager (a test)
                 entry.unfocus()
 
     # --- pygame-gui events -------------------------------------------------------------------
@@ -406,6 +435,8 @@ class ParamPanel:
         if ev.type == gui.UI_BUTTON_ON_UNHOVERED and element in self.cards:
             self.show_watch(None, clicked=False)
             return True
+        if self.form.handle(ev, element):
+            return True
         what = self._by_element.get(element)
         if what is None:
             return False
@@ -427,17 +458,6 @@ class ParamPanel:
         return True
 
 
-
-
-def _select(dropdown, text: str) -> None:
-    """Show `text` as a drop-down's choice (pygame-gui has no setter: its menu and its closed
-    state each keep the selection; the closed state's button shows it)."""
-    option = (text, text)
-    dropdown.selected_option = option
-    closed = dropdown.menu_states["closed"]
-    closed.selected_option = dropdown.menu_states["expanded"].selected_option = option
-    if dropdown.current_state is closed and closed.selected_option_button is not None:
-        closed.selected_option_button.set_text(text)
 
 
 def _cut(button, text: str) -> bool:

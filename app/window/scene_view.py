@@ -119,9 +119,8 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
         return pygame.Rect(0, 0, max(w - self.panel_width, 1), h)
 
     def fit(self, lines: list | None = None) -> Layout:
-        """Fit the scene's content into the world area less the HUD (and, on the HUD's second
-        page, the metrics strip); the HUD's room only grows until the next on_layout or until
-        the messages change."""
+        """Fit the scene's content into the world area less the HUD (and, on its second page,
+        the metrics strip); the HUD's room only grows until the next on_layout or message."""
         if self.overlays and lines is None:
             lines = self.hud_lines()
         notes = tuple(n.text for n in self.notes())
@@ -162,8 +161,7 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
         self.clock.faster()
 
     def reset(self) -> None:
-        """R: rebuild the scene. Recorded as a key "r", which the headless runner replays as a
-        reset too."""
+        """R: rebuild the scene (recorded as a key "r": the headless runner resets too)."""
         self.runner.clear_error()
         self.deliver(InputEvent("key_down", key="r"))
         self.deliver(InputEvent("key_up", key="r"))
@@ -290,7 +288,7 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
 
     def _refresh_panel(self) -> None:
         if self.panel is not None:
-            self.panel.refresh()
+            self.panel = self.panel.refreshed()   # built anew if the scene's form changed shape
 
     # --- events --------------------------------------------------------------------------------
     def typing(self) -> bool:
@@ -301,6 +299,8 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
         return any(type(e).__name__ == "UITextEntryLine" for e in (focus or ()))
 
     def handle_event(self, ev: pygame.event.Event) -> None:
+        if self.panel is not None and self.panel.took_escape(ev):
+            return                          # Esc cancelled the panel's prompt or field
         typing_before = self.typing()
         consumed = bool(self.manager.process_events(ev)) if self.manager is not None else False
         if self.panel is not None and ev.type >= pygame.USEREVENT and self.panel.handle(ev):
