@@ -298,6 +298,11 @@ class FileScene(PymunkScene):
                 total += b.mass * g * (zero - b.local_to_world(b.center_of_gravity).y)
         return total
 
+    def json_unit(self, name: str) -> str:
+        """A file's metric has the unit of its kind (app/scenefile/schema.py's METRIC_HELP)."""
+        kind = next((m["kind"] for m in self.data["metric"] if m["name"] == name), None)
+        return METRIC_HELP[kind][0] if kind in METRIC_HELP else ""
+
     def measure(self, m: dict) -> float | None:
         kind, target = m["kind"], m["target"]
         owner = METRIC_HELP[kind][1]
