@@ -37,14 +37,13 @@ from __future__ import annotations
 import copy
 import math
 import os
-import statistics
 import time
 from typing import Callable
 
 import numpy as np
 import pygame
 
-from app.bench import Report, median_time
+from app.bench import Report, Timing, median_time
 from app.draw.dance_draw import DRAWERS, USED as DRAWER_USED
 from app.draw.plot import LineChart, save_grid
 from app.draw.view import View
@@ -80,7 +79,7 @@ def make_dance(n: int, method: str, settle: int) -> ParticleDance:
 
 
 def alternating(fns: dict[str, Callable[[], None]], repeats: int, number: int) -> dict[str, float]:
-    """Median ms of `number` calls of each fn, the fns taking turns repeat by repeat. Each timed
+    """Median ms (a Timing: with its spread and repeats) of `number` calls of each fn, the fns taking turns repeat by repeat. Each timed
     batch follows one untimed call of the same fn: right after the other method's step (all
     pairs churns through megabytes) the first grid step ran up to 3x slower than the next."""
     times: dict[str, list[float]] = {name: [] for name in fns}
@@ -91,7 +90,7 @@ def alternating(fns: dict[str, Callable[[], None]], repeats: int, number: int) -
             for _ in range(number):
                 fn()
             times[name].append((time.perf_counter() - t0) / number * 1000.0)
-    return {name: statistics.median(t) for name, t in times.items()}
+    return {name: Timing.of(t) for name, t in times.items()}
 
 
 def crossover(ns: list[int], all_ms: list[float], grid_ms: list[float]) -> float | None:
