@@ -173,8 +173,7 @@ def app_main(argv: list[str]) -> int:
         names = sorted({n for c in classes for n in c.setting_names()})
         where = f"scene '{classes[0].name}' has" if len(classes) == 1 else "no scene has"
         what = "no parameter or effect" if len(classes) == 1 else "a parameter or effect"
-        raise UsageError(f"--set {shown_text(unknown[0])}: {where} {what} "
-                         f"{shown_text(unknown[0])}; accepted: "
+        raise UsageError(f"--set: {where} {what} {shown_text(unknown[0])}; accepted: "
                          f"{', '.join(names)}")
     for cls in classes:
         try:
