@@ -10,7 +10,8 @@ row per variant per step). Values are written as --json writes them: numbers in 
 and in the JSON's units (pixels, seconds, fractions), true/false, text as it is, and an empty
 cell for null (a value that does not exist yet). A column's header is the metric's name followed
 by that unit, `penetration_max (px)`, `energy (kg px^2/s^2)` (Scene.json_unit: the reference's
-unit); a count, a ratio, a truth value or text has the bare name.
+unit); a count, a ratio, a truth value or text has the bare name, and so has a metric the
+reference does not describe (an exercise scene's own, whose names carry their unit: `apart_px`).
 
 Plain Python, no pygame.
 """
