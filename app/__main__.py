@@ -296,7 +296,7 @@ def writable_folder(path: str, what: str, example: str, probe: str) -> None:
     if not path.strip():
         raise UsageError(f"{what} needs a folder name, e.g. {example}")
     if os.path.exists(path) and not os.path.isdir(path):
-        raise UsageError(f"{what} {shown(path)} is a file; accepted: a folder")
+        raise UsageError(f"{what} {shown(path)} is not a folder; accepted: a folder")
     problem = check_output_path(os.path.join(path, probe), f"{what} folder")
     if problem:
         raise UsageError(problem)
@@ -410,7 +410,9 @@ def exercise_main(argv: list[str]) -> int:
     else:
         paths = [args.path or shown(starter_path(args.name))]
         if not os.path.isfile(paths[0]):
-            raise UsageError(f"--path {shown(paths[0])}: no such file; accepted: a .py file, "
+            what = ("not a regular file (a folder, a pipe or a device)"
+                    if os.path.exists(paths[0]) else "no such file")
+            raise UsageError(f"--path {shown(paths[0])}: {what}; accepted: a .py file, "
                              f"e.g. exercises/{args.name}.py")
     return cli.check(chosen, paths, args.json, args.timeout, args.seed)
 
@@ -449,17 +451,25 @@ def grade_class_main(args: argparse.Namespace) -> int:
     if not folder.strip():
         raise UsageError("grade needs a class folder, e.g. exercise grade class2026/")
     if not os.path.isdir(folder):
-        raise UsageError(f"grade: '{folder}' is not a folder; accepted: a folder holding a folder "
-                         "per student")
+        raise UsageError(f"grade: {shown(folder)} is not a folder; accepted: a folder holding a "
+                         "folder per student")
     out = args.out or os.path.join(folder, "gradebook.csv")
     if os.path.isdir(out):
-        raise UsageError(f"--out '{out}' is a folder; accepted: a CSV file name")
+        raise UsageError(f"--out {shown(out)} is a folder; accepted: a CSV file name")
     problem = check_output_path(out, "--out")
     if problem:
         raise UsageError(problem)
-    if not classroom.students_in(folder, out):
-        raise UsageError(f"grade: '{folder}' holds no student folder; accepted: a folder holding "
-                         "a folder per student (each with NAME.py files)")
+    students = classroom.students_in(folder, out)
+    if not students:
+        raise UsageError(f"grade: {shown(folder)} holds no student folder; accepted: a folder "
+                         "holding a folder per student (each with NAME.py files)")
+    real_out = os.path.realpath(out)
+    for student in students:       # once: --out class/s1/verlet.py overwrote s1's answer
+        inside = os.path.realpath(os.path.join(folder, student))
+        if real_out == inside or real_out.startswith(inside + os.sep):
+            raise UsageError(f"--out {shown(out)} is in the folder of student "
+                             f"{shown(student)}, which is graded (an input); accepted: a file "
+                             "outside the students' folders (default CLASS_DIR/gradebook.csv)")
     return classroom.grade_class(folder, args.jobs, out, args.gradescope, args.timeout, args.seed)
 
 

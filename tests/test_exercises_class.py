@@ -126,6 +126,17 @@ def test_bad_usage_is_one_line_and_exit_2(tmp_path, capsys, extra, words):
     assert not (c / "gradebook.csv").exists()
 
 
+def test_an_out_in_a_students_folder_is_refused_before_anything_is_written(tmp_path, capsys):
+    # once: --out class/bob/verlet.py replaced bob's answer with the gradebook
+    c = a_class(tmp_path)
+    answer = (c / "bob" / "verlet.py").read_bytes()
+    for out in (c / "bob" / "verlet.py", c / "bob" / ".." / "bob" / "book.csv"):
+        assert main(["exercise", "grade", str(c), "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert "student 'bob', which is graded" in err and len(err.strip().splitlines()) == 1
+    assert (c / "bob" / "verlet.py").read_bytes() == answer and not (c / "bob" / "book.csv").exists()
+
+
 def test_a_missing_or_empty_class_folder_is_refused(tmp_path, capsys):
     assert main(["exercise", "grade", str(tmp_path / "nowhere")]) == 2
     assert "is not a folder" in capsys.readouterr().err
