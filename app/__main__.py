@@ -410,8 +410,7 @@ def exercise_main(argv: list[str]) -> int:
     else:
         paths = [args.path or shown(starter_path(args.name))]
         if not os.path.isfile(paths[0]):
-            what = ("not a regular file (a folder, a pipe or a device)"
-                    if os.path.exists(paths[0]) else "no such file")
+            what = "not a regular file" if os.path.exists(paths[0]) else "no such file"
             raise UsageError(f"--path {shown(paths[0])}: {what}; accepted: a .py file, "
                              f"e.g. exercises/{args.name}.py")
     return cli.check(chosen, paths, args.json, args.timeout, args.seed)
@@ -456,20 +455,13 @@ def grade_class_main(args: argparse.Namespace) -> int:
     out = args.out or os.path.join(folder, "gradebook.csv")
     if os.path.isdir(out):
         raise UsageError(f"--out {shown(out)} is a folder; accepted: a CSV file name")
-    problem = check_output_path(out, "--out")
+    students = classroom.students_in(folder, out)
+    problem = check_output_path(out, "--out") or classroom.out_among_inputs(folder, out, students)
     if problem:
         raise UsageError(problem)
-    students = classroom.students_in(folder, out)
     if not students:
         raise UsageError(f"grade: {shown(folder)} holds no student folder; accepted: a folder "
                          "holding a folder per student (each with NAME.py files)")
-    real_out = os.path.realpath(out)
-    for student in students:       # once: --out class/s1/verlet.py overwrote s1's answer
-        inside = os.path.realpath(os.path.join(folder, student))
-        if real_out == inside or real_out.startswith(inside + os.sep):
-            raise UsageError(f"--out {shown(out)} is in the folder of student "
-                             f"{shown(student)}, which is graded (an input); accepted: a file "
-                             "outside the students' folders (default CLASS_DIR/gradebook.csv)")
     return classroom.grade_class(folder, args.jobs, out, args.gradescope, args.timeout, args.seed)
 
 
