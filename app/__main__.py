@@ -173,8 +173,7 @@ def app_main(argv: list[str]) -> int:
         names = sorted({n for c in classes for n in c.setting_names()})
         where = f"scene '{classes[0].name}' has" if len(classes) == 1 else "no scene has"
         what = "no parameter or effect" if len(classes) == 1 else "a parameter or effect"
-        raise UsageError(f"--set {shown_text(unknown[0])}: {where} {what} "
-                         f"{shown_text(unknown[0])}; accepted: "
+        raise UsageError(f"--set: {where} {what} {shown_text(unknown[0])}; accepted: "
                          f"{', '.join(names)}")
     for cls in classes:
         try:
@@ -297,7 +296,7 @@ def writable_folder(path: str, what: str, example: str, probe: str) -> None:
     if not path.strip():
         raise UsageError(f"{what} needs a folder name, e.g. {example}")
     if os.path.exists(path) and not os.path.isdir(path):
-        raise UsageError(f"{what} {shown(path)} is a file; accepted: a folder")
+        raise UsageError(f"{what} {shown(path)} is not a folder; accepted: a folder")
     problem = check_output_path(os.path.join(path, probe), f"{what} folder")
     if problem:
         raise UsageError(problem)
@@ -411,7 +410,8 @@ def exercise_main(argv: list[str]) -> int:
     else:
         paths = [args.path or shown(starter_path(args.name))]
         if not os.path.isfile(paths[0]):
-            raise UsageError(f"--path {shown(paths[0])}: no such file; accepted: a .py file, "
+            what = "not a regular file" if os.path.exists(paths[0]) else "no such file"
+            raise UsageError(f"--path {shown(paths[0])}: {what}; accepted: a .py file, "
                              f"e.g. exercises/{args.name}.py")
     return cli.check(chosen, paths, args.json, args.timeout, args.seed)
 
@@ -432,7 +432,7 @@ def scene_main(argv: list[str]) -> int:
     if args.command is None:
         raise UsageError("scene needs a command; accepted: check FILE.toml")
     from app.scenefile.load import SceneFileError
-    from app.scenefile.scene import checked_line
+    from app.scenefile.load import checked_line
     from scenes import get_scene
     use_dummy_video()
     for path in args.files:
@@ -450,17 +450,18 @@ def grade_class_main(args: argparse.Namespace) -> int:
     if not folder.strip():
         raise UsageError("grade needs a class folder, e.g. exercise grade class2026/")
     if not os.path.isdir(folder):
-        raise UsageError(f"grade: '{folder}' is not a folder; accepted: a folder holding a folder "
-                         "per student")
+        raise UsageError(f"grade: {shown(folder)} is not a folder; accepted: a folder holding a "
+                         "folder per student")
     out = args.out or os.path.join(folder, "gradebook.csv")
     if os.path.isdir(out):
-        raise UsageError(f"--out '{out}' is a folder; accepted: a CSV file name")
-    problem = check_output_path(out, "--out")
+        raise UsageError(f"--out {shown(out)} is a folder; accepted: a CSV file name")
+    students = classroom.students_in(folder, out)
+    problem = check_output_path(out, "--out") or classroom.out_among_inputs(folder, out, students)
     if problem:
         raise UsageError(problem)
-    if not classroom.students_in(folder, out):
-        raise UsageError(f"grade: '{folder}' holds no student folder; accepted: a folder holding "
-                         "a folder per student (each with NAME.py files)")
+    if not students:
+        raise UsageError(f"grade: {shown(folder)} holds no student folder; accepted: a folder "
+                         "holding a folder per student (each with NAME.py files)")
     return classroom.grade_class(folder, args.jobs, out, args.gradescope, args.timeout, args.seed)
 
 

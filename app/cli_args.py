@@ -112,6 +112,6 @@ def parse_sets(pairs: list[str]) -> dict[str, str]:
             raise UsageError(f"--set {shown_text(pair)}: expected KEY=VALUE, e.g. --set "
                              "substeps=4")
         if key.strip() in out:
-            raise UsageError(f"--set {key.strip()} is given twice; give it once")
+            raise UsageError(f"--set {shown_text(key.strip())} is given twice; give it once")
         out[key.strip()] = value.strip()
     return out

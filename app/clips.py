@@ -33,12 +33,14 @@ from __future__ import annotations
 import math
 import os
 import re
+import signal
 import sys
 import zlib
 from abc import ABC, abstractmethod
 from concurrent.futures import Future, ThreadPoolExecutor
+from contextlib import contextmanager
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING, Callable, Iterator
 
 if TYPE_CHECKING:
     import pygame
@@ -350,6 +352,31 @@ def _ahead(pool: ThreadPoolExecutor, fn: Callable, n: int, lookahead: int):
         yield future.result()
 
 
+@contextmanager
+def _ctrl_c_held() -> Iterator[None]:
+    """A Ctrl-C during the block is remembered and raised after it. Around the start of
+    ffmpeg: a KeyboardInterrupt raised inside Popen (after the fork, before `_proc` was set)
+    left an ffmpeg no one could stop, which wrote the temporary file again after the run had
+    removed it (a 225-byte '.part.mp4' left in ~1 of 10 interrupted runs). Blocking the signal
+    (pthread_sigmask) does not do: the kernel hands it to another thread (BLAS, the frame pool)
+    and Python raises it in the main thread all the same. Only the main thread may set a
+    handler; elsewhere the block runs as it is."""
+    import threading
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[tuple] = []
+    before = signal.signal(signal.SIGINT, lambda *how: caught.append(how))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, before)
+        if caught and callable(before):
+            before(*caught[0])            # Python's own: raises KeyboardInterrupt here
+        elif caught and before == signal.SIG_DFL:
+            signal.raise_signal(signal.SIGINT)
+
+
 class Mp4Writer(ClipWriter):
     """MP4 (H.264) through imageio-ffmpeg's ffmpeg: frames stream to it as they come (as raw
     surface bytes: ffmpeg converts them to yuv420p in its own process). ffmpeg runs in a
@@ -374,9 +401,10 @@ class Mp4Writer(ClipWriter):
         self._proc = None
         self.pending.stop.append(self._kill)     # Ctrl-C at any moment: ffmpeg goes too
         try:
-            self._proc = subprocess.Popen(cmd, stdin=subprocess.PIPE,
-                                          stdout=subprocess.DEVNULL, stderr=self._log,
-                                          start_new_session=True)
+            with _ctrl_c_held():
+                self._proc = subprocess.Popen(cmd, stdin=subprocess.PIPE,
+                                              stdout=subprocess.DEVNULL, stderr=self._log,
+                                              start_new_session=True)
         except OSError as e:
             self.pending.discard()
             self._log.close()

@@ -27,7 +27,8 @@ from dataclasses import dataclass, replace
 from typing import Any, Mapping, Sequence
 
 from app.runner import Rollback, SceneRunner, deliver
-from app.scene import EVENT_SLACK, InputEvent, ParamError, Scene, SceneError, setting_text
+from app.scene import (EVENT_SLACK, InputEvent, ParamError, Scene, SceneError, setting_text,
+                       shown_text)
 
 MIN_VARIANTS, MAX_VARIANTS = 2, 4
 TAGS = "ABCD"          # the panes' names, in the order given
@@ -74,23 +75,25 @@ def resolve_variants(cls: type[Scene], shared: Mapping[str, Any],
                          f"{len(variants)}")
     shared_names = {cls.canonical(k): k for k in shared}
     overrides, resolved = [], []
-    for v in variants:
+    for k, v in enumerate(variants, 1):
+        which = f"variant {k} of {len(variants)}"      # its value is echoed once, by the error
         for key in v.settings:
             if cls.canonical(key) in shared_names:
-                raise ParamError(f"{key} is in --set and in the variant {v.text!r}; give it once: "
-                                 "in --set for every pane, or in each variant")
+                raise ParamError(f"{shown_text(key)} is in --set and in {which}; give it "
+                                 "once: in --set for every pane, or in each variant")
         merged = {**shared, **v.settings}
         try:
             values, on = cls.resolve(merged)
         except ParamError as e:
-            raise ParamError(f"variant {v.text!r}: {e}") from None
+            raise ParamError(f"{which}: {e}") from None
         overrides.append(merged)
         resolved.append((values, on))
     for i in range(len(resolved)):
         for j in range(i):
             if resolved[i] == resolved[j]:
-                raise ParamError(f"variants {variants[j].text!r} and {variants[i].text!r} are the "
-                                 "same settings; accepted: variants that differ in at least one")
+                raise ParamError(f"variants {shown_text(variants[j].text)} and "
+                                 f"{shown_text(variants[i].text)} are the same settings; "
+                                 "accepted: variants that differ in at least one")
     return overrides
 
 

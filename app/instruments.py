@@ -129,7 +129,7 @@ class Instruments:
             g.history.add(scene.time, metrics)
         if self.csv is not None and g.runner.steps != g.csv_step:
             g.csv_step = g.runner.steps
-            self.csv.row(g.runner.steps, scene.time, metrics, g.variant)
+            self.csv.row(g.runner.steps, scene.time, metrics, g.variant, scene.json_unit)
 
     # --- the plot ----------------------------------------------------------------------------
     def choices(self) -> list[str]:

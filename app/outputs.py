@@ -250,8 +250,8 @@ def output_problem(path: str, what: str) -> str | None:
         return f"{what} {shown(path)}: cannot write there ({e.strerror or e})"
     if info is not None:
         if stat.S_ISDIR(info.st_mode):
-            return (f"{what} {shown(path)} is a folder; accepted: a file name, such as "
-                    f"{shown(os.path.join(path, 'out' + _ext(what)))}")
+            return (f"{what} {shown(path)} is a folder; accepted: a file name (for a file in "
+                    f"it, add {shown(os.sep + 'out' + _ext(what))})")
         if not stat.S_ISREG(info.st_mode):
             return (f"{what} {shown(path)} is {_kind(info.st_mode)}, not a file; accepted: a "
                     "regular file (it is written whole, then renamed into place)")

@@ -395,6 +395,13 @@ class Scene:
         declares (the HUD and the metrics strip both use it: one unit per quantity)."""
         return shown_in(value, self.metric_units.get(name, PLAIN))
 
+    def json_unit(self, name: str) -> str:
+        """The unit metric `name` has in --json and --csv ("px", "s", "1" for a ratio, "count";
+        "" if unknown): the reference's entry (app/docs/texts.py) for the scene of this name.
+        A scene whose metrics are not in that table (a scene file) says its own."""
+        from app.docs.texts import unit_of
+        return unit_of(self.name, name)
+
     def effect_costs(self) -> dict[str, float]:
         """Milliseconds per step spent on each active effect, where the scene measures it."""
         return {}

@@ -3,12 +3,15 @@
     python -m app --headless --scene cloth --seconds 5 --csv cloth.csv           a row per step
     python -m app --scene cloth --csv cloth.csv                                 a row per frame
 
-The CSV has a header row: `step` (fixed steps since the run started, R included), `t` (the
+The CSV has a header row: `step` (fixed steps since the run started, R included), `t (s)` (the
 scene's simulated seconds since it was last built: R starts it at 0 again), then every metric the
 scene reports, in its order (with --compare a first column `variant`: the variant as given, one
 row per variant per step). Values are written as --json writes them: numbers in full precision
 and in the JSON's units (pixels, seconds, fractions), true/false, text as it is, and an empty
-cell for null (a value that does not exist yet).
+cell for null (a value that does not exist yet). A column's header is the metric's name followed
+by that unit, `penetration_max (px)`, `energy (kg px^2/s^2)` (Scene.json_unit: the reference's
+unit); a count, a ratio, a truth value or text has the bare name, and so has a metric the
+reference does not describe (an exercise scene's own, whose names carry their unit: `apart_px`).
 
 Plain Python, no pygame.
 """
@@ -45,6 +48,13 @@ def cell(value: Any) -> str:
     if isinstance(value, str):
         return value
     return json.dumps(value)
+
+
+def header(name: str, unit: str) -> str:
+    """A CSV column's header: the name, then its unit in parentheses (none for a count, a
+    ratio, text, a truth value or an unknown unit)."""
+    from app.docs.texts import UNITLESS
+    return f"{name} ({unit})" if unit and unit not in UNITLESS else name
 
 
 def plottable(metrics: Mapping[str, Any]) -> dict[str, float]:
@@ -122,19 +132,22 @@ class CsvLog:
         self.rows = 0
         self._warned: set[str] = set()
 
-    def row(self, step: int, t: float, metrics: Mapping[str, Any], variant: str = "") -> None:
+    def row(self, step: int, t: float, metrics: Mapping[str, Any], variant: str = "",
+            unit: Callable[[str], str] | None = None) -> None:
+        """One row; the first also writes the header, each metric with its `unit(name)`."""
         if self.error is not None:
             return
         try:
-            self._row(step, t, metrics, variant)
+            self._row(step, t, metrics, variant, unit)
         except OSError as e:            # a full disk: the run goes on, close() says so
             self.error = e
 
-    def _row(self, step: int, t: float, metrics: Mapping[str, Any], variant: str) -> None:
+    def _row(self, step: int, t: float, metrics: Mapping[str, Any], variant: str,
+             unit: Callable[[str], str] | None) -> None:
         if self.columns is None:
             self.columns = list(metrics)
-            self.writer.writerow((["variant"] if self.compare else []) + ["step", "t"]
-                                 + self.columns)
+            self.writer.writerow((["variant"] if self.compare else []) + ["step", header("t", "s")]
+                                 + [header(k, unit(k) if unit else "") for k in self.columns])
         extra = [k for k in metrics if k not in self.columns and k not in self._warned]
         if extra and self.warn is not None:
             self._warned.update(extra)
@@ -180,4 +193,4 @@ class CsvLog:
         self.pending.discard()
 
 
-__all__ = ["clean", "cell", "plottable", "History", "CsvLog", "MAX_WINDOW"]
+__all__ = ["clean", "cell", "header", "plottable", "History", "CsvLog", "MAX_WINDOW"]

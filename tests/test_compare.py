@@ -358,7 +358,7 @@ def test_the_docs_compare_commands_run_as_written(tmp_path, capsys, monkeypatch)
         if "--headless" not in args:
             args = args + ["--headless", "--steps", "2", "--screenshot", "shot.png"]
         assert main(args) == 0, (args, capsys.readouterr().err)
-    assert (tmp_path / "lab-output" / "cloth.csv").read_text().startswith("variant,step,t,")
+    assert (tmp_path / "lab-output" / "cloth.csv").read_text().startswith("variant,step,t (s),")
 
 
 def test_a_slow_comparison_says_so_in_its_header_even_when_a_pane_has_its_own_words(monkeypatch):

@@ -84,6 +84,21 @@ def links(path: Path) -> list[str]:
     return re.findall(r"\]\(([^)\s]+)\)", text)
 
 
+def test_every_metric_has_a_unit_and_the_csv_header_writes_it():
+    """Each metric's entry (app/docs/texts.py) and each scene-file metric kind names a unit, the
+    one the --csv header writes after the name (pure numbers and counts: none)."""
+    from app.docs.texts import METRICS, UNITLESS, unit_of
+    from app.scenefile.schema import METRIC_HELP
+    from app.series import header
+    for scene, table in METRICS.items():
+        for name, (unit, meaning) in table.items():
+            assert unit.strip() and meaning.strip(), (scene, name)
+    assert all(unit.strip() for unit, _, _ in METRIC_HELP.values())
+    assert unit_of("integrators", "rk4_step_us") == "us"        # a pattern's unit
+    assert header("energy", unit_of("mass_spring_cloth", "energy")) == "energy (kg px^2/s^2)"
+    assert all(header("x", u) == "x" for u in UNITLESS)
+
+
 def test_slugs_are_githubs():
     assert slug("Lesson plan 1: Physics in Computer Animations and Games") == \
         "lesson-plan-1-physics-in-computer-animations-and-games"

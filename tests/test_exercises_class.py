@@ -126,6 +126,17 @@ def test_bad_usage_is_one_line_and_exit_2(tmp_path, capsys, extra, words):
     assert not (c / "gradebook.csv").exists()
 
 
+def test_an_out_in_a_students_folder_is_refused_before_anything_is_written(tmp_path, capsys):
+    # once: --out class/bob/verlet.py replaced bob's answer with the gradebook
+    c = a_class(tmp_path)
+    answer = (c / "bob" / "verlet.py").read_bytes()
+    for out in (c / "bob" / "verlet.py", c / "bob" / ".." / "bob" / "book.csv"):
+        assert main(["exercise", "grade", str(c), "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert "student 'bob', which is graded" in err and len(err.strip().splitlines()) == 1
+    assert (c / "bob" / "verlet.py").read_bytes() == answer and not (c / "bob" / "book.csv").exists()
+
+
 def test_a_missing_or_empty_class_folder_is_refused(tmp_path, capsys):
     assert main(["exercise", "grade", str(tmp_path / "nowhere")]) == 2
     assert "is not a folder" in capsys.readouterr().err
@@ -155,3 +166,27 @@ def test_gradescope_results_and_the_autograder_on_a_simulated_layout(tmp_path):
     assert any(t["score"] == 0 for n, t in tests.items() if n.startswith("spring: "))
     assert all({"name", "score", "max_score", "output"} <= set(t) for t in tests.values())
     assert results["output"].startswith("sandbox: ")
+
+
+def test_a_ctrl_c_during_a_fork_is_noted_and_raised_once_the_child_is_known(monkeypatch):
+    """CPython drops a KeyboardInterrupt raised inside its at-fork hooks ("Exception ignored
+    in _releaseLock": CI saw a class grading go on to the end after its Ctrl-C); spawn.fork()
+    notes a Ctrl-C that lands while it forks, and raise_noted_ctrl_c() raises it afterwards."""
+    import os
+    from app.exercises import spawn
+    real = os.fork
+
+    def fork_hit_by_ctrl_c():
+        os.kill(os.getpid(), signal.SIGINT)           # lands while the fork is under way
+        return real()
+    monkeypatch.setattr(os, "fork", fork_hit_by_ctrl_c)
+    pid = spawn.fork()
+    if pid == 0:
+        os._exit(0 if signal.getsignal(signal.SIGINT) == signal.SIG_IGN else 3)
+    monkeypatch.setattr(os, "fork", real)
+    _, status = os.waitpid(pid, 0)
+    assert os.WEXITSTATUS(status) == 0                  # the child leaves Ctrl-C to the grader
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    with pytest.raises(KeyboardInterrupt):
+        spawn.raise_noted_ctrl_c()
+    spawn.raise_noted_ctrl_c()                          # once only

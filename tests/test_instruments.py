@@ -36,13 +36,22 @@ def test_csv_has_a_header_and_a_row_per_step_with_the_json_numbers(tmp_path, cap
     summary = json.loads(capsys.readouterr().out)
     rows = read_csv(out)
     metrics = list(summary["metrics"])
-    assert rows[0] == ["step", "t"] + metrics
+    assert [h.partition(" (")[0] for h in rows[0]] == ["step", "t"] + metrics   # names first
+    assert rows[0][1] == "t (s)" and "pinned_drift (px)" in rows[0]          # then the unit
+    assert "max_stretch" in rows[0] and "particles" in rows[0]     # a ratio, a count: bare
     assert len(rows) == 1 + 13 and summary["csv_rows"] == 13       # the start, then each step
     assert [r[0] for r in rows[1:]] == [str(k) for k in range(13)]
     assert float(rows[-1][1]) == pytest.approx(12 / 60)
-    last = dict(zip(rows[0], rows[-1]))
+    last = dict(zip(["step", "t"] + metrics, rows[-1]))
     for k, v in summary["metrics"].items():                        # as --json writes them
         assert last[k] == json.dumps(v), k
+
+
+def test_csv_of_a_scene_file_heads_each_metric_with_its_kind_s_unit(tmp_path, capsys):
+    out = tmp_path / "galton.csv"
+    assert main(["--headless", "--scene", "scenes/files/galton_board.toml", "--steps", "1",
+                 "--csv", str(out)]) == 0
+    assert read_csv(out)[0] == ["step", "t (s)", "balls_dropped", "balls_in", "mean_x (px)"]
 
 
 def test_csv_of_a_comparison_has_a_variant_column_and_null_as_an_empty_cell(tmp_path, capsys):
@@ -50,9 +59,9 @@ def test_csv_of_a_comparison_has_a_variant_column_and_null_as_an_empty_cell(tmp_
     assert main(["--headless", "--scene", "double_pendulum", "--compare", "substeps=1",
                  "substeps=4", "--steps", "5", "--csv", str(out)]) == 0
     rows = read_csv(out)
-    assert rows[0][:3] == ["variant", "step", "t"] and "divergence_time" in rows[0]
+    assert rows[0][:3] == ["variant", "step", "t (s)"] and "divergence_time (s)" in rows[0]
     assert [r[0] for r in rows[1:]] == ["substeps=1", "substeps=4"] * 6
-    col = rows[0].index("divergence_time")
+    col = rows[0].index("divergence_time (s)")
     assert all(r[col] == "" for r in rows[1:])          # null until the ghost parts: empty
 
 
@@ -67,7 +76,7 @@ def test_csv_in_the_window_writes_a_row_per_frame(tmp_path):
         w.render()
     w.close()
     rows = read_csv(tmp_path / "w.csv")
-    assert rows[0] == ["step", "t", "y", "n", "label"]
+    assert rows[0] == ["step", "t (s)", "y", "n", "label"]     # no unit known for a toy's
     assert [r[0] for r in rows[1:]] == ["0", "2", "4", "6", "8", "10"]
     assert rows[1][4] == "text"
 

@@ -163,6 +163,23 @@ def test_a_fifo_a_device_or_a_folder_is_refused_where_a_file_is_expected(capsys,
         one_error_line(err)
 
 
+def test_each_user_value_is_echoed_once_shortened_and_escaped(capsys, tmp_path):
+    # once: an unknown --set key, a bad --compare variant and a folder given as --csv were each
+    # echoed twice (a 100k-character key: two 30-character cuts; a variant: ~500 characters)
+    folder = tmp_path / ("d" * 80)
+    folder.mkdir()
+    huge = "q" * 100_000
+    for args, mark, times in ((["--set", f"{huge}\x1b=1"], "'qqq", 1),
+                              (["--set", "a\nb=1"], "a\\nb", 1),
+                              (["--compare", f"g={huge}", "g=1"], "'qqq", 1),
+                              (["--compare", "g=1", "g=1.0"], "'g=1", 2),     # two variants
+                              (["--csv", str(folder)], "d'", 1)):
+        code, out, err = run_main(capsys, "--headless", "--scene", "cloth", "--steps", "1", *args)
+        line = one_error_line(err)
+        assert code == 2 and len(line) <= 600 and "\x1b" not in line, line
+        assert line.count(mark) == times, line
+
+
 def test_a_path_with_a_newline_and_a_huge_path_give_one_short_line(capsys, tmp_path):
     weird = str(tmp_path / "no\nsuch" / "x.csv")
     os.makedirs(os.path.dirname(weird))

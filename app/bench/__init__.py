@@ -71,6 +71,22 @@ class Report:
             print("  ".join(c.rjust(w) for c, w in zip(r, widths)), file=out)
         out.flush()
 
+    def live_table(self, title: str, headers: Sequence[str],
+                   widths: Sequence[int]) -> Callable[[Sequence[Any]], None]:
+        """A table printed as it is measured: the title and header now, each row as it comes
+        (call the returned function with it), so a long sweep shows its numbers at once.
+        `widths`: each column's least width (a wider cell pushes its row along)."""
+        widths = [max(len(h), w) for h, w in zip(headers, widths)]
+        out = self._out()
+        print(f"\n{title}", file=out)
+        print("  ".join(h.rjust(w) for h, w in zip(headers, widths)), file=out)
+        print("  ".join("-" * w for w in widths), file=out, flush=True)
+
+        def row(values: Sequence[Any]) -> None:
+            print("  ".join(_cell(v).rjust(w) for v, w in zip(values, widths)), file=self._out(),
+                  flush=True)
+        return row
+
     def chart_path(self, name: str) -> str:
         path = os.path.join(self.out_dir, name)
         self.charts.append(path)

@@ -1,10 +1,10 @@
-"""`python -m app bench frames`: every scene, alone and in 2- and 4-pane comparisons, run at
+"""`python -m app bench frames`: every scene, alone and in 4-pane comparisons, run at
 real time and drawn whole at 1920x1080, against the frame budget.
 
-Every registered scene at its defaults, alone and in a comparison of 2 and 4 panes (copies at the
-defaults, as `--compare` would show them), is run as the window runs it at real time: per frame
-of 1/60 s the steps that frame is due (hertz / 60 of them, through the same SceneRunner, with its
-non-finite check), then the whole picture drawn into a 1920 x 1080 surface (the scene or the
+Every registered scene at its defaults, alone and in a comparison of 4 panes (and of 2 with
+--full; copies at the defaults, as `--compare` would show them), is run as the window runs it
+at real time: per frame of 1/60 s the steps that frame is due (hertz / 60 of them, through the
+same SceneRunner, with its non-finite check), then the whole picture drawn into a 1920 x 1080 surface (the scene or the
 panes, with their HUD text, as app/frames.py draws a screenshot). No display is needed (SDL's
 dummy video driver). For each: physics, drawing and the whole frame in ms, median and spread
 (max - min over the frames timed), against the frame budget: 16.7 ms for one scene (60 fps),
@@ -80,10 +80,16 @@ def run(report: Report) -> dict:
     pygame.init()
     from scenes import SCENES
 
-    warm, frames = (2, 3) if report.quick else (30, 30)
-    pane_counts = (1, 2) if report.quick else (1, 2, 4)
+    # by default alone and in 4 panes (about 30 s idle); 2 panes too with --full
+    warm, frames = (2, 3) if report.quick else (30, 30) if report.full else (20, 25)
+    pane_counts = (1, 2) if report.quick else (1, 2, 4) if report.full else (1, 4)
     chosen = SCENES[:3] if report.quick else SCENES
-    rows, out = [], []
+    out = []
+    row = report.live_table(
+        f"Whole frames at {SIZE[0]}x{SIZE[1]}, every scene at its defaults, real time "
+        f"(median and spread (max - min) of {frames} frames, CPU ms)",
+        ["scene", "panes", "physics", "spread", "drawing", "spread", "frame", "spread",
+         "budget", "in time?"], [22, 5, 7, 7, 7, 7, 7, 7, 6, 8])
     for cls in chosen:
         for panes in pane_counts:
             report.progress(f"frames: {cls.name}, {panes} pane{'s' if panes > 1 else ''}")
@@ -95,12 +101,7 @@ def run(report: Report) -> dict:
                         "physics_spread_ms": ps, "draw_ms": dm, "draw_spread_ms": ds,
                         "frame_ms": fm, "frame_spread_ms": fs, "budget_ms": budget,
                         "in_time": ok})
-            rows.append([cls.name, panes, pm, ps, dm, ds, fm, fs, budget,
-                         "yes" if ok else "NO"])
-    report.table(f"Whole frames at {SIZE[0]}x{SIZE[1]}, every scene at its defaults, real time "
-                 f"(median and spread of {frames} frames, CPU ms)",
-                 ["scene", "panes", "physics", "spread", "drawing", "spread", "frame",
-                  "spread", "budget", "in time?"], rows)
+            row([cls.name, panes, pm, ps, dm, ds, fm, fs, budget, "yes" if ok else "NO"])
     late = [f"{o['scene']} x{o['panes']}" for o in out if not o["in_time"]]
     report.say(("every frame in time" if not late else
                 f"over budget: {', '.join(late)}") + f" ({len(out)} cases)")

@@ -226,7 +226,7 @@ def routes(report: Report, quick: bool) -> list[dict[str, Any]]:
                 ms.append((time.perf_counter() - t0) * 1e3)
             rows.append({"size": n, "route": route.label, "product": spec[0],
                          "preconditioner": spec[1], "guess": spec[2], "steps": steps,
-                         "kept": spec == ROUTES[-1], "median_ms": float(np.median(ms)),
+                         "kept": spec == ROUTES[-1], "median_ms": Timing.of(ms),
                          "cg_iterations_mean": float(np.mean(its)),
                          "max_px_from_exact": float(np.abs(cloth.ps.x - exact[steps]).max())})
     base = {r["size"]: r["median_ms"] for r in reversed(rows)}      # each size's first row
@@ -237,7 +237,7 @@ def routes(report: Report, quick: bool) -> list[dict[str, Any]]:
                  "1e-2",
                  ["size", "A w + preconditioner + first guess", "ms/step", "speed-up",
                   "CG its", "steps", "max px from exact"],
-                 [[f"{r['size']}x{r['size']}", r["route"], f"{r['median_ms']:.3g}",
+                 [[f"{r['size']}x{r['size']}", r["route"], r["median_ms"],
                    f"{base[r['size']] / r['median_ms']:.2f}", f"{r['cg_iterations_mean']:.0f}",
                    r["steps"], f"{r['max_px_from_exact']:.2g}"] for r in rows])
     return rows
@@ -260,8 +260,8 @@ def solvers(report: Report, quick: bool) -> dict[str, Any]:
                 solve_ms.append((spent["solve"] - s0) * 1e3)
                 its.append(scene.cloth.ps.cg_iterations)
             ps = scene.cloth.ps
-            rows.append({"size": n, "solver": solver, "step_ms": float(np.median(step_ms)),
-                         "solve_ms": float(np.median(solve_ms)),
+            rows.append({"size": n, "solver": solver, "step_ms": Timing.of(step_ms),
+                         "solve_ms": Timing.of(solve_ms),
                          "cg_iterations_mean": float(np.mean(its)),
                          "nonzeros": ps.matrix.nonzeros, "fill": ps.solve.fill,
                          "residual": ps.solve.residual})
@@ -269,9 +269,9 @@ def solvers(report: Report, quick: bool) -> dict[str, Any]:
     for n in sorted({r["size"] for r in rows}):
         cg = next(r for r in rows if r["size"] == n and r["solver"] == "cg")
         lu = next(r for r in rows if r["size"] == n and r["solver"] == "direct")
-        table.append([f"{n}x{n}", f"{cg['solve_ms']:.3g}", f"{cg['cg_iterations_mean']:.0f}",
-                      f"{lu['solve_ms']:.3g}", f"{lu['solve_ms'] / cg['solve_ms']:.1f}",
-                      f"{cg['step_ms']:.3g}", f"{lu['step_ms']:.3g}", f"{cg['nonzeros']:,}",
+        table.append([f"{n}x{n}", cg["solve_ms"], f"{cg['cg_iterations_mean']:.0f}",
+                      lu["solve_ms"], f"{lu['solve_ms'] / cg['solve_ms']:.1f}",
+                      cg["step_ms"], lu["step_ms"], f"{cg['nonzeros']:,}",
                       f"{lu['fill']:,}", f"{lu['fill'] / cg['nonzeros']:.1f}"])
     report.table(f"solver: CG (block Jacobi, warm start, to 1e-2) vs SciPy's sparse LU, denim n x "
                  f"n, median of the first {steps} steps (ms)",
@@ -343,7 +343,7 @@ def window(report: Report, quick: bool) -> dict[str, Any]:
         rows.append({"settings": settings, "steps_per_frame": k,
                      "step_estimate_ms": step_estimate * 1e3,
                      "frame_estimate_ms": frame_estimate * 1e3,
-                     "median_ms": float(np.median(ms)), "max_ms": float(max(ms)),
+                     "median_ms": Timing.of(ms), "max_ms": float(max(ms)),
                      "frame_ms": k * float(np.median(ms)), "first_ms": ms[0],
                      "cg_iterations": ps.cg_iterations, "stopped_short": ps.cg_failures,
                      "stop": ps.solve.stop})
@@ -358,7 +358,7 @@ def window(report: Report, quick: bool) -> dict[str, Any]:
                    r["settings"]["hertz"], "on" if r["settings"]["shear"] else "off",
                    f"{r['settings'].get('cg_tolerance', 0.01):g}", r["settings"]["substeps"],
                    r["steps_per_frame"], f"{r['step_estimate_ms']:.3g}",
-                   f"{r['median_ms']:.3g}", f"{r['max_ms']:.3g}", f"{r['frame_ms']:.3g}",
+                   r["median_ms"], f"{r['max_ms']:.3g}", f"{r['frame_ms']:.3g}",
                    r["cg_iterations"], r["stopped_short"]] for r in rows])
     worst = max(rows, key=lambda r: r["frame_ms"])
     line = (f"the slowest accepted setting measured: {worst['frame_ms']:.0f} ms a frame "

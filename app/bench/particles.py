@@ -13,7 +13,7 @@ step copies of that same state, taking turns (a burst of load from another proce
    ~1/50 of all pairs): slope 2 on the chart's log axes;
 2. the n where the grid starts to win (interpolated, log-log);
 3. crowds: the particles gathered into disks of shrinking radius down to every particle at one
-   point, and the grid's worst case (four tight clusters in four neighbouring cells: it tests
+   point (and all 5,000 at one point with --full), and the grid's worst case (four tight clusters in four neighbouring cells: it tests
    every pair, a quarter of them interact), the grid against all pairs: the grid tests fewer
    pairs or, at worst, every pair, and its time stays below all pairs' (which is why the grid
    has no fallback to all pairs);
@@ -22,8 +22,8 @@ step copies of that same state, taking turns (a burst of load from another proce
    one app/draw/dance_draw.py uses), stamping disks into the pixels with NumPy (surfarray);
 5. the step budget: the costliest settings the scene accepts (most substeps at 5,000 particles,
    each method; the widest cut-off) stepped for real against the window's 100 ms, beside the
-   scene's own estimate; and (not with --quick) the densest crowd the sliders allow: the
-   strongest, widest mouse held for 3 s on 5,000 particles;
+   scene's own estimate; and (with --full: about a minute) the densest crowd the sliders allow:
+   the strongest, widest mouse held for 3 s on 5,000 particles;
 6. one frame at 5,000 particles (grid): a step plus drawing every particle at 1280 x 800.
 
 Last, the targets of issue 19 with the figures beside them: the grid at 5,000 particles <= 8 ms a
@@ -37,14 +37,13 @@ from __future__ import annotations
 import copy
 import math
 import os
-import statistics
 import time
 from typing import Callable
 
 import numpy as np
 import pygame
 
-from app.bench import Report, median_time
+from app.bench import Report, Timing, median_time
 from app.draw.dance_draw import DRAWERS, USED as DRAWER_USED
 from app.draw.plot import LineChart, save_grid
 from app.draw.view import View
@@ -80,7 +79,7 @@ def make_dance(n: int, method: str, settle: int) -> ParticleDance:
 
 
 def alternating(fns: dict[str, Callable[[], None]], repeats: int, number: int) -> dict[str, float]:
-    """Median ms of `number` calls of each fn, the fns taking turns repeat by repeat. Each timed
+    """Median ms (a Timing: with its spread and repeats) of `number` calls of each fn, the fns taking turns repeat by repeat. Each timed
     batch follows one untimed call of the same fn: right after the other method's step (all
     pairs churns through megabytes) the first grid step ran up to 3x slower than the next."""
     times: dict[str, list[float]] = {name: [] for name in fns}
@@ -91,7 +90,7 @@ def alternating(fns: dict[str, Callable[[], None]], repeats: int, number: int) -
             for _ in range(number):
                 fn()
             times[name].append((time.perf_counter() - t0) / number * 1000.0)
-    return {name: statistics.median(t) for name, t in times.items()}
+    return {name: Timing.of(t) for name, t in times.items()}
 
 
 def crossover(ns: list[int], all_ms: list[float], grid_ms: list[float]) -> float | None:
@@ -263,7 +262,7 @@ def step_budget(report: Report) -> list[dict]:
         out.append({"settings": settings, "estimate_ms": estimate, "step_ms": ms,
                     "pairs": scene.dance.pair_force.pairs})
         rows.append([", ".join(f"{k}={v}" for k, v in settings.items()), estimate, ms])
-    if not report.quick:
+    if report.full:             # ~45 s at load ~20 (a third of the bench): behind --full
         settings = {"particles": TARGET_N, "mouse_strength": 20000.0, "mouse_radius": 400.0}
         report.progress("the densest crowd: the strongest, widest mouse held 3 s (about a minute)")
         scene = Dance(settings)
@@ -392,7 +391,7 @@ def run(report: Report) -> dict:
     crowd_n = 300 if quick else 2000
     radii = [400.0, 40.0, 2.0] if quick else CROWD_RADII
     out["crowds"] = crowds(report, crowd_n, radii)
-    if not quick:                                   # every particle of the target at one point
+    if report.full:                     # every particle of the target at one point (~25 s)
         out["crowds"] += crowds(report, TARGET_N, [2.0], corners=False)
     out["drawing"] = drawing(report, TARGET_N)
     out["budget"] = step_budget(report)

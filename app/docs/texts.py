@@ -5,12 +5,15 @@ the code no longer reports, so the two cannot drift apart (tests/test_docs.py ru
 
 Units are the JSON's (DESIGN.md): lengths in px at zoom 1, time in s, mass in kg, ratios as
 fractions (not percent). How the HUD writes a metric comes from the scene's `metric_units`.
+The same units head the --csv columns (`unit_of`, through Scene.json_unit): this module imports
+nothing of the lab, so the layer rules (tests/test_classroom.py) let the lowest floor read it.
 """
 
 from __future__ import annotations
 
 # (JSON unit, meaning). "1" is a pure number (a ratio or a fraction).
 Entry = tuple[str, str]
+UNITLESS = ("count", "1", "text", "true/false")     # units a CSV header does not write
 
 _CLOTH_COMMON: dict[str, Entry] = {
     "particles": ("count", "particles in the grid (rows x cols)"),
@@ -189,3 +192,17 @@ SUMMARY_FIELDS: dict[str, str] = {
     "replaced": "the outputs of this run (--csv, --screenshot, --video) that replaced a file that "
                 "was there (their paths; [] if none did)",
 }
+
+
+def unit_of(scene: str, metric: str) -> str:
+    """The JSON unit of `metric` of the scene named `scene` ("" if this table does not know it).
+    A pattern entry `<integrator>_error` stands for every name ending in `_error` that has no
+    entry of its own (the longest such ending wins)."""
+    table = METRICS.get(scene, {})
+    if metric in table:
+        return table[metric][0]
+    ends = {k.partition(">")[2]: v[0] for k, v in table.items() if k.startswith("<")}
+    for end in sorted(ends, key=len, reverse=True):
+        if metric.endswith(end) and len(metric) > len(end):
+            return ends[end]
+    return ""

@@ -33,6 +33,7 @@ from typing import Any, Iterator
 
 from app.exercises import EXERCISES, base
 from app.exercises.grade import CHECK_TIMEOUT, Report, grade_many
+from app.outputs import shown
 
 EXIT_INTERRUPTED = 130
 FIELDS = ("student", "exercise", "passed", "checks", "verdict", "seed")
@@ -49,6 +50,19 @@ def students_in(class_dir: str, out: str) -> list[str]:
     return sorted(d for d in os.listdir(class_dir)
                   if not d.startswith(".") and os.path.isdir(os.path.join(class_dir, d))
                   and os.path.realpath(os.path.join(class_dir, d)) != own)
+
+
+def out_among_inputs(class_dir: str, out: str, students: list[str]) -> str | None:
+    """The one-line refusal of a gradebook `out` inside a student's folder (it is an input: once,
+    --out class/s1/verlet.py replaced s1's answer with the gradebook); None if it is not."""
+    real_out = os.path.realpath(out)
+    for student in students:
+        inside = os.path.realpath(os.path.join(class_dir, student))
+        if real_out == inside or real_out.startswith(inside + os.sep):
+            return (f"--out {shown(out)} is in the folder of student {shown(student)}, which is "
+                    "graded (an input); accepted: a file outside the students' folders (default "
+                    "CLASS_DIR/gradebook.csv)")
+    return None
 
 
 def fingerprint(folder: str) -> str:

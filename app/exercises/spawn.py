@@ -18,6 +18,7 @@ import select
 import selectors
 import signal
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 
@@ -34,23 +35,46 @@ CAN_FORK = hasattr(os, "fork")
 SANDBOXED = CAN_FORK and sys.platform.startswith("linux") and hasattr(os, "pidfd_open")
 
 
-def _nothing() -> None:
-    """A Python call: the interpreter runs the signal handlers that are due on entering one."""
-
-
 def fork() -> int:
     """os.fork with Ctrl-C held back across it; the child ignores Ctrl-C (the grader handles it
     and ends its children). CPython runs its at-fork hooks (logging's lock) as Python code, and
     a KeyboardInterrupt raised in one is printed and dropped ("Exception ignored in
-    _releaseLock"): a Ctrl-C that landed during a fork was lost (seen once in CI). Blocked, it
-    waits in the kernel and is raised after the fork, in the grader's own code."""
-    held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-    _nothing()                            # a Ctrl-C already due is raised here, before the fork
-    pid = os.fork()
-    if pid == 0:
+    _releaseLock"): a Ctrl-C that landed during a fork was lost (seen once in CI). Blocking the
+    signal is not enough (the kernel may hand it to another thread: BLAS's, a progress bar's),
+    so across the fork a Ctrl-C is only noted; the caller raises it with raise_noted_ctrl_c()
+    once the child is known (so that stopping ends it too)."""
+    if threading.current_thread() is not threading.main_thread() or \
+            signal.getsignal(signal.SIGINT) is None:
+        return os.fork()                  # (signal handlers are the main thread's to set)
+    noted: list[int] = []
+    before = signal.signal(signal.SIGINT, lambda sig, frame: noted.append(sig))
+    try:
+        pid = os.fork()
+    except BaseException:
+        signal.signal(signal.SIGINT, before)
+        raise
+    if pid == 0:                          # the child: Ctrl-C is the grader's
         signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.pthread_sigmask(signal.SIG_SETMASK, held)
+        return 0
+    signal.signal(signal.SIGINT, before)
+    if noted:
+        _NOTED.append(before)
     return pid
+
+
+_NOTED: list = []               # the handlers of Ctrl-Cs noted during a fork, not yet raised
+
+
+def raise_noted_ctrl_c() -> None:
+    """Raise the Ctrl-C that came during fork(), as its handler would have (Python's own raises
+    KeyboardInterrupt)."""
+    if _NOTED:
+        handler = _NOTED.pop()
+        _NOTED.clear()
+        if callable(handler):
+            handler(signal.SIGINT, None)
+        elif handler == signal.SIG_DFL:
+            raise KeyboardInterrupt
 
 
 @dataclass
@@ -110,6 +134,7 @@ class ChildLife:
         sel.register(out_r, selectors.EVENT_READ, self.on_output)
         if pidfd is not None:
             sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
+        raise_noted_ctrl_c()
 
     def start_sandboxed(self, sel: selectors.BaseSelector, first: int) -> None:
         """A child in the operating system's walls (app/exercises/sandbox.py): a keeper forked
@@ -164,6 +189,7 @@ class ChildLife:
         sel.register(chan_r, selectors.EVENT_READ, self.on_channel)
         sel.register(out_r, selectors.EVENT_READ, self.on_output)
         sel.register(pidfd, selectors.EVENT_READ, self.on_exit)
+        raise_noted_ctrl_c()
 
     def fds(self) -> list[int]:
         c = self.child

@@ -333,3 +333,17 @@ def load_spec(path: str) -> dict[str, Any]:
     """Read, parse and check a scene file (SceneFileError if it is not accepted)."""
     text = read_text(path)
     return check_spec(parse(text, path), text, path)
+
+
+def checked_line(path: str, cls) -> str:
+    """What `scene check` prints for a file that is accepted: its title, what it holds and its
+    metrics (the world is built once, not stepped). SceneFileError for a name that is no file."""
+    if cls is None or not path.endswith(".toml"):
+        raise SceneFileError(path, None, "a scene file's name ends in .toml")
+    scene, spec = cls(), cls.spec
+    words = {"body": "bodies", "joint": "joints", "spawner": "spawners", "slider": "sliders",
+             "metric": "metrics", "try": "cards"}
+    counts = ", ".join(f"{len(spec[k])} {words[k]}" for k in words if spec[k])
+    cloth = ", a cloth" if spec["cloth"] is not None else ""
+    return (f"{path}: ok: '{cls.title}': {counts}{cloth}; metrics "
+            f"{', '.join(scene.metrics()) or 'none'}")

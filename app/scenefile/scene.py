@@ -13,8 +13,8 @@ What a file turns into:
   * [[body]], [[body.shape]], [[joint]] and [[spawner]] become pymunk objects in build_space;
     a body with `mass` spreads it over its shapes by area, and pymunk finds the centre of gravity
     and the moment from them (a `moment` given keeps the centre at the body's origin);
-  * [[metric]] are computed from the bodies each time metrics() is called (`over` max or min:
-    after every step); [[try]] are the cards; [cloth] is a Verlet cloth stepped beside the space.
+  * [[metric]] are computed from the bodies when metrics() is called (`over` max or min: after
+    every step); [[try]] are the cards; [cloth] is a Verlet cloth stepped beside the space.
 """
 
 from __future__ import annotations
@@ -36,8 +36,7 @@ from app.scenefile.checks import WORLD, _targets, coupled_bodies, matches, slide
 from app.scenefile.cloth_contact import couple_step, deepest, touching
 from app.scenefile.load import SceneFileError, load_spec
 from app.scenefile.parts import area_of, body_measure, joint_measure, make_shape, shape_area
-from app.scenefile.schema import field_key
-from app.scenefile.schema import METRIC_HELP
+from app.scenefile.schema import METRIC_HELP, field_key
 
 KINEMATIC_COLOR = (200, 130, 255)
 ENERGY_KINDS = ("kinetic_energy", "potential_energy", "energy", "energy_ratio", "energy_drift")
@@ -324,6 +323,10 @@ class FileScene(PymunkScene):
                 total += b.mass * g * (zero - b.local_to_world(b.center_of_gravity).y)
         return total
 
+    def json_unit(self, name: str) -> str:     # a file's metric: the unit of its kind
+        kind = next((m["kind"] for m in self.data["metric"] if m["name"] == name), None)
+        return METRIC_HELP[kind][0] if kind in METRIC_HELP else ""
+
     def measure(self, m: dict) -> float | None:
         kind, target = m["kind"], m["target"]
         owner = METRIC_HELP[kind][1]
@@ -470,20 +473,6 @@ def scene_class(path: str, name: str | None = None) -> type[FileScene]:
     cls = type(f"FileScene[{Path(path).stem}]", (FileScene,), attrs)
     _check_cards(cls, spec, path)
     return cls
-
-
-def checked_line(path: str, cls: type[FileScene] | None) -> str:
-    """What `scene check` prints for a file that is accepted: its title, what it holds and its
-    metrics (the world is built once, not stepped). SceneFileError for a name that is no file."""
-    if cls is None or not path.endswith(".toml"):
-        raise SceneFileError(path, None, "a scene file's name ends in .toml")
-    scene, spec = cls(), cls.spec
-    words = {"body": "bodies", "joint": "joints", "spawner": "spawners", "slider": "sliders",
-             "metric": "metrics", "try": "cards"}
-    counts = ", ".join(f"{len(spec[k])} {words[k]}" for k in words if spec[k])
-    cloth = ", a cloth" if spec["cloth"] is not None else ""
-    return (f"{path}: ok: '{cls.title}': {counts}{cloth}; metrics "
-            f"{', '.join(scene.metrics()) or 'none'}")
 
 
 def _check_cards(cls: type[FileScene], spec: dict, path: str) -> None:

@@ -147,10 +147,10 @@ METRIC_KINDS = ("kinetic_energy", "potential_energy", "energy", "energy_ratio", 
                 "penetration_max", "contacts", "coupling_impulse")
 # What each metric kind measures, its JSON unit and what `target` names (the docs' table).
 METRIC_HELP: dict[str, tuple[str, str, str]] = {
-    "kinetic_energy": ("J (lab units)", "bodies", "sum of 1/2 m v^2 + 1/2 I w^2"),
-    "potential_energy": ("J (lab units)", "bodies", "sum of m g (zero_y - y): zero at the height "
+    "kinetic_energy": ("kg px^2/s^2", "bodies", "sum of 1/2 m v^2 + 1/2 I w^2"),
+    "potential_energy": ("kg px^2/s^2", "bodies", "sum of m g (zero_y - y): zero at the height "
                          "`zero_y` (y is down; default the world's bottom edge)"),
-    "energy": ("J (lab units)", "bodies", "kinetic + potential"),
+    "energy": ("kg px^2/s^2", "bodies", "kinetic + potential"),
     "energy_ratio": ("1", "bodies", "energy now / energy at the start (null if that was 0)"),
     "energy_drift": ("1", "bodies", "(energy now - at the start) / |at the start| (null if 0)"),
     "momentum_x": ("kg px/s", "bodies", "sum of m vx"),
@@ -165,7 +165,7 @@ METRIC_HELP: dict[str, tuple[str, str, str]] = {
     "joint_distance": ("px", "joint", "distance between the joint's two anchors"),
     "joint_error": ("px", "joint", "how far the joint is from holding: pin |d - its length|, "
                     "pivot d, slide and groove the distance past their range; 0 for the others"),
-    "joint_impulse": ("N s (lab units)", "joint", "the impulse the joint applied in the last "
+    "joint_impulse": ("kg px/s", "joint", "the impulse the joint applied in the last "
                       "step (divide by dt for its force)"),
     "spawned": ("count", "spawner", "bodies the spawner has made"),
     "removed": ("count", "spawner", "the spawner's bodies removed after leaving the world"),
