@@ -17,6 +17,7 @@ from pathlib import Path
 import pytest
 
 from app.__main__ import build_bench_parser, build_exercise_parser, main
+from tests.toy_scenes import close_the_window_after
 from app.docs.__main__ import MARKER, ROOT, doc_files, stale_blocks
 
 DOCS = doc_files()
@@ -205,18 +206,6 @@ def docs_folder(tmp_path, monkeypatch):
     return tmp_path
 
 
-def close_the_window_after(monkeypatch, frames: int) -> None:
-    """The window's event queue says QUIT after `frames` frames (as closing it would)."""
-    import pygame
-    real, calls = pygame.event.get, [0]
-
-    def get(*args, **kwargs):
-        calls[0] += 1
-        events = real(*args, **kwargs)
-        return events + [pygame.event.Event(pygame.QUIT)] if calls[0] >= frames else events
-    monkeypatch.setattr(pygame.event, "get", get)
-
-
 @pytest.mark.parametrize("doc,command,comment", unique_commands(),
                          ids=[f"{d}:{c[14:60]}" for d, c, _ in unique_commands()])
 def test_every_command_in_the_docs_runs_as_written(doc, command, comment, docs_folder,
@@ -259,7 +248,8 @@ def test_every_command_in_the_docs_runs_as_written(doc, command, comment, docs_f
         if parsed.command == "copy":
             args = ["exercise", "copy", "another"]       # mywork/ holds the copy already
     elif "--headless" not in args and "--list" not in args:
-        close_the_window_after(monkeypatch, WINDOW_FRAMES_TO_FAIL if code else WINDOW_FRAMES)
+        close_the_window_after(monkeypatch, WINDOW_FRAMES if not code else
+                               WINDOW_FRAMES_TO_FAIL if "hertz=2" in command else 20)
     got = main(as_run(args, code))
     err = capsys.readouterr().err
     assert got == code, (where, got, err[-2000:])

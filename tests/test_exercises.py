@@ -22,7 +22,7 @@ from app.exercises.live import exercise_scene
 from app.exercises.loading import starter_path
 from app.headless import run_headless
 from app.scene import SceneError
-from tests.toy_scenes import Toy
+from tests.toy_scenes import Toy, close_the_window_after
 
 ANSWERS = Path(__file__).parent / "exercise_answers"
 HOSTILE = ANSWERS / "hostile"
@@ -603,10 +603,11 @@ def test_headless_starter_scene_exits_1_with_the_message(capsys):
 
 @pytest.mark.parametrize("name", NAMES)
 def test_the_window_and_a_headless_screenshot_survive_every_untouched_starter(name, tmp_path,
-                                                                           capsys):
+                                                                           capsys, monkeypatch):
     shot = tmp_path / "starter.png"                 # the window pauses and shows the message
-    assert main(["--scene", f"exercise:{name}", "--screenshot", str(shot), "--seconds",
-                 "1"]) == 1     # a student's code raised: exit 1, as headless (docs)
+    close_the_window_after(monkeypatch, 20)         # (a count of frames, not of seconds)
+    assert main(["--scene", f"exercise:{name}", "--screenshot", str(shot)]) == 1
+    # a student's code raised: exit 1, as headless (docs)
     assert shot.exists()
     shot.unlink()                                   # headless: the summary and the picture
     assert main(["--headless", "--scene", f"exercise:{name}", "--steps", "3", "--json",

@@ -1,4 +1,5 @@
-"""Two tiny scenes for testing the shell itself (not registered in the app)."""
+"""Two tiny scenes for testing the shell itself (not registered in the app), and a way to close
+a window after some frames."""
 
 import numpy as np
 
@@ -54,3 +55,15 @@ class Blowup(Toy):
         super().step(h)
         if self.steps >= 10:
             self.x[0] = np.inf
+
+
+def close_the_window_after(monkeypatch, frames: int) -> None:
+    """The window's event queue says QUIT after `frames` frames (as closing it would)."""
+    import pygame
+    real, calls = pygame.event.get, [0]
+
+    def get(*args, **kwargs):
+        calls[0] += 1
+        events = real(*args, **kwargs)
+        return events + [pygame.event.Event(pygame.QUIT)] if calls[0] >= frames else events
+    monkeypatch.setattr(pygame.event, "get", get)

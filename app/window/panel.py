@@ -22,7 +22,10 @@ import pygame
 from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Scene, Try
+from app.window import gui_ids
 from app.window.panel_form import FormWidgets, select as _select
+
+gui_ids.install()           # pygame_gui's theming ids, cached (app/window/gui_ids.py)
 
 
 THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
