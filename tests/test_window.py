@@ -1036,3 +1036,27 @@ def test_rollback_goes_to_the_oldest_of_the_snapshots_kept():
     while runner.run(1)[1] is None:
         pass
     assert scene.steps == 30
+
+
+def test_the_cached_theming_ids_are_pygame_guis_own(tmp_path):
+    """app/window/gui_ids.py answers before pygame_gui's cache: for every id lists a scene's
+    panel asked for, the same list as pygame_gui's own function gives."""
+    from pygame_gui.core.ui_appearance_theme import UIAppearanceTheme
+    from app.window import gui_ids
+    open_window(Costly, tmp_path, frames=2)
+    assert UIAppearanceTheme.build_all_combined_ids is gui_ids.build_all_combined_ids
+    assert len(gui_ids._IDS) >= 5
+    theme = UIAppearanceTheme.__new__(UIAppearanceTheme)
+    theme.unique_theming_ids = {}
+    for key, ids in gui_ids._IDS.items():
+        lists = [None if k is None else list(k) for k in key]
+        assert gui_ids._ORIGINAL(theme, *lists) == ids
+
+
+def test_the_lab_answers_tint_is_the_formula():
+    """app/exercises/live.py's table: brightness l (the largest channel) -> (0.35 + 0.65 l/255)
+    of the ghost's colour, as the float formula it replaced, to the unit."""
+    from app.exercises.live import GHOST, TINT
+    light = np.arange(256)
+    exact = (0.35 + 0.65 * light[:, None] / 255.0) * np.array(GHOST)
+    assert TINT.shape == (256, 3) and np.abs(TINT - exact).max() < 1.0
