@@ -16,3 +16,19 @@ from hypothesis import settings  # noqa: E402
 
 settings.register_profile("lab", derandomize=True, database=None)
 settings.load_profile("lab")
+
+
+def pytest_configure(config):
+    """Compile the lab's sources once, before the workers start (the controller only). Every
+    process the suite starts imports them: the xdist workers, each `python -m app` a test runs,
+    each sandboxed grader child (its harness copies the compiled files when they exist). Where
+    PYTHONDONTWRITEBYTECODE is set (this machine's environment) nothing else writes them, and
+    every one of those processes compiled the sources again: the suite on a fresh clone took
+    154 s against 132 s with them compiled (2026-11-26). __pycache__/ is in .gitignore."""
+    if hasattr(config, "workerinput"):
+        return
+    import compileall
+    for folder in ("app", "scenes", "tests", "exercises", "autograder"):
+        path = os.path.join(ROOT, folder)
+        if os.path.isdir(path):
+            compileall.compile_dir(path, quiet=1)
