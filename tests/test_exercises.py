@@ -174,8 +174,8 @@ def fixed_seed(monkeypatch):
 def forked_unless_sandboxed(request, monkeypatch):
     """What a grader decides (its checks, random cases, hints) is tested in plain forked children
     (a few ms each). The operating system's sandbox (app/exercises/sandbox.py) starts a fresh
-    Python and NumPy per child, ~0.3 s of CPU: through it every test here took 80 s of CPU in
-    all, 26 s without. The sandbox path is tested by the tests marked `sandboxed` (every
+    Python and NumPy per child, ~0.15 s of CPU more (quiet machine): through it every test here
+    took 80 s of CPU in all, 26 s without (load ~10). The sandbox path is tested by the tests marked `sandboxed` (every
     exercise's reference and starter, the file and line of an error, imports, endless loops, a
     process that dies), by test_exercises_hostile.py and test_exercises_class.py, and in full
     (every right and wrong answer, on several seeds) by the slow sweep."""

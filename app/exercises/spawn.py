@@ -46,7 +46,7 @@ def fork() -> int:
     if threading.current_thread() is not threading.main_thread() or \
             signal.getsignal(signal.SIGINT) is None:
         return os.fork()                  # (signal handlers are the main thread's to set)
-    noted: list[int] = []
+    noted = []
     before = signal.signal(signal.SIGINT, lambda sig, frame: noted.append(sig))
     try:
         pid = os.fork()
@@ -58,23 +58,21 @@ def fork() -> int:
         return 0
     signal.signal(signal.SIGINT, before)
     if noted:
-        _NOTED.append(before)
+        _noted[0] = before
     return pid
 
 
-_NOTED: list = []               # the handlers of Ctrl-Cs noted during a fork, not yet raised
+_noted: list = [None]           # the handler of a Ctrl-C noted during a fork, not yet raised
 
 
 def raise_noted_ctrl_c() -> None:
-    """Raise the Ctrl-C that came during fork(), as its handler would have (Python's own raises
-    KeyboardInterrupt)."""
-    if _NOTED:
-        handler = _NOTED.pop()
-        _NOTED.clear()
-        if callable(handler):
-            handler(signal.SIGINT, None)
-        elif handler == signal.SIG_DFL:
-            raise KeyboardInterrupt
+    """Raise the Ctrl-C that came during fork() (once), as its handler would have: Python's own
+    raises KeyboardInterrupt."""
+    handler, _noted[0] = _noted[0], None
+    if callable(handler):
+        handler(signal.SIGINT, None)
+    elif handler == signal.SIG_DFL:
+        raise KeyboardInterrupt
 
 
 @dataclass
