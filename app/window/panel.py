@@ -23,7 +23,7 @@ from app.draw import hud
 from app.draw.text import TEXT
 from app.scene import Scene, Try
 from app.window import gui_ids
-from app.window.panel_form import FormWidgets, select as _select
+from app.window.panel_form import FormWidgets, _html, select as _select
 
 gui_ids.install()           # pygame_gui's theming ids, cached (app/window/gui_ids.py)
 
@@ -163,7 +163,7 @@ class ParamPanel:
         y += row + 2 * gap
         # the scene's own form (the sandbox's selected body, its save prompt): app/form.py
         self.form = FormWidgets(self, host, manager, self.container, pad, inner_w, row, gap)
-        y = self.form.build(y, label)
+        y = self.form.build(y)
         # a comparison: whose settings the panel shows and edits (every pane, or one)
         self.target_menu = None
         targets = host.targets() if hasattr(host, "targets") else None
@@ -475,8 +475,3 @@ def _watch_text(card: Try) -> str:
         return (f"{card.label}: side by side, {card.changes()}, the rest at the defaults. "
                 f"Watch: {card.watch}")
     return f"{card.label}: sets {card.changes()}, the rest at the defaults. Watch: {card.watch}"
-
-
-def _html(text: str) -> str:
-    """Text for a pygame-gui text box (which reads a little HTML)."""
-    return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

@@ -49,7 +49,7 @@ class FormWidgets:
             return None
 
     # --- building ------------------------------------------------------------------------------
-    def build(self, y: int, _label=None) -> int:
+    def build(self, y: int) -> int:
         """Lay the form out from `y` down; return the y below it (unchanged without a form)."""
         from pygame_gui.elements import UIDropDownMenu, UILabel, UITextBox, UITextEntryLine
         form = self.form = self._scene_form()
@@ -206,4 +206,5 @@ def _fit(text: str, font, width: int) -> str:
 
 
 def _html(text: str) -> str:
+    """Text for a pygame-gui text box (which reads a little HTML)."""
     return text.replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")

@@ -28,7 +28,7 @@ grader believes no number the student's code states about its own work.
                      and depth within the lab's float64 rounding
   random travels and mu  on the same circles, about 70% of the particles on the surface with a
                      depth of up to r (as push_out leaves them), the others anywhere with depth
-                     0; any travel (0.01 to 1000 px a step), mu from 0 to 2 (one case 2 to 20):
+                     0; any travel (mostly 0.01 to 1000 px a step), mu from 0 to 2 (one case 2 to 20):
                      x within the lab's rounding
 """
 
@@ -278,7 +278,7 @@ def judge_random_push(raw: Raw) -> Result:
 def friction_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, float]]:
     """(x, x_prev, center, depth, mu) on random_cases()' circles: about 70% of the particles
     touch (on the surface, pushed 0 to r px: depth), the others stay where random_cases() put
-    them with depth 0 (outside, on, pinned inside); each travels 0.01 to 1000 px in any
+    them with depth 0 (outside, on, pinned inside); each travels mostly 0.01 to 1000 px in any
     direction; mu 0 (the first case), 2 (the second), else anything between."""
     rng = cases_rng("collisions friction")
     cases = []

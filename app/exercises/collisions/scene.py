@@ -77,8 +77,9 @@ class _Drop:
 class CollisionsExercise(StudentCode, ParticleExercise):
     """Exercise `collisions`: a Verlet rope (a cloth seen edge-on) dropped onto a ball, a little
     off its middle. Left: YOUR push_out and friction keep it out of the ball (blue); right: the
-    lab's (orange). Both use the lab's Verlet step and rods. At the default mu 0.5 the rope stays
-    draped over the ball; at mu 0.3 or less it slides off its longer side to the floor. Drag a
+    lab's (orange). Both use the lab's Verlet step and rods. At the default offset (30 px) and mu
+    0.5 the rope stays draped over the ball; at mu 0.3 it slides off its longer side to the floor
+    (the mu that holds it depends on the offset: 0.34 at 30 px, 0.01 centred, 0.65 at 60). Drag a
     ball with the mouse: both move.
 
     HUD: contacts (particles your push_out moved this step) and the deepest particle left inside
