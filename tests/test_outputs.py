@@ -247,7 +247,7 @@ def test_a_bench_chart_that_cannot_be_written_is_one_line(capsys, tmp_path, monk
     # once: an 87-line traceback
     from matplotlib.figure import Figure
     monkeypatch.setattr(Figure, "savefig", full_disk)
-    code, out, err = run_main(capsys, "bench", "integrators", "--quick", "--out", str(tmp_path))
+    code, out, err = run_main(capsys, "bench", "pymunk", "--quick", "--out", str(tmp_path))
     assert code == 2
     line = [ln for ln in err.splitlines() if not ln.startswith("  ..")]
     assert len(line) == 1 and "No space left on device" in line[0], err

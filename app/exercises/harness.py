@@ -39,24 +39,52 @@ def _module_file(name: str) -> Path | None:
 
 def _imports(tree: ast.AST, here: str, skip: set[ast.AST]) -> set[str]:
     """The lab modules a module's code imports anywhere (but in the nodes of `skip`)."""
-    found: set[str] = set()
+    return _lab_modules(_import_nodes(tree, skip), here)
+
+
+def _import_nodes(tree: ast.AST, skip: set[ast.AST] | tuple = ()) -> list[ast.stmt]:
+    """Every import statement in `tree`, however deep (but in the nodes of `skip`)."""
+    found: list[ast.stmt] = []
     stack = [tree]
     while stack:
         node = stack.pop()
         if node in skip:
             continue
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found.append(node)
+        elif not isinstance(node, ast.expr):    # no import statement lives in an expression
+            stack.extend(ast.iter_child_nodes(node))
+    return found
+
+
+def _lab_modules(nodes: list[ast.stmt], here: str) -> set[str]:
+    found: set[str] = set()
+    for node in nodes:
         if isinstance(node, ast.Import):
             found |= {a.name for a in node.names}
-        elif isinstance(node, ast.ImportFrom):
+        else:
             mod = node.module or ""
             if node.level:
-                pkg = here.split(".")[:-node.level] if not here.endswith("__init__") else \
-                    here.split(".")[:-node.level]
+                pkg = here.split(".")[:-node.level]
                 mod = ".".join(pkg + ([mod] if mod else []))
             found.add(mod)
             found |= {f"{mod}.{a.name}" for a in node.names}
-        stack.extend(ast.iter_child_nodes(node))
     return {m for m in found if m.split(".")[0] in LAB_PACKAGES}
+
+
+_PARSED: dict[tuple[Path, int, int], tuple[str, list[ast.stmt]]] = {}
+
+
+def _parsed(path: Path) -> tuple[str, list[ast.stmt]]:
+    """A lab module's source and its import statements, parsed once per process and version of
+    the file (the pymunk exercises share ~90 modules: parsing them for each exercise was most of
+    a harness's cost)."""
+    st = path.stat()
+    key = (path, st.st_mtime_ns, st.st_size)
+    if key not in _PARSED:
+        source = path.read_text()
+        _PARSED[key] = source, _import_nodes(ast.parse(source))
+    return _PARSED[key]
 
 
 def reference_of(grader: Path) -> tuple[ast.FunctionDef | None, list[tuple[str, str, str | None]]]:
@@ -172,7 +200,7 @@ def harness_files(exercise: str, stub: bool = True) -> dict[str, str]:
         roots += [module for module, _, _ in taken]
         ref, taken = None, []
     seen: dict[str, Path] = {}
-    trees: dict[str, ast.Module] = {}
+    imports: dict[str, list[ast.stmt]] = {}     # each module's import statements
     todo = list(roots)
     while todo:
         name = todo.pop()
@@ -186,13 +214,12 @@ def harness_files(exercise: str, stub: bool = True) -> dict[str, str]:
         todo += [".".join(parts[:k]) for k in range(1, len(parts))]     # its packages
         if name == "app.exercises":
             continue                            # replaced by HARNESS_INIT
-        tree = trees[name] = ast.parse(path.read_text())
-        skip = set()
-        if path == grader and ref is not None:
-            skip = {n for n in tree.body
-                    if isinstance(n, ast.FunctionDef) and n.name == "reference"}
+        nodes = _parsed(path)[1]
+        if path == grader and ref is not None:  # what `reference()` imports is the answer's
+            nodes = [n for n in nodes if not ref.lineno <= n.lineno <= ref.end_lineno]
+        imports[name] = nodes
         here = name + (".__init__" if path.name == "__init__.py" else "")
-        todo += sorted(_imports(tree, here, skip))
+        todo += sorted(_lab_modules(nodes, here))
         if name == "app.exercises.pymunk_run":    # it finds the exercise's scene by name
             todo.append(f"app.exercises.{exercise}.scene")
     by_module: dict[str, tuple[set[str], set[tuple[str, str]]]] = {}
@@ -204,13 +231,8 @@ def harness_files(exercise: str, stub: bool = True) -> dict[str, str]:
             methods.add((name, attr))
     # what the harness takes from each module that holds the answer (None: all of it)
     wanted: dict[str, set[str] | None] = {m: set() for m in by_module}
-    for name, tree in trees.items():
-        for node in ast.walk(tree):
-            if name == f"app.exercises.{exercise}.grader" and ref is not None and any(
-                    node is n for n in ast.walk(next(
-                        (d for d in tree.body if isinstance(d, ast.FunctionDef)
-                         and d.name == "reference"), ast.Pass()))):
-                continue
+    for nodes in imports.values():
+        for node in nodes:
             if isinstance(node, ast.ImportFrom) and node.module in wanted \
                     and wanted[node.module] is not None:
                 wanted[node.module] |= {a.name for a in node.names}
@@ -221,7 +243,7 @@ def harness_files(exercise: str, stub: bool = True) -> dict[str, str]:
     files = {}
     for name, path in seen.items():
         rel = str(path.relative_to(REPO))
-        source = path.read_text()
+        source = _parsed(path)[0]
         if name == "app.exercises":
             source = HARNESS_INIT.format(name=exercise)
         elif name in by_module:
