@@ -580,7 +580,11 @@ def test_a_fork_bomb_stops_at_the_childs_process_limit_and_leaves_nothing(monkey
 
 
 @NEEDS_LANDLOCK
-def test_a_file_cannot_read_secrets_the_repository_or_other_folders():
+def test_a_file_cannot_read_secrets_the_repository_or_other_folders(monkeypatch):
+    # with /tmp on the grader's PYTHONPATH too: the child (python -I) does not import from it,
+    # and once it could list /tmp (the lab's site_dirs() took every entry of sys.path)
+    monkeypatch.setenv("PYTHONPATH", "/tmp")
+    monkeypatch.setattr(sys, "path", ["/tmp", *sys.path])
     report, _ = graded("verlet_reads_secrets")
     assert report.passed, report.text()
     assert "READ" not in report.output and report.output.count("refused") == 5, report.output

@@ -201,13 +201,17 @@ def pids_cgroup() -> str | None:
 
 # ----- what the child may read ----------------------------------------------------------------
 def site_dirs() -> list[str]:
-    """The folders Python imports NumPy and pymunk from (not the lab's own folder)."""
+    """The folders Python imports NumPy and pymunk from (not the lab's own folder). Not what
+    PYTHONPATH adds to this process's path: the child is a `python -I`, which ignores it (with
+    PYTHONPATH=/tmp, the child could read every other folder in /tmp)."""
+    env_path = {os.path.realpath(e) for e in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+                if e}
     out = []
     for entry in sys.path:
         if not entry or not os.path.isdir(entry):
             continue
         real = os.path.realpath(entry)
-        if real == str(REPO) or os.path.realpath(os.getcwd()) == real:
+        if real in env_path or real == str(REPO) or os.path.realpath(os.getcwd()) == real:
             continue
         if _inside(real, str(REPO)) and any(_inside(str(REPO / pkg), real) for pkg in LAB_PACKAGES):
             continue
