@@ -113,7 +113,9 @@ def test_a_frame_forged_with_the_stolen_token_only_carries_raw_values_the_parent
 
 def test_an_endless_import_is_stopped_at_the_limit_and_nothing_else_waits():
     report, seconds = graded("verlet_endless_import", timeout=0.3)
-    assert report.checks[0].measured == "still running after 0.3 s"
+    measured = report.checks[0].measured          # when it was stopped: the limit, or a little
+    assert measured.startswith("still running after ") and measured.endswith(" s")  # after it
+    assert 0.3 <= float(measured.split()[-2]) < HANG, measured    # on a loaded machine (0.4 s)
     assert all(c.measured == "not run" for c in report.checks[1:])
     assert seconds < HANG
 
