@@ -21,6 +21,9 @@ from app.scene import InputEvent, Param
 SHIFT = 420.0               # px between the two copies (yours left, the lab's right)
 FLOOR = 600.0               # px: the ground under both (the lab's own projection)
 G = np.array([0.0, 900.0])
+COLS, SPACING, LEFT, TOP = 25, 12.0, 70.0, 120.0    # the rope: particles, px apart, its start
+BALL, BALL_Y = 70.0, 380.0  # px: the ball's radius and its centre's height
+MARGIN = 60.0               # px of room around what the view shows
 
 
 class _Drop:
@@ -32,7 +35,8 @@ class _Drop:
     ring = False                # the lab's rope falls beside yours
 
     def __init__(self, impl, shift: float, offset: float, mu: float, iterations: int,
-                 cols: int = 25, rows: int = 1, spacing: float = 12.0, left: float = 70.0):
+                 cols: int = COLS, rows: int = 1, spacing: float = SPACING,
+                 left: float = LEFT):
         self.push_out, self.friction = impl.push_out, impl.friction
         self.mu, self.iterations = mu, iterations
         r, c = np.mgrid[0:rows, 0:cols]
@@ -41,12 +45,12 @@ class _Drop:
         self.b = np.concatenate([idx[:, 1:].ravel(), idx[1:, :].ravel()])
         self.links = list(zip(self.a.tolist(), self.b.tolist()))
         self.rest = np.full(len(self.a), spacing)
-        self.x = np.stack([left + c.ravel() * spacing, 120.0 + r.ravel() * spacing],
+        self.x = np.stack([left + c.ravel() * spacing, TOP + r.ravel() * spacing],
                           axis=1).astype(float)
         self.x_prev = self.x.copy()
         self.w = np.ones(len(self.x))
-        self.center = np.array([left + (cols - 1) * spacing / 2 + offset, 380.0])
-        self.ball = 70.0
+        self.center = np.array([left + (cols - 1) * spacing / 2 + offset, BALL_Y])
+        self.ball = BALL
         self.depth = np.zeros(len(self.x))
         self.fixed = np.empty((0, 2))
         self.shift = np.array([shift, 0.0])     # where it is drawn: both fall in one place
@@ -117,10 +121,16 @@ class CollisionsExercise(StudentCode, ParticleExercise):
                 "apart; drag a ball with the mouse")
 
     def rest_bounds(self, seconds: float = 3.0) -> tuple[float, float, float, float]:
-        """Both ropes, both balls wherever the offset puts them, and the floor (the demo beside
-        an error: the lab's copy alone, on the left)."""
-        return (10.0, 60.0, 2 * 60.0 + 256.0 - 20.0 + (0.0 if self.is_demo else SHIFT),
-                FLOOR + 30.0 - 60.0)
+        """Both ropes, both balls wherever the offset slider can put them, and the floor, with
+        MARGIN around the rope's ends (the demo beside an error: the lab's copy alone, on the
+        left): x, y, width, height."""
+        rope = LEFT, LEFT + (COLS - 1) * SPACING
+        offset = next(q for q in self.params if q.name == "offset")
+        reach = max(-offset.lo, offset.hi) + BALL       # the ball's farthest edge from the middle
+        x0 = min(rope[0], (rope[0] + rope[1]) / 2 - reach) - MARGIN
+        x1 = max(rope[1], (rope[0] + rope[1]) / 2 + reach) + MARGIN
+        y0 = TOP - MARGIN
+        return (x0, y0, x1 - x0 + (0.0 if self.is_demo else SHIFT), FLOOR + MARGIN / 2 - y0)
 
     def handle_event(self, event: InputEvent) -> None:
         if self.error:
