@@ -80,33 +80,61 @@ def _wrap_cached(text: str, f: pygame.font.Font, width: int) -> tuple[str, ...]:
     return tuple(_wrap(text, f, width))
 
 
+PHRASE_SEP = " | "    # between the phrases of a line ("t = 3.82 s | physics 6.84 ms/step")
+
+
 def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
+    """Phrases (the parts between ' | ') are kept whole where they fit a row: a row breaks
+    between phrases (the separator dropped there), never inside one ("physics" / "2.47
+    ms/step" read as two things); a phrase wider than a row breaks between its words."""
     lines: list[str] = []
     for para in text.split("\n"):
         indent = para[: len(para) - len(para.lstrip())]
-        words: list[str] = []
-        for w in para.split():
-            if words and _is_unit(w) and words[-1][-1:].isdigit():
-                words[-1] += " " + w
-            else:
-                words.append(w)
-        if not words:
+        phrases = [p for p in re.split(r"\s+\|\s+", para.strip()) if p]
+        if not phrases:
             lines.append("")
             continue
-        line = indent + words[0]
-        for w in words[1:] + [None]:
-            while text_width(f, line) > width and len(line) > 1:
-                head, line = _cut(line, f, width)
-                lines.append(head)
-            if w is None:
-                break
-            candidate = line + " " + w
-            if text_width(f, candidate) <= width:
-                line = candidate
-            else:
+        line = ""
+        for phrase in phrases:
+            joined = line + PHRASE_SEP + phrase if line else indent + phrase
+            if text_width(f, joined) <= width:
+                line = joined
+                continue
+            if line:
                 lines.append(line)
-                line = indent + "  " + w if indent else w
+            first = indent if phrase is phrases[0] else (indent + "  " if indent else "")
+            rows = _wrap_words(phrase, f, width, first, indent)
+            lines.extend(rows[:-1])
+            line = rows[-1]
         lines.append(line)
+    return lines
+
+
+def _wrap_words(para: str, f: pygame.font.Font, width: int, first: str, indent: str
+                ) -> list[str]:
+    """One phrase broken between its words (a number keeps its unit), its first row after
+    `first`, the next rows indented under `indent`; a word wider than a row is cut."""
+    lines: list[str] = []
+    words: list[str] = []
+    for w in para.split():
+        if words and _is_unit(w) and words[-1][-1:].isdigit():
+            words[-1] += " " + w
+        else:
+            words.append(w)
+    line = first + words[0]
+    for w in words[1:] + [None]:
+        while text_width(f, line) > width and len(line) > 1:
+            head, line = _cut(line, f, width)
+            lines.append(head)
+        if w is None:
+            break
+        candidate = line + " " + w
+        if text_width(f, candidate) <= width:
+            line = candidate
+        else:
+            lines.append(line)
+            line = indent + "  " + w if indent else w
+    lines.append(line)
     return lines
 
 
