@@ -34,7 +34,7 @@ ACCENT_COLOR = (120, 190, 255)
 # units the wrap keeps on the line of the number before them ('6.84 ms/step', never '6.84' then
 # 'ms/step' on the next line)
 UNITS = {"ms", "s", "ms/step", "J", "px", "px/s", "Hz", "%", "kg", "1/s", "MB", "us",
-         "frames", "steps"}
+         "frames", "steps", "sweeps/step"}
 
 
 def _is_unit(word: str) -> bool:
@@ -80,23 +80,25 @@ def _wrap_cached(text: str, f: pygame.font.Font, width: int) -> tuple[str, ...]:
     return tuple(_wrap(text, f, width))
 
 
-PHRASE_SEP = " | "    # between the phrases of a line ("t = 3.82 s | physics 6.84 ms/step")
+PHRASE_SEP = " | "    # between the phrases of a line ("t = 3.82 s | physics 6.84 ms/step"; or
+                      # two spaces: "deepest 0 px  tunneled 0")
 
 
 def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
-    """Phrases (the parts between ' | ') are kept whole where they fit a row: a row breaks
+    """Phrases (the parts between ' | ' or two spaces) are kept whole where they fit a row: a row breaks
     between phrases (the separator dropped there), never inside one ("physics" / "2.47
     ms/step" read as two things); a phrase wider than a row breaks between its words."""
     lines: list[str] = []
     for para in text.split("\n"):
         indent = para[: len(para) - len(para.lstrip())]
-        phrases = [p for p in re.split(r"\s+\|\s+", para.strip()) if p]
-        if not phrases:
+        parts = re.split(r"(\s+\|\s+| {2,})", para.strip())   # phrases, and what parts them
+        phrases, seps = parts[::2], [PHRASE_SEP] + parts[1::2]
+        if not para.strip():
             lines.append("")
             continue
         line = ""
-        for phrase in phrases:
-            joined = line + PHRASE_SEP + phrase if line else indent + phrase
+        for phrase, sep in zip(phrases, seps):
+            joined = line + sep + phrase if line else indent + phrase
             if text_width(f, joined) <= width:
                 line = joined
                 continue

@@ -1,0 +1,49 @@
+"""Issue 26's last views an instructor would not show a class: the collision scenes' strip (a
+thin rim on a ball in two thirds of empty picture), ... Each test is layout geometry: bounds,
+rectangles, pixels counted; cheap."""
+
+from __future__ import annotations
+
+import numpy as np
+import pygame
+import pytest
+
+from app.draw.view import View
+from scenes import get_scene
+
+
+@pytest.mark.parametrize("name", ["cloth_collisions", "mass_spring_collisions"])
+def test_the_view_closes_in_on_a_strip_draped_on_the_ball_and_a_reset_widens_it(name):
+    """At the start the view holds the strip as wide as it falls (649 px of world for a ball
+    236 across); draped, it held the same and left the strip a rim on a small ball (content
+    share .30 at 1024x768). After 4 s the bounds are at most 60 % as wide, and still hold every
+    particle and the ball; a reset starts wide again."""
+    scene = get_scene(name)({})
+    start = scene.content_bounds()
+    for _ in range(240):
+        scene.advance()
+    x, y, w, h = scene.content_bounds()
+    assert w <= 0.6 * start[2], (start, (x, y, w, h))
+    pts = scene.cloth.x
+    assert x <= pts[0].min() and pts[0].max() <= x + w and y <= pts[1].min() and \
+        pts[1].max() <= y + h
+    ball = scene.obstacles[0]
+    assert x <= ball.cx - ball.radius and ball.cx + ball.radius <= x + w
+    assert y <= ball.cy - ball.radius and ball.cy + ball.radius <= y + h
+    scene.reset()
+    assert scene.content_bounds() == pytest.approx(start)
+
+
+def test_a_strip_seen_edge_on_is_drawn_as_a_band_not_two_hairlines():
+    """Two rows 10 px apart drawn 2 px wide read, draped on a ball, as the ball's rim: each row
+    of a strip is drawn at least STRIP_WIDTH (4) px wide at text scale 1."""
+    from app.draw.cloth_draw import STRIP_WIDTH, draw_cloth
+    scene = get_scene("cloth_collisions")({})
+    c = scene.cloth
+    surface = pygame.Surface((1000, 400))
+    surface.fill((0, 0, 0))
+    draw_cloth(surface, View(1.0, (0.0, 0.0)), c)
+    x = int(round((c.x[0, 0, 3] + c.x[0, 0, 4]) / 2))        # between two rungs
+    y0 = int(c.x[1, 0, 3])
+    column = pygame.surfarray.array3d(surface)[x, y0 - 10: y0 + 25].sum(axis=1)
+    assert np.count_nonzero(column) >= 2 * STRIP_WIDTH, column
