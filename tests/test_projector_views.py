@@ -47,3 +47,31 @@ def test_a_strip_seen_edge_on_is_drawn_as_a_band_not_two_hairlines():
     y0 = int(c.x[1, 0, 3])
     column = pygame.surfarray.array3d(surface)[x, y0 - 10: y0 + 25].sum(axis=1)
     assert np.count_nonzero(column) >= 2 * STRIP_WIDTH, column
+
+
+def test_the_labs_answer_under_an_error_gets_the_room_below_the_message_at_f2():
+    """An exercise stopped by an error shows its message and, below it, the lab's answer in
+    orange. Fitted as a 4:3 box under the HUD, the answer was a ~130 px strip at 1024x768 with
+    F2; now message and answer lay out in all the room the HUD leaves: the answer gets at
+    least a third of the window's height, and starts just below the message."""
+    from app.draw import hud
+    from app.draw.layout import draw_scene, scene_layout
+    from app.draw.text import TEXT
+    from app.exercises.live import exercise_scene
+    from app.scene import SceneError
+    scene = exercise_scene("verlet")({})
+    with pytest.raises(SceneError, match="NotImplementedError"):
+        scene.advance()
+    surface = pygame.Surface((1024, 768))
+    area = pygame.Rect(0, 0, 656, 768)               # the world area left of the F2 panel
+    lines = [hud.Line(scene.title, hud.ACCENT_COLOR), "t = 0.00 s | dt = 1/60 s",
+             *scene.hud_lines()]
+    TEXT.scale = 1.6
+    try:
+        layout = scene_layout(area, scene, lines, strip=False)
+        draw_scene(surface, layout, scene, lines)
+    finally:
+        TEXT.scale = 1.0
+    demo = scene.demo_rect
+    assert demo.height >= 768 // 3 and demo.width >= 0.9 * layout.free.width, (demo, layout)
+    assert demo.top - layout.hud.bottom <= 300       # no empty band above the message

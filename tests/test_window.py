@@ -867,6 +867,9 @@ def test_a_wrapped_line_keeps_a_number_with_its_unit_and_cuts_a_path_that_is_too
     pane = "physics 1.92 ms/step | largest stretch 7.15%"
     assert wrap(pane, f, f.size(pane)[0] * 2 // 3) == ["physics 1.92 ms/step",
                                                        "largest stretch 7.15%"]
+    gaps = "L angle  -14.4 deg   slide  37.7 px (range 0..37.5)"   # two spaces part phrases,
+    assert wrap(gaps, f, f.size(gaps)[0] - 5) == ["L angle  -14.4 deg",  # not a padded number
+                                                  "slide 37.7 px (range 0..37.5)"]
     path = "/work/a-rather-long-folder/clips/mass_spring_cloth-20261124-075704.gif"
     rows = wrap(f"clip saved: {path} (93 frames)", f, 250)
     assert all(f.size(r)[0] <= 250 for r in rows) and path in "".join(rows)

@@ -81,7 +81,9 @@ def _wrap_cached(text: str, f: pygame.font.Font, width: int) -> tuple[str, ...]:
 
 
 PHRASE_SEP = " | "    # between the phrases of a line ("t = 3.82 s | physics 6.84 ms/step"; or
-                      # two spaces: "deepest 0 px  tunneled 0")
+                      # two spaces: "deepest 0 px  tunneled 0", but not before a number a format
+                      # padded: "slide  37.7 px" is one phrase)
+PHRASE_GAP = re.compile(r"(\s+\|\s+| {2,}(?![-+]?\.?\d))")
 
 
 def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
@@ -91,7 +93,7 @@ def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
     lines: list[str] = []
     for para in text.split("\n"):
         indent = para[: len(para) - len(para.lstrip())]
-        parts = re.split(r"(\s+\|\s+| {2,})", para.strip())   # phrases, and what parts them
+        parts = PHRASE_GAP.split(para.strip())    # phrases, and what parts them
         phrases, seps = parts[::2], [PHRASE_SEP] + parts[1::2]
         if not para.strip():
             lines.append("")
