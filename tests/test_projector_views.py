@@ -75,3 +75,24 @@ def test_the_labs_answer_under_an_error_gets_the_room_below_the_message_at_f2():
     demo = scene.demo_rect
     assert demo.height >= 768 // 3 and demo.width >= 0.9 * layout.free.width, (demo, layout)
     assert demo.top - layout.hud.bottom <= 300       # no empty band above the message
+
+
+def test_a_narrow_panes_hud_shrinks_a_little_rather_than_break_a_phrase():
+    """Two panes at 1024x768 with F2 are 325 px wide: 'physics 2.19 ms/step' broke into
+    'physics' / '2.19 ms/step' (issue 26). The HUD's text gives up to a fifth of its size so
+    that no short phrase breaks, and stays larger than the normal size."""
+    from app.draw import hud
+    from app.draw.layout import PHRASE_SHRINK, scene_layout
+    from app.draw.text import TEXT, font
+    scene = get_scene("cloth")({})
+    lines = [hud.Line("A: iterations=2", hud.ACCENT_COLOR),
+             "physics 12.19 ms/step | largest stretch 41.7%"]
+    TEXT.scale = 1.6
+    try:
+        layout = scene_layout(pygame.Rect(0, 164, 325, 604), scene, lines, strip=False)
+        rows = hud.wrap(lines[1], font(layout.hud_text), layout.hud_width - 2 * 8)
+        size = layout.hud_text * TEXT.scale
+    finally:
+        TEXT.scale = 1.0
+    assert "physics 12.19 ms/step" in rows and "largest stretch 41.7%" in rows, rows
+    assert size >= PHRASE_SHRINK * 1.6 * hud.HUD_SIZE - 1 > hud.HUD_SIZE

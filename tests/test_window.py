@@ -870,6 +870,8 @@ def test_a_wrapped_line_keeps_a_number_with_its_unit_and_cuts_a_path_that_is_too
     gaps = "L angle  -14.4 deg   slide  37.7 px (range 0..37.5)"   # two spaces part phrases,
     assert wrap(gaps, f, f.size(gaps)[0] - 5) == ["L angle  -14.4 deg",  # not a padded number
                                                   "slide 37.7 px (range 0..37.5)"]
+    semi = "omega*h = 0.150; spring's limits: 2, RK4 2.83"          # '; ' parts them too
+    assert wrap(semi, f, f.size(semi)[0] - 5) == ["omega*h = 0.150;", "spring's limits: 2, RK4 2.83"]
     path = "/work/a-rather-long-folder/clips/mass_spring_cloth-20261124-075704.gif"
     rows = wrap(f"clip saved: {path} (93 frames)", f, 250)
     assert all(f.size(r)[0] <= 250 for r in rows) and path in "".join(rows)

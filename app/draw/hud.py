@@ -3,9 +3,8 @@ overlay (the scene menu: app/draw/menu.py).
 
 Everything here draws plain text on dark boxes, readable from the back of a classroom; the layout
 (app/draw/layout.py) keeps the HUD and the metrics strip off the scene's content. Sizes are at text
-scale 1; `app.draw.text.TEXT.scale` (the F2 large-text switch) enlarges them all. Text is wrapped,
-never cut with "...": the help overlay scrolls instead. No state lives here: the window decides
-what to show.
+scale 1; `app.draw.text.TEXT.scale` (the F2 large-text switch) enlarges them all. Text is wrapped
+between phrases, never cut with "...": the help overlay scrolls. No state lives here.
 """
 
 from __future__ import annotations
@@ -80,42 +79,39 @@ def _wrap_cached(text: str, f: pygame.font.Font, width: int) -> tuple[str, ...]:
     return tuple(_wrap(text, f, width))
 
 
-PHRASE_SEP = " | "    # between the phrases of a line ("t = 3.82 s | physics 6.84 ms/step"; or
-                      # two spaces: "deepest 0 px  tunneled 0", but not before a number a format
-                      # padded: "slide  37.7 px" is one phrase)
-PHRASE_GAP = re.compile(r"(\s+\|\s+| {2,}(?![-+]?\.?\d))")
+# what parts the phrases of a line: ' | ', '; ' (its ';' kept) or two spaces, unless a number a
+# format padded follows ("slide  37.7 px" is one phrase)
+PHRASE_GAP = re.compile(r"(\s+\|\s+| {2,}(?![-+]?\.?\d)|; )")
 
 
 def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
-    """Phrases (the parts between ' | ' or two spaces) are kept whole where they fit a row: a row breaks
-    between phrases (the separator dropped there), never inside one ("physics" / "2.47
-    ms/step" read as two things); a phrase wider than a row breaks between its words."""
+    """Phrases are kept whole where they fit a row: a row breaks between phrases (a ' | '
+    dropped there), never inside one ("physics" / "2.47 ms/step" read as two things); a
+    phrase wider than a row breaks between its words."""
     lines: list[str] = []
     for para in text.split("\n"):
         indent = para[: len(para) - len(para.lstrip())]
-        parts = PHRASE_GAP.split(para.strip())    # phrases, and what parts them
-        phrases, seps = parts[::2], [PHRASE_SEP] + parts[1::2]
+        parts = PHRASE_GAP.split(para.strip())
         if not para.strip():
             lines.append("")
             continue
         line = ""
-        for phrase, sep in zip(phrases, seps):
+        for k, (phrase, sep) in enumerate(zip(parts[::2], [""] + parts[1::2])):
             joined = line + sep + phrase if line else indent + phrase
             if text_width(f, joined) <= width:
                 line = joined
                 continue
             if line:
-                lines.append(line)
-            first = indent if phrase is phrases[0] else (indent + "  " if indent else "")
-            rows = _wrap_words(phrase, f, width, first, indent)
+                lines.append(line + (";" if sep == "; " else ""))
+            rows = _wrap_words(phrase, f, width, indent if k == 0 else
+                               (indent + "  " if indent else ""), indent)
             lines.extend(rows[:-1])
             line = rows[-1]
         lines.append(line)
     return lines
 
 
-def _wrap_words(para: str, f: pygame.font.Font, width: int, first: str, indent: str
-                ) -> list[str]:
+def _wrap_words(para: str, f: pygame.font.Font, width: int, first: str, indent: str) -> list:
     """One phrase broken between its words (a number keeps its unit), its first row after
     `first`, the next rows indented under `indent`; a word wider than a row is cut."""
     lines: list[str] = []
