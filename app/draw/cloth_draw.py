@@ -207,15 +207,13 @@ STRIP_ROWS = 3          # a cloth this few particles across is a strip seen edge
                         # collision scenes' two rows, the trampoline's band)
 STRIP_WIDTH = 4         # its rods this wide at text scale 1 (2 px lines draped on a ball read
                         # as the ball's rim, issue 26), up to STRIP_FILL of its rows' gap
-
-
-STRIP_FILL = 0.6
+STRIP_FILL = 0.4        # when zoomed in (at most twice STRIP_WIDTH)
 
 
 def strip_width(gap: float) -> int:
     """The width of a strip's rods whose rows are `gap` screen pixels apart: STRIP_WIDTH (grown
     with F2), more when zoomed in (up to STRIP_FILL of the gap, so the rows stay two lines)."""
-    return max(px(STRIP_WIDTH), min(int(STRIP_FILL * gap), 3 * px(STRIP_WIDTH)))
+    return max(px(STRIP_WIDTH), min(int(STRIP_FILL * gap), 2 * px(STRIP_WIDTH)))
 
 
 SEAM_EVERY = 4                  # a filled mesh shows every 4th row and column as a seam
