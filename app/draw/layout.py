@@ -169,10 +169,10 @@ PHRASE_SHRINK = 0.8    # on one row: the HUD's text shrinks by up to this factor
 def longest_phrase(lines: list, size: int) -> int:
     """The width in pixels, at text `size`, of the widest short phrase of `lines` (at most
     PHRASE_WORDS words between the gaps hud.wrap breaks at: "physics 2.19 ms/step")."""
-    from app.draw import hud
     from app.draw.text import font, text_width
+    from app.draw.wrap import PHRASE_GAP
     f = font(size)
-    phrases = (p for x in lines for p in hud.PHRASE_GAP.split(getattr(x, "text", str(x)))[::2])
+    phrases = (p for x in lines for p in PHRASE_GAP.split(getattr(x, "text", str(x)))[::2])
     return max((text_width(f, p.strip()) for p in phrases
                 if 0 < len(p.split()) <= PHRASE_WORDS), default=0)
 
