@@ -115,10 +115,17 @@ def differing(scenes: Sequence[Scene]) -> list[str]:
 
 def labels(scenes: Sequence[Scene]) -> list[str]:
     """Each pane's label: what differs ('iterations=2, substeps=1': a space after each comma,
-    so a narrow pane can wrap it)."""
+    so a narrow pane can wrap it). A setting a pane's preset sets (Scene.presets: its
+    material's mass, tension, ...) is left out: 'material=silk' says it."""
     names = differing(scenes)
-    return [", ".join(f"{n}={_short(s.settings()[n])}" for n in names) or "(same settings)"
-            for s in scenes]
+    out = []
+    for s in scenes:
+        now = s.settings()
+        implied = {n for key, sets in s.presets.items() if now.get(key, "custom") != "custom"
+                   for n in sets}
+        out.append(", ".join(f"{n}={_short(now[n])}" for n in names if n not in implied)
+                   or "(same settings)")
+    return out
 
 
 def as_variant(settings: Mapping[str, Any]) -> str:

@@ -154,6 +154,8 @@ class Scene:
     background: tuple[int, int, int] = (22, 24, 30)
     metrics_box: bool = True    # False: the scene draws its own table, the window shows no strip
     aliases: dict[str, str] = {}  # other names `--set` accepts, e.g. {"bend": "bending"}
+    presets: dict[str, tuple[str, ...]] = {}   # a setting that, at any value but "custom", sets
+                                   # these (a material's sliders): a comparison's labels omit them
     tries: tuple[Try, ...] = ()   # "try this" cards: one-click experiments from the help text
     comparisons: tuple[Try, ...] = ()   # cards that are comparisons (Try.compare): the panel's
                                         # "Compare side by side"; --try finds them too

@@ -128,6 +128,7 @@ class MassSpringClothScene(MassSpringContact, MassSpringWords, Scene):
     name = "mass_spring_cloth"
     title = "Mass-spring cloth"
     category = "Cloth"
+    presets = {"material": MATERIAL_KEYS}
     params = (
         Param("material", "cotton", str, choices=MATERIAL_CHOICES,
               help="a Blender cloth preset (sets the sliders below); custom: your own values",

@@ -55,9 +55,13 @@ class MassSpringCollisionsScene(MassSpringClothScene):
     )
 
     def content_bounds(self) -> tuple[float, float, float, float]:
-        """The strip, room for its ends to hang (half its length) and every obstacle."""
+        """The strip, room for its ends to hang (half its length) and every obstacle, as it
+        starts; then closing in on the strip and the obstacles as it settles (app/draw/follow.py:
+        draped on the ball, the strip was a thin rim in two thirds of empty picture)."""
+        from app.draw.follow import follow
         c = self.cloth
         cw = c.spacing * (c.cols - 1)
         ox, oy = c.rest_x[0]
-        return self.contact_bounds((ox - 0.05 * cw, oy - 2 * c.spacing, 1.1 * cw,
-                                    c.spacing * (c.rows + 1) + 0.5 * cw))
+        return follow(self, self.contact_bounds((ox - 0.05 * cw, oy - 2 * c.spacing, 1.1 * cw,
+                                                 c.spacing * (c.rows + 1) + 0.5 * cw)),
+                      c.x, c.spacing)

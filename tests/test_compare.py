@@ -95,6 +95,19 @@ def test_compare_needs_one_scene(capsys):
     assert "--compare needs --scene NAME" in capsys.readouterr().err
 
 
+def test_a_material_label_leaves_out_the_sliders_its_preset_sets():
+    """Issue 26: four materials tagged every pane "material=cotton, mass=0.3, tension=15,
+    compression=15, shear_stiffness=15, ..." (six lines a pane at 1024x768 with F2, and the
+    header listed all seven names); a slider set apart from its preset is still named."""
+    from scenes import get_scene
+    cls = get_scene("mass_spring_cloth")
+    scenes = [cls({"material": m}) for m in ("cotton", "silk", "denim", "leather")]
+    assert labels(scenes) == ["material=cotton", "material=silk", "material=denim",
+                              "material=leather"]
+    scenes = [cls({"material": "cotton"}), cls({"material": "cotton", "tension": 40})]
+    assert labels(scenes) == ["material=cotton", "material=custom, tension=40"]
+
+
 def test_labels_say_what_differs_and_variants_keep_their_text():
     v = [parse_variant("substeps=1,iterations=10"), parse_variant("substeps=10, iterations=1")]
     overrides = resolve_variants(ClothScene, {"rows": 8}, v)

@@ -860,7 +860,23 @@ def test_a_wrapped_line_keeps_a_number_with_its_unit_and_cuts_a_path_that_is_too
     f = font(28)
     text = "t = 3.82 s | dt = 1/60 s | physics 6.84 ms/step"
     room = f.size(text)[0] - 5                 # the unit no longer fits on the first row
-    assert wrap(text, f, room) == ["t = 3.82 s | dt = 1/60 s | physics", "6.84 ms/step"]
+    # rows break between phrases (issue 26: "physics" / "2.47 ms/step" in a narrow pane)
+    assert wrap(text, f, room) == ["t = 3.82 s | dt = 1/60 s", "physics 6.84 ms/step"]
+    one = "physics 6.84 ms/step"                  # a phrase wider than its row: between words,
+    assert wrap(one, f, f.size(one)[0] - 5) == ["physics", "6.84 ms/step"]   # the unit kept
+    pane = "physics 1.92 ms/step | largest stretch 7.15%"
+    assert wrap(pane, f, f.size(pane)[0] * 2 // 3) == ["physics 1.92 ms/step",
+                                                       "largest stretch 7.15%"]
+    gaps = "L angle  -14.4 deg   slide  37.7 px (range 0..37.5)"   # two spaces part phrases,
+    assert wrap(gaps, f, f.size(gaps)[0] - 5) == ["L angle  -14.4 deg",  # not a padded number
+                                                  "slide 37.7 px (range 0..37.5)"]
+    eq = "cotton, implicit Euler: h = 16.667 ms = 33x symplectic Euler's limit"
+    assert not any(r.endswith(("h =", "=")) for r in wrap(eq, f, f.size(eq)[0] // 2))
+    sweeps = "2 iterations x 1 substeps = 2 sweeps/step"            # '=' after a count's noun
+    assert wrap(sweeps, f, f.size(sweeps)[0] - 5) == ["2 iterations x 1 substeps",
+                                                      "= 2 sweeps/step"]
+    semi = "omega*h = 0.150; spring's limits: 2, RK4 2.83"          # '; ' parts them too
+    assert wrap(semi, f, f.size(semi)[0] - 5) == ["omega*h = 0.150;", "spring's limits: 2, RK4 2.83"]
     path = "/work/a-rather-long-folder/clips/mass_spring_cloth-20261124-075704.gif"
     rows = wrap(f"clip saved: {path} (93 frames)", f, 250)
     assert all(f.size(r)[0] <= 250 for r in rows) and path in "".join(rows)

@@ -173,12 +173,15 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     (computed here otherwise)."""
     pts = view.pts(np.moveaxis(cloth.x, 0, -1))              # (rows, cols, 2) screen points
     width = px(2) if view.len(cloth.spacing) >= 6 else px(1)     # 2 px: seen from the back row
+    strip = cloth.rows <= STRIP_ROWS
+    if strip:                    # a strip seen edge-on: its rods wide enough to read as a band
+        width = strip_width(view.len(cloth.spacing))
     horizontal, vertical = cloth.sets["structural"].families
     if stretch is None:
         stretch = cloth.stretch(horizontal), cloth.stretch(vertical)
     b_h = strain_buckets(stretch[0], horizontal.alive)
     b_v = strain_buckets(stretch[1], vertical.alive)
-    if view.len(cloth.spacing) < FILL_BELOW and \
+    if view.len(cloth.spacing) < FILL_BELOW and not strip and \
             raster_cells(surface, pts, cell_buckets(b_h, b_v)):
         _draw_seams(surface, pts, b_h, b_v)
         _draw_marks(surface, view, cloth, pts, hover)
@@ -188,7 +191,7 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
     # screen), three per dot for 2 px lines
     dots = (b_h.size + b_v.size) * (view.len(cloth.spacing) + 1) * (3 if width >= 2 else 1)
     drawn = False
-    if dots < DOTS_PER_CALL * runs:
+    if dots < DOTS_PER_CALL * runs and not strip:           # (the raster draws 1-2 px only)
         a = np.concatenate([pts[:, :-1].reshape(-1, 2), pts[:-1].reshape(-1, 2)])
         b = np.concatenate([pts[:, 1:].reshape(-1, 2), pts[1:].reshape(-1, 2)])
         k = np.concatenate([b_h.ravel(), b_v.ravel()])
@@ -198,6 +201,19 @@ def draw_cloth(surface: pygame.Surface, view, cloth: Cloth,
         draw_runs(surface, pts.tolist(), b_h, width)
         draw_runs(surface, pts.transpose(1, 0, 2).tolist(), b_v.T, width)
     _draw_marks(surface, view, cloth, pts, hover)
+
+
+STRIP_ROWS = 3          # a cloth this few particles across is a strip seen edge-on (the
+                        # collision scenes' two rows, the trampoline's band)
+STRIP_WIDTH = 4         # its rods this wide at text scale 1 (2 px lines draped on a ball read
+                        # as the ball's rim, issue 26), up to STRIP_FILL of its rows' gap
+STRIP_FILL = 0.4        # when zoomed in (at most twice STRIP_WIDTH)
+
+
+def strip_width(gap: float) -> int:
+    """The width of a strip's rods whose rows are `gap` screen pixels apart: STRIP_WIDTH (grown
+    with F2), more when zoomed in (up to STRIP_FILL of the gap, so the rows stay two lines)."""
+    return max(px(STRIP_WIDTH), min(int(STRIP_FILL * gap), 2 * px(STRIP_WIDTH)))
 
 
 SEAM_EVERY = 4                  # a filled mesh shows every 4th row and column as a seam

@@ -3,20 +3,18 @@ overlay (the scene menu: app/draw/menu.py).
 
 Everything here draws plain text on dark boxes, readable from the back of a classroom; the layout
 (app/draw/layout.py) keeps the HUD and the metrics strip off the scene's content. Sizes are at text
-scale 1; `app.draw.text.TEXT.scale` (the F2 large-text switch) enlarges them all. Text is wrapped,
-never cut with "...": the help overlay scrolls instead. No state lives here: the window decides
-what to show.
+scale 1; `app.draw.text.TEXT.scale` (the F2 large-text switch) enlarges them all. Text is wrapped
+between phrases, never cut with "...": the help overlay scrolls. No state lives here.
 """
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
-from functools import lru_cache
 
 import pygame
 
 from app.draw.text import TEXT, font, rendered, text_width
+from app.draw.wrap import PHRASE_GAP, UNITS, longest_word, pack, wrap  # noqa: F401 (importers)
 from app.units import fmt_number  # noqa: F401  (the HUD's number format; importers use it)
 
 HUD_SIZE = 28            # pygame's default font at 28: glyphs ~20 px high, 21 px lines
@@ -29,96 +27,6 @@ DIM_COLOR = (170, 178, 190)
 WARN_COLOR = (255, 200, 90)
 ERROR_COLOR = (255, 120, 110)
 ACCENT_COLOR = (120, 190, 255)
-
-
-# units the wrap keeps on the line of the number before them ('6.84 ms/step', never '6.84' then
-# 'ms/step' on the next line)
-UNITS = {"ms", "s", "ms/step", "J", "px", "px/s", "Hz", "%", "kg", "1/s", "MB", "us",
-         "frames", "steps"}
-
-
-def _is_unit(word: str) -> bool:
-    return word.rstrip(",;:.)") in UNITS
-
-
-def _cut(text: str, f: pygame.font.Font, width: int) -> tuple[str, str]:
-    """Split a line holding one word wider than `width` (a file's path, a setting): the longest
-    head that fits, cut after its last '/' if there is one in its second half, else after its
-    last ',' or '=' ("integrator=" / "implicit_euler", never "implicit_eul" / "er")."""
-    n = 1
-    while n < len(text) and f.size(text[: n + 1])[0] <= width:
-        n += 1
-    if n >= len(text):
-        return text, ""
-    slash = max(text.rfind("/", 0, n), text.rfind("\\", 0, n))
-    joint = max(text.rfind(",", 0, n), text.rfind("=", 0, n))
-    if slash + 1 > n // 2:
-        n = slash + 1
-    elif joint > 0:
-        n = joint + 1
-    return text[:n], text[n:]
-
-
-def longest_word(text: str, size: int = HUD_SIZE) -> int:
-    """The width in pixels, at text `size`, of the widest piece `wrap` keeps whole: a word, or
-    a setting's part after '=' or ',' ("integrator=" / "implicit_euler")."""
-    f = font(size)
-    pieces = re.split(r"\s+|(?<=[=,])", text)
-    return max((f.size(p)[0] for p in pieces if p), default=0)
-
-
-def wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
-    """Split `text` into lines no wider than `width` pixels (paragraph breaks kept). A number
-    keeps its unit on its line; a word wider than the line (a file's path) is cut, after a '/'
-    where it can be. Remembered: most of a HUD's text is the same frame after frame, and
-    measuring it word by word cost a 4-pane frame ~1,300 font measurements (bench frames)."""
-    return list(_wrap_cached(text, f, width))
-
-
-@lru_cache(maxsize=4096)
-def _wrap_cached(text: str, f: pygame.font.Font, width: int) -> tuple[str, ...]:
-    return tuple(_wrap(text, f, width))
-
-
-def _wrap(text: str, f: pygame.font.Font, width: int) -> list[str]:
-    lines: list[str] = []
-    for para in text.split("\n"):
-        indent = para[: len(para) - len(para.lstrip())]
-        words: list[str] = []
-        for w in para.split():
-            if words and _is_unit(w) and words[-1][-1:].isdigit():
-                words[-1] += " " + w
-            else:
-                words.append(w)
-        if not words:
-            lines.append("")
-            continue
-        line = indent + words[0]
-        for w in words[1:] + [None]:
-            while text_width(f, line) > width and len(line) > 1:
-                head, line = _cut(line, f, width)
-                lines.append(head)
-            if w is None:
-                break
-            candidate = line + " " + w
-            if text_width(f, candidate) <= width:
-                line = candidate
-            else:
-                lines.append(line)
-                line = indent + "  " + w if indent else w
-        lines.append(line)
-    return lines
-
-
-def pack(items: list[str], f: pygame.font.Font, width: int, sep: str = "  |  ") -> list[str]:
-    """Join items with `sep` into lines no wider than `width`, never splitting an item."""
-    lines: list[str] = []
-    for item in items:
-        if lines and text_width(f, lines[-1] + sep + item) <= width:
-            lines[-1] += sep + item
-        else:
-            lines.append(item)
-    return lines
 
 
 @dataclass

@@ -142,9 +142,14 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
         size = min(hud.HUD_SIZE, text_size or hud.HUD_SIZE)   # large text in a small window:
         w, h = hud.box_size(lines, int(round(size)), max_width=width)   # the HUD gives back some
         share = HUD_SHARE_DETAILS if strip and area.height >= DETAILS_TALL else HUD_SHARE
-        # ... as it does where the tag's longest word ("symplectic_euler") would be cut
+        # ... as it does where the tag's longest word ("symplectic_euler") would be cut, and
+        # by up to PHRASE_SHRINK where a short phrase would break ("physics" / "2.19 ms/step"
+        # in one of two panes at 1024x768 with F2)
+        start = size
         while (h > share * area.height or hud.longest_word(tag, int(round(size))) + 2 * 8 >
-               width) and size * TEXT.scale > hud.HUD_SIZE + 1:
+               width or (size > PHRASE_SHRINK * start and
+                         longest_phrase(lines, int(round(size))) + 2 * 8 + 2 > width)) \
+                and size * TEXT.scale > hud.HUD_SIZE + 1:
             size = max(hud.HUD_SIZE / TEXT.scale, size * 0.9)
             w, h = hud.box_size(lines, int(round(size)), max_width=width)
         strip_h = hud.strip_height(scene, area, int(round(size))) if strip else 0
@@ -155,6 +160,21 @@ def scene_layout(area: pygame.Rect, scene, lines: list | None, room: tuple[int, 
     if best.filled:                     # the room chosen is the one the scene lays out in
         scene.fit_to((best.bounds[2], best.bounds[3]))
     return best
+
+
+PHRASE_WORDS = 4       # a phrase of at most this many words (a label and its value) is kept
+PHRASE_SHRINK = 0.8    # on one row: the HUD's text shrinks by up to this factor for it
+
+
+def longest_phrase(lines: list, size: int) -> int:
+    """The width in pixels, at text `size`, of the widest short phrase of `lines` (at most
+    PHRASE_WORDS words between the gaps hud.wrap breaks at: "physics 2.19 ms/step")."""
+    from app.draw.text import font, text_width
+    from app.draw.wrap import PHRASE_GAP
+    f = font(size)
+    phrases = (p for x in lines for p in PHRASE_GAP.split(getattr(x, "text", str(x)))[::2])
+    return max((text_width(f, p.strip()) for p in phrases
+                if 0 < len(p.split()) <= PHRASE_WORDS), default=0)
 
 
 def _better(a: Layout, b: Layout) -> bool:

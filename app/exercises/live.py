@@ -177,7 +177,19 @@ class StudentCode:
             self.fail(e, "measuring code")   # held: the next step raises it (the HUD reads
             return {}                        # metrics while drawing, where no raise may go)
 
+    @property
+    def content_fills(self) -> bool:
+        """While an error is held, the message and the lab's answer below it lay themselves out
+        in all the room the window gives (a fitted 4:3 box left the answer a ~130 px strip
+        under a large-text message at 1024x768, issue 26)."""
+        return self.error is not None
+
+    def fit_to(self, size: tuple[float, float]) -> None:
+        self.error_room = size
+
     def content_bounds(self) -> tuple[float, float, float, float]:
+        if self.error and getattr(self, "error_room", None):
+            return (0.0, 0.0, *self.error_room)
         if self.error:
             demo = self.demo_scene()
             if demo is None:            # the world may not exist: the whole world area
@@ -271,10 +283,8 @@ class StudentCode:
         x, y, w, h = self.content_bounds()
         (left, top), (right, bottom) = view.pt((x, y)), view.pt((x + w, y + h))
         lines = [Line(t, ERROR) for t in self.error.splitlines()]
-        demo = self.demo_scene()
-        if demo is not None:
-            lines.append(Line("Below, orange: the lab's answer, what yours should do once "
-                              "written.", GHOST))
+        demo = self.demo_scene()          # (the HUD says what the orange answer is: its two
+                                          # lines here too left the answer a strip at F2)
         box = text_box(surface, lines, (left, top), max_width=max(200, right - left))
         if demo is None:
             return
@@ -282,6 +292,7 @@ class StudentCode:
         demo = self.demo_scene()
         area = pygame.Rect(left, box.bottom + 8, right - left, bottom - box.bottom - 8)
         area = area.clip(surface.get_clip() or surface.get_rect())
+        self.demo_rect = area           # (where the answer was drawn last: tests measure it)
         if demo is None or area.width < 40 or area.height < 40:
             return
         # drawn on its own layer and tinted orange, whatever colours the scene draws with:

@@ -1,0 +1,98 @@
+"""Issue 26's last views an instructor would not show a class: the collision scenes' strip (a
+thin rim on a ball in two thirds of empty picture), ... Each test is layout geometry: bounds,
+rectangles, pixels counted; cheap."""
+
+from __future__ import annotations
+
+import numpy as np
+import pygame
+import pytest
+
+from app.draw.view import View
+from scenes import get_scene
+
+
+@pytest.mark.parametrize("name", ["cloth_collisions", "mass_spring_collisions"])
+def test_the_view_closes_in_on_a_strip_draped_on_the_ball_and_a_reset_widens_it(name):
+    """At the start the view holds the strip as wide as it falls (649 px of world for a ball
+    236 across); draped, it held the same and left the strip a rim on a small ball (content
+    share .30 at 1024x768). After 4 s the bounds are at most 60 % as wide, and still hold every
+    particle and the ball; a reset starts wide again."""
+    scene = get_scene(name)({})
+    start = scene.content_bounds()
+    for _ in range(240):
+        scene.advance()
+    x, y, w, h = scene.content_bounds()
+    assert w <= 0.6 * start[2], (start, (x, y, w, h))
+    pts = scene.cloth.x
+    assert x <= pts[0].min() and pts[0].max() <= x + w and y <= pts[1].min() and \
+        pts[1].max() <= y + h
+    ball = scene.obstacles[0]
+    assert x <= ball.cx - ball.radius and ball.cx + ball.radius <= x + w
+    assert y <= ball.cy - ball.radius and ball.cy + ball.radius <= y + h
+    scene.reset()
+    assert scene.content_bounds() == pytest.approx(start)
+
+
+def test_a_strip_seen_edge_on_is_drawn_as_a_band_not_two_hairlines():
+    """Two rows 10 px apart drawn 2 px wide read, draped on a ball, as the ball's rim: each row
+    of a strip is drawn at least STRIP_WIDTH (4) px wide at text scale 1."""
+    from app.draw.cloth_draw import STRIP_WIDTH, draw_cloth
+    scene = get_scene("cloth_collisions")({})
+    c = scene.cloth
+    surface = pygame.Surface((1000, 400))
+    surface.fill((0, 0, 0))
+    draw_cloth(surface, View(1.0, (0.0, 0.0)), c)
+    x = int(round((c.x[0, 0, 3] + c.x[0, 0, 4]) / 2))        # between two rungs
+    y0 = int(c.x[1, 0, 3])
+    column = pygame.surfarray.array3d(surface)[x, y0 - 10: y0 + 25].sum(axis=1)
+    assert np.count_nonzero(column) >= 2 * STRIP_WIDTH, column
+
+
+def test_the_labs_answer_under_an_error_gets_the_room_below_the_message_at_f2():
+    """An exercise stopped by an error shows its message and, below it, the lab's answer in
+    orange. Fitted as a 4:3 box under the HUD, the answer was a ~130 px strip at 1024x768 with
+    F2; now message and answer lay out in all the room the HUD leaves: the answer gets at
+    least a third of the window's height, and starts just below the message."""
+    from app.draw import hud
+    from app.draw.layout import draw_scene, scene_layout
+    from app.draw.text import TEXT
+    from app.exercises.live import exercise_scene
+    from app.scene import SceneError
+    scene = exercise_scene("verlet")({})
+    with pytest.raises(SceneError, match="NotImplementedError"):
+        scene.advance()
+    surface = pygame.Surface((1024, 768))
+    area = pygame.Rect(0, 0, 656, 768)               # the world area left of the F2 panel
+    lines = [hud.Line(scene.title, hud.ACCENT_COLOR), "t = 0.00 s | dt = 1/60 s",
+             *scene.hud_lines()]
+    TEXT.scale = 1.6
+    try:
+        layout = scene_layout(area, scene, lines, strip=False)
+        draw_scene(surface, layout, scene, lines)
+    finally:
+        TEXT.scale = 1.0
+    demo = scene.demo_rect
+    assert demo.height >= 768 // 3 and demo.width >= 0.9 * layout.free.width, (demo, layout)
+    assert demo.top - layout.hud.bottom <= 300       # no empty band above the message
+
+
+def test_a_narrow_panes_hud_shrinks_a_little_rather_than_break_a_phrase():
+    """Two panes at 1024x768 with F2 are 325 px wide: 'physics 2.19 ms/step' broke into
+    'physics' / '2.19 ms/step' (issue 26). The HUD's text gives up to a fifth of its size so
+    that no short phrase breaks, and stays larger than the normal size."""
+    from app.draw import hud
+    from app.draw.layout import PHRASE_SHRINK, scene_layout
+    from app.draw.text import TEXT, font
+    scene = get_scene("cloth")({})
+    lines = [hud.Line("A: iterations=2", hud.ACCENT_COLOR),
+             "physics 12.19 ms/step | largest stretch 41.7%"]
+    TEXT.scale = 1.6
+    try:
+        layout = scene_layout(pygame.Rect(0, 164, 325, 604), scene, lines, strip=False)
+        rows = hud.wrap(lines[1], font(layout.hud_text), layout.hud_width - 2 * 8)
+        size = layout.hud_text * TEXT.scale
+    finally:
+        TEXT.scale = 1.0
+    assert "physics 12.19 ms/step" in rows and "largest stretch 41.7%" in rows, rows
+    assert size >= PHRASE_SHRINK * 1.6 * hud.HUD_SIZE - 1 > hud.HUD_SIZE
