@@ -165,6 +165,54 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
     return dmin < -depth, t
 
 
+def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy: np.ndarray,
+                d1: np.ndarray, n1x: np.ndarray, n1y: np.ndarray, tolerance: float
+                ) -> tuple[np.ndarray, np.ndarray, int]:
+    """swept(past_middle=True) against one obstacle, for paths a -> a + v whose end's signed
+    distance d1 and outward normal n1 the caller has already (the projection needs them too):
+    (back, t, through). `back`: the indices of the paths to put back where they entered: those
+    with both ends outside that went more than `tolerance` deep (`through` counts them), and
+    those that came in from outside past the middle (end inside, longer than the half width);
+    t: where each of them first met the surface (Obstacle.entry), 0..1 along v.
+
+    A third bound joins the two of the module docstring: d is convex, so along the path it lies
+    above its tangent at the end, d(t) >= d1 - (1 - t) n1 . v; a path whose end is outside can
+    only dip below -tolerance if d1 - n1 . v does. A particle sliding along a surface (n1 . v
+    about 0) is dismissed by it; the length bound alone let every sliding particle longer than
+    2 sqrt(2) tolerance through to the exact test (most of a cloth heaped on a tilted box)."""
+    none = np.zeros(0, np.intp), np.zeros(0), 0
+    shortest = shortest_dip(ob, tolerance)
+    if isinstance(ob, HalfPlane):
+        return none                                      # d linear along a path: nothing
+    half = ob.half_width()
+    length2 = vx * vx + vy * vy
+    outside = d1 >= 0
+    maybe = np.where(outside, (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy)
+                                                                   < -tolerance),
+                     length2 > half * half)
+    k = maybe.nonzero()[0]
+    if k.size == 0:
+        return none
+    d0 = ob.distance(ax[k], ay[k])
+    d1k, length, out = d1[k], np.sqrt(length2[k]), outside[k]
+    dips = (d0 >= 0) & out & ((d0 + d1k - length) / 2 < -tolerance)
+    t_in = np.ones(k.size)
+    if dips.any():                                       # the exact test, for the few left
+        ids = dips.nonzero()[0]
+        p0 = np.column_stack((ax[k[ids]], ay[k[ids]]))
+        p1 = p0 + np.column_stack((vx[k[ids]], vy[k[ids]]))
+        exact, t_dip = dips_below(ob, p0, p1, tolerance)
+        dips[ids[~exact]] = False
+        t_in[ids] = t_dip
+    back = (dips | ((d0 >= 0) & ~out & (length > half))).nonzero()[0]
+    if back.size == 0:
+        return none
+    kb = k[back]
+    # where the path first met the surface: the crossing before its deepest point
+    t = np.minimum(ob.entry(ax[kb], ay[kb], vx[kb], vy[kb]), t_in[back])
+    return kb, t, int(np.count_nonzero(dips))
+
+
 def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
           movable: np.ndarray | None = None, find_entry: bool = True,
           past_middle: bool = False) -> Sweep:
@@ -282,4 +330,5 @@ def swept_xy(obstacles, ax_: np.ndarray, ay_: np.ndarray, bx_: np.ndarray, by_: 
 
 
 __all__ = ["path_min_distance", "dips_below", "shortest_dip", "Sweep", "swept", "swept_xy",
+           "through_one",
            "GOLDEN"]

@@ -1,0 +1,90 @@
+"""The cloth's fast contact paths find what the plain ones find: the fused tunnelling test and
+projection (app/physics/cloth_contact.py, tunnelling.through_one) against swept() + project(),
+and the self-collision grid against all pairs. Seeded random states; cheap (well under 1 s)."""
+
+import numpy as np
+import pytest
+
+from app.physics.cloth import Cloth
+from app.physics.cloth_contact import ContactState, _tunnel_and_project, close_pairs
+from app.physics.obstacles import Box, Circle, Segment, floor, project
+from app.physics.tunnelling import swept, through_one
+
+SHAPES = [Circle(0.0, 0.0, 30.0), Box(5.0, -3.0, 40.0, 6.0, 0.35), Segment(-40, 10, 35, -5, 2.0)]
+
+
+def random_paths(seed, n=4000):
+    """Paths of every length (0.01 to 200 px) and direction around the shapes: a few hundred
+    go through one, cut a corner, slide along a face or end past its middle."""
+    rng = np.random.default_rng(seed)
+    a = rng.uniform(-80, 80, (n, 2))
+    length = 10 ** rng.uniform(-2, 2.3, n)
+    angle = rng.uniform(0, 2 * np.pi, n)
+    b = a + length[:, None] * np.column_stack((np.cos(angle), np.sin(angle)))
+    return a, b
+
+
+@pytest.mark.parametrize("ob", SHAPES, ids=lambda ob: ob.kind)
+def test_through_one_finds_what_swept_finds(ob):
+    tolerance = 1.0
+    for seed in range(3):
+        a, b = random_paths(seed)
+        sw = swept([ob], a, b, tolerance, past_middle=True)
+        d1, n1x, n1y = ob.distance_xy(b[:, 0], b[:, 1])
+        back, t, through = through_one(ob, a[:, 0], a[:, 1], b[:, 0] - a[:, 0],
+                                       b[:, 1] - a[:, 1], d1, n1x, n1y, tolerance)
+        expected = np.flatnonzero(sw.mask | sw.deep)
+        assert expected.size > 20 and sw.count > 5          # the test has cases to check
+        assert np.array_equal(np.sort(back), expected) and through == sw.count
+        entry = a[back] + t[:, None] * (b[back] - a[back])
+        assert np.allclose(entry, sw.entry[back], atol=1e-9)
+
+
+def reference(obstacles, start, x, movable, margin, tolerance):
+    """The plain pipeline: every path through an obstacle put back where it entered (swept),
+    then every particle projected (project)."""
+    sw = swept(obstacles, start.T, x, tolerance, movable, past_middle=True)
+    back = sw.mask | sw.deep
+    x[back] = sw.entry[back]
+    return project(obstacles, x, margin, movable), sw.count
+
+
+@pytest.mark.parametrize("ob", SHAPES[:2] + [floor(40.0)], ids=lambda ob: ob.kind)
+def test_fused_tunnelling_and_projection_match_the_plain_pipeline(ob):
+    for seed in range(3):
+        a, b = random_paths(10 + seed)
+        movable = np.random.default_rng(seed).uniform(size=len(a)) > 0.1
+        b[~movable] = a[~movable]
+        x_ref, x_new = b.copy(), b.copy()
+        contacts, count = reference([ob], a.T.copy(), x_ref, movable, 0.25, 1.0)
+        st = ContactState(obstacles=[ob])
+        fused = _tunnel_and_project(st, a.T.copy(), x_new, movable)
+        assert contacts.count > 100
+        assert np.allclose(x_new, x_ref, atol=1e-9) and st.tunneled == count
+        assert np.array_equal(fused.mask, contacts.mask)
+        assert np.allclose(fused.depth, contacts.depth, atol=1e-9)
+        assert np.allclose(fused.normal, contacts.normal, atol=1e-9)
+
+
+def crumpled_cloth(seed, n=24):
+    """A cloth squeezed to a third and jittered (the crumpled start), float32 like the app's."""
+    rng = np.random.default_rng(seed)
+    c = Cloth(n, n, 8.0, (100.0, 100.0), "none", {"shear"})
+    x = c.x.reshape(2, -1)
+    mid = x.mean(1, keepdims=True)
+    x[...] = mid + (x - mid) / 3 + rng.uniform(-8 / 3, 8 / 3, x.shape)
+    return c
+
+
+def pair_set(i, j):
+    return set(zip(np.minimum(i, j).tolist(), np.maximum(i, j).tolist()))
+
+
+def test_self_collision_grid_finds_exactly_the_pairs_all_pairs_finds():
+    for seed in range(3):
+        c = crumpled_cloth(seed)
+        for distance, least in ((6.4, 1000), (2.0, 30)):
+            grid = close_pairs(c, distance, "grid")
+            brute = close_pairs(c, distance, "all_pairs")
+            assert len(grid[0]) > least
+            assert pair_set(grid[0], grid[1]) == pair_set(brute[0], brute[1])
