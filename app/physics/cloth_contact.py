@@ -103,7 +103,8 @@ class ContactState:
     self_tests: int = 0                   # pair tests the last search took
     start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
     crowded: bool = False                 # two obstacles meet (then corners are settled)
-    grid_coords: tuple | None = None      # each particle's (row, column), flat (self-collision)
+    joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for
+    joined_at: tuple | None = None        # self-collision's rod-neighbour table (_joined)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -277,6 +278,16 @@ def rub_and_settle(c, h: float) -> None:
 def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
     """(i, j, dx, dy, r2, tests): pairs of particles closer than `distance` (flat indices, each
     pair once), not joined by a rod of an active set, with d = x_j - x_i and |d|^2."""
+    i, j, tests = close_ij(c, distance, method)
+    x = c.x.reshape(2, -1)
+    dx, dy = x[0].take(j) - x[0].take(i), x[1].take(j) - x[1].take(i)
+    return i, j, dx, dy, dx * dx + dy * dy, tests
+
+
+def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, int]:
+    """(i, j, tests): close_pairs without the separations (what self-collision reads: it
+    measures them again in each sweep). The grid is the neighbour grid of the particle dance
+    (app/physics/neighbours.py): sorted once by cell, a half stencil, so each pair is met once."""
     pts = _points(c.x)
     if method == "all_pairs":
         blocks = list(all_pair_blocks(pts, distance))
@@ -287,47 +298,44 @@ def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
         box = tuple(np.maximum(local.max(0), distance) * (1 + 1e-6) + 1e-6)
         cell = max(distance, max(box) / MAX_CELLS)      # a flung cloth: bigger cells, not more
         cells = sort_into_cells(local, cell, box)
-        blocks = list(grid_pair_blocks(local, cell, box, cells))
+        blocks = list(grid_pair_blocks(local, cell, box, cells, separations=False))
         tests = cells.tests
-    if blocks:                                          # (every block holds only pairs < distance)
-        i, j, dx, dy, r2 = (np.concatenate([getattr(b, k) for b in blocks])
-                            for k in ("i", "j", "dx", "dy", "r2"))
-    else:
-        i = j = np.zeros(0, np.intp)
-        dx = dy = r2 = np.zeros(0)
-    # the pair's offset in the grid of particles, (rows apart, columns apart), capped at 3:
-    # a table says which offsets are a rod of an active set (or a cell's side or diagonal)
-    row, col = _grid_coords(c)
-    dr = np.minimum(np.abs(row.take(i) - row.take(j)), 3)
-    dc = np.minimum(np.abs(col.take(i) - col.take(j)), 3)
-    keep = ~_joined_table(c).take(dr * 4 + dc)
-    return i[keep], j[keep], dx[keep], dy[keep], r2[keep], tests
+    if not blocks:
+        return np.zeros(0, np.intp), np.zeros(0, np.intp), tests
+    i, j = (np.concatenate([b.i for b in blocks]), np.concatenate([b.j for b in blocks])) \
+        if len(blocks) > 1 else (blocks[0].i, blocks[0].j)
+    keep = ~_joined(c, i, j)
+    return i[keep], j[keep], tests
 
 
-def _grid_coords(c) -> tuple[np.ndarray, np.ndarray]:
-    """Each particle's (row, column) in the cloth's grid, flat (computed once per cloth)."""
+def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """True where particles i and j are never pushed apart: a cell's sides and diagonals (|dr|,
+    |dc| <= 1) or a rod of an active set. Each particle carries the number row * W + col with
+    W = 2 cols, so k_j - k_i = dr W + dc tells (dr, dc) apart (|dc| < cols < W / 2) and one
+    table read per pair answers; it replaces `(|row_i - row_j|, |col_i - col_j|) in joined`."""
+    key = (c.rows, c.cols, tuple(rs.name for rs in c.active_sets))
     st = c.contact
-    if st.grid_coords is None or st.grid_coords[0].size != c.rows * c.cols:
-        st.grid_coords = np.divmod(np.arange(c.rows * c.cols), c.cols)
-    return st.grid_coords
-
-
-def _joined_table(c) -> np.ndarray:
-    """(16,) bool, at dr * 4 + dc (each capped at 3): True where two particles that far apart
-    in the grid are never pushed apart: a cell's sides and diagonals, or a rod of an active set."""
-    table = np.zeros((4, 4), bool)
-    table[0, 1] = table[1, 0] = table[1, 1] = True
-    for rs in c.active_sets:
-        for a, b in ROD_OFFSETS[rs.name]:
-            table[a, b] = True
-    return table.ravel()
+    if st.joined_key != key:
+        offsets = {(0, 1), (1, 0), (1, 1)} | {o for rs in c.active_sets
+                                              for o in ROD_OFFSETS[rs.name]}
+        w = 2 * c.cols
+        row, col = np.divmod(np.arange(c.rows * c.cols), c.cols)
+        reach = (c.rows - 1) * w + c.cols - 1          # the largest |k_j - k_i|
+        table = np.zeros(2 * reach + 1, bool)
+        for dr, dc in offsets:
+            for sr in (1, -1):
+                for sc in (1, -1):
+                    table[reach + sr * dr * w + sc * dc] = True
+        st.joined_key, st.joined_at = key, (row * w + col + reach, row * w + col, table)
+    plus, minus, table = st.joined_at
+    return table.take(plus.take(j) - minus.take(i))
 
 
 def self_collide(c, h: float) -> None:
     """Push every pair closer than self_distance apart to that distance, each end by its share
     w_i / (w_i + w_j) of the overlap (a pinned end does not move), averaged per particle."""
     st = c.contact
-    i, j, _, _, _, st.self_tests = close_pairs(c, st.self_distance, st.self_method)
+    i, j, st.self_tests = close_ij(c, st.self_distance, st.self_method)
     st.self_pairs = len(i)
     if len(i) == 0:
         return
@@ -372,5 +380,4 @@ def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERL
     """Pairs closer than (1 - slack) x distance, cell and rod neighbours left out (95% of it by
     default: a layer resting under the weight of another sits at about 98%): what self-collision
     did not (yet) resolve, or, with it off, how much the cloth lies on itself."""
-    r2 = close_pairs(c, distance * (1 - slack), method)[4]
-    return int(len(r2))
+    return int(len(close_ij(c, distance * (1 - slack), method)[0]))
