@@ -5,10 +5,12 @@ and the self-collision grid against all pairs. Seeded random states; cheap (well
 import numpy as np
 import pytest
 
+from app.physics import rods_compiled
 from app.physics.cloth import Cloth
-from app.physics.cloth_contact import ContactState, _tunnel_and_project, close_pairs
+from app.physics.cloth_contact import ContactState, _tunnel_and_project, close_pairs, self_collide
 from app.physics.obstacles import Box, Circle, Segment, floor, project
 from app.physics.tunnelling import swept, through_one
+from scenes.cloth import ClothScene
 
 SHAPES = [Circle(0.0, 0.0, 30.0), Box(5.0, -3.0, 40.0, 6.0, 0.35), Segment(-40, 10, 35, -5, 2.0)]
 
@@ -88,3 +90,26 @@ def test_self_collision_grid_finds_exactly_the_pairs_all_pairs_finds():
             brute = close_pairs(c, distance, "all_pairs")
             assert len(grid[0]) > least
             assert pair_set(grid[0], grid[1]) == pair_set(brute[0], brute[1])
+
+
+needs_numba = pytest.mark.skipif(not rods_compiled.available(), reason="numba not installed")
+
+
+@needs_numba
+def test_the_compiled_self_collision_finds_the_same_pairs_and_moves_the_same():
+    """kernel=numba: the same pairs and candidate count as the NumPy grid, the same positions
+    after the pass (to float32 rounding), and the HUD names it."""
+    for seed, sets in ((0, {"shear"}), (1, {"shear", "bending"})):
+        a, b = crumpled_cloth(seed), crumpled_cloth(seed)
+        for c in (a, b):
+            c.set_effects(sets | {"self_collision"})
+            c.contact.self_distance = 6.4
+        b.kernel = "numba"
+        self_collide(a, 1 / 60)
+        self_collide(b, 1 / 60)
+        assert a.contact.self_pairs == b.contact.self_pairs > 1000
+        assert a.contact.self_tests == b.contact.self_tests
+        assert np.abs(a.x - b.x).max() < 1e-3
+    scene = ClothScene({"rows": 8, "cols": 8, "kernel": "numba", "self_collision": True})
+    scene.advance()
+    assert "numba kernel (rods, self-collision)" in scene.hud_lines()[0]

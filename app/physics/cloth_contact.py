@@ -63,7 +63,8 @@ from typing import Callable
 
 import numpy as np
 
-from app.physics.neighbours import all_pair_blocks, grid_pair_blocks, sort_into_cells
+from app.physics.neighbours import (all_pair_blocks, grid_pair_blocks, grid_shape,
+                                    sort_into_cells)
 from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
                                    project, verlet_friction)
 from app.physics.tunnelling import through_one
@@ -105,6 +106,7 @@ class ContactState:
     crowded: bool = False                 # two obstacles meet (then corners are settled)
     joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for
     joined_at: tuple | None = None        # self-collision's rod-neighbour table (_joined)
+    compiled: object = None               # the numba pass's buffers (self_compiled.Buffers)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -293,10 +295,8 @@ def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, i
         blocks = list(all_pair_blocks(pts, distance))
         tests = len(pts) * (len(pts) - 1) // 2
     else:
-        lo = pts.min(0)
+        lo, box, cell = _grid_frame(pts, distance)
         local = pts - lo                                # the grid covers the cloth's own box
-        box = tuple(np.maximum(local.max(0), distance) * (1 + 1e-6) + 1e-6)
-        cell = max(distance, max(box) / MAX_CELLS)      # a flung cloth: bigger cells, not more
         cells = sort_into_cells(local, cell, box)
         blocks = list(grid_pair_blocks(local, cell, box, cells, separations=False))
         tests = cells.tests
@@ -306,6 +306,14 @@ def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, i
         if len(blocks) > 1 else (blocks[0].i, blocks[0].j)
     keep = ~_joined(c, i, j)
     return i[keep], j[keep], tests
+
+
+def _grid_frame(pts: np.ndarray, distance: float) -> tuple[np.ndarray, tuple, float]:
+    """(lo, box, cell): the grid's corner, its size (w, h) and the least cell size: the cloth's
+    own box, cells `distance` wide (bigger for a flung cloth: at most MAX_CELLS across)."""
+    lo = pts.min(0)
+    box = tuple(np.maximum(pts.max(0) - lo, distance) * (1 + 1e-6) + 1e-6)
+    return lo, box, max(distance, max(box) / MAX_CELLS)
 
 
 def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
@@ -335,6 +343,8 @@ def self_collide(c, h: float) -> None:
     """Push every pair closer than self_distance apart to that distance, each end by its share
     w_i / (w_i + w_j) of the overlap (a pinned end does not move), averaged per particle."""
     st = c.contact
+    if c.kernel == "numba" and st.self_method == "grid":
+        return _self_collide_compiled(c)
     i, j, st.self_tests = close_ij(c, st.self_distance, st.self_method)
     st.self_pairs = len(i)
     if len(i) == 0:
@@ -374,6 +384,36 @@ def self_collide(c, h: float) -> None:
         moved = np.bincount(ends, move, 2 * n).astype(x.dtype)
         xs += moved[:n] * scale
         ys += moved[n:] * scale
+
+
+def _self_collide_compiled(c) -> None:
+    """self_collide's pass as one compiled loop over the candidates and one per sweep
+    (app/physics/self_compiled.py: the cloth's kernel "numba"); the same grid, the same pairs."""
+    from app.physics import self_compiled
+    st, x = c.contact, c.x.reshape(2, -1)
+    dmin, n = st.self_distance, x.shape[1]
+    if st.compiled is None or st.compiled.count.size != n:
+        st.compiled = self_compiled.Buffers(n)
+    lo, box, cell = _grid_frame(_points(c.x), dmin)
+    nx, ny = grid_shape(box, cell)
+    frame = (lo[0], lo[1], nx / box[0], ny / box[1], nx, ny)
+    key = tuple(rs.name for rs in c.active_sets)
+    if st.compiled.joined_key != key:                   # (|dr|, |dc|) capped at 3: joined?
+        table = np.zeros((4, 4), bool)
+        for dr, dc in {(0, 1), (1, 0), (1, 1)} | {o for name in key for o in ROD_OFFSETS[name]}:
+            table[dr, dc] = True
+        st.compiled.joined_key, st.compiled.joined = key, table.ravel()
+    i, j, st.self_tests = self_compiled.find_pairs(x[0], x[1], frame, dmin, c.cols,
+                                                   st.compiled.joined, st.compiled)
+    st.self_pairs = len(i)
+    if len(i) == 0:
+        return
+    floor_too = "collisions" in c.on and st.obstacles
+    movable, w = c.free.ravel() > 0, c.w.ravel()
+    for sweep in range(SELF_SWEEPS):
+        if floor_too:                                   # as in self_collide
+            project(st.obstacles, x.T, st.margin, movable)
+        self_compiled.push_apart(x[0], x[1], i, j, w, dmin, OVER_RELAX, sweep, st.compiled)
 
 
 def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERLAP_SLACK) -> int:
