@@ -26,11 +26,13 @@ def circle_entry(fx, fy, ex, ey, r):
     return np.minimum(np.maximum(t, 0.0), 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
 
 
-def slab_entry(sx, sy, ex, ey, half_x, half_y):
+def slab_entry(sx, sy, ex, ey, half_x, half_y, faces: bool = False):
     """(t, hit): where the path s + t e (in a box's own frame) first enters |x| <= half_x,
     |y| <= half_y, by slab clipping: on each axis the path is between the two faces for t in
-    [t_near, t_far]; it is inside the box where all those intervals overlap (and [0, 1])."""
-    lo, hi = 0.0, 1.0
+    [t_near, t_far]; it is inside the box where all those intervals overlap (and [0, 1]).
+    faces=True: (t, hit, face_x), face_x True where the x slab was entered last (the path
+    came in through an x face)."""
+    lo, hi, near = 0.0, 1.0, []
     for s0, ds, half in ((sx, ex, half_x), (sy, ey, half_y)):
         flat = np.abs(ds) < TINY                         # parallel to this axis' faces
         step = np.where(flat, 1.0, ds)                   # (no 0/0: flat paths are set below)
@@ -40,7 +42,10 @@ def slab_entry(sx, sy, ex, ey, half_x, half_y):
             t_near[flat] = np.where(np.abs(s0[flat]) <= half, -np.inf, np.inf)
             t_far[flat] = np.inf
         lo, hi = np.maximum(lo, t_near), np.minimum(hi, t_far)
+        near.append(t_near)
     hit = lo <= hi
+    if faces:
+        return np.where(hit, lo, 0.0), hit, near[0] >= near[1]
     return np.where(hit, lo, 0.0), hit
 
 

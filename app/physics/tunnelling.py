@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.physics.obstacles import Box, Circle, HalfPlane, Obstacle, Segment
+from app.physics.paths import circle_entry, slab_entry
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0       # 0.618...: golden-section search's shrink factor
 
@@ -167,20 +168,21 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
 
 def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy: np.ndarray,
                 d1: np.ndarray, n1x: np.ndarray, n1y: np.ndarray, tolerance: float
-                ) -> tuple[np.ndarray, np.ndarray, int]:
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
     """swept(past_middle=True) against one obstacle, for paths a -> a + v whose end's signed
     distance d1 and outward normal n1 the caller has already (the projection needs them too):
-    (back, t, through). `back`: the indices of the paths to put back where they entered: those
-    with both ends outside that went more than `tolerance` deep (`through` counts them), and
-    those that came in from outside past the middle (end inside, longer than the half width);
-    t: where each of them first met the surface (Obstacle.entry), 0..1 along v.
+    (back, t, nx, ny, through). `back`: the indices of the paths to put back where they
+    entered: those with both ends outside that went more than `tolerance` deep (`through`
+    counts them), and those that came in from outside past the middle (end inside, longer
+    than the half width); t: where each of them first met the surface (Obstacle.entry), 0..1
+    along v, and (nx, ny) the outward normal there (entry_normal).
 
     A third bound joins the two of the module docstring: d is convex, so along the path it lies
     above its tangent at the end, d(t) >= d1 - (1 - t) n1 . v; a path whose end is outside can
     only dip below -tolerance if d1 - n1 . v does. A particle sliding along a surface (n1 . v
     about 0) is dismissed by it; the length bound alone let every sliding particle longer than
     2 sqrt(2) tolerance through to the exact test (most of a cloth heaped on a tilted box)."""
-    none = np.zeros(0, np.intp), np.zeros(0), 0
+    none = np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0), 0
     shortest = shortest_dip(ob, tolerance)
     if isinstance(ob, HalfPlane):
         return none                                      # d linear along a path: nothing
@@ -208,9 +210,34 @@ def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy
     if back.size == 0:
         return none
     kb = k[back]
-    # where the path first met the surface: the crossing before its deepest point
-    t = np.minimum(ob.entry(ax[kb], ay[kb], vx[kb], vy[kb]), t_in[back])
-    return kb, t, int(np.count_nonzero(dips))
+    # where the path first met the surface (before its deepest point), and the normal there
+    t, nx, ny = entry_normal(ob, ax[kb], ay[kb], vx[kb], vy[kb])
+    return kb, np.minimum(t, t_in[back]), nx, ny, int(np.count_nonzero(dips))
+
+
+def entry_normal(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, ey: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(t, nx, ny): Obstacle.entry's t for paths a + t e that start outside and reach inside,
+    and the outward normal where they meet the surface. A ball's and a box's come with the
+    entry (the radius through it; the face whose slab was entered last), a few operations
+    instead of a distance evaluation; other shapes ask distance_xy at the entry point."""
+    if isinstance(ob, Circle):
+        fx, fy = ax - ob.cx, ay - ob.cy
+        t = circle_entry(fx, fy, ex, ey, ob.radius)[0]
+        return t, (fx + t * ex) / ob.radius, (fy + t * ey) / ob.radius
+    if isinstance(ob, Box):
+        (ux, uy), (wx, wy) = ob.axes()
+        dx, dy = ax - ob.cx, ay - ob.cy                   # the path in the box's own frame
+        lex, ley = ex * ux + ey * uy, ex * wx + ey * wy
+        t, _, face_x = slab_entry(dx * ux + dy * uy, dx * wx + dy * wy, lex, ley, ob.half_w,
+                                  ob.half_h, faces=True)
+        # entering a face: the normal points back along the path's motion on that axis
+        gx = np.where(face_x, -np.sign(lex), 0.0)
+        gy = np.where(face_x, 0.0, -np.sign(ley))
+        return t, gx * ux + gy * wx, gx * uy + gy * wy
+    t = ob.entry(ax, ay, ex, ey)
+    _, nx, ny = ob.distance_xy(ax + t * ex, ay + t * ey)
+    return t, nx, ny
 
 
 def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
@@ -330,5 +357,5 @@ def swept_xy(obstacles, ax_: np.ndarray, ay_: np.ndarray, bx_: np.ndarray, by_: 
 
 
 __all__ = ["path_min_distance", "dips_below", "shortest_dip", "Sweep", "swept", "swept_xy",
-           "through_one",
+           "through_one", "entry_normal",
            "GOLDEN"]
