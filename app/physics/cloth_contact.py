@@ -186,12 +186,12 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
         d, nx, ny = ob.distance_xy(ex, ey)
         if not isinstance(ob, HalfPlane):
             ax, ay = sx.take(ids).astype(np.float64), sy.take(ids).astype(np.float64)
-            back, t, bx, by, through = through_one(ob, ax, ay, ex - ax, ey - ay, d, nx, ny,
-                                                   st.tolerance)
+            vx, vy = ex - ax, ey - ay
+            back, t, bx, by, through = through_one(ob, ax, ay, vx, vy, d, nx, ny, st.tolerance)
             if back.size:                       # put back: on the surface, its normal there
                 ib = ids[back]
-                px[ib] = ax[back] + t * (ex[back] - ax[back])
-                py[ib] = ay[back] + t * (ey[back] - ay[back])
+                px[ib] = ax[back] + t * vx[back]
+                py[ib] = ay[back] + t * vy[back]
                 d[back], nx[back], ny[back] = 0.0, bx, by
                 st.tunneled += through
         inside = (d < margin).nonzero()[0]

@@ -13,16 +13,19 @@ import numpy as np
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
 
 
-def circle_entry(fx, fy, ex, ey, r):
+def circle_entry(fx, fy, ex, ey, r, hit: bool = True):
     """(t, hit): the first t in [0, 1] at which f + t e (f: the start relative to the centre)
     is r from the centre, i.e. the smaller root of |f + t e|^2 = r^2; t = 0 for a start
-    inside; hit False where the path misses the disc."""
+    inside; hit False where the path misses the disc (hit=False: t alone, for paths known to
+    meet it)."""
     a = np.maximum(ex * ex + ey * ey, TINY)
     b = fx * ex + fy * ey                                # half the linear coefficient
     c = fx * fx + fy * fy - r * r
     disc = b * b - a * c
     t = (-b - np.sqrt(np.maximum(disc, 0.0))) / a
     t = np.where(c <= 0, 0.0, t)
+    if not hit:
+        return np.minimum(np.maximum(t, 0.0), 1.0)
     return np.minimum(np.maximum(t, 0.0), 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
 
 

@@ -196,23 +196,28 @@ def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy
     if k.size == 0:
         return none
     d0 = ob.distance(ax[k], ay[k])
-    d1k, length, out = d1[k], np.sqrt(length2[k]), outside[k]
-    dips = (d0 >= 0) & out & ((d0 + d1k - length) / 2 < -tolerance)
-    t_in = np.ones(k.size)
-    if dips.any():                                       # the exact test, for the few left
-        ids = dips.nonzero()[0]
-        p0 = np.column_stack((ax[k[ids]], ay[k[ids]]))
-        p1 = p0 + np.column_stack((vx[k[ids]], vy[k[ids]]))
-        exact, t_dip = dips_below(ob, p0, p1, tolerance)
-        dips[ids[~exact]] = False
-        t_in[ids] = t_dip
-    back = (dips | ((d0 >= 0) & ~out & (length > half))).nonzero()[0]
+    length, out = np.sqrt(length2[k]), outside[k]
+    back = (d0 >= 0) & ~out & (length > half)            # came in from outside, past the middle
+    through, t_in = 0, None
+    if out.any():
+        dips = (d0 >= 0) & out & ((d0 + d1[k] - length) / 2 < -tolerance)
+        if dips.any():                                   # the exact test, for the few left
+            ids = dips.nonzero()[0]
+            p0 = np.column_stack((ax[k[ids]], ay[k[ids]]))
+            p1 = p0 + np.column_stack((vx[k[ids]], vy[k[ids]]))
+            exact, t_dip = dips_below(ob, p0, p1, tolerance)
+            dips[ids[~exact]] = False
+            t_in = np.ones(k.size)
+            t_in[ids] = t_dip
+            through = int(np.count_nonzero(dips))
+            back |= dips
+    back = back.nonzero()[0]
     if back.size == 0:
         return none
     kb = k[back]
     # where the path first met the surface (before its deepest point), and the normal there
     t, nx, ny = entry_normal(ob, ax[kb], ay[kb], vx[kb], vy[kb])
-    return kb, np.minimum(t, t_in[back]), nx, ny, int(np.count_nonzero(dips))
+    return kb, (t if t_in is None else np.minimum(t, t_in[back])), nx, ny, through
 
 
 def entry_normal(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, ey: np.ndarray
@@ -223,7 +228,7 @@ def entry_normal(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, e
     instead of a distance evaluation; other shapes ask distance_xy at the entry point."""
     if isinstance(ob, Circle):
         fx, fy = ax - ob.cx, ay - ob.cy
-        t = circle_entry(fx, fy, ex, ey, ob.radius)[0]
+        t = circle_entry(fx, fy, ex, ey, ob.radius, hit=False)
         return t, (fx + t * ex) / ob.radius, (fy + t * ey) / ob.radius
     if isinstance(ob, Box):
         (ux, uy), (wx, wy) = ob.axes()
