@@ -162,7 +162,7 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
     those inside to the margin: p += (margin - d) n. Returns the Contacts, as project() does.
     start: (2, n); x: (n, 2), written into."""
     n, margin = len(x), st.margin
-    depth, normal = np.zeros(n), np.zeros((n, 2))
+    depth, normal = np.zeros(n), np.zeros((2, n))   # (Contacts' (n, 2) normal: its .T)
     index, hit = np.full(n, -1), np.zeros(n, bool)
     px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
     sx, sy = start[0], start[1]
@@ -203,11 +203,11 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
         px[ids] += (push * nx).astype(x.dtype, copy=False)
         py[ids] += (push * ny).astype(x.dtype, copy=False)
         depth[ids] += push
-        normal[ids, 0] = nx
-        normal[ids, 1] = ny
+        normal[0][ids] = nx
+        normal[1][ids] = ny
         index[ids] = k
         hit[ids] = True
-    return Contacts(hit, depth, normal, index)
+    return Contacts(hit, depth, normal.T, index)
 
 
 def _may_touch(st: ContactState) -> bool:
