@@ -13,29 +13,24 @@ import numpy as np
 TINY = 1e-12                                 # shortest length we divide by (no 0/0)
 
 
-def circle_entry(fx, fy, ex, ey, r, hit: bool = True):
+def circle_entry(fx, fy, ex, ey, r):
     """(t, hit): the first t in [0, 1] at which f + t e (f: the start relative to the centre)
     is r from the centre, i.e. the smaller root of |f + t e|^2 = r^2; t = 0 for a start
-    inside; hit False where the path misses the disc (hit=False: t alone, for paths known to
-    meet it)."""
+    inside; hit False where the path misses the disc."""
     a = np.maximum(ex * ex + ey * ey, TINY)
     b = fx * ex + fy * ey                                # half the linear coefficient
     c = fx * fx + fy * fy - r * r
     disc = b * b - a * c
     t = (-b - np.sqrt(np.maximum(disc, 0.0))) / a
     t = np.where(c <= 0, 0.0, t)
-    if not hit:
-        return np.minimum(np.maximum(t, 0.0), 1.0)
     return np.minimum(np.maximum(t, 0.0), 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
 
 
-def slab_entry(sx, sy, ex, ey, half_x, half_y, faces: bool = False):
+def slab_entry(sx, sy, ex, ey, half_x, half_y):
     """(t, hit): where the path s + t e (in a box's own frame) first enters |x| <= half_x,
     |y| <= half_y, by slab clipping: on each axis the path is between the two faces for t in
-    [t_near, t_far]; it is inside the box where all those intervals overlap (and [0, 1]).
-    faces=True: (t, hit, face_x), face_x True where the x slab was entered last (the path
-    came in through an x face)."""
-    lo, hi, near = 0.0, 1.0, []
+    [t_near, t_far]; it is inside the box where all those intervals overlap (and [0, 1])."""
+    lo, hi = 0.0, 1.0
     for s0, ds, half in ((sx, ex, half_x), (sy, ey, half_y)):
         flat = np.abs(ds) < TINY                         # parallel to this axis' faces
         step = np.where(flat, 1.0, ds)                   # (no 0/0: flat paths are set below)
@@ -45,10 +40,7 @@ def slab_entry(sx, sy, ex, ey, half_x, half_y, faces: bool = False):
             t_near[flat] = np.where(np.abs(s0[flat]) <= half, -np.inf, np.inf)
             t_far[flat] = np.inf
         lo, hi = np.maximum(lo, t_near), np.minimum(hi, t_far)
-        near.append(t_near)
     hit = lo <= hi
-    if faces:
-        return np.where(hit, lo, 0.0), hit, near[0] >= near[1]
     return np.where(hit, lo, 0.0), hit
 
 

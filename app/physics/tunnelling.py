@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.physics.obstacles import Box, Circle, HalfPlane, Obstacle, Segment
-from app.physics.paths import circle_entry, slab_entry
+from app.physics.paths import TINY
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0       # 0.618...: golden-section search's shrink factor
 
@@ -224,21 +224,31 @@ def entry_normal(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, e
                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(t, nx, ny): Obstacle.entry's t for paths a + t e that start outside and reach inside,
     and the outward normal where they meet the surface. A ball's and a box's come with the
-    entry (the radius through it; the face whose slab was entered last), a few operations
-    instead of a distance evaluation; other shapes ask distance_xy at the entry point."""
+    entry, written for such paths alone (often one particle: the NumPy calls are the cost):
+    a ball's is the smaller root of |a + t e - c| = r and the radius through it; a box's the
+    last face its slabs were entered by (slab clipping, the far faces not needed). Other
+    shapes ask Obstacle.entry and distance_xy at the entry point."""
     if isinstance(ob, Circle):
         fx, fy = ax - ob.cx, ay - ob.cy
-        t = circle_entry(fx, fy, ex, ey, ob.radius, hit=False)
+        a = np.maximum(ex * ex + ey * ey, TINY)
+        b = fx * ex + fy * ey
+        c = fx * fx + fy * fy - ob.radius * ob.radius       # >= 0: the start is outside
+        t = np.clip((-b - np.sqrt(np.maximum(b * b - a * c, 0.0))) / a, 0.0, 1.0)
         return t, (fx + t * ex) / ob.radius, (fy + t * ey) / ob.radius
     if isinstance(ob, Box):
         (ux, uy), (wx, wy) = ob.axes()
         dx, dy = ax - ob.cx, ay - ob.cy                   # the path in the box's own frame
-        lex, ley = ex * ux + ey * uy, ex * wx + ey * wy
-        t, _, face_x = slab_entry(dx * ux + dy * uy, dx * wx + dy * wy, lex, ley, ob.half_w,
-                                  ob.half_h, faces=True)
-        # entering a face: the normal points back along the path's motion on that axis
-        gx = np.where(face_x, -np.sign(lex), 0.0)
-        gy = np.where(face_x, 0.0, -np.sign(ley))
+        near = []
+        for s0, ds, half in ((dx * ux + dy * uy, ex * ux + ey * uy, ob.half_w),
+                             (dx * wx + dy * wy, ex * wx + ey * wy, ob.half_h)):
+            # where it crosses the nearer face of this slab (parallel: +-1e300, never/always)
+            ds = np.copysign(np.maximum(np.abs(ds), 1e-300), ds)
+            near.append(np.minimum((-half - s0) / ds, (half - s0) / ds))
+        face_x = near[0] >= near[1]
+        t = np.clip(np.maximum(near[0], near[1]), 0.0, 1.0)
+        # entering a face: the normal points back along the path's motion across it
+        g = np.sign(np.where(face_x, ex * ux + ey * uy, ex * wx + ey * wy))
+        gx, gy = -g * face_x, -g * ~face_x
         return t, gx * ux + gy * wx, gx * uy + gy * wy
     t = ob.entry(ax, ay, ex, ey)
     _, nx, ny = ob.distance_xy(ax + t * ex, ay + t * ey)
