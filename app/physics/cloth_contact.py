@@ -36,8 +36,8 @@ cloth on three obstacles cost half or less of what a projection and friction bef
 the sweeps did (`python -m app bench cloth`, same run: 0.86 -> 0.42 ms hanging, 1.23 -> 0.40
 ms heaped on them). Testing each obstacle's paths and projecting its particles in one go, on
 one broad phase and one distance evaluation, with the tangent bound of tunnelling.through_one,
-took that to 0.34 and 0.31 ms (the fastest of 300 steps from the same state, CPU time, the
-lab's machine at load 5; 0.40 and 0.47 before, same run).
+took that to 0.31 and 0.29 ms (collisions + friction, the fastest of 300 steps from the same
+state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs).
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, cells `self_distance` wide), or all pairs, the O(n^2)
