@@ -98,6 +98,7 @@ def run(report: Report) -> dict:
     quick = report.quick
     settle = 10 if quick else 60
     rounds = 5 if quick else 41
+    self_steps = 3 if quick else SELF_STEPS
     out: dict = {"n": N, "rounds": rounds, "collisions": [], "self_collision": []}
 
     rows = []
@@ -149,7 +150,7 @@ def run(report: Report) -> dict:
                                          "self_collision": True, **extra})
                   for m, extra in methods.items()}
         grid = scenes["grid"]
-        for _ in range(SELF_STEPS):                     # the state every round starts from
+        for _ in range(self_steps):                     # the state every round starts from
             grid.advance()
         snap = grid.snapshot()
         for sc in scenes.values():                      # (numba compiles on its first step)
@@ -174,7 +175,7 @@ def run(report: Report) -> dict:
     report.table(f"Self-collision on a {N}x{N} cloth (self_distance 0.8 rods): the pass alone, "
                  "grid against all pairs (8,386,560 tests) and the optional compiled grid "
                  "(kernel=numba), beside the step without it, one step from the same "
-                 f"state (after {SELF_STEPS} steps), CPU ms, median (interquartile range) of "
+                 f"state (after {self_steps} steps), CPU ms, median (interquartile range) of "
                  f"{rounds} interleaved rounds (goal: grid at most the step; {load})",
                  ["state", "pairs", "step ms (off)", "grid ms", "grid tests", "all pairs ms",
                   "grid / step", "grid (numba) ms", "numba / step"], rows)
