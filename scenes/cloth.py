@@ -114,8 +114,9 @@ class ClothScene(ClothContact, Scene):
         Param("precision", "float32", str, choices=("float32", "float64"),
               help="float type of the positions (float32: about twice as fast)"),
         Param("kernel", "numpy", str, choices=rods_compiled.KERNELS,
-              help="who solves the rods: numpy (batches of array operations, the default) or "
-                   "numba (the same loop compiled: needs numba; the first step compiles it)",
+              help="who solves the rods and self-collision's grid pass: numpy (batches of "
+                   "array operations, the default) or numba (the same loops compiled: needs "
+                   "numba; the first step compiles them)",
               rebuild=False),
     ) + CONTACT_PARAMS
     effects = (
@@ -354,7 +355,10 @@ class ClothScene(ClothContact, Scene):
         m = self.metrics()
         it, sub = self.p["iterations"], self.p["substeps"]
         torn = f"  |  {m['torn']} rods torn" if m["torn"] else ""
-        kernel = ", numba kernel" if self.p["kernel"] == "numba" else ""
+        kernel = ""
+        if self.p["kernel"] == "numba":     # (self-collision's grid pass is compiled too)
+            both = "self_collision" in self.on and self.p["self_method"] == "grid"
+            kernel = ", numba kernel (rods, self-collision)" if both else ", numba kernel"
         return [f"{it} iterations x {sub} substeps = {it * sub} sweeps/step{kernel}",
                 f"stretch: mean {self.shown('mean_stretch', m['mean_stretch'])}  max "
                 f"{self.shown('max_stretch', m['max_stretch'])}{torn}"] + self.contact_hud(m)

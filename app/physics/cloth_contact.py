@@ -9,13 +9,16 @@ are on (`contact_passes`): an effect that is off is not in the list, so the step
     self_collision        pairs of particles closer than `self_distance` (not joined by a rod)
                           are pushed apart to that distance: Breen's repulsion written as a
                           constraint, projected like a rod that may only grow
-    collisions            tunnelling caught: a particle whose path in this substep went through
-                          an obstacle, or came in from outside further than the obstacle's half
-                          width (it may be past its middle), is put back where it entered it
-                          (app/physics/tunnelling.py); then every particle inside an obstacle is
-                          moved to its surface (Jakobsen's projection). After this pass no free
-                          particle is inside an obstacle, unless two obstacles overlap around it
-                          (then `penetration_max` says how deep)
+    collisions            each obstacle in turn: tunnelling caught (a particle whose path in
+                          this substep went through it, or came in from outside further than
+                          its half width: it may be past its middle, is put back where it
+                          entered it: app/physics/tunnelling.py), then every particle inside it
+                          is moved to its surface (Jakobsen's projection). Only the particles
+                          whose path's box meets the obstacle's box are looked at (a broad
+                          phase), and the distance and normal of their ends are computed once
+                          for both tests. After this pass no free particle is inside an
+                          obstacle, unless two obstacles overlap around it (then
+                          `penetration_max` says how deep)
     friction              Coulomb: the sliding x - x_prev loses at most mu x the correction
                           (then, where two obstacles meet, the touching particles are projected
                           once more)
@@ -31,7 +34,10 @@ at the defaults and Coulomb's slope test still sticks exactly when tan(a) < mu
 (tests/test_cloth_contact.py); with the cheaper sweep test, the contact passes of a 64 x 64
 cloth on three obstacles cost half or less of what a projection and friction before and after
 the sweeps did (`python -m app bench cloth`, same run: 0.86 -> 0.42 ms hanging, 1.23 -> 0.40
-ms heaped on them).
+ms heaped on them). Testing each obstacle's paths and projecting its particles in one go, on
+one broad phase and one distance evaluation, with the tangent bound of tunnelling.through_one,
+took that to 0.31 and 0.29 ms (collisions + friction, the fastest of 300 steps from the same
+state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs).
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, cells `self_distance` wide), or all pairs, the O(n^2)
@@ -42,6 +48,20 @@ so a pair resting on a floor is parted by moving the upper particle, not by push
 in. All pairs found are pushed apart at once (Jacobi: each particle
 moves by the average of its pairs' corrections, times OVER_RELAX, so a particle in many pairs is
 not thrown out), SELF_SWEEPS times, reusing the pairs found.
+
+What the pair search costs, and what was chosen. The grid is sorted once per substep (a stable
+sort on 16-bit cell keys: a radix sort), each pair met once (the half stencil), and a pair of
+rod neighbours is told by one table read (close_ij, _joined). A Verlet neighbour list (the pairs
+within self_distance plus a skin, kept until some particle has moved half the skin relative to
+the rest) was measured and not used: a crumpled 64 x 64 cloth let go moves up to 9-12 px per
+step away from its common fall (median 1.3 px, 99th percentile 4.3 px, steps 5-30) while
+self_distance is 6.4 px: a skin that lasts one step would be wider than 18 px, and the list
+would still be rebuilt every step. Even so,
+on that cloth (about 64,000 candidates, 14,000 pairs) the NumPy pass costs some 25 array passes
+per candidate and per pair: 1.7-1.9 x the step without it (2.5-2.8 x before these changes,
+`python -m app bench cloth`, same run, load 9), against the goal of at most 1 x. The compiled
+pass (kernel=numba, optional: app/physics/self_compiled.py; the same pairs) visits each
+candidate once: 0.85 x the step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
@@ -57,9 +77,11 @@ from typing import Callable
 
 import numpy as np
 
-from app.physics.neighbours import all_pair_blocks, grid_pair_blocks, sort_into_cells
-from app.physics.obstacles import Contacts, HalfPlane, Obstacle, project, verlet_friction
-from app.physics.tunnelling import shortest_dip, swept_xy
+from app.physics.neighbours import (all_pair_blocks, grid_pair_blocks, grid_shape,
+                                    sort_into_cells)
+from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
+                                   project, verlet_friction)
+from app.physics.tunnelling import through_one
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -96,7 +118,9 @@ class ContactState:
     self_tests: int = 0                   # pair tests the last search took
     start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
     crowded: bool = False                 # two obstacles meet (then corners are settled)
-    grid_coords: tuple | None = None      # each particle's (row, column), flat (self-collision)
+    joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for
+    joined_at: tuple | None = None        # self-collision's rod-neighbour table (_joined)
+    compiled: object = None               # the numba pass's buffers (self_compiled.Buffers)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -127,17 +151,77 @@ def _points(a: np.ndarray) -> np.ndarray:
 
 # ----- obstacles --------------------------------------------------------------------------------
 def collide(c, h: float) -> None:
-    """After the sweeps: catch paths through an obstacle over the whole substep, then project
-    every particle inside an obstacle to its surface (Jakobsen)."""
+    """After the sweeps, each obstacle in turn (Jakobsen's loop over the constraints): paths
+    through it over the whole substep are put back where they entered it, then every particle
+    inside it is projected to its surface. `_tunnel_and_project` says how it stays cheap."""
     st, x = c.contact, _points(c.x)
     st.start = c.x_prev.reshape(2, -1)          # where each particle began this substep (a view)
-    movable = c.free.ravel() > 0
-    _catch_tunnelling(st, st.start, x, movable)
-    st.contacts = project(st.obstacles, x, st.margin, movable)
+    st.contacts = _tunnel_and_project(st, st.start, x, c.free.ravel() > 0)
     st.touching = st.contacts.mask
     st.crowded = len(st.obstacles) > 1 and _may_touch(st)
     if st.crowded:
         _settle_corners(st, x)
+
+
+def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
+                        movable: np.ndarray) -> Contacts:
+    """For each obstacle: (1) a broad phase: the particles whose path this substep (its box,
+    grown by the margin) meets the obstacle's box: no other can touch it or pass through it
+    (the floor: those below its line plus the margin); (2) the signed distance and normal of
+    their ends, computed once, for both tests; (3) tunnelling (tunnelling.through_one): a path
+    through the obstacle, or in from outside past its middle, puts the particle back where it
+    entered (on the surface, on the side it came from: then projected out, it rests there;
+    put back where it started the substep instead, it would hover a bar's width above a bar,
+    the next step's g h^2 carrying it through again for ever); (4) Jakobsen's projection of
+    those inside to the margin: p += (margin - d) n. Returns the Contacts, as project() does.
+    start: (2, n); x: (n, 2), written into."""
+    n, margin = len(x), st.margin
+    depth, normal = np.zeros(n), np.zeros((2, n))   # (Contacts' (n, 2) normal: its .T)
+    index, hit = np.full(n, -1), np.zeros(n, bool)
+    px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
+    sx, sy = start[0], start[1]
+    boxes = None
+    grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
+    for k, ob in enumerate(st.obstacles):
+        if isinstance(ob, HalfPlane):           # nothing to pass through: where the ends are
+            ids = near_bounds(ob, px, py, margin, movable)
+        else:
+            if boxes is None:                   # each path's box, once for every obstacle
+                boxes = (np.minimum(px, sx), np.maximum(px, sx), np.minimum(py, sy),
+                         np.maximum(py, sy))
+            lo_x, hi_x, lo_y, hi_y = boxes
+            x0, y0, x1, y1 = ob.bounds()
+            near = (hi_x > x0 - grow) & (lo_x < x1 + grow) & (hi_y > y0 - grow) & \
+                (lo_y < y1 + grow) & movable
+            ids = near.nonzero()[0]
+        if ids.size == 0:
+            continue
+        ex, ey = px.take(ids).astype(np.float64), py.take(ids).astype(np.float64)
+        d, nx, ny = ob.distance_xy(ex, ey)
+        if not isinstance(ob, HalfPlane):
+            ax, ay = sx.take(ids).astype(np.float64), sy.take(ids).astype(np.float64)
+            vx, vy = ex - ax, ey - ay
+            back, t, bx, by, through = through_one(ob, ax, ay, vx, vy, d, nx, ny, st.tolerance)
+            if back.size:                       # put back: on the surface, its normal there
+                ib = ids[back]
+                px[ib] = ax[back] + t * vx[back]
+                py[ib] = ay[back] + t * vy[back]
+                d[back], nx[back], ny[back] = 0.0, bx, by
+                st.tunneled += through
+        inside = (d < margin).nonzero()[0]
+        if inside.size == 0:
+            continue
+        if inside.size < ids.size:
+            ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]
+        push = margin - d                                      # Jakobsen: p += (margin - d) n
+        px[ids] += (push * nx).astype(x.dtype, copy=False)
+        py[ids] += (push * ny).astype(x.dtype, copy=False)
+        depth[ids] += push
+        normal[0][ids] = nx
+        normal[1][ids] = ny
+        index[ids] = k
+        hit[ids] = True
+    return Contacts(hit, depth, normal.T, index)
 
 
 def _may_touch(st: ContactState) -> bool:
@@ -184,34 +268,6 @@ def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:
         ids = ids[again.mask]
 
 
-def _catch_tunnelling(st: ContactState, start: np.ndarray, x: np.ndarray,
-                      movable: np.ndarray) -> None:
-    """Paths start -> x through an obstacle: put the particle back where its path entered the
-    obstacle (on the surface, on the side it came from: then projected out, it rests there).
-    (Putting it back where it started the substep instead leaves it hovering: the next step's
-    g h^2 carries it through again, for ever, a bar's width above the bar.)
-    Paths that came in from outside over more than an obstacle's half width are put back
-    where they entered too (swept's past_middle: they may have crossed its middle, where the
-    shortest way out is through the far side).
-    start: (2, n); x: (n, 2). Only particles that moved further than the shortest path that can
-    go through an obstacle or cross its middle (tunnelling.shortest_dip, half_width) are looked
-    at: they are found first, on the float32 columns, and only they go to the sweep test."""
-    shortest = min(min(shortest_dip(ob, st.tolerance), ob.half_width()) for ob in st.obstacles)
-    if math.isinf(shortest):
-        return                                  # half-planes only: nothing to go through
-    dx, dy = x[:, 0] - start[0], x[:, 1] - start[1]
-    fast = ((dx * dx + dy * dy > shortest * shortest) & movable).nonzero()[0]
-    if fast.size == 0:
-        return
-    a = start.take(fast, axis=1).astype(np.float64)       # (2, fast): rows, not (fast, 2)
-    b = x.T.take(fast, axis=1).astype(np.float64)
-    sw = swept_xy(st.obstacles, a[0], a[1], b[0], b[1], st.tolerance, past_middle=True)
-    back = sw.mask | sw.deep
-    if back.any():
-        x[fast[back]] = sw.entry[back]
-        st.tunneled += sw.count
-
-
 def rub(c, h: float) -> None:
     """Coulomb friction on the last projection's contacts (app/physics/obstacles.py)."""
     st = c.contact
@@ -237,57 +293,72 @@ def rub_and_settle(c, h: float) -> None:
 def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
     """(i, j, dx, dy, r2, tests): pairs of particles closer than `distance` (flat indices, each
     pair once), not joined by a rod of an active set, with d = x_j - x_i and |d|^2."""
+    i, j, tests = close_ij(c, distance, method)
+    x = c.x.reshape(2, -1)
+    dx, dy = x[0].take(j) - x[0].take(i), x[1].take(j) - x[1].take(i)
+    return i, j, dx, dy, dx * dx + dy * dy, tests
+
+
+def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, int]:
+    """(i, j, tests): close_pairs without the separations (what self-collision reads: it
+    measures them again in each sweep). The grid is the neighbour grid of the particle dance
+    (app/physics/neighbours.py): sorted once by cell, a half stencil, so each pair is met once."""
     pts = _points(c.x)
     if method == "all_pairs":
         blocks = list(all_pair_blocks(pts, distance))
         tests = len(pts) * (len(pts) - 1) // 2
     else:
-        lo = pts.min(0)
+        lo, box, cell = _grid_frame(pts, distance)
         local = pts - lo                                # the grid covers the cloth's own box
-        box = tuple(np.maximum(local.max(0), distance) * (1 + 1e-6) + 1e-6)
-        cell = max(distance, max(box) / MAX_CELLS)      # a flung cloth: bigger cells, not more
         cells = sort_into_cells(local, cell, box)
-        blocks = list(grid_pair_blocks(local, cell, box, cells))
+        blocks = list(grid_pair_blocks(local, cell, box, cells, separations=False))
         tests = cells.tests
-    if blocks:                                          # (every block holds only pairs < distance)
-        i, j, dx, dy, r2 = (np.concatenate([getattr(b, k) for b in blocks])
-                            for k in ("i", "j", "dx", "dy", "r2"))
-    else:
-        i = j = np.zeros(0, np.intp)
-        dx = dy = r2 = np.zeros(0)
-    # the pair's offset in the grid of particles, (rows apart, columns apart), capped at 3:
-    # a table says which offsets are a rod of an active set (or a cell's side or diagonal)
-    row, col = _grid_coords(c)
-    dr = np.minimum(np.abs(row.take(i) - row.take(j)), 3)
-    dc = np.minimum(np.abs(col.take(i) - col.take(j)), 3)
-    keep = ~_joined_table(c).take(dr * 4 + dc)
-    return i[keep], j[keep], dx[keep], dy[keep], r2[keep], tests
+    if not blocks:
+        return np.zeros(0, np.intp), np.zeros(0, np.intp), tests
+    i, j = (np.concatenate([b.i for b in blocks]), np.concatenate([b.j for b in blocks])) \
+        if len(blocks) > 1 else (blocks[0].i, blocks[0].j)
+    keep = ~_joined(c, i, j)
+    return i[keep], j[keep], tests
 
 
-def _grid_coords(c) -> tuple[np.ndarray, np.ndarray]:
-    """Each particle's (row, column) in the cloth's grid, flat (computed once per cloth)."""
+def _grid_frame(pts: np.ndarray, distance: float) -> tuple[np.ndarray, tuple, float]:
+    """(lo, box, cell): the grid's corner, its size (w, h) and the least cell size: the cloth's
+    own box, cells `distance` wide (bigger for a flung cloth: at most MAX_CELLS across)."""
+    lo = pts.min(0)
+    box = tuple(np.maximum(pts.max(0) - lo, distance) * (1 + 1e-6) + 1e-6)
+    return lo, box, max(distance, max(box) / MAX_CELLS)
+
+
+def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """True where particles i and j are never pushed apart: a cell's sides and diagonals (|dr|,
+    |dc| <= 1) or a rod of an active set. Each particle carries the number row * W + col with
+    W = 2 cols, so k_j - k_i = dr W + dc tells (dr, dc) apart (|dc| < cols < W / 2) and one
+    table read per pair answers; it replaces `(|row_i - row_j|, |col_i - col_j|) in joined`."""
+    key = (c.rows, c.cols, tuple(rs.name for rs in c.active_sets))
     st = c.contact
-    if st.grid_coords is None or st.grid_coords[0].size != c.rows * c.cols:
-        st.grid_coords = np.divmod(np.arange(c.rows * c.cols), c.cols)
-    return st.grid_coords
-
-
-def _joined_table(c) -> np.ndarray:
-    """(16,) bool, at dr * 4 + dc (each capped at 3): True where two particles that far apart
-    in the grid are never pushed apart: a cell's sides and diagonals, or a rod of an active set."""
-    table = np.zeros((4, 4), bool)
-    table[0, 1] = table[1, 0] = table[1, 1] = True
-    for rs in c.active_sets:
-        for a, b in ROD_OFFSETS[rs.name]:
-            table[a, b] = True
-    return table.ravel()
+    if st.joined_key != key:
+        offsets = {(0, 1), (1, 0), (1, 1)} | {o for rs in c.active_sets
+                                              for o in ROD_OFFSETS[rs.name]}
+        w = 2 * c.cols
+        row, col = np.divmod(np.arange(c.rows * c.cols), c.cols)
+        reach = (c.rows - 1) * w + c.cols - 1          # the largest |k_j - k_i|
+        table = np.zeros(2 * reach + 1, bool)
+        for dr, dc in offsets:
+            for sr in (1, -1):
+                for sc in (1, -1):
+                    table[reach + sr * dr * w + sc * dc] = True
+        st.joined_key, st.joined_at = key, (row * w + col + reach, row * w + col, table)
+    plus, minus, table = st.joined_at
+    return table.take(plus.take(j) - minus.take(i))
 
 
 def self_collide(c, h: float) -> None:
     """Push every pair closer than self_distance apart to that distance, each end by its share
     w_i / (w_i + w_j) of the overlap (a pinned end does not move), averaged per particle."""
     st = c.contact
-    i, j, _, _, _, st.self_tests = close_pairs(c, st.self_distance, st.self_method)
+    if c.kernel == "numba" and st.self_method == "grid":
+        return _self_collide_compiled(c)
+    i, j, st.self_tests = close_ij(c, st.self_distance, st.self_method)
     st.self_pairs = len(i)
     if len(i) == 0:
         return
@@ -328,9 +399,38 @@ def self_collide(c, h: float) -> None:
         ys += moved[n:] * scale
 
 
+def _self_collide_compiled(c) -> None:
+    """self_collide's pass as one compiled loop over the candidates and one per sweep
+    (app/physics/self_compiled.py: the cloth's kernel "numba"); the same grid, the same pairs."""
+    from app.physics import self_compiled
+    st, x = c.contact, c.x.reshape(2, -1)
+    dmin, n = st.self_distance, x.shape[1]
+    if st.compiled is None or st.compiled.count.size != n:
+        st.compiled = self_compiled.Buffers(n)
+    lo, box, cell = _grid_frame(_points(c.x), dmin)
+    nx, ny = grid_shape(box, cell)
+    frame = (lo[0], lo[1], nx / box[0], ny / box[1], nx, ny)
+    key = tuple(rs.name for rs in c.active_sets)
+    if st.compiled.joined_key != key:                   # (|dr|, |dc|) capped at 3: joined?
+        table = np.zeros((4, 4), bool)
+        for dr, dc in {(0, 1), (1, 0), (1, 1)} | {o for name in key for o in ROD_OFFSETS[name]}:
+            table[dr, dc] = True
+        st.compiled.joined_key, st.compiled.joined = key, table.ravel()
+    i, j, st.self_tests = self_compiled.find_pairs(x[0], x[1], frame, dmin, c.cols,
+                                                   st.compiled.joined, st.compiled)
+    st.self_pairs = len(i)
+    if len(i) == 0:
+        return
+    floor_too = "collisions" in c.on and st.obstacles
+    movable, w = c.free.ravel() > 0, c.w.ravel()
+    for sweep in range(SELF_SWEEPS):
+        if floor_too:                                   # as in self_collide
+            project(st.obstacles, x.T, st.margin, movable)
+        self_compiled.push_apart(x[0], x[1], i, j, w, dmin, OVER_RELAX, sweep, st.compiled)
+
+
 def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERLAP_SLACK) -> int:
     """Pairs closer than (1 - slack) x distance, cell and rod neighbours left out (95% of it by
     default: a layer resting under the weight of another sits at about 98%): what self-collision
     did not (yet) resolve, or, with it off, how much the cloth lies on itself."""
-    r2 = close_pairs(c, distance * (1 - slack), method)[4]
-    return int(len(r2))
+    return int(len(close_ij(c, distance * (1 - slack), method)[0]))

@@ -63,14 +63,14 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     if ids.size == 0 or mu <= 0:
         return
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
-    mx = xs[ids].astype(np.float64) - x_prev[ids, 0]          # the travel of this step...
-    my = ys[ids].astype(np.float64) - x_prev[ids, 1]
+    mx = xs[ids].astype(np.float64) - x_prev[:, 0].take(ids)  # the travel of this step...
+    my = ys[ids].astype(np.float64) - x_prev[:, 1].take(ids)
     if h and any(vx or vy for vx, vy in (ob.velocity for ob in obstacles)):
         # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
         mx -= carry[contacts.index[ids], 0]
         my -= carry[contacts.index[ids], 1]
-    nx, ny = contacts.normal[ids, 0], contacts.normal[ids, 1]
+    nx, ny = contacts.normal[:, 0].take(ids), contacts.normal[:, 1].take(ids)
     along = mx * nx + my * ny
     tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
     speed = np.hypot(tx, ty)

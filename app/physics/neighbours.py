@@ -74,6 +74,7 @@ GRID_BLOCK = 1 << 14
 # neighbours see this cell in their own stencil), so every pair of neighbouring cells is met once.
 # sort_into_cells's two runs per particle cover exactly these cells (a test counts them).
 HALF_STENCIL = ((1, 0), (-1, 1), (0, 1), (1, 1))
+EMPTY = np.zeros(0)           # a PairBlock's separations when the caller did not want them
 
 
 @dataclass
@@ -163,7 +164,10 @@ def sort_into_cells(x: np.ndarray, cutoff: float, box: tuple[float, float]) -> C
     cy = np.clip(np.floor(x[:, 1] * (ny / box[1])), 0, ny - 1).astype(np.intp)
     cell = cy * columns + cx
     # 2. sort: particle indices in cell order; each cell's run is start[c] .. stop[c] - 1
-    order = np.argsort(cell, kind="stable")
+    # (keys of 16 bits where they fit: NumPy's stable sort is then a radix sort, 5x faster
+    # at 4096 particles, the same order)
+    key = cell.astype(np.uint16) if columns * rows <= 1 << 16 else cell
+    order = np.argsort(key, kind="stable")
     count = np.bincount(cell, minlength=columns * rows)    # particles per cell
     stop = np.cumsum(count)
     start = stop - count
@@ -177,9 +181,11 @@ def sort_into_cells(x: np.ndarray, cutoff: float, box: tuple[float, float]) -> C
 
 
 def grid_pair_blocks(x: np.ndarray, cutoff: float, box: tuple[float, float],
-                     cells: CellList | None = None) -> Iterator[PairBlock]:
+                     cells: CellList | None = None, block: int = GRID_BLOCK,
+                     separations: bool = True) -> Iterator[PairBlock]:
     """Every pair with |x_j - x_i| < cutoff among the grid's candidates, block by block (`cells`:
-    the sort, if it was made already)."""
+    the sort, if it was made already; `block`: candidates per block; separations=False: the
+    blocks' dx, dy, r2 are left empty, for a caller that needs i and j only)."""
     cells = cells if cells is not None else sort_into_cells(x, cutoff, box)
     order, first = cells.order, cells.first
     length = cells.stop - first                    # candidates in each run
@@ -188,7 +194,7 @@ def grid_pair_blocks(x: np.ndarray, cutoff: float, box: tuple[float, float],
     r2_max = cutoff * cutoff                       # side by side in memory
     # blocks of whole runs, about GRID_BLOCK candidates each
     ends = np.cumsum(length)
-    cuts = np.searchsorted(ends, np.arange(GRID_BLOCK, cells.tests, GRID_BLOCK))
+    cuts = np.searchsorted(ends, np.arange(block, cells.tests, block))
     bounds = np.unique(np.concatenate(([0], cuts + 1, [len(length)])))
     for a, b in zip(bounds[:-1], bounds[1:]):
         runs, p = length[a:b], owner[a:b]
@@ -203,7 +209,10 @@ def grid_pair_blocks(x: np.ndarray, cutoff: float, box: tuple[float, float],
         hits = np.flatnonzero(r2 < r2_max)
         i = np.repeat(order.take(p), runs).take(hits)
         j = order.take(q.take(hits))
-        yield PairBlock(i, j, dx.take(hits), dy.take(hits), r2.take(hits))
+        if separations:
+            yield PairBlock(i, j, dx.take(hits), dy.take(hits), r2.take(hits))
+        else:
+            yield PairBlock(i, j, EMPTY, EMPTY, EMPTY)
 
 
 def grid_pairs(x: np.ndarray, cutoff: float, box: tuple[float, float]

@@ -106,7 +106,8 @@ def _pairs(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 def _unit_or(nx: np.ndarray, ny: np.ndarray, length: np.ndarray, fallback: tuple[float, float]
              ) -> tuple[np.ndarray, np.ndarray]:
     """(nx, ny) / length, or `fallback` where the length is 0 (a point at a circle's centre)."""
-    ux, uy = nx / np.maximum(length, TINY), ny / np.maximum(length, TINY)
+    safe = np.maximum(length, TINY)
+    ux, uy = nx / safe, ny / safe
     zero = length <= TINY
     if zero.any():                      # rare: fix those few, not every element
         ux[zero], uy[zero] = fallback
@@ -248,10 +249,9 @@ class Box(Obstacle):
         d = out + np.minimum(np.maximum(qx, qy), 0.0)     # inside: -(distance to nearest face)
         # the normal in the box's frame: towards the nearest point outside, else the nearest
         # face's; the signs of lx, ly say which side (+1 on an axis: either side will do)
-        face_x = qx >= qy
-        safe = np.maximum(out, TINY)
-        gx = np.where(out > 0, ox / safe, face_x) * np.copysign(1.0, lx)
-        gy = np.where(out > 0, oy / safe, ~face_x) * np.copysign(1.0, ly)
+        face_x, outside, safe = qx >= qy, out > 0, np.maximum(out, TINY)
+        gx = np.copysign(np.where(outside, ox / safe, face_x), lx)
+        gy = np.copysign(np.where(outside, oy / safe, ~face_x), ly)
         return d, gx * ux + gy * vx, gx * uy + gy * vy
 
     def distance(self, x, y):

@@ -23,20 +23,23 @@ def circle_entry(fx, fy, ex, ey, r):
     disc = b * b - a * c
     t = (-b - np.sqrt(np.maximum(disc, 0.0))) / a
     t = np.where(c <= 0, 0.0, t)
-    return np.clip(t, 0.0, 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
+    return np.minimum(np.maximum(t, 0.0), 1.0), (disc >= 0) & (t <= 1) & ((c <= 0) | (t >= 0))
 
 
 def slab_entry(sx, sy, ex, ey, half_x, half_y):
     """(t, hit): where the path s + t e (in a box's own frame) first enters |x| <= half_x,
     |y| <= half_y, by slab clipping: on each axis the path is between the two faces for t in
-    [t_near, t_far]; it is inside the box where all those intervals overlap."""
-    lo, hi = np.zeros(len(sx)), np.ones(len(sx))
+    [t_near, t_far]; it is inside the box where all those intervals overlap (and [0, 1])."""
+    lo, hi = 0.0, 1.0
     for s0, ds, half in ((sx, ex, half_x), (sy, ey, half_y)):
         flat = np.abs(ds) < TINY                         # parallel to this axis' faces
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t1, t2 = (-half - s0) / ds, (half - s0) / ds
-        lo = np.where(flat, np.where(np.abs(s0) <= half, lo, np.inf), np.maximum(lo, np.minimum(t1, t2)))
-        hi = np.where(flat, hi, np.minimum(hi, np.maximum(t1, t2)))
+        step = np.where(flat, 1.0, ds)                   # (no 0/0: flat paths are set below)
+        t1, t2 = (-half - s0) / step, (half - s0) / step
+        t_near, t_far = np.minimum(t1, t2), np.maximum(t1, t2)
+        if flat.any():          # rare: between the faces for ever, or never
+            t_near[flat] = np.where(np.abs(s0[flat]) <= half, -np.inf, np.inf)
+            t_far[flat] = np.inf
+        lo, hi = np.maximum(lo, t_near), np.minimum(hi, t_far)
     hit = lo <= hi
     return np.where(hit, lo, 0.0), hit
 

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from app.physics.obstacles import Box, Circle, HalfPlane, Obstacle, Segment
+from app.physics.paths import TINY
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0       # 0.618...: golden-section search's shrink factor
 
@@ -165,6 +166,95 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
     return dmin < -depth, t
 
 
+def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy: np.ndarray,
+                d1: np.ndarray, n1x: np.ndarray, n1y: np.ndarray, tolerance: float
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
+    """swept(past_middle=True) against one obstacle, for paths a -> a + v whose end's signed
+    distance d1 and outward normal n1 the caller has already (the projection needs them too):
+    (back, t, nx, ny, through). `back`: the indices of the paths to put back where they
+    entered: those with both ends outside that went more than `tolerance` deep (`through`
+    counts them), and those that came in from outside past the middle (end inside, longer
+    than the half width); t: where each of them first met the surface (Obstacle.entry), 0..1
+    along v, and (nx, ny) the outward normal there (entry_normal).
+
+    A third bound joins the two of the module docstring: d is convex, so along the path it lies
+    above its tangent at the end, d(t) >= d1 - (1 - t) n1 . v; a path whose end is outside can
+    only dip below -tolerance if d1 - n1 . v does. A particle sliding along a surface (n1 . v
+    about 0) is dismissed by it; the length bound alone let every sliding particle longer than
+    2 sqrt(2) tolerance through to the exact test (most of a cloth heaped on a tilted box)."""
+    none = np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0), 0
+    shortest = shortest_dip(ob, tolerance)
+    if isinstance(ob, HalfPlane):
+        return none                                      # d linear along a path: nothing
+    half = ob.half_width()
+    length2 = vx * vx + vy * vy
+    outside = d1 >= 0
+    maybe = np.where(outside, (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy)
+                                                                   < -tolerance),
+                     length2 > half * half)
+    k = maybe.nonzero()[0]
+    if k.size == 0:
+        return none
+    d0 = ob.distance(ax[k], ay[k])
+    length, out = np.sqrt(length2[k]), outside[k]
+    back = (d0 >= 0) & ~out & (length > half)            # came in from outside, past the middle
+    through, t_in = 0, None
+    if out.any():
+        dips = (d0 >= 0) & out & ((d0 + d1[k] - length) / 2 < -tolerance)
+        if dips.any():                                   # the exact test, for the few left
+            ids = dips.nonzero()[0]
+            p0 = np.column_stack((ax[k[ids]], ay[k[ids]]))
+            p1 = p0 + np.column_stack((vx[k[ids]], vy[k[ids]]))
+            exact, t_dip = dips_below(ob, p0, p1, tolerance)
+            dips[ids[~exact]] = False
+            t_in = np.ones(k.size)
+            t_in[ids] = t_dip
+            through = int(np.count_nonzero(dips))
+            back |= dips
+    back = back.nonzero()[0]
+    if back.size == 0:
+        return none
+    kb = k[back]
+    # where the path first met the surface (before its deepest point), and the normal there
+    t, nx, ny = entry_normal(ob, ax[kb], ay[kb], vx[kb], vy[kb])
+    return kb, (t if t_in is None else np.minimum(t, t_in[back])), nx, ny, through
+
+
+def entry_normal(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, ex: np.ndarray, ey: np.ndarray
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(t, nx, ny): Obstacle.entry's t for paths a + t e that start outside and reach inside,
+    and the outward normal where they meet the surface. A ball's and a box's come with the
+    entry, written for such paths alone (often one particle: the NumPy calls are the cost):
+    a ball's is the smaller root of |a + t e - c| = r and the radius through it; a box's the
+    last face its slabs were entered by (slab clipping, the far faces not needed). Other
+    shapes ask Obstacle.entry and distance_xy at the entry point."""
+    if isinstance(ob, Circle):
+        fx, fy = ax - ob.cx, ay - ob.cy
+        a = np.maximum(ex * ex + ey * ey, TINY)
+        b = fx * ex + fy * ey
+        c = fx * fx + fy * fy - ob.radius * ob.radius       # >= 0: the start is outside
+        t = np.clip((-b - np.sqrt(np.maximum(b * b - a * c, 0.0))) / a, 0.0, 1.0)
+        return t, (fx + t * ex) / ob.radius, (fy + t * ey) / ob.radius
+    if isinstance(ob, Box):
+        (ux, uy), (wx, wy) = ob.axes()
+        dx, dy = ax - ob.cx, ay - ob.cy                   # the path in the box's own frame
+        near = []
+        for s0, ds, half in ((dx * ux + dy * uy, ex * ux + ey * uy, ob.half_w),
+                             (dx * wx + dy * wy, ex * wx + ey * wy, ob.half_h)):
+            # where it crosses the nearer face of this slab (parallel: +-1e300, never/always)
+            ds = np.copysign(np.maximum(np.abs(ds), 1e-300), ds)
+            near.append(np.minimum((-half - s0) / ds, (half - s0) / ds))
+        face_x = near[0] >= near[1]
+        t = np.clip(np.maximum(near[0], near[1]), 0.0, 1.0)
+        # entering a face: the normal points back along the path's motion across it
+        g = np.sign(np.where(face_x, ex * ux + ey * uy, ex * wx + ey * wy))
+        gx, gy = -g * face_x, -g * ~face_x
+        return t, gx * ux + gy * wx, gx * uy + gy * wy
+    t = ob.entry(ax, ay, ex, ey)
+    _, nx, ny = ob.distance_xy(ax + t * ex, ay + t * ey)
+    return t, nx, ny
+
+
 def swept(obstacles, p0: np.ndarray, p1: np.ndarray, tolerance: float = 0.5,
           movable: np.ndarray | None = None, find_entry: bool = True,
           past_middle: bool = False) -> Sweep:
@@ -282,4 +372,5 @@ def swept_xy(obstacles, ax_: np.ndarray, ay_: np.ndarray, bx_: np.ndarray, by_: 
 
 
 __all__ = ["path_min_distance", "dips_below", "shortest_dip", "Sweep", "swept", "swept_xy",
+           "through_one", "entry_normal",
            "GOLDEN"]

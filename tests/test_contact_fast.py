@@ -1,0 +1,127 @@
+"""The cloth's fast contact paths find what the plain ones find: the fused tunnelling test and
+projection (app/physics/cloth_contact.py, tunnelling.through_one) against swept() + project(),
+and the self-collision grid against all pairs. Seeded random states; cheap (well under 1 s)."""
+
+import numpy as np
+import pytest
+
+from app.physics import rods_compiled
+from app.physics.cloth import Cloth
+from app.physics.cloth_contact import ContactState, _tunnel_and_project, close_pairs, self_collide
+from app.physics.obstacles import Box, Circle, Segment, floor, project
+from app.physics.tunnelling import swept, through_one
+from scenes.cloth import ClothScene
+
+SHAPES = [Circle(0.0, 0.0, 30.0), Box(5.0, -3.0, 40.0, 6.0, 0.35), Segment(-40, 10, 35, -5, 2.0)]
+
+
+def random_paths(seed, n=4000):
+    """Paths of every length (0.01 to 200 px) and direction around the shapes: a few hundred
+    go through one, cut a corner, slide along a face or end past its middle."""
+    rng = np.random.default_rng(seed)
+    a = rng.uniform(-80, 80, (n, 2))
+    length = 10 ** rng.uniform(-2, 2.3, n)
+    angle = rng.uniform(0, 2 * np.pi, n)
+    b = a + length[:, None] * np.column_stack((np.cos(angle), np.sin(angle)))
+    return a, b
+
+
+@pytest.mark.parametrize("ob", SHAPES, ids=lambda ob: ob.kind)
+def test_through_one_finds_what_swept_finds(ob):
+    tolerance = 1.0
+    for seed in range(3):
+        a, b = random_paths(seed)
+        sw = swept([ob], a, b, tolerance, past_middle=True)
+        d1, n1x, n1y = ob.distance_xy(b[:, 0], b[:, 1])
+        back, t, nx, ny, through = through_one(ob, a[:, 0], a[:, 1], b[:, 0] - a[:, 0],
+                                               b[:, 1] - a[:, 1], d1, n1x, n1y, tolerance)
+        expected = np.flatnonzero(sw.mask | sw.deep)
+        assert expected.size > 20 and sw.count > 5          # the test has cases to check
+        assert np.array_equal(np.sort(back), expected) and through == sw.count
+        entry = a[back] + t[:, None] * (b[back] - a[back])
+        assert np.allclose(entry, sw.entry[back], atol=1e-9)
+        # the normal given with the entry: the outward normal just outside that point
+        _, ox, oy = ob.distance_xy(entry[:, 0] + 1e-6 * nx, entry[:, 1] + 1e-6 * ny)
+        assert np.allclose(np.hypot(nx, ny), 1.0) and np.allclose(ox, nx, atol=1e-4) and \
+            np.allclose(oy, ny, atol=1e-4)
+
+
+def reference(obstacles, start, x, movable, margin, tolerance):
+    """The plain pipeline: every path through an obstacle put back where it entered (swept),
+    then every particle projected (project)."""
+    sw = swept(obstacles, start.T, x, tolerance, movable, past_middle=True)
+    back = sw.mask | sw.deep
+    x[back] = sw.entry[back]
+    return project(obstacles, x, margin, movable), sw.count
+
+
+@pytest.mark.parametrize("ob", SHAPES[:2] + [floor(40.0)], ids=lambda ob: ob.kind)
+def test_fused_tunnelling_and_projection_match_the_plain_pipeline(ob):
+    for seed in range(3):
+        a, b = random_paths(10 + seed)
+        movable = np.random.default_rng(seed).uniform(size=len(a)) > 0.1
+        b[~movable] = a[~movable]
+        x_ref, x_new = b.copy(), b.copy()
+        contacts, count = reference([ob], a.T.copy(), x_ref, movable, 0.25, 1.0)
+        st = ContactState(obstacles=[ob])
+        fused = _tunnel_and_project(st, a.T.copy(), x_new, movable)
+        assert contacts.count > 100 and st.tunneled == count
+        assert np.array_equal(fused.mask, contacts.mask)
+        # put back: on the surface where the path entered, then pushed out to the margin (the
+        # plain pipeline measures the normal again at the entry point: in float64 that point
+        # can sit within 1e-12 px outside, where Box.distance_xy's normal is shorter than 1)
+        sw = swept([ob], a, b, 1.0, movable, past_middle=True)
+        back = sw.mask | sw.deep
+        assert np.allclose(ob.distance(x_new[back, 0], x_new[back, 1]), 0.25, atol=1e-9)
+        assert np.all(np.hypot(*(x_new[back] - sw.entry[back]).T) < 0.25 + 1e-9)
+        same = ~back
+        assert np.allclose(x_new[same], x_ref[same], atol=1e-9)
+        assert np.allclose(fused.depth[same], contacts.depth[same], atol=1e-9)
+        assert np.allclose(fused.normal[same], contacts.normal[same], atol=1e-9)
+
+
+def crumpled_cloth(seed, n=24):
+    """A cloth squeezed to a third and jittered (the crumpled start), float32 like the app's."""
+    rng = np.random.default_rng(seed)
+    c = Cloth(n, n, 8.0, (100.0, 100.0), "none", {"shear"})
+    x = c.x.reshape(2, -1)
+    mid = x.mean(1, keepdims=True)
+    x[...] = mid + (x - mid) / 3 + rng.uniform(-8 / 3, 8 / 3, x.shape)
+    return c
+
+
+def pair_set(i, j):
+    return set(zip(np.minimum(i, j).tolist(), np.maximum(i, j).tolist()))
+
+
+def test_self_collision_grid_finds_exactly_the_pairs_all_pairs_finds():
+    for seed in range(3):
+        c = crumpled_cloth(seed)
+        for distance, least in ((6.4, 1000), (2.0, 30)):
+            grid = close_pairs(c, distance, "grid")
+            brute = close_pairs(c, distance, "all_pairs")
+            assert len(grid[0]) > least
+            assert pair_set(grid[0], grid[1]) == pair_set(brute[0], brute[1])
+
+
+needs_numba = pytest.mark.skipif(not rods_compiled.available(), reason="numba not installed")
+
+
+@needs_numba
+def test_the_compiled_self_collision_finds_the_same_pairs_and_moves_the_same():
+    """kernel=numba: the same pairs and candidate count as the NumPy grid, the same positions
+    after the pass (to float32 rounding), and the HUD names it."""
+    for seed, sets in ((0, {"shear"}), (1, {"shear", "bending"})):
+        a, b = crumpled_cloth(seed), crumpled_cloth(seed)
+        for c in (a, b):
+            c.set_effects(sets | {"self_collision"})
+            c.contact.self_distance = 6.4
+        b.kernel = "numba"
+        self_collide(a, 1 / 60)
+        self_collide(b, 1 / 60)
+        assert a.contact.self_pairs == b.contact.self_pairs > 1000
+        assert a.contact.self_tests == b.contact.self_tests
+        assert np.abs(a.x - b.x).max() < 1e-3
+    scene = ClothScene({"rows": 8, "cols": 8, "kernel": "numba", "self_collision": True})
+    scene.advance()
+    assert "numba kernel (rods, self-collision)" in scene.hud_lines()[0]
