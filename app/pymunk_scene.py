@@ -280,6 +280,12 @@ class PymunkScene(Scene):
     def awake_count(self, ids: np.ndarray) -> int:
         """How many rows (from body_rows) are awake bodies: those before the first static row,
         by the batch's order awake | static | sleeping."""
+        if len(ids) <= 64:      # a few bodies: a look at each beats an (n, k) comparison
+            static = self._static_set
+            for i, body_id in enumerate(ids.tolist()):
+                if body_id in static:
+                    return i
+            return len(ids)
         static = self.static_rows(ids)
         return int(np.argmax(static)) if static.any() else len(ids)
 

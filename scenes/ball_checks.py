@@ -1,0 +1,219 @@
+"""What falling_balls (and pivoting_l) check after every step: balls that tunneled through the
+L's long arm, and balls that left the world (removed). A part of FallingBallsScene kept in a
+module of its own (FallingBallsScene inherits BallChecks).
+
+The usual step is cheap: while the same bodies stay awake, each body's height over the arm is one
+dot product of its row (x, y, angle, vx, vy, w) with a weight vector, and "above the arm before,
+on or below it now" compares the signs kept from the last step with the new ones; the world's
+box is one scaled |distance from its centre|. That is a handful of NumPy calls however many
+balls there are (an (n, 2) reduction along an axis, or a small matrix product, costs several us;
+a call on a flat array about one). Anything unusual (a ball that crossed the arm's line, a ball
+outside the box, a change in who is awake, the L woken) goes the long way, ball by ball, with
+the exact tests below (count_tunneled, remove_fallen).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+class BallChecks:
+    """The checks after a step of falling_balls. Expects self.balls, self._xy (every ball's
+    centre after the last step it was looked at), self._awake, self.L_body, self.counts and
+    the tables of FallingBallsScene.restored."""
+
+    arm_extent: tuple[float, float] = (0.0, 0.0)   # the long arm's ends along the L's own x
+
+    def _checks_reset(self) -> None:
+        """Forget what was kept between steps (the tables were rebuilt)."""
+        self._fast = None      # (the L's pose, which awake rows are above its arm's line)
+        self._prev = None      # (ball indices, centres) of the awake balls after the last step,
+                               # not yet written into self._xy
+        self._frame_cache = []      # [(pose, frame)] of the L, the last two (_frame)
+
+    def flush_xy(self) -> None:
+        """Write the awake balls' centres from the last step into self._xy (the usual step keeps
+        them aside: a copy is one call, writing them into place by index is slower)."""
+        prev = self._prev
+        if prev is not None:
+            k, xy = prev
+            self._xy[k] = xy
+            self._prev = None
+
+    def check_balls(self, L0: tuple[float, float, float]) -> tuple[float, float, float]:
+        """After a step: count the balls that tunneled through the L, remove those that left the
+        world, remember every ball's centre (self._xy); return the L's pose after the step (L0:
+        before it). Only a body awake before or after the step can have moved: while the same
+        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at;
+        otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
+        reuses the read), the L's pose with them while the same bodies stay awake."""
+        ids, data = self.state_rows()
+        awake = self._awake
+        n = -1 if awake is None else len(awake[0])
+        same = 0 <= n < len(ids) and ids[n] in self._static_set and ids[:n].tobytes() == awake[4]
+        if same:
+            L_row = awake[3]
+            L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
+            # (a sleeping ball does not move, but a moving L may pass it: so with balls
+            # asleep, a moving L means looking at every ball)
+            same = L0 == L1 or len(ids) == n + len(self._static_ids)
+            fast = self._fast
+            if same and fast is not None and fast[0] == L0 and len(awake[2]):
+                return self._usual_check(data[:n], L0, L1, awake, fast[1])
+        else:
+            L1 = self.L_pose()
+        self.flush_xy()
+        if same:
+            _, rows, k, _, _ = awake      # the same bodies awake as after the last step
+            xy = data[:n, :2] if rows is None else data[:n, :2][rows]
+        else:
+            n = self.awake_count(ids)
+            k = self.ball_index(ids)
+            ball = k >= 0
+            xy, k = data[ball, :2], k[ball]       # every ball, awake or asleep
+            rows = ball[:n]
+            count = int(np.count_nonzero(rows))
+            L_row = np.flatnonzero(ids[:n] == self._L_id)
+            self._awake = (ids[:n].copy(), None if count == n else rows, k[:count],
+                           int(L_row[0]) if len(L_row) else None, ids[:n].tobytes())
+            self.resting = n == 0
+        self._fast = None
+        if not len(k):
+            return L1
+        self.count_tunneled(self._xy[k], xy, L0, L1)
+        self._xy[k] = xy
+        self.remove_outside(k, xy)
+        if self._awake is not None and len(self._awake[2]):   # (not if remove_fallen removed)
+            n = len(self._awake[0])
+            _, _, a6, c = self._frame(L1)
+            self._fast = (L1, data[:n].dot(a6) < c)
+        return L1
+
+    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, above0: np.ndarray):
+        """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
+        the L): which are above the arm's line by one dot product, a crossing by a change in
+        those signs, the box by one reduction; a crossing or a ball outside goes to the exact
+        tests. (A few calls on flat arrays: on tens of balls each costs about 1 us, while a
+        reduction along an axis of an (n, 2) array costs several.)"""
+        _, rows, k, _, _ = awake
+        _, _, a6, c = self._frame(L1)
+        above1 = rows_now.dot(a6) < c                     # (row . a6 - c < 0: above the line)
+        self._fast = (L1, above1)
+        xy = rows_now[:, :2]
+        xy_balls = xy.copy() if rows is None else xy[rows]
+        prev, self._prev = self._prev, (k, xy_balls)      # (flush_xy writes them into _xy)
+        if above0.tobytes() != above1.tobytes():          # some changed sides (rare)
+            crossed = above0 > above1                     # above before, not above now
+            if rows is not None:
+                crossed = crossed[rows]                   # balls only (not the L's row)
+            if crossed.any():
+                xy0 = self._xy[k] if prev is None else prev[1]
+                self._count_inside(xy0[crossed], xy_balls[crossed], L0, L1)
+        self.remove_outside(k, xy_balls)
+        return L1
+
+    def remove_outside(self, k: np.ndarray, xy: np.ndarray) -> None:
+        """remove_fallen(k, xy), after a quick look: every centre inside the box, |(p - centre)
+        / half size| <= 1 - 1e-12 on the flat centres, means none is out (the margin is far more
+        than the rounding of the scaled test, so the answer is remove_fallen's)."""
+        flat = xy.ravel()
+        if not len(flat):
+            return
+        box = self._box(len(flat))
+        q = box[3]
+        np.subtract(flat, box[1], out=q)
+        np.multiply(q, box[2], out=q)
+        np.abs(q, out=q)
+        if not q.max() <= 1.0 - 1e-12:                    # (NaN: not <=)
+            self.flush_xy()
+            self.remove_fallen(k, xy)
+
+    def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
+        """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check
+        tells it for a body's row)."""
+        _, _, a6, c = self._frame(pose)
+        return bool(np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(a6) < c)
+
+    def _box(self, size: int) -> tuple:
+        """(key, centre, 1 / half size, a buffer) of the box a ball's centre must stay in
+        (remove_fallen's, up to rounding), for `size` coordinates x0, y0, x1, y1, ... at once."""
+        w, h = self.world_size
+        r = self.p["radius"]
+        key = (w, h, r, size)
+        box = getattr(self, "_box_of", None)
+        if box is None or box[0] != key:
+            lo, hi = np.array((-2 * r, -h)), np.array((w + 2 * r, h + 2 * r))
+            m = size // 2
+            box = self._box_of = (key, np.tile((lo + hi) / 2, m), np.tile(2 / (hi - lo), m),
+                                  np.empty(size))
+        return box
+
+    def L_pose(self) -> tuple[float, float, float]:
+        """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
+        step does not, nor can the mouse), the pose it had when the tables were built."""
+        pose = self._L_static_pose
+        if pose is None:
+            x, y = self.L_body.position
+            pose = (x, y, self.L_body.angle)
+        return pose
+
+    def _frame(self, pose: tuple[float, float, float]) -> tuple:
+        """(origin (2,), the local y axis (2,), a6 (6,), c) of the L's frame at pose: a point's
+        height over the arm is (p - origin) . axis, _to_local's y; for a body's row (x, y,
+        angle, vx, vy, w) it is row . a6 - c (c = origin . axis). The last two are kept (a
+        resting or static L has the same pose step after step; a moving one, the pose before
+        and after)."""
+        cache = self._frame_cache
+        for key, frame in cache:
+            if key == pose:
+                return frame
+        x, y, a = pose
+        origin, axis = np.array((x, y)), np.array((-math.sin(a), math.cos(a)))
+        a6 = np.zeros(6)
+        a6[:2] = axis
+        frame = (origin, axis, a6, float(origin @ axis))
+        cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
+        return frame
+
+    def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
+                       L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
+        """Count balls whose centre crossed the L's long arm from above to below in this step
+        while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
+        balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
+        is looked at only for balls that crossed.)"""
+        o0, axis0, _, _ = self._frame(L0)
+        y0 = (xy0 - o0) @ axis0
+        o1, axis1, _, _ = self._frame(L1)
+        y1 = (xy1 - o1) @ axis1
+        crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
+        if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
+            self._count_inside(xy0[crossed], xy1[crossed], L0, L1)
+
+    def _count_inside(self, p0: np.ndarray, p1: np.ndarray, L0, L1) -> None:
+        """Of the balls that crossed the arm's line (centres before p0, after p1), count those
+        inside its x-extent before and after."""
+        p0, p1 = _to_local(p0, L0), _to_local(p1, L1)
+        ax, bx = self.arm_extent
+        inside = (p0[:, 0] >= ax) & (p0[:, 0] <= bx) & (p1[:, 0] >= ax) & (p1[:, 0] <= bx)
+        self.counts["tunneled"] += int(np.count_nonzero(inside))
+
+    def remove_fallen(self, k: np.ndarray, xy: np.ndarray) -> None:
+        """Remove the balls (indices k, centres xy) whose centre left the world: below it, far
+        to a side, or more than a world's height above it (new balls fall in from just above,
+        so "above" needs the margin). A non-finite centre counts as out."""
+        if not len(xy):
+            return
+        w, h = self.world_size
+        r = self.p["radius"]
+        inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
+        if not inside.all():
+            self.remove_balls(k[~inside])
+
+
+def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
+    """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""
+    x, y, a = pose
+    c, s = math.cos(a), math.sin(a)
+    # (x', y') = (c dx + s dy, -s dx + c dy) for every row at once: one 2x2 product
+    return (xy - (x, y)) @ np.array(((c, -s), (s, c)))
