@@ -34,11 +34,11 @@ class BallChecks:
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
-        them aside: a copy is one call, writing them into place by index is slower)."""
+        a copy of their rows aside: one call, while writing them into place by index is
+        slower)."""
         prev = self._prev
         if prev is not None:
-            k, xy = prev
-            self._xy[k] = xy
+            self._xy[prev[0]] = _centres(prev)
             self._prev = None
 
     def check_balls(self, L0: tuple[float, float, float]) -> tuple[float, float, float]:
@@ -93,61 +93,45 @@ class BallChecks:
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, above0: np.ndarray):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
         the L): which are above the arm's line by one dot product, a crossing by a change in
-        those signs, the box by one reduction; a crossing or a ball outside goes to the exact
-        tests. (A few calls on flat arrays: on tens of balls each costs about 1 us, while a
-        reduction along an axis of an (n, 2) array costs several.)"""
+        those signs, the box by the extremes of x and y; a crossing or a ball outside goes to
+        the exact tests. (In the step's loop every NumPy call costs 1-2 us: a dot product or an
+        argmax is one call, a ufunc's max() or an (n, 2) reduction along an axis costs more.)"""
         _, rows, k, _, _ = awake
         _, _, a6, c = self._frame(L1)
         above1 = rows_now.dot(a6) < c                     # (row . a6 - c < 0: above the line)
         self._fast = (L1, above1)
-        xy = rows_now[:, :2]
-        xy_balls = xy.copy() if rows is None else xy[rows]
-        prev, self._prev = self._prev, (k, xy_balls)      # (flush_xy writes them into _xy)
+        prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
         if above0.tobytes() != above1.tobytes():          # some changed sides (rare)
             crossed = above0 > above1                     # above before, not above now
             if rows is not None:
                 crossed = crossed[rows]                   # balls only (not the L's row)
             if crossed.any():
-                xy0 = self._xy[k] if prev is None else prev[1]
-                self._count_inside(xy0[crossed], xy_balls[crossed], L0, L1)
-        self.remove_outside(k, xy_balls)
+                xy0 = self._xy[k] if prev is None else _centres(prev)
+                self._count_inside(xy0[crossed], _centres(self._prev)[crossed], L0, L1)
+        self.remove_outside(k, rows_now[:, :2], rows)
         return L1
 
-    def remove_outside(self, k: np.ndarray, xy: np.ndarray) -> None:
-        """remove_fallen(k, xy), after a quick look: every centre inside the box, |(p - centre)
-        / half size| <= 1 - 1e-12 on the flat centres, means none is out (the margin is far more
-        than the rounding of the scaled test, so the answer is remove_fallen's)."""
-        flat = xy.ravel()
-        if not len(flat):
+    def remove_outside(self, k: np.ndarray, xy: np.ndarray, rows: np.ndarray | None = None
+                       ) -> None:
+        """remove_fallen(k, xy) (or of xy[rows], the balls among other bodies), after a quick
+        look: if the smallest and largest x and y are inside the box, no ball is out (the same
+        comparisons as remove_fallen's; argmin and argmax find a NaN too, which fails them)."""
+        if not len(xy):
             return
-        box = self._box(len(flat))
-        q = box[3]
-        np.subtract(flat, box[1], out=q)
-        np.multiply(q, box[2], out=q)
-        np.abs(q, out=q)
-        if not q.max() <= 1.0 - 1e-12:                    # (NaN: not <=)
-            self.flush_xy()
-            self.remove_fallen(k, xy)
+        x, y = xy[:, 0], xy[:, 1]
+        w, h = self.world_size
+        r = self.p["radius"]
+        if (x[x.argmin()] >= -2 * r and x[x.argmax()] <= w + 2 * r and y[y.argmin()] >= -h
+                and y[y.argmax()] <= h + 2 * r):
+            return
+        self.flush_xy()
+        self.remove_fallen(k, xy if rows is None else xy[rows])
 
     def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
         """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check
         tells it for a body's row)."""
         _, _, a6, c = self._frame(pose)
         return bool(np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(a6) < c)
-
-    def _box(self, size: int) -> tuple:
-        """(key, centre, 1 / half size, a buffer) of the box a ball's centre must stay in
-        (remove_fallen's, up to rounding), for `size` coordinates x0, y0, x1, y1, ... at once."""
-        w, h = self.world_size
-        r = self.p["radius"]
-        key = (w, h, r, size)
-        box = getattr(self, "_box_of", None)
-        if box is None or box[0] != key:
-            lo, hi = np.array((-2 * r, -h)), np.array((w + 2 * r, h + 2 * r))
-            m = size // 2
-            box = self._box_of = (key, np.tile((lo + hi) / 2, m), np.tile(2 / (hi - lo), m),
-                                  np.empty(size))
-        return box
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
@@ -209,6 +193,12 @@ class BallChecks:
         inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
         if not inside.all():
             self.remove_balls(k[~inside])
+
+
+def _centres(kept: tuple) -> np.ndarray:
+    """The balls' centres from a BallChecks._prev: (ball indices, ball rows (None: all), rows)."""
+    _, rows, data = kept
+    return data[:, :2] if rows is None else data[rows, :2]
 
 
 def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
