@@ -50,7 +50,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.physics.integrators import rk4_tuple
 
 State = tuple[float, float, float, float]    # theta1, theta2, omega1, omega2 (rad, rad/s)
 
@@ -93,8 +92,19 @@ class DoublePendulumODE:
         return (w1, w2, a1, a2)
 
     def rk4_step(self, h: float) -> None:
-        """One classical Runge-Kutta step of h seconds (integrators.rk4_tuple)."""
-        self.state = rk4_tuple(self.derivative, self.state, h)
+        """One classical Runge-Kutta step of h seconds: integrators.rk4_tuple's formula written
+        out for the four numbers (the same arithmetic, so the same result to the last bit, a
+        test checks it; without its tuple-building loops a step costs about a third less)."""
+        f = self.derivative
+        t1, t2, w1, w2 = y = self.state
+        hh = 0.5 * h
+        a1, b1, c1, d1 = f(y)                                                 # k1 = f(y)
+        a2, b2, c2, d2 = f((t1 + hh * a1, t2 + hh * b1, w1 + hh * c1, w2 + hh * d1))
+        a3, b3, c3, d3 = f((t1 + hh * a2, t2 + hh * b2, w1 + hh * c2, w2 + hh * d2))
+        a4, b4, c4, d4 = f((t1 + h * a3, t2 + h * b3, w1 + h * c3, w2 + h * d3))
+        h6 = h / 6.0                                     # y + h/6 (k1 + 2 k2 + 2 k3 + k4)
+        self.state = (t1 + h6 * (a1 + 2 * a2 + 2 * a3 + a4), t2 + h6 * (b1 + 2 * b2 + 2 * b3 + b4),
+                      w1 + h6 * (c1 + 2 * c2 + 2 * c3 + c4), w2 + h6 * (d1 + 2 * d2 + 2 * d3 + d4))
 
     def energy_scale(self) -> float:
         """What the relative energy error is measured against: the energy at set_state, or, if
