@@ -171,6 +171,12 @@ class DoublePendulumODE:
         p2 = (p1[0] + self.l2 * math.sin(t2), p1[1] + self.l2 * math.cos(t2))
         return np.array([p1, p2])
 
+    def tip(self, pivot: tuple[float, float]) -> tuple[float, float]:
+        """positions(pivot)[1], the lower bob, as two floats (no array: once a step)."""
+        t1, t2 = self.state[0], self.state[1]
+        return (pivot[0] + self.l1 * math.sin(t1) + self.l2 * math.sin(t2),
+                pivot[1] + self.l1 * math.cos(t1) + self.l2 * math.cos(t2))
+
     def energy(self) -> float:
         """Kinetic plus potential energy, zero when both bobs hang straight down at rest."""
         return self.energy_terms()[0]
