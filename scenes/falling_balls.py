@@ -298,6 +298,26 @@ class FallingBallsScene(BallChecks, PymunkScene):
         super().wake()
         self._L_known = None      # the L's pose is read again before the next step
 
+    def advance(self) -> None:
+        """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
+        engine's steps: nothing moves, nothing to read or test (step's first case, for every
+        substep at once)."""
+        p = self.p
+        if self.resting and p["spawn_rate"] <= 0 and type(self).step is FallingBallsScene.step:
+            n = p["substeps"]
+            dt = 1.0 / p["hertz"]             # (self.dt)
+            h = dt / n
+            if h == self._sleep_h:
+                step = self.space.step
+                for _ in range(n):
+                    step(h)
+                self._rows = self._L_after = None
+                self.time += dt
+                self.steps += 1
+                self.after_step()
+                return
+        super().advance()
+
     def step(self, h: float) -> None:
         if self.resting and h == self._sleep_h:   # every body sleeps: nothing moves, nothing
             self.space.step(h)                    # to read or test
