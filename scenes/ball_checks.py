@@ -14,6 +14,7 @@ the exact tests below (count_tunneled, remove_fallen).
 
 from __future__ import annotations
 
+import bisect
 import math
 
 import numpy as np
@@ -126,6 +127,40 @@ class BallChecks:
             return
         self.flush_xy()
         self.remove_fallen(k, xy if rows is None else xy[rows])
+
+    def awake_after_removal(self, bodies: list[int], balls: set[int]) -> tuple | None:
+        """(self._awake, self._fast) after the balls with these indices (and body ids, in the
+        order they were taken out) left the space, if the usual path was on: Chipmunk takes a
+        body out of its awake array by moving the last one into its place, so the order of the
+        rest is known without a read (the next step's check_balls compares it with the read, and
+        goes the long way if it differs). Ball indices above a removed one move down."""
+        awake, fast = self._awake, self._fast
+        if awake is None or fast is None:
+            return None
+        ids, rows, k, L_row, _ = awake
+        ids, above = ids.tolist(), fast[1].tolist()
+        ball = [True] * len(ids) if rows is None else rows.tolist()
+        index = [-1] * len(ids)                       # each awake row's ball index (-1: none)
+        at = [i for i, b in enumerate(ball) if b]
+        for i, kk in zip(at, k.tolist()):
+            index[i] = kk
+        for body in bodies:                           # cpArrayDeleteObj: the last fills the gap
+            if body not in ids:
+                return None
+            i = ids.index(body)
+            for column in (ids, above, ball, index):
+                last = column.pop()
+                if i < len(column):
+                    column[i] = last
+        gone = sorted(balls)
+        index = [kk - bisect.bisect_left(gone, kk) if kk >= 0 else -1 for kk in index]
+        n = len(ids)
+        ids_now = np.array(ids, dtype=np.int64)
+        L = self._L_id
+        new_awake = (ids_now, None if all(ball) else np.array(ball, dtype=bool),
+                     np.array([kk for kk in index if kk >= 0], dtype=np.int64),
+                     ids.index(L) if L in ids else None, ids_now.tobytes())
+        return (new_awake, (fast[0], np.array(above, dtype=bool))) if n else None
 
     def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
         """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check

@@ -276,11 +276,15 @@ class FallingBallsScene(BallChecks, PymunkScene):
         for k in gone:
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
+        # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
+        awake = self.awake_after_removal([self.balls[k].body.id for k in gone], gone)
         self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
         keep = np.ones(len(self._ids), dtype=bool)
         keep[which] = False
         self._ids, self._xy = self._ids[keep], self._xy[keep]
         self._tables_changed()
+        if awake is not None:
+            self._awake, self._fast = awake
         self.counts["removed"] += len(gone)
 
     def read_balls(self, fields: pymunk.batch.BodyFields = pymunk.batch.BodyFields.POSITION,
