@@ -14,7 +14,6 @@ the exact tests below (count_tunneled, remove_fallen).
 
 from __future__ import annotations
 
-import bisect
 import math
 
 import numpy as np
@@ -29,9 +28,12 @@ class BallChecks:
     def _checks_reset(self) -> None:
         """Forget what was kept between steps (the tables were rebuilt)."""
         self._fast = None      # (the L's pose, which awake rows are above its arm's line)
-        self._prev = None      # (ball indices, centres) of the awake balls after the last step,
-                               # not yet written into self._xy
-        self._frame_cache = []      # [(pose, frame)] of the L, the last two (_frame)
+        # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
+        # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
+        # ball leaves the indices as they were, a removal writes them first)
+        if not hasattr(self, "_frame_cache"):
+            self._frame_cache = []  # [(pose, frame)] of the L, the last two (_frame; a frame
+                                    # depends on the pose alone: kept while the tables change)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -107,6 +109,9 @@ class BallChecks:
             if rows is not None:
                 crossed = crossed[rows]                   # balls only (not the L's row)
             if crossed.any():
+                if prev is not None and prev[0] is not k:   # (a ball was added since)
+                    self._xy[prev[0]] = _centres(prev)
+                    prev = None
                 xy0 = self._xy[k] if prev is None else _centres(prev)
                 self._count_inside(xy0[crossed], _centres(self._prev)[crossed], L0, L1)
         self.remove_outside(k, rows_now[:, :2], rows)
@@ -128,39 +133,39 @@ class BallChecks:
         self.flush_xy()
         self.remove_fallen(k, xy if rows is None else xy[rows])
 
-    def awake_after_removal(self, bodies: list[int], balls: set[int]) -> tuple | None:
-        """(self._awake, self._fast) after the balls with these indices (and body ids, in the
-        order they were taken out) left the space, if the usual path was on: Chipmunk takes a
-        body out of its awake array by moving the last one into its place, so the order of the
-        rest is known without a read (the next step's check_balls compares it with the read, and
-        goes the long way if it differs). Ball indices above a removed one move down."""
+    def awake_after_removal(self, bodies: list[int]) -> tuple | None:
+        """(self._awake, self._fast) after the balls with these body ids (in the order they were
+        taken out) left the space and self.balls and self._ids, if the usual path was on:
+        Chipmunk takes a body out of its awake array by moving the last one into its place, so
+        the order of the rest is known without a read (the next step's check_balls compares it
+        with the read, and goes the long way if it differs)."""
         awake, fast = self._awake, self._fast
         if awake is None or fast is None:
             return None
-        ids, rows, k, L_row, _ = awake
+        ids, rows, _, _, _ = awake
         ids, above = ids.tolist(), fast[1].tolist()
-        ball = [True] * len(ids) if rows is None else rows.tolist()
-        index = [-1] * len(ids)                       # each awake row's ball index (-1: none)
-        at = [i for i, b in enumerate(ball) if b]
-        for i, kk in zip(at, k.tolist()):
-            index[i] = kk
+        ball = None if rows is None else rows.tolist()
         for body in bodies:                           # cpArrayDeleteObj: the last fills the gap
             if body not in ids:
                 return None
             i = ids.index(body)
-            for column in (ids, above, ball, index):
+            for column in (ids, above) if ball is None else (ids, above, ball):
                 last = column.pop()
                 if i < len(column):
                     column[i] = last
-        gone = sorted(balls)
-        index = [kk - bisect.bisect_left(gone, kk) if kk >= 0 else -1 for kk in index]
         n = len(ids)
+        if not n:
+            return None
+        # the balls' indices: the rows' ball ids looked up (ball_index's table is rebuilt by the
+        # caller), from the new ids in the new order
         ids_now = np.array(ids, dtype=np.int64)
         L = self._L_id
-        new_awake = (ids_now, None if all(ball) else np.array(ball, dtype=bool),
-                     np.array([kk for kk in index if kk >= 0], dtype=np.int64),
+        by_id = dict(zip(self._ids.tolist(), range(len(self._ids))))
+        k_now = np.array([by_id[b] for b, is_ball in zip(ids, ball or [True] * n) if is_ball],
+                         dtype=np.int64)
+        new_awake = (ids_now, None if ball is None else np.array(ball, dtype=bool), k_now,
                      ids.index(L) if L in ids else None, ids_now.tobytes())
-        return (new_awake, (fast[0], np.array(above, dtype=bool))) if n else None
+        return new_awake, (fast[0], np.array(above, dtype=bool))
 
     def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
         """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check
@@ -225,6 +230,13 @@ class BallChecks:
             return
         w, h = self.world_size
         r = self.p["radius"]
+        if len(xy) <= 64:     # a few: one look at each (the same comparisons; NaN fails them)
+            x0, y0, x1, y1 = -2 * r, -h, w + 2 * r, h + 2 * r
+            out = [i for i, (x, y) in enumerate(xy.tolist())
+                   if not (x >= x0 and y >= y0 and x <= x1 and y <= y1)]
+            if out:
+                self.remove_balls(k[out])
+            return
         inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
         if not inside.all():
             self.remove_balls(k[~inside])

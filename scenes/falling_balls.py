@@ -72,6 +72,9 @@ BALL_PARAMS: tuple[Param, ...] = (
 )
 
 
+_NO_IDS = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))   # (ball_index's last)
+
+
 class FallingBallsScene(BallChecks, PymunkScene):
     """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
     world. Asleep, a settled pile costs about pymunk's own step; `tunneled` counts balls that
@@ -158,8 +161,16 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.walls = walls
 
     def restored(self) -> None:
-        """(Re)build the tables kept beside self.balls: body ids and last known centres."""
+        """(Re)build the tables kept beside self.balls: body ids and last known centres, and
+        what is known of the L (its id; its pose, if static: nothing moves it)."""
         self._prev = None
+        self._frame_cache = []
+        self._L_id = self.L_body.id
+        self._L_static_pose = None
+        if self.L_body.body_type == pymunk.Body.STATIC:
+            x, y = self.L_body.position
+            self._L_static_pose = (x, y, self.L_body.angle)
+        self._sleep_h = None        # the substep the sleep threshold was set for
         self._ids = np.array([shape.body.id for shape in self.balls], dtype=np.int64)
         self._xy = np.array([tuple(shape.body.position) for shape in self.balls],
                             dtype=np.float64).reshape(-1, 2)
@@ -167,15 +178,9 @@ class FallingBallsScene(BallChecks, PymunkScene):
 
     def _tables_changed(self) -> None:
         self._sorted = None                       # (sorted ids, ball index of each), lazily
-        self._last = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))
+        self._last = _NO_IDS
         self._awake = None  # (ids, ball rows (None: all), ball indices, L's row, ids as bytes)
         self._checks_reset()        # (ball_checks.py)
-        self._L_id = self.L_body.id
-        self._L_static_pose = None
-        if self.L_body.body_type == pymunk.Body.STATIC:
-            x, y = self.L_body.position
-            self._L_static_pose = (x, y, self.L_body.angle)
-        self._sleep_h = None        # the substep the sleep threshold was set for
         self.wake()
 
     def ball_index(self, ids: np.ndarray) -> np.ndarray:
@@ -226,7 +231,6 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.wake()
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            self.flush_xy()
             self._ids = np.append(self._ids, body.id)
             self._xy = np.vstack((self._xy, pos))
             awake, fast = self._awake, self._fast
@@ -273,15 +277,17 @@ class FallingBallsScene(BallChecks, PymunkScene):
         if self.mouse_joint is not None and self.ball_index(
                 np.array([self.mouse_joint.b.id]))[0] in gone:
             self.release()
+        removed = []
         for k in gone:
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
-        # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
-        awake = self.awake_after_removal([self.balls[k].body.id for k in gone], gone)
+            removed.append(shape.body.id)
         self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
         keep = np.ones(len(self._ids), dtype=bool)
         keep[which] = False
         self._ids, self._xy = self._ids[keep], self._xy[keep]
+        # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
+        awake = self.awake_after_removal(removed)
         self._tables_changed()
         if awake is not None:
             self._awake, self._fast = awake

@@ -5,6 +5,7 @@ pile that wakes is read and checked again, a body beyond the blow-up reach is ca
 
 import math
 
+import numpy as np
 import pytest
 
 from scenes.double_pendulum import DoublePendulumScene
@@ -48,7 +49,8 @@ def test_a_body_that_goes_nan_is_caught_the_step_it_happens(cls):
         assert not scene.is_finite()
 
 
-def test_a_tunneling_ball_is_counted_on_the_quick_path():
+@pytest.mark.parametrize("then", ["", "a ball added", "a ball removed"])
+def test_a_tunneling_ball_is_counted_on_the_quick_path(then):
     scene = balls_on_the_L()
     x, y = L_ORIGIN[0] + 150, L_ORIGIN[1] - 200       # 200 px above the arm, clear of the others
     body = scene.balls[2].body
@@ -56,9 +58,14 @@ def test_a_tunneling_ball_is_counted_on_the_quick_path():
     scene.wake()
     scene.advance()                                      # (now it is there, above the arm)
     assert scene.counts["tunneled"] == 0 and scene._fast is not None
+    if then == "a ball added":                           # (the quick path goes on with it)
+        scene.add_ball((100.0, 100.0))
+    elif then == "a ball removed":
+        scene.remove_balls(np.array([0]))
     body.velocity = (0.0, 15000.0)                       # 250 px in one step: through the arm
     scene.wake()
     scene.advance()
+    assert scene._fast is not None
     assert body.position.y > L_ORIGIN[1] + 30            # below it, not touching it
     assert scene.counts["tunneled"] == 1
 
