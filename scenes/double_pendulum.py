@@ -220,7 +220,7 @@ class DoublePendulumScene(PymunkScene):
         if self.mouse_joint is not None:       # held by the mouse: nothing to compare yet
             return
         t = self.track
-        rows = self.rows_of(self.bobs).tolist()    # (x, y, angle, vx, vy, w) of each bob
+        rows = self.rows_list(self.bobs)           # (x, y, angle, vx, vy, w) of each bob
         drift = self.energy_drift(rows)
         t["energy_drift_max"] = max(t["energy_drift_max"], abs(drift))
         if t["engine_blowup"] is None and not abs(drift) <= BLOWUP_DRIFT:   # (NaN counts)
