@@ -193,9 +193,8 @@ class BallChecks:
             if key == pose:
                 return frame
         x, y, a = pose
-        origin, axis = np.array((x, y)), np.array((-math.sin(a), math.cos(a)))
-        a6 = np.zeros(6)
-        a6[:2] = axis
+        a6 = np.array((-math.sin(a), math.cos(a), 0.0, 0.0, 0.0, 0.0))   # (a moving L: every
+        origin, axis = np.array((x, y)), a6[:2]                          # substep, so few calls)
         frame = (origin, axis, a6, float(origin @ axis))
         cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
         return frame
