@@ -2,14 +2,15 @@
 L's long arm, and balls that left the world (removed). A part of FallingBallsScene kept in a
 module of its own (FallingBallsScene inherits BallChecks).
 
-The usual step is cheap: while the same bodies stay awake, each body's height over the arm is one
-dot product of its row (x, y, angle, vx, vy, w) with a weight vector, and "above the arm before,
-on or below it now" compares the signs kept from the last step with the new ones; the world's
-box is one scaled |distance from its centre|. That is a handful of NumPy calls however many
-balls there are (an (n, 2) reduction along an axis, or a small matrix product, costs several us;
-a call on a flat array about one). Anything unusual (a ball that crossed the arm's line, a ball
-outside the box, a change in who is awake, the L woken) goes the long way, ball by ball, with
-the exact tests below (count_tunneled, remove_fallen).
+The usual step is cheap: while the same bodies stay awake, which bodies are above the arm's line
+is one dot product of their rows (x, y, angle, vx, vy, w) with a weight vector, and "above the
+arm before, on or below it now" compares those signs with the ones kept from the last step; the
+world's box is the smallest and largest x and y (argmin, argmax). That is about a dozen NumPy
+calls however many balls there are (in the step's loop each costs 1-2 us; an (n, 2) reduction
+along an axis, a ufunc's max() or a small matrix product costs several). Anything unusual (a
+ball that crossed the arm's line, a ball outside the box, a change in who is awake, the L woken)
+goes the long way, with the exact tests below (count_tunneled, remove_fallen). A new ball, or a
+removed one, keeps the usual path: Chipmunk's order of the awake bodies after it is known.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+
 
 class BallChecks:
     """The checks after a step of falling_balls. Expects self.balls, self._xy (every ball's

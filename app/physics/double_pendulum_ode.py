@@ -57,7 +57,7 @@ import numpy as np
 
 State = tuple[float, float, float, float]    # theta1, theta2, omega1, omega2 (rad, rad/s)
 
-MAX_STEP = 1 / 120    # seconds: the longest RK4 step advance() takes (see the module docstring)
+MAX_STEP = 1 / 120    # seconds: the longest RK4 step advance() takes (the module docstring)
 MIN_STEP = 1e-8       # seconds: a step this short that still misses the budget means "cannot follow"
 ENERGY_RATE = 1e-8    # allowed relative energy error per simulated second (60 s: 6e-7 at most)
 ROUNDOFF = 1e-14      # energy changes below this x the terms' size are rounding, not the step's
