@@ -124,3 +124,23 @@ def test_the_pendulum_beyond_its_reach_or_non_finite_is_caught():
     scene.wake()
     scene.advance()
     assert not scene.is_finite()
+
+
+def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
+    # rk4_step writes rk4_tuple out and derivative_with forms the parameters' products once:
+    # both must give exactly what rk4_tuple on derivative() gives (the state hash holds it)
+    import random
+
+    from app.physics.double_pendulum_ode import DoublePendulumODE
+    from app.physics.integrators import rk4_tuple
+    rng = random.Random(3)
+    for params in ((160.0, 160.0, 1.0, 1.0, 900.0), (20.0, 170.0, 0.05, 20.0, 5000.0),
+                   (170.0, 20.0, 20.0, 0.05, 0.0)):
+        ode = DoublePendulumODE(*params)
+        for _ in range(200):
+            y = tuple(rng.uniform(-20.0, 20.0) for _ in range(4))
+            h = rng.uniform(1e-6, 1 / 120)
+            assert ode.derivative_with(y, ode.constants()) == ode.derivative(y)
+            ode.state = y
+            ode.rk4_step(h)
+            assert ode.state == rk4_tuple(ode.derivative, y, h)
