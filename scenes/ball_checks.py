@@ -195,9 +195,9 @@ class BallChecks:
             if key == pose:
                 return frame
         x, y, a = pose
-        a6 = np.array((-math.sin(a), math.cos(a), 0.0, 0.0, 0.0, 0.0))   # (a moving L: every
-        origin, axis = np.array((x, y)), a6[:2]                          # substep, so few calls)
-        frame = (origin, axis, a6, float(origin @ axis))
+        ax, ay = -math.sin(a), math.cos(a)
+        a6 = np.array((ax, ay, 0.0, 0.0, 0.0, 0.0))     # (a moving L: a new frame every
+        frame = (np.array((x, y)), a6[:2], a6, x * ax + y * ay)   # substep, so few calls)
         cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
         return frame
 
