@@ -255,7 +255,27 @@ class PymunkScene(Scene):
         """The state_rows of these bodies, in their order: (n, 6) = (x, y, angle, vx, vy, w)
         each (a copy). Where each one's row is, is kept while the batch lists the same bodies in
         the same order (a scene without sleeping: always)."""
-        ids, data = self.state_rows()
+        at = self._rows_at(bodies)
+        if at is None:
+            # a body that is not in the space (a student's builder may forget to add one):
+            # read from each body, as the batch would if it were there
+            return np.array([(*b.position, b.angle, *b.velocity, b.angular_velocity)
+                             for b in bodies], dtype=np.float64).reshape(-1, 6)
+        return self.state_rows()[1][at[0]]
+
+    def rows_list(self, bodies: list[pymunk.Body]) -> list[list[float]]:
+        """rows_of(bodies).tolist(), without the array: for a few bodies, every row as a list
+        and theirs picked out is one NumPy call, not two (each costs 1-2 us in the step)."""
+        at = self._rows_at(bodies)
+        if at is None:
+            return self.rows_of(bodies).tolist()
+        rows = self.state_rows()[1].tolist()
+        return [rows[i] for i in at[1]]
+
+    def _rows_at(self, bodies: list[pymunk.Body]) -> tuple[np.ndarray, list[int]] | None:
+        """Where the bodies' rows are in state_rows (as an array and a list), or None if one
+        is not in the space; kept while the batch lists the same bodies in the same order."""
+        ids = self.state_rows()[0]
         key = ids.tobytes()
         cache = self._rows_of
         if cache is None or cache[0] is not bodies or cache[1] != key:
@@ -264,12 +284,9 @@ class PymunkScene(Scene):
             at = order[np.searchsorted(ids, wanted, sorter=order).clip(0, len(ids) - 1)] \
                 if len(ids) else wanted
             if not len(ids) or not np.array_equal(ids[at], wanted):
-                # a body that is not in the space (a student's builder may forget to add one):
-                # read from each body, as the batch would if it were there
-                return np.array([(*b.position, b.angle, *b.velocity, b.angular_velocity)
-                                 for b in bodies], dtype=np.float64).reshape(-1, 6)
-            cache = self._rows_of = (bodies, key, at)
-        return data[cache[2]]
+                return None
+            cache = self._rows_of = (bodies, key, (at, at.tolist()))
+        return cache[2]
 
     def static_rows(self, ids: np.ndarray) -> np.ndarray:
         """Bool mask of the rows (from body_rows) that are static bodies."""
@@ -280,6 +297,12 @@ class PymunkScene(Scene):
     def awake_count(self, ids: np.ndarray) -> int:
         """How many rows (from body_rows) are awake bodies: those before the first static row,
         by the batch's order awake | static | sleeping."""
+        if len(ids) <= 64:      # a few bodies: a look at each beats an (n, k) comparison
+            static = self._static_set
+            for i, body_id in enumerate(ids.tolist()):
+                if body_id in static:
+                    return i
+            return len(ids)
         static = self.static_rows(ids)
         return int(np.argmax(static)) if static.any() else len(ids)
 
@@ -347,13 +370,21 @@ class PymunkScene(Scene):
 
     def _state_is_finite(self) -> bool:
         state = self.state_rows()[1]
-        # (a sum is finite only if every term is: one pass; if it is not, every term is looked
-        # at, since finite terms can overflow a sum too)
-        if not math.isfinite(state.sum()) and not np.isfinite(state).all():
-            return False
-        if self.blowup_reach is None or not len(state):
+        # One pass first: the sum of the squares of every number (a dot product of the flat
+        # state with itself, one BLAS call: a ufunc's sum() or isfinite().all() costs several
+        # times more in the step's loop) is finite only if every number is, and below r^2 only
+        # if every |x| and |y| is below r, inside the blow-up reach. If not, each test again on
+        # its own (finite numbers can overflow the sum; a fast body may be within reach).
+        flat = state.reshape(-1)
+        squares = flat.dot(flat)
+        reach = self.blowup_reach
+        if reach is not None and squares < reach * reach:
             return True
-        w, h, r = *self.world_size, self.blowup_reach
+        if not math.isfinite(squares) and not np.isfinite(state).all():
+            return False
+        if reach is None or not len(state):
+            return True
+        w, h, r = *self.world_size, reach
         x0, y0, x1, y1 = extent(state)
         return bool(x0 > -r and x1 < w + r and y0 > -r and y1 < h + r)   # (all finite here)
 
@@ -389,13 +420,11 @@ class PymunkScene(Scene):
 
 def extent(rows: np.ndarray) -> tuple[float, float, float, float]:
     """(x min, y min, x max, y max) of the points in the first two columns of rows (n >= 1; NaN
-    if a coordinate is). A reduction down the columns of an (n, 2) array is slow in NumPy
-    (159 us at 3000 rows, against 10 us for the four columns one by one), quick for a few."""
-    if len(rows) <= 64:
-        (x0, y0), (x1, y1) = rows[:, :2].min(axis=0), rows[:, :2].max(axis=0)
-        return x0, y0, x1, y1
+    if a coordinate is: argmin and argmax point at a NaN). A reduction down the columns of an
+    (n, 2) array is slow in NumPy (several us for a few rows, 159 us at 3000), and a ufunc's
+    min() on one column costs several times an argmin: so argmin and argmax, column by column."""
     x, y = rows[:, 0], rows[:, 1]
-    return x.min(), y.min(), x.max(), y.max()
+    return x[x.argmin()], y[y.argmin()], x[x.argmax()], y[y.argmax()]
 
 
 class _StateReader:

@@ -220,16 +220,17 @@ class DoublePendulumScene(PymunkScene):
         if self.mouse_joint is not None:       # held by the mouse: nothing to compare yet
             return
         t = self.track
-        drift = self.energy_drift()
+        rows = self.rows_list(self.bobs)           # (x, y, angle, vx, vy, w) of each bob
+        drift = self.energy_drift(rows)
         t["energy_drift_max"] = max(t["energy_drift_max"], abs(drift))
         if t["engine_blowup"] is None and not abs(drift) <= BLOWUP_DRIFT:   # (NaN counts)
             t["engine_blowup"] = self.time - t["start"]
-        tip = self.bobs[1].position
+        tip = rows[1][0], rows[1][1]               # (the batch read's copy of bobs[1].position)
         if self.ghost_alive():
             if not self.ode.advance(self.dt):
                 t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
                 return
-            ghost_tip = self.ode.positions(PIVOT)[1]
+            ghost_tip = self.ode.tip(PIVOT)
             if t["divergence_time"] is None and math.dist(tip, ghost_tip) > PART_PX:
                 t["divergence_time"] = self.time - t["start"]
                 t["mark"] = (float(tip[0]), float(tip[1]))
@@ -262,16 +263,18 @@ class DoublePendulumScene(PymunkScene):
         self.new_release()
 
     # ----- measuring ------------------------------------------------------------------------
-    def energy(self) -> float:
+    def energy(self, rows: list | None = None) -> float:
         """Kinetic (incl. spin) + potential energy of the bobs, zero when both hang straight down
-        at rest (y is down, so a bob's height above its lowest point is lowest_y - y)."""
+        at rest (y is down, so a bob's height above its lowest point is lowest_y - y). rows: the
+        bobs' rows_of as a list, if already read."""
         g, l1, l2 = self.gravity(), self.p["length1"], self.p["length2"]
         lowest = (PIVOT[1] + l1, PIVOT[1] + l1 + l2)
         e = 0.0
         # each bob's (x, y, angle, vx, vy, w) from the step's one batch read, its mass and
         # moment as built (read once per bobs list: after a build or a restore)
         for (_, y, _, vx, vy, w), (mass, moment), y0 in zip(
-                self.rows_of(self.bobs).tolist(), self.bob_masses(), lowest):
+                self.rows_of(self.bobs).tolist() if rows is None else rows, self.bob_masses(),
+                lowest):
             # x * x, not x ** 2: a float ** overflows with an exception, * gives inf
             # a bob of infinite moment (it cannot spin) has no spin energy (inf * 0 is NaN)
             spin = 0.5 * moment * w * w if math.isfinite(moment) else 0.0
@@ -285,9 +288,9 @@ class DoublePendulumScene(PymunkScene):
             cache = self._bob_masses = (self.bobs, [(b.mass, b.moment) for b in self.bobs])
         return cache[1]
 
-    def energy_drift(self) -> float:
+    def energy_drift(self, rows: list | None = None) -> float:
         e0 = self.track["energy0"]
-        return (self.energy() - e0) / e0 if e0 > 1e-9 else 0.0
+        return (self.energy(rows) - e0) / e0 if e0 > 1e-9 else 0.0
 
     def pin_error(self) -> float:
         b1, b2 = self.bobs

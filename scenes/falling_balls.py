@@ -36,8 +36,9 @@ import pymunk
 import pymunk.batch
 
 from app.draw import pymunk_draw as D
-from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene, extent
+from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Try
+from scenes.ball_checks import BallChecks
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -71,7 +72,10 @@ BALL_PARAMS: tuple[Param, ...] = (
 )
 
 
-class FallingBallsScene(PymunkScene):
+_NO_IDS = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))   # (ball_index's last)
+
+
+class FallingBallsScene(BallChecks, PymunkScene):
     """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
     world. Asleep, a settled pile costs about pymunk's own step; `tunneled` counts balls that
     passed through the L.
@@ -84,6 +88,7 @@ class FallingBallsScene(PymunkScene):
 
     name = "falling_balls"
     arrow_name = "ball"
+    arm_extent = (L_LONG[0][0], L_LONG[1][0])     # (ball_checks: the tunneling test)
     title = "Falling balls (pymunk)"
     no_energy_words = "balls appear and leave, so its energy has no start to hold to"
     category = "Rigid bodies (pymunk)"
@@ -156,7 +161,16 @@ class FallingBallsScene(PymunkScene):
         self.walls = walls
 
     def restored(self) -> None:
-        """(Re)build the tables kept beside self.balls: body ids and last known centres."""
+        """(Re)build the tables kept beside self.balls: body ids and last known centres, and
+        what is known of the L (its id; its pose, if static: nothing moves it)."""
+        self._prev = None
+        self._frame_cache = []
+        self._L_id = self.L_body.id
+        self._L_static_pose = None
+        if self.L_body.body_type == pymunk.Body.STATIC:
+            x, y = self.L_body.position
+            self._L_static_pose = (x, y, self.L_body.angle)
+        self._sleep_h = None        # the substep the sleep threshold was set for
         self._ids = np.array([shape.body.id for shape in self.balls], dtype=np.int64)
         self._xy = np.array([tuple(shape.body.position) for shape in self.balls],
                             dtype=np.float64).reshape(-1, 2)
@@ -164,16 +178,9 @@ class FallingBallsScene(PymunkScene):
 
     def _tables_changed(self) -> None:
         self._sorted = None                       # (sorted ids, ball index of each), lazily
-        self._last = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))
+        self._last = _NO_IDS
         self._awake = None  # (ids, ball rows (None: all), ball indices, L's row, ids as bytes)
-        self._heights = None        # (the L's pose, heights of the awake balls over its arm)
-        self._frame_cache = []      # [(pose, frame)] of the L, the last two (_frame)
-        self._L_id = self.L_body.id
-        self._L_static_pose = None
-        if self.L_body.body_type == pymunk.Body.STATIC:
-            x, y = self.L_body.position
-            self._L_static_pose = (x, y, self.L_body.angle)
-        self._sleep_h = None        # the substep the sleep threshold was set for
+        self._checks_reset()        # (ball_checks.py)
         self.wake()
 
     def ball_index(self, ids: np.ndarray) -> np.ndarray:
@@ -226,7 +233,7 @@ class FallingBallsScene(PymunkScene):
         if index:          # add_balls indexes once at the end
             self._ids = np.append(self._ids, body.id)
             self._xy = np.vstack((self._xy, pos))
-            awake = self._awake
+            awake, fast = self._awake, self._fast
             self._tables_changed()
             if awake is not None:   # Chipmunk appends a new body to the awake ones (if not,
                 ids, rows, k, L_row, _ = awake  # check_balls sees other ids: every ball)
@@ -234,6 +241,8 @@ class FallingBallsScene(PymunkScene):
                 rows = None if rows is None else np.append(rows, True)
                 self._awake = (ids, rows, np.append(k, len(self.balls) - 1), L_row,
                                ids.tobytes())
+                if fast is not None:    # and whether it is above the arm (ball_checks)
+                    self._fast = (fast[0], np.append(fast[1], self.above_arm(pos, fast[0])))
         self.counts["spawned"] += 1
         return shape
 
@@ -264,17 +273,24 @@ class FallingBallsScene(PymunkScene):
         if len(which) == 0:
             return
         gone = set(which.tolist())
+        self.flush_xy()
         if self.mouse_joint is not None and self.ball_index(
                 np.array([self.mouse_joint.b.id]))[0] in gone:
             self.release()
+        removed = []
         for k in gone:
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
+            removed.append(shape.body.id)
         self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
         keep = np.ones(len(self._ids), dtype=bool)
         keep[which] = False
         self._ids, self._xy = self._ids[keep], self._xy[keep]
+        # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
+        awake = self.awake_after_removal(removed)
         self._tables_changed()
+        if awake is not None:
+            self._awake, self._fast = awake
         self.counts["removed"] += len(gone)
 
     def read_balls(self, fields: pymunk.batch.BodyFields = pymunk.batch.BodyFields.POSITION,
@@ -291,6 +307,26 @@ class FallingBallsScene(PymunkScene):
     def wake(self) -> None:
         super().wake()
         self._L_known = None      # the L's pose is read again before the next step
+
+    def advance(self) -> None:
+        """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
+        engine's steps: nothing moves, nothing to read or test (step's first case, for every
+        substep at once)."""
+        p = self.p
+        if self.resting and p["spawn_rate"] <= 0 and type(self).step is FallingBallsScene.step:
+            n = p["substeps"]
+            dt = 1.0 / p["hertz"]             # (self.dt)
+            h = dt / n
+            if h == self._sleep_h:
+                step = self.space.step
+                for _ in range(n):
+                    step(h)
+                self._rows = self._L_after = None
+                self.time += dt
+                self.steps += 1
+                self.after_step()
+                return
+        super().advance()
 
     def step(self, h: float) -> None:
         if self.resting and h == self._sleep_h:   # every body sleeps: nothing moves, nothing
@@ -314,109 +350,6 @@ class FallingBallsScene(PymunkScene):
         super().step(h)
         self._L_after = self._L_known = self.check_balls(L0)   # (pivoting_l's joints use it)
         self.spawn(h)
-
-    def check_balls(self, L0: tuple[float, float, float]) -> tuple[float, float, float]:
-        """After a step: count the balls that tunneled through the L, remove those that left the
-        world, remember every ball's centre (self._xy); return the L's pose after the step (L0:
-        before it). Only a body awake before or after the step can have moved: while the same
-        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at;
-        otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
-        reuses the read), the L's pose with them while the same bodies stay awake."""
-        ids, data = self.state_rows()
-        awake = self._awake
-        n = -1 if awake is None else len(awake[0])
-        same = 0 <= n < len(ids) and ids[n] in self._static_set and ids[:n].tobytes() == awake[4]
-        if same:
-            L_row = awake[3]
-            L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
-            # (a sleeping ball does not move, but a moving L may pass it: so with balls
-            # asleep, a moving L means looking at every ball)
-            same = L0 == L1 or len(ids) == n + len(self._static_ids)
-        else:
-            L1 = self.L_pose()
-        if same:
-            _, rows, k, _, _ = awake      # the same bodies awake as after the last step
-            xy = data[:n, :2] if rows is None else data[:n, :2][rows]
-        else:
-            n = self.awake_count(ids)
-            k = self.ball_index(ids)
-            ball = k >= 0
-            xy, k = data[ball, :2], k[ball]       # every ball, awake or asleep
-            rows = ball[:n]
-            count = int(np.count_nonzero(rows))
-            L_row = np.flatnonzero(ids[:n] == self._L_id)
-            self._awake = (ids[:n].copy(), None if count == n else rows, k[:count],
-                           int(L_row[0]) if len(L_row) else None, ids[:n].tobytes())
-            self.resting = n == 0
-        if not len(k):
-            return L1
-        # self._xy holds every ball's centre after the previous step (or where it was added),
-        # self._heights their heights over the arm after it while the same balls are awake
-        heights = self._heights
-        y0 = heights[1] if same and heights is not None and heights[0] == L0 else None
-        y1 = self.count_tunneled(self._xy[k], xy, L0, L1, y0)
-        self._heights = (L1, y1[:len(self._awake[2])])   # (the awake balls come first in k)
-        self._xy[k] = xy
-        self.remove_fallen(k, xy)
-        return L1
-
-    def L_pose(self) -> tuple[float, float, float]:
-        """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
-        step does not, nor can the mouse), the pose it had when the tables were built."""
-        pose = self._L_static_pose
-        if pose is None:
-            x, y = self.L_body.position
-            pose = (x, y, self.L_body.angle)
-        return pose
-
-    def _frame(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
-        """(origin (2,), the local y axis (2,)) of the L's frame at pose: a point's height over
-        the arm is (p - origin) . axis, _to_local's y. The last two are kept (a resting or
-        static L has the same pose step after step; a moving one, the pose before and after)."""
-        cache = self._frame_cache
-        for key, frame in cache:
-            if key == pose:
-                return frame
-        x, y, a = pose
-        frame = (np.array((x, y)), np.array((-math.sin(a), math.cos(a))))
-        cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
-        return frame
-
-    def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
-                       L0: tuple[float, float, float], L1: tuple[float, float, float],
-                       y0: np.ndarray | None = None) -> np.ndarray:
-        """Count balls whose centre crossed the L's long arm from above to below in this step
-        while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
-        balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order; y0, if given,
-        their heights over the arm before the step (this call's result at the last step).
-        Returns the heights after it. (The x-extent is looked at only for balls that crossed.)"""
-        if y0 is None:
-            o0, axis0 = self._frame(L0)
-            y0 = (xy0 - o0) @ axis0
-        o1, axis1 = self._frame(L1)
-        y1 = (xy1 - o1) @ axis1
-        crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
-        if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
-            p0, p1 = _to_local(xy0[crossed], L0), _to_local(xy1[crossed], L1)
-            (ax, _), (bx, _) = L_LONG
-            inside = (p0[:, 0] >= ax) & (p0[:, 0] <= bx) & (p1[:, 0] >= ax) & (p1[:, 0] <= bx)
-            self.counts["tunneled"] += int(np.count_nonzero(inside))
-        return y1
-
-    def remove_fallen(self, k: np.ndarray, xy: np.ndarray) -> None:
-        """Remove the balls (indices k, centres xy) whose centre left the world: below it, far
-        to a side, or more than a world's height above it (new balls fall in from just above,
-        so "above" needs the margin). A non-finite centre counts as out."""
-        if not len(xy):
-            return
-        w, h = self.world_size
-        r = self.p["radius"]
-        x0, y0, x1, y1 = extent(xy)         # (NaN if any is: then the test below fails)
-        if x0 >= -2 * r and y0 >= -h and x1 <= w + 2 * r and y1 <= h + 2 * r:
-            return                                 # every centre inside: the usual step
-        inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
-        if not inside.all():
-            self.remove_balls(k[~inside])
 
     def spawn(self, h: float) -> None:
         """Drop balls at a steady rate at random x above the L, from above the world (seeded:
@@ -487,11 +420,3 @@ class FallingBallsScene(PymunkScene):
 
     def hud_details(self) -> list[str]:
         return ["LMB: drag a ball, or click empty space to drop one"]
-
-
-def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
-    """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""
-    x, y, a = pose
-    c, s = math.cos(a), math.sin(a)
-    # (x', y') = (c dx + s dy, -s dx + c dy) for every row at once: one 2x2 product
-    return (xy - (x, y)) @ np.array(((c, -s), (s, c)))

@@ -283,16 +283,16 @@ class NewtonsCradleScene(PymunkScene):
         rows = self.rows_of(self.bodies)         # (x, y, angle, vx, vy, w) of each ball
         speed = np.hypot(rows[:, 3], rows[:, 4])
         onwards = t["side"] * (rows[:, 0] - self._rest_x)   # displacement in the swing's direction
-        if len(middle):
-            t["middle_max_drift"] = max(t["middle_max_drift"],
-                                        float(np.abs(onwards[middle_slice]).max()))
+        if len(middle):         # (a[a.argmax()]: the max, NaN included, in one cheap call)
+            drift = np.abs(onwards[middle_slice])
+            t["middle_max_drift"] = max(t["middle_max_drift"], float(drift[drift.argmax()]))
         if t["impact_time"] is None and len(lifted):
             # The impact: the lifted group is at the bottom (its leading ball within half a
             # radius of rest) and a ball outside it has picked up speed.
             lead = lifted[-1] if t["side"] > 0 else lifted[0]
             others = speed[not_lifted]
             if (abs(onwards[lead]) < 0.5 * RADIUS
-                    and others.max() > max(0.25 * t["last_speed"], 1.0)):
+                    and others[others.argmax()] > max(0.25 * t["last_speed"], 1.0)):
                 t["impact_time"] = self.time
                 t["release_speed"] = t["last_speed"]
                 t["window_open"] = True

@@ -30,8 +30,12 @@ drops to 2 m1 whenever the rods line up, the accelerations jump a hundredfold, a
 step RK4 lost 82% of the energy in 5 s. So every step is checked against the one thing the exact
 solution keeps: its energy. A step whose energy change exceeds its share of the budget
 (ENERGY_RATE: a relative 1e-8 per simulated second, so 60 s cost at most 6e-7) is redone at a
-smaller step; while the error is well under the budget the step grows again (never past MAX_STEP,
-1 ms, so the path is also smooth). RK4's energy error per step scales as h^5, so the new step is
+smaller step; while the error is well under the budget the step grows again, never past MAX_STEP
+(1/120 s: at the default release the energy budget holds the step near 3 ms anyway; the cap was
+1 ms, and against it the ghost's tip moved by 0.003 px after 10 s, while a step of 1/7680 s puts
+both within 0.005 px of each other: a thousandth of the 10 px at which the scene says pymunk
+parted from it, and the parting came at the same frame in nine settings; a third of the work).
+RK4's energy error per step scales as h^5, so the new step is
 h (budget / error)^(1/5) with a safety factor. `energy_drift()` reports the relative drift since
 the last set_state (`reference_energy_drift` in the scene's metrics). RK4 is only conditionally
 stable (on a linear oscillator it blows up past omega*h = 2.8); the energy check shrinks the step
@@ -50,11 +54,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from app.physics.integrators import rk4_tuple
 
 State = tuple[float, float, float, float]    # theta1, theta2, omega1, omega2 (rad, rad/s)
 
-MAX_STEP = 1e-3       # seconds: the longest RK4 step advance() takes (see the module docstring)
+MAX_STEP = 1 / 120    # seconds: the longest RK4 step advance() takes (the module docstring)
 MIN_STEP = 1e-8       # seconds: a step this short that still misses the budget means "cannot follow"
 ENERGY_RATE = 1e-8    # allowed relative energy error per simulated second (60 s: 6e-7 at most)
 ROUNDOFF = 1e-14      # energy changes below this x the terms' size are rounding, not the step's
@@ -92,9 +95,44 @@ class DoublePendulumODE:
                            + w2 * w2 * l2 * m2 * cos_d)) / (l2 * den)
         return (w1, w2, a1, a2)
 
-    def rk4_step(self, h: float) -> None:
-        """One classical Runge-Kutta step of h seconds (integrators.rk4_tuple)."""
-        self.state = rk4_tuple(self.derivative, self.state, h)
+    def constants(self) -> tuple[float, ...]:
+        """The products of the parameters that derivative() forms at every call, formed once
+        (for derivative_with; they hold while l1, l2, m1, m2 and g stay the same)."""
+        l1, l2, m1, m2, g = self.l1, self.l2, self.m1, self.m2, self.g
+        return (l1, l2, m2, 2 * m1 + m2, m1 + m2, -g * (2 * m1 + m2), m2 * g, g * (m1 + m2))
+
+    @staticmethod
+    def derivative_with(y: State, c: tuple[float, ...]) -> State:
+        """derivative(y), with the parameters' products from constants(): the same operations
+        in the same order, so the same result to the last bit (a test checks it), in half the
+        time. The RK4 steps use it; derivative() is the formula to read."""
+        t1, t2, w1, w2 = y
+        l1, l2, m2, m_2m1_m2, m12, minus_g_2m1_m2, m2_g, g_m12 = c
+        d = t1 - t2
+        sin_d, cos_d = math.sin(d), math.cos(d)
+        den = m_2m1_m2 - m2 * math.cos(2 * d)
+        a1 = (minus_g_2m1_m2 * math.sin(t1) - m2_g * math.sin(t1 - 2 * t2)
+              - 2 * sin_d * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * cos_d)) / (l1 * den)
+        a2 = (2 * sin_d * (w1 * w1 * l1 * m12 + g_m12 * math.cos(t1)
+                           + w2 * w2 * l2 * m2 * cos_d)) / (l2 * den)
+        return (w1, w2, a1, a2)
+
+    def rk4_step(self, h: float, c: tuple[float, ...] | None = None) -> None:
+        """One classical Runge-Kutta step of h seconds: integrators.rk4_tuple's formula written
+        out for the four numbers (the same arithmetic, so the same result to the last bit, a
+        test checks it; without its tuple-building loops a step costs about a third less).
+        c: constants(), if already formed."""
+        c = self.constants() if c is None else c
+        f = self.derivative_with
+        t1, t2, w1, w2 = y = self.state
+        hh = 0.5 * h
+        a1, b1, c1, d1 = f(y, c)                                              # k1 = f(y)
+        a2, b2, c2, d2 = f((t1 + hh * a1, t2 + hh * b1, w1 + hh * c1, w2 + hh * d1), c)
+        a3, b3, c3, d3 = f((t1 + hh * a2, t2 + hh * b2, w1 + hh * c2, w2 + hh * d2), c)
+        a4, b4, c4, d4 = f((t1 + h * a3, t2 + h * b3, w1 + h * c3, w2 + h * d3), c)
+        h6 = h / 6.0                                     # y + h/6 (k1 + 2 k2 + 2 k3 + k4)
+        self.state = (t1 + h6 * (a1 + 2 * a2 + 2 * a3 + a4), t2 + h6 * (b1 + 2 * b2 + 2 * b3 + b4),
+                      w1 + h6 * (c1 + 2 * c2 + 2 * c3 + c4), w2 + h6 * (d1 + 2 * d2 + 2 * d3 + d4))
 
     def energy_scale(self) -> float:
         """What the relative energy error is measured against: the energy at set_state, or, if
@@ -115,13 +153,14 @@ class DoublePendulumODE:
         if not all(map(math.isfinite, y0)):
             return False
         scale = self.energy_scale()
+        consts = self.constants()
         t, work, e = 0.0, 0, self.energy()
         blur = ROUNDOFF / scale                         # rounding of the energy, per unit size
         try:
             while t < dt:
                 h = min(self.h, dt - t)                 # the last step ends exactly at dt
                 y = self.state
-                self.rk4_step(h)
+                self.rk4_step(h, consts)
                 e_new, size = self.energy_terms()
                 err, allowed = abs(e_new - e) / scale, max(ENERGY_RATE * h, blur * size)
                 work += 1
@@ -156,6 +195,12 @@ class DoublePendulumODE:
         p1 = (pivot[0] + self.l1 * math.sin(t1), pivot[1] + self.l1 * math.cos(t1))
         p2 = (p1[0] + self.l2 * math.sin(t2), p1[1] + self.l2 * math.cos(t2))
         return np.array([p1, p2])
+
+    def tip(self, pivot: tuple[float, float]) -> tuple[float, float]:
+        """positions(pivot)[1], the lower bob, as two floats (no array: once a step)."""
+        t1, t2 = self.state[0], self.state[1]
+        return (pivot[0] + self.l1 * math.sin(t1) + self.l2 * math.sin(t2),
+                pivot[1] + self.l1 * math.cos(t1) + self.l2 * math.cos(t2))
 
     def energy(self) -> float:
         """Kinetic plus potential energy, zero when both bobs hang straight down at rest."""

@@ -1,0 +1,257 @@
+"""What falling_balls (and pivoting_l) check after every step: balls that tunneled through the
+L's long arm, and balls that left the world (removed). A part of FallingBallsScene kept in a
+module of its own (FallingBallsScene inherits BallChecks).
+
+The usual step is cheap: while the same bodies stay awake, which bodies are above the arm's line
+is one dot product of their rows (x, y, angle, vx, vy, w) with a weight vector, and "above the
+arm before, on or below it now" compares those signs with the ones kept from the last step; the
+world's box is the smallest and largest x and y (argmin, argmax). That is about a dozen NumPy
+calls however many balls there are (in the step's loop each costs 1-2 us; an (n, 2) reduction
+along an axis, a ufunc's max() or a small matrix product costs several). Anything unusual (a
+ball that crossed the arm's line, a ball outside the box, a change in who is awake, the L woken)
+goes the long way, with the exact tests below (count_tunneled, remove_fallen). A new ball, or a
+removed one, keeps the usual path: Chipmunk's order of the awake bodies after it is known.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class BallChecks:
+    """The checks after a step of falling_balls. Expects self.balls, self._xy (every ball's
+    centre after the last step it was looked at), self._awake, self.L_body, self.counts and
+    the tables of FallingBallsScene.restored."""
+
+    arm_extent: tuple[float, float] = (0.0, 0.0)   # the long arm's ends along the L's own x
+
+    def _checks_reset(self) -> None:
+        """Forget what was kept between steps (the tables were rebuilt)."""
+        self._fast = None      # (the L's pose, which awake rows are above its arm's line)
+        # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
+        # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
+        # ball leaves the indices as they were, a removal writes them first)
+        if not hasattr(self, "_frame_cache"):
+            self._frame_cache = []  # [(pose, frame)] of the L, the last two (_frame; a frame
+                                    # depends on the pose alone: kept while the tables change)
+
+    def flush_xy(self) -> None:
+        """Write the awake balls' centres from the last step into self._xy (the usual step keeps
+        a copy of their rows aside: one call, while writing them into place by index is
+        slower)."""
+        prev = self._prev
+        if prev is not None:
+            self._xy[prev[0]] = _centres(prev)
+            self._prev = None
+
+    def check_balls(self, L0: tuple[float, float, float]) -> tuple[float, float, float]:
+        """After a step: count the balls that tunneled through the L, remove those that left the
+        world, remember every ball's centre (self._xy); return the L's pose after the step (L0:
+        before it). Only a body awake before or after the step can have moved: while the same
+        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at;
+        otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
+        reuses the read), the L's pose with them while the same bodies stay awake."""
+        ids, data = self.state_rows()
+        awake = self._awake
+        n = -1 if awake is None else len(awake[0])
+        same = 0 <= n < len(ids) and ids[n] in self._static_set and ids[:n].tobytes() == awake[4]
+        if same:
+            L_row = awake[3]
+            L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
+            # (a sleeping ball does not move, but a moving L may pass it: so with balls
+            # asleep, a moving L means looking at every ball)
+            same = L0 == L1 or len(ids) == n + len(self._static_ids)
+            fast = self._fast
+            if same and fast is not None and fast[0] == L0 and len(awake[2]):
+                return self._usual_check(data[:n], L0, L1, awake, fast[1])
+        else:
+            L1 = self.L_pose()
+        self.flush_xy()
+        if same:
+            _, rows, k, _, _ = awake      # the same bodies awake as after the last step
+            xy = data[:n, :2] if rows is None else data[:n, :2][rows]
+        else:
+            n = self.awake_count(ids)
+            k = self.ball_index(ids)
+            ball = k >= 0
+            xy, k = data[ball, :2], k[ball]       # every ball, awake or asleep
+            rows = ball[:n]
+            count = int(np.count_nonzero(rows))
+            L_row = np.flatnonzero(ids[:n] == self._L_id)
+            self._awake = (ids[:n].copy(), None if count == n else rows, k[:count],
+                           int(L_row[0]) if len(L_row) else None, ids[:n].tobytes())
+            self.resting = n == 0
+        self._fast = None
+        if not len(k):
+            return L1
+        self.count_tunneled(self._xy[k], xy, L0, L1)
+        self._xy[k] = xy
+        self.remove_outside(k, xy)
+        if self._awake is not None and len(self._awake[2]):   # (not if remove_fallen removed)
+            n = len(self._awake[0])
+            _, _, a6, c = self._frame(L1)
+            self._fast = (L1, data[:n].dot(a6) < c)
+        return L1
+
+    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, above0: np.ndarray):
+        """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
+        the L): which are above the arm's line by one dot product, a crossing by a change in
+        those signs, the box by the extremes of x and y; a crossing or a ball outside goes to
+        the exact tests. (In the step's loop every NumPy call costs 1-2 us: a dot product or an
+        argmax is one call, a ufunc's max() or an (n, 2) reduction along an axis costs more.)"""
+        _, rows, k, _, _ = awake
+        _, _, a6, c = self._frame(L1)
+        above1 = rows_now.dot(a6) < c                     # (row . a6 - c < 0: above the line)
+        self._fast = (L1, above1)
+        prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
+        if above0.tobytes() != above1.tobytes():          # some changed sides (rare)
+            crossed = above0 > above1                     # above before, not above now
+            if rows is not None:
+                crossed = crossed[rows]                   # balls only (not the L's row)
+            if crossed.any():
+                if prev is not None and prev[0] is not k:   # (a ball was added since)
+                    self._xy[prev[0]] = _centres(prev)
+                    prev = None
+                xy0 = self._xy[k] if prev is None else _centres(prev)
+                self._count_inside(xy0[crossed], _centres(self._prev)[crossed], L0, L1)
+        self.remove_outside(k, rows_now[:, :2], rows)
+        return L1
+
+    def remove_outside(self, k: np.ndarray, xy: np.ndarray, rows: np.ndarray | None = None
+                       ) -> None:
+        """remove_fallen(k, xy) (or of xy[rows], the balls among other bodies), after a quick
+        look: if the smallest and largest x and y are inside the box, no ball is out (the same
+        comparisons as remove_fallen's; argmin and argmax find a NaN too, which fails them)."""
+        if not len(xy):
+            return
+        x, y = xy[:, 0], xy[:, 1]
+        w, h = self.world_size
+        r = self.p["radius"]
+        if (x[x.argmin()] >= -2 * r and x[x.argmax()] <= w + 2 * r and y[y.argmin()] >= -h
+                and y[y.argmax()] <= h + 2 * r):
+            return
+        self.flush_xy()
+        self.remove_fallen(k, xy if rows is None else xy[rows])
+
+    def awake_after_removal(self, bodies: list[int]) -> tuple | None:
+        """(self._awake, self._fast) after the balls with these body ids (in the order they were
+        taken out) left the space and self.balls and self._ids, if the usual path was on:
+        Chipmunk takes a body out of its awake array by moving the last one into its place, so
+        the order of the rest is known without a read (the next step's check_balls compares it
+        with the read, and goes the long way if it differs)."""
+        awake, fast = self._awake, self._fast
+        if awake is None or fast is None:
+            return None
+        ids, rows, _, _, _ = awake
+        ids, above = ids.tolist(), fast[1].tolist()
+        ball = None if rows is None else rows.tolist()
+        for body in bodies:                           # cpArrayDeleteObj: the last fills the gap
+            if body not in ids:
+                return None
+            i = ids.index(body)
+            for column in (ids, above) if ball is None else (ids, above, ball):
+                last = column.pop()
+                if i < len(column):
+                    column[i] = last
+        n = len(ids)
+        if not n:
+            return None
+        # the balls' indices: the rows' ball ids looked up (ball_index's table is rebuilt by the
+        # caller), from the new ids in the new order
+        ids_now = np.array(ids, dtype=np.int64)
+        L = self._L_id
+        by_id = dict(zip(self._ids.tolist(), range(len(self._ids))))
+        k_now = np.array([by_id[b] for b, is_ball in zip(ids, ball or [True] * n) if is_ball],
+                         dtype=np.int64)
+        new_awake = (ids_now, None if ball is None else np.array(ball, dtype=bool), k_now,
+                     ids.index(L) if L in ids else None, ids_now.tobytes())
+        return new_awake, (fast[0], np.array(above, dtype=bool))
+
+    def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
+        """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check
+        tells it for a body's row)."""
+        _, _, a6, c = self._frame(pose)
+        return bool(np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(a6) < c)
+
+    def L_pose(self) -> tuple[float, float, float]:
+        """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
+        step does not, nor can the mouse), the pose it had when the tables were built."""
+        pose = self._L_static_pose
+        if pose is None:
+            x, y = self.L_body.position
+            pose = (x, y, self.L_body.angle)
+        return pose
+
+    def _frame(self, pose: tuple[float, float, float]) -> tuple:
+        """(origin (2,), the local y axis (2,), a6 (6,), c) of the L's frame at pose: a point's
+        height over the arm is (p - origin) . axis, _to_local's y; for a body's row (x, y,
+        angle, vx, vy, w) it is row . a6 - c (c = origin . axis). The last two are kept (a
+        resting or static L has the same pose step after step; a moving one, the pose before
+        and after)."""
+        cache = self._frame_cache
+        for key, frame in cache:
+            if key == pose:
+                return frame
+        x, y, a = pose
+        ax, ay = -math.sin(a), math.cos(a)
+        a6 = np.array((ax, ay, 0.0, 0.0, 0.0, 0.0))     # (a moving L: a new frame every
+        frame = (np.array((x, y)), a6[:2], a6, x * ax + y * ay)   # substep, so few calls)
+        cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
+        return frame
+
+    def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
+                       L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
+        """Count balls whose centre crossed the L's long arm from above to below in this step
+        while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
+        balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
+        is looked at only for balls that crossed.)"""
+        o0, axis0, _, _ = self._frame(L0)
+        y0 = (xy0 - o0) @ axis0
+        o1, axis1, _, _ = self._frame(L1)
+        y1 = (xy1 - o1) @ axis1
+        crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
+        if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
+            self._count_inside(xy0[crossed], xy1[crossed], L0, L1)
+
+    def _count_inside(self, p0: np.ndarray, p1: np.ndarray, L0, L1) -> None:
+        """Of the balls that crossed the arm's line (centres before p0, after p1), count those
+        inside its x-extent before and after."""
+        p0, p1 = _to_local(p0, L0), _to_local(p1, L1)
+        ax, bx = self.arm_extent
+        inside = (p0[:, 0] >= ax) & (p0[:, 0] <= bx) & (p1[:, 0] >= ax) & (p1[:, 0] <= bx)
+        self.counts["tunneled"] += int(np.count_nonzero(inside))
+
+    def remove_fallen(self, k: np.ndarray, xy: np.ndarray) -> None:
+        """Remove the balls (indices k, centres xy) whose centre left the world: below it, far
+        to a side, or more than a world's height above it (new balls fall in from just above,
+        so "above" needs the margin). A non-finite centre counts as out."""
+        if not len(xy):
+            return
+        w, h = self.world_size
+        r = self.p["radius"]
+        if len(xy) <= 64:     # a few: one look at each (the same comparisons; NaN fails them)
+            x0, y0, x1, y1 = -2 * r, -h, w + 2 * r, h + 2 * r
+            out = [i for i, (x, y) in enumerate(xy.tolist())
+                   if not (x >= x0 and y >= y0 and x <= x1 and y <= y1)]
+            if out:
+                self.remove_balls(k[out])
+            return
+        inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
+        if not inside.all():
+            self.remove_balls(k[~inside])
+
+
+def _centres(kept: tuple) -> np.ndarray:
+    """The balls' centres from a BallChecks._prev: (ball indices, ball rows (None: all), rows)."""
+    _, rows, data = kept
+    return data[:, :2] if rows is None else data[rows, :2]
+
+
+def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
+    """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""
+    x, y, a = pose
+    c, s = math.cos(a), math.sin(a)
+    # (x', y') = (c dx + s dy, -s dx + c dy) for every row at once: one 2x2 product
+    return (xy - (x, y)) @ np.array(((c, -s), (s, c)))

@@ -1,0 +1,146 @@
+"""The pymunk scenes' per-step checks on their quick paths (issue 28: the lab's step at the
+engine's own cost) still catch what they caught: a body that goes non-finite is caught the step it
+happens, a ball that tunnels through the L is counted, a ball that leaves is removed, a sleeping
+pile that wakes is read and checked again, a body beyond the blow-up reach is caught."""
+
+import math
+
+import numpy as np
+import pytest
+
+from scenes.double_pendulum import DoublePendulumScene
+from scenes.falling_balls import L_ORIGIN, FallingBallsScene
+from scenes.pivoting_l import PivotingLScene
+
+
+def balls_on_the_L(cls=FallingBallsScene) -> FallingBallsScene:
+    """Three balls dropped on the L and one falling freely beside it, stepped until the usual
+    (quick) path runs."""
+    scene = cls({"spawn_rate": 0})
+    for x, y in ((-120, -60), (-60, -60), (0, -60), (450, -400)):
+        scene.add_ball((L_ORIGIN[0] + x, L_ORIGIN[1] + y))
+    for _ in range(5):
+        scene.advance()
+        assert scene.is_finite()
+    assert scene._fast is not None          # (the quick path is the one under test)
+    return scene
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_a_body_that_goes_nan_is_caught_the_step_it_happens(cls):
+    # A NaN ball: pymunk spreads it to its centre (even in free fall) and to the balls it
+    # touches, and a NaN centre counts as a ball that left: removed that very step, as before
+    # the quick path; what stays is finite.
+    for which in (3, 1):                  # falling freely; on the L, touching others
+        scene = balls_on_the_L(cls)
+        body = scene.balls[which].body
+        body.angular_velocity = math.nan
+        scene.wake()
+        scene.advance()
+        assert body not in scene.space.bodies and scene.counts["removed"] >= 1
+        assert len(scene.balls) == 4 - scene.counts["removed"]
+        assert all(math.isfinite(x) for b in scene.space.bodies for x in (*b.position, b.angle))
+        assert scene.is_finite()
+    if cls is PivotingLScene:             # the L is no ball: a NaN L is a non-finite state
+        scene = balls_on_the_L(cls)
+        scene.L_body.angular_velocity = math.nan
+        scene.wake()
+        scene.advance()
+        assert not scene.is_finite()
+
+
+@pytest.mark.parametrize("then", ["", "a ball added", "a ball removed"])
+def test_a_tunneling_ball_is_counted_on_the_quick_path(then):
+    scene = balls_on_the_L()
+    x, y = L_ORIGIN[0] + 150, L_ORIGIN[1] - 200       # 200 px above the arm, clear of the others
+    body = scene.balls[2].body
+    body.position, body.velocity = (x, y), (0.0, 0.0)
+    scene.wake()
+    scene.advance()                                      # (now it is there, above the arm)
+    assert scene.counts["tunneled"] == 0 and scene._fast is not None
+    if then == "a ball added":                           # (the quick path goes on with it)
+        scene.add_ball((100.0, 100.0))
+    elif then == "a ball removed":
+        scene.remove_balls(np.array([0]))
+    body.velocity = (0.0, 15000.0)                       # 250 px in one step: through the arm
+    scene.wake()
+    scene.advance()
+    assert scene._fast is not None
+    assert body.position.y > L_ORIGIN[1] + 30            # below it, not touching it
+    assert scene.counts["tunneled"] == 1
+
+
+def test_a_ball_that_leaves_is_removed_the_step_it_leaves():
+    scene = balls_on_the_L()
+    body = scene.balls[0].body
+    body.position, body.velocity = (950.0, 400.0), (3000.0, 0.0)   # out through the right side
+    scene.wake()
+    scene.advance()
+    assert scene.counts["removed"] == 0
+    scene.advance()
+    assert scene.counts["removed"] == 1 and body not in scene.space.bodies
+
+
+def test_a_sleeping_pile_wakes_and_is_checked_again():
+    scene = FallingBallsScene({"spawn_rate": 0, "container": True, "radius": 10})
+    scene.add_balls(40)
+    for _ in range(200):
+        scene.advance()
+    assert scene.resting and scene.metrics()["balls_asleep"] == 40
+    before = scene.state_hash()
+    for _ in range(3):                                   # asleep: nothing moves
+        scene.advance()
+        assert scene.is_finite()
+    assert scene.state_hash() == before
+    scene.on_click((480.0, 100.0), 1)                    # a ball dropped on the pile wakes it
+    assert not scene.resting
+    for _ in range(20):
+        scene.advance()
+        assert scene.is_finite()
+    assert not scene.resting and scene.metrics()["balls_asleep"] < 41
+    body = scene.balls[-1].body                          # a bad value is caught at once:
+    body.angular_velocity = math.inf                     # the ball is taken out that step
+    scene.wake()
+    scene.advance()
+    assert body not in scene.space.bodies and scene.counts["removed"] >= 1 and scene.is_finite()
+
+
+def test_the_pendulum_beyond_its_reach_or_non_finite_is_caught():
+    scene = DoublePendulumScene({"reference": False})
+    for _ in range(3):
+        scene.advance()
+        assert scene.is_finite()
+    bob = scene.bobs[1]
+    bob.velocity = (2e6, 0.0)         # fast (past the one-pass test), still within reach: fine
+    scene.wake()
+    scene.advance()
+    assert scene.is_finite()
+    bob.position = (2e6, 350.0)       # beyond blowup_reach (1e6 px past the world): caught
+    scene.wake()
+    assert not scene.is_finite()
+    scene = DoublePendulumScene({"reference": False})
+    scene.advance()
+    scene.bobs[0].velocity = (math.inf, 0.0)
+    scene.wake()
+    scene.advance()
+    assert not scene.is_finite()
+
+
+def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
+    # rk4_step writes rk4_tuple out and derivative_with forms the parameters' products once:
+    # both must give exactly what rk4_tuple on derivative() gives (the state hash holds it)
+    import random
+
+    from app.physics.double_pendulum_ode import DoublePendulumODE
+    from app.physics.integrators import rk4_tuple
+    rng = random.Random(3)
+    for params in ((160.0, 160.0, 1.0, 1.0, 900.0), (20.0, 170.0, 0.05, 20.0, 5000.0),
+                   (170.0, 20.0, 20.0, 0.05, 0.0)):
+        ode = DoublePendulumODE(*params)
+        for _ in range(200):
+            y = tuple(rng.uniform(-20.0, 20.0) for _ in range(4))
+            h = rng.uniform(1e-6, 1 / 120)
+            assert ode.derivative_with(y, ode.constants()) == ode.derivative(y)
+            ode.state = y
+            ode.rk4_step(h)
+            assert ode.state == rk4_tuple(ode.derivative, y, h)
