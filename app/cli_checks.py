@@ -68,6 +68,14 @@ def check_plot(text: str | None, classes: list, shared: dict) -> list[str]:
     return list(dict.fromkeys(names))
 
 
+def scene_file_path(name: str) -> str:
+    """The file --scene NAME.toml reads: NAME from here, or a shipped file by its path from the
+    repository's root (scenes.file_scene)."""
+    import os
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    return name if os.path.exists(name) else os.path.join(root, name)
+
+
 def check_outputs(args: argparse.Namespace, classes: list, clips: list[str]) -> None:
     """Refuse (UsageError, one line) before the run: one path named for two outputs, an output
     that is also an input (--input, the exercise file), and an output that cannot be written
@@ -86,6 +94,8 @@ def check_outputs(args: argparse.Namespace, classes: list, clips: list[str]) -> 
     inputs = [(args.input, "--input")]
     if args.scene and args.scene.startswith("exercise:") and args.scene.endswith(".py"):
         inputs.append((args.scene.removeprefix("exercise:"), "the exercise file"))
+    if args.scene and args.scene.endswith(".toml"):     # a scene file is read: never written
+        inputs.append((scene_file_path(args.scene), "the scene file"))
     problem = clash([o for o in outputs if o[0]], [i for i in inputs if i[0]])
     if problem:                       # before anything is written: nothing is lost
         raise UsageError(problem)

@@ -137,6 +137,20 @@ def test_an_output_that_is_also_the_input_is_refused_before_the_run(capsys, tmp_
     assert events.read_text() == before
 
 
+def test_the_scene_file_is_an_input_and_never_an_output(capsys, tmp_path):
+    # once (hostile run, seed 27): `--scene s.toml --csv s.toml` exited 0 and replaced the
+    # teacher's scene file with the CSV; through a symlink it replaced the link
+    scene = tmp_path / "s.toml"
+    scene.write_bytes((ROOT / "scenes" / "files" / "pivoting_l.toml").read_bytes())
+    (tmp_path / "l.csv").symlink_to(scene)
+    before = scene.read_bytes()
+    for out in (scene, tmp_path / "l.csv"):
+        code, _, err = run_main(capsys, "--headless", "--scene", str(scene), "--steps", "2",
+                                "--csv", str(out))
+        assert code == 2 and "the scene file (an input)" in one_error_line(err)
+    assert scene.read_bytes() == before and (tmp_path / "l.csv").is_symlink()
+
+
 def test_one_path_for_two_outputs_is_refused_before_the_run(capsys, tmp_path):
     # once: `--csv same.png --screenshot same.png` left only the PNG
     same = tmp_path / "same.png"
