@@ -58,13 +58,15 @@ def check_plot(text: str | None, classes: list, shared: dict) -> list[str]:
     if not all(names):
         raise UsageError(f"--plot {shown_text(text)}: accepted: METRIC[,METRIC...], e.g. "
                          "--plot max_stretch,mean_stretch")
+    from app.outputs import listed
     from app.series import plottable
     cls = classes[0]
     accepted = list(plottable(cls(cls.own_settings(shared)).metrics()))
     unknown = [n for n in names if n not in accepted]
     if unknown:
         raise UsageError(f"--plot {shown_text(unknown[0])}: {cls.name} reports no such number; "
-                         f"accepted: {', '.join(accepted)}")
+                         "accepted: " + listed(accepted, unknown[0],
+                                               rest="all in docs/scenes.md"))
     return list(dict.fromkeys(names))
 
 

@@ -123,6 +123,66 @@ def test_clash_finds_one_file_under_two_names(tmp_path):
                          [(str(real), "--input")]) is None
 
 
+def test_temporary_names_are_ascii_and_a_trailing_slash_is_a_folder(tmp_path):
+    # once (hostile run, seed 27): pygame saved `--screenshot bad<0xff>.png` under another name
+    # than the temporary one it was given, and left it behind; `--csv out.csv/` passed the
+    # check before the run and failed after it
+    pending = outputs.Pending(os.path.join(tmp_path, "bad\udcff \u540d.png"), "--screenshot")
+    assert os.path.basename(pending.tmp).isascii() and pending.tmp.endswith(".png")
+    pending.discard()
+    assert "names a folder" in outputs.output_problem(str(tmp_path / "out.csv") + "/", "--csv")
+    assert leftovers(tmp_path) == []
+
+
+def test_grading_reports_are_written_whole_or_not_at_all(tmp_path, monkeypatch):
+    # once: `exercise grade --out FULL/old.csv` on a full disk ended in a traceback (its own
+    # writer, not app/outputs.py) and left its temporary file
+    from app.exercises import classroom
+    book = tmp_path / "gradebook.csv"
+    book.write_text("old")
+    monkeypatch.setattr(os, "replace", full_disk)
+    with pytest.raises(OutputError, match="No space left"):
+        classroom.write_atomic(str(book), "student,score\n", "the gradebook")
+    assert book.read_text() == "old" and leftovers(tmp_path) == []
+
+
+def test_a_scene_file_that_is_a_fifo_is_refused_not_waited_for(capsys, tmp_path):
+    # once: `--scene in.toml` and `scene check in.toml` on a FIFO waited for a writer for ever
+    fifo = tmp_path / "in.toml"
+    os.mkfifo(fifo)
+    old = signal.signal(signal.SIGALRM, lambda *a: pytest.fail("waited on the FIFO"))
+    signal.alarm(10)
+    try:
+        for args in (["--headless", "--scene", str(fifo), "--steps", "1"],
+                     ["scene", "check", str(fifo)]):
+            code, _, err = run_main(capsys, *args)
+            assert code == 2 and "not a regular file" in one_error_line(err)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+@pytest.mark.parametrize("args,word", [
+    (["--headless", "--scene", "cloth", "--steps", "1", "--set", "iteration=3"],
+     "accepted: iterations,"),
+    (["--headless", "--scene", "integrators", "--steps", "1", "--plot", "rk4_eror",
+      "--screenshot", "x.png"], "accepted: rk4_error,"),
+    (["--headless", "--scene", "cloth", "--steps", "1", "--compare", "subteps=1",
+      "iterations=4"], "accepted: substeps,"),
+    (["--headless", "--scene", "cloth", "--steps", "1", "--compare", "x" * 100_000, "g=1"],
+     "is not KEY=VALUE"),
+    (["scene", "check", "q" * 100_000 + ".toml"], "cannot be read"),
+    (["exercise", "check", "verlet", "--path", "q" * 100_000 + ".py"], "no such file"),
+])
+def test_every_refusal_is_one_line_of_at_most_300_characters(capsys, args, word):
+    # once (hostile run, seed 27): 20 error lines of 376 to 616 characters: a long list of
+    # accepted names (now the closest to what was typed first, then cut), and a long --compare
+    # value, scene file or --path echoed whole
+    code, _, err = run_main(capsys, *args)
+    line = one_error_line(err)
+    assert code == 2 and len(line) <= 300 and word in line, (len(line), line)
+
+
 # --- the command line ----------------------------------------------------------------------------
 
 def test_an_output_that_is_also_the_input_is_refused_before_the_run(capsys, tmp_path):
