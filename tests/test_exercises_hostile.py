@@ -202,6 +202,16 @@ def test_output_is_captured_and_capped(capsys):
     assert capsys.readouterr().out == ""           # nothing of theirs on the grader's stdout
 
 
+def test_the_students_output_is_shown_in_short_lines_without_control_characters():
+    # once (hostile run, seed 27): a file that printed 10 MB of 'x' put one line of 8,000
+    # characters on the grader's stderr; an escape sequence would clear the teacher's terminal
+    from app.exercises.report import OUTPUT_LINE, Report
+    text = Report("verlet", "s.py", [], output="x" * 8000 + "\n\x1b[2Jok\n",
+                  output_bytes=10_000_001).output_text()
+    assert all(len(line) <= OUTPUT_LINE for line in text.splitlines())
+    assert "\x1b" not in text and "\\x1b[2Jok" in text and "more bytes not shown" in text
+
+
 def test_the_file_is_imported_once_per_exercise():
     # once: a file that slept 9 s at import was imported again for every check (56 s)
     report, _ = graded("verlet_import_counter")
