@@ -490,8 +490,15 @@ def leave(code: int) -> NoReturn:
 
 if __name__ == "__main__":
     os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    import signal
+    if signal.getsignal(signal.SIGINT) is getattr(sys.modules["app"], "_ctrl_c_while_starting",
+                                                  None):
+        signal.signal(signal.SIGINT, signal.default_int_handler)   # imported: main's turn
     try:
         code = main()
     except KeyboardInterrupt:      # Ctrl-C between main's own handlers (at exit)
         code = interrupted()
-    leave(code)
+    try:
+        leave(code)
+    except KeyboardInterrupt:      # a Ctrl-C while leaving: the line is printed already
+        os._exit(EXIT_INTERRUPTED)

@@ -388,6 +388,26 @@ def test_ctrl_c_during_a_clip_and_a_csv_exits_130_in_one_line_and_keeps_the_old_
     assert leftovers(tmp_path) == []
 
 
+def test_ctrl_c_while_python_m_app_starts_is_one_line_and_130(monkeypatch):
+    # once (hostile run, seed 27): a Ctrl-C in the first ~0.3 s (numpy, pygame and pymunk being
+    # imported) printed a KeyboardInterrupt traceback and died by the signal, not exit 130
+    import app
+    monkeypatch.setattr(sys, "orig_argv", [sys.executable, "-m", "app", "--list"])
+    assert app._launched_as_the_command_line()
+    monkeypatch.setattr(sys, "orig_argv", [sys.executable, "-m", "pytest"])
+    assert not app._launched_as_the_command_line()
+    written = []
+    monkeypatch.setattr(os, "write", lambda fd, data: written.append((fd, data)))
+
+    def leave(code):
+        raise SystemExit(code)
+    monkeypatch.setattr(os, "_exit", leave)
+    with pytest.raises(SystemExit) as e:
+        app._ctrl_c_while_starting(signal.SIGINT, None)
+    assert e.value.code == 130 and len(written) == 1 and written[0][0] == 2
+    assert written[0][1].count(b"\n") == 1 and b"interrupted (Ctrl-C)" in written[0][1]
+
+
 def test_a_gif_reports_the_frames_and_seconds_in_the_file(capsys, tmp_path):
     # once: the cradle's GIF held 119 frames where the summary said 120 (Pillow merges equal
     # frames); what is reported is now read back from the file

@@ -477,8 +477,10 @@ async def window_main(scene_name: str | None, overrides: dict[str, str],
             if replaced:           # the summary says when a file was replaced (as headless)
                 print(f"screenshot: {screenshot} (replaced the file that was there)",
                       flush=True)
-    except KeyboardInterrupt:      # Ctrl-C in the terminal: the recording and clips are still
-        code = 130                 # saved (every way out), then exit code 130 and one line
+    except (KeyboardInterrupt, asyncio.CancelledError):   # Ctrl-C in the terminal (asyncio.run
+        code = 130                 # turns a real SIGINT into a cancel of this coroutine): the
+                                   # recording and clips are still saved (every way out), then
+                                   # exit code 130 and this one line
         print("python -m app: interrupted (Ctrl-C); the window closed as Esc would close it",
               file=sys.stderr, flush=True)
     else:                          # a student's code that raised while the window was open:
