@@ -66,7 +66,7 @@ def one_line(text: str, limit: int = MAX_LINE) -> str:
     return text
 
 
-def listed(names: Sequence[str], near: str | None = None, limit: int = 120,
+def listed(names: Sequence[str], near: str | None = None, limit: int = 90,
            rest: str = "") -> str:
     """Accepted names for a one-line message: those closest to `near` (what was typed) first,
     then the others, cut to about `limit` characters with how many were left out and `rest`
