@@ -30,3 +30,11 @@ if _launched_as_the_command_line():          # `python -m app ...`, not an impor
     import signal as _signal
     if _signal.getsignal(_signal.SIGINT) is _signal.default_int_handler:
         _signal.signal(_signal.SIGINT, _ctrl_c_while_starting)
+
+
+def started() -> None:
+    """`python -m app` has imported its modules: Ctrl-C is Python's KeyboardInterrupt again,
+    which the command line turns into one line and exit code 130, its outputs cleaned up."""
+    import signal
+    if signal.getsignal(signal.SIGINT) is _ctrl_c_while_starting:
+        signal.signal(signal.SIGINT, signal.default_int_handler)

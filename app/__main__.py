@@ -470,13 +470,14 @@ def leave(code: int) -> NoReturn:
     left behind must not keep the lab open nor write after the JSON: a thread (even a non-daemon
     one, which Python waits for at exit, for ever), an atexit handler, a __del__ that runs at
     shutdown. Once a student's file ran here, or with such a thread alive, flush and leave at
-    once."""
+    once; after a Ctrl-C too (its line is printed, its outputs discarded): Python exits by the
+    signal itself, not with 130, if a KeyboardInterrupt was raised in some of its C paths."""
     import threading
     stray = [t for t in threading.enumerate()
              if t is not threading.main_thread() and t.is_alive() and not t.daemon]
     loading = sys.modules.get("app.exercises.loading")
-    if not stray and not getattr(loading, "LOADED", None):
-        sys.exit(code)
+    if not stray and not getattr(loading, "LOADED", None) and code != EXIT_INTERRUPTED:
+        sys.exit(code)     # (after Ctrl-C, os._exit: Python would end by the signal, not 130)
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()
@@ -489,16 +490,10 @@ def leave(code: int) -> NoReturn:
 
 
 if __name__ == "__main__":
-    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-    import signal
-    if signal.getsignal(signal.SIGINT) is getattr(sys.modules["app"], "_ctrl_c_while_starting",
-                                                  None):
-        signal.signal(signal.SIGINT, signal.default_int_handler)   # imported: main's turn
+    import app
+    app.started()                  # Ctrl-C is main's from here (app/__init__.py)
     try:
         code = main()
     except KeyboardInterrupt:      # Ctrl-C between main's own handlers (at exit)
         code = interrupted()
-    try:
-        leave(code)
-    except KeyboardInterrupt:      # a Ctrl-C while leaving: the line is printed already
-        os._exit(EXIT_INTERRUPTED)
+    leave(code)

@@ -410,6 +410,21 @@ def test_ctrl_c_while_python_m_app_starts_is_one_line_and_130(monkeypatch):
     assert written[0][1].count(b"\n") == 1 and b"interrupted (Ctrl-C)" in written[0][1]
 
 
+def test_after_ctrl_c_the_lab_leaves_with_130_itself(monkeypatch):
+    # once, under load: the interrupted line printed, then exit by SIGINT (-2), not 130: Python
+    # ends by the signal at exit if a KeyboardInterrupt passed through some of its C paths
+    from app import __main__ as cli_main
+    left = []
+
+    def os_exit(code):
+        left.append(code)
+        raise SystemExit(code)
+    monkeypatch.setattr(os, "_exit", os_exit)
+    with pytest.raises(SystemExit):
+        cli_main.leave(130)
+    assert left == [130]
+
+
 def test_a_gif_reports_the_frames_and_seconds_in_the_file(capsys, tmp_path):
     # once: the cradle's GIF held 119 frames where the summary said 120 (Pillow merges equal
     # frames); what is reported is now read back from the file
