@@ -212,6 +212,31 @@ def test_the_students_output_is_shown_in_short_lines_without_control_characters(
     assert "\x1b" not in text and "\\x1b[2Jok" in text and "more bytes not shown" in text
 
 
+_ARMED: list = []        # the at-fork hook below sends a Ctrl-C only while armed
+os.register_at_fork(after_in_parent=lambda: _ARMED and os.kill(os.getpid(), __import__(
+    "signal").SIGINT))
+
+
+def test_a_ctrl_c_during_the_sandbox_probe_is_raised_not_dropped(capfd):
+    # once (hostile run, seed 27): `exercise grade` interrupted in its first half second printed
+    # "Exception ignored in: <function _releaseLock>" and a KeyboardInterrupt traceback: the
+    # sandbox's probe forked with os.fork, whose at-fork hooks drop a Ctrl-C
+    import signal
+    from app.exercises import sandbox
+
+    def ctrl_c(sig, frame):           # as the grader's own handler (classroom._CtrlC)
+        raise KeyboardInterrupt
+    before = signal.signal(signal.SIGINT, ctrl_c)
+    _ARMED.append(1)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            sandbox._unshare_probe(0)
+    finally:
+        _ARMED.clear()
+        signal.signal(signal.SIGINT, before)
+    assert "Exception ignored" not in capfd.readouterr().err
+
+
 def test_the_file_is_imported_once_per_exercise():
     # once: a file that slept 9 s at import was imported again for every check (56 s)
     report, _ = graded("verlet_import_counter")

@@ -122,8 +122,11 @@ _PROTECTIONS: Protections | None = None
 
 
 def _unshare_probe(flags: int) -> bool:
-    """True if unshare(flags) works here (tried in a child that then exits)."""
-    pid = os.fork()
+    """True if unshare(flags) works here (tried in a child that then exits). Forked as every
+    child of the grader is (spawn.fork): a Ctrl-C during the fork is raised after it, not printed
+    and dropped by Python's at-fork hooks, and the child leaves Ctrl-C to the grader."""
+    from app.exercises.spawn import fork, raise_noted_ctrl_c    # (spawn imports this module)
+    pid = fork()
     if pid == 0:
         try:
             ok = libc().unshare(ctypes.c_int(flags)) == 0
@@ -131,6 +134,7 @@ def _unshare_probe(flags: int) -> bool:
             pass
         os._exit(0 if ok else 1)
     _, status = os.waitpid(pid, 0)
+    raise_noted_ctrl_c()
     return os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0
 
 
