@@ -490,8 +490,7 @@ def leave(code: int) -> NoReturn:
 
 
 if __name__ == "__main__":
-    import app
-    app.started()                  # Ctrl-C is main's from here (app/__init__.py)
+    sys.modules["app"].started()   # Ctrl-C is main's from here (app/__init__.py)
     try:
         code = main()
     except KeyboardInterrupt:      # Ctrl-C between main's own handlers (at exit)

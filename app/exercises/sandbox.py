@@ -52,6 +52,7 @@ from pathlib import Path
 
 from app.exercises.harness import (LAB_PACKAGES, REPO, STUB, cleanup, harness,  # noqa: F401
                                    harness_files)
+from app.exercises.forking import fork, raise_noted_ctrl_c
 from app.exercises.harness import root as harness_root
 from app.exercises.landlock import (CLONE_NEWIPC, CLONE_NEWNET, CLONE_NEWPID, CLONE_NEWUTS,
                                     PR_CAPBSET_DROP, PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS,
@@ -123,9 +124,8 @@ _PROTECTIONS: Protections | None = None
 
 def _unshare_probe(flags: int) -> bool:
     """True if unshare(flags) works here (tried in a child that then exits). Forked as every
-    child of the grader is (spawn.fork): a Ctrl-C during the fork is raised after it, not printed
+    child of the grader is (fork() below): a Ctrl-C during the fork is raised after it, not printed
     and dropped by Python's at-fork hooks, and the child leaves Ctrl-C to the grader."""
-    from app.exercises.spawn import fork, raise_noted_ctrl_c    # (spawn imports this module)
     pid = fork()
     if pid == 0:
         try:
