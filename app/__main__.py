@@ -94,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
             return scene_main(argv[1:])
         return app_main(argv)
     except (UsageError, OutputError) as e:    # bad usage, or a file that could not be written
-        print(f"python -m app: error: {one_line(str(e))}", file=sys.stderr)
+        print(f"python -m app: error: {one_line(str(e), 278)}", file=sys.stderr)   # <= 300
         return EXIT_USAGE
     except BrokenPipeError:     # stdout closed early (`... --json | head -1`): stop quietly
         discard_all()

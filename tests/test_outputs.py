@@ -146,6 +146,15 @@ def test_grading_reports_are_written_whole_or_not_at_all(tmp_path, monkeypatch):
     assert book.read_text() == "old" and leftovers(tmp_path) == []
 
 
+def test_a_scene_file_nested_too_deeply_is_one_line(capsys, tmp_path):
+    # once (hostile run, seed 2026): `x = [[[[...]]]]` 5000 deep: tomllib's RecursionError,
+    # a traceback
+    deep = tmp_path / "deep.toml"
+    deep.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+    code, _, err = run_main(capsys, "scene", "check", str(deep))
+    assert code == 2 and "nested too deeply" in one_error_line(err)
+
+
 def test_a_scene_file_that_is_a_fifo_is_refused_not_waited_for(capsys, tmp_path):
     # once: `--scene in.toml` and `scene check in.toml` on a FIFO waited for a writer for ever
     fifo = tmp_path / "in.toml"
@@ -174,6 +183,8 @@ def test_a_scene_file_that_is_a_fifo_is_refused_not_waited_for(capsys, tmp_path)
     (["--headless", "--scene", "cloth", "--steps", "1", "--compare", "x" * 100_000 + "=1",
       "iterations=4"], "more (all in docs/scenes.md)"),
     (["scene", "check", "q" * 100_000 + ".toml"], "cannot be read"),
+    (["x" * 100_000], "unrecognized arguments"),                      # seed 2026: 316
+    (["--headless", "--scene", "x" * 100_000, "--steps", "1"], "unknown scene"),   # 305
     (["exercise", "check", "verlet", "--path", "q" * 100_000 + ".py"], "no such file"),
 ])
 def test_every_refusal_is_one_line_of_at_most_300_characters(capsys, args, word):

@@ -402,6 +402,11 @@ def test_run_window_says_it_replaced_a_screenshot_and_a_lost_csv_exits_2(monkeyp
     from app import outputs
     from app.headless import Extras
     monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    shot, table = tmp_path / "w.png", tmp_path / "run.csv"
+    table.write_text("old rows")             # seed 2026: the --csv replaced it without a word
+    assert run_window("tiny", {}, seconds=0.05, extras=Extras(csv=str(table))) == 0
+    assert "run.csv (replaced the file that was there)" in capsys.readouterr().out
+    table.unlink()
     commit = outputs.Pending.commit
 
     def full_disk_for_the_csv(self, *args, **kwargs):
@@ -410,7 +415,6 @@ def test_run_window_says_it_replaced_a_screenshot_and_a_lost_csv_exits_2(monkeyp
         self.discard()
         raise outputs.OutputError(self.failed("No space left on device"))
     monkeypatch.setattr(outputs.Pending, "commit", full_disk_for_the_csv)
-    shot, table = tmp_path / "w.png", tmp_path / "run.csv"
     shot.write_bytes(b"old")
     assert run_window("tiny", {}, screenshot=str(shot), seconds=0.1,
                       extras=Extras(csv=str(table))) == 2

@@ -294,6 +294,9 @@ def parse(text: str, path: str) -> dict[str, Any]:
     """The TOML data; a syntax error becomes a SceneFileError with the parser's line."""
     try:
         return tomllib.loads(text)
+    except RecursionError:          # tomllib parses nested arrays by recursion: [[[[...]]]]
+        raise SceneFileError(path, None, "not valid here: arrays or tables nested too deeply; "
+                             "accepted: a scene file (docs/experiments.md)") from None
     except tomllib.TOMLDecodeError as e:
         msg = str(e)
         m = re.search(r"\(at line (\d+), column \d+\)", msg)
