@@ -771,6 +771,9 @@ def run_case(case: Case, timeout: float, base: str) -> tuple[str, list[tuple[str
     info["err"] = lines[0][:300] if lines else ""
     time.sleep(0.05)
     left = lingering(folder, pgid)
+    if left:                      # one that is still dying (a compiler the Ctrl-C reached too)
+        time.sleep(1.0)           # is not left behind: look again a second later
+        left = lingering(folder, pgid)
     if left:
         breaches.append(("process left behind", str(left)))
         for pid in left:
