@@ -29,7 +29,7 @@ from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras
                           screenshot_path, steps_for)
 from app.cli_checks import (UsageError, check_outputs, check_plot, compare_variants,
                             instrument_problem)
-from app.outputs import OutputError, discard_all, one_line, shown
+from app.outputs import OutputError, discard_all, listed, one_line, shown
 from app.scene import shown_text
 from app.cli_args import (_Parser, _fps, _int_in, _positive_float, _positive_int, _seed,
                           _timeout, _width, _window_size, parse_sets, use_dummy_video)
@@ -94,7 +94,7 @@ def main(argv: list[str] | None = None) -> int:
             return scene_main(argv[1:])
         return app_main(argv)
     except (UsageError, OutputError) as e:    # bad usage, or a file that could not be written
-        print(f"python -m app: error: {one_line(str(e))}", file=sys.stderr)
+        print(f"python -m app: error: {one_line(str(e), 278)}", file=sys.stderr)   # <= 300
         return EXIT_USAGE
     except BrokenPipeError:     # stdout closed early (`... --json | head -1`): stop quietly
         discard_all()
@@ -174,7 +174,7 @@ def app_main(argv: list[str]) -> int:
         where = f"scene '{classes[0].name}' has" if len(classes) == 1 else "no scene has"
         what = "no parameter or effect" if len(classes) == 1 else "a parameter or effect"
         raise UsageError(f"--set: {where} {what} {shown_text(unknown[0])}; accepted: "
-                         f"{', '.join(names)}")
+                         + listed(names, unknown[0], rest="all in docs/scenes.md"))
     for cls in classes:
         try:
             values, _ = cls.resolve(cls.own_settings(overrides))   # what the run will build
@@ -373,7 +373,7 @@ def build_exercise_parser(names: list[str]) -> argparse.ArgumentParser:
 def exercise_main(argv: list[str]) -> int:
     """`exercise list | check NAME|all [--path P] [--reference] [--json] [--seed N] | copy DIR`."""
     from app.exercises import cli, exercise_names, get_exercise
-    from app.exercises.loading import shown, starter_path
+    from app.exercises.loading import shown as as_typed, starter_path   # messages: outputs.shown
     names = exercise_names()
     args = build_exercise_parser(names).parse_args(argv)
     if args.command is None:
@@ -405,10 +405,10 @@ def exercise_main(argv: list[str]) -> int:
         if folder is not None and not os.path.isdir(folder):
             raise UsageError(f"--path {shown(folder)}: with 'all' it names a folder of NAME.py "
                              "files")
-        paths = [shown(os.path.join(folder, f"{e.name}.py")) if folder else
-                 shown(starter_path(e.name)) for e in chosen]
+        paths = [as_typed(os.path.join(folder, f"{e.name}.py")) if folder else
+                 as_typed(starter_path(e.name)) for e in chosen]
     else:
-        paths = [args.path or shown(starter_path(args.name))]
+        paths = [args.path or as_typed(starter_path(args.name))]
         if not os.path.isfile(paths[0]):
             what = "not a regular file" if os.path.exists(paths[0]) else "no such file"
             raise UsageError(f"--path {shown(paths[0])}: {what}; accepted: a .py file, "
@@ -470,13 +470,14 @@ def leave(code: int) -> NoReturn:
     left behind must not keep the lab open nor write after the JSON: a thread (even a non-daemon
     one, which Python waits for at exit, for ever), an atexit handler, a __del__ that runs at
     shutdown. Once a student's file ran here, or with such a thread alive, flush and leave at
-    once."""
+    once; after a Ctrl-C too (its line is printed, its outputs discarded): Python exits by the
+    signal itself, not with 130, if a KeyboardInterrupt was raised in some of its C paths."""
     import threading
     stray = [t for t in threading.enumerate()
              if t is not threading.main_thread() and t.is_alive() and not t.daemon]
     loading = sys.modules.get("app.exercises.loading")
-    if not stray and not getattr(loading, "LOADED", None):
-        sys.exit(code)
+    if not stray and not getattr(loading, "LOADED", None) and code != EXIT_INTERRUPTED:
+        sys.exit(code)     # (after Ctrl-C, os._exit: Python would end by the signal, not 130)
     for stream in (sys.stdout, sys.stderr):
         try:
             stream.flush()
@@ -489,7 +490,7 @@ def leave(code: int) -> NoReturn:
 
 
 if __name__ == "__main__":
-    os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
+    sys.modules["app"].started()   # Ctrl-C is main's from here (app/__init__.py)
     try:
         code = main()
     except KeyboardInterrupt:      # Ctrl-C between main's own handlers (at exit)

@@ -58,14 +58,24 @@ def check_plot(text: str | None, classes: list, shared: dict) -> list[str]:
     if not all(names):
         raise UsageError(f"--plot {shown_text(text)}: accepted: METRIC[,METRIC...], e.g. "
                          "--plot max_stretch,mean_stretch")
+    from app.outputs import listed
     from app.series import plottable
     cls = classes[0]
     accepted = list(plottable(cls(cls.own_settings(shared)).metrics()))
     unknown = [n for n in names if n not in accepted]
     if unknown:
         raise UsageError(f"--plot {shown_text(unknown[0])}: {cls.name} reports no such number; "
-                         f"accepted: {', '.join(accepted)}")
+                         "accepted: " + listed(accepted, unknown[0],
+                                               rest="all in docs/scenes.md"))
     return list(dict.fromkeys(names))
+
+
+def scene_file_path(name: str) -> str:
+    """The file --scene NAME.toml reads: NAME from here, or a shipped file by its path from the
+    repository's root (scenes.file_scene)."""
+    import os
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    return name if os.path.exists(name) else os.path.join(root, name)
 
 
 def check_outputs(args: argparse.Namespace, classes: list, clips: list[str]) -> None:
@@ -86,6 +96,8 @@ def check_outputs(args: argparse.Namespace, classes: list, clips: list[str]) -> 
     inputs = [(args.input, "--input")]
     if args.scene and args.scene.startswith("exercise:") and args.scene.endswith(".py"):
         inputs.append((args.scene.removeprefix("exercise:"), "the exercise file"))
+    if args.scene and args.scene.endswith(".toml"):     # a scene file is read: never written
+        inputs.append((scene_file_path(args.scene), "the scene file"))
     problem = clash([o for o in outputs if o[0]], [i for i in inputs if i[0]])
     if problem:                       # before anything is written: nothing is lost
         raise UsageError(problem)

@@ -26,6 +26,7 @@ import time
 from dataclasses import dataclass, replace
 from typing import Any, Mapping, Sequence
 
+from app.outputs import shown
 from app.runner import Rollback, SceneRunner, deliver
 from app.scene import (EVENT_SLACK, InputEvent, ParamError, Scene, SceneError, setting_text,
                        shown_text)
@@ -57,10 +58,11 @@ def parse_variant(text: str) -> Variant:
         key, sep, value = pair.partition("=")
         key = key.strip()
         if not sep or not key:
-            raise ParamError(f"--compare {text!r}: {pair.strip()!r} is not KEY=VALUE; accepted: "
+            raise ParamError(f"--compare {shown(text)}: {shown(pair.strip())} is not KEY=VALUE; "
+                             "accepted: "
                              "KEY=VALUE[,KEY=VALUE...], e.g. substeps=1,iterations=10")
         if key in settings:
-            raise ParamError(f"--compare {text!r}: {key} is given twice; give it once")
+            raise ParamError(f"--compare {shown(text)}: {shown(key)} is given twice; give it once")
         settings[key] = value.strip()
     return Variant(text, settings)
 

@@ -66,6 +66,27 @@ def one_line(text: str, limit: int = MAX_LINE) -> str:
     return text
 
 
+def listed(names: Sequence[str], near: str | None = None, limit: int = 90,
+           rest: str = "") -> str:
+    """Accepted names for a one-line message: those closest to `near` (what was typed) first,
+    then the others, cut to about `limit` characters with how many were left out and `rest`
+    (where to read them all), so that a refusal stays one readable line."""
+    import difflib
+    names = list(dict.fromkeys(names))
+    close = difflib.get_close_matches(near, names, n=3, cutoff=0.6) if near else []
+    ordered = close + [n for n in names if n not in close]
+    text = ", ".join(ordered)
+    if len(text) <= limit:
+        return text
+    shown_names: list[str] = []
+    for n in ordered:
+        if len(", ".join(shown_names + [n])) > limit:
+            break
+        shown_names.append(n)
+    more = len(ordered) - len(shown_names)
+    return ", ".join(shown_names) + f", ... and {more} more" + (f" ({rest})" if rest else "")
+
+
 class OutputError(OSError):
     """A file that could not be written; str() is the one line to print (exit code 2)."""
 
@@ -100,8 +121,10 @@ class Pending:
         try:
             os.makedirs(folder, exist_ok=True)
             # the extension stays last: writers that pick a format by name (ffmpeg) see it
-            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=f".{root[:40]}.",
-                                            suffix=f".part{ext[:12]}")
+            # in plain ASCII: a writer given a name that is not UTF-8 (pygame's image.save)
+            # would write another file, and leave it behind
+            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=f".{_ascii(root)[:40]}.",
+                                            suffix=f".part{_ascii(ext)[:12]}")
             _PENDING.add(self)        # at once: a Ctrl-C from here on removes it
             os.close(fd)
         except OSError as e:
@@ -159,6 +182,11 @@ class Pending:
             pass
         except OSError:
             pass
+
+
+def _ascii(text: str) -> str:
+    """`text` with every character outside [A-Za-z0-9._-] written as '_'."""
+    return "".join(c if c.isascii() and (c.isalnum() or c in "._-") else "_" for c in text)
 
 
 def _mode_for(path: str) -> int:
@@ -242,6 +270,9 @@ def output_problem(path: str, what: str) -> str | None:
     written. Makes the folder (it would be made anyway) but writes no file."""
     if not path.strip():
         return f"{what} needs a file name"
+    if path.endswith((os.sep, "/")) or os.path.basename(path) in (".", ".."):
+        return (f"{what} {shown(path)} names a folder; accepted: a file name (for a file in "
+                f"it, add {shown('out' + _ext(what))})")
     try:
         info = os.stat(path)
     except FileNotFoundError:
@@ -336,4 +367,4 @@ def clash(outputs: Sequence[tuple[str, str]],
 
 __all__ = ["shown", "one_line", "OutputError", "Pending", "atomic_path", "atomic_write",
            "write_text", "write_bytes", "discard_all", "output_problem", "input_problem",
-           "clash", "MAX_LINE", "OUTPUT_DIR"]
+           "clash", "listed", "MAX_LINE", "OUTPUT_DIR"]

@@ -221,8 +221,10 @@ class Scene:
                 raise ParamError(f"effect '{eff.name}' got {shown_text(value)}: an effect is on or "
                                  f"off; accepted values are on, off, true, false, yes, no, 1, 0"
                                  f"{strength}") from None
+        from app.outputs import listed
         raise ParamError(f"scene '{cls.name}' has no parameter or effect {shown_text(key)}; "
-                         "accepted: " + ", ".join(cls.setting_names()))
+                         "accepted: " + listed(cls.setting_names(), key,
+                                               rest="all in docs/scenes.md"))
 
     @classmethod
     def check_combination(cls, values: Mapping[str, Any]) -> None:

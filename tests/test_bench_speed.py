@@ -63,3 +63,38 @@ def test_the_largest_mass_spring_cloth_table_runs(tmp_path):
     result = run(Report(str(tmp_path), quick=True))
     assert [e["n"] for e in result["sizes"]] == [32, 64]
     assert result["limited_by"] in ("the CG solve", "the forces and the matrix")
+
+
+def test_an_interrupted_compile_leaves_no_linker_behind(tmp_path):
+    # once (hostile run, seed 27): Ctrl-C during `bench cloth` left cc's collect2 and ld running
+    # after the lab had exited; the compiler now runs in a group of its own, ended whole
+    import signal
+    import time
+    import pytest
+    from app.bench.cloth_c import compile_c
+    pidfile = tmp_path / "grandchild"
+    fake_cc = tmp_path / "cc"
+    fake_cc.write_text(f"#!/bin/sh\nsleep 30 &\necho $! > {pidfile}\nwait\n")
+    fake_cc.chmod(0o755)
+
+    def ctrl_c(sig, frame):
+        raise KeyboardInterrupt
+    before = signal.signal(signal.SIGALRM, ctrl_c)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.3)
+        with pytest.raises(KeyboardInterrupt):
+            compile_c([str(fake_cc)])
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, before)
+    pid = int(pidfile.read_text())
+    for _ in range(100):              # killed at once; reaped by init soon after
+        try:
+            with open(f"/proc/{pid}/stat") as f:
+                if f.read().rsplit(")", 1)[1].split()[0] == "Z":
+                    break
+        except FileNotFoundError:
+            break
+        time.sleep(0.02)
+    else:
+        pytest.fail("the compiler's child outlived the interrupted compile")

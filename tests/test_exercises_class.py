@@ -76,10 +76,11 @@ def test_a_second_run_grades_only_what_changed(tmp_path, capsys):
     (c / "eve").rename(tmp_path / "eve")                   # two students are quicker
     out = tmp_path / "book.csv"
     assert main(["exercise", "grade", str(c), "--out", str(out), "--timeout", "0.5"]) == 0
-    capsys.readouterr()
+    assert "replaced" not in capsys.readouterr().err
     assert main(["exercise", "grade", str(c), "--out", str(out), "--timeout", "0.5"]) == 0
     err = capsys.readouterr().err
     assert err.count("graded before") == 2 and "(0 now" in err
+    assert f"{out} (replaced the file that was there)" in err    # the summary says so
     (c / "bob" / "verlet.py").write_text((ANSWERS / "right" / "verlet_loop.py").read_text())
     assert main(["exercise", "grade", str(c), "--out", str(out), "--timeout", "0.5"]) == 0
     err = capsys.readouterr().err

@@ -204,6 +204,41 @@ def test_output_is_captured_and_capped(capsys):
     assert capsys.readouterr().out == ""           # nothing of theirs on the grader's stdout
 
 
+def test_the_students_output_is_shown_in_short_lines_without_control_characters():
+    # once (hostile run, seed 27): a file that printed 10 MB of 'x' put one line of 8,000
+    # characters on the grader's stderr; an escape sequence would clear the teacher's terminal
+    from app.exercises.report import OUTPUT_LINE, Report
+    text = Report("verlet", "s.py", [], output="x" * 8000 + "\n\x1b[2Jok\n",
+                  output_bytes=10_000_001).output_text()
+    assert all(len(line) <= OUTPUT_LINE for line in text.splitlines())
+    assert "\x1b" not in text and "\\x1b[2Jok" in text and "more bytes not shown" in text
+
+
+_ARMED: list = []        # the at-fork hook below sends a Ctrl-C only while armed
+os.register_at_fork(after_in_parent=lambda: _ARMED and os.kill(os.getpid(), __import__(
+    "signal").SIGINT))
+
+
+def test_a_ctrl_c_during_the_sandbox_probe_is_raised_not_dropped(capfd):
+    # once (hostile run, seed 27): `exercise grade` interrupted in its first half second printed
+    # "Exception ignored in: <function _releaseLock>" and a KeyboardInterrupt traceback: the
+    # sandbox's probe forked with os.fork, whose at-fork hooks drop a Ctrl-C
+    import signal
+    from app.exercises import sandbox
+
+    def ctrl_c(sig, frame):           # as the grader's own handler (classroom._CtrlC)
+        raise KeyboardInterrupt
+    before = signal.signal(signal.SIGINT, ctrl_c)
+    _ARMED.append(1)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            sandbox._unshare_probe(0)
+    finally:
+        _ARMED.clear()
+        signal.signal(signal.SIGINT, before)
+    assert "Exception ignored" not in capfd.readouterr().err
+
+
 def test_the_file_is_imported_once_per_exercise():
     # once: a file that slept 9 s at import was imported again for every check (56 s)
     report, _ = graded("verlet_import_counter")

@@ -123,6 +123,79 @@ def test_clash_finds_one_file_under_two_names(tmp_path):
                          [(str(real), "--input")]) is None
 
 
+def test_temporary_names_are_ascii_and_a_trailing_slash_is_a_folder(tmp_path):
+    # once (hostile run, seed 27): pygame saved `--screenshot bad<0xff>.png` under another name
+    # than the temporary one it was given, and left it behind; `--csv out.csv/` passed the
+    # check before the run and failed after it
+    pending = outputs.Pending(os.path.join(tmp_path, "bad\udcff \u540d.png"), "--screenshot")
+    assert os.path.basename(pending.tmp).isascii() and pending.tmp.endswith(".png")
+    pending.discard()
+    assert "names a folder" in outputs.output_problem(str(tmp_path / "out.csv") + "/", "--csv")
+    assert leftovers(tmp_path) == []
+
+
+def test_grading_reports_are_written_whole_or_not_at_all(tmp_path, monkeypatch):
+    # once: `exercise grade --out FULL/old.csv` on a full disk ended in a traceback (its own
+    # writer, not app/outputs.py) and left its temporary file
+    from app.exercises import classroom
+    book = tmp_path / "gradebook.csv"
+    book.write_text("old")
+    monkeypatch.setattr(os, "replace", full_disk)
+    with pytest.raises(OutputError, match="No space left"):
+        classroom.write_atomic(str(book), "student,score\n", "the gradebook")
+    assert book.read_text() == "old" and leftovers(tmp_path) == []
+
+
+def test_a_scene_file_nested_too_deeply_is_one_line(capsys, tmp_path):
+    # once (hostile run, seed 2026): `x = [[[[...]]]]` 5000 deep: tomllib's RecursionError,
+    # a traceback
+    deep = tmp_path / "deep.toml"
+    deep.write_text("x = " + "[" * 5000 + "]" * 5000 + "\n")
+    code, _, err = run_main(capsys, "scene", "check", str(deep))
+    assert code == 2 and "nested too deeply" in one_error_line(err)
+
+
+def test_a_scene_file_that_is_a_fifo_is_refused_not_waited_for(capsys, tmp_path):
+    # once: `--scene in.toml` and `scene check in.toml` on a FIFO waited for a writer for ever
+    fifo = tmp_path / "in.toml"
+    os.mkfifo(fifo)
+    old = signal.signal(signal.SIGALRM, lambda *a: pytest.fail("waited on the FIFO"))
+    signal.alarm(10)
+    try:
+        for args in (["--headless", "--scene", str(fifo), "--steps", "1"],
+                     ["scene", "check", str(fifo)]):
+            code, _, err = run_main(capsys, *args)
+            assert code == 2 and "not a regular file" in one_error_line(err)
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, old)
+
+
+@pytest.mark.parametrize("args,word", [
+    (["--headless", "--scene", "cloth", "--steps", "1", "--set", "iteration=3"],
+     "accepted: iterations,"),
+    (["--headless", "--scene", "integrators", "--steps", "1", "--plot", "rk4_eror",
+      "--screenshot", "x.png"], "accepted: rk4_error,"),
+    (["--headless", "--scene", "cloth", "--steps", "1", "--compare", "subteps=1",
+      "iterations=4"], "accepted: substeps,"),
+    (["--headless", "--scene", "cloth", "--steps", "1", "--compare", "x" * 100_000, "g=1"],
+     "is not KEY=VALUE"),
+    (["--headless", "--scene", "cloth", "--steps", "1", "--compare", "x" * 100_000 + "=1",
+      "iterations=4"], "more (all in docs/scenes.md)"),
+    (["scene", "check", "q" * 100_000 + ".toml"], "cannot be read"),
+    (["x" * 100_000], "unrecognized arguments"),                      # seed 2026: 316
+    (["--headless", "--scene", "x" * 100_000, "--steps", "1"], "unknown scene"),   # 305
+    (["exercise", "check", "verlet", "--path", "q" * 100_000 + ".py"], "no such file"),
+])
+def test_every_refusal_is_one_line_of_at_most_300_characters(capsys, args, word):
+    # once (hostile run, seed 27): 20 error lines of 376 to 616 characters: a long list of
+    # accepted names (now the closest to what was typed first, then cut), and a long --compare
+    # value, scene file or --path echoed whole
+    code, _, err = run_main(capsys, *args)
+    line = one_error_line(err)
+    assert code == 2 and len(line) <= 300 and word in line, (len(line), line)
+
+
 # --- the command line ----------------------------------------------------------------------------
 
 def test_an_output_that_is_also_the_input_is_refused_before_the_run(capsys, tmp_path):
@@ -135,6 +208,20 @@ def test_an_output_that_is_also_the_input_is_refused_before_the_run(capsys, tmp_
     assert code == 2 and out == ""
     assert "an output and an input" in one_error_line(err)
     assert events.read_text() == before
+
+
+def test_the_scene_file_is_an_input_and_never_an_output(capsys, tmp_path):
+    # once (hostile run, seed 27): `--scene s.toml --csv s.toml` exited 0 and replaced the
+    # teacher's scene file with the CSV; through a symlink it replaced the link
+    scene = tmp_path / "s.toml"
+    scene.write_bytes((ROOT / "scenes" / "files" / "pivoting_l.toml").read_bytes())
+    (tmp_path / "l.csv").symlink_to(scene)
+    before = scene.read_bytes()
+    for out in (scene, tmp_path / "l.csv"):
+        code, _, err = run_main(capsys, "--headless", "--scene", str(scene), "--steps", "2",
+                                "--csv", str(out))
+        assert code == 2 and "the scene file (an input)" in one_error_line(err)
+    assert scene.read_bytes() == before and (tmp_path / "l.csv").is_symlink()
 
 
 def test_one_path_for_two_outputs_is_refused_before_the_run(capsys, tmp_path):
@@ -312,6 +399,41 @@ def test_ctrl_c_during_a_clip_and_a_csv_exits_130_in_one_line_and_keeps_the_old_
     assert len(lines) == 1 and lines[0].startswith("python -m app: interrupted (Ctrl-C)"), err
     assert clip.read_bytes() == b"old clip" and table.read_text() == "old rows"
     assert leftovers(tmp_path) == []
+
+
+def test_ctrl_c_while_python_m_app_starts_is_one_line_and_130(monkeypatch):
+    # once (hostile run, seed 27): a Ctrl-C in the first ~0.3 s (numpy, pygame and pymunk being
+    # imported) printed a KeyboardInterrupt traceback and died by the signal, not exit 130
+    import app
+    monkeypatch.setattr(sys, "orig_argv", [sys.executable, "-m", "app", "--list"])
+    assert app._launched_as_the_command_line()
+    monkeypatch.setattr(sys, "orig_argv", [sys.executable, "-m", "pytest"])
+    assert not app._launched_as_the_command_line()
+    written = []
+    monkeypatch.setattr(os, "write", lambda fd, data: written.append((fd, data)))
+
+    def leave(code):
+        raise SystemExit(code)
+    monkeypatch.setattr(os, "_exit", leave)
+    with pytest.raises(SystemExit) as e:
+        app._ctrl_c_while_starting(signal.SIGINT, None)
+    assert e.value.code == 130 and len(written) == 1 and written[0][0] == 2
+    assert written[0][1].count(b"\n") == 1 and b"interrupted (Ctrl-C)" in written[0][1]
+
+
+def test_after_ctrl_c_the_lab_leaves_with_130_itself(monkeypatch):
+    # once, under load: the interrupted line printed, then exit by SIGINT (-2), not 130: Python
+    # ends by the signal at exit if a KeyboardInterrupt passed through some of its C paths
+    from app import __main__ as cli_main
+    left = []
+
+    def os_exit(code):
+        left.append(code)
+        raise SystemExit(code)
+    monkeypatch.setattr(os, "_exit", os_exit)
+    with pytest.raises(SystemExit):
+        cli_main.leave(130)
+    assert left == [130]
 
 
 def test_a_gif_reports_the_frames_and_seconds_in_the_file(capsys, tmp_path):

@@ -199,6 +199,33 @@ def test_the_window_loop_is_one_coroutine_that_yields_once_a_frame(monkeypatch, 
     assert len(frames) == 4 and len(yields) == 3 and set(yields) == {0}
 
 
+def test_a_real_ctrl_c_in_the_window_says_the_window_closed(monkeypatch, capsys):
+    # once (hostile run, seed 27): asyncio.run turns SIGINT into a cancel of the window's
+    # coroutine, so the window's own Ctrl-C line never printed; the command line's did, saying
+    # that files that were there are as they were, while --record had just replaced one
+    import os
+    import signal
+    import scenes
+    from app.window import window as win
+    if signal.getsignal(signal.SIGINT) is not signal.default_int_handler:
+        pytest.skip("SIGINT is not Python's here (asyncio.run would not take it over)")
+    monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    frames, real_flip = [], pygame.display.flip
+
+    def flip():
+        frames.append(1)
+        real_flip()
+        if len(frames) == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+    monkeypatch.setattr(pygame.display, "flip", flip)
+    try:
+        assert run_window("tiny", {}) == 130
+    except KeyboardInterrupt:
+        pytest.fail("the window let the Ctrl-C through (asyncio.run raised it)")
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "the window closed as Esc would close it" in err, err
+
+
 # --- ready for the browser: SciPy only where it is needed -----------------------------------
 def _run_python(code: str) -> str:
     import os

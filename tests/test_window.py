@@ -394,6 +394,35 @@ def test_run_window_screenshot_after_seconds_and_record(monkeypatch, tmp_path):
     assert json.loads(rec.read_text()) == []
 
 
+def test_run_window_says_it_replaced_a_screenshot_and_a_lost_csv_exits_2(monkeypatch, tmp_path,
+                                                                        capsys):
+    # once (hostile run, seed 27): the window's --csv that could not be written printed its
+    # error and exited 0, and --screenshot replaced a file without a word
+    import scenes
+    from app import outputs
+    from app.headless import Extras
+    monkeypatch.setattr(scenes, "SCENES", [Tiny])
+    shot, table = tmp_path / "w.png", tmp_path / "run.csv"
+    table.write_text("old rows")             # seed 2026: the --csv replaced it without a word
+    assert run_window("tiny", {}, seconds=0.05, extras=Extras(csv=str(table))) == 0
+    assert "run.csv (replaced the file that was there)" in capsys.readouterr().out
+    table.unlink()
+    commit = outputs.Pending.commit
+
+    def full_disk_for_the_csv(self, *args, **kwargs):
+        if self.what != "--csv":
+            return commit(self, *args, **kwargs)
+        self.discard()
+        raise outputs.OutputError(self.failed("No space left on device"))
+    monkeypatch.setattr(outputs.Pending, "commit", full_disk_for_the_csv)
+    shot.write_bytes(b"old")
+    assert run_window("tiny", {}, screenshot=str(shot), seconds=0.1,
+                      extras=Extras(csv=str(table))) == 2
+    out, err = capsys.readouterr()
+    assert "w.png (replaced the file that was there)" in out
+    assert err.count("\n") == 1 and "could not write --csv" in err and not table.exists()
+
+
 def test_typing_a_value_and_enter_sets_it(window):
     entry = window.scene_view.panel.entries["g"]
     entry.focus()

@@ -18,6 +18,7 @@ import ctypes
 import os
 import shutil
 import statistics
+import signal
 import subprocess
 import tempfile
 import time
@@ -78,6 +79,25 @@ def compiler() -> str | None:
     return shutil.which("cc") or shutil.which("gcc")
 
 
+def compile_c(args: list[str]) -> None:
+    """Run the compiler in a process group of its own, ended whole if the bench stops (Ctrl-C):
+    cc's linker (collect2, ld) outlived an interrupted bench otherwise (hostile run, seed 27).
+    CalledProcessError if it fails."""
+    p = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                         start_new_session=True)
+    try:
+        out, err = p.communicate()
+    except BaseException:
+        try:
+            os.killpg(p.pid, signal.SIGKILL)
+        except OSError:
+            pass
+        p.wait()
+        raise
+    if p.returncode:
+        raise subprocess.CalledProcessError(p.returncode, args, out, err)
+
+
 def build(cc: str, workdir: str) -> dict[str, ctypes.CDLL]:
     """Compile SOURCE once per flag set; {label: library}. A failed compile raises."""
     src = os.path.join(workdir, "cloth_step.c")
@@ -86,8 +106,7 @@ def build(cc: str, workdir: str) -> dict[str, ctypes.CDLL]:
     libs = {}
     for k, (label, flags) in enumerate(FLAGS.items()):
         out = os.path.join(workdir, f"cloth_step_{k}.so")
-        subprocess.run([cc, *flags, "-shared", "-fPIC", "-o", out, src, "-lm"], check=True,
-                       capture_output=True, text=True)
+        compile_c([cc, *flags, "-shared", "-fPIC", "-o", out, src, "-lm"])
         lib = ctypes.CDLL(out)
         lib.cloth_step.restype = None
         libs[label] = lib

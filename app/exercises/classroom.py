@@ -80,14 +80,13 @@ def fingerprint(folder: str) -> str:
     return h.hexdigest()
 
 
-def write_atomic(path: str, text: str) -> None:
-    """Write `text` to a temporary file beside `path`, then rename it into place."""
-    tmp = f"{path}.tmp-{os.getpid()}"
-    with open(tmp, "w", encoding="utf-8", newline="") as f:
+def write_atomic(path: str, text: str, what: str = "the grading report") -> None:
+    """Write `text` to a temporary file beside `path`, then rename it into place
+    (app/outputs.py): a full disk is one line (OutputError, exit code 2) and leaves the old file
+    whole and no temporary file behind."""
+    from app.outputs import atomic_write
+    with atomic_write(path, "w", what, newline="", allow_empty=True) as f:
         f.write(text)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
 
 
 @dataclass
@@ -255,6 +254,7 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
     line = sandbox.protections().line()
     print(line, file=sys.stderr)
     results: dict[str, Result] = {}
+    replaced = os.path.exists(out)         # the summary says so (a run that goes on, too)
     todo = []
     for s in students:
         fp = fingerprint(os.path.join(class_dir, s))
@@ -281,9 +281,9 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
             result = as_result(s, seed, fp, got)
             results[s] = result
             save(result, folder, gradescope, line)
-            write_atomic(out, gradebook_text(list(results.values())))
+            write_atomic(out, gradebook_text(list(results.values())), "the gradebook")
             progress.student(result)
-        write_atomic(out, gradebook_text(list(results.values())))
+        write_atomic(out, gradebook_text(list(results.values())), "the gradebook")
     except KeyboardInterrupt:
         reports.close()                  # its children and their sandboxes end here
         progress.close()
@@ -292,7 +292,8 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
         return EXIT_INTERRUPTED
     progress.close()
     print(f"graded {len(students)} students ({len(todo)} now, in "
-          f"{time.monotonic() - start:.1f} s with {jobs} at once): {out}, reports in "
+          f"{time.monotonic() - start:.1f} s with {jobs} at once): {out}"
+          f"{' (replaced the file that was there)' if replaced else ''}, reports in "
           f"{folder}/", file=sys.stderr)
     return 0
 

@@ -37,6 +37,9 @@ class CheckReport:
         return out
 
 
+OUTPUT_LINE = 300       # characters of one line of the student's output, at most, on stderr
+
+
 @dataclass
 class Report:
     exercise: str
@@ -67,10 +70,15 @@ class Report:
         """What the student's code printed, as shown on stderr ('' if nothing)."""
         if not self.output_bytes:
             return ""
+        from app.outputs import one_line
         more = self.output_bytes - len(self.output.encode())
         tail = f"\n--- ({more:,} more bytes not shown) ---" if more > 0 else ""
+        # each line cut and its control characters escaped: a student's print cannot clear
+        # the terminal or fill it with one 8,000-character line
+        shown = "\n".join(one_line(line, OUTPUT_LINE) for line in
+                          self.output.rstrip().split("\n"))
         return (f"--- output of {self.path} ({self.output_bytes:,} bytes) ---\n"
-                f"{self.output.rstrip()}{tail}\n--- end of output ---")
+                f"{shown}{tail}\n--- end of output ---")
 
 
 def verdict(check: Check, frame: Frame) -> CheckReport:

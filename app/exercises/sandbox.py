@@ -52,6 +52,7 @@ from pathlib import Path
 
 from app.exercises.harness import (LAB_PACKAGES, REPO, STUB, cleanup, harness,  # noqa: F401
                                    harness_files)
+from app.exercises.forking import fork, raise_noted_ctrl_c
 from app.exercises.harness import root as harness_root
 from app.exercises.landlock import (CLONE_NEWIPC, CLONE_NEWNET, CLONE_NEWPID, CLONE_NEWUTS,
                                     PR_CAPBSET_DROP, PR_SET_CHILD_SUBREAPER, PR_SET_NO_NEW_PRIVS,
@@ -122,8 +123,10 @@ _PROTECTIONS: Protections | None = None
 
 
 def _unshare_probe(flags: int) -> bool:
-    """True if unshare(flags) works here (tried in a child that then exits)."""
-    pid = os.fork()
+    """True if unshare(flags) works here (tried in a child that then exits). Forked as every
+    child of the grader is (fork() below): a Ctrl-C during the fork is raised after it, not printed
+    and dropped by Python's at-fork hooks, and the child leaves Ctrl-C to the grader."""
+    pid = fork()
     if pid == 0:
         try:
             ok = libc().unshare(ctypes.c_int(flags)) == 0
@@ -131,6 +134,7 @@ def _unshare_probe(flags: int) -> bool:
             pass
         os._exit(0 if ok else 1)
     _, status = os.waitpid(pid, 0)
+    raise_noted_ctrl_c()
     return os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0
 
 

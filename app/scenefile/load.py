@@ -16,11 +16,13 @@ from __future__ import annotations
 
 import math
 import re
+import stat
 import tomllib
 from pathlib import Path
 from typing import Any
 
 from app.scenefile.checks import check_all
+from app.outputs import shown
 from app.scenefile.schema import COORD, SCHEMA, SECTIONS, Key, Section
 
 MAX_FILE_BYTES = 1_000_000      # a scene file is a page of text; a bigger one is no scene
@@ -33,7 +35,8 @@ class SceneFileError(ValueError):
 
     def __init__(self, path: str, line: int | None, message: str):
         self.path, self.line, self.message = path, line, message
-        super().__init__(f"{path}:{line}: {message}" if line else f"{path}: {message}")
+        where = path if len(path) <= 160 and path.isprintable() else shown(path)  # one short line
+        super().__init__(f"{where}:{line}: {message}" if line else f"{where}: {message}")
 
 
 # ----- where each key is written ------------------------------------------------------------
@@ -265,11 +268,15 @@ def read_text(path: str) -> str:
     try:
         if p.is_dir():
             raise SceneFileError(path, None, "is a folder; accepted: a .toml scene file")
-        size = p.stat().st_size
-        if size > MAX_FILE_BYTES:
-            raise SceneFileError(path, None, f"{size:,} bytes; accepted: a scene file of at "
-                                 f"most {MAX_FILE_BYTES:,} bytes")
-        data = p.read_bytes()
+        info = p.stat()
+        if not stat.S_ISREG(info.st_mode):     # a FIFO would wait for a writer for ever, and
+            raise SceneFileError(path, None, "is not a regular file (a FIFO or a device); "
+                                 "accepted: a .toml scene file")   # /dev/zero never ends
+        if info.st_size > MAX_FILE_BYTES:
+            raise SceneFileError(path, None, f"{info.st_size:,} bytes; accepted: a scene file "
+                                 f"of at most {MAX_FILE_BYTES:,} bytes")
+        with open(p, "rb") as f:
+            data = f.read(MAX_FILE_BYTES + 1)    # the file may have grown since stat
     except FileNotFoundError:
         raise SceneFileError(path, None, "no such file; accepted: a .toml scene file that "
                              "exists (python -m app --list shows the shipped ones)") from None
@@ -287,6 +294,9 @@ def parse(text: str, path: str) -> dict[str, Any]:
     """The TOML data; a syntax error becomes a SceneFileError with the parser's line."""
     try:
         return tomllib.loads(text)
+    except RecursionError:          # tomllib parses nested arrays by recursion: [[[[...]]]]
+        raise SceneFileError(path, None, "not valid here: arrays or tables nested too deeply; "
+                             "accepted: a scene file (docs/experiments.md)") from None
     except tomllib.TOMLDecodeError as e:
         msg = str(e)
         m = re.search(r"\(at line (\d+), column \d+\)", msg)

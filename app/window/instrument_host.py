@@ -45,10 +45,13 @@ class InstrumentHost:
         if hasattr(self, "inst"):
             from app.outputs import OutputError
             try:
-                self.inst.close_csv()
-            except OutputError as e:      # a full disk: said on screen and on stderr
+                if self.inst.close_csv():         # the summary says when it replaced a file
+                    print(f"csv: {self.window.csv_path} (replaced the file that was there)",
+                          flush=True)
+            except OutputError as e:      # a full disk: said on screen and on stderr,
                 self.window.flash(str(e), hud.ERROR_COLOR, topic="csv")
                 print(f"python -m app: error: {e}", file=sys.stderr)
+                self.window.output_failed = True     # and the exit code is 2, not 0
             self.inst.detach()
 
     # --- the plot ----------------------------------------------------------------------------

@@ -23,6 +23,7 @@ render); `run_window` is the loop the command line calls.
 from __future__ import annotations
 
 import asyncio
+import os
 import sys
 import time
 import traceback
@@ -84,6 +85,7 @@ class Window:
         self.scenes: list[type[Scene]] = list(scenes)
         self.screenshot_dir = Path(screenshot_dir)
         self.running = True
+        self.output_failed = False      # an output that could not be written: exit code 2
         self.recorder = Recorder(record)
         self.clips = ClipRecorder()           # F9 (run_window sets --video, --fps, --width)
         self.panel_visible = True
@@ -456,6 +458,7 @@ async def window_main(scene_name: str | None, overrides: dict[str, str],
     fps_clock = pygame.time.Clock()
     start = time.perf_counter()
     failures = SceneRunner.failures
+    code = 0
     try:
         while window.running:
             frame_seconds = min(fps_clock.tick(FPS_CAP) / 1000.0, 0.25)
@@ -469,15 +472,23 @@ async def window_main(scene_name: str | None, overrides: dict[str, str],
             await asyncio.sleep(0)      # the one yield a frame (a browser's loop runs here)
         if screenshot:
             window.render()
+            replaced = os.path.exists(screenshot)
             window.save_screenshot(screenshot)
-    except KeyboardInterrupt:      # Ctrl-C in the terminal: the recording and clips are still
-        code = 130                 # saved (every way out), then exit code 130 and one line
+            if replaced:           # the summary says when a file was replaced (as headless)
+                print(f"screenshot: {screenshot} (replaced the file that was there)",
+                      flush=True)
+    except (KeyboardInterrupt, asyncio.CancelledError):   # Ctrl-C in the terminal (asyncio.run
+        code = 130                 # turns a real SIGINT into a cancel of this coroutine): the
+                                   # recording and clips are still saved (every way out), then
+                                   # exit code 130 and this one line
         print("python -m app: interrupted (Ctrl-C); the window closed as Esc would close it",
               file=sys.stderr, flush=True)
     else:                          # a student's code that raised while the window was open:
         code = 1 if SceneRunner.failures > failures else 0     # exit code 1, as headless
     finally:
         window.close()
+        if window.output_failed and code == 0:   # the --csv could not be written (its line
+            code = 2                              # is on stderr): not a success
         line = window.recorder.write()
         if line:
             print(line, flush=True)
