@@ -161,7 +161,7 @@ def expected_code(comment: str) -> int:
 
 
 SHORT_SECONDS = "0.1"     # a headless command's --seconds, unless it must blow up (exit code 1)
-WINDOW_FRAMES = 12        # frames a window command draws before the test closes its window
+WINDOW_FRAMES = 4         # frames a window command draws before the test closes its window
 WINDOW_FRAMES_TO_FAIL = 60   # ... and one that must exit 1 (a student's code at hertz 2 runs
                              # its first step after half a simulated second)
 
