@@ -95,7 +95,7 @@ def test_ctrl_c_stops_with_one_line_and_the_same_command_goes_on(tmp_path):
         (c / f"s{k}").mkdir(parents=True)
         (c / f"s{k}" / "verlet.py").write_text((ANSWERS / "hostile" / "verlet_endless.py")
                                                .read_text())
-    args = ("exercise", "grade", str(c), "--jobs", "1", "--timeout", "1")
+    args = ("exercise", "grade", str(c), "--jobs", "1", "--timeout", "0.5")
     p = run_cli(*args)
     deadline = time.monotonic() + 120
     book = c / "gradebook.csv"
