@@ -91,8 +91,8 @@ class BallChecks:
         self.remove_outside(k, xy)
         if self._awake is not None and len(self._awake[2]):   # (not if remove_fallen removed)
             n = len(self._awake[0])
-            _, _, a6, c = self._frame(L1)
-            self._fast = (L1, data[:n].dot(a6) < c)
+            _, axis, _, c = self._frame(L1)
+            self._fast = (L1, data[:n, :2].dot(axis) < c)
         return L1
 
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, above0: np.ndarray):
@@ -102,8 +102,11 @@ class BallChecks:
         the exact tests. (In the step's loop every NumPy call costs 1-2 us: a dot product or an
         argmax is one call, a ufunc's max() or an (n, 2) reduction along an axis costs more.)"""
         _, rows, k, _, _ = awake
-        _, _, a6, c = self._frame(L1)
-        above1 = rows_now.dot(a6) < c                     # (row . a6 - c < 0: above the line)
+        _, axis, _, c = self._frame(L1)
+        # (x, y) . axis - c < 0: above the line. Only x and y: with the whole row and a6, a
+        # non-finite velocity made inf * 0 = NaN, depending on the BLAS kernel (Prescott's
+        # warned; the finite check removes that ball either way)
+        above1 = rows_now[:, :2].dot(axis) < c
         self._fast = (L1, above1)
         prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
         if above0.tobytes() != above1.tobytes():          # some changed sides (rare)
