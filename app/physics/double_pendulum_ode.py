@@ -31,10 +31,11 @@ step RK4 lost 82% of the energy in 5 s. So every step is checked against the one
 solution keeps: its energy. A step whose energy change exceeds its share of the budget
 (ENERGY_RATE: a relative 1e-8 per simulated second, so 60 s cost at most 6e-7) is redone at a
 smaller step; while the error is well under the budget the step grows again, never past MAX_STEP
-(1/120 s: at the default release the energy budget holds the step near 3 ms anyway; the cap was
-1 ms, and against it the ghost's tip moved by 0.003 px after 10 s, while a step of 1/7680 s puts
-both within 0.005 px of each other: a thousandth of the 10 px at which the scene says pymunk
-parted from it, and the parting came at the same frame in nine settings; a third of the work).
+(1/120 s. At the default release the energy budget holds the step between 1 and 8.3 ms, 6.3 ms
+median over 10 s, measured. The cap was 1 ms: after 10 s at the defaults the two runs' angles differ
+by 3e-7 rad (under 1e-4 px at the 160 px rods' tip), as much as either differs from a run capped
+at 1/7680 s: far below the 10 px at which the scene says pymunk parted from it; the cap of 1/120
+s does about a third of the work).
 RK4's energy error per step scales as h^5, so the new step is
 h (budget / error)^(1/5) with a safety factor. `energy_drift()` reports the relative drift since
 the last set_state (`reference_energy_drift` in the scene's metrics). RK4 is only conditionally
