@@ -15,6 +15,7 @@ import pytest
 from app.__main__ import main
 from app.clips import (MP4_INSTALL, GifWriter, check_video, clip_size, frame_count,
                        frame_steps)
+from tests.toy_scenes import key
 
 
 def run_json(capsys, *args) -> dict:
@@ -162,10 +163,7 @@ def test_f9_records_the_scene_area_as_shown_in_simulated_time(tmp_path):
             w.render()
 
     def press(k: int) -> None:
-        w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
-                                                 unicode=""))
-        w.handle_pygame_event(pygame.event.Event(pygame.KEYUP, key=k, mod=0, scancode=0,
-                                                 unicode=""))
+        key(w, k)
     frames(3)
     area = w.scene_view.world_area()
     height = int(320 * area.height / area.width) // 2 * 2

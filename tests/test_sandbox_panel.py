@@ -12,15 +12,7 @@ import pytest
 from app.draw.text import TEXT
 from app.scene import InputEvent
 from app.window import Window
-
-
-def press(w: Window, k: int, up: bool = True) -> None:
-    name = pygame.key.name(k)
-    w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
-                                             unicode=name if len(name) == 1 else ""))
-    if up:
-        w.handle_pygame_event(pygame.event.Event(pygame.KEYUP, key=k, mod=0, scancode=0,
-                                                 unicode=""))
+from tests.toy_scenes import key as press
 
 
 def type_enter(w: Window, entry, text: str) -> None:

@@ -21,6 +21,7 @@ from app.scene import Effect, InputEvent, Param, Scene
 from app.runner import NONFINITE_TEXT
 from app.window import Window, run_window
 from app.window.scene_view import SETTLE_FRAMES
+from tests.toy_scenes import key
 
 
 class Tiny(Scene):
@@ -121,15 +122,6 @@ def window(tmp_path):
     assert w.open_scene(Tiny)
     yield w
     TEXT.scale = 1.0
-
-
-def key(w: Window, k: int, up: bool = True) -> None:
-    name = pygame.key.name(k)
-    w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
-                                             unicode=name if len(name) == 1 else ""))
-    if up:
-        w.handle_pygame_event(pygame.event.Event(pygame.KEYUP, key=k, mod=0, scancode=0,
-                                                 unicode=""))
 
 
 def mouse(w: Window, kind: int, pos, button: int = 1) -> None:

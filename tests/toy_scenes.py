@@ -67,3 +67,14 @@ def close_the_window_after(monkeypatch, frames: int) -> None:
         events = real(*args, **kwargs)
         return events + [pygame.event.Event(pygame.QUIT)] if calls[0] >= frames else events
     monkeypatch.setattr(pygame.event, "get", get)
+
+
+def key(w, k: int, up: bool = True) -> None:
+    """Press (and release, unless up=False) key k in window w, as pygame delivers it."""
+    import pygame
+    name = pygame.key.name(k)
+    w.handle_pygame_event(pygame.event.Event(pygame.KEYDOWN, key=k, mod=0, scancode=0,
+                                             unicode=name if len(name) == 1 else ""))
+    if up:
+        w.handle_pygame_event(pygame.event.Event(pygame.KEYUP, key=k, mod=0, scancode=0,
+                                                 unicode=""))

@@ -22,6 +22,8 @@ it at that size; zoom in with the wheel to see them).
 
 from __future__ import annotations
 
+from contextlib import contextmanager
+
 import numpy as np
 import pygame
 
@@ -73,16 +75,35 @@ DOTS_PER_CALL = 120
 MAX_RASTER_DOTS = 40    # rods longer than this on screen are drawn with pygame.draw.line
 
 
+@contextmanager
+def _pixel_rows(surface: pygame.Surface):
+    """The surface's pixels as (h, w) rows (locked while inside the block) and STRAIN_COLORS in
+    its pixel format; (None, None) if it has no pixel array to write."""
+    try:
+        pixels = pygame.surfarray.pixels2d(surface)
+    except (ValueError, pygame.error):
+        yield None, None
+        return
+    try:
+        yield pixels.T, np.array([surface.map_rgb(c) for c in STRAIN_COLORS], dtype=pixels.dtype)
+    finally:
+        del pixels                                               # unlock the surface
+
+
+def _write_clipped(rows: np.ndarray, clip: pygame.Rect, x: np.ndarray, y: np.ndarray,
+                   colour: np.ndarray) -> None:
+    """rows[y, x] = colour for the dots inside the clip rectangle."""
+    inside = (x >= clip.left) & (x < clip.right) & (y >= clip.top) & (y < clip.bottom)
+    rows[y[inside], x[inside]] = colour[inside]
+
+
 def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: np.ndarray,
                 width: int) -> bool:
     """Draw rods a[k] -> b[k] (screen points, shape (n, 2)) in STRAIN_COLORS[buckets[k]] by
     writing their pixels directly; returns False if the surface has no pixel array to write."""
-    try:
-        pixels = pygame.surfarray.pixels2d(surface)
-    except (ValueError, pygame.error):
-        return False
-    try:
-        palette = np.array([surface.map_rgb(c) for c in STRAIN_COLORS], dtype=pixels.dtype)
+    with _pixel_rows(surface) as (rows_first, palette):
+        if rows_first is None:
+            return False
         d = (b - a).astype(np.float32)
         need = np.abs(d).max(axis=1) + 1                  # dots for a gap-free line (DDA)
         k = int(min(np.ceil(need.max()), MAX_RASTER_DOTS)) if len(need) else 0
@@ -98,7 +119,6 @@ def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: 
         py = (a[:, 1, None] + 0.5 + d[:, 1, None] * t).astype(np.intp).ravel()
         colour = np.repeat(palette[buckets], len(t))
         clip = surface.get_clip()
-        rows_first = pixels.T                                    # (h, w): writes go row-wise
         offsets = [(0, 0)] if width < 2 else [(0, 0), (1, 0), (0, 1)]
         if (len(px) and rows_first.flags.c_contiguous and px.min() >= clip.left
                 and px.max() < clip.right - 1 and py.min() >= clip.top
@@ -111,11 +131,7 @@ def raster_rods(surface: pygame.Surface, a: np.ndarray, b: np.ndarray, buckets: 
                 flat[at + (ox + oy * pitch)] = colour
             return True
         for ox, oy in offsets:
-            x, y = px + ox, py + oy
-            inside = (x >= clip.left) & (x < clip.right) & (y >= clip.top) & (y < clip.bottom)
-            rows_first[y[inside], x[inside]] = colour[inside]
-    finally:
-        del pixels                                               # unlock the surface
+            _write_clipped(rows_first, clip, px + ox, py + oy, colour)
     return True
 
 
@@ -135,12 +151,9 @@ def raster_cells(surface: pygame.Surface, pts: np.ndarray, buckets: np.ndarray) 
     (rows, cols, 2) screen points) in STRAIN_COLORS[buckets[i, j]], skipping -1, by writing a
     k x k lattice of dots over it (bilinear between its corners, k from its longest side on
     screen); returns False if the surface has no pixel array to write."""
-    try:
-        pixels = pygame.surfarray.pixels2d(surface)
-    except (ValueError, pygame.error):
-        return False
-    try:
-        palette = np.array([surface.map_rgb(c) for c in STRAIN_COLORS], dtype=pixels.dtype)
+    with _pixel_rows(surface) as (rows, palette):
+        if rows is None:
+            return False
         keep = buckets >= 0
         corners = [pts[:-1, :-1][keep], pts[:-1, 1:][keep], pts[1:, :-1][keep],
                    pts[1:, 1:][keep]]                            # (n, 2) each
@@ -156,11 +169,7 @@ def raster_cells(surface: pygame.Surface, pts: np.ndarray, buckets: np.ndarray) 
         x = (p[..., 0] + 0.5).astype(np.intp).ravel()
         y = (p[..., 1] + 0.5).astype(np.intp).ravel()
         colour = np.repeat(palette[buckets[keep]], k * k)
-        clip = surface.get_clip()
-        inside = (x >= clip.left) & (x < clip.right) & (y >= clip.top) & (y < clip.bottom)
-        pixels.T[y[inside], x[inside]] = colour[inside]
-    finally:
-        del pixels                                               # unlock the surface
+        _write_clipped(rows, surface.get_clip(), x, y, colour)
     return True
 
 
