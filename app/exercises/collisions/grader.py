@@ -103,6 +103,11 @@ def where(p) -> str:
     return "(" + ", ".join("NaN" if v != v else f"{v:.6g}" for v in p) + ")"
 
 
+def farthest(off: np.ndarray) -> int:
+    """The particle farthest off (a NaN or an infinity counts as the farthest)."""
+    return int(np.nanargmax(np.where(np.isfinite(off), off, np.inf)))
+
+
 def judge_push(case, what: str):
     x0, w, want, want_depth = case
     want = x0 if want is None else want
@@ -116,7 +121,7 @@ def judge_push(case, what: str):
         derr = float(np.max(np.abs(depth - want_depth)))
         lies = float(np.max(np.abs(depth - moved)))
         ok = err <= TOL and derr <= TOL and lies <= TOL
-        k = int(np.nanargmax(np.where(np.isfinite(off), off, np.inf)))
+        k = farthest(off)
         measured = (f"{fmt(err)} px from where they belong" if not err <= TOL else
                     "every particle where it belongs") + f"; depth {fmt(derr)} px off"
         hint = ""
@@ -179,7 +184,7 @@ def judge_friction(case, what: str, mus=None):
         err = float(np.max(off)) if np.isfinite(off).all() else math.nan
         ok = err <= TOL
         if not ok and not hint:
-            k = int(np.nanargmax(np.where(np.isfinite(off), off, np.inf)))
+            k = farthest(off)
             travel = got[k] - (x0[k] - v[k])
             hint = (f"particle {k} (depth {depth[k]:g}, travel {where(v[k])}, mu "
                     f"{(MU if mus is None else mus[k]):g}) ended at {where(got[k])}, a travel of "
@@ -260,7 +265,7 @@ def judge_random_push(raw: Raw) -> Result:
         worst = max(worst, err / tol) if math.isfinite(err) else math.inf
         if not err <= tol:
             off = np.abs(x - want).max(axis=1)
-            bad = int(np.nanargmax(np.where(np.isfinite(off), off, np.inf)))
+            bad = farthest(off)
             hint = push_hint(x, depth, x0, w, c, r, ("radius 100",) + PUSH_KINDS)
             if not hint and np.allclose(x, want, rtol=0, atol=tol):
                 hint = depth_hint(depth, moved, want_depth)
@@ -321,7 +326,7 @@ def judge_random_friction(raw: Raw) -> Result:
                                  one.array("x_prev", (n, 2)), returned)
             if not hint:
                 off = np.abs(x - want).max(axis=1)
-                bad = int(np.nanargmax(np.where(np.isfinite(off), off, np.inf)))
+                bad = farthest(off)
                 vt = x0[bad] - xp[bad]
                 hint = (f"particle {bad} (depth {depth[bad]:.4g}, travel {where(vt)}) ended at "
                         f"{where(x[bad])}; the lab's friction leaves it at {where(want[bad])}.")
