@@ -462,6 +462,10 @@ def grade_class_main(args: argparse.Namespace) -> int:
     if not students:
         raise UsageError(f"grade: {shown(folder)} holds no student folder; accepted: a folder "
                          "holding a folder per student (each with NAME.py files)")
+    if len(classroom.without_answers(folder, students)) == len(students):
+        raise UsageError(f"grade: none of the {len(students)} folders in {shown(folder)} holds an "
+                         "exercise file (e.g. verlet.py); accepted: a folder holding a folder "
+                         "per student, each with NAME.py files (python -m app exercise list)")
     return classroom.grade_class(folder, args.jobs, out, args.gradescope, args.timeout, args.seed)
 
 

@@ -53,6 +53,8 @@ def gradebook(path: Path) -> dict[tuple[str, str], dict]:
 
 def test_a_class_is_graded_each_student_on_their_own(tmp_path, capsys):
     c = a_class(tmp_path)
+    (c / "handouts").mkdir()                               # no exercise file: not a student
+    (c / "handouts" / "sheet1.py").write_text("print('not an exercise')\n")
     assert main(["exercise", "grade", str(c), "--jobs", "2", "--timeout", "0.5"]) == 0
     rows = gradebook(c / "gradebook.csv")
     assert len(rows) == 3 * len(NAMES)                     # a row per student and exercise
@@ -69,6 +71,8 @@ def test_a_class_is_graded_each_student_on_their_own(tmp_path, capsys):
     assert (reports / "eve.txt").read_text().startswith("sandbox: ")
     err = capsys.readouterr().err
     assert "graded 3 students" in err and "Traceback" not in err
+    assert "not graded: 1 of 4 folders hold none of the exercise files: 'handouts'" in err
+    assert not (reports / "handouts.txt").exists()
 
 
 def test_a_second_run_grades_only_what_changed(tmp_path, capsys):
@@ -144,6 +148,13 @@ def test_a_missing_or_empty_class_folder_is_refused(tmp_path, capsys):
     (tmp_path / "empty").mkdir()
     assert main(["exercise", "grade", str(tmp_path / "empty")]) == 2
     assert "holds no student folder" in capsys.readouterr().err
+    for scratch in ("tmp1", "tmp2"):                       # a scratch folder given by mistake
+        (tmp_path / "empty" / scratch).mkdir()
+    (tmp_path / "empty" / "tmp1" / "notes.py").write_text("x = 1\n")
+    assert main(["exercise", "grade", str(tmp_path / "empty")]) == 2
+    err = capsys.readouterr().err
+    assert "none of the 2 folders" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "empty" / "gradebook.csv").exists()
 
 
 def test_gradescope_results_and_the_autograder_on_a_simulated_layout(tmp_path):

@@ -1,7 +1,8 @@
 """`python -m app exercise grade CLASS_DIR`: a whole class in one command.
 
 CLASS_DIR holds a folder per student, each with the student's NAME.py files (a missing file is
-graded as missing: 0 of its checks). Every (student, exercise) is graded in a sandbox of its own
+graded as missing: 0 of its checks; a folder with none of them is not graded and is named in one
+line, so a scratch folder given by mistake is not taken for a class). Every (student, exercise) is graded in a sandbox of its own
 (app/exercises/sandbox.py), JOBS at once, so a student whose files crash, hang or attack loses
 only their own results. What it writes (each file to a temporary name, then renamed into place):
 
@@ -50,6 +51,19 @@ def students_in(class_dir: str, out: str) -> list[str]:
     return sorted(d for d in os.listdir(class_dir)
                   if not d.startswith(".") and os.path.isdir(os.path.join(class_dir, d))
                   and os.path.realpath(os.path.join(class_dir, d)) != own)
+
+
+def exercise_files() -> list[str]:
+    """The file names a student's folder may hold: NAME.py for every exercise."""
+    return [f"{e.name}.py" for e in EXERCISES]
+
+
+def without_answers(class_dir: str, students: list[str]) -> list[str]:
+    """The folders that hold none of the exercise files: not graded, named in one line (a
+    scratch folder such as /tmp is not a class; `grade` refuses a folder where all are so)."""
+    names = exercise_files()
+    return [s for s in students
+            if not any(os.path.isfile(os.path.join(class_dir, s, n)) for n in names)]
 
 
 def out_among_inputs(class_dir: str, out: str, students: list[str]) -> str | None:
@@ -226,6 +240,12 @@ class _CtrlC:
             raise KeyboardInterrupt
 
 
+def _few(names: list[str], most: int = 5) -> str:
+    """At most `most` names, then how many more (one line, whatever the class's size)."""
+    shown_names = ", ".join(shown(n) for n in names[:most])
+    return shown_names + (f" and {len(names) - most} more" if len(names) > most else "")
+
+
 def grade_class(class_dir: str, jobs: int, out: str | None = None, gradescope: bool = False,
                 timeout: float = CHECK_TIMEOUT, seed: int | None = None) -> int:
     """Grade every student of `class_dir`; return 0 (done) or 130 (interrupted: Ctrl-C)."""
@@ -250,9 +270,14 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
     os.makedirs(folder, exist_ok=True)
     if seed is None and hasattr(base, "new_seed"):
         seed = base.new_seed()
-    students = students_in(class_dir, out)
+    folders = students_in(class_dir, out)
+    empty = without_answers(class_dir, folders)
+    students = [s for s in folders if s not in set(empty)]
     line = sandbox.protections().line()
     print(line, file=sys.stderr)
+    if empty:
+        print(f"not graded: {len(empty)} of {len(folders)} folders hold none of the exercise "
+              f"files: {_few(empty)}", file=sys.stderr)
     results: dict[str, Result] = {}
     replaced = os.path.exists(out)         # the summary says so (a run that goes on, too)
     todo = []
