@@ -444,28 +444,13 @@ def scene_main(argv: list[str]) -> int:
 
 
 def grade_class_main(args: argparse.Namespace) -> int:
-    """`exercise grade CLASS_DIR`: the usage checked here, the work in classroom.py."""
+    """`exercise grade CLASS_DIR`: the usage checked (classroom.usage_problem), then graded."""
     from app.exercises import classroom
     folder = args.class_dir
-    if not folder.strip():
-        raise UsageError("grade needs a class folder, e.g. exercise grade class2026/")
-    if not os.path.isdir(folder):
-        raise UsageError(f"grade: {shown(folder)} is not a folder; accepted: a folder holding a "
-                         "folder per student")
     out = args.out or os.path.join(folder, "gradebook.csv")
-    if os.path.isdir(out):
-        raise UsageError(f"--out {shown(out)} is a folder; accepted: a CSV file name")
-    students = classroom.students_in(folder, out)
-    problem = check_output_path(out, "--out") or classroom.out_among_inputs(folder, out, students)
+    problem = classroom.usage_problem(folder, out, check_output_path)
     if problem:
         raise UsageError(problem)
-    if not students:
-        raise UsageError(f"grade: {shown(folder)} holds no student folder; accepted: a folder "
-                         "holding a folder per student (each with NAME.py files)")
-    if len(classroom.without_answers(folder, students)) == len(students):
-        raise UsageError(f"grade: none of the {len(students)} folders in {shown(folder)} holds an "
-                         "exercise file (e.g. verlet.py); accepted: a folder holding a folder "
-                         "per student, each with NAME.py files (python -m app exercise list)")
     return classroom.grade_class(folder, args.jobs, out, args.gradescope, args.timeout, args.seed)
 
 

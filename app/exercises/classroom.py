@@ -79,6 +79,30 @@ def out_among_inputs(class_dir: str, out: str, students: list[str]) -> str | Non
     return None
 
 
+def usage_problem(folder: str, out: str, check_output_path) -> str | None:
+    """The one-line refusal of `grade FOLDER --out OUT` before anything is graded or written,
+    or None. `check_output_path` is the lab's check of an output option (app.cli_checks)."""
+    if not folder.strip():
+        return "grade needs a class folder, e.g. exercise grade class2026/"
+    if not os.path.isdir(folder):
+        return (f"grade: {shown(folder)} is not a folder; accepted: a folder holding a folder "
+                "per student")
+    if os.path.isdir(out):
+        return f"--out {shown(out)} is a folder; accepted: a CSV file name"
+    students = students_in(folder, out)
+    problem = check_output_path(out, "--out") or out_among_inputs(folder, out, students)
+    if problem:
+        return problem
+    if not students:
+        return (f"grade: {shown(folder)} holds no student folder; accepted: a folder holding a "
+                "folder per student (each with NAME.py files)")
+    if len(without_answers(folder, students)) == len(students):
+        return (f"grade: none of the {len(students)} folders in {shown(folder)} holds an exercise "
+                "file (e.g. verlet.py); accepted: a folder holding a folder per student, each "
+                "with NAME.py files (python -m app exercise list)")
+    return None
+
+
 def fingerprint(folder: str) -> str:
     """A hash of the student's exercise files as they are now (a changed file: graded again)."""
     h = hashlib.sha256()
