@@ -29,7 +29,7 @@ class BallChecks:
 
     def _checks_reset(self) -> None:
         """Forget what was kept between steps (the tables were rebuilt)."""
-        self._fast = None      # (the L's pose, which awake rows are above its arm's line)
+        self._fast = None      # (the L's pose, the awake rows' flags, their key: flags_of)
         # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
         # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
         # ball leaves the indices as they were, a removal writes them first)
@@ -64,8 +64,9 @@ class BallChecks:
             # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
             fast = self._fast
-            if same and fast is not None and fast[0] == L0 and len(awake[2]):
-                return self._usual_check(data[:n], L0, L1, awake, fast[1])
+            if same and fast is not None and fast[2] is not None and fast[0] == L0 \
+                    and len(awake[2]):
+                return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
         self.flush_xy()
@@ -90,36 +91,51 @@ class BallChecks:
         self._xy[k] = xy
         self.remove_outside(k, xy)
         if self._awake is not None and len(self._awake[2]):   # (not if remove_fallen removed)
-            n = len(self._awake[0])
-            _, axis, _, c = self._frame(L1)
-            self._fast = (L1, data[:n, :2].dot(axis) < c)
+            self._fast = self.flags_of(data[:len(self._awake[0])], L1, self._awake[3])
         return L1
 
-    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, above0: np.ndarray):
+    def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
+        """self._fast for these awake rows with the L at pose: (pose, flags (n, 5), their key;
+        None if a ball is outside the box or not finite: then the next step looks again)."""
+        frame = self._frame(pose)
+        return fast_of(pose, rows.dot(frame[4]) <= frame[5], L_row)
+
+    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
-        the L): which are above the arm's line by one dot product, a crossing by a change in
-        those signs, the box by the extremes of x and y; a crossing or a ball outside goes to
-        the exact tests. (In the step's loop every NumPy call costs 1-2 us: a dot product or an
-        argmax is one call, a ufunc's max() or an (n, 2) reduction along an axis costs more.)"""
-        _, rows, k, _, _ = awake
-        _, axis, _, c = self._frame(L1)
-        # (x, y) . axis - c < 0: above the line. Only x and y: with the whole row and a6, a
-        # non-finite velocity made inf * 0 = NaN, depending on the BLAS kernel (Prescott's
-        # warned; the finite check removes that ball either way)
-        above1 = rows_now[:, :2].dot(axis) < c
-        self._fast = (L1, above1)
+        the L): one product of the rows with a (6, 5) matrix and one comparison give five flags
+        a row (x and y inside the world's box, four, and the centre on or below the arm's
+        line); if their bytes are the ones of the last step, no ball crossed the line and none
+        left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
+        line's flag and a ball outside by the box's, and each goes to the exact tests."""
+        _, rows, k, L_row, _ = awake
+        frame = self._frame(L1)
+        flags = rows_now.dot(frame[4]) <= frame[5]
+        key = _key(flags, L_row)
         prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
-        if above0.tobytes() != above1.tobytes():          # some changed sides (rare)
-            crossed = above0 > above1                     # above before, not above now
-            if rows is not None:
-                crossed = crossed[rows]                   # balls only (not the L's row)
-            if crossed.any():
-                if prev is not None and prev[0] is not k:   # (a ball was added since)
-                    self._xy[prev[0]] = _centres(prev)
-                    prev = None
-                xy0 = self._xy[k] if prev is None else _centres(prev)
-                self._count_inside(xy0[crossed], _centres(self._prev)[crossed], L0, L1)
-        self.remove_outside(k, rows_now[:, :2], rows)
+        if key == fast[2]:                     # the same flags as after the last step
+            self._fast = (L1, flags, key)
+            return L1
+        old, self._fast = fast[1], fast_of(L1, flags, L_row)
+        changed = np.flatnonzero(old != flags).tolist()        # (a few: their flat indices)
+        crossed = [r for r, col in (divmod(i, 5) for i in changed) if col == 4 and flags[r, 4]]
+        if crossed:                   # above the line before, on or below it now: inside the
+            if prev is not None and prev[0] is not k:       # arm's extent? (a ball was added
+                self._xy[prev[0]] = _centres(prev)          # since the last step: no rows
+                prev = None                                 # kept for it)
+            ax, bx = self.arm_extent
+            for r in crossed:
+                if rows is not None:
+                    if not rows[r]:
+                        continue                       # not a ball (the L's row)
+                    j = int(np.count_nonzero(rows[:r]))
+                else:
+                    j = r
+                p0 = self._xy[k[j]].tolist() if prev is None else prev[2][r, :2].tolist()
+                x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
+                if ax <= x0 <= bx and ax <= x1 <= bx:
+                    self.counts["tunneled"] += 1
+        if self._fast[2] is None:          # a ball outside the box, or not finite
+            self.remove_outside(k, rows_now[:, :2], rows)
         return L1
 
     def remove_outside(self, k: np.ndarray, xy: np.ndarray, rows: np.ndarray | None = None
@@ -148,7 +164,7 @@ class BallChecks:
         if awake is None or fast is None:
             return None
         ids, rows, _, _, _ = awake
-        ids, above = ids.tolist(), fast[1].tolist()
+        ids, above = ids.tolist(), fast[1].tolist()          # (above: each row's flags)
         ball = None if rows is None else rows.tolist()
         for body in bodies:                           # cpArrayDeleteObj: the last fills the gap
             if body not in ids:
@@ -170,13 +186,14 @@ class BallChecks:
                          dtype=np.int64)
         new_awake = (ids_now, None if ball is None else np.array(ball, dtype=bool), k_now,
                      ids.index(L) if L in ids else None, ids_now.tobytes())
-        return new_awake, (fast[0], np.array(above, dtype=bool))
+        return new_awake, fast_of(fast[0], np.array(above, dtype=bool).reshape(-1, 5),
+                                  new_awake[3])
 
-    def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
-        """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check
-        tells it for a body's row)."""
-        _, _, a6, c = self._frame(pose)
-        return bool(np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(a6) < c)
+    def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> np.ndarray:
+        """The flags (5,) of a body at rest at pos with the L at pose, as _usual_check makes
+        them for a body's row."""
+        frame = self._frame(pose)
+        return np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(frame[4]) <= frame[5]
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
@@ -188,11 +205,13 @@ class BallChecks:
         return pose
 
     def _frame(self, pose: tuple[float, float, float]) -> tuple:
-        """(origin (2,), the local y axis (2,), a6 (6,), c) of the L's frame at pose: a point's
-        height over the arm is (p - origin) . axis, _to_local's y; for a body's row (x, y,
-        angle, vx, vy, w) it is row . a6 - c (c = origin . axis). The last two are kept (a
-        resting or static L has the same pose step after step; a moving one, the pose before
-        and after)."""
+        """(origin (2,), the local y axis (2,), a6 (6,), c, M (6, 5), limits (5,)) of the L's
+        frame at pose: a point's height over the arm is (p - origin) . axis, _to_local's y; for
+        a body's row (x, y, angle, vx, vy, w) it is row . a6 - c (c = origin . axis), and
+        row . M <= limits are its five flags: x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r (inside
+        the world's box, remove_fallen's test) and height >= 0 (on or below the arm's line; a
+        NaN fails all five). The last two frames are kept (a resting or static L has the same
+        pose step after step; a moving one, the pose before and after)."""
         cache = self._frame_cache
         for key, frame in cache:
             if key == pose:
@@ -200,7 +219,14 @@ class BallChecks:
         x, y, a = pose
         ax, ay = -math.sin(a), math.cos(a)
         a6 = np.array((ax, ay, 0.0, 0.0, 0.0, 0.0))     # (a moving L: a new frame every
-        frame = (np.array((x, y)), a6[:2], a6, x * ax + y * ay)   # substep, so few calls)
+        c = x * ax + y * ay                               # substep, so few calls)
+        w, h = self.world_size
+        r = self.p["radius"]
+        M = np.zeros((6, 5))
+        M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
+        M[0, 4], M[1, 4] = -ax, -ay
+        limits = np.array((2 * r, w + 2 * r, h, h + 2 * r, -c))
+        frame = (np.array((x, y)), a6[:2], a6, c, M, limits)
         cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
         return frame
 
@@ -210,9 +236,9 @@ class BallChecks:
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
         is looked at only for balls that crossed.)"""
-        o0, axis0, _, _ = self._frame(L0)
+        o0, axis0 = self._frame(L0)[:2]
         y0 = (xy0 - o0) @ axis0
-        o1, axis1, _, _ = self._frame(L1)
+        o1, axis1 = self._frame(L1)[:2]
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
@@ -244,6 +270,33 @@ class BallChecks:
         inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
         if not inside.all():
             self.remove_balls(k[~inside])
+
+
+def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None) -> tuple:
+    """BallChecks._fast: (the L's pose, the awake rows' flags (n, 5), their key; None if a ball
+    is outside the box or not finite: then the next step looks again)."""
+    return pose, flags, _key(flags, L_row) if _inside(flags, L_row) else None
+
+
+def _key(flags: np.ndarray, L_row: int | None) -> bytes:
+    """The bytes of the flags (n, 5), less the L's row (a moving L's centre is on its own arm's
+    line: its flag flips with rounding)."""
+    key = flags.tobytes()
+    return key if L_row is None else key[:5 * L_row] + key[5 * L_row + 5:]
+
+
+def _inside(flags: np.ndarray, L_row: int | None) -> bool:
+    """Whether every ball's four box flags are true (each centre inside the world's box)."""
+    box = flags[:, :4].tobytes()
+    if L_row is not None:
+        box = box[:4 * L_row] + box[4 * L_row + 4:]
+    return box.count(0) == 0
+
+
+def _local_x(p: list[float], pose: tuple[float, float, float]) -> float:
+    """_to_local's x for one point, in plain Python."""
+    x, y, a = pose
+    return math.cos(a) * (p[0] - x) + math.sin(a) * (p[1] - y)
 
 
 def _centres(kept: tuple) -> np.ndarray:

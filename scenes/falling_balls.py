@@ -38,7 +38,7 @@ import pymunk.batch
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Try
-from scenes.ball_checks import BallChecks
+from scenes.ball_checks import BallChecks, fast_of
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -241,8 +241,9 @@ class FallingBallsScene(BallChecks, PymunkScene):
                 rows = None if rows is None else np.append(rows, True)
                 self._awake = (ids, rows, np.append(k, len(self.balls) - 1), L_row,
                                ids.tobytes())
-                if fast is not None:    # and whether it is above the arm (ball_checks)
-                    self._fast = (fast[0], np.append(fast[1], self.above_arm(pos, fast[0])))
+                if fast is not None:    # and its flags (ball_checks)
+                    flags = np.vstack((fast[1], self.flags_row(pos, fast[0])))
+                    self._fast = fast_of(fast[0], flags, L_row)
         self.counts["spawned"] += 1
         return shape
 
