@@ -98,7 +98,7 @@ class BallChecks:
         """self._fast for these awake rows with the L at pose: (pose, flags (n, 5), their key;
         None if a ball is outside the box or not finite: then the next step looks again)."""
         frame = self._frame(pose)
-        return fast_of(pose, rows.dot(frame[4]) <= frame[5], L_row)
+        return fast_of(pose, rows.dot(frame[0]) <= frame[1], L_row)
 
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
@@ -109,15 +109,15 @@ class BallChecks:
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
         _, rows, k, L_row, _ = awake
         frame = self._frame(L1)
-        flags = rows_now.dot(frame[4]) <= frame[5]
+        flags = rows_now.dot(frame[0]) <= frame[1]
         key = _key(flags, L_row)
         prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
         if key == fast[2]:                     # the same flags as after the last step
             self._fast = (L1, flags, key)
             return L1
         old, self._fast = fast[1], fast_of(L1, flags, L_row)
-        changed = np.flatnonzero(old != flags).tolist()        # (a few: their flat indices)
-        crossed = [r for r, col in (divmod(i, 5) for i in changed) if col == 4 and flags[r, 4]]
+        changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)
+        crossed = [r for r, col in changed if col == 4 and flags[r, 4]]
         if crossed:                   # above the line before, on or below it now: inside the
             if prev is not None and prev[0] is not k:       # arm's extent? (a ball was added
                 self._xy[prev[0]] = _centres(prev)          # since the last step: no rows
@@ -134,9 +134,29 @@ class BallChecks:
                 x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
                 if ax <= x0 <= bx and ax <= x1 <= bx:
                     self.counts["tunneled"] += 1
-        if self._fast[2] is None:          # a ball outside the box, or not finite
-            self.remove_outside(k, rows_now[:, :2], rows)
+        if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
+            out = []                # flags changed (they were all true), by the exact test
+            x0, y0, x1, y1 = self.box()
+            for r in sorted({r for r, col in changed if col < 4}):
+                if rows is not None:
+                    if not rows[r]:
+                        continue
+                    j = int(np.count_nonzero(rows[:r]))
+                else:
+                    j = r
+                x, y = rows_now[r, :2].tolist()
+                if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
+                    out.append(j)
+            if out:
+                self.remove_balls(k[out])
         return L1
+
+    def box(self) -> tuple[float, float, float, float]:
+        """(x min, y min, x max, y max) of the centres kept: the world, 2 radii more to the
+        sides and below, a world's height more above (remove_fallen)."""
+        w, h = self.world_size
+        r = self.p["radius"]
+        return -2 * r, -h, w + 2 * r, h + 2 * r
 
     def remove_outside(self, k: np.ndarray, xy: np.ndarray, rows: np.ndarray | None = None
                        ) -> None:
@@ -154,46 +174,50 @@ class BallChecks:
         self.flush_xy()
         self.remove_fallen(k, xy if rows is None else xy[rows])
 
-    def awake_after_removal(self, bodies: list[int]) -> tuple | None:
+    def awake_after_removal(self, bodies: list[int], gone: list[int]) -> tuple | None:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were
-        taken out) left the space and self.balls and self._ids, if the usual path was on:
+        taken out; gone: their indices in self.balls before, sorted) left the space and
+        self.balls and self._ids, if the usual path was on:
         Chipmunk takes a body out of its awake array by moving the last one into its place, so
         the order of the rest is known without a read (the next step's check_balls compares it
         with the read, and goes the long way if it differs)."""
         awake, fast = self._awake, self._fast
         if awake is None or fast is None:
             return None
-        ids, rows, _, _, _ = awake
-        ids, above = ids.tolist(), fast[1].tolist()          # (above: each row's flags)
-        ball = None if rows is None else rows.tolist()
-        for body in bodies:                           # cpArrayDeleteObj: the last fills the gap
-            if body not in ids:
+        ids, rows, k, L_row, _ = awake
+        id_list, order = ids.tolist(), list(range(len(ids)))   # order: the rows kept, as
+        for body in bodies:                  # cpArrayDeleteObj leaves them: the last fills
+            if body not in id_list:          # the gap
                 return None
-            i = ids.index(body)
-            for column in (ids, above) if ball is None else (ids, above, ball):
+            i = id_list.index(body)
+            for column in (id_list, order):
                 last = column.pop()
                 if i < len(column):
                     column[i] = last
-        n = len(ids)
-        if not n:
+        if not order:
             return None
-        # the balls' indices: the rows' ball ids looked up (ball_index's table is rebuilt by the
-        # caller), from the new ids in the new order
-        ids_now = np.array(ids, dtype=np.int64)
+        order = np.array(order)
+        ids_now = ids[order]
+        if rows is None:
+            ball, k_now = None, k[order]
+        else:
+            every = np.full(len(ids), -1, dtype=np.int64)     # each row's ball index
+            every[rows] = k
+            ball = rows[order]
+            k_now = every[order][ball]
+        # (the balls after each one gone move up one)
+        k_now = k_now - (k_now > gone[0]) if len(gone) == 1 else \
+            k_now - np.searchsorted(gone, k_now)
         L = self._L_id
-        by_id = dict(zip(self._ids.tolist(), range(len(self._ids))))
-        k_now = np.array([by_id[b] for b, is_ball in zip(ids, ball or [True] * n) if is_ball],
-                         dtype=np.int64)
-        new_awake = (ids_now, None if ball is None else np.array(ball, dtype=bool), k_now,
-                     ids.index(L) if L in ids else None, ids_now.tobytes())
-        return new_awake, fast_of(fast[0], np.array(above, dtype=bool).reshape(-1, 5),
-                                  new_awake[3])
+        L_row = id_list.index(L) if L in id_list else None
+        return (ids_now, ball, k_now, L_row, ids_now.tobytes()), \
+            fast_of(fast[0], fast[1][order], L_row)
 
     def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> np.ndarray:
-        """The flags (5,) of a body at rest at pos with the L at pose, as _usual_check makes
+        """The flags (1, 5) of a body at rest at pos with the L at pose, as _usual_check makes
         them for a body's row."""
         frame = self._frame(pose)
-        return np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(frame[4]) <= frame[5]
+        return np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(frame[0]) <= frame[1]
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
@@ -205,28 +229,30 @@ class BallChecks:
         return pose
 
     def _frame(self, pose: tuple[float, float, float]) -> tuple:
-        """(origin (2,), the local y axis (2,), a6 (6,), c, M (6, 5), limits (5,)) of the L's
-        frame at pose: a point's height over the arm is (p - origin) . axis, _to_local's y; for
-        a body's row (x, y, angle, vx, vy, w) it is row . a6 - c (c = origin . axis), and
-        row . M <= limits are its five flags: x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r (inside
-        the world's box, remove_fallen's test) and height >= 0 (on or below the arm's line; a
-        NaN fails all five). The last two frames are kept (a resting or static L has the same
-        pose step after step; a moving one, the pose before and after)."""
+        """(M (6, 5), limits (5,), origin, axis) of the L's frame at pose: a point's height over
+        the arm is (p - origin) . axis (_to_local's y, axis the L's local y axis), and for a
+        body's row (x, y, angle, vx, vy, w), row . M <= limits are its five flags: x >= -2r,
+        x <= w + 2r, y >= -h, y <= h + 2r (inside the world's box, remove_fallen's test) and
+        height >= 0 (on or below the arm's line; a NaN fails all five). Only the last column
+        depends on the pose (a moving L: a new frame every substep, from a copy of the rest).
+        The last two frames are kept (a resting or static L has the same pose step after step;
+        a moving one, the pose before and after)."""
         cache = self._frame_cache
         for key, frame in cache:
             if key == pose:
                 return frame
+        base = self._flag_base
+        if base is None:
+            w, h = self.world_size
+            r = self.p["radius"]
+            M = np.zeros((6, 5))
+            M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
+            base = self._flag_base = (M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0)))
         x, y, a = pose
         ax, ay = -math.sin(a), math.cos(a)
-        a6 = np.array((ax, ay, 0.0, 0.0, 0.0, 0.0))     # (a moving L: a new frame every
-        c = x * ax + y * ay                               # substep, so few calls)
-        w, h = self.world_size
-        r = self.p["radius"]
-        M = np.zeros((6, 5))
-        M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
-        M[0, 4], M[1, 4] = -ax, -ay
-        limits = np.array((2 * r, w + 2 * r, h, h + 2 * r, -c))
-        frame = (np.array((x, y)), a6[:2], a6, c, M, limits)
+        M, limits = base[0].copy(), base[1].copy()
+        M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
+        frame = (M, limits, (x, y), (ax, ay))
         cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
         return frame
 
@@ -236,9 +262,9 @@ class BallChecks:
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
         is looked at only for balls that crossed.)"""
-        o0, axis0 = self._frame(L0)[:2]
+        o0, axis0 = (np.array(v) for v in self._frame(L0)[2:])
         y0 = (xy0 - o0) @ axis0
-        o1, axis1 = self._frame(L1)[:2]
+        o1, axis1 = (np.array(v) for v in self._frame(L1)[2:])
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
@@ -261,7 +287,7 @@ class BallChecks:
         w, h = self.world_size
         r = self.p["radius"]
         if len(xy) <= 64:     # a few: one look at each (the same comparisons; NaN fails them)
-            x0, y0, x1, y1 = -2 * r, -h, w + 2 * r, h + 2 * r
+            x0, y0, x1, y1 = self.box()
             out = [i for i, (x, y) in enumerate(xy.tolist())
                    if not (x >= x0 and y >= y0 and x <= x1 and y <= y1)]
             if out:

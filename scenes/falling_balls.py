@@ -38,7 +38,7 @@ import pymunk.batch
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Try
-from scenes.ball_checks import BallChecks, fast_of
+from scenes.ball_checks import BallChecks
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -165,6 +165,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
         what is known of the L (its id; its pose, if static: nothing moves it)."""
         self._prev = None
         self._frame_cache = []
+        self._flag_base = None      # (ball_checks: the flags' matrix and limits, less the L's)
         self._L_id = self.L_body.id
         self._L_static_pose = None
         if self.L_body.body_type == pymunk.Body.STATIC:
@@ -231,19 +232,23 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.wake()
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            self._ids = np.append(self._ids, body.id)
-            self._xy = np.vstack((self._xy, pos))
+            bid = body.id
+            self._ids = np.concatenate((self._ids, (bid,)))
+            self._xy = np.concatenate((self._xy, (pos,)))
             awake, fast = self._awake, self._fast
             self._tables_changed()
             if awake is not None:   # Chipmunk appends a new body to the awake ones (if not,
-                ids, rows, k, L_row, _ = awake  # check_balls sees other ids: every ball)
-                ids = np.append(ids, body.id)
-                rows = None if rows is None else np.append(rows, True)
-                self._awake = (ids, rows, np.append(k, len(self.balls) - 1), L_row,
-                               ids.tobytes())
-                if fast is not None:    # and its flags (ball_checks)
-                    flags = np.vstack((fast[1], self.flags_row(pos, fast[0])))
-                    self._fast = fast_of(fast[0], flags, L_row)
+                ids, rows, k, L_row, key = awake    # check_balls sees other ids: every ball)
+                self._awake = (np.concatenate((ids, (bid,))),
+                               None if rows is None else np.concatenate((rows, (True,))),
+                               np.concatenate((k, (len(self.balls) - 1,))), L_row,
+                               key + np.int64(bid).tobytes())
+                if fast is not None:    # and its flags (ball_checks), a last row
+                    row = self.flags_row(pos, fast[0])
+                    b = row.tobytes()
+                    inside = fast[2] is not None and b[:4] == b"\1\1\1\1"   # (in the box)
+                    self._fast = (fast[0], np.concatenate((fast[1], row)),
+                                  fast[2] + b if inside else None)
         self.counts["spawned"] += 1
         return shape
 
@@ -283,12 +288,14 @@ class FallingBallsScene(BallChecks, PymunkScene):
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
             removed.append(shape.body.id)
-        self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
+        gone_sorted = sorted(gone)
+        for k in reversed(gone_sorted):
+            del self.balls[k]
         keep = np.ones(len(self._ids), dtype=bool)
         keep[which] = False
         self._ids, self._xy = self._ids[keep], self._xy[keep]
         # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
-        awake = self.awake_after_removal(removed)
+        awake = self.awake_after_removal(removed, gone_sorted)
         self._tables_changed()
         if awake is not None:
             self._awake, self._fast = awake
