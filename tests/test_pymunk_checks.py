@@ -144,3 +144,5 @@ def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
             ode.state = y
             ode.rk4_step(h)
             assert ode.state == rk4_tuple(ode.derivative, y, h)
+            # advance()'s stepper: rk4_step and energy_terms in one function, the same bits
+            assert ode.stepper()(y, h) == (ode.state, *ode.energy_terms())
