@@ -33,9 +33,10 @@ class BallChecks:
         # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
         # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
         # ball leaves the indices as they were, a removal writes them first)
-        if not hasattr(self, "_frame_cache"):
-            self._frame_cache = []  # [(pose, frame)] of the L, the last two (_frame; a frame
-                                    # depends on the pose alone: kept while the tables change)
+        if not hasattr(self, "_flag_now"):
+            self._flag_now = None   # [pose, M, limits] (_flag_matrix; they depend on the pose
+                                    # alone: kept while the tables change)
+        self._flag_rows = None      # [n, product, limits (n, 5), their pose] (_flags)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -97,8 +98,8 @@ class BallChecks:
     def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
         """self._fast for these awake rows with the L at pose: (pose, flags (n, 5), their key;
         None if a ball is outside the box or not finite: then the next step looks again)."""
-        frame = self._frame(pose)
-        return fast_of(pose, rows.dot(frame[0]) <= frame[1], L_row)
+        M, limits = self._flag_matrix(pose)
+        return fast_of(pose, rows.dot(M) <= limits, L_row)
 
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
@@ -108,8 +109,7 @@ class BallChecks:
         left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
         _, rows, k, L_row, _ = awake
-        frame = self._frame(L1)
-        flags = rows_now.dot(frame[0]) <= frame[1]
+        flags = self._flags(rows_now, L1)
         key = _key(flags, L_row)
         prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
         if key == fast[2]:                     # the same flags as after the last step
@@ -216,8 +216,8 @@ class BallChecks:
     def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> np.ndarray:
         """The flags (1, 5) of a body at rest at pos with the L at pose, as _usual_check makes
         them for a body's row."""
-        frame = self._frame(pose)
-        return np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(frame[0]) <= frame[1]
+        M, limits = self._flag_matrix(pose)
+        return np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
@@ -229,32 +229,46 @@ class BallChecks:
         return pose
 
     def _frame(self, pose: tuple[float, float, float]) -> tuple:
-        """(M (6, 5), limits (5,), origin, axis) of the L's frame at pose: a point's height over
-        the arm is (p - origin) . axis (_to_local's y, axis the L's local y axis), and for a
-        body's row (x, y, angle, vx, vy, w), row . M <= limits are its five flags: x >= -2r,
-        x <= w + 2r, y >= -h, y <= h + 2r (inside the world's box, remove_fallen's test) and
-        height >= 0 (on or below the arm's line; a NaN fails all five). Only the last column
-        depends on the pose (a moving L: a new frame every substep, from a copy of the rest).
-        The last two frames are kept (a resting or static L has the same pose step after step;
-        a moving one, the pose before and after)."""
-        cache = self._frame_cache
-        for key, frame in cache:
-            if key == pose:
-                return frame
-        base = self._flag_base
-        if base is None:
+        """(origin, axis) of the L's frame at pose: a point's height over the arm is
+        (p - origin) . axis (_to_local's y, axis the L's local y axis)."""
+        x, y, a = pose
+        return (x, y), (-math.sin(a), math.cos(a))
+
+    def _flag_matrix(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        """(M (6, 5), limits (5,)) with the L at pose: for a body's row (x, y, angle, vx, vy,
+        w), row . M <= limits are its five flags: x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r
+        (inside the world's box, remove_fallen's test) and height over the arm >= 0 (on or
+        below its line; a NaN fails all five). Only the last column depends on the pose: it is
+        written in place when the pose changed (a moving L: every substep), so the arrays are
+        good until the next call with another pose."""
+        now = self._flag_now
+        if now is None:
             w, h = self.world_size
             r = self.p["radius"]
             M = np.zeros((6, 5))
             M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
-            base = self._flag_base = (M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0)))
-        x, y, a = pose
-        ax, ay = -math.sin(a), math.cos(a)
-        M, limits = base[0].copy(), base[1].copy()
-        M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
-        frame = (M, limits, (x, y), (ax, ay))
-        cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
-        return frame
+            now = self._flag_now = [None, M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0))]
+        if now[0] != pose:
+            x, y, a = pose
+            ax, ay = -math.sin(a), math.cos(a)
+            M, limits = now[1], now[2]
+            M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
+            now[0] = pose
+        return now[1], now[2]
+
+    def _flags(self, rows: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
+        """rows.dot(M) <= limits (_flag_matrix) for n C-contiguous rows, into a product kept
+        for n rows and against the limits written out for every row (a comparison with a
+        broadcast (5,) row costs three times one with an (n, 5) array)."""
+        M, limits = self._flag_matrix(pose)
+        n = len(rows)
+        kept = self._flag_rows
+        if kept is None or kept[0] != n:
+            kept = self._flag_rows = [n, np.empty((n, 5)), np.empty((n, 5)), None]
+        if kept[3] != pose:
+            kept[2][:] = limits
+            kept[3] = pose
+        return np.less_equal(rows.dot(M, out=kept[1]), kept[2])
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
                        L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
@@ -262,9 +276,9 @@ class BallChecks:
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
         is looked at only for balls that crossed.)"""
-        o0, axis0 = (np.array(v) for v in self._frame(L0)[2:])
+        o0, axis0 = (np.array(v) for v in self._frame(L0))
         y0 = (xy0 - o0) @ axis0
-        o1, axis1 = (np.array(v) for v in self._frame(L1)[2:])
+        o1, axis1 = (np.array(v) for v in self._frame(L1))
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)

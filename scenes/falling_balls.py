@@ -164,8 +164,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
         """(Re)build the tables kept beside self.balls: body ids and last known centres, and
         what is known of the L (its id; its pose, if static: nothing moves it)."""
         self._prev = None
-        self._frame_cache = []
-        self._flag_base = None      # (ball_checks: the flags' matrix and limits, less the L's)
+        self._flag_now = None       # (ball_checks: the flags' matrix and limits)
         self._L_id = self.L_body.id
         self._L_static_pose = None
         if self.L_body.body_type == pymunk.Body.STATIC:
@@ -355,7 +354,8 @@ class FallingBallsScene(BallChecks, PymunkScene):
             return
         # the L's pose before the step: where the last step left it, unless woken since
         L0 = self._L_known or self.L_pose()
-        super().step(h)
+        self.space.step(h)                        # (PymunkScene.step)
+        self._rows = None
         self._L_after = self._L_known = self.check_balls(L0)   # (pivoting_l's joints use it)
         self.spawn(h)
 
