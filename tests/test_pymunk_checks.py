@@ -146,3 +146,31 @@ def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
             assert ode.state == rk4_tuple(ode.derivative, y, h)
             # advance()'s stepper: rk4_step and energy_terms in one function, the same bits
             assert ode.stepper()(y, h) == (ode.state, *ode.energy_terms())
+
+
+@pytest.mark.parametrize("cls, settings, steps", [
+    (FallingBallsScene, {"g": 5000, "hertz": 15, "radius": 4, "spawn_rate": 60}, 150),
+    (PivotingLScene, {"hertz": 5, "spawn_rate": 30}, 100),
+    (PivotingLScene, {"spawn_rate": 30}, 300)])
+def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings, steps):
+    # the quick path (five flags a ball from one product, compared as bytes) against the exact
+    # tests run on every ball every substep: the same balls tunneled, removed, and the same state
+    class Exact(cls):
+        def check_balls(self, L0):
+            self._fast = None            # the long way every time
+            return super().check_balls(L0)
+    class Quick(cls):
+        usual = 0
+
+        def _usual_check(self, *args):
+            Quick.usual += 1
+            return super()._usual_check(*args)
+    quick, exact = Quick(settings), Exact(settings)
+    for _ in range(steps):
+        quick.advance()
+        exact.advance()
+    assert Quick.usual > steps // 2                     # (the quick path did the checking)
+    assert quick.counts == exact.counts and quick.counts["removed"] > 30
+    assert quick.state_hash() == exact.state_hash()
+    if settings.get("hertz", 60) < 60:
+        assert quick.counts["tunneled"] > 100           # (coarse steps: many go through)
