@@ -217,7 +217,13 @@ class BallChecks:
         """The flags (1, 5) of a body at rest at pos with the L at pose, as _usual_check makes
         them for a body's row."""
         M, limits = self._flag_matrix(pose)
-        return np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits
+        x, y = float(pos[0]), float(pos[1])
+        lx, ux, ly, uy, c = limits.tolist()
+        ax, ay = -M[0, 4], -M[1, 4]
+        v = x * -ax + y * -ay                  # the product's last column, in plain Python:
+        if abs(v - c) <= 1e-12 * (abs(x * ax) + abs(y * ay) + abs(c)):   # its sign is the
+            return np.array(((x, y, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits   # product's
+        return np.array(((-x <= lx, x <= ux, -y <= ly, y <= uy, v <= c),))  # unless this near
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a

@@ -30,6 +30,8 @@ g, iterations; effects: sleeping, gravity (off: the balls float where they appea
 from __future__ import annotations
 
 import math
+import sys
+
 import numpy as np
 import pygame
 import pymunk
@@ -241,7 +243,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
                 self._awake = (np.concatenate((ids, (bid,))),
                                None if rows is None else np.concatenate((rows, (True,))),
                                np.concatenate((k, (len(self.balls) - 1,))), L_row,
-                               key + np.int64(bid).tobytes())
+                               key + bid.to_bytes(8, sys.byteorder, signed=True))
                 if fast is not None:    # and its flags (ball_checks), a last row
                     row = self.flags_row(pos, fast[0])
                     b = row.tobytes()

@@ -174,3 +174,21 @@ def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings
     assert quick.state_hash() == exact.state_hash()
     if settings.get("hertz", 60) < 60:
         assert quick.counts["tunneled"] > 100           # (coarse steps: many go through)
+
+
+def test_a_new_balls_flags_are_the_products():
+    # add_ball appends the new ball's flags made in plain Python; the next step's product must
+    # give the same bytes, or the quick path would see a change that is none (or miss one)
+    import random
+    rng = random.Random(5)
+    scene = PivotingLScene({"spawn_rate": 0})
+    for _ in range(300):
+        pose = (rng.uniform(0, 960), rng.uniform(0, 720), rng.uniform(-3.2, 3.2))
+        pos = (rng.uniform(-100, 1100), rng.uniform(-800, 800))
+        if rng.random() < 0.3:                 # on the arm's line (within rounding)
+            x, y, a = pose
+            t = rng.uniform(-300, 300)
+            pos = (x + t * math.cos(a), y + t * math.sin(a))
+        M, limits = scene._flag_matrix(pose)
+        product = np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits
+        assert scene.flags_row(pos, pose).tobytes() == product.tobytes()
