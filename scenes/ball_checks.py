@@ -2,15 +2,19 @@
 L's long arm, and balls that left the world (removed). A part of FallingBallsScene kept in a
 module of its own (FallingBallsScene inherits BallChecks).
 
-The usual step is cheap: while the same bodies stay awake, which bodies are above the arm's line
-is one dot product of their rows (x, y, angle, vx, vy, w) with a weight vector, and "above the
-arm before, on or below it now" compares those signs with the ones kept from the last step; the
-world's box is the smallest and largest x and y (argmin, argmax). That is about a dozen NumPy
-calls however many balls there are (in the step's loop each costs 1-2 us; an (n, 2) reduction
-along an axis, a ufunc's max() or a small matrix product costs several). Anything unusual (a
-ball that crossed the arm's line, a ball outside the box, a change in who is awake, the L woken)
-goes the long way, with the exact tests below (count_tunneled, remove_fallen). A new ball, or a
-removed one, keeps the usual path: Chipmunk's order of the awake bodies after it is known.
+The usual step is cheap: while the same bodies stay awake, one product of their rows (x, y,
+angle, vx, vy, w) with a (6, 5) matrix and one comparison give five flags a body: its centre
+inside the world's box (x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r: four, the very comparisons
+of the exact test) and on or below the arm's line. If the flags' bytes are the ones kept from
+the last step, no ball crossed the line and none left: 3 NumPy calls however many balls there
+are (in the step's loop each costs 1-2 us; an (n, 2) reduction along an axis, a ufunc's max()
+or a comparison with a broadcast row costs several). A change (a ball that crossed the line, a
+ball outside the box, a NaN) is found among the few flags that changed, and each goes to the
+exact test on that ball alone (plain Python); a change in who is awake, or the L woken, goes
+the long way, with the exact tests below on every ball (count_tunneled, remove_fallen: a test
+checks the two ways agree, tunneling by tunneling). A new ball, or a removed one, keeps the
+usual path: Chipmunk's order of the awake bodies after it is known, and the new ball's flags
+are appended.
 """
 
 from __future__ import annotations
