@@ -39,7 +39,7 @@ import pymunk.batch
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
-from app.scene import Effect, Param, ParamError, Try
+from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
 
 S = 1.5                      # the tutorial's lengths scaled to this world
@@ -316,26 +316,42 @@ class FallingBallsScene(BallChecks, PymunkScene):
     def wake(self) -> None:
         super().wake()
         self._L_known = None      # the L's pose is read again before the next step
+        self._rest_plan = None    # (advance: what a step at rest does, made again)
 
     def advance(self) -> None:
         """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
         engine's steps: nothing moves, nothing to read or test (step's first case, for every
-        substep at once)."""
-        p = self.p
-        if self.resting and p["spawn_rate"] <= 0 and type(self).step is FallingBallsScene.step:
-            n = p["substeps"]
-            dt = 1.0 / p["hertz"]             # (self.dt)
-            h = dt / n
-            if h == self._sleep_h:
+        substep at once; what it takes is looked up once per rest: anything that could change
+        it wakes the scene)."""
+        if self.resting:
+            plan = self._rest_plan
+            if plan is None:
+                plan = self._rest_plan = self.rest_plan()
+            if plan:
+                n, h, dt, after = plan
                 step = self.space.step
                 for _ in range(n):
                     step(h)
                 self._rows = self._L_after = None
                 self.time += dt
                 self.steps += 1
-                self.after_step()
+                if after:
+                    self.after_step()
                 return
         super().advance()
+
+    def rest_plan(self) -> tuple:
+        """(substeps, h, dt, whether after_step does anything) for a step at rest,
+        or () if such a step must go the usual way (a ball is due, a subclass steps otherwise,
+        or the sleep threshold is not yet set for this substep)."""
+        p = self.p
+        n = p["substeps"]
+        dt = 1.0 / p["hertz"]             # (self.dt)
+        h = dt / n
+        if p["spawn_rate"] > 0 or type(self).step is not FallingBallsScene.step \
+                or h != self._sleep_h:
+            return ()
+        return (n, h, dt, type(self).after_step is not Scene.after_step)
 
     def step(self, h: float) -> None:
         if self.resting and h == self._sleep_h:   # every body sleeps: nothing moves, nothing
