@@ -2,15 +2,19 @@
 L's long arm, and balls that left the world (removed). A part of FallingBallsScene kept in a
 module of its own (FallingBallsScene inherits BallChecks).
 
-The usual step is cheap: while the same bodies stay awake, which bodies are above the arm's line
-is one dot product of their rows (x, y, angle, vx, vy, w) with a weight vector, and "above the
-arm before, on or below it now" compares those signs with the ones kept from the last step; the
-world's box is the smallest and largest x and y (argmin, argmax). That is about a dozen NumPy
-calls however many balls there are (in the step's loop each costs 1-2 us; an (n, 2) reduction
-along an axis, a ufunc's max() or a small matrix product costs several). Anything unusual (a
-ball that crossed the arm's line, a ball outside the box, a change in who is awake, the L woken)
-goes the long way, with the exact tests below (count_tunneled, remove_fallen). A new ball, or a
-removed one, keeps the usual path: Chipmunk's order of the awake bodies after it is known.
+The usual step is cheap: while the same bodies stay awake, one product of their rows (x, y,
+angle, vx, vy, w) with a (6, 5) matrix and one comparison give five flags a body: its centre
+inside the world's box (x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r: four, the very comparisons
+of the exact test) and on or below the arm's line. If the flags' bytes are the ones kept from
+the last step, no ball crossed the line and none left: 3 NumPy calls however many balls there
+are (in the step's loop each costs 1-2 us; an (n, 2) reduction along an axis, a ufunc's max()
+or a comparison with a broadcast row costs several). A change (a ball that crossed the line, a
+ball outside the box, a NaN) is found among the few flags that changed, and each goes to the
+exact test on that ball alone (plain Python); a change in who is awake, or the L woken, goes
+the long way, with the exact tests below on every ball (count_tunneled, remove_fallen: a test
+checks the two ways agree, tunneling by tunneling). A new ball, or a removed one, keeps the
+usual path: Chipmunk's order of the awake bodies after it is known, and the new ball's flags
+are appended.
 """
 
 from __future__ import annotations
@@ -29,13 +33,14 @@ class BallChecks:
 
     def _checks_reset(self) -> None:
         """Forget what was kept between steps (the tables were rebuilt)."""
-        self._fast = None      # (the L's pose, which awake rows are above its arm's line)
+        self._fast = None      # (the L's pose, the awake rows' flags, their key: flags_of)
         # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
         # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
         # ball leaves the indices as they were, a removal writes them first)
-        if not hasattr(self, "_frame_cache"):
-            self._frame_cache = []  # [(pose, frame)] of the L, the last two (_frame; a frame
-                                    # depends on the pose alone: kept while the tables change)
+        if not hasattr(self, "_flag_now"):
+            self._flag_now = None   # [pose, M, limits] (_flag_matrix; they depend on the pose
+                                    # alone: kept while the tables change)
+        self._flag_rows = None      # [n, product, limits (n, 5), their pose] (_flags)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -64,8 +69,9 @@ class BallChecks:
             # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
             fast = self._fast
-            if same and fast is not None and fast[0] == L0 and len(awake[2]):
-                return self._usual_check(data[:n], L0, L1, awake, fast[1])
+            if same and fast is not None and fast[2] is not None and fast[0] == L0 \
+                    and len(awake[2]):
+                return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
         self.flush_xy()
@@ -90,37 +96,71 @@ class BallChecks:
         self._xy[k] = xy
         self.remove_outside(k, xy)
         if self._awake is not None and len(self._awake[2]):   # (not if remove_fallen removed)
-            n = len(self._awake[0])
-            _, axis, _, c = self._frame(L1)
-            self._fast = (L1, data[:n, :2].dot(axis) < c)
+            self._fast = self.flags_of(data[:len(self._awake[0])], L1, self._awake[3])
         return L1
 
-    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, above0: np.ndarray):
+    def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
+        """self._fast for these awake rows with the L at pose: (pose, flags (n, 5), their key;
+        None if a ball is outside the box or not finite: then the next step looks again)."""
+        M, limits = self._flag_matrix(pose)
+        return fast_of(pose, rows.dot(M) <= limits, L_row)
+
+    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
-        the L): which are above the arm's line by one dot product, a crossing by a change in
-        those signs, the box by the extremes of x and y; a crossing or a ball outside goes to
-        the exact tests. (In the step's loop every NumPy call costs 1-2 us: a dot product or an
-        argmax is one call, a ufunc's max() or an (n, 2) reduction along an axis costs more.)"""
-        _, rows, k, _, _ = awake
-        _, axis, _, c = self._frame(L1)
-        # (x, y) . axis - c < 0: above the line. Only x and y: with the whole row and a6, a
-        # non-finite velocity made inf * 0 = NaN, depending on the BLAS kernel (Prescott's
-        # warned; the finite check removes that ball either way)
-        above1 = rows_now[:, :2].dot(axis) < c
-        self._fast = (L1, above1)
+        the L): one product of the rows with a (6, 5) matrix and one comparison give five flags
+        a row (x and y inside the world's box, four, and the centre on or below the arm's
+        line); if their bytes are the ones of the last step, no ball crossed the line and none
+        left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
+        line's flag and a ball outside by the box's, and each goes to the exact tests."""
+        _, rows, k, L_row, _ = awake
+        flags = self._flags(rows_now, L1)
+        key = _key(flags, L_row)
         prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
-        if above0.tobytes() != above1.tobytes():          # some changed sides (rare)
-            crossed = above0 > above1                     # above before, not above now
-            if rows is not None:
-                crossed = crossed[rows]                   # balls only (not the L's row)
-            if crossed.any():
-                if prev is not None and prev[0] is not k:   # (a ball was added since)
-                    self._xy[prev[0]] = _centres(prev)
-                    prev = None
-                xy0 = self._xy[k] if prev is None else _centres(prev)
-                self._count_inside(xy0[crossed], _centres(self._prev)[crossed], L0, L1)
-        self.remove_outside(k, rows_now[:, :2], rows)
+        if key == fast[2]:                     # the same flags as after the last step
+            self._fast = (L1, flags, key)
+            return L1
+        old, self._fast = fast[1], fast_of(L1, flags, L_row)
+        changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)
+        crossed = [r for r, col in changed if col == 4 and flags[r, 4]]
+        if crossed:                   # above the line before, on or below it now: inside the
+            if prev is not None and prev[0] is not k:       # arm's extent? (a ball was added
+                self._xy[prev[0]] = _centres(prev)          # since the last step: no rows
+                prev = None                                 # kept for it)
+            ax, bx = self.arm_extent
+            for r in crossed:
+                if rows is not None:
+                    if not rows[r]:
+                        continue                       # not a ball (the L's row)
+                    j = int(np.count_nonzero(rows[:r]))
+                else:
+                    j = r
+                p0 = self._xy[k[j]].tolist() if prev is None else prev[2][r, :2].tolist()
+                x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
+                if ax <= x0 <= bx and ax <= x1 <= bx:
+                    self.counts["tunneled"] += 1
+        if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
+            out = []                # flags changed (they were all true), by the exact test
+            x0, y0, x1, y1 = self.box()
+            for r in sorted({r for r, col in changed if col < 4}):
+                if rows is not None:
+                    if not rows[r]:
+                        continue
+                    j = int(np.count_nonzero(rows[:r]))
+                else:
+                    j = r
+                x, y = rows_now[r, :2].tolist()
+                if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
+                    out.append(j)
+            if out:
+                self.remove_balls(k[out])
         return L1
+
+    def box(self) -> tuple[float, float, float, float]:
+        """(x min, y min, x max, y max) of the centres kept: the world, 2 radii more to the
+        sides and below, a world's height more above (remove_fallen)."""
+        w, h = self.world_size
+        r = self.p["radius"]
+        return -2 * r, -h, w + 2 * r, h + 2 * r
 
     def remove_outside(self, k: np.ndarray, xy: np.ndarray, rows: np.ndarray | None = None
                        ) -> None:
@@ -138,45 +178,56 @@ class BallChecks:
         self.flush_xy()
         self.remove_fallen(k, xy if rows is None else xy[rows])
 
-    def awake_after_removal(self, bodies: list[int]) -> tuple | None:
+    def awake_after_removal(self, bodies: list[int], gone: list[int]) -> tuple | None:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were
-        taken out) left the space and self.balls and self._ids, if the usual path was on:
+        taken out; gone: their indices in self.balls before, sorted) left the space and
+        self.balls and self._ids, if the usual path was on:
         Chipmunk takes a body out of its awake array by moving the last one into its place, so
         the order of the rest is known without a read (the next step's check_balls compares it
         with the read, and goes the long way if it differs)."""
         awake, fast = self._awake, self._fast
         if awake is None or fast is None:
             return None
-        ids, rows, _, _, _ = awake
-        ids, above = ids.tolist(), fast[1].tolist()
-        ball = None if rows is None else rows.tolist()
-        for body in bodies:                           # cpArrayDeleteObj: the last fills the gap
-            if body not in ids:
+        ids, rows, k, L_row, _ = awake
+        id_list, order = ids.tolist(), list(range(len(ids)))   # order: the rows kept, as
+        for body in bodies:                  # cpArrayDeleteObj leaves them: the last fills
+            if body not in id_list:          # the gap
                 return None
-            i = ids.index(body)
-            for column in (ids, above) if ball is None else (ids, above, ball):
+            i = id_list.index(body)
+            for column in (id_list, order):
                 last = column.pop()
                 if i < len(column):
                     column[i] = last
-        n = len(ids)
-        if not n:
+        if not order:
             return None
-        # the balls' indices: the rows' ball ids looked up (ball_index's table is rebuilt by the
-        # caller), from the new ids in the new order
-        ids_now = np.array(ids, dtype=np.int64)
+        order = np.array(order)
+        ids_now = ids[order]
+        if rows is None:
+            ball, k_now = None, k[order]
+        else:
+            every = np.full(len(ids), -1, dtype=np.int64)     # each row's ball index
+            every[rows] = k
+            ball = rows[order]
+            k_now = every[order][ball]
+        # (the balls after each one gone move up one)
+        k_now = k_now - (k_now > gone[0]) if len(gone) == 1 else \
+            k_now - np.searchsorted(gone, k_now)
         L = self._L_id
-        by_id = dict(zip(self._ids.tolist(), range(len(self._ids))))
-        k_now = np.array([by_id[b] for b, is_ball in zip(ids, ball or [True] * n) if is_ball],
-                         dtype=np.int64)
-        new_awake = (ids_now, None if ball is None else np.array(ball, dtype=bool), k_now,
-                     ids.index(L) if L in ids else None, ids_now.tobytes())
-        return new_awake, (fast[0], np.array(above, dtype=bool))
+        L_row = id_list.index(L) if L in id_list else None
+        return (ids_now, ball, k_now, L_row, ids_now.tobytes()), \
+            fast_of(fast[0], fast[1][order], L_row)
 
-    def above_arm(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bool:
-        """Whether a centre at pos is above the arm's line of the L at pose (as _usual_check
-        tells it for a body's row)."""
-        _, _, a6, c = self._frame(pose)
-        return bool(np.array((*pos, 0.0, 0.0, 0.0, 0.0)).dot(a6) < c)
+    def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> np.ndarray:
+        """The flags (1, 5) of a body at rest at pos with the L at pose, as _usual_check makes
+        them for a body's row."""
+        M, limits = self._flag_matrix(pose)
+        x, y = float(pos[0]), float(pos[1])
+        lx, ux, ly, uy, c = limits.tolist()
+        ax, ay = -M[0, 4], -M[1, 4]
+        v = x * -ax + y * -ay                  # the product's last column, in plain Python:
+        if abs(v - c) <= 1e-12 * (abs(x * ax) + abs(y * ay) + abs(c)):   # its sign is the
+            return np.array(((x, y, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits   # product's
+        return np.array(((-x <= lx, x <= ux, -y <= ly, y <= uy, v <= c),))  # unless this near
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
@@ -188,21 +239,46 @@ class BallChecks:
         return pose
 
     def _frame(self, pose: tuple[float, float, float]) -> tuple:
-        """(origin (2,), the local y axis (2,), a6 (6,), c) of the L's frame at pose: a point's
-        height over the arm is (p - origin) . axis, _to_local's y; for a body's row (x, y,
-        angle, vx, vy, w) it is row . a6 - c (c = origin . axis). The last two are kept (a
-        resting or static L has the same pose step after step; a moving one, the pose before
-        and after)."""
-        cache = self._frame_cache
-        for key, frame in cache:
-            if key == pose:
-                return frame
+        """(origin, axis) of the L's frame at pose: a point's height over the arm is
+        (p - origin) . axis (_to_local's y, axis the L's local y axis)."""
         x, y, a = pose
-        ax, ay = -math.sin(a), math.cos(a)
-        a6 = np.array((ax, ay, 0.0, 0.0, 0.0, 0.0))     # (a moving L: a new frame every
-        frame = (np.array((x, y)), a6[:2], a6, x * ax + y * ay)   # substep, so few calls)
-        cache[:] = [cache[-1], (pose, frame)] if cache else [(pose, frame)]
-        return frame
+        return (x, y), (-math.sin(a), math.cos(a))
+
+    def _flag_matrix(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        """(M (6, 5), limits (5,)) with the L at pose: for a body's row (x, y, angle, vx, vy,
+        w), row . M <= limits are its five flags: x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r
+        (inside the world's box, remove_fallen's test) and height over the arm >= 0 (on or
+        below its line; a NaN fails all five). Only the last column depends on the pose: it is
+        written in place when the pose changed (a moving L: every substep), so the arrays are
+        good until the next call with another pose."""
+        now = self._flag_now
+        if now is None:
+            w, h = self.world_size
+            r = self.p["radius"]
+            M = np.zeros((6, 5))
+            M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
+            now = self._flag_now = [None, M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0))]
+        if now[0] != pose:
+            x, y, a = pose
+            ax, ay = -math.sin(a), math.cos(a)
+            M, limits = now[1], now[2]
+            M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
+            now[0] = pose
+        return now[1], now[2]
+
+    def _flags(self, rows: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
+        """rows.dot(M) <= limits (_flag_matrix) for n C-contiguous rows, into a product kept
+        for n rows and against the limits written out for every row (a comparison with a
+        broadcast (5,) row costs three times one with an (n, 5) array)."""
+        M, limits = self._flag_matrix(pose)
+        n = len(rows)
+        kept = self._flag_rows
+        if kept is None or kept[0] != n:
+            kept = self._flag_rows = [n, np.empty((n, 5)), np.empty((n, 5)), None]
+        if kept[3] != pose:
+            kept[2][:] = limits
+            kept[3] = pose
+        return np.less_equal(rows.dot(M, out=kept[1]), kept[2])
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
                        L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
@@ -210,9 +286,9 @@ class BallChecks:
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
         is looked at only for balls that crossed.)"""
-        o0, axis0, _, _ = self._frame(L0)
+        o0, axis0 = (np.array(v) for v in self._frame(L0))
         y0 = (xy0 - o0) @ axis0
-        o1, axis1, _, _ = self._frame(L1)
+        o1, axis1 = (np.array(v) for v in self._frame(L1))
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
@@ -235,7 +311,7 @@ class BallChecks:
         w, h = self.world_size
         r = self.p["radius"]
         if len(xy) <= 64:     # a few: one look at each (the same comparisons; NaN fails them)
-            x0, y0, x1, y1 = -2 * r, -h, w + 2 * r, h + 2 * r
+            x0, y0, x1, y1 = self.box()
             out = [i for i, (x, y) in enumerate(xy.tolist())
                    if not (x >= x0 and y >= y0 and x <= x1 and y <= y1)]
             if out:
@@ -244,6 +320,33 @@ class BallChecks:
         inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
         if not inside.all():
             self.remove_balls(k[~inside])
+
+
+def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None) -> tuple:
+    """BallChecks._fast: (the L's pose, the awake rows' flags (n, 5), their key; None if a ball
+    is outside the box or not finite: then the next step looks again)."""
+    return pose, flags, _key(flags, L_row) if _inside(flags, L_row) else None
+
+
+def _key(flags: np.ndarray, L_row: int | None) -> bytes:
+    """The bytes of the flags (n, 5), less the L's row (a moving L's centre is on its own arm's
+    line: its flag flips with rounding)."""
+    key = flags.tobytes()
+    return key if L_row is None else key[:5 * L_row] + key[5 * L_row + 5:]
+
+
+def _inside(flags: np.ndarray, L_row: int | None) -> bool:
+    """Whether every ball's four box flags are true (each centre inside the world's box)."""
+    box = flags[:, :4].tobytes()
+    if L_row is not None:
+        box = box[:4 * L_row] + box[4 * L_row + 4:]
+    return box.count(0) == 0
+
+
+def _local_x(p: list[float], pose: tuple[float, float, float]) -> float:
+    """_to_local's x for one point, in plain Python."""
+    x, y, a = pose
+    return math.cos(a) * (p[0] - x) + math.sin(a) * (p[1] - y)
 
 
 def _centres(kept: tuple) -> np.ndarray:

@@ -30,6 +30,8 @@ g, iterations; effects: sleeping, gravity (off: the balls float where they appea
 from __future__ import annotations
 
 import math
+import sys
+
 import numpy as np
 import pygame
 import pymunk
@@ -37,7 +39,7 @@ import pymunk.batch
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
-from app.scene import Effect, Param, ParamError, Try
+from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
 
 S = 1.5                      # the tutorial's lengths scaled to this world
@@ -164,7 +166,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
         """(Re)build the tables kept beside self.balls: body ids and last known centres, and
         what is known of the L (its id; its pose, if static: nothing moves it)."""
         self._prev = None
-        self._frame_cache = []
+        self._flag_now = None       # (ball_checks: the flags' matrix and limits)
         self._L_id = self.L_body.id
         self._L_static_pose = None
         if self.L_body.body_type == pymunk.Body.STATIC:
@@ -231,18 +233,23 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.wake()
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            self._ids = np.append(self._ids, body.id)
-            self._xy = np.vstack((self._xy, pos))
+            bid = body.id
+            self._ids = np.concatenate((self._ids, (bid,)))
+            self._xy = np.concatenate((self._xy, (pos,)))
             awake, fast = self._awake, self._fast
             self._tables_changed()
             if awake is not None:   # Chipmunk appends a new body to the awake ones (if not,
-                ids, rows, k, L_row, _ = awake  # check_balls sees other ids: every ball)
-                ids = np.append(ids, body.id)
-                rows = None if rows is None else np.append(rows, True)
-                self._awake = (ids, rows, np.append(k, len(self.balls) - 1), L_row,
-                               ids.tobytes())
-                if fast is not None:    # and whether it is above the arm (ball_checks)
-                    self._fast = (fast[0], np.append(fast[1], self.above_arm(pos, fast[0])))
+                ids, rows, k, L_row, key = awake    # check_balls sees other ids: every ball)
+                self._awake = (np.concatenate((ids, (bid,))),
+                               None if rows is None else np.concatenate((rows, (True,))),
+                               np.concatenate((k, (len(self.balls) - 1,))), L_row,
+                               key + bid.to_bytes(8, sys.byteorder, signed=True))
+                if fast is not None:    # and its flags (ball_checks), a last row
+                    row = self.flags_row(pos, fast[0])
+                    b = row.tobytes()
+                    inside = fast[2] is not None and b[:4] == b"\1\1\1\1"   # (in the box)
+                    self._fast = (fast[0], np.concatenate((fast[1], row)),
+                                  fast[2] + b if inside else None)
         self.counts["spawned"] += 1
         return shape
 
@@ -282,12 +289,14 @@ class FallingBallsScene(BallChecks, PymunkScene):
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
             removed.append(shape.body.id)
-        self.balls = [s for k, s in enumerate(self.balls) if k not in gone]
+        gone_sorted = sorted(gone)
+        for k in reversed(gone_sorted):
+            del self.balls[k]
         keep = np.ones(len(self._ids), dtype=bool)
         keep[which] = False
         self._ids, self._xy = self._ids[keep], self._xy[keep]
         # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
-        awake = self.awake_after_removal(removed)
+        awake = self.awake_after_removal(removed, gone_sorted)
         self._tables_changed()
         if awake is not None:
             self._awake, self._fast = awake
@@ -307,26 +316,42 @@ class FallingBallsScene(BallChecks, PymunkScene):
     def wake(self) -> None:
         super().wake()
         self._L_known = None      # the L's pose is read again before the next step
+        self._rest_plan = None    # (advance: what a step at rest does, made again)
 
     def advance(self) -> None:
         """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
         engine's steps: nothing moves, nothing to read or test (step's first case, for every
-        substep at once)."""
-        p = self.p
-        if self.resting and p["spawn_rate"] <= 0 and type(self).step is FallingBallsScene.step:
-            n = p["substeps"]
-            dt = 1.0 / p["hertz"]             # (self.dt)
-            h = dt / n
-            if h == self._sleep_h:
+        substep at once; what it takes is looked up once per rest: anything that could change
+        it wakes the scene)."""
+        if self.resting:
+            plan = self._rest_plan
+            if plan is None:
+                plan = self._rest_plan = self.rest_plan()
+            if plan:
+                n, h, dt, after = plan
                 step = self.space.step
                 for _ in range(n):
                     step(h)
                 self._rows = self._L_after = None
                 self.time += dt
                 self.steps += 1
-                self.after_step()
+                if after:
+                    self.after_step()
                 return
         super().advance()
+
+    def rest_plan(self) -> tuple:
+        """(substeps, h, dt, whether after_step does anything) for a step at rest,
+        or () if such a step must go the usual way (a ball is due, a subclass steps otherwise,
+        or the sleep threshold is not yet set for this substep)."""
+        p = self.p
+        n = p["substeps"]
+        dt = 1.0 / p["hertz"]             # (self.dt)
+        h = dt / n
+        if p["spawn_rate"] > 0 or type(self).step is not FallingBallsScene.step \
+                or h != self._sleep_h:
+            return ()
+        return (n, h, dt, type(self).after_step is not Scene.after_step)
 
     def step(self, h: float) -> None:
         if self.resting and h == self._sleep_h:   # every body sleeps: nothing moves, nothing
@@ -347,7 +372,8 @@ class FallingBallsScene(BallChecks, PymunkScene):
             return
         # the L's pose before the step: where the last step left it, unless woken since
         L0 = self._L_known or self.L_pose()
-        super().step(h)
+        self.space.step(h)                        # (PymunkScene.step)
+        self._rows = None
         self._L_after = self._L_known = self.check_balls(L0)   # (pivoting_l's joints use it)
         self.spawn(h)
 

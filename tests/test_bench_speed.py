@@ -98,3 +98,34 @@ def test_an_interrupted_compile_leaves_no_linker_behind(tmp_path):
         time.sleep(0.02)
     else:
         pytest.fail("the compiler's child outlived the interrupted compile")
+
+
+def test_the_bare_pymunk_loop_holds_the_labs_bodies_step_by_step():
+    """`bench pymunk`'s yardstick: the bare loop replays the balls the lab adds and removes, at
+    the same substeps, so its space holds the same bodies at the very same places (the same
+    operations in the same order: pymunk is deterministic) after every step."""
+    import numpy as np
+    from app.bench.bare_pymunk import Replay, record
+    from app.pymunk_scene import _StateReader
+    from scenes import get_scene
+
+    for name, settings in (("falling_balls", {"spawn_rate": 20}),
+                           ("pivoting_l", {"spawn_rate": 20})):
+        def build():
+            return get_scene(name)(settings)
+        schedule = record(build, 240)
+        lab, bare = build(), Replay(build(), schedule)
+        added, removed = bare.counts()
+        assert added >= 40 and removed >= 3, (name, added, removed)
+        read_lab, read_bare = _StateReader(), _StateReader()
+        counts = set()
+        for _ in range(240):
+            lab.advance()
+            bare.run(1)
+            ids_lab, rows_lab = read_lab.read(lab.space)
+            ids_bare, rows_bare = read_bare.read(bare.space)
+            assert len(lab.space.bodies) == len(bare.space.bodies)
+            assert len(ids_lab) == len(ids_bare)
+            assert np.array_equal(rows_lab, rows_bare)
+            counts.add(len(lab.balls))
+        assert len(counts) > 10          # balls came and went while they were compared

@@ -144,3 +144,51 @@ def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
             ode.state = y
             ode.rk4_step(h)
             assert ode.state == rk4_tuple(ode.derivative, y, h)
+            # advance()'s stepper: rk4_step and energy_terms in one function, the same bits
+            assert ode.stepper()(y, h) == (ode.state, *ode.energy_terms())
+
+
+@pytest.mark.parametrize("cls, settings, steps", [
+    (FallingBallsScene, {"g": 5000, "hertz": 15, "radius": 4, "spawn_rate": 60}, 150),
+    (PivotingLScene, {"hertz": 5, "spawn_rate": 30}, 100),
+    (PivotingLScene, {"spawn_rate": 30}, 300)])
+def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings, steps):
+    # the quick path (five flags a ball from one product, compared as bytes) against the exact
+    # tests run on every ball every substep: the same balls tunneled, removed, and the same state
+    class Exact(cls):
+        def check_balls(self, L0):
+            self._fast = None            # the long way every time
+            return super().check_balls(L0)
+    class Quick(cls):
+        usual = 0
+
+        def _usual_check(self, *args):
+            Quick.usual += 1
+            return super()._usual_check(*args)
+    quick, exact = Quick(settings), Exact(settings)
+    for _ in range(steps):
+        quick.advance()
+        exact.advance()
+    assert Quick.usual > steps // 2                     # (the quick path did the checking)
+    assert quick.counts == exact.counts and quick.counts["removed"] > 30
+    assert quick.state_hash() == exact.state_hash()
+    if settings.get("hertz", 60) < 60:
+        assert quick.counts["tunneled"] > 100           # (coarse steps: many go through)
+
+
+def test_a_new_balls_flags_are_the_products():
+    # add_ball appends the new ball's flags made in plain Python; the next step's product must
+    # give the same bytes, or the quick path would see a change that is none (or miss one)
+    import random
+    rng = random.Random(5)
+    scene = PivotingLScene({"spawn_rate": 0})
+    for _ in range(300):
+        pose = (rng.uniform(0, 960), rng.uniform(0, 720), rng.uniform(-3.2, 3.2))
+        pos = (rng.uniform(-100, 1100), rng.uniform(-800, 800))
+        if rng.random() < 0.3:                 # on the arm's line (within rounding)
+            x, y, a = pose
+            t = rng.uniform(-300, 300)
+            pos = (x + t * math.cos(a), y + t * math.sin(a))
+        M, limits = scene._flag_matrix(pose)
+        product = np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits
+        assert scene.flags_row(pos, pose).tobytes() == product.tobytes()

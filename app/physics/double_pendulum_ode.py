@@ -45,7 +45,12 @@ MAX_WORK steps, the reference cannot follow: `advance` keeps the last good state
 and the scene says so (it never raises).
 
 The step uses plain float arithmetic (the math module; see rk4_tuple for why); `positions` returns
-a NumPy array for drawing and comparing.
+a NumPy array for drawing and comparing. What it costs: advance() takes each step through
+`stepper()`, rk4_step and the energy check written out as one function (the same bits); one RK4
+step is four evaluations of the equations (six trigonometric calls and ~40 float operations
+each) and an energy check, ~5 us in CPython, and the energy budget asks for 2.4-3.2 steps a
+60 Hz frame at the defaults (at least 2: MAX_STEP), ~13-17 us a frame, more than pymunk's whole
+step of the same pendulum (~12 us, 10 substeps): `bench pymunk` measures both (2026-11-26).
 """
 
 from __future__ import annotations
@@ -154,15 +159,14 @@ class DoublePendulumODE:
         if not all(map(math.isfinite, y0)):
             return False
         scale = self.energy_scale()
-        consts = self.constants()
+        step = self.stepper()
         t, work, e = 0.0, 0, self.energy()
         blur = ROUNDOFF / scale                         # rounding of the energy, per unit size
+        y = y0
         try:
             while t < dt:
                 h = min(self.h, dt - t)                 # the last step ends exactly at dt
-                y = self.state
-                self.rk4_step(h, consts)
-                e_new, size = self.energy_terms()
+                y_new, e_new, size = step(y, h)
                 err, allowed = abs(e_new - e) / scale, max(ENERGY_RATE * h, blur * size)
                 work += 1
                 if not math.isfinite(err) or work > MAX_WORK:
@@ -171,11 +175,10 @@ class DoublePendulumODE:
                 fit = 0.9 * (allowed / err) ** 0.2 if err > 0 else 2.0
                 if err <= allowed or h < MIN_STEP:      # accepted (a sliver at the end of dt
                                                         # has no error worth the name)
-                    t, e = t + h, e_new
+                    t, e, y = t + h, e_new, y_new
                     if h == self.h:                     # (a step clipped to dt says little)
                         self.h = min(MAX_STEP, h * min(2.0, fit))
                 else:                                   # rejected: redo it shorter
-                    self.state = y
                     self.h = h * max(0.1, fit)
                     if self.h < MIN_STEP:
                         raise OverflowError
@@ -185,9 +188,53 @@ class DoublePendulumODE:
         self.steps_taken += work
         # angles back into [-pi, pi]: a spinning rod's angle would grow without bound and lose
         # the digits the energy check needs (the positions do not change)
-        t1, t2, w1, w2 = self.state
+        t1, t2, w1, w2 = y
         self.state = (math.remainder(t1, math.tau), math.remainder(t2, math.tau), w1, w2)
         return True
+
+    def stepper(self):
+        """step(y, h) -> (y after one rk4_step of h, and energy_terms() there): rk4_step,
+        derivative_with and energy_terms written out once more as one function over plain
+        floats, with the parameters' products formed here, once per advance() (the same
+        operations in the same order, so the same numbers to the last bit: a test checks it;
+        about a third less time than the three calls, which is what advance() spends its time
+        on: ~2.5 RK4 steps a frame at the defaults)."""
+        l1, l2, m2, m_2m1_m2, m12, minus_g_2m1_m2, m2_g, g_m12 = self.constants()
+        sin, cos = math.sin, math.cos
+        m1, g = self.m1, self.g
+        k1, k2 = 0.5 * (m1 + m2), 0.5 * m2                  # energy_terms' products
+        k3, k4, k5 = m2 * l1 * l2, (m1 + m2) * g * l1, m2 * g * l2
+
+        def f(t1: float, t2: float, w1: float, w2: float) -> tuple[float, float]:
+            """derivative_with's (alpha1, alpha2)."""
+            d = t1 - t2
+            sin_d, cos_d = sin(d), cos(d)
+            den = m_2m1_m2 - m2 * cos(2 * d)
+            return ((minus_g_2m1_m2 * sin(t1) - m2_g * sin(t1 - 2 * t2)
+                     - 2 * sin_d * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * cos_d)) / (l1 * den),
+                    (2 * sin_d * (w1 * w1 * l1 * m12 + g_m12 * cos(t1)
+                                  + w2 * w2 * l2 * m2 * cos_d)) / (l2 * den))
+
+        def step(y: State, h: float) -> tuple[State, float, float]:
+            t1, t2, w1, w2 = y
+            hh = 0.5 * h
+            c1, d1 = f(t1, t2, w1, w2)                         # k1 = (w1, w2, c1, d1)
+            a2, b2 = w1 + hh * c1, w2 + hh * d1
+            c2, d2 = f(t1 + hh * w1, t2 + hh * w2, a2, b2)
+            a3, b3 = w1 + hh * c2, w2 + hh * d2
+            c3, d3 = f(t1 + hh * a2, t2 + hh * b2, a3, b3)
+            a4, b4 = w1 + h * c3, w2 + h * d3
+            c4, d4 = f(t1 + h * a3, t2 + h * b3, a4, b4)
+            h6 = h / 6.0
+            t1, t2 = t1 + h6 * (w1 + 2 * a2 + 2 * a3 + a4), t2 + h6 * (w2 + 2 * b2 + 2 * b3 + b4)
+            w1, w2 = w1 + h6 * (c1 + 2 * c2 + 2 * c3 + c4), w2 + h6 * (d1 + 2 * d2 + 2 * d3 + d4)
+            e1, e2 = k1 * (l1 * w1) * (l1 * w1), k2 * (l2 * w2) * (l2 * w2)
+            e3 = k3 * w1 * w2 * cos(t1 - t2)
+            e4, e5 = k4 * (1 - cos(t1)), k5 * (1 - cos(t2))
+            return ((t1, t2, w1, w2), e1 + e2 + e3 + e4 + e5,
+                    abs(e1) + abs(e2) + abs(e3) + abs(e4) + abs(e5))
+
+        return step
 
     # ----- reading and setting the state ----------------------------------------------------
     def positions(self, pivot: tuple[float, float]) -> np.ndarray:
