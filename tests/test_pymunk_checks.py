@@ -81,6 +81,9 @@ def test_a_ball_that_leaves_is_removed_the_step_it_leaves():
     assert scene.counts["removed"] == 1 and body not in scene.space.bodies
 
 
+# the inf below makes the flags' product NaN on purpose; the lab hides NumPy's warning of it
+# (a filter in scenes/ball_checks.py, which pytest's own warning capture sets aside)
+@pytest.mark.filterwarnings("ignore:invalid value encountered in dot:RuntimeWarning")
 def test_a_sleeping_pile_wakes_and_is_checked_again():
     scene = FallingBallsScene({"spawn_rate": 0, "container": True, "radius": 10})
     scene.add_balls(40)
