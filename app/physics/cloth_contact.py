@@ -77,8 +77,7 @@ from typing import Callable
 
 import numpy as np
 
-from app.physics.neighbours import (all_pair_blocks, grid_pair_blocks, grid_shape,
-                                    sort_into_cells)
+from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
 from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
                                    project, verlet_friction)
 from app.physics.tunnelling import through_one
@@ -121,6 +120,7 @@ class ContactState:
     joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for
     joined_at: tuple | None = None        # self-collision's rod-neighbour table (_joined)
     compiled: object = None               # the numba pass's buffers (self_compiled.Buffers)
+    scratch: Scratch = field(default_factory=Scratch)   # the grid's work arrays (fine_pairs)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -294,6 +294,7 @@ def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
     """(i, j, dx, dy, r2, tests): pairs of particles closer than `distance` (flat indices, each
     pair once), not joined by a rod of an active set, with d = x_j - x_i and |d|^2."""
     i, j, tests = close_ij(c, distance, method)
+    i, j = i.copy(), j.copy()                           # (close_ij's are work arrays)
     x = c.x.reshape(2, -1)
     dx, dy = x[0].take(j) - x[0].take(i), x[1].take(j) - x[1].take(i)
     return i, j, dx, dy, dx * dx + dy * dy, tests
@@ -302,23 +303,23 @@ def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
 def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, int]:
     """(i, j, tests): close_pairs without the separations (what self-collision reads: it
     measures them again in each sweep). The grid is the neighbour grid of the particle dance
-    (app/physics/neighbours.py): sorted once by cell, a half stencil, so each pair is met once."""
+    (app/physics/neighbours.py) with finer cells (fine_pairs): sorted once by cell, a half
+    stencil, so each pair is met once. i and j are the contact state's work arrays (valid until
+    the next search: copy them to keep them)."""
     pts = _points(c.x)
     if method == "all_pairs":
         blocks = list(all_pair_blocks(pts, distance))
         tests = len(pts) * (len(pts) - 1) // 2
-    else:
-        lo, box, cell = _grid_frame(pts, distance)
-        local = pts - lo                                # the grid covers the cloth's own box
-        cells = sort_into_cells(local, cell, box)
-        blocks = list(grid_pair_blocks(local, cell, box, cells, separations=False))
-        tests = cells.tests
-    if not blocks:
-        return np.zeros(0, np.intp), np.zeros(0, np.intp), tests
-    i, j = (np.concatenate([b.i for b in blocks]), np.concatenate([b.j for b in blocks])) \
-        if len(blocks) > 1 else (blocks[0].i, blocks[0].j)
-    keep = ~_joined(c, i, j)
-    return i[keep], j[keep], tests
+        if not blocks:
+            return np.zeros(0, np.intp), np.zeros(0, np.intp), tests
+        i, j = np.concatenate([b.i for b in blocks]), np.concatenate([b.j for b in blocks])
+    else:                                               # the grid, over the cloth's own box
+        i, j, tests = fine_pairs(pts[:, 0], pts[:, 1], distance, c.contact.scratch)
+    keep = np.logical_not(_joined(c, i, j), out=c.contact.scratch.get("keep", i.size, bool))
+    k = int(np.count_nonzero(keep))
+    scratch = c.contact.scratch
+    return (i.compress(keep, out=scratch.get("pair_i", k, np.intp)),
+            j.compress(keep, out=scratch.get("pair_j", k, np.intp)), tests)
 
 
 def _grid_frame(pts: np.ndarray, distance: float) -> tuple[np.ndarray, tuple, float]:
@@ -349,7 +350,9 @@ def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
                     table[reach + sr * dr * w + sc * dc] = True
         st.joined_key, st.joined_at = key, (row * w + col + reach, row * w + col, table)
     plus, minus, table = st.joined_at
-    return table.take(plus.take(j) - minus.take(i))
+    k = np.take(plus, j, out=st.scratch.get("joined_k", j.size, np.intp), mode="wrap")
+    k -= minus.take(i)
+    return np.take(table, k, out=st.scratch.get("joined", j.size, bool), mode="wrap")
 
 
 def self_collide(c, h: float) -> None:
@@ -365,18 +368,28 @@ def self_collide(c, h: float) -> None:
     x = c.x.reshape(2, -1)
     xs, ys = x[0], x[1]                                 # views: writing moves the cloth
     w = c.w.ravel()
-    total = w[i] + w[j]
-    ok = total > 0
-    i, j, total = i[ok], j[ok], total[ok]
+    wi, wj = w.take(i), w.take(j)
+    total = wi + wj
+    if not total.all():                                 # both ends pinned: nothing to move
+        ok = total > 0
+        i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
     n, m = xs.size, i.size
     # one bincount a sweep gathers every particle's corrections, x and y: entries j, i (x) and
     # j + n, i + n (y), weighted by each end's share, + w_j/(w_i+w_j) at j and - w_i/(...) at i;
     # it replaces `for pair: x[j] += share_j * move; x[i] -= share_i * move`
-    ends = np.concatenate((j, i, j + n, i + n))
-    share = np.concatenate((w[j] / total, -w[i] / total))
-    share = np.concatenate((share, share))
+    scratch = st.scratch
+    ends = scratch.get("ends", 4 * m, np.intp)
+    ends[:m], ends[m:2 * m] = j, i
+    np.add(ends[:2 * m], n, out=ends[2 * m:])
+    share = scratch.get("share", 2 * m)
+    np.divide(wj, total, out=share[:m])
+    np.divide(wi, total, out=share[m:])
+    share[m:] *= -1
     count = np.bincount(ends[:2 * m], minlength=n)     # pairs per particle
     scale = (OVER_RELAX / np.maximum(count, 1)).astype(x.dtype)   # Jacobi's average, over-relaxed
+    move = scratch.get("move", 4 * m, np.float64)
+    xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
+    flag = scratch.get("same", m, bool)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     movable = c.free.ravel() > 0
@@ -385,18 +398,28 @@ def self_collide(c, h: float) -> None:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
             project(st.obstacles, x.T, st.margin, movable)
-        dx = xs.take(j) - xs.take(i)                    # d = x_j - x_i, for every pair
-        dy = ys.take(j) - ys.take(i)
-        r = np.sqrt(dx * dx + dy * dy)
-        same = r < 1e-6 * dmin                          # at one point: part them along x
+        # d = x_j - x_i for every pair, r = |d| (work arrays kept in the contact state: fresh
+        # ones would cost their page faults again each substep)
+        dx = np.subtract(np.take(xs, j, out=xj, mode="wrap"), np.take(xs, i, out=xi, mode="wrap"),
+                         out=xj)
+        dy = np.subtract(np.take(ys, j, out=yj, mode="wrap"), np.take(ys, i, out=yi, mode="wrap"),
+                         out=yj)
+        r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
+        same = np.less(r, 1e-6 * dmin, out=flag)        # at one point: part them along x
         if same.any():
             dx[same], r[same] = 1.0, 1.0
-        push = np.maximum(dmin - r, 0.0) / r            # the overlap, per unit of d
-        mx, my = dx * push, dy * push
-        move = np.concatenate((mx, mx, my, my)) * share
+        push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
+        np.maximum(push, 0.0, out=push)
+        push /= r
+        dx *= push
+        dy *= push
+        for k, part in enumerate((dx, dx, dy, dy)):     # (weights in float64: bincount's own)
+            np.multiply(part, share[k % 2 * m:(k % 2 + 1) * m], out=move[k * m:(k + 1) * m])
         moved = np.bincount(ends, move, 2 * n).astype(x.dtype)
-        xs += moved[:n] * scale
-        ys += moved[n:] * scale
+        moved[:n] *= scale
+        moved[n:] *= scale
+        xs += moved[:n]
+        ys += moved[n:]
 
 
 def _self_collide_compiled(c) -> None:
