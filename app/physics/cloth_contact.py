@@ -37,11 +37,19 @@ the sweeps did (`python -m app bench cloth`, same run: 0.86 -> 0.42 ms hanging, 
 ms heaped on them). Testing each obstacle's paths and projecting its particles in one go, on
 one broad phase and one distance evaluation, with the tangent bound of tunnelling.through_one,
 took that to 0.31 and 0.29 ms (collisions + friction, the fastest of 300 steps from the same
-state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs).
+state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs). As a
+share of the step (the goal: at most 30 %) that is 31.8 / 30.9 % hanging / heaped at load 0.4,
+27-28 % at load 3.3, 33-34 % at load 6.5-7 (bench cloth, medians of 101 interleaved rounds, runs
+of 2026-11-26): at the goal's edge. Its time goes to some 300 NumPy calls on a few hundred to
+1,900 particles each (the box's distance and normal alone ~34, Coulomb's rule ~20), not to
+arithmetic; the same pass with x and y as (2, k) arrays (fewer calls; NumPy's 2-D fancy index
+then cost more than it saved, row by row it was even) measured 31.5 -> 32.9 % hanging and
+32.5 -> 29.6 % heaped in one process (load 3.2): within the noise, not kept.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
-grid finds them (app/physics/neighbours.py, cells `self_distance` wide), or all pairs, the O(n^2)
-reference (`self_method`). Pairs of one grid cell (its sides and diagonals) and pairs joined by
+grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
+or all pairs, the O(n^2) reference (`self_method`). Pairs of one grid cell (its sides and
+diagonals) and pairs joined by
 a rod of an active set are left out: the rods keep them apart, and a cell may shear freely (as
 it does without self-collision). Before each of its sweeps the obstacles are projected (if on),
 so a pair resting on a floor is parted by moving the upper particle, not by pushing the lower one
@@ -56,12 +64,22 @@ within self_distance plus a skin, kept until some particle has moved half the sk
 the rest) was measured and not used: a crumpled 64 x 64 cloth let go moves up to 9-12 px per
 step away from its common fall (median 1.3 px, 99th percentile 4.3 px, steps 5-30) while
 self_distance is 6.4 px: a skin that lasts one step would be wider than 18 px, and the list
-would still be rebuilt every step. Even so,
-on that cloth (about 64,000 candidates, 14,000 pairs) the NumPy pass costs some 25 array passes
-per candidate and per pair: 1.7-1.9 x the step without it (2.5-2.8 x before these changes,
-`python -m app bench cloth`, same run, load 9), against the goal of at most 1 x. The compiled
-pass (kernel=numba, optional: app/physics/self_compiled.py; the same pairs) visits each
-candidate once: 0.85 x the step in the same runs.
+would still be rebuilt every step. On that cloth (17,956 pairs closer than 6.4 px, 14,051 of
+them not rod neighbours) cells self_distance wide gave 63,986 candidates; the finer cells, their
+stencil trimmed to the circle, give 41,050. Every work array of the search and the sweeps is kept
+in the contact state (neighbours.Scratch): fresh ones cost some 380 page faults a pass (memory
+the allocator had handed back), now about 1. Its cost, CPU ms from the same state, 61-81
+interleaved rounds in one process, load 6.3 on the 2-core lab machine: search 0.73, rod filter
+0.08, set-up 0.12, each of the 2 sweeps 0.2 (its bincount over 4 x 14,051 weighted entries the
+largest part): 1.34 against a 0.95 ms step. Against the pass as it was (same process, direct
+calls, load 6.4): crumpled 2.11 -> 1.61 x the step, hanging 0.39 -> 0.47 x (three runs per
+particle and a larger cell table: a fixed cost); `python -m app bench cloth` (all pairs in the
+same rounds) reads 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before): the goal of at most 1 x is NOT
+met by NumPy. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth run: no faster),
+fewer cells per particle (coarser cells on the crumpled cloth's box: more candidates), blocks of
+4,096 to 131,072 candidates (within the noise: 8,192 kept). The compiled pass (kernel=numba,
+optional: app/physics/self_compiled.py; the same pairs) visits each candidate once: 0.85-0.89 x
+the step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
