@@ -399,7 +399,7 @@ def self_collide(c, h: float) -> None:
     ends = scratch.get("ends", 4 * m, np.intp)
     ends[:m], ends[m:2 * m] = j, i
     np.add(ends[:2 * m], n, out=ends[2 * m:])
-    share = scratch.get("share", 2 * m)
+    share = scratch.get("share", 2 * m, w.dtype)
     np.divide(wj, total, out=share[:m])
     np.divide(wi, total, out=share[m:])
     share[m:] *= -1

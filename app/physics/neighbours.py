@@ -331,9 +331,11 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     ends = np.cumsum(length)
     total = int(ends[-1])
     first -= ends - length                     # q = c + first - slot for candidate c of a run
-    z = np.empty(n, np.complex64)              # positions in sorted order, x + i y
+    real = np.result_type(xs, ys, np.float32)  # float32 or float64: all_pairs's own rounding
+    pair = np.complex64 if real == np.float32 else np.complex128
+    z = np.empty(n, pair)                      # positions in sorted order, x + i y
     z.real, z.imag = xs.take(order), ys.take(order)
-    z_own = np.take(z, own, out=scratch.get("z_own", nruns, np.complex64), mode="wrap")
+    z_own = np.take(z, own, out=scratch.get("z_own", nruns, pair), mode="wrap")
     hit_run = scratch.get("hit_run", total, np.intp)
     hit_q = scratch.get("hit_q", total, np.intp)
     found = 0
@@ -353,13 +355,13 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
         q = np.take(first, run, out=scratch.get("q", size, np.intp), mode="wrap")
         q += scratch.count(c0 + size)[c0:]
         # d = x_q - x_p, x and y as one complex number (one gather, not two), then |d|^2 in
-        # float32 like the positions (all_pairs's rounding: the same pairs, exactly)
-        d = np.take(z, q, out=scratch.get("d", size, np.complex64), mode="wrap")
-        d -= np.take(z_own, run, out=scratch.get("dp", size, np.complex64), mode="wrap")
-        dd = d.view(np.float32)
+        # the positions' precision (all_pairs's rounding: the same pairs, exactly)
+        d = np.take(z, q, out=scratch.get("d", size, pair), mode="wrap")
+        d -= np.take(z_own, run, out=scratch.get("dp", size, pair), mode="wrap")
+        dd = d.view(real)
         dd *= dd
-        r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", size))
-        hit = np.less(r2, np.float32(cutoff * cutoff), out=scratch.get("hit", size, bool))
+        r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", size, real))
+        hit = np.less(r2, real.type(cutoff * cutoff), out=scratch.get("hit", size, bool))
         k = int(np.count_nonzero(hit))
         np.compress(hit, run, out=hit_run[found:found + k])
         np.compress(hit, q, out=hit_q[found:found + k])
