@@ -39,8 +39,9 @@ one broad phase and one distance evaluation, with the tangent bound of tunnellin
 took that to 0.31 and 0.29 ms (collisions + friction, the fastest of 300 steps from the same
 state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs). As a
 share of the step (the goal: at most 30 %) that is 31.8 / 30.9 % hanging / heaped at load 0.4,
-27-28 % at load 3.3, 33-34 % at load 6.5-7 (bench cloth, medians of 101 interleaved rounds, runs
-of 2026-11-26): at the goal's edge. Its time goes to some 300 NumPy calls on a few hundred to
+33-34 % at load 6.5-7 (bench cloth, medians of 101 interleaved rounds, runs of 2026-11-26), and
+27-28 % / 31-33 % at load 3.3 in two runs of the same measurement (81-101 rounds, a script):
+at the goal's edge, on either side of it from run to run. Its time goes to some 300 NumPy calls on a few hundred to
 1,900 particles each (the box's distance and normal alone ~34, Coulomb's rule ~20), not to
 arithmetic; the same pass with x and y as (2, k) arrays (fewer calls; NumPy's 2-D fancy index
 then cost more than it saved, row by row it was even) measured 31.5 -> 32.9 % hanging and
