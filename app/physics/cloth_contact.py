@@ -74,7 +74,8 @@ interleaved rounds in one process, load 6.3 on the 2-core lab machine: search 0.
 0.08, set-up 0.12, each of the 2 sweeps 0.2 (its bincount over 4 x 14,051 weighted entries the
 largest part): 1.34 against a 0.95 ms step. Against the pass as it was (same process, direct
 calls, load 6.4): crumpled 2.11 -> 1.61 x the step, hanging 0.39 -> 0.47 x (three runs per
-particle and a larger cell table: a fixed cost); `python -m app bench cloth` (all pairs in the
+particle and a larger cell table: a fixed cost); with all pairs in the same rounds, as the bench
+runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all pairs in the
 same rounds) reads 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before): the goal of at most 1 x is NOT
 met by NumPy. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth run: no faster),
 fewer cells per particle (coarser cells on the crumpled cloth's box: more candidates), blocks of
