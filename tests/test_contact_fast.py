@@ -128,6 +128,19 @@ def test_the_fine_grid_finds_exactly_all_pairs_pairs_in_crowds_lines_and_spread_
     assert len(fine_pairs(*clouds["crowd"].astype(np.float32), 6.4, scratch)[0]) > 5000
 
 
+def test_the_grids_work_arrays_are_given_back_once_a_crowd_has_spread_out():
+    """A crowd (1,500 points within a few px: a million candidates) grows the work arrays to
+    tens of MB; the next search of a spread-out cloth hands them back (a cloth that was crushed
+    once does not keep them for the rest of the run)."""
+    scratch = Scratch()
+    crowd = np.random.default_rng(0).normal(0, 2, (2, 1500)).astype(np.float32)
+    assert fine_pairs(crowd[0], crowd[1], 6.4, scratch)[2] > 1_000_000
+    assert sum(a.nbytes for a in scratch.arrays.values()) > 20e6
+    grid = (np.stack(np.meshgrid(np.arange(40.0), np.arange(40.0))).reshape(2, -1) * 8)
+    fine_pairs(*grid.astype(np.float32), 6.4, scratch)
+    assert sum(a.nbytes for a in scratch.arrays.values()) < 5e6
+
+
 needs_numba = pytest.mark.skipif(not rods_compiled.available(), reason="numba not installed")
 
 

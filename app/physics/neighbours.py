@@ -271,14 +271,15 @@ class Scratch:
     def get(self, name: str, size: int, dtype=np.float32) -> np.ndarray:
         """The first `size` elements of the work array `name` (its values are left over)."""
         a = self.arrays.get(name)
-        if a is None or a.size < size or a.dtype != dtype:
+        if a is None or a.size < size or a.dtype != dtype or a.size > max(8 * size, 1 << 20):
+            # (grown by half; given back once a crowd that needed a huge one has spread out)
             a = self.arrays[name] = np.empty(max(size + size // 2, 1024), dtype)
         return a[:size]
 
     def count(self, size: int) -> np.ndarray:
         """0, 1, ..., size - 1 (np.arange, kept)."""
         a = self.arrays.get("count")
-        if a is None or a.size < size:
+        if a is None or a.size < size or a.size > max(8 * size, 1 << 20):
             a = self.arrays["count"] = np.arange(max(size + size // 2, 1024))
         return a[:size]
 
@@ -336,6 +337,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     z = np.empty(n, pair)                      # positions in sorted order, x + i y
     z.real, z.imag = xs.take(order), ys.take(order)
     z_own = np.take(z, own, out=scratch.get("z_own", nruns, pair), mode="wrap")
+    count = scratch.count(total)
     hit_run = scratch.get("hit_run", total, np.intp)
     hit_q = scratch.get("hit_q", total, np.intp)
     found = 0
@@ -353,7 +355,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
         np.cumsum(run, out=run)
         run += r0
         q = np.take(first, run, out=scratch.get("q", size, np.intp), mode="wrap")
-        q += scratch.count(c0 + size)[c0:]
+        q += count[c0:c0 + size]
         # d = x_q - x_p, x and y as one complex number (one gather, not two), then |d|^2 in
         # the positions' precision (all_pairs's rounding: the same pairs, exactly)
         d = np.take(z, q, out=scratch.get("d", size, pair), mode="wrap")
