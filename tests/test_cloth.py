@@ -348,6 +348,15 @@ def test_the_benchmark_runs_quickly(tmp_path):
     assert out["big_ms"] > 0 and out["naive"]["speedup"] > 0 and out["draw"]["draw_ms"] > 0
     assert all(math.isfinite(g["mean_stretch"]) for g in out["grid"])
     assert (tmp_path / "cloth.png").exists()
+    # contact: the two 64 x 64 states of the goal and the fold card a teacher shows (its own
+    # settings, landed: pairs found), each beside the step without self-collision
+    rows = {r["state"]: r for r in out["contact"]["self_collision"]}
+    assert set(rows) == {"hanging", "crumpled", "fold card"}
+    card = rows["fold card"]
+    assert card["scene"] == "cloth_collisions" and card["particles"] == 120 and not card["goal"]
+    assert card["pairs"] > 0 and card["grid_ms"] > 0 and card["step_ms"] > 0
+    assert out["contact"]["self_goal"]["met"] == all(rows[s]["met"] for s in ("hanging",
+                                                                              "crumpled"))
 
 
 def test_bend_and_tear_are_accepted_names_for_bending_and_tearing():

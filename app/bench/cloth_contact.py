@@ -10,7 +10,9 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
    (a snapshot), and the share of the step is (on - off) / on. Goal: at most 30 %.
 2. Self-collision on a 64 x 64 cloth (hanging, and crumpled on the floor): the step without it,
    and the self-collision pass alone (the scene's own stopwatch) with the neighbour grid and with
-   all pairs. Goal: the grid's pass costs at most the step without it.
+   all pairs. Goal: the grid's pass costs at most the step without it. A third row measures the
+   card a teacher shows (cloth_collisions, "Fold onto itself": a 2 x 60 strip folded onto
+   itself, landed on the floor), with the card's own settings: not a goal, the case on screen.
 """
 
 from __future__ import annotations
@@ -27,6 +29,25 @@ COLLISION_GOAL = 0.30      # collisions + friction: at most this share of the st
 SELF_GOAL = 1.0            # self-collision's pass (grid): at most this many times the step
 SELF_STEPS = 17            # self-collision is timed from the state after this many steps (the
                            # crumpled cloth still unfolding on the floor)
+
+
+CARD = "fold card"
+CARD_LABEL = "Fold onto itself"
+CARD_STEPS = 120           # the folded strip has landed: two layers on the floor (~180 pairs)
+
+
+def _self_states(self_steps: int, quick: bool) -> list[tuple[str, str, dict, int]]:
+    """(state, scene, settings, steps before the timed step) of each self-collision row: the
+    64 x 64 cloth hanging and crumpled on the floor (the issue's goal), and the scene
+    cloth_collisions' own card that folds a strip onto itself, with the card's settings."""
+    from scenes import get_scene
+    card = next(t for t in get_scene("cloth_collisions").tries if t.label == CARD_LABEL)
+    fold = {k: v for k, v in card.settings.items() if k != "self_collision"}
+    big = {"rows": N, "cols": N}
+    return [("hanging", "cloth", {**big, "pins": "top"}, self_steps),
+            ("crumpled", "cloth", {**big, "pins": "none", "start": "crumpled",
+                                   "obstacles": "floor"}, self_steps),
+            (CARD, "cloth_collisions", fold, 40 if quick else CARD_STEPS)]
 
 
 def _load() -> str:
@@ -152,25 +173,24 @@ def run(report: Report) -> dict:
         methods["grid_numba"] = {"self_method": "grid", "kernel": "numba"}
     else:
         report.say("numba is not installed: self-collision's compiled pass is not measured")
-    for state, settings in (("hanging", {"pins": "top"}),
-                            ("crumpled", {"pins": "none", "start": "crumpled",
-                                          "obstacles": "floor"})):
+    for state, name, settings, steps in _self_states(self_steps, quick):
         report.progress(f"self-collision, {state}")
-        scenes = {m: get_scene("cloth")({"rows": N, "cols": N, **settings,
-                                         "self_collision": True, **extra})
+        scenes = {m: get_scene(name)({**settings, "self_collision": True, **extra})
                   for m, extra in methods.items()}
         grid = scenes["grid"]
-        for _ in range(self_steps):                     # the state every round starts from
+        for _ in range(steps):                          # the state every round starts from
             grid.advance()
         snap = grid.snapshot()
         for sc in scenes.values():                      # (numba compiles on its first step)
             _one_part(sc, snap, "self_collision")
-        base = get_scene("cloth")({"rows": N, "cols": N, **settings})
+        base = get_scene(name)(settings)
         t = interleaved({"step": lambda: _one_step(base, snap),
                          **{m: (lambda m=m: _one_part(scenes[m], snap, "self_collision"))
                             for m in scenes}}, rounds)
-        row = {"state": state, "step_ms": float(t["step"]), "step_iqr": (t["step"].lo,
-                                                                       t["step"].hi)}
+        n = grid.cloth.rows * grid.cloth.cols
+        row = {"state": state, "scene": name, "settings": settings, "steps": steps,
+               "particles": n, "goal": state != CARD, "step_ms": float(t["step"]),
+               "step_iqr": (t["step"].lo, t["step"].hi), "all_pairs_tests": n * (n - 1) // 2}
         for m, sc in scenes.items():
             row[m + "_ms"] = float(t[m])
             row[m + "_iqr"] = (t[m].lo, t[m].hi)
@@ -179,28 +199,36 @@ def run(report: Report) -> dict:
         out["self_collision"].append(row)
         numba = [t["grid_numba"], t["grid_numba"] / t["step"]] if "grid_numba" in t else \
             ["-", "-"]
-        rows.append([state, row["pairs"], t["step"], t["grid"], row["grid_tests"],
-                     t["all_pairs"], t["grid"] / t["step"], *numba])
+        rows.append([state, n, steps, row["pairs"], t["step"], t["grid"], row["grid_tests"],
+                     t["all_pairs"], row["all_pairs_tests"], t["grid"] / t["step"], *numba])
     load = _load()
-    report.table(f"Self-collision on a {N}x{N} cloth (self_distance 0.8 rods): the pass alone, "
-                 "grid against all pairs (8,386,560 tests) and the optional compiled grid "
-                 "(kernel=numba), beside the step without it, one step from the same "
-                 f"state (after {self_steps} steps), CPU ms, median (interquartile range) of "
-                 f"{rounds} interleaved rounds (goal: grid at most the step; {load})",
-                 ["state", "pairs", "step ms (off)", "grid ms", "grid tests", "all pairs ms",
-                  "grid / step", "grid (numba) ms", "numba / step"], rows)
+    report.table(f"Self-collision (self_distance 0.8 rods): the pass alone, grid against all "
+                 "pairs and the optional compiled grid (kernel=numba), beside the step without "
+                 f"it, one step from the same state (after the steps given), CPU ms, median "
+                 f"(interquartile range) of {rounds} interleaved rounds (goal, {N}x{N}: grid at "
+                 f"most the step; the last row is the scene's card '{CARD_LABEL}', "
+                 f"cloth_collisions, as a teacher shows it; {load})",
+                 ["state", "particles", "after steps", "pairs", "step ms (off)", "grid ms",
+                  "grid tests", "all pairs ms", "all-pairs tests", "grid / step",
+                  "grid (numba) ms", "numba / step"], rows)
     for row in out["self_collision"]:
         ratio = row["grid_ms"] / row["step_ms"]
         row["ratio"], row["met"] = ratio, ratio <= SELF_GOAL
         numba = ""
         if "grid_numba_ms" in row:
             row["numba_ratio"] = row["grid_numba_ms"] / row["step_ms"]
-            numba = (f"; the compiled pass (kernel=numba, optional): {row['numba_ratio']:.2f} x, "
-                     f"{verdict(row['numba_ratio'] <= SELF_GOAL)}")
-        report.say(f"Goal, self-collision ({row['state']}) at most the step without it: "
-                   f"{verdict(row['met'])} (grid pass {ratio:.2f} x the step, step with it "
-                   f"{1 + ratio:.2f} x; all pairs {row['all_pairs_ms'] / row['step_ms']:.1f} x"
-                   f"{numba}; {load})")
+            numba = (f"; the compiled pass (kernel=numba, optional): {row['numba_ratio']:.2f} x"
+                     + (f", {verdict(row['numba_ratio'] <= SELF_GOAL)}" if row["goal"] else ""))
+        what = (f"Goal, self-collision ({row['state']}) at most the step without it: "
+                f"{verdict(row['met'])} (" if row["goal"] else
+                f"The card '{CARD_LABEL}' ({row['particles']} particles, not a goal of the "
+                f"issue): ")
+        report.say(f"{what}grid pass {ratio:.2f} x the step, step with it {1 + ratio:.2f} x; "
+                   f"all pairs {row['all_pairs_ms'] / row['step_ms']:.1f} x{numba}; {load}"
+                   + (")" if row["goal"] else ""))
+    goals = [r for r in out["self_collision"] if r["goal"]]
+    out["self_goal"] = {"goal": SELF_GOAL, "worst_ratio": max(r["ratio"] for r in goals),
+                        "met": all(r["met"] for r in goals), "load": load}
     return out
 
 

@@ -37,11 +37,20 @@ the sweeps did (`python -m app bench cloth`, same run: 0.86 -> 0.42 ms hanging, 
 ms heaped on them). Testing each obstacle's paths and projecting its particles in one go, on
 one broad phase and one distance evaluation, with the tangent bound of tunnelling.through_one,
 took that to 0.31 and 0.29 ms (collisions + friction, the fastest of 300 steps from the same
-state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs).
+state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs). As a
+share of the step (the goal: at most 30 %) that is 31.8 / 30.9 % hanging / heaped at load 0.4,
+33-34 % at load 6.5-7 (bench cloth, medians of 101 interleaved rounds, runs of 2026-11-26), and
+27-28 % / 31-33 % at load 3.3 in two runs of the same measurement (81-101 rounds, a script):
+at the goal's edge, on either side of it from run to run. Its time goes to some 300 NumPy calls on a few hundred to
+1,900 particles each (the box's distance and normal alone ~34, Coulomb's rule ~20), not to
+arithmetic; the same pass with x and y as (2, k) arrays (fewer calls; NumPy's 2-D fancy index
+then cost more than it saved, row by row it was even) measured 31.5 -> 32.9 % hanging and
+32.5 -> 29.6 % heaped in one process (load 3.2): within the noise, not kept.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
-grid finds them (app/physics/neighbours.py, cells `self_distance` wide), or all pairs, the O(n^2)
-reference (`self_method`). Pairs of one grid cell (its sides and diagonals) and pairs joined by
+grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
+or all pairs, the O(n^2) reference (`self_method`). Pairs of one grid cell (its sides and
+diagonals) and pairs joined by
 a rod of an active set are left out: the rods keep them apart, and a cell may shear freely (as
 it does without self-collision). Before each of its sweeps the obstacles are projected (if on),
 so a pair resting on a floor is parted by moving the upper particle, not by pushing the lower one
@@ -56,12 +65,24 @@ within self_distance plus a skin, kept until some particle has moved half the sk
 the rest) was measured and not used: a crumpled 64 x 64 cloth let go moves up to 9-12 px per
 step away from its common fall (median 1.3 px, 99th percentile 4.3 px, steps 5-30) while
 self_distance is 6.4 px: a skin that lasts one step would be wider than 18 px, and the list
-would still be rebuilt every step. Even so,
-on that cloth (about 64,000 candidates, 14,000 pairs) the NumPy pass costs some 25 array passes
-per candidate and per pair: 1.7-1.9 x the step without it (2.5-2.8 x before these changes,
-`python -m app bench cloth`, same run, load 9), against the goal of at most 1 x. The compiled
-pass (kernel=numba, optional: app/physics/self_compiled.py; the same pairs) visits each
-candidate once: 0.85 x the step in the same runs.
+would still be rebuilt every step. On that cloth (17,956 pairs closer than 6.4 px, 14,051 of
+them not rod neighbours) cells self_distance wide gave 63,986 candidates; the finer cells, their
+stencil trimmed to the circle, give 41,050. Every work array of the search and the sweeps is kept
+in the contact state (neighbours.Scratch): fresh ones cost some 380 page faults a pass (memory
+the allocator had handed back), now about 1. Its cost, CPU ms from the same state, 61-81
+interleaved rounds in one process, load 6.3 on the 2-core lab machine: search 0.73, rod filter
+0.08, set-up 0.12, each of the 2 sweeps 0.2 (its bincount over 4 x 14,051 weighted entries the
+largest part): 1.34 against a 0.95 ms step. Against the pass as it was (same process, direct
+calls, load 6.4): crumpled 2.11 -> 1.61 x the step, hanging 0.39 -> 0.47 x (three runs per
+particle and a larger cell table: a fixed cost); with all pairs in the same rounds, as the bench
+runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all pairs in the
+same rounds) reads 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before): the goal of at most 1 x is NOT
+met by NumPy. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth run: no faster),
+fewer cells per particle (coarser cells on the crumpled cloth's box: more candidates), blocks of
+4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps' x and y as one complex
+number (two gathers and one np.add.at: the same positions, 4 % faster: not worth plainer code). The compiled pass (kernel=numba,
+optional: app/physics/self_compiled.py; the same pairs) visits each candidate once: 0.85-0.89 x
+the step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
@@ -77,8 +98,7 @@ from typing import Callable
 
 import numpy as np
 
-from app.physics.neighbours import (all_pair_blocks, grid_pair_blocks, grid_shape,
-                                    sort_into_cells)
+from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
 from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
                                    project, verlet_friction)
 from app.physics.tunnelling import through_one
@@ -121,6 +141,7 @@ class ContactState:
     joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for
     joined_at: tuple | None = None        # self-collision's rod-neighbour table (_joined)
     compiled: object = None               # the numba pass's buffers (self_compiled.Buffers)
+    scratch: Scratch = field(default_factory=Scratch)   # the grid's work arrays (fine_pairs)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -294,6 +315,7 @@ def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
     """(i, j, dx, dy, r2, tests): pairs of particles closer than `distance` (flat indices, each
     pair once), not joined by a rod of an active set, with d = x_j - x_i and |d|^2."""
     i, j, tests = close_ij(c, distance, method)
+    i, j = i.copy(), j.copy()                           # (close_ij's are work arrays)
     x = c.x.reshape(2, -1)
     dx, dy = x[0].take(j) - x[0].take(i), x[1].take(j) - x[1].take(i)
     return i, j, dx, dy, dx * dx + dy * dy, tests
@@ -302,23 +324,23 @@ def close_pairs(c, distance: float, method: str) -> tuple[np.ndarray, ...]:
 def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, int]:
     """(i, j, tests): close_pairs without the separations (what self-collision reads: it
     measures them again in each sweep). The grid is the neighbour grid of the particle dance
-    (app/physics/neighbours.py): sorted once by cell, a half stencil, so each pair is met once."""
+    (app/physics/neighbours.py) with finer cells (fine_pairs): sorted once by cell, a half
+    stencil, so each pair is met once. i and j are the contact state's work arrays (valid until
+    the next search: copy them to keep them)."""
     pts = _points(c.x)
     if method == "all_pairs":
         blocks = list(all_pair_blocks(pts, distance))
         tests = len(pts) * (len(pts) - 1) // 2
-    else:
-        lo, box, cell = _grid_frame(pts, distance)
-        local = pts - lo                                # the grid covers the cloth's own box
-        cells = sort_into_cells(local, cell, box)
-        blocks = list(grid_pair_blocks(local, cell, box, cells, separations=False))
-        tests = cells.tests
-    if not blocks:
-        return np.zeros(0, np.intp), np.zeros(0, np.intp), tests
-    i, j = (np.concatenate([b.i for b in blocks]), np.concatenate([b.j for b in blocks])) \
-        if len(blocks) > 1 else (blocks[0].i, blocks[0].j)
-    keep = ~_joined(c, i, j)
-    return i[keep], j[keep], tests
+        if not blocks:
+            return np.zeros(0, np.intp), np.zeros(0, np.intp), tests
+        i, j = np.concatenate([b.i for b in blocks]), np.concatenate([b.j for b in blocks])
+    else:                                               # the grid, over the cloth's own box
+        i, j, tests = fine_pairs(pts[:, 0], pts[:, 1], distance, c.contact.scratch)
+    keep = np.logical_not(_joined(c, i, j), out=c.contact.scratch.get("keep", i.size, bool))
+    k = int(np.count_nonzero(keep))
+    scratch = c.contact.scratch
+    return (i.compress(keep, out=scratch.get("pair_i", k, np.intp)),
+            j.compress(keep, out=scratch.get("pair_j", k, np.intp)), tests)
 
 
 def _grid_frame(pts: np.ndarray, distance: float) -> tuple[np.ndarray, tuple, float]:
@@ -349,7 +371,9 @@ def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
                     table[reach + sr * dr * w + sc * dc] = True
         st.joined_key, st.joined_at = key, (row * w + col + reach, row * w + col, table)
     plus, minus, table = st.joined_at
-    return table.take(plus.take(j) - minus.take(i))
+    k = np.take(plus, j, out=st.scratch.get("joined_k", j.size, np.intp), mode="wrap")
+    k -= minus.take(i)
+    return np.take(table, k, out=st.scratch.get("joined", j.size, bool), mode="wrap")
 
 
 def self_collide(c, h: float) -> None:
@@ -365,18 +389,28 @@ def self_collide(c, h: float) -> None:
     x = c.x.reshape(2, -1)
     xs, ys = x[0], x[1]                                 # views: writing moves the cloth
     w = c.w.ravel()
-    total = w[i] + w[j]
-    ok = total > 0
-    i, j, total = i[ok], j[ok], total[ok]
+    wi, wj = w.take(i), w.take(j)
+    total = wi + wj
+    if not total.all():                                 # both ends pinned: nothing to move
+        ok = total > 0
+        i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
     n, m = xs.size, i.size
     # one bincount a sweep gathers every particle's corrections, x and y: entries j, i (x) and
     # j + n, i + n (y), weighted by each end's share, + w_j/(w_i+w_j) at j and - w_i/(...) at i;
     # it replaces `for pair: x[j] += share_j * move; x[i] -= share_i * move`
-    ends = np.concatenate((j, i, j + n, i + n))
-    share = np.concatenate((w[j] / total, -w[i] / total))
-    share = np.concatenate((share, share))
+    scratch = st.scratch
+    ends = scratch.get("ends", 4 * m, np.intp)
+    ends[:m], ends[m:2 * m] = j, i
+    np.add(ends[:2 * m], n, out=ends[2 * m:])
+    share = scratch.get("share", 2 * m, w.dtype)
+    np.divide(wj, total, out=share[:m])
+    np.divide(wi, total, out=share[m:])
+    share[m:] *= -1
     count = np.bincount(ends[:2 * m], minlength=n)     # pairs per particle
     scale = (OVER_RELAX / np.maximum(count, 1)).astype(x.dtype)   # Jacobi's average, over-relaxed
+    move = scratch.get("move", 4 * m, np.float64)
+    xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
+    flag = scratch.get("same", m, bool)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     movable = c.free.ravel() > 0
@@ -385,18 +419,28 @@ def self_collide(c, h: float) -> None:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
             project(st.obstacles, x.T, st.margin, movable)
-        dx = xs.take(j) - xs.take(i)                    # d = x_j - x_i, for every pair
-        dy = ys.take(j) - ys.take(i)
-        r = np.sqrt(dx * dx + dy * dy)
-        same = r < 1e-6 * dmin                          # at one point: part them along x
+        # d = x_j - x_i for every pair, r = |d| (work arrays kept in the contact state: fresh
+        # ones would cost their page faults again each substep)
+        dx = np.subtract(np.take(xs, j, out=xj, mode="wrap"), np.take(xs, i, out=xi, mode="wrap"),
+                         out=xj)
+        dy = np.subtract(np.take(ys, j, out=yj, mode="wrap"), np.take(ys, i, out=yi, mode="wrap"),
+                         out=yj)
+        r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
+        same = np.less(r, 1e-6 * dmin, out=flag)        # at one point: part them along x
         if same.any():
             dx[same], r[same] = 1.0, 1.0
-        push = np.maximum(dmin - r, 0.0) / r            # the overlap, per unit of d
-        mx, my = dx * push, dy * push
-        move = np.concatenate((mx, mx, my, my)) * share
+        push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
+        np.maximum(push, 0.0, out=push)
+        push /= r
+        dx *= push
+        dy *= push
+        for k, part in enumerate((dx, dx, dy, dy)):     # (weights in float64: bincount's own)
+            np.multiply(part, share[k % 2 * m:(k % 2 + 1) * m], out=move[k * m:(k + 1) * m])
         moved = np.bincount(ends, move, 2 * n).astype(x.dtype)
-        xs += moved[:n] * scale
-        ys += moved[n:] * scale
+        moved[:n] *= scale
+        moved[n:] *= scale
+        xs += moved[:n]
+        ys += moved[n:]
 
 
 def _self_collide_compiled(c) -> None:
