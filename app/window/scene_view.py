@@ -43,7 +43,7 @@ ERROR_LINES = 12            # the HUD shows at most this many lines of an error 
                             # the whole traceback)
 
 
-class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
+class SceneView(CameraHost, TimelineHost, InstrumentHost, ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
