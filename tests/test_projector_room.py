@@ -34,3 +34,49 @@ def test_the_scrub_bar_has_its_own_strip_and_the_view_does_not_move_when_it_appe
         assert w.screen.get_rect().contains(bar) and sv.timeline_strip().contains(bar)
     finally:
         TEXT.scale = 1.0
+
+
+@pytest.mark.parametrize("size, width, scale", [((1024, 768), 320, 1.5), ((1920, 1080), 512, 1.6)])
+def test_at_f2_the_panel_leaves_a_small_window_to_the_scene_and_keeps_every_control(
+        tmp_path, size, width, scale):
+    """At F2 the panel took 36 % of a 1024-wide window (368 px). Now at most 30 % of the window
+    and never narrower than at normal text (320 px), its text as large as its top row allows
+    (1.5x there; 1920 keeps 512 px and 1.6x): every button's label whole, the material
+    drop-down opening inside the window with all six wherever the panel is scrolled (it
+    opened off the window's top once scrolled up: its direction was fixed where it was built),
+    no label cut."""
+    from app.draw.text import TEXT
+    from scenes import get_scene
+    from tests.test_projector import _pump
+    w = open_window(get_scene("mass_spring_cloth"), tmp_path, size=size, frames=1,
+                    large_text=True)
+    try:
+        sv = w.scene_view
+        panel = sv.panel
+        assert panel.rect.width == width and panel.scale == scale
+        assert sv.world_area().width == size[0] - width
+        theme = sv.manager.get_theme()
+        for b in [panel.pause_button, panel.reset_button, panel.help_button, panel.plot_button,
+                  panel.arrows_button, *panel.cards]:
+            font = theme.get_font(b.combined_element_ids)
+            assert font.size(b.text)[0] + 12 <= b.rect.width, b.text        # not cut
+            assert b.rect.right <= size[0]
+        d = panel.dropdowns["material"]
+        built_at = d.rect.top
+        for top in (size[1] - 2 * d.rect.height, d.rect.height):   # scrolled to the bottom, top
+            panel.container.vert_scroll_bar.set_scroll_from_start_percentage(
+                max(0.0, (built_at - top) / panel._height))
+            _pump(w)
+            assert 0 <= d.rect.top and d.rect.bottom <= size[1]
+            pygame.event.clear()
+            for kind in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP):   # open, then close
+                w.handle_pygame_event(pygame.event.Event(kind, pos=d.rect.center, button=1))
+                _pump(w)
+            shown = d.current_state.options_selection_list
+            assert pygame.Rect((0, 0), size).contains(shown.rect), (top, shown.rect)
+            assert len(shown.item_list) == 6
+            for kind in (pygame.MOUSEBUTTONDOWN, pygame.MOUSEBUTTONUP):
+                w.handle_pygame_event(pygame.event.Event(kind, pos=(5, 5), button=1))
+                _pump(w)
+    finally:
+        TEXT.scale = 1.0

@@ -82,7 +82,7 @@ class TimelineHost:
         if getattr(self.runner, "timeline", None) is None:
             return None
         area = super().scene_area() if above is None else above
-        h = min(max(_bar_height(), _label_font().get_linesize()) + 2 * px(5), area.height // 4)
+        h = min(max(_bar_height(), _label_font().get_linesize()) + 2 * px(2), area.height // 4)
         return pygame.Rect(area.left, area.bottom - h, area.width, h)
 
     def timeline_bar(self) -> pygame.Rect | None:
@@ -135,7 +135,7 @@ class TimelineHost:
             x = bar.right
         pygame.draw.rect(screen, KEPT_COLOR, (bar.left, bar.top, x - bar.left, bar.height),
                          border_radius=bar.height // 2)
-        pygame.draw.circle(screen, NOW_COLOR, (x, bar.centery), bar.height)
+        pygame.draw.circle(screen, NOW_COLOR, (x, bar.centery), bar.height * 3 // 4 + 1)
         img = _label_font().render(_label(tl), True, hud.DIM_COLOR)     # right of the bar
         screen.blit(img, (bar.right + bar.height + px(8), bar.centery - img.get_height() // 2))
 
@@ -163,11 +163,11 @@ class TimelineHost:
 
 
 def _bar_height() -> int:
-    return max(8, px(10))
+    return max(6, px(7))
 
 
 def _label_font():
-    return font(hud.HUD_SIZE * 3 // 4)
+    return font(hud.HUD_SIZE // 2)        # a hint: small, so the strip costs the scene little
 
 
 def _label(tl) -> str:
