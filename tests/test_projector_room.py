@@ -107,3 +107,29 @@ def test_four_panes_header_is_one_line_of_title_and_clock_and_the_wheel_refits_n
     assert "zoom x1.4 (0 fits)" in cv.header_lines()[0].text
     assert [p.layout.view.scale for p in cv.grid.panes] == pytest.approx(
         [s * 1.44 for s in scales])
+
+
+def test_four_cloth_panes_at_f2_in_a_small_window_are_as_large_as_two_in_one_text_size(tmp_path):
+    """Four panes at 1024x768 with F2: the header gives up some of F2's growth (1.17x) to leave
+    the two rows their height, while the panes' boxes kept 1.4x and three rows, so each cloth
+    was a tenth smaller than in two panes (0.305 against 0.334 px per px). The panes' text is
+    at most the header's and their first page brief: the same cloth at the same scale in two
+    and in four panes, and one text size in the whole comparison."""
+    from app.draw.text import TEXT
+    from scenes import get_scene
+    from tests.test_projector import _compare_window
+    scales = {}
+    try:
+        for n in (2, 4):
+            w = _compare_window(tmp_path, get_scene("cloth"), [f"iterations={k}" for k in
+                                                               (2, 5, 10, 50)[:n]],
+                                (1024, 768), large_text=True, frames=2)
+            grid = w.scene_view.grid
+            scales[n] = min(p.layout.view.scale for p in grid.panes)
+            if n == 4:
+                assert grid.header_size * TEXT.scale < 1.6 * 28          # the header gave up
+                assert all(p.layout.hud_text <= round(grid.header_size) for p in grid.panes)
+                assert all(p.layout.hud.bottom <= p.layout.area.bottom for p in grid.panes)
+    finally:
+        TEXT.scale = 1.0
+    assert scales[4] >= 0.99 * scales[2], scales
