@@ -133,3 +133,27 @@ def test_four_cloth_panes_at_f2_in_a_small_window_are_as_large_as_two_in_one_tex
     finally:
         TEXT.scale = 1.0
     assert scales[4] >= 0.99 * scales[2], scales
+
+
+def test_a_pane_on_its_brief_lines_puts_every_pane_on_them():
+    """At 1024x768 with F2, cotton's pane gave its headline four rows while leather's, brief,
+    gave it none: the two cloths sat at two heights and two HUDs of two kinds. Brief in one
+    pane, brief in all (on the first page)."""
+    from app.draw import hud
+    from app.draw.panes import PaneGrid
+    from app.draw.text import TEXT
+    from scenes import get_scene
+    scenes = [get_scene("cloth")({"iterations": k}) for k in (2, 20)]
+    long = "cotton, implicit Euler: h = 16.667 ms = 33x symplectic Euler's limit " * 4
+    lines = [[hud.Line("A: iterations=2"), "physics 1.2 ms/step", long],
+             [hud.Line("B: iterations=20"), "physics 3.4 ms/step", "20 sweeps/step"]]
+    brief = [ln[:2] for ln in lines]
+    TEXT.scale = 1.6
+    try:
+        grid = PaneGrid(scenes)
+        grid.fit(pygame.Rect(0, 0, 704, 768), None, lines, False, brief)
+    finally:
+        TEXT.scale = 1.0
+    assert grid.used[0] is brief[0] and grid.used[1] is brief[1]
+    a, b = (p.layout for p in grid.panes)
+    assert a.free.top - a.area.top == b.free.top - b.area.top and a.view.scale == b.view.scale

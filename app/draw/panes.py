@@ -152,6 +152,14 @@ class PaneGrid:
                 layout = p.fit(cell, ln, strip, text_size=cap)
             layouts.append(layout)
             self.used.append(ln)
+        # brief in one pane, brief in all (on the first page): at 1024x768 with F2 cotton's
+        # pane gave its headline four rows and leather's none, and the cloths sat at two heights
+        if brief is not None and not strip and any(u is b for u, b in zip(self.used, brief)):
+            for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, self.used)):
+                if ln is not None and ln is not brief[k]:
+                    p.forget()
+                    self.used[k] = brief[k]
+                    layouts[k] = p.fit(cell, brief[k], strip, text_size=cap)
         # one text size in every pane: a pane whose text had to shrink sets it for all (three
         # panes large and one small reads as a mistake)
         shown = [lay.hud_text for lay, ln in zip(layouts, self.used) if ln is not None]
