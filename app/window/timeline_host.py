@@ -15,6 +15,7 @@ import pygame
 
 from app.draw import hud
 from app.draw.energy_bars import draw_energy
+from app.draw.layout import MARGIN
 from app.draw.text import font, px
 from app.loop import SLOW_MOTION
 from app.runner import WATCH_SECONDS
@@ -68,11 +69,15 @@ class TimelineHost:
 
     # --- the bar ---------------------------------------------------------------------------
     def scene_area(self) -> pygame.Rect:
-        """The room for the scene: the view's (above the plot) less the scrub bar's strip."""
+        """The room for the scene: the view's (above the plot) less the scrub bar's strip, but
+        for the scene's bottom margin (MARGIN: the layout keeps the content that far from the
+        area's edge anyway), which may lie over the strip's top; on the second page (F4) the
+        metrics strip sits on the area's bottom edge, and the whole strip is kept clear."""
         area = super().scene_area()
         strip = self.timeline_strip(area)
         if strip is not None:
-            area.height = max(strip.top - area.top, 1)
+            over = 0 if self.window.hud_details else min(MARGIN, strip.height // 2)
+            area.height = max(strip.top + over - area.top, 1)
         return area
 
     def timeline_strip(self, above: pygame.Rect | None = None) -> pygame.Rect | None:
@@ -128,6 +133,7 @@ class TimelineHost:
         if bar is None:
             return
         tl = self.runner.timeline
+        screen.fill(self.scene.background, self.timeline_strip())   # the scene's, under it too
         pygame.draw.rect(screen, BAR_COLOR, bar, border_radius=bar.height // 2)
         n = len(tl.keys)
         x = bar.left + round(tl.index_now() / (n - 1) * bar.width)
