@@ -76,7 +76,7 @@ class TimelineHost:
         area = super().scene_area()
         strip = self.timeline_strip(area)
         if strip is not None:
-            over = 0 if self.window.hud_details else min(MARGIN, strip.height // 2)
+            over = 0 if self.window.hud_details else min(MARGIN, strip.height)
             area.height = max(strip.top + over - area.top, 1)
         return area
 
@@ -87,7 +87,7 @@ class TimelineHost:
         if getattr(self.runner, "timeline", None) is None:
             return None
         area = super().scene_area() if above is None else above
-        h = min(max(_bar_height(), _label_font().get_linesize()) + 2 * px(2), area.height // 4)
+        h = min(max(_bar_height(), _label_font().get_linesize()), area.height // 4)
         return pygame.Rect(area.left, area.bottom - h, area.width, h)
 
     def timeline_bar(self) -> pygame.Rect | None:
