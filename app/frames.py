@@ -59,16 +59,20 @@ def picture_size(scene, width: int | None, clean: bool, compare: bool,
     return w, h
 
 
-def compare_header(scenes, t: float, status: list = (), notes: list = ()) -> list:
-    """The comparison's header: the scene's title and the settings compared, the shared clock,
-    then `status` (pause, slow motion, ...) and `notes` (messages)."""
+def compare_header(scenes, t: float, status: list = (), notes: list = (),
+                   zoom: str = "") -> list:
+    """The comparison's header: one line of the scene's title, the settings compared, the shared
+    clock and the `zoom` (if any), which breaks at its " | " where the width is short (as two
+    lines, title and clock, the header took a row more than it needs: four panes were that much
+    shorter); then the colour key, `status` (pause, slow motion, ...) and `notes` (messages)."""
     compared = sorted({part.split("=")[0] for lab in labels(scenes) for part in lab.split(", ")})
     title = scenes[0].title or scenes[0].name
     dts = {s.dt for s in scenes}
     clock = f"t = {t:.2f} s" + (f" | {hud.dt_text(scenes[0])}" if len(dts) == 1 else
                                 " | each pane at its own dt, stepped to the same time")
-    return [hud.Line(f"{title}: {len(scenes)} panes compare {', '.join(compared)}",
-                     hud.ACCENT_COLOR), clock, *color_key_line(scenes[0]), *status, *notes]
+    return [hud.Line(f"{title}: {len(scenes)} panes compare {', '.join(compared)} | {clock}"
+                     + (f" | {zoom}" if zoom else ""), hud.ACCENT_COLOR),
+            *color_key_line(scenes[0]), *status, *notes]
 
 
 def compare_pane_lines(runners: list[SceneRunner], notes: list[list] | None = None,

@@ -128,11 +128,11 @@ class PaneGrid:
             else None
         key = (tuple(top[2]), tuple(corner[0]) if corner else None, len(self.panes))
         if self.cells is None or self._for != key:
-            cells, score = self.choose(top[2], lines, strip, brief)
+            cells, score = self.choose(top[2], lines, strip, brief, _cap(header, top[1]))
             self.corner = False
             if corner is not None:
                 cells4 = split(area, 2, 2, 4)[:3]
-                score4 = self.score(cells4, lines, strip, brief)
+                score4 = self.score(cells4, lines, strip, brief, _cap(header, corner[1]))
                 if score4[0] > score[0] or (score4[0] == score[0] and score4[1] > 1.01 * score[1]):
                     cells, self.corner = cells4, True
             self.cells = cells
@@ -140,15 +140,26 @@ class PaneGrid:
             for p in self.panes:
                 p.forget()
         self.header, self.header_size = (corner if self.corner else top)[:2]
+        cap = _cap(header, self.header_size)
         layouts, self.used = [], []
         for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, lines)):
-            layout = p.fit(cell, ln, strip)
-            if brief is not None and ln is not None and _cramped(layout, cell, strip):
+            if cap is not None and brief is not None and ln is not None and not strip:
+                ln = brief[k]               # (a crowded comparison: see _cap)
+            layout = p.fit(cell, ln, strip, text_size=cap)
+            if brief is not None and ln is not None and _cramped(layout, cell, strip, cap):
                 p.forget()
                 ln = brief[k]
-                layout = p.fit(cell, ln, strip)
+                layout = p.fit(cell, ln, strip, text_size=cap)
             layouts.append(layout)
             self.used.append(ln)
+        # brief in one pane, brief in all (on the first page): at 1024x768 with F2 cotton's
+        # pane gave its headline four rows and leather's none, and the cloths sat at two heights
+        if brief is not None and not strip and any(u is b for u, b in zip(self.used, brief)):
+            for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, self.used)):
+                if ln is not None and ln is not brief[k]:
+                    p.forget()
+                    self.used[k] = brief[k]
+                    layouts[k] = p.fit(cell, brief[k], strip, text_size=cap)
         # one text size in every pane: a pane whose text had to shrink sets it for all (three
         # panes large and one small reads as a mistake)
         shown = [lay.hud_text for lay, ln in zip(layouts, self.used) if ln is not None]
@@ -192,27 +203,30 @@ class PaneGrid:
         return pygame.Rect(cell.left + MARGIN, cell.top + MARGIN, width, h), size
 
     def choose(self, rest: pygame.Rect, lines: list, strip: bool,
-               brief: list | None = None) -> tuple[list[pygame.Rect], tuple]:
+               brief: list | None = None, cap: float | None = None
+               ) -> tuple[list[pygame.Rect], tuple]:
         """The arrangement whose HUD boxes fit their panes (or spill least; with the `brief`
         lines where the full ones spill) and whose smallest pane shows the most content (on a
         near tie, the first tried: side by side), and its score."""
         best, best_key = None, (-float("inf"), 0.0)
         for cols, rows in grids(len(self.panes), rest):
             cells = split(rest, cols, rows, len(self.panes))
-            key = self.score(cells, lines, strip, brief)
+            key = self.score(cells, lines, strip, brief, cap)
             if key[0] > best_key[0] or (key[0] == best_key[0] and key[1] > 1.01 * best_key[1]):
                 best, best_key = cells, key
         return best, best_key
 
     def score(self, cells: list[pygame.Rect], lines: list, strip: bool,
-              brief: list | None = None) -> tuple[float, float]:
+              brief: list | None = None, cap: float | None = None) -> tuple[float, float]:
         """(minus the worst spill of a HUD box out of its cell, or 0; the smallest pane's
         content area in pixels): higher is better."""
         layouts = []
         for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
-            lay = scene_layout(c, p.scene, ln, strip=strip)
-            if brief is not None and ln is not None and _cramped(lay, c, strip):
-                lay = scene_layout(c, p.scene, brief[k], strip=strip)
+            if cap is not None and brief is not None and ln is not None and not strip:
+                ln = brief[k]
+            lay = scene_layout(c, p.scene, ln, strip=strip, text_size=cap)
+            if brief is not None and ln is not None and _cramped(lay, c, strip, cap):
+                lay = scene_layout(c, p.scene, brief[k], strip=strip, text_size=cap)
             layouts.append(lay)
         spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
         return (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
@@ -245,14 +259,24 @@ class PaneGrid:
         return None
 
 
-def _cramped(layout: Layout, cell: pygame.Rect, details: bool = False) -> bool:
+def _cap(header: list | None, size: float) -> float | None:
+    """The panes' HUD text at most the header's size where the header had to give up some of
+    F2's growth, and the panes' first page their brief lines (four panes at 1024x768: the
+    header at 1.17x, the panes' boxes at 1.4x took the cloths' height: now the whole comparison
+    in one size, the mass-spring cloths ~15 % larger); None where the header kept its size."""
+    return size if header and size < hud.HUD_SIZE else None
+
+
+def _cramped(layout: Layout, cell: pygame.Rect, details: bool = False,
+             cap: float | None = None) -> bool:
     """A pane's HUD box runs out of its cell, or, on the first page, had to shrink its text
     below the size every pane's text has (F2 given up in one pane only) or left the picture
     under CRAMPED_FREE of the cell's height (a held pane's advice over a 10 px cloth at
     1024x768): it takes its brief lines instead. (On the second page, F4, the details are what
     was asked for: they stay.)"""
     return layout.hud.bottom > cell.bottom or (not details and (
-        layout.hud_text < hud.HUD_SIZE or layout.free.height < CRAMPED_FREE * cell.height))
+        layout.hud_text < int(round(cap or hud.HUD_SIZE)) or
+        layout.free.height < CRAMPED_FREE * cell.height))
 
 
 def _content_area(layout: Layout, cell: pygame.Rect) -> float:

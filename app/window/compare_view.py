@@ -78,7 +78,14 @@ class CompareView(SceneView):
 
     # --- layout and drawing --------------------------------------------------------------------
     def header_lines(self) -> list:
-        return compare_header(self.scenes, self.runner.world, self.state_lines(), self.notes())
+        zoom = f"zoom x{self.camera.zoom:.2g} (0 fits)" if not self.camera.fitted else ""
+        return compare_header(self.scenes, self.runner.world, self.state_lines(), self.notes(),
+                              zoom)
+
+    def zoom_state(self) -> list[str]:
+        """The zoom is said on the header's first line (a line of its own made the header a row
+        taller and re-fitted every pane under the pointer as the wheel turned)."""
+        return []
 
     def pane_lines(self, brief: bool = False) -> list[list]:
         details = self.window.hud_details
@@ -91,7 +98,7 @@ class CompareView(SceneView):
         if not self.overlays:
             return self.grid.fit(self.scene_area(), None, [None] * len(self.scenes))
         header = self.header_lines()
-        notes = tuple(getattr(n, "text", str(n)) for n in header[2:])
+        notes = tuple(getattr(n, "text", str(n)) for n in header[1:])   # (not the clock)
         if notes != self._notes_shown:          # a message came or went: redo the rooms
             self._notes_shown = notes
             self.grid.forget()

@@ -12,9 +12,7 @@ While one of the panel's text boxes has the keyboard, no key reaches the shell o
 
 from __future__ import annotations
 
-import json
 import math
-from pathlib import Path
 from typing import Any, Protocol
 
 import pygame
@@ -24,32 +22,14 @@ from app.draw.text import TEXT
 from app.scene import Scene, Try
 from app.window import gui_ids
 from app.window.panel_form import FormWidgets, _html, select as _select
+from app.window.panel_size import TOP_ROW, theme  # noqa: F401 (theme: read from here too)
 
 gui_ids.install()           # pygame_gui's theming ids, cached (app/window/gui_ids.py)
 
 
-THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
-_THEMES: dict[float, dict] = {}
-
-
-BUTTON_LABELS = ("Resume", "Reset", "Help")   # the top row's widest labels (Pause <-> Resume)
+BUTTON_LABELS = TOP_ROW   # the top row's widest labels (Pause <-> Resume)
 WATCH_HINT = ("Point at a card to see what it sets; click it: the scene starts afresh from its "
               "defaults plus the card's values, and says what to watch for.")
-
-
-def theme(scale: float) -> dict:
-    """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
-    if scale not in _THEMES:
-        data = json.loads(THEME_PATH.read_text())      # a fresh dict for every scale
-        for block in data.values():
-            f = block.get("font") if isinstance(block, dict) else None
-            if isinstance(f, dict) and "size" in f:
-                f["size"] = str(int(round(float(f["size"]) * scale)))
-            misc = block.get("misc") if isinstance(block, dict) else None
-            if isinstance(misc, dict) and "list_item_height" in misc:   # the drop-down's rows
-                misc["list_item_height"] = str(int(round(float(misc["list_item_height"]) * scale)))
-        _THEMES[scale] = data
-    return _THEMES[scale]
 
 
 class PanelHost(Protocol):
@@ -111,7 +91,7 @@ class _NumberControl:
 class ParamPanel:
     """The right-hand panel built from scene.all_params() and scene.effects (pygame-gui)."""
 
-    def __init__(self, host: PanelHost, manager, rect: pygame.Rect):
+    def __init__(self, host: PanelHost, manager, rect: pygame.Rect, scale: float | None = None):
         import pygame_gui
         from pygame_gui.elements import (UIButton, UIDropDownMenu, UIHorizontalSlider, UILabel,
                                          UIScrollingContainer, UITextBox, UITextEntryLine)
@@ -120,7 +100,7 @@ class ParamPanel:
         self.manager = manager
         self.rect = rect
         scene = host.scene
-        s = TEXT.scale
+        self.scale = s = TEXT.scale if scale is None else scale   # the theme's (panel_size.py)
         row = int(round(30 * s))
         gap = int(round(6 * s))
         pad = 10
@@ -230,14 +210,10 @@ class ParamPanel:
             if prm.choices is not None:
                 label(prm.name)
                 y += row
-                # a list that would run past the panel's bottom opens upwards (the materials'
-                # list showed only its first item)
-                below = rect.height - (y + row) - 8
-                up = len(prm.choices) * row > below and y > below
+                # (it opens down, or up where its list would run past the window: _aim_menus)
                 d = UIDropDownMenu(list(prm.choices), str(value),
                                    pygame.Rect(pad, y, inner_w, row), manager,
-                                   container=self.container,
-                                   object_id="#choice_up" if up else None)
+                                   container=self.container)
                 self.dropdowns[prm.name] = d
                 self._by_element[d] = ("choice", prm.name)
                 y += row + gap
@@ -329,6 +305,7 @@ class ParamPanel:
                 if int(ctl.slider.get_current_value()) != pos:
                     ctl.slider.set_current_value(pos)
         self.form.refresh()
+        self._aim_menus()
         for name, d in self.dropdowns.items():      # a card or a refused value changed it
             text = str(self._current(name))
             if d.selected_option[0] != text:
@@ -349,6 +326,24 @@ class ParamPanel:
         if self.arrows_button.text != want:
             self.arrows_button.set_text(want)
             self.arrows_button.change_object_id("#toggle_on" if arrows else "#toggle_off")
+
+    def _aim_menus(self) -> None:
+        """Each closed drop-down opens where its list fits in the window: down, or up where
+        there is no room below it and more above. Decided where it is now, as the panel
+        scrolls (decided where it was built, the materials' list opened off the window's top
+        once scrolled up, or showed only its first item near the bottom)."""
+        menus = [*self.dropdowns.values(), *self.form.menus.values(), self.target_menu]
+        for d in (m for m in menus if m is not None):
+            if d.current_state is not d.menu_states["closed"]:
+                continue
+            need = (len(d.options_list) + 1) * d.rect.height
+            below, above = self.rect.bottom - d.rect.bottom, d.rect.top - self.rect.top
+            want = "down" if below >= need or below >= above else "up"
+            if d.expand_direction != want:
+                d.expand_direction = want
+                for state in d.menu_states.values():
+                    state.expand_direction = want
+                d.rebuild()                 # (its arrow points the new way)
 
     def is_typing(self) -> bool:
         """True while a text box of the panel has the keyboard."""
@@ -373,7 +368,7 @@ class ParamPanel:
             return self
         self.container.kill()
         self.manager.set_focus_set(None)
-        panel = ParamPanel(self.host, self.manager, self.rect)
+        panel = ParamPanel(self.host, self.manager, self.rect, self.scale)
         panel.form.focus_prompt()
         return panel
 

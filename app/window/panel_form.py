@@ -23,8 +23,9 @@ from app.scene import InputEvent
 NOTES = {"ok": "#form_note", "warn": "#watch", "error": "#form_error",   # assets/theme.json
          "hint": "#form_hint"}
 HINT = "Type a value and press Enter; Esc puts the old one back."
-NOTE_LINES = 3          # room kept under the title for the note, so the boxes stay put when a
-                        # refusal appears (a second click lands on the same box)
+NOTE_LINES = 4          # room kept under the title for the note, so the boxes stay put when a
+                        # refusal appears (a second click lands on the same box; 4 lines: the
+                        # panel is 320 px at F2 in a 1024 px window, panel_size.py)
 
 
 class FormWidgets:

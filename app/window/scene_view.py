@@ -26,6 +26,7 @@ from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
 from app.window.camera_host import CameraHost
 from app.window.instrument_host import InstrumentHost
+from app.window.panel_size import panel_scale, panel_width
 from app.window.recorder import changed_settings
 from app.window.timeline_host import TimelineHost
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
@@ -43,7 +44,7 @@ ERROR_LINES = 12            # the HUD shows at most this many lines of an error 
                             # the whole traceback)
 
 
-class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
+class SceneView(CameraHost, TimelineHost, InstrumentHost, ShellView):
     """A running scene: its runner (stepping, timing, events, rollback), the fixed-step clock,
     the layout of world, HUD, metrics strip and panel, and the routing of input to the scene."""
 
@@ -96,22 +97,21 @@ class SceneView(CameraHost, InstrumentHost, TimelineHost, ShellView):
         import pygame_gui
         from app.window.panel import ParamPanel, theme
         size = self.window.screen.get_size()
-        self.manager = pygame_gui.UIManager(size, theme_path=theme(TEXT.scale))
+        scale = panel_scale(self.panel_width, TEXT.scale) if self.panel_visible else TEXT.scale
+        self.manager = pygame_gui.UIManager(size, theme_path=theme(scale))
         self.panel = None
         if self.panel_visible:
             area = self.world_area()
-            self.panel = ParamPanel(self, self.manager,
-                                    pygame.Rect(area.right, 0, size[0] - area.right, size[1]))
+            self.panel = ParamPanel(self, self.manager, pygame.Rect(
+                area.right, 0, size[0] - area.right, size[1]), scale)
         self.pane.forget()
         self.speed.restart()
         self.fit()
 
     @property
-    def panel_width(self) -> int:
-        if not self.panel_visible:
-            return 0
-        w = self.window.screen.get_width()
-        return min(int(round(self.window.PANEL_WIDTH * TEXT.scale)), int(w * 0.36))
+    def panel_width(self) -> int:     # (narrower at F2 in a small window: panel_size.py)
+        return panel_width(self.window.screen.get_width(), TEXT.scale) if self.panel_visible \
+            else 0
 
     def world_area(self) -> pygame.Rect:
         """The part of the window left of the panel, where the world is drawn."""

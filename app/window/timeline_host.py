@@ -1,6 +1,10 @@
 """The timeline in the window: `[` and `]`, the scrub bar along the bottom of the scene, and what
 the HUD says about it (app/timeline.py keeps the snapshots; the runner goes back and forth).
 
+The bar has a strip of its own under the scene's room, kept from the scene's first frame (before
+there is anything to scrub), so nothing of the scene is ever under the bar (it hid the collisions
+exercise's floor at 1024x768 with F2) and the view does not jump when the bar appears.
+
 A scrub is an input event like any other (a key "[" or "]"), so `--record` writes it and a
 headless replay scrubs the same way; a click on the bar is written as the presses it stands for.
 """
@@ -11,6 +15,7 @@ import pygame
 
 from app.draw import hud
 from app.draw.energy_bars import draw_energy
+from app.draw.layout import MARGIN
 from app.draw.text import font, px
 from app.loop import SLOW_MOTION
 from app.runner import WATCH_SECONDS
@@ -24,8 +29,9 @@ PYMUNK_RESUME = ("went on from a timeline snapshot: pymunk's copy leaves out its
 
 
 class TimelineHost:
-    """A mixin for SceneView: `self.runner`, `self.clock`, `self.deliver` and `scene_area()`
-    come from the view."""
+    """A mixin for SceneView: `self.runner`, `self.clock` and `self.deliver` come from the view,
+    and `scene_area()` from the mixin after it (the room above the plot), less the bar's
+    strip."""
 
     _bar: pygame.Rect | None = None
 
@@ -62,14 +68,39 @@ class TimelineHost:
                 r.watch_blowups = self.window.watch_blowups
 
     # --- the bar ---------------------------------------------------------------------------
-    def timeline_bar(self) -> pygame.Rect | None:
-        """The scrub bar's rectangle (the bottom of the scene area), or None (nothing kept)."""
-        tl = self.runner.timeline
-        if tl is None or len(tl.keys) < 2:
+    def scene_area(self) -> pygame.Rect:
+        """The room for the scene: the view's (above the plot) less the scrub bar's strip, but
+        for the scene's bottom margin (MARGIN: the layout keeps the content that far from the
+        area's edge anyway), which may lie over the strip's top; on the second page (F4) the
+        metrics strip sits on the area's bottom edge, and the whole strip is kept clear."""
+        area = super().scene_area()
+        strip = self.timeline_strip(area)
+        if strip is not None:
+            over = 0 if self.window.hud_details else min(MARGIN, strip.height)
+            area.height = max(strip.top + over - area.top, 1)
+        return area
+
+    def timeline_strip(self, above: pygame.Rect | None = None) -> pygame.Rect | None:
+        """The strip kept for the scrub bar along the bottom of `above` (the room above the
+        plot), or None (no timeline: compare mode). It is there from the first frame, before
+        there is anything to scrub, so the scene's view does not move when the bar appears."""
+        if getattr(self.runner, "timeline", None) is None:
             return None
-        area = self.scene_area()
-        h = max(8, px(10))
-        return pygame.Rect(area.left + px(12), area.bottom - h - px(6), area.width - px(24), h)
+        area = super().scene_area() if above is None else above
+        h = min(max(_bar_height(), _label_font().get_linesize()), area.height // 4)
+        return pygame.Rect(area.left, area.bottom - h, area.width, h)
+
+    def timeline_bar(self) -> pygame.Rect | None:
+        """The scrub bar's rectangle (in its strip, left of its label), or None (nothing
+        kept)."""
+        tl = getattr(self.runner, "timeline", None)
+        strip = self.timeline_strip()
+        if tl is None or len(tl.keys) < 2 or strip is None:
+            return None
+        h = min(_bar_height(), strip.height)
+        label = _label_font().size("30 s kept  [ ]")[0]   # the widest: the bar never wiggles
+        return pygame.Rect(strip.left + px(12), strip.centery - h // 2,
+                           max(strip.width - label - 2 * h - px(32), 1), h)
 
     def timeline_mouse(self, ev: pygame.event.Event) -> bool:
         """A click on the scrub bar: go to the snapshot under it (True: the click was the
@@ -102,6 +133,7 @@ class TimelineHost:
         if bar is None:
             return
         tl = self.runner.timeline
+        screen.fill(self.scene.background, self.timeline_strip())   # the scene's, under it too
         pygame.draw.rect(screen, BAR_COLOR, bar, border_radius=bar.height // 2)
         n = len(tl.keys)
         x = bar.left + round(tl.index_now() / (n - 1) * bar.width)
@@ -109,11 +141,9 @@ class TimelineHost:
             x = bar.right
         pygame.draw.rect(screen, KEPT_COLOR, (bar.left, bar.top, x - bar.left, bar.height),
                          border_radius=bar.height // 2)
-        pygame.draw.circle(screen, NOW_COLOR, (x, bar.centery), bar.height)
-        f = font(hud.HUD_SIZE * 3 // 4)
-        label = f"{tl.kept_seconds:.0f} s kept  [ ]"
-        img = f.render(label, True, hud.DIM_COLOR)
-        screen.blit(img, (bar.right - img.get_width(), bar.top - img.get_height() - 2))
+        pygame.draw.circle(screen, NOW_COLOR, (x, bar.centery), bar.height * 3 // 4 + 1)
+        img = _label_font().render(_label(tl), True, hud.DIM_COLOR)     # right of the bar
+        screen.blit(img, (bar.right + bar.height + px(8), bar.centery - img.get_height() // 2))
 
     def timeline_notes(self) -> list:
         """The HUD's word on the timeline: where the scene is in it while scrubbed, and a pymunk
@@ -136,6 +166,18 @@ class TimelineHost:
         elif self.runner.resumed_copy and self.scene.time - tl.keys[0].time < 2 * tl.every:
             lines.append(hud.Line(PYMUNK_RESUME, hud.DIM_COLOR))
         return lines
+
+
+def _bar_height() -> int:
+    return max(6, px(7))
+
+
+def _label_font():
+    return font(hud.HUD_SIZE // 2)        # a hint: small, so the strip costs the scene little
+
+
+def _label(tl) -> str:
+    return f"{tl.kept_seconds:.0f} s kept  [ ]"
 
 
 __all__ = ["TimelineHost"]

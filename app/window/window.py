@@ -40,6 +40,7 @@ from app.scene import InputEvent, ParamError, Scene, SceneError
 from app.window.clip_recorder import ClipRecorder
 from app.window.display import open_display as _open_display
 from app.window.recorder import Recorder
+from app.window.panel_size import PANEL_WIDTH
 from app.window.scene_view import SceneView
 from app.window.speed import FPS_CAP
 from app.window.views import HelpView, MenuView, ShellView
@@ -72,7 +73,7 @@ class Window:
     frame, render() to draw on `screen`. `running` turns False when the user quits.
     """
 
-    PANEL_WIDTH = 320
+    PANEL_WIDTH = PANEL_WIDTH        # the panel's width at normal text (panel_size.py)
 
     def __init__(self, screen: pygame.Surface, scenes: Sequence[type[Scene]] | None = None,
                  large_text: bool = False, events: list[InputEvent] | None = None,
