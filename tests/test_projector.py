@@ -638,3 +638,17 @@ def test_a_slanting_string_is_drawn_smooth_not_in_stair_steps():
     centre = (ink[:, ys] * np.arange(120)[:, None]).sum(axis=0) / ink[:, ys].sum(axis=0)
     assert np.abs(centre - (60 + (ys - 10) * 7 / 300)).max() < 0.25
     assert ink[:, 150].sum() / 200 >= 3.5          # still a string ~4 px wide, not a hairline
+
+
+def test_a_name_that_is_not_utf8_is_shown_with_escapes_not_a_crash():
+    """`--record bad\\xff.json` (a hostile run): the HUD's 'REC recording to ...' line held a
+    lone surrogate and pygame's font raised UnicodeEncodeError inside the window's layout."""
+    from app.draw import hud
+    from app.draw.text import font, printable, rendered, text_width
+    name = "REC  recording to bad\udcff.json"
+    f = font(18)
+    assert printable(name) == "REC  recording to bad\\udcff.json"
+    assert text_width(f, name) == f.size(printable(name))[0] > 0
+    assert rendered(f, name, (255, 255, 255)).get_width() == text_width(f, name)
+    from app.draw.hud import Line
+    assert hud.box_size([Line(name)], 18, max_width=120)[0] > 0      # wrapped, not raised

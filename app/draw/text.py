@@ -13,6 +13,31 @@ class _TextSettings:
 
 
 TEXT = _TextSettings()
+
+
+def printable(text: str) -> str:
+    """`text` with what UTF-8 cannot hold written as escapes: a file name that is not UTF-8
+    (bad\\xff.json) reaches Python as a lone surrogate, which pygame's fonts refuse."""
+    return text.encode("utf-8", "backslashreplace").decode("utf-8")
+
+
+class _Font(pygame.font.Font):
+    """pygame's Font, but a text it cannot encode is measured and drawn with escapes instead of
+    raising (a --record, --screenshot or scene file name shown on screen may hold one)."""
+
+    def size(self, text):
+        try:
+            return super().size(text)
+        except UnicodeError:
+            return super().size(printable(text))
+
+    def render(self, text, *args, **kwargs):
+        try:
+            return super().render(text, *args, **kwargs)
+        except UnicodeError:
+            return super().render(printable(text), *args, **kwargs)
+
+
 _cache: dict[int, pygame.font.Font] = {}
 
 
@@ -22,7 +47,7 @@ def font(size: int) -> pygame.font.Font:
     if size not in _cache:
         if not pygame.font.get_init():
             pygame.font.init()
-        _cache[size] = pygame.font.Font(None, size)
+        _cache[size] = _Font(None, size)
     return _cache[size]
 
 
