@@ -96,3 +96,33 @@ def test_a_narrow_panes_hud_shrinks_a_little_rather_than_break_a_phrase():
         TEXT.scale = 1.0
     assert "physics 12.19 ms/step" in rows and "largest stretch 41.7%" in rows, rows
     assert size >= PHRASE_SHRINK * 1.6 * hud.HUD_SIZE - 1 > hud.HUD_SIZE
+
+
+def test_the_integrator_lab_at_1024x768_with_f2_gives_a_short_chart_up_to_the_picture():
+    """At 1024x768 with F2 the lab gets a ~640x540 room under the HUD: the energy chart was a
+    110 px panel (a 50 px plot with one label, its lines flat), the table's text shrank to 17 px
+    glyphs, the springs and the phase portrait had 240 px. A chart too short to read is left
+    out (the table has E/E0, the phase portrait the spiral): the pictures get at least 60 % of
+    the room's height and the table 19 px glyphs. At normal text the same room keeps a chart,
+    and a 1920x1080 room at F2 keeps it beside the table."""
+    from app.draw.integrator_lab import LabDrawing, chart_least, table_rows
+    from app.draw.text import TEXT, font
+    scene = get_scene("integrators")({})
+    for _ in range(30):
+        scene.advance()
+    d, rows = LabDrawing(), table_rows(scene)
+    try:
+        TEXT.scale = 1.6
+        room = pygame.Rect(8, 197, 640, 540)
+        r = d.layout(room, rows)
+        assert r.energy.height == 0, r
+        assert min(r.systems.height, r.phase.height) >= 0.6 * room.height, r
+        assert font(r.table_size).get_height() >= 19, r.table_size
+        assert r.table.bottom <= room.bottom and r.systems.bottom < r.table.top, r
+        wide = d.layout(pygame.Rect(8, 130, 1390, 880), rows)
+        assert wide.energy.height >= chart_least() and wide.energy.top == wide.table.top, wide
+        TEXT.scale = 1.0
+        r = d.layout(pygame.Rect(8, 95, 680, 645), rows)
+        assert r.energy.height >= chart_least(), r
+    finally:
+        TEXT.scale = 1.0

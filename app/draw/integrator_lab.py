@@ -5,8 +5,8 @@ Text is sized in screen pixels (the size at text scale 1, times the large-text s
 with the zoom: at a small window a zoomed-out picture had 10 px labels, and F2 made the charts
 smaller. The panels are placed from the measured size of their text: the table takes the room
 its rows need (its text shrinks only when the rectangle is too narrow, never below
-SMALLEST_TEXT), the energy chart goes beside it when the rectangle is wide enough and above it
-otherwise, and the systems and the phase portrait share what is left. Every label drawn is
+SMALLEST_TEXT), the energy chart goes beside it when the rectangle is wide enough, above it otherwise,
+and nowhere where it would be too short to read (chart_least), and the systems and the phase portrait share what is left. Every label drawn is
 remembered in `labels` (its rectangle and text) so that a test can check that none overlaps
 another, at any window and text size.
 """
@@ -133,19 +133,32 @@ class LabDrawing:
             # the systems and the phase portrait keep at least TOP_SHARE of the height: they
             # are the picture (at 1024x768 with F2 they had 40 %: springs 10 px tall); the
             # table's text shrinks (never below SMALLEST_TEXT) before the energy chart goes
-            # below its least height, and the chart gets what is left, up to 30 %
+            # below the least height a class can read, and the chart gets what is left, up
+            # to 30 %
             below = rect.height - int(TOP_SHARE * rect.height) - 2 * GAP
-            energy_least = max(int(70 * s), 80)
+            energy_least = chart_least()
+            widest = size
             while need_h > below - energy_least and size > SMALLEST_TEXT:
                 size = max(SMALLEST_TEXT, size - 1)
                 need_w, need_h = self.table_need(rows, size)
-            table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
-            energy_h = min(max(below - need_h, energy_least), int(0.3 * rect.height))
-            energy = pygame.Rect(rect.left, table.top - GAP - energy_h, rect.width, energy_h)
-            top_bottom = energy.top - GAP
-            if below - need_h < energy_least // 2:       # a tall HUD (a CG message at F2):
-                energy = pygame.Rect(rect.left, table.top, rect.width, 0)   # no chart (the
-                top_bottom = table.top - GAP             # table has E/E0): the picture first
+            if need_h <= below - energy_least:
+                table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
+                energy_h = min(below - need_h, int(0.3 * rect.height))
+                energy = pygame.Rect(rect.left, table.top - GAP - energy_h, rect.width, energy_h)
+                top_bottom = energy.top - GAP
+            else:
+                # no room for a chart a class can read (at 1024x768 with F2 it was a 50 px
+                # plot with one label, its lines flat): none (the table has E/E0, the phase
+                # portrait the spiral); the table's text back to the largest that fits the
+                # width and what is below the pictures, and the rest is the picture's
+                size = widest
+                need_w, need_h = self.table_need(rows, size)
+                while need_h > below + GAP and size > SMALLEST_TEXT:
+                    size = max(SMALLEST_TEXT, size - 1)
+                    need_w, need_h = self.table_need(rows, size)
+                table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
+                energy = pygame.Rect(rect.left, table.top, rect.width, 0)
+                top_bottom = table.top - GAP
         top = pygame.Rect(rect.left, rect.top, rect.width, max(top_bottom - rect.top, 1))
         if top.height > 1.3 * top.width / 2:             # tall and narrow: one above the other
             half = (top.height - GAP) // 2
@@ -229,7 +242,9 @@ class LabDrawing:
             color = run.color if run else OFF
             cx = view.pt(origin)[0]
             y = names_row.top + 2 + (font(size).get_linesize() if staggered and i % 2 else 0)
-            self.text(surface, (cx, y), SHORT[name], color, size, "midtop", within=names_row)
+            half_w = font(size).size(SHORT[name])[0] // 2 + 1   # the end names kept inside
+            x = min(max(cx, names_row.left + half_w), names_row.right - half_w)
+            self.text(surface, (x, y), SHORT[name], color, size, "midtop", within=names_row)
             half = 40 if bounce else 18                  # the floor runs under every column
             pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (half, 0)),
                              view.pt(origin + (half, 0)), px(2))
@@ -383,6 +398,13 @@ class LabDrawing:
                           "topright" if i else "topleft", within=r)
             if note:
                 self.text(surface, (note_x, y), note, color, size, within=r)
+
+
+def chart_least() -> int:
+    """The least height of an energy chart a class can read: its title, its time label and a
+    plot with room for three decade labels (at the text size now)."""
+    title, small = font(TITLE_SIZE).get_linesize(), font(SMALL_SIZE).get_linesize()
+    return title + 6 + small + 4 * small + 8
 
 
 def table_rows(scene) -> list[tuple[tuple[int, int, int], tuple[str, ...], tuple[str, str]]]:
