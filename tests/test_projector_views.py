@@ -126,3 +126,35 @@ def test_the_integrator_lab_at_1024x768_with_f2_gives_a_short_chart_up_to_the_pi
         assert r.energy.height >= chart_least(), r
     finally:
         TEXT.scale = 1.0
+
+
+@pytest.mark.parametrize("name", ["mass_spring_cloth", "trampoline", "pivoting_l",
+                                  "double_pendulum"])
+def test_every_phrase_of_the_hud_fits_a_row_at_1024x768_with_f2(name, tmp_path):
+    """A row breaks between phrases (' | ', '; ', two spaces), and inside a phrase only when it
+    is wider than the row: at 1024x768 with F2 the scenes' lines were single long phrases that
+    broke mid-thought ("energy -48.53 J (0 at the start;" / "-0.07079 J in 1 s)", "coupling
+    impulse 14.87 kg px/s" / "this step", "0.1 px past: a" / "soft joint", "0.67 px apart" /
+    "after 4.5 s"). Every phrase of the scene's own lines now fits the HUD's row as the
+    layout wraps it there, so no row breaks inside one."""
+    from app.draw.text import TEXT, font
+    from app.draw.wrap import PHRASE_GAP
+    from tests.test_window import open_window
+    w = open_window(get_scene(name), tmp_path, size=(1024, 768))
+    for _ in range(60):
+        w.update(1 / 60)
+    if name == "pivoting_l":                  # the longest line: the slide past its max
+        top = w.scene.slide.max
+        w.scene.slide_distance = lambda: top + 0.2
+    TEXT.scale = 1.6
+    try:
+        w.scene_view.pane.forget()
+        w.render()
+        layout = w.scene_view.layout
+        f, room = font(layout.hud_text), layout.hud_width - 2 * 8
+        phrases = [p.strip() for x in w.scene.hud_lines()
+                   for p in PHRASE_GAP.split(getattr(x, "text", str(x)))[::2]]
+        wide = [(p, f.size(p)[0]) for p in phrases if f.size(p)[0] > room]
+    finally:
+        TEXT.scale = 1.0
+    assert len(phrases) >= 3 and not wide, (room, wide)
