@@ -389,7 +389,7 @@ class TrampolineScene(PymunkScene):
         down from where it is dropped, and the floor: not the world's empty sides and sky
         (the band was a 330 px strip under a blank band at 1024x768 with F2)."""
         p = self.p
-        half = max(GAP, GAP * (1 + p["slack"])) / 2 + 40
+        half = (GAP if p["pins"] == "ends" else GAP * (1 + p["slack"])) / 2 + 40
         body = p["size"] * (BOX_ASPECT if p["body"] == "box" else 1.0)
         half = max(half, body + 20)
         top = min(PIN_Y - p["drop_height"] - 2 * p["size"] - 30, PIN_Y - 60)

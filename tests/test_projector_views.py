@@ -158,3 +158,25 @@ def test_every_phrase_of_the_hud_fits_a_row_at_1024x768_with_f2(name, tmp_path):
     finally:
         TEXT.scale = 1.0
     assert len(phrases) >= 3 and not wide, (room, wide)
+
+
+@pytest.mark.parametrize("card", ["Catch and throw a ball", "A box in a hammock"])
+def test_the_trampolines_view_holds_the_band_the_drop_and_the_floor_not_the_empty_world(card):
+    """The trampoline was fitted as the whole 960x720 world: at 1024x768 with F2 the band was
+    a 330 px strip under a blank sky. Its bounds are now the band with its slack, the body's
+    way down and the floor: at most 80 % of the world's width, and they hold the body where
+    it starts, the floor and every particle of the band for 2 s of the card's run."""
+    from scenes.trampoline import FLOOR_Y
+    cls = get_scene("trampoline")
+    scene = cls({})
+    scene.apply_card(cls.find_card(card))
+    x, y, w, h = scene.content_bounds()
+    assert w <= 0.8 * scene.world_size[0], (x, y, w, h)
+    body = scene.shape.bb
+    assert x <= body.left and body.right <= x + w and y <= body.bottom, (body, (x, y, w, h))
+    assert y + h >= FLOOR_Y
+    for _ in range(120):
+        scene.advance()
+        pts = scene.cloth.x
+        assert x <= pts[0].min() and pts[0].max() <= x + w, (card, scene.time)
+        assert y <= pts[1].min() and pts[1].max() <= y + h, (card, scene.time)
