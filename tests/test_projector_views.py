@@ -180,3 +180,19 @@ def test_the_trampolines_view_holds_the_band_the_drop_and_the_floor_not_the_empt
         pts = scene.cloth.x
         assert x <= pts[0].min() and pts[0].max() <= x + w, (card, scene.time)
         assert y <= pts[1].min() and pts[1].max() <= y + h, (card, scene.time)
+
+
+def test_the_spring_columns_names_go_on_two_rows_rather_than_shrink():
+    """At 1024x768 (normal text) the six names under the springs fitted one row only at 11 px
+    glyphs; two staggered rows take them at full size (SMALL_SIZE), inside the panel, apart."""
+    from app.draw.integrator_lab import SHORT, SMALL_SIZE, LabDrawing
+    from app.draw.text import font
+    scene = get_scene("integrators")({})
+    for _ in range(10):
+        scene.advance()
+    d = LabDrawing()
+    d.draw(pygame.Surface((1024, 768)), pygame.Rect(8, 95, 680, 645), scene)
+    names = [(r, t) for r, t in d.labels if t in SHORT.values() and r.top < d.rects.table.top]
+    assert len(names) == 6 and all(d.rects.systems.contains(r) for r, _ in names), names
+    assert all(r.height >= font(SMALL_SIZE).get_height() for r, _ in names), names
+    assert not any(a.colliderect(b) for i, (a, _) in enumerate(names) for b, _ in names[i + 1:])

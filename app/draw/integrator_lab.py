@@ -230,9 +230,10 @@ class LabDrawing:
         column = int(view.len(80.0))
         names = list(SHORT.values()) + ["blew up", "t=88.88s"]
         size = fit_size(names, SMALL_SIZE, column - 4, smallest=SMALLEST_TEXT)
-        staggered = max(font(size).size(t)[0] for t in names) > column - 4
-        if staggered:               # too narrow for a row of names: two rows, every other one
-            size = fit_size(names, SMALL_SIZE, 2 * column - 4, smallest=int(SMALLEST_TEXT * 0.7))
+        two_rows = fit_size(names, SMALL_SIZE, 2 * column - 4, smallest=int(SMALLEST_TEXT * 0.7))
+        staggered = max(font(size).size(t)[0] for t in names) > column - 4 or two_rows > size
+        if staggered:               # too narrow for a row of names at full size: two rows,
+            size = two_rows         # every other one (at 1024x768 one row shrank them to 11 px)
         named = max(font(size).size(t)[0] for t in names) <= 2 * column - 4   # else too small
         if not named:                # for any name (the table has them): none
             names_row = pygame.Rect(0, 0, 0, 0)
