@@ -197,3 +197,38 @@ def test_the_spring_columns_names_go_on_two_rows_rather_than_shrink():
     assert len(names) == 6 and all(d.rects.systems.contains(r) for r, _ in names), names
     assert all(r.height >= font(SMALL_SIZE).get_height() for r, _ in names), names
     assert not any(a.colliderect(b) for i, (a, _) in enumerate(names) for b, _ in names[i + 1:])
+
+
+def test_the_integrator_labs_springs_are_drawn_wider_on_a_projector_screen():
+    """The coils were 1 px hairlines at any size: at 1920x1080 (springs ~250 px long) they are
+    at least 2 px wide, and the pixels of RK4's colour in the systems panel grow with them
+    (a fresh scene at t = 0: nothing chaotic);
+    in a 1024x768 room at F2 they stay 1 px (coils 8 px apart)."""
+    from app.draw.integrator_lab import LabDrawing
+    from app.draw.text import TEXT
+    scene = get_scene("integrators")({})
+    d = LabDrawing()
+    rk4 = next(r.color for r in scene.runs if r.name == "rk4")
+
+    def coloured(room):
+        surface = pygame.Surface((1920, 1080))
+        d.draw(surface, room, scene)
+        box = d.rects.systems
+        pixels = pygame.surfarray.pixels3d(surface)[box.left:box.right, box.top:box.bottom]
+        return int(np.count_nonzero((pixels == rk4).all(axis=-1)))
+    big = coloured(pygame.Rect(8, 130, 1390, 880))
+    assert d.spring_width >= 2
+    from app.draw import integrator_lab   # the same frame with the coils 1 px wide, as before
+    thin = integrator_lab.SPRING_LINE
+    try:
+        integrator_lab.SPRING_LINE = 0.1
+        hairline = coloured(pygame.Rect(8, 130, 1390, 880))
+    finally:
+        integrator_lab.SPRING_LINE = thin
+    assert big >= 1.3 * hairline, (big, hairline)   # (the bob, the same in both, counts too)
+    TEXT.scale = 1.6
+    try:
+        coloured(pygame.Rect(8, 197, 640, 540))
+    finally:
+        TEXT.scale = 1.0
+    assert d.spring_width == 1

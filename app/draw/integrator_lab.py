@@ -41,6 +41,7 @@ TOP_SHARE = 0.55         # the systems and the phase portrait: at least this sha
 # the systems' own coordinates (px of the problem, the lab's units): the panel shows this box
 SYSTEM_BOX = (0.0, 0.0, 480.0, 300.0)
 SPRING_DRAW_SCALE = 0.8  # the spring column is drawn at 80 % so the bobs fit the box
+SPRING_LINE = 1.6        # the springs' line width in SYSTEM_BOX units (1 px at zoom 0.6)
 BOUNCE_FLOOR = 270.0     # bounce: where the floor is drawn in SYSTEM_BOX
 BALL_RADIUS = 10.0       # bounce: the ball's radius (its lowest point is the problem's y)
 PLOT_SECONDS = 10.0
@@ -66,6 +67,7 @@ class LabDrawing:
         self._texts: dict = {}
         self.labels: list[tuple[pygame.Rect, str]] = []
         self.table_text = 0           # the table's glyph height in the last frame (tests)
+        self.spring_width = 1         # the springs' line width in the last frame (px)
 
     # ----- text ---------------------------------------------------------------------------------
     def render(self, text: str, color, size: int) -> pygame.Surface:
@@ -226,6 +228,9 @@ class LabDrawing:
         drawn = pygame.Rect(view.pt(SYSTEM_BOX[:2]), (round(view.len(SYSTEM_BOX[2])),
                                                        round(view.len(SYSTEM_BOX[3]))))
         self.springs_box = drawn                        # (tests: how much room it has)
+        # the coils as wide as the zoom draws 1.6 units: 1 px in a small window, 2-3 on a
+        # projector's 1920x1080 (1 px springs were hairlines there)
+        self.spring_width = max(1, round(view.len(SPRING_LINE)))
         names_row = pygame.Rect(box.left, drawn.bottom, box.width, names_h)
         column = int(view.len(80.0))
         names = list(SHORT.values()) + ["blew up", "t=88.88s"]
@@ -266,7 +271,7 @@ class LabDrawing:
                 continue
             bob = np.clip(origin + k * scene.problem.points(run.ps.x)[-1] + lift, -1e4, 1e4)
             if not bounce:
-                _spring(surface, view, origin, bob, run.color)
+                _spring(surface, view, origin, bob, run.color, self.spring_width)
             pygame.draw.circle(surface, run.color, view.pt(bob), max(2, round(view.len(10))))
 
     def _bodies(self, surface, view: View, scene, x_ref) -> None:
@@ -454,15 +459,15 @@ def _mapper(rect: pygame.Rect, xlo, xhi, ylo, yhi):
     return to_px
 
 
-def _spring(surface, view: View, a, b, color) -> None:
-    """A zig-zag from a to b (12 coils)."""
+def _spring(surface, view: View, a, b, color, width: int = 1) -> None:
+    """A zig-zag from a to b (12 coils), `width` px wide."""
     s = np.linspace(0.0, 1.0, 26)
     d = b - a
     normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
     wiggle = np.where(np.arange(26) % 2 == 0, -1.0, 1.0) * 8.0
     wiggle[[0, 1, -2, -1]] = 0.0
     pts = a + s[:, None] * d + wiggle[:, None] * normal
-    pygame.draw.lines(surface, color, False, view.pts(pts), 1)
+    pygame.draw.lines(surface, color, False, view.pts(pts), width)
 
 
 __all__ = ["LabDrawing", "LabRects", "table_rows", "decade_ticks"]
