@@ -206,7 +206,8 @@ class MassSpringContact:
         deep = self.shown("penetration_max", m["penetration_max"])
         if not self.penalty:
             # (phrases parted by '  |  ': a row breaks between them at F2, never inside)
-            return [f"contact: Baraff & Witkin's projection  |  velocity filtered  |  {fr}: "
+            # (Baraff & Witkin's name is in the contact parameter's help and the docstring)
+            return [f"contact: projection, velocity filtered  |  {fr}: "
                     f"{m['contacts']} touching, deepest {deep}"]
         own, bound = self.penalty_limits()
         h = self.dt / self.p["substeps"]
