@@ -5,10 +5,11 @@ Text is sized in screen pixels (the size at text scale 1, times the large-text s
 with the zoom: at a small window a zoomed-out picture had 10 px labels, and F2 made the charts
 smaller. The panels are placed from the measured size of their text: the table takes the room
 its rows need (its text shrinks only when the rectangle is too narrow, never below
-SMALLEST_TEXT), the energy chart goes beside it when the rectangle is wide enough, above it otherwise,
-and nowhere where it would be too short to read (chart_least), and the systems and the phase portrait share what is left. Every label drawn is
-remembered in `labels` (its rectangle and text) so that a test can check that none overlaps
-another, at any window and text size.
+SMALLEST_TEXT), the energy chart goes beside it when the rectangle is wide enough, above it
+otherwise, and nowhere where it would be too short to read (chart_least: the table has E/E0),
+and the systems and the phase portrait share what is left. Every label drawn is remembered in
+`labels` (its rectangle and text) so that a test can check that none overlaps another, at any
+window and text size.
 """
 
 from __future__ import annotations
