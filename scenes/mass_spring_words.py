@@ -89,12 +89,13 @@ class MassSpringWords:
                 or energy - start <= ENERGY_GAIN_SHOWN * JOULE:
             return ""
         gain = self.shown("energy", energy - start)
+        # (phrases parted by '  |  ' or '; ', each short enough for a row at 1024x768 with F2)
         if p["cg_tolerance"] > EXACT_TOLERANCE:
-            return (f"energy {gain} above its start: not physics, the solve: CG stops at "
-                    f"cg_tolerance {p['cg_tolerance']:g} and a step this stiff amplifies what "
-                    f"it leaves (cg_tolerance {EXACT_TOLERANCE:g}: exact, drains it)")
-        return (f"energy {gain} above its start: one linearised step this large overshoots "
-                "(a higher hertz or more substeps: smaller steps)")
+            return (f"energy {gain} above its start  |  not physics: the solve  |  CG stops at "
+                    f"cg_tolerance {p['cg_tolerance']:g}; a step this stiff amplifies the rest"
+                    f"  |  (cg_tolerance {EXACT_TOLERANCE:g}: exact, drains it)")
+        return (f"energy {gain} above its start  |  a linearised step this large overshoots"
+                "  |  smaller steps: higher hertz, more substeps")
 
     def _where(self) -> str:
         """Where the step is against the explicit limit and in which band: 'h = 16.667 ms  |
