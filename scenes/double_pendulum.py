@@ -147,7 +147,8 @@ class DoublePendulumScene(PymunkScene):
     world_keys = ("space", "bobs", "joints", "ode", "trail", "ghost_trail", "track")
     color_key = (((230, 159, 0), "ghost: the exact equations (RK4)"),
                  ((86, 180, 233), "pymunk"),
-                 ((230, 97, 76), f"x: where they parted ({PART_PX:g} px)"))
+                 ((230, 97, 76), f"x: parted by {PART_PX:g} px"))   # (short: with pymunk,
+    # one row of the key at 1024x768 with F2)
     metric_units = {"energy_drift": Unit("%", 100.0, resolution=1e-4),
                     "energy_drift_max": Unit("%", 100.0, resolution=1e-4),
                     "reference_energy_drift": Unit("%", 100.0, resolution=1e-6),
@@ -342,25 +343,27 @@ class DoublePendulumScene(PymunkScene):
 
     def hud_lines(self) -> list[str]:
         m = self.metrics()
-        lines = [f"energy drift: {100 * m['energy_drift']:+.3f}% "
-                 f"(worst |drift| {100 * m['energy_drift_max']:.3f}%)"]
+        # phrases parted by '  |  ', each short enough for a row at 1024x768 with F2 (a row
+        # breaks between them: never "0.67 px apart" / "after 4.5 s")
+        lines = [f"energy drift {100 * m['energy_drift']:+.3f}%  |  "
+                 f"worst {100 * m['energy_drift_max']:.3f}%"]
         if m["engine_blowup_t"] is not None:
             what = "blew up" if m["energy_drift"] > 0 else "bled its energy"
-            lines.append(f"the engine {what} at {m['engine_blowup_t']:.2f} s (drift past "
-                         f"{100 * BLOWUP_DRIFT:.0f}%): numerics, not chaos")
+            lines.append(f"the engine {what} at {m['engine_blowup_t']:.2f} s  |  drift past "
+                         f"{100 * BLOWUP_DRIFT:.0f}%: numerics, not chaos")
         if self.mouse_joint is not None:
-            lines.append("held by the mouse: the ghost restarts when you let go")
+            lines.append("held by the mouse  |  the ghost restarts when you let go")
         elif "reference" not in self.on:
             lines.append("reference off (the ghost is not integrated)")
         elif m["reference_blowup_t"] is not None:
-            lines.append(f"reference blew up at t = {m['reference_blowup_t']:.2f} s (its "
-                         f"adaptive step could not follow)")
+            lines.append(f"reference blew up at t = {m['reference_blowup_t']:.2f} s  |  its "
+                         f"adaptive step could not follow")
             lines.append("ghost hidden, the engine runs on; drag a bob to restart it")
         elif m["divergence_time"] is not None:
-            lines.append(f"parted from the exact solution after {m['divergence_time']:.2f} s, "
-                         f"at the X (now {m['reference_divergence']:.0f} px apart)")
+            lines.append(f"parted from the exact solution  |  after {m['divergence_time']:.2f} "
+                         f"s, at the X  |  now {m['reference_divergence']:.0f} px apart")
         else:
-            lines.append(f"still with the exact solution: {m['reference_divergence']:.2f} px "
+            lines.append(f"still with the exact solution  |  {m['reference_divergence']:.2f} px "
                          f"apart after {self.time - self.track['start']:.1f} s")
         return lines
 

@@ -437,7 +437,8 @@ class FallingBallsScene(BallChecks, PymunkScene):
         c = self.counts
         asleep = ("sleeping off" if "sleeping" not in self.on
                   else f"{self.asleep_count()} asleep")
-        lines = [f"balls: {len(self.balls)} alive ({asleep}), {c['spawned']} spawned, "
+        # (phrases parted by '  |  ': a row breaks between them at F2, never inside one)
+        lines = [f"balls: {len(self.balls)} alive ({asleep})  |  {c['spawned']} spawned, "
                  f"{c['removed']} removed"]
         if c["tunneled"]:
             lines.append(f"TUNNELED through the L: {c['tunneled']} of {c['spawned']} "

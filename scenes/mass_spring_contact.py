@@ -205,15 +205,17 @@ class MassSpringContact:
         fr = f"mu {self.p['mu']:g}" if "friction" in self.on else "no friction"
         deep = self.shown("penetration_max", m["penetration_max"])
         if not self.penalty:
-            return [f"contact: projection, velocity filtered (Baraff & Witkin), {fr}: "
+            # (phrases parted by '  |  ': a row breaks between them at F2, never inside)
+            # (Baraff & Witkin's name is in the contact parameter's help and the docstring)
+            return [f"contact: projection, velocity filtered  |  {fr}: "
                     f"{m['contacts']} touching, deepest {deep}"]
         own, bound = self.penalty_limits()
         h = self.dt / self.p["substeps"]
         verdict = "below it" if h < own else "past it: unstable in contact"
-        return [f"contact: penalty k_c {self.p['contact_stiffness']:g} kg/s^2, {fr}: "
+        return [f"contact: penalty k_c {self.p['contact_stiffness']:g} kg/s^2  |  {fr}: "
                 f"{m['contacts']} touching, deepest {deep}",
-                f"its limit 2 sqrt(m/k_c) = {own * 1e3:.3g} ms (cloth and contact: >= "
-                f"{bound * 1e3:.3g} ms); h = {h * 1e3:.3g} ms, {verdict}"]
+                f"its limit 2 sqrt(m/k_c) = {own * 1e3:.3g} ms  |  cloth and contact: >= "
+                f"{bound * 1e3:.3g} ms; h = {h * 1e3:.3g} ms, {verdict}"]
 
     def contact_bounds(self, bounds):
         """bounds grown to hold every obstacle that has finite bounds, inside the world."""

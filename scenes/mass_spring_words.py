@@ -89,16 +89,18 @@ class MassSpringWords:
                 or energy - start <= ENERGY_GAIN_SHOWN * JOULE:
             return ""
         gain = self.shown("energy", energy - start)
+        # (phrases parted by '  |  ' or '; ', each short enough for a row at 1024x768 with F2)
         if p["cg_tolerance"] > EXACT_TOLERANCE:
-            return (f"energy {gain} above its start: not physics, the solve: CG stops at "
-                    f"cg_tolerance {p['cg_tolerance']:g} and a step this stiff amplifies what "
-                    f"it leaves (cg_tolerance {EXACT_TOLERANCE:g}: exact, drains it)")
-        return (f"energy {gain} above its start: one linearised step this large overshoots "
-                "(a higher hertz or more substeps: smaller steps)")
+            return (f"energy {gain} above its start  |  not physics: the solve  |  CG stops at "
+                    f"cg_tolerance {p['cg_tolerance']:g}; a step this stiff amplifies the rest"
+                    f"  |  (cg_tolerance {EXACT_TOLERANCE:g}: exact, drains it)")
+        return (f"energy {gain} above its start  |  a linearised step this large overshoots"
+                "  |  smaller steps: higher hertz, more substeps")
 
     def _where(self) -> str:
-        """Where the step is against the explicit limit and in which band: 'h = 16.667 ms =
-        33x symplectic Euler's limit (...): PAST THE LIMIT ...' (the line a class reads)."""
+        """Where the step is against the explicit limit and in which band: 'h = 16.667 ms  |
+        33x symplectic Euler's limit (27x at rest)' (the line a class reads; its phrases
+        parted by '  |  ' or '; ', each short enough for a row at 1024x768 with F2)."""
         p = self.p
         h = self.dt / p["substeps"]
         om, limit, name = self.omega_max, self.explicit_limit(), p["integrator"]
@@ -110,9 +112,9 @@ class MassSpringWords:
             # the limit of the cloth as it is now: draped, it is stiffer than at rest (a held
             # explicit pane beside, rolled back to its start, reads the one at rest): say both
             rest = self.watch.rest("symplectic_euler")
-            then = (f", {_times(h / rest)}x at rest" if rest and
+            then = (f" ({_times(h / rest)}x at rest)" if rest and
                     _times(h / rest) != _times(h / limit) else "")
-            where += (f" = {_times(h / limit)}x symplectic Euler's limit (now{then})"
+            where += (f"  |  {_times(h / limit)}x symplectic Euler's limit{then}"
                       if om > 0 else "")
         elif om <= 0:                          # every stiffness 0: no top mode, no limit
             where += ": no stiffness, so no step limit"
@@ -123,9 +125,10 @@ class MassSpringWords:
             # estimate on one mode: where damping mixes the modes, off by up to ~35 %
             kind = "damped" if name == "symplectic_euler" else "on one mode"
             rest = self.watch.rest(name) or pred
-            seen = (f"; {rest * 1e3:.3f} at rest" if rest > pred * 1.0005 else "")
-            where += (f" = {_times(h / pred)}x {title}'s limit ({pred * 1e3:.3f} ms, {kind}, "
-                      f"lowest so far{seen}): " + BAND_WORDS[band].format(m=marginal(name)))
+            seen = (f", {rest * 1e3:.3f} at rest" if rest > pred * 1.0005 else "")
+            where += (f"  |  {_times(h / pred)}x {title}'s limit  |  {pred * 1e3:.3f} ms "
+                      f"({kind}, lowest so far{seen})  |  "
+                      + BAND_WORDS[band].format(m=marginal(name)))
         return where
 
     def hud_lines(self) -> list[str]:
@@ -136,8 +139,8 @@ class MassSpringWords:
         title = INTEGRATORS[p["integrator"]].title
         change = self._energy_change().strip()[1:-1]    # '-0.53 J in 0.93 s' (its zero named)
         lines = [f"{p['material']}, {title}: {self._where()}",
-                 f"energy {self.shown('energy', m['energy'])} "
-                 f"(0 at the start{'; ' + change if change else ''})  |  "
+                 f"energy {self.shown('energy', m['energy'])} (0 at the start)"
+                 f"{'  |  ' + change if change else ''}  |  "
                  f"max stretch {self.shown('max_stretch', m['max_stretch'])}"]
         if not INTEGRATORS[p["integrator"]].explicit:
             lines.append(self._solve_line())

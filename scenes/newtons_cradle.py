@@ -172,8 +172,14 @@ class NewtonsCradleScene(PymunkScene):
     )
 
     def content_bounds(self) -> tuple[float, float, float, float]:
-        """The anchor bar and every place a ball can swing to (up to 60 degrees either way)."""
-        reach = STRING * math.sin(math.radians(60)) + RADIUS + 8
+        """The anchor bar and every place a ball can swing to: the lift angle and 10 degrees
+        more either way (no collision gives a ball more than it came in with), 60 where
+        pressed-together balls push apart (a gap below 0 puts energy in) and where a subclass
+        has no such settings (the exercise: a student's collisions may put energy in). A
+        fixed 60 degrees left the 30-degree cradle 20 % smaller than the room allowed."""
+        gap, angle = self.p.get("gap", -1.0), self.p.get("angle", 60.0)
+        swing = 60.0 if gap < 0 else min(angle + 10.0, 60.0)
+        reach = STRING * math.sin(math.radians(swing)) + RADIUS + 8
         left, right = self.anchors[:, 0].min() - reach, self.anchors[:, 0].max() + reach
         return (left, ANCHOR_Y - 20, right - left, STRING + RADIUS + 40)
 

@@ -294,11 +294,12 @@ class ParticleDanceScene(Scene):
         method, every = p["neighbour_method"], all_pair_tests(n)
         of_all = (f"{crowded_share(pf.tests, n):.0%} of all {every:,}" if method == "grid" and every
                   else "every pair")
-        lines.append(f"{n} particles, {method}: {pf.tests:,} pair tests/step ({of_all})")
+        # (phrases parted by '  |  ': a row breaks between them at F2, never inside one)
+        lines.append(f"{n} particles  |  {method}: {pf.tests:,} pair tests/step  |  ({of_all})")
         search = self._costs.get("search", 0.0)
         total = self._costs.get("interaction", 0.0)
         lines.append(f"find pairs {search:.2f} + forces {max(total - search, 0.0):.2f} = "
-                     f"{total:.2f} ms/step, {pf.pairs:,} pairs < R")
+                     f"{total:.2f} ms/step  |  {pf.pairs:,} pairs < R")
         if slow:
             lines.append(Line(slow, WARN_COLOR))
         return lines

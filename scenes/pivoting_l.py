@@ -232,10 +232,12 @@ class PivotingLScene(FallingBallsScene):
         balls = super().hud_lines()
         d = self.slide_distance()
         # pymunk's joints are soft: a loaded L pushes the slide a little past its max (docstring)
-        over = (f", {d - self.slide.max:.1f} px past: a soft joint"
+        # (phrases parted by '  |  ', each short enough for a row at 1024x768 with F2: a row
+        # breaks between them, never inside one: "0.1 px past: a" / "soft joint")
+        over = (f"  |  {d - self.slide.max:.1f} px past its max: a soft joint"
                 if d - self.slide.max >= 0.05 else "")
         return [f"L angle {math.degrees(self.L_body.angle):6.1f} deg   slide "
-                f"{d:5.1f} px (range {self.slide.min:g}..{self.slide.max:g}{over})",
+                f"{d:5.1f} px (range {self.slide.min:g}..{self.slide.max:g}){over}",
                 f"largest pin error {pin:.3f} px{loose}"] + balls[1:]   # (+ tunneling)
 
     def hud_details(self) -> list[str]:

@@ -369,19 +369,33 @@ class TrampolineScene(PymunkScene):
         m = self.metrics()
         mode = self.p["coupling"] if self.coupled else "collisions off"
         n = m["contacts"]
-        return [f"{self.p['body']} {self.p['body_mass']:g} kg, band {self.p['cloth_mass']:g} kg, "
-                f"{mode}: {n} particle{'' if n == 1 else 's'} touching, coupling impulse "
-                f"{self.shown('coupling_impulse', m['coupling_impulse'])} this step",
-                f"{self.p['body']} {-m['body_vy']:+.0f} px/s (up +), band stretch "
-                f"{100 * m['max_stretch']:.1f}%, momentum ({m['momentum_x']:.1f}, "
+        # phrases parted by '  |  ', each short enough for a row at 1024x768 with F2 (a row
+        # breaks between them: never "... 14.87 kg px/s" / "this step")
+        return [f"{mode}: {n} particle{'' if n == 1 else 's'} touching  |  coupling impulse "
+                f"{self.shown('coupling_impulse', m['coupling_impulse'])} a step",
+                f"{self.p['body']} {-m['body_vy']:+.0f} px/s (up +)  |  band stretch "
+                f"{100 * m['max_stretch']:.1f}%  |  momentum ({m['momentum_x']:.1f}, "
                 f"{m['momentum_y']:.1f}) kg px/s"]
 
     def hud_details(self) -> list[str]:
         weight = self.p["body_mass"] * self.gravity() * self.dt
-        return ["LMB: drag the body  |  the coupling: app/physics/coupling.py",
+        return [f"{self.p['body']} {self.p['body_mass']:g} kg, band {self.p['cloth_mass']:g} kg"
+                "  |  LMB: drag the body  |  the coupling: app/physics/coupling.py",
                 f"at rest on the cloth, coupling impulse = M g dt = {weight:.3g} kg px/s"]
 
     # ----- drawing -------------------------------------------------------------------------------
+    def content_bounds(self) -> tuple[float, float, float, float]:
+        """The band between its pins (as long as it is, lying flat if free), the body's way
+        down from where it is dropped, and the floor: not the world's empty sides and sky
+        (the band was a 330 px strip under a blank band at 1024x768 with F2)."""
+        p = self.p
+        half = (GAP if p["pins"] == "ends" else GAP * (1 + p["slack"])) / 2 + 40
+        body = p["size"] * (BOX_ASPECT if p["body"] == "box" else 1.0)
+        half = max(half, body + 20)
+        top = min(PIN_Y - p["drop_height"] - 2 * p["size"] - 30, PIN_Y - 60)
+        bottom = FLOOR_Y + 12
+        return (480.0 - half, top, 2 * half, bottom - top)
+
     def draw(self, surface, view) -> None:
         from app.draw.cloth_draw import draw_cloth
         D.draw_shape(surface, view, self.floor, D.STATIC)

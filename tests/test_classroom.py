@@ -110,7 +110,7 @@ def test_the_cards_in_the_order_that_broke_them_keep_their_promises(tmp_path):
     assert sv.banner and "16.7 ms" in sv.banner
     click(w, cards["Implicit Euler at 30 Hz"])
     assert not sv.banner
-    ratio = lambda: float(w.scene.hud_lines()[0].split(" = ")[2].split("x")[0])   # noqa: E731
+    ratio = lambda: float(w.scene.hud_lines()[0].split("  |  ")[1].split("x")[0])  # noqa: E731
     assert 60 <= ratio() <= 80
     for _ in range(30):                            # re-estimated on the hanging cloth
         w.scene.advance()
@@ -322,6 +322,7 @@ def test_the_integrator_lab_at_1024x768_with_large_text_gives_the_picture_the_ro
     under a ~170 px blank band: the springs panel and the phase portrait are each at least
     150 px tall, start right under the HUD (no band over 40 px), the springs' drawing and the
     phase curve fill over half of their panels, and the table ends above the scrub bar."""
+    from app.draw.integrator_lab import chart_least
     w = open_window(get_scene("integrators"), tmp_path, size=(1024, 768))
     for _ in range(10):
         w.update(1 / 20)
@@ -336,7 +337,9 @@ def test_the_integrator_lab_at_1024x768_with_large_text_gives_the_picture_the_ro
             assert r.systems.top - box.bottom <= 40, (scale, box, r.systems)
             assert d.springs_box.height >= 0.5 * r.systems.height, (scale, d.springs_box)
             assert d.phase_curve.height >= 0.55 * r.phase.height, (scale, d.phase_curve)
-            assert r.energy.height >= 80, (scale, r.energy)
+            # the energy chart is one a class can read, or none (at F2 it was a 50 px plot
+            # with one label: tests/test_projector_views.py)
+            assert r.energy.height == 0 or r.energy.height >= chart_least(), (scale, r.energy)
             bar = w.scene_view.timeline_bar()
             label = hud.font(hud.HUD_SIZE * 3 // 4).get_height()       # "7 s kept  [ ]"
             assert bar is None or r.table.bottom <= bar.top - label, (scale, r.table, bar)

@@ -129,7 +129,8 @@ def test_the_hud_says_why_the_slide_reads_past_its_max():
     scene = PivotingLScene()
     top = scene.slide.max
     scene.slide_distance = lambda: top + 0.2
-    assert scene.hud_lines()[0].endswith(f"(range 0..{top:g}, 0.2 px past: a soft joint)")
+    assert scene.hud_lines()[0].endswith(
+        f"(range 0..{top:g})  |  0.2 px past its max: a soft joint")
     scene.slide_distance = lambda: top - 1.0
     assert scene.hud_lines()[0].endswith(f"(range 0..{top:g})")
 

@@ -96,3 +96,167 @@ def test_a_narrow_panes_hud_shrinks_a_little_rather_than_break_a_phrase():
         TEXT.scale = 1.0
     assert "physics 12.19 ms/step" in rows and "largest stretch 41.7%" in rows, rows
     assert size >= PHRASE_SHRINK * 1.6 * hud.HUD_SIZE - 1 > hud.HUD_SIZE
+
+
+def test_the_integrator_lab_at_1024x768_with_f2_gives_a_short_chart_up_to_the_picture():
+    """At 1024x768 with F2 the lab gets a ~640x540 room under the HUD: the energy chart was a
+    110 px panel (a 50 px plot with one label, its lines flat), the table's text shrank to 17 px
+    glyphs, the springs and the phase portrait had 240 px. A chart too short to read is left
+    out (the table has E/E0, the phase portrait the spiral): the pictures get at least 60 % of
+    the room's height and the table 19 px glyphs. At normal text the same room keeps a chart,
+    and a 1920x1080 room at F2 keeps it beside the table."""
+    from app.draw.integrator_lab import LabDrawing, chart_least, table_rows
+    from app.draw.text import TEXT, font
+    scene = get_scene("integrators")({})
+    for _ in range(30):
+        scene.advance()
+    d, rows = LabDrawing(), table_rows(scene)
+    try:
+        TEXT.scale = 1.6
+        room = pygame.Rect(8, 197, 640, 540)
+        r = d.layout(room, rows)
+        assert r.energy.height == 0, r
+        assert min(r.systems.height, r.phase.height) >= 0.6 * room.height, r
+        assert font(r.table_size).get_height() >= 19, r.table_size
+        assert r.table.bottom <= room.bottom and r.systems.bottom < r.table.top, r
+        wide = d.layout(pygame.Rect(8, 130, 1390, 880), rows)
+        assert wide.energy.height >= chart_least() and wide.energy.top == wide.table.top, wide
+        TEXT.scale = 1.0
+        r = d.layout(pygame.Rect(8, 95, 680, 645), rows)
+        assert r.energy.height >= chart_least(), r
+    finally:
+        TEXT.scale = 1.0
+
+
+@pytest.mark.parametrize("name", ["mass_spring_cloth", "trampoline", "pivoting_l",
+                                  "double_pendulum", "mass_spring_collisions",
+                                  "falling_balls", "particle_dance"])
+def test_every_phrase_of_the_hud_fits_a_row_at_1024x768_with_f2(name, tmp_path):
+    """A row breaks between phrases (' | ', '; ', two spaces), and inside a phrase only when it
+    is wider than the row: at 1024x768 with F2 the scenes' lines were single long phrases that
+    broke mid-thought ("energy -48.53 J (0 at the start;" / "-0.07079 J in 1 s)", "coupling
+    impulse 14.87 kg px/s" / "this step", "0.1 px past: a" / "soft joint", "0.67 px apart" /
+    "after 4.5 s"). Every phrase of the scene's own lines now fits the HUD's row as the
+    layout wraps it there, so no row breaks inside one."""
+    from app.draw.text import TEXT, font
+    from app.draw.wrap import PHRASE_GAP
+    from tests.test_window import open_window
+    w = open_window(get_scene(name), tmp_path, size=(1024, 768))
+    for _ in range(30):
+        w.update(1 / 60)
+    if name == "pivoting_l":                  # the longest line: the slide past its max
+        top = w.scene.slide.max
+        w.scene.slide_distance = lambda: top + 0.2
+    TEXT.scale = 1.6
+    try:
+        w.scene_view.pane.forget()
+        w.render()
+        layout = w.scene_view.layout
+        f, room = font(layout.hud_text), layout.hud_width - 2 * 8
+        timing = w.scene.real_time_words()          # (wall-clock: left out, as a test must)
+        phrases = [p.strip() for x in w.scene.hud_lines()
+                   if not timing or getattr(x, "text", str(x)) != timing
+                   for p in PHRASE_GAP.split(getattr(x, "text", str(x)))[::2]]
+        wide = [(p, f.size(p)[0]) for p in phrases if f.size(p)[0] > room]
+    finally:
+        TEXT.scale = 1.0
+    assert len(phrases) >= 2 and not wide, (room, wide)
+
+
+@pytest.mark.parametrize("card", ["Catch and throw a ball", "A box in a hammock"])
+def test_the_trampolines_view_holds_the_band_the_drop_and_the_floor_not_the_empty_world(card):
+    """The trampoline was fitted as the whole 960x720 world: at 1024x768 with F2 the band was
+    a 330 px strip under a blank sky. Its bounds are now the band with its slack, the body's
+    way down and the floor: at most 80 % of the world's width, and they hold the body where
+    it starts, the floor and every particle of the band for 2 s of the card's run."""
+    from scenes.trampoline import FLOOR_Y
+    cls = get_scene("trampoline")
+    scene = cls({})
+    scene.apply_card(cls.find_card(card))
+    x, y, w, h = scene.content_bounds()
+    assert w <= 0.8 * scene.world_size[0], (x, y, w, h)
+    body = scene.shape.bb
+    assert x <= body.left and body.right <= x + w and y <= body.bottom, (body, (x, y, w, h))
+    assert y + h >= FLOOR_Y
+    for _ in range(120):
+        scene.advance()
+        pts = scene.cloth.x
+        assert x <= pts[0].min() and pts[0].max() <= x + w, (card, scene.time)
+        assert y <= pts[1].min() and pts[1].max() <= y + h, (card, scene.time)
+
+
+def test_the_spring_columns_names_go_on_two_rows_rather_than_shrink():
+    """At 1024x768 (normal text) the six names under the springs fitted one row only at 11 px
+    glyphs; two staggered rows take them at full size (SMALL_SIZE), inside the panel, apart."""
+    from app.draw.integrator_lab import SHORT, SMALL_SIZE, LabDrawing
+    from app.draw.text import font
+    scene = get_scene("integrators")({})
+    for _ in range(10):
+        scene.advance()
+    d = LabDrawing()
+    d.draw(pygame.Surface((1024, 768)), pygame.Rect(8, 95, 680, 645), scene)
+    names = [(r, t) for r, t in d.labels if t in SHORT.values() and r.top < d.rects.table.top]
+    assert len(names) == 6 and all(d.rects.systems.contains(r) for r, _ in names), names
+    assert all(r.height >= font(SMALL_SIZE).get_height() for r, _ in names), names
+    assert not any(a.colliderect(b) for i, (a, _) in enumerate(names) for b, _ in names[i + 1:])
+
+
+def test_the_integrator_labs_springs_are_drawn_wider_on_a_projector_screen():
+    """The coils were 1 px hairlines at any size: at 1920x1080 (springs ~250 px long) they are
+    at least 2 px wide, and the pixels of RK4's colour in the systems panel grow with them
+    (a fresh scene at t = 0: nothing chaotic);
+    in a 1024x768 room at F2 they stay 1 px (coils 8 px apart)."""
+    from app.draw.integrator_lab import LabDrawing
+    from app.draw.text import TEXT
+    scene = get_scene("integrators")({})
+    d = LabDrawing()
+    rk4 = next(r.color for r in scene.runs if r.name == "rk4")
+
+    def coloured(room):
+        surface = pygame.Surface((1920, 1080))
+        d.draw(surface, room, scene)
+        box = d.rects.systems
+        pixels = pygame.surfarray.pixels3d(surface)[box.left:box.right, box.top:box.bottom]
+        return int(np.count_nonzero((pixels == rk4).all(axis=-1)))
+    big = coloured(pygame.Rect(8, 130, 1390, 880))
+    assert d.spring_width >= 2
+    from app.draw import integrator_lab   # the same frame with the coils 1 px wide, as before
+    thin = integrator_lab.SPRING_LINE
+    try:
+        integrator_lab.SPRING_LINE = 0.1
+        hairline = coloured(pygame.Rect(8, 130, 1390, 880))
+    finally:
+        integrator_lab.SPRING_LINE = thin
+    assert big >= 1.3 * hairline, (big, hairline)   # (the bob, the same in both, counts too)
+    TEXT.scale = 1.6
+    try:
+        coloured(pygame.Rect(8, 197, 640, 540))
+    finally:
+        TEXT.scale = 1.0
+    assert d.spring_width == 1
+
+
+@pytest.mark.parametrize("card", [None, "Two balls in", "A 5 px gap", "Two substeps",
+                                  "Balls pressed together"])
+def test_the_cradles_view_holds_its_swing_and_no_more(card):
+    """The cradle's bounds held a 60-degree swing whatever the lift angle: at the default 30
+    degrees the picture was a fifth smaller than the room allowed (content share .28 at
+    1024x768). Now at most 85 % of that width at the defaults, and every ball stays inside
+    them for 4 s of every card."""
+    import math
+    from scenes.newtons_cradle import RADIUS, STRING
+    cls = get_scene("newtons_cradle")
+    scene = cls({})
+    if card:
+        scene.apply_card(cls.find_card(card))
+    x, y, w, h = scene.content_bounds()
+    if card is None:
+        wide = (np.ptp(scene.anchors[:, 0]) + 2 * (STRING * math.sin(math.radians(60)) +
+                                                   RADIUS + 8))
+        assert w <= 0.85 * wide, (w, wide)
+    for _ in range(int(4 * scene.p["hertz"])):
+        scene.advance()
+        for b in scene.bodies:
+            bx, by = b.position
+            assert x <= bx - RADIUS and bx + RADIUS <= x + w, (card, scene.time, bx, (x, w))
+            assert y <= by - RADIUS and by + RADIUS <= y + h, (card, scene.time, by, (y, h))

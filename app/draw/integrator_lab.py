@@ -5,10 +5,11 @@ Text is sized in screen pixels (the size at text scale 1, times the large-text s
 with the zoom: at a small window a zoomed-out picture had 10 px labels, and F2 made the charts
 smaller. The panels are placed from the measured size of their text: the table takes the room
 its rows need (its text shrinks only when the rectangle is too narrow, never below
-SMALLEST_TEXT), the energy chart goes beside it when the rectangle is wide enough and above it
-otherwise, and the systems and the phase portrait share what is left. Every label drawn is
-remembered in `labels` (its rectangle and text) so that a test can check that none overlaps
-another, at any window and text size.
+SMALLEST_TEXT), the energy chart goes beside it when the rectangle is wide enough, above it
+otherwise, and nowhere where it would be too short to read (chart_least: the table has E/E0),
+and the systems and the phase portrait share what is left. Every label drawn is remembered in
+`labels` (its rectangle and text) so that a test can check that none overlaps another, at any
+window and text size.
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ TOP_SHARE = 0.55         # the systems and the phase portrait: at least this sha
 # the systems' own coordinates (px of the problem, the lab's units): the panel shows this box
 SYSTEM_BOX = (0.0, 0.0, 480.0, 300.0)
 SPRING_DRAW_SCALE = 0.8  # the spring column is drawn at 80 % so the bobs fit the box
+SPRING_LINE = 1.6        # the springs' line width in SYSTEM_BOX units (1 px at zoom 0.6)
 BOUNCE_FLOOR = 270.0     # bounce: where the floor is drawn in SYSTEM_BOX
 BALL_RADIUS = 10.0       # bounce: the ball's radius (its lowest point is the problem's y)
 PLOT_SECONDS = 10.0
@@ -66,6 +68,7 @@ class LabDrawing:
         self._texts: dict = {}
         self.labels: list[tuple[pygame.Rect, str]] = []
         self.table_text = 0           # the table's glyph height in the last frame (tests)
+        self.spring_width = 1         # the springs' line width in the last frame (px)
 
     # ----- text ---------------------------------------------------------------------------------
     def render(self, text: str, color, size: int) -> pygame.Surface:
@@ -133,19 +136,32 @@ class LabDrawing:
             # the systems and the phase portrait keep at least TOP_SHARE of the height: they
             # are the picture (at 1024x768 with F2 they had 40 %: springs 10 px tall); the
             # table's text shrinks (never below SMALLEST_TEXT) before the energy chart goes
-            # below its least height, and the chart gets what is left, up to 30 %
+            # below the least height a class can read, and the chart gets what is left, up
+            # to 30 %
             below = rect.height - int(TOP_SHARE * rect.height) - 2 * GAP
-            energy_least = max(int(70 * s), 80)
+            energy_least = chart_least()
+            widest = size
             while need_h > below - energy_least and size > SMALLEST_TEXT:
                 size = max(SMALLEST_TEXT, size - 1)
                 need_w, need_h = self.table_need(rows, size)
-            table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
-            energy_h = min(max(below - need_h, energy_least), int(0.3 * rect.height))
-            energy = pygame.Rect(rect.left, table.top - GAP - energy_h, rect.width, energy_h)
-            top_bottom = energy.top - GAP
-            if below - need_h < energy_least // 2:       # a tall HUD (a CG message at F2):
-                energy = pygame.Rect(rect.left, table.top, rect.width, 0)   # no chart (the
-                top_bottom = table.top - GAP             # table has E/E0): the picture first
+            if need_h <= below - energy_least:
+                table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
+                energy_h = min(below - need_h, int(0.3 * rect.height))
+                energy = pygame.Rect(rect.left, table.top - GAP - energy_h, rect.width, energy_h)
+                top_bottom = energy.top - GAP
+            else:
+                # no room for a chart a class can read (at 1024x768 with F2 it was a 50 px
+                # plot with one label, its lines flat): none (the table has E/E0, the phase
+                # portrait the spiral); the table's text back to the largest that fits the
+                # width and what is below the pictures, and the rest is the picture's
+                size = widest
+                need_w, need_h = self.table_need(rows, size)
+                while need_h > below + GAP and size > SMALLEST_TEXT:
+                    size = max(SMALLEST_TEXT, size - 1)
+                    need_w, need_h = self.table_need(rows, size)
+                table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
+                energy = pygame.Rect(rect.left, table.top, rect.width, 0)
+                top_bottom = table.top - GAP
         top = pygame.Rect(rect.left, rect.top, rect.width, max(top_bottom - rect.top, 1))
         if top.height > 1.3 * top.width / 2:             # tall and narrow: one above the other
             half = (top.height - GAP) // 2
@@ -213,13 +229,17 @@ class LabDrawing:
         drawn = pygame.Rect(view.pt(SYSTEM_BOX[:2]), (round(view.len(SYSTEM_BOX[2])),
                                                        round(view.len(SYSTEM_BOX[3]))))
         self.springs_box = drawn                        # (tests: how much room it has)
+        # the coils as wide as the zoom draws 1.6 units: 1 px in a small window, 2-3 on a
+        # projector's 1920x1080 (1 px springs were hairlines there)
+        self.spring_width = max(1, round(view.len(SPRING_LINE)))
         names_row = pygame.Rect(box.left, drawn.bottom, box.width, names_h)
         column = int(view.len(80.0))
         names = list(SHORT.values()) + ["blew up", "t=88.88s"]
         size = fit_size(names, SMALL_SIZE, column - 4, smallest=SMALLEST_TEXT)
-        staggered = max(font(size).size(t)[0] for t in names) > column - 4
-        if staggered:               # too narrow for a row of names: two rows, every other one
-            size = fit_size(names, SMALL_SIZE, 2 * column - 4, smallest=int(SMALLEST_TEXT * 0.7))
+        two_rows = fit_size(names, SMALL_SIZE, 2 * column - 4, smallest=int(SMALLEST_TEXT * 0.7))
+        staggered = max(font(size).size(t)[0] for t in names) > column - 4 or two_rows > size
+        if staggered:               # too narrow for a row of names at full size: two rows,
+            size = two_rows         # every other one (at 1024x768 one row shrank them to 11 px)
         named = max(font(size).size(t)[0] for t in names) <= 2 * column - 4   # else too small
         if not named:                # for any name (the table has them): none
             names_row = pygame.Rect(0, 0, 0, 0)
@@ -229,7 +249,9 @@ class LabDrawing:
             color = run.color if run else OFF
             cx = view.pt(origin)[0]
             y = names_row.top + 2 + (font(size).get_linesize() if staggered and i % 2 else 0)
-            self.text(surface, (cx, y), SHORT[name], color, size, "midtop", within=names_row)
+            half_w = font(size).size(SHORT[name])[0] // 2 + 1   # the end names kept inside
+            x = min(max(cx, names_row.left + half_w), names_row.right - half_w)
+            self.text(surface, (x, y), SHORT[name], color, size, "midtop", within=names_row)
             half = 40 if bounce else 18                  # the floor runs under every column
             pygame.draw.line(surface, (150, 150, 160), view.pt(origin - (half, 0)),
                              view.pt(origin + (half, 0)), px(2))
@@ -250,7 +272,7 @@ class LabDrawing:
                 continue
             bob = np.clip(origin + k * scene.problem.points(run.ps.x)[-1] + lift, -1e4, 1e4)
             if not bounce:
-                _spring(surface, view, origin, bob, run.color)
+                _spring(surface, view, origin, bob, run.color, self.spring_width)
             pygame.draw.circle(surface, run.color, view.pt(bob), max(2, round(view.len(10))))
 
     def _bodies(self, surface, view: View, scene, x_ref) -> None:
@@ -385,6 +407,13 @@ class LabDrawing:
                 self.text(surface, (note_x, y), note, color, size, within=r)
 
 
+def chart_least() -> int:
+    """The least height of an energy chart a class can read: its title, its time label and a
+    plot with room for three decade labels (at the text size now)."""
+    title, small = font(TITLE_SIZE).get_linesize(), font(SMALL_SIZE).get_linesize()
+    return title + 6 + small + 4 * small + 8
+
+
 def table_rows(scene) -> list[tuple[tuple[int, int, int], tuple[str, ...], tuple[str, str]]]:
     """(colour, cells, (note, short note)) per integrator, in the table's order."""
     rows = []
@@ -431,15 +460,15 @@ def _mapper(rect: pygame.Rect, xlo, xhi, ylo, yhi):
     return to_px
 
 
-def _spring(surface, view: View, a, b, color) -> None:
-    """A zig-zag from a to b (12 coils)."""
+def _spring(surface, view: View, a, b, color, width: int = 1) -> None:
+    """A zig-zag from a to b (12 coils), `width` px wide."""
     s = np.linspace(0.0, 1.0, 26)
     d = b - a
     normal = np.array([-d[1], d[0]]) / max(float(np.hypot(*d)), 1e-9)
     wiggle = np.where(np.arange(26) % 2 == 0, -1.0, 1.0) * 8.0
     wiggle[[0, 1, -2, -1]] = 0.0
     pts = a + s[:, None] * d + wiggle[:, None] * normal
-    pygame.draw.lines(surface, color, False, view.pts(pts), 1)
+    pygame.draw.lines(surface, color, False, view.pts(pts), width)
 
 
 __all__ = ["LabDrawing", "LabRects", "table_rows", "decade_ticks"]
