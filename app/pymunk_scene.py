@@ -105,7 +105,7 @@ class PymunkScene(Scene):
         """Scene.advance; a scene whose step is the engine's own calls space.step directly, with
         no call of step() for each substep (a cradle takes 30 substeps a step)."""
         if type(self).step is not PymunkScene.step:
-            super().advance()
+            Scene.advance(self)          # (named, not super(): a step of a few us pays for it)
             return
         n = self.p["substeps"]
         dt = self.dt
@@ -281,7 +281,8 @@ class PymunkScene(Scene):
         if cache is None or cache[0] is not bodies or cache[1] != key:
             wanted = np.array([b.id for b in bodies], dtype=np.int64)
             order = np.argsort(ids)
-            at = order[np.searchsorted(ids, wanted, sorter=order).clip(0, len(ids) - 1)] \
+            # (np.minimum, not .clip: the method costs ~5 us more)
+            at = order[np.minimum(np.searchsorted(ids, wanted, sorter=order), len(ids) - 1)] \
                 if len(ids) else wanted
             if not len(ids) or not np.array_equal(ids[at], wanted):
                 return None
