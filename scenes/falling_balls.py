@@ -245,7 +245,8 @@ class FallingBallsScene(BallChecks, PymunkScene):
                 self._awake = (np.concatenate((ids, (bid,))),
                                None if rows is None else np.concatenate((rows, (True,))),
                                np.concatenate((k, (len(self.balls) - 1,))), L_row,
-                               key + bid.to_bytes(8, sys.byteorder, signed=True))
+                               key[:-8] + bid.to_bytes(8, sys.byteorder, signed=True)
+                               + key[-8:])        # (the key ends with the first static id)
                 if fast is not None:    # and its flags (ball_checks), a last row
                     row = self.flags_row(pos, fast[0])
                     b = row.tobytes()
