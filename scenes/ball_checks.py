@@ -70,7 +70,9 @@ class BallChecks:
         ids, data = self.state_rows()
         awake = self._awake
         n = -1 if awake is None else len(awake[0])
-        same = 0 <= n < len(ids) and ids[n] in self._static_set and ids[:n].tobytes() == awake[4]
+        # the same awake ids in the same order, then the same first static body (the batch's
+        # order is awake | static | asleep): one bytes compare (awake[4] holds both)
+        same = n >= 0 and ids[:n + 1].tobytes() == awake[4]
         if same:
             L_row = awake[3]
             L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
@@ -96,7 +98,7 @@ class BallChecks:
             count = int(np.count_nonzero(rows))
             L_row = np.flatnonzero(ids[:n] == self._L_id)
             self._awake = (ids[:n].copy(), None if count == n else rows, k[:count],
-                           int(L_row[0]) if len(L_row) else None, ids[:n].tobytes())
+                           int(L_row[0]) if len(L_row) else None, ids[:n + 1].tobytes())
             self.resting = n == 0
         self._fast = None
         if not len(k):
@@ -223,7 +225,7 @@ class BallChecks:
             k_now - np.searchsorted(gone, k_now)
         L = self._L_id
         L_row = id_list.index(L) if L in id_list else None
-        return (ids_now, ball, k_now, L_row, ids_now.tobytes()), \
+        return (ids_now, ball, k_now, L_row, ids_now.tobytes() + awake[4][-8:]), \
             fast_of(fast[0], fast[1][order], L_row)
 
     def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> np.ndarray:

@@ -74,7 +74,7 @@ BALL_PARAMS: tuple[Param, ...] = (
 )
 
 
-_NO_IDS = (np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64))   # (ball_index's last)
+_NO_IDS = (b"", np.empty(0, dtype=np.int64))   # (ball_index's last: ids as bytes, indices)
 
 
 class FallingBallsScene(BallChecks, PymunkScene):
@@ -190,7 +190,8 @@ class FallingBallsScene(BallChecks, PymunkScene):
         a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search
         in the sorted ids; and not even that while the batch order stays the same."""
         last_ids, last_k = self._last
-        if np.array_equal(ids, last_ids):
+        key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
+        if key == last_ids:
             return last_k
         if self._sorted is None:
             order = np.argsort(self._ids)
@@ -199,9 +200,10 @@ class FallingBallsScene(BallChecks, PymunkScene):
         if len(sorted_ids) == 0:
             k = np.full(len(ids), -1, dtype=np.int64)
         else:
-            at = np.searchsorted(sorted_ids, ids).clip(0, len(sorted_ids) - 1)
+            at = np.searchsorted(sorted_ids, ids)       # (np.minimum, not .clip: the
+            np.minimum(at, len(sorted_ids) - 1, out=at)  # method costs ~5 us more)
             k = np.where(sorted_ids[at] == ids, order[at], -1)
-        self._last = (ids.copy(), k)      # (ids may be a view of the batch buffer)
+        self._last = (key, k)
         return k
 
     def set_sleeping(self, on: bool) -> None:
@@ -243,7 +245,8 @@ class FallingBallsScene(BallChecks, PymunkScene):
                 self._awake = (np.concatenate((ids, (bid,))),
                                None if rows is None else np.concatenate((rows, (True,))),
                                np.concatenate((k, (len(self.balls) - 1,))), L_row,
-                               key + bid.to_bytes(8, sys.byteorder, signed=True))
+                               key[:-8] + bid.to_bytes(8, sys.byteorder, signed=True)
+                               + key[-8:])        # (the key ends with the first static id)
                 if fast is not None:    # and its flags (ball_checks), a last row
                     row = self.flags_row(pos, fast[0])
                     b = row.tobytes()
@@ -338,7 +341,10 @@ class FallingBallsScene(BallChecks, PymunkScene):
                 if after:
                     self.after_step()
                 return
-        super().advance()
+        # Straight to Scene.advance (the substeps calling self.step): PymunkScene.advance would
+        # only find that this scene has a step of its own and go there, two super() calls later
+        # (~0.5 us of a ~40 us step)
+        Scene.advance(self)
 
     def rest_plan(self) -> tuple:
         """(substeps, h, dt, whether after_step does anything) for a step at rest,

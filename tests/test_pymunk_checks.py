@@ -195,3 +195,23 @@ def test_a_new_balls_flags_are_the_products():
         M, limits = scene._flag_matrix(pose)
         product = np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits
         assert scene.flags_row(pos, pose).tobytes() == product.tobytes()
+
+
+def test_the_finite_check_reads_the_rows_of_the_last_read_as_bodies_come_and_go():
+    # is_finite dots the reader's flat view (kept beside its rows): after a ball is added or
+    # removed (the views are made again) it still holds every body's row, and a NaN in a
+    # velocity of a ball that stays on the L is caught by it (not by a removal).
+    scene = balls_on_the_L()
+    reader = scene._state_reader
+    for change in ("add", "remove"):
+        if change == "add":
+            scene.add_ball((L_ORIGIN[0] - 90, L_ORIGIN[1] - 200))
+        else:
+            scene.remove_balls(np.array([0]))
+        scene.advance()
+        assert scene.is_finite()
+        rows = scene.state_rows()[1]
+        assert reader.flat.shape == (rows.size,) and np.array_equal(reader.flat, rows.reshape(-1))
+    scene._rows = None                    # (read again, the step's rows left as they were)
+    scene.balls[-1].body.velocity = (0.0, math.inf)
+    assert not scene.is_finite()
