@@ -200,6 +200,7 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
     depth, normal = np.zeros(n), np.zeros((2, n))   # (Contacts' (n, 2) normal: its .T)
     index, hit = np.full(n, -1), np.zeros(n, bool)
     px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
+    ends_t = x.T                                # (2, n): x and y as rows (a view too)
     sx, sy = start[0], start[1]
     boxes = None
     grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
@@ -217,11 +218,13 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
             ids = near.nonzero()[0]
         if ids.size == 0:
             continue
-        ex, ey = px.take(ids).astype(np.float64), py.take(ids).astype(np.float64)
+        ends = ends_t.take(ids, axis=1).astype(np.float64)      # (2, k): x and y rows at once
+        ex, ey = ends[0], ends[1]
         d, nx, ny = ob.distance_xy(ex, ey)
         if not isinstance(ob, HalfPlane):
-            ax, ay = sx.take(ids).astype(np.float64), sy.take(ids).astype(np.float64)
-            vx, vy = ex - ax, ey - ay
+            starts = start.take(ids, axis=1).astype(np.float64)
+            ax, ay = starts[0], starts[1]
+            vx, vy = ends - starts                              # each path, this substep
             back, t, bx, by, through = through_one(ob, ax, ay, vx, vy, d, nx, ny, st.tolerance)
             if back.size:                       # put back: on the surface, its normal there
                 ib = ids[back]
@@ -229,11 +232,12 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
                 py[ib] = ay[back] + t * vy[back]
                 d[back], nx[back], ny[back] = 0.0, bx, by
                 st.tunneled += through
-        inside = (d < margin).nonzero()[0]
-        if inside.size == 0:
+        inside = d < margin
+        touching = int(np.count_nonzero(inside))
+        if touching == 0:
             continue
-        if inside.size < ids.size:
-            ids, d, nx, ny = ids[inside], d[inside], nx[inside], ny[inside]
+        if touching < ids.size:                 # (compress: a mask's take, without nonzero)
+            ids, d, nx, ny = (a.compress(inside) for a in (ids, d, nx, ny))
         push = margin - d                                      # Jakobsen: p += (margin - d) n
         px[ids] += (push * nx).astype(x.dtype, copy=False)
         py[ids] += (push * ny).astype(x.dtype, copy=False)
@@ -247,7 +251,7 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
 
 def _may_touch(st: ContactState) -> bool:
     """obstacles_may_touch, asked again only when an obstacle has moved or turned."""
-    key = tuple((ob.bounds(), ob.center) for ob in st.obstacles)
+    key = tuple(tuple(vars(ob).values()) for ob in st.obstacles)   # every field of each
     if st.touch_key != key:
         st.touch_key, st.touch_value = key, obstacles_may_touch(st.obstacles, st.margin)
     return st.touch_value
