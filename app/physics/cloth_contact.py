@@ -202,7 +202,7 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
     px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
     ends_t = x.T                                # (2, n): x and y as rows (a view too)
     sx, sy = start[0], start[1]
-    boxes = None
+    boxes, hit_any = None, False
     grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
     for k, ob in enumerate(st.obstacles):
         if isinstance(ob, HalfPlane):           # nothing to pass through: where the ends are
@@ -239,13 +239,16 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
         if touching < ids.size:                 # (compress: a mask's take, without nonzero)
             ids, d, nx, ny = (a.compress(inside) for a in (ids, d, nx, ny))
         push = margin - d                                      # Jakobsen: p += (margin - d) n
-        px[ids] += (push * nx).astype(x.dtype, copy=False)
-        py[ids] += (push * ny).astype(x.dtype, copy=False)
-        depth[ids] += push
         normal[0][ids] = nx
         normal[1][ids] = ny
+        px[ids] += np.multiply(push, nx, out=nx).astype(x.dtype, copy=False)   # (nx: ours)
+        py[ids] += np.multiply(push, ny, out=ny).astype(x.dtype, copy=False)
+        if hit_any:                             # a particle may touch two: the pushes add up
+            depth[ids] += push
+        else:
+            depth[ids] = push
         index[ids] = k
-        hit[ids] = True
+        hit[ids] = hit_any = True
     return Contacts(hit, depth, normal.T, index)
 
 
