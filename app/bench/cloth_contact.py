@@ -9,11 +9,12 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
      hanging cloth: particles ended on the wrong side of them, a rod stretched to 187 px (rest
      8), and every step one particle per obstacle crossed ~100 px and was put back by the
      tunnelling test: a state the scene never shows, and more work than it does. That was a
-     fix of the bench's state, not of the contact code's speed (the share read ~32 % then,
-     ~26 % with the drag, same process). The timed state has no rod over MAX_STRETCH x its
-     rest length (a test checks);
-   * heap: the cloth let go onto them, after 1 s (three quarters of the particles touching:
-     the worst case, every contact corrected twice and rubbed twice a step). It is landing:
+     fix of the bench's state, not of the contact code's speed (the same code, one process,
+     201 interleaved rounds at load 6-7: 37 % put there at once, 32 % dragged; 32 -> 26 % at a
+     lower load). The timed state has no rod over MAX_STRETCH x its rest length (a test
+     checks);
+   * heap: the cloth let go onto them, after 1 s (~1,900 of the 4,096 particles touching the
+     ball and the box, most of them sliding: the worst case measured). It is landing:
      rods stretch up to ~2.7 x for a moment (the table shows the longest), 1.6 x settled
      (particles bunched at the box's corner, held by friction).
    Each is timed with the `collisions` and `friction` effects on and off, from the same state
