@@ -408,7 +408,7 @@ class Segment(Obstacle):
                 max(self.ax, self.bx) + t, max(self.ay, self.by) + t)
 
 
-# ----- distances to several obstacles: app/physics/obstacle_queries.py (re-exported here) ----------
+# ----- distances to several obstacles: app/physics/obstacle_queries.py (re-exported here) ------
 from app.physics.obstacle_queries import (PICK_THIN, nearest, obstacle_at,  # noqa: E402
                                           penetration_max)
 
