@@ -163,3 +163,17 @@ def test_the_compiled_self_collision_finds_the_same_pairs_and_moves_the_same():
     scene = ClothScene({"rows": 8, "cols": 8, "kernel": "numba", "self_collision": True})
     scene.advance()
     assert "numba kernel (rods, self-collision)" in scene.hud_lines()[0]
+
+
+def test_the_benchs_hanging_state_is_one_a_drag_leaves():
+    """bench cloth times collisions on a hanging cloth whose ball and box were dragged up into
+    it 2 px a step (app/bench/cloth_contact.py): no rod is stretched past MAX_STRETCH (put there
+    at once, one was 23 x its rest length, a particle on the wrong side), nothing is inside an
+    obstacle and nothing tunnelled; the obstacles reached their places."""
+    from app.bench import cloth_contact as bench
+    scene = bench.timed_state("hanging", 10)
+    assert bench.longest_rod(scene) <= bench.MAX_STRETCH
+    m = scene.metrics()
+    assert m["penetration_max"] == 0.0 and m["tunneled"] == 0 and m["contacts"] > 300
+    for ob, target in zip(scene.obstacles, bench._targets(scene)):
+        assert ob.center == pytest.approx(target)

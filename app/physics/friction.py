@@ -63,22 +63,31 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     if ids.size == 0 or mu <= 0:
         return
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
-    mx = xs[ids].astype(np.float64) - x_prev[:, 0].take(ids)  # the travel of this step...
-    my = ys[ids].astype(np.float64) - x_prev[:, 1].take(ids)
-    if h and any(vx or vy for vx, vy in (ob.velocity for ob in obstacles)):
+    # the travel of this step, in float64 (NumPy casts both ends before subtracting)...
+    mx = np.subtract(xs.take(ids), x_prev[:, 0].take(ids), dtype=np.float64)
+    my = np.subtract(ys.take(ids), x_prev[:, 1].take(ids), dtype=np.float64)
+    if h and any(ob.velocity[0] or ob.velocity[1] for ob in obstacles):
         # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
         mx -= carry[contacts.index[ids], 0]
         my -= carry[contacts.index[ids], 1]
     nx, ny = contacts.normal[:, 0].take(ids), contacts.normal[:, 1].take(ids)
-    along = mx * nx + my * ny
-    tx, ty = mx - along * nx, my - along * ny                 # its part along the surface
-    speed = np.hypot(tx, ty)
-    removable = mu * contacts.depth[ids]
-    # the share of the tangential travel removed: all of it (sticks) or mu * depth of it
-    gone = np.where(speed > removable, removable / np.maximum(speed, TINY), 1.0)
-    xs[ids] -= (gone * tx).astype(x.dtype, copy=False)        # less travel: x moves back
-    ys[ids] -= (gone * ty).astype(x.dtype, copy=False)
+    along = mx * nx
+    along += my * ny                                          # m . n
+    nx *= along                                               # (the normal's copies: reused)
+    ny *= along
+    mx -= nx                                                  # t = m - (m . n) n: its part
+    my -= ny                                                  # along the surface
+    removable = contacts.depth.take(ids)
+    removable *= mu
+    # the share of the tangential travel removed: all of it (it sticks: mu * depth >= |t|) or
+    # mu * depth / |t| of it (it slides); min(., 1) is that choice in one call
+    gone = np.divide(removable, np.maximum(np.hypot(mx, my), TINY), out=removable)
+    np.minimum(gone, 1.0, out=gone)
+    mx *= gone
+    my *= gone
+    xs[ids] -= mx.astype(x.dtype, copy=False)               # less travel: x moves back
+    ys[ids] -= my.astype(x.dtype, copy=False)
 
 
 __all__ = ["Contacts", "coulomb_friction", "verlet_friction"]

@@ -242,17 +242,30 @@ class Box(Obstacle):
     def distance_xy(self, x, y):
         (ux, uy), (vx, vy) = self.axes()
         dx, dy = x - self.cx, y - self.cy
-        lx, ly = dx * ux + dy * uy, dx * vx + dy * vy     # the point in the box's frame
-        qx, qy = np.abs(lx) - self.half_w, np.abs(ly) - self.half_h
+        lx, ly = dx * ux, dx * vx       # the point in the box's frame (sums made in place)
+        lx += dy * uy
+        ly += dy * vy
+        qx, qy = np.abs(lx), np.abs(ly)
+        qx -= self.half_w
+        qy -= self.half_h
         ox, oy = np.maximum(qx, 0.0), np.maximum(qy, 0.0)
         out = np.hypot(ox, oy)          # outside: distance to the nearest face or corner
-        d = out + np.minimum(np.maximum(qx, qy), 0.0)     # inside: -(distance to nearest face)
+        face_x = qx >= qy
+        d = np.minimum(np.maximum(qx, qy, out=qx), 0.0, out=qx)   # inside: -(to nearest face)
+        d += out
         # the normal in the box's frame: towards the nearest point outside, else the nearest
         # face's; the signs of lx, ly say which side (+1 on an axis: either side will do)
-        face_x, outside, safe = qx >= qy, out > 0, np.maximum(out, TINY)
-        gx = np.copysign(np.where(outside, ox / safe, face_x), lx)
-        gy = np.copysign(np.where(outside, oy / safe, ~face_x), ly)
-        return d, gx * ux + gy * vx, gx * uy + gy * vy
+        gx = face_x.astype(np.float64)
+        gy, outside = 1.0 - gx, out > 0
+        safe = np.maximum(out, TINY, out=out)
+        np.divide(ox, safe, out=gx, where=outside)
+        np.divide(oy, safe, out=gy, where=outside)
+        np.copysign(gx, lx, out=gx)
+        np.copysign(gy, ly, out=gy)
+        nx, ny = gx * ux, gx * uy
+        nx += gy * vx
+        ny += gy * vy
+        return d, nx, ny
 
     def distance(self, x, y):
         (ux, uy), (vx, vy) = self.axes()
@@ -395,47 +408,9 @@ class Segment(Obstacle):
                 max(self.ax, self.bx) + t, max(self.ay, self.by) + t)
 
 
-# ----- distances to several obstacles -------------------------------------------------------------
-def nearest(obstacles, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(d, normal, index): for each point, the smallest signed distance over all obstacles (the
-    nearest surface outside, the deepest obstacle inside), its outward normal (n, 2) and the
-    obstacle's index in `obstacles` (-1, d = +inf, normal 0 if there are none)."""
-    n = len(points)
-    best = np.full(n, np.inf)
-    normal = np.zeros((n, 2))
-    index = np.full(n, -1)
-    for k, ob in enumerate(obstacles):
-        d, nrm = ob.signed_distance(points)
-        closer = d < best
-        best = np.where(closer, d, best)
-        normal[closer] = nrm[closer]
-        index[closer] = k
-    return best, normal, index
-
-
-PICK_THIN = 5.0          # px: a press this close to a thin rod picks it (the mouse's slack)
-
-
-def obstacle_at(obstacles, pos: tuple[float, float], thin: float = PICK_THIN) -> int | None:
-    """The index of the obstacle a mouse press at `pos` picks: the first it is inside (a thin
-    rod, a Segment: within `thin` px of it), or None. Both cloths' scenes drag obstacles by it."""
-    point = np.array([pos], float)
-    for k, ob in enumerate(obstacles):
-        slack = thin if isinstance(ob, Segment) else 0.0
-        if ob.signed_distance(point)[0][0] < slack:
-            return k
-    return None
-
-
-def penetration_max(obstacles, points: np.ndarray, mask: np.ndarray | None = None) -> float:
-    """How deep the deepest point (among `mask`, if given) lies inside any obstacle, px; 0.0 if
-    none is inside."""
-    if len(obstacles) == 0 or len(points) == 0:
-        return 0.0
-    d = nearest(obstacles, points)[0]
-    if mask is not None:
-        d = d[np.asarray(mask, bool)]
-    return float(max(0.0, -d.min())) if d.size else 0.0
+# ----- distances to several obstacles: app/physics/obstacle_queries.py (re-exported here) ------
+from app.physics.obstacle_queries import (PICK_THIN, nearest, obstacle_at,  # noqa: E402
+                                          penetration_max)
 
 
 # ----- projection ---------------------------------------------------------------------------------

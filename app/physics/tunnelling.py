@@ -188,6 +188,9 @@ def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy
         return none                                      # d linear along a path: nothing
     half = ob.half_width()
     length2 = vx * vx + vy * vy
+    reach = min(shortest, half)
+    if length2.max(initial=0.0) <= reach * reach:
+        return none                     # every path too short for either test (resting cloth)
     outside = d1 >= 0
     maybe = np.where(outside, (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy)
                                                                    < -tolerance),
