@@ -33,6 +33,27 @@ warnings.filterwarnings("ignore", message="invalid value encountered in dot",
                         category=RuntimeWarning, module=r"scenes\.ball_checks")
 
 
+def _nan_fails_box() -> bool:
+    """Whether a NaN or an inf anywhere in a row makes its box flags false in _flags's product
+    (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights would
+    not propagate a NaN from the angle or velocities: then the runner's own check stays on)."""
+    M = np.zeros((6, 5))
+    M[0, 0], M[0, 1], M[1, 2], M[1, 3], M[0, 4], M[1, 4] = -1.0, 1.0, -1.0, 1.0, 0.5, -0.8
+    limits = np.full(5, 1e9)
+    for n in (1, 2, 5, 16, 65, 300):
+        for col in range(6):
+            for bad in (math.nan, math.inf, -math.inf):
+                rows = np.ones((n, 6))
+                rows[n // 2, col] = bad
+                with np.errstate(invalid="ignore"):
+                    if (rows.dot(M) <= limits)[n // 2, :4].all():
+                        return False
+    return True
+
+
+_NAN_FAILS = _nan_fails_box()
+
+
 class BallChecks:
     """The checks after a step of falling_balls. Expects self.balls, self._xy (every ball's
     centre after the last step it was looked at), self._awake, self.L_body, self.counts and
@@ -129,6 +150,11 @@ class BallChecks:
         prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
         if key == fast[2]:                     # the same flags as after the last step
             self._fast = (L1, flags, key)
+            # every ball in the box, so every row finite (a NaN or inf anywhere in a row fails
+            # its box flags: _NAN_FAILS); the L's too if its box flags hold: the runner's
+            # non-finite check need not look again at these rows (~1.75 us a step)
+            if _NAN_FAILS and (L_row is None or flags[L_row].tobytes()[:4] == b"\1\1\1\1"):
+                self.finite_read = self._state_reader.reads
             return L1
         old, self._fast = fast[1], fast_of(L1, flags, L_row)
         changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)

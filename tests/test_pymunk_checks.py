@@ -215,3 +215,24 @@ def test_the_finite_check_reads_the_rows_of_the_last_read_as_bodies_come_and_go(
     scene._rows = None                    # (read again, the step's rows left as they were)
     scene.balls[-1].body.velocity = (0.0, math.inf)
     assert not scene.is_finite()
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_the_flags_answer_the_finite_check_only_for_rows_they_found_finite(cls):
+    # After a usual step with every ball in the box, the runner's is_finite takes the flags'
+    # word for the rows just read (finite_read); a NaN anywhere (the L's row too, which the
+    # flags' key leaves out) must not get that word, and is caught the step it happens.
+    import scenes.ball_checks as checks
+    assert checks._NAN_FAILS                     # (this BLAS propagates NaN * 0)
+    scene = balls_on_the_L(cls)
+    scene.advance()
+    assert scene.finite_read == scene._state_reader.reads and scene.is_finite()
+    body = scene.L_body if cls is PivotingLScene else scene.balls[3].body
+    body.velocity = (math.nan, 0.0)
+    scene.wake()
+    scene.advance()
+    if cls is PivotingLScene:
+        assert not scene.is_finite()
+    else:                                        # the NaN ball left (removed), the rest finite
+        assert body not in scene.space.bodies and scene.is_finite()
+    assert scene.finite_read != scene._state_reader.reads or scene.is_finite()
