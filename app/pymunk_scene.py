@@ -435,24 +435,39 @@ def extent(rows: np.ndarray) -> tuple[float, float, float, float]:
 
 class _StateReader:
     """Reads _STATE_ID of every body into a buffer of its own, as pymunk.batch.get_space_bodies
-    does, with its C call's arguments made once (the same C function and data). While the
-    number of bodies and the C arrays stay the same, the NumPy views of the last read are
-    returned again (the read refilled them): a view handed out is good until the next read."""
+    does, with its C call's arguments made once (the same C function and data). Two buffers, one
+    read into each in turn: the rows of a read stay good through the next read (a scene may keep
+    them a step without a copy: `keep`). While the number of bodies and a buffer's C arrays stay
+    the same, the NumPy views of that buffer's last read are returned again (the read refilled
+    them)."""
 
     def __init__(self) -> None:
-        self.buffer = pymunk.batch.Buffer()
-        self.last = None          # (n, int array, float array, (ids, rows)) of the last read
-        self.reads = 0            # reads made (PymunkScene.finite_read names one of them)
+        self.buffers = (pymunk.batch.Buffer(), pymunk.batch.Buffer())
+        self.cur = 1              # the buffer of the last read
+        # per buffer: (n, int array, float array, (ids, rows), flat) of its last read
+        self.last: list = [None, None]
         self.flat = np.empty(0)   # the rows of the last read as one flat view (n * 6,)
+        self.reads = 0            # reads made (PymunkScene.finite_read names one of them)
+        # (buffer, callback): the rows of that buffer's read are kept by a scene; a read about
+        # to refill it calls callback first (to copy what it keeps), then forgets it
+        self.keep: tuple | None = None
         if _lib is not None:
-            self.data = _ffi.new("pmBatchedData *")
-            self.data.fields = _STATE_ID.value
-            self.data.floatArray = self.buffer._float_arr
-            self.data.intArray = self.buffer._int_arr
+            self.data = []
+            for buf in self.buffers:
+                data = _ffi.new("pmBatchedData *")
+                data.fields = _STATE_ID.value
+                data.floatArray = buf._float_arr
+                data.intArray = buf._int_arr
+                self.data.append(data)
 
     def read(self, space: pymunk.Space) -> tuple[np.ndarray, np.ndarray]:
         self.reads += 1
-        buf = self.buffer
+        i = self.cur = 1 - self.cur
+        keep = self.keep
+        if keep is not None and keep[0] == i:
+            self.keep = None
+            keep[1]()
+        buf = self.buffers[i]
         if _lib is None:
             buf.clear()
             pymunk.batch.get_space_bodies(space, _STATE_ID, buf)
@@ -461,12 +476,13 @@ class _StateReader:
             return ids, self.flat.reshape(len(ids), 6)
         floats, ints = buf._float_arr, buf._int_arr
         floats.num = ints.num = 0
-        _lib.cpSpaceEachBody(space._space, _BATCH_GET, self.data)
-        n, last = ints.num, self.last
+        _lib.cpSpaceEachBody(space._space, _BATCH_GET, self.data[i])
+        n, last = ints.num, self.last[i]
         if last is not None and last[0] == n and last[1] == ints.arr and last[2] == floats.arr:
+            self.flat = last[4]
             return last[3]      # the same arrays, refilled in place: the views still fit
         ids = np.frombuffer(_ffi.buffer(ints.arr, 8 * n), dtype=np.int64)
-        self.flat = np.frombuffer(_ffi.buffer(floats.arr, 48 * n), dtype=np.float64)
-        rows = ids, self.flat.reshape(n, 6)
-        self.last = (n, ints.arr, floats.arr, rows)
+        flat = self.flat = np.frombuffer(_ffi.buffer(floats.arr, 48 * n), dtype=np.float64)
+        rows = ids, flat.reshape(n, 6)
+        self.last[i] = (n, ints.arr, floats.arr, rows, flat)
         return rows

@@ -70,7 +70,8 @@ class BallChecks:
         if not hasattr(self, "_flag_now"):
             self._flag_now = None   # [pose, M, limits] (_flag_matrix; they depend on the pose
                                     # alone: kept while the tables change)
-        self._flag_rows = None      # [n, product, limits (n, 5), their pose] (_flags)
+        self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4]
+                                    # (_flags)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -80,6 +81,12 @@ class BallChecks:
         if prev is not None:
             self._xy[prev[0]] = _centres(prev)
             self._prev = None
+
+    def _own_prev(self) -> None:
+        """The reader is about to refill the rows self._prev holds: copy them (_usual_check)."""
+        prev = self._prev
+        if prev is not None and prev[2].base is not None:
+            self._prev = (prev[0], prev[1], prev[2].copy())
 
     def check_balls(self, L0: tuple[float, float, float]) -> tuple[float, float, float]:
         """After a step: count the balls that tunneled through the L, remove those that left the
@@ -93,7 +100,7 @@ class BallChecks:
         n = -1 if awake is None else len(awake[0])
         # the same awake ids in the same order, then the same first static body (the batch's
         # order is awake | static | asleep): one bytes compare (awake[4] holds both)
-        same = n >= 0 and ids[:n + 1].tobytes() == awake[4]
+        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]   # (one NumPy call, not 2)
         if same:
             L_row = awake[3]
             L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
@@ -146,14 +153,19 @@ class BallChecks:
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
         _, rows, k, L_row, _ = awake
         flags = self._flags(rows_now, L1)
-        key = _key(flags, L_row)
-        prev, self._prev = self._prev, (k, rows, rows_now.copy())   # (for flush_xy)
+        b = flags.tobytes()                    # (_key, and the L's box flags, from one call)
+        key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
+        # (for flush_xy) the reader's rows themselves, no copy: they stay good through the next
+        # read, and a read that would refill them first has _own_prev copy them (0.5 us a check)
+        prev, self._prev = self._prev, (k, rows, rows_now)
+        reader = self._state_reader
+        reader.keep = (reader.cur, self._own_prev)
         if key == fast[2]:                     # the same flags as after the last step
             self._fast = (L1, flags, key)
             # every ball in the box, so every row finite (a NaN or inf anywhere in a row fails
             # its box flags: _NAN_FAILS); the L's too if its box flags hold: the runner's
             # non-finite check need not look again at these rows (~1.75 us a step)
-            if _NAN_FAILS and (L_row is None or flags[L_row].tobytes()[:4] == b"\1\1\1\1"):
+            if _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1"):
                 self.finite_read = self._state_reader.reads
             return L1
         old, self._fast = fast[1], fast_of(L1, flags, L_row)
@@ -311,9 +323,11 @@ class BallChecks:
         n = len(rows)
         kept = self._flag_rows
         if kept is None or kept[0] != n:
-            kept = self._flag_rows = [n, np.empty((n, 5)), np.empty((n, 5)), None]
-        if kept[3] != pose:
-            kept[2][:] = limits
+            full = np.empty((n, 5))
+            full[:] = limits
+            kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4]]
+        elif kept[3] != pose:       # (a moving L) only the line's limit depends on the pose:
+            kept[4].fill(limits[4])     # its column alone (0.2 us; the whole array 0.6)
             kept[3] = pose
         return np.less_equal(rows.dot(M, out=kept[1]), kept[2])
 

@@ -236,3 +236,15 @@ def test_the_flags_answer_the_finite_check_only_for_rows_they_found_finite(cls):
     else:                                        # the NaN ball left (removed), the rest finite
         assert body not in scene.space.bodies and scene.is_finite()
     assert scene.finite_read != scene._state_reader.reads or scene.is_finite()
+
+
+def test_the_rows_kept_from_the_last_step_survive_reads_between_steps():
+    # _usual_check keeps the reader's own rows (no copy): they stay good through one more read,
+    # and a second read (a wake and a metric between steps) has them copied before refilling.
+    scene = balls_on_the_L()
+    kept = scene._prev[2].copy()
+    for i in range(3):
+        scene.balls[3].body.position = (100.0 + i, 50.0)      # (a test's kick between steps)
+        scene.wake()
+        scene.state_rows()
+        assert np.array_equal(scene._prev[2], kept)
