@@ -216,63 +216,41 @@ OUT_KINDS = ["plain", "dir", "fifo", "devnull", "devfull", "underfile", "proc", 
              "dotdot", "invalidutf8"]
 
 
+# the kinds whose path needs nothing made beforehand: the path, "{ext}" replaced by the output's
+# extension
+PLAIN_PATHS = {
+    "plain": "out{ext}", "devnull": "/dev/null", "devfull": "/dev/full", "proc": "/proc/x{ext}",
+    "missingdir": "new/sub/x{ext}", "empty": "", "space": " ", "newline": "a\nb{ext}",
+    "escape": "\x1b[31mred{ext}", "long": "y" * LONG + "{ext}", "name300": "z" * 300 + "{ext}",
+    "unicode": "\u00fcn\u00efc\u00f6d\u00e9 \u540d{ext}", "noext": "out", "badext": "out.txt",
+    "full": "FULL/x{ext}", "dash": "-", "trailingslash": "out{ext}/",
+    "dotdot": "../" * 40 + "x{ext}",
+}
+
+
 def out_path(kind: str, ext: str, setup: dict, guarded: list) -> str | bytes:
     """A path of `kind` for an output ending in `ext`, with what it needs made in setup."""
-    if kind == "plain":
-        return "out" + ext
+    if kind in PLAIN_PATHS:
+        return PLAIN_PATHS[kind].replace("{ext}", ext)
     if kind == "dir":
         setup["adir"] = "dir"
         return "adir"
     if kind == "fifo":
         setup["fifo" + ext] = "fifo"
         return "fifo" + ext
-    if kind == "devnull":
-        return "/dev/null"
-    if kind == "devfull":
-        return "/dev/full"
     if kind == "underfile":
         setup["afile"] = b"a file\n"
         return "afile/x" + ext
-    if kind == "proc":
-        return "/proc/x" + ext
-    if kind == "missingdir":
-        return "new/sub/x" + ext
     if kind == "existing":
         setup["old" + ext] = SENTINEL
         guarded.append("old" + ext)
         return "old" + ext
-    if kind == "empty":
-        return ""
-    if kind == "space":
-        return " "
-    if kind == "newline":
-        return "a\nb" + ext
-    if kind == "escape":
-        return "\x1b[31mred" + ext
-    if kind == "long":
-        return "y" * LONG + ext
-    if kind == "name300":
-        return "z" * 300 + ext
-    if kind == "unicode":
-        return "\u00fcn\u00efc\u00f6d\u00e9 \u540d" + ext
-    if kind == "noext":
-        return "out"
-    if kind == "badext":
-        return "out.txt"
-    if kind == "full":
-        return "FULL/x" + ext
     if kind == "fullexisting":
         guarded.append("FULL/old" + ext)
         return "FULL/old" + ext
-    if kind == "dash":
-        return "-"
-    if kind == "trailingslash":
-        return "out" + ext + "/"
     if kind == "symlinkdir":
         setup["linkdir"] = ("link", "/proc")
         return "linkdir/x" + ext
-    if kind == "dotdot":
-        return "../" * 40 + "x" + ext
     if kind == "invalidutf8":
         return b"bad\xff" + ext.encode()
     raise ValueError(kind)
