@@ -19,6 +19,7 @@ from app.draw.layout import MARGIN
 from app.draw.text import font, px
 from app.loop import SLOW_MOTION
 from app.runner import WATCH_SECONDS
+from app.timeline import SPAN
 from app.scene import InputEvent
 
 BAR_COLOR = (60, 66, 76)
@@ -98,7 +99,7 @@ class TimelineHost:
         if tl is None or len(tl.keys) < 2 or strip is None:
             return None
         h = min(_bar_height(), strip.height)
-        label = _label_font().size("30 s kept  [ ]")[0]   # the widest: the bar never wiggles
+        label = _label_font().size(_label(SPAN))[0]   # the widest: the bar never moves
         return pygame.Rect(strip.left + px(12), strip.centery - h // 2,
                            max(strip.width - label - 2 * h - px(32), 1), h)
 
@@ -142,7 +143,7 @@ class TimelineHost:
         pygame.draw.rect(screen, KEPT_COLOR, (bar.left, bar.top, x - bar.left, bar.height),
                          border_radius=bar.height // 2)
         pygame.draw.circle(screen, NOW_COLOR, (x, bar.centery), bar.height * 3 // 4 + 1)
-        img = _label_font().render(_label(tl), True, hud.DIM_COLOR)     # right of the bar
+        img = _label_font().render(_label(tl.kept_seconds), True, hud.DIM_COLOR)   # right of it
         screen.blit(img, (bar.right + bar.height + px(8), bar.centery - img.get_height() // 2))
 
     def timeline_notes(self) -> list:
@@ -176,8 +177,8 @@ def _label_font():
     return font(hud.HUD_SIZE // 2)        # a hint: small, so the strip costs the scene little
 
 
-def _label(tl) -> str:
-    return f"{tl.kept_seconds:.0f} s kept  [ ]"
+def _label(seconds: float) -> str:
+    return f"{seconds:.0f} s kept  [ ]"
 
 
 __all__ = ["TimelineHost"]
