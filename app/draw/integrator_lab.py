@@ -120,6 +120,15 @@ class LabDrawing:
                 break
         return shown, size, need_w, need_h
 
+    def table_within(self, rows, size: int, height: int) -> tuple[int, int, int]:
+        """(size, width, height) of the table at the largest text <= `size` whose rows fit in
+        `height` px, but never below SMALLEST_TEXT (then taller than `height`)."""
+        need_w, need_h = self.table_need(rows, size)
+        while need_h > height and size > SMALLEST_TEXT:
+            size = max(SMALLEST_TEXT, size - 1)
+            need_w, need_h = self.table_need(rows, size)
+        return size, need_w, need_h
+
     def layout(self, rect: pygame.Rect, rows) -> LabRects:
         """The four panels in `rect`, from the table's measured size."""
         s = TEXT.scale
@@ -141,9 +150,7 @@ class LabDrawing:
             below = rect.height - int(TOP_SHARE * rect.height) - 2 * GAP
             energy_least = chart_least()
             widest = size
-            while need_h > below - energy_least and size > SMALLEST_TEXT:
-                size = max(SMALLEST_TEXT, size - 1)
-                need_w, need_h = self.table_need(rows, size)
+            size, need_w, need_h = self.table_within(rows, size, below - energy_least)
             if need_h <= below - energy_least:
                 table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
                 energy_h = min(below - need_h, int(0.3 * rect.height))
@@ -154,11 +161,7 @@ class LabDrawing:
                 # plot with one label, its lines flat): none (the table has E/E0, the phase
                 # portrait the spiral); the table's text back to the largest that fits the
                 # width and what is below the pictures, and the rest is the picture's
-                size = widest
-                need_w, need_h = self.table_need(rows, size)
-                while need_h > below + GAP and size > SMALLEST_TEXT:
-                    size = max(SMALLEST_TEXT, size - 1)
-                    need_w, need_h = self.table_need(rows, size)
+                size, need_w, need_h = self.table_within(rows, widest, below + GAP)
                 table = pygame.Rect(rect.left, rect.bottom - need_h, rect.width, need_h)
                 energy = pygame.Rect(rect.left, table.top, rect.width, 0)
                 top_bottom = table.top - GAP
