@@ -296,7 +296,7 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
         seed = base.new_seed()
     folders = students_in(class_dir, out)
     empty = without_answers(class_dir, folders)
-    students = [s for s in folders if s not in set(empty)]
+    students = sorted(set(folders) - set(empty))
     line = sandbox.protections().line()
     print(line, file=sys.stderr)
     if empty:
