@@ -392,7 +392,7 @@ def test_the_scene_gets_most_of_the_world_area_and_the_first_page_is_short(cls, 
 def test_pointing_at_a_card_shows_what_it_sets_below_the_cards_not_over_them(tmp_path):
     """No tooltip covers the cards (the box under them says what a card does); the other
     tooltips' text grows with F2 like the rest of the panel."""
-    from app.window.panel import theme
+    from app.window.panel_size import theme
     assert int(theme(1.6)["tool_tip.text_box"]["font"]["size"]) == round(
         1.6 * int(theme(1.0)["tool_tip.text_box"]["font"]["size"]))
     cls = get_scene("mass_spring_cloth")

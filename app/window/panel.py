@@ -22,12 +22,11 @@ from app.draw.text import TEXT
 from app.scene import Scene, Try
 from app.window import gui_ids
 from app.window.panel_form import FormWidgets, _html, select as _select
-from app.window.panel_size import TOP_ROW, theme  # noqa: F401 (theme: read from here too)
+from app.window.panel_size import BUTTON_PAD, TOP_ROW
 
 gui_ids.install()           # pygame_gui's theming ids, cached (app/window/gui_ids.py)
 
 
-BUTTON_LABELS = TOP_ROW   # the top row's widest labels (Pause <-> Resume)
 WATCH_HINT = ("Point at a card to see what it sets; click it: the scene starts afresh from its "
               "defaults plus the card's values, and says what to watch for.")
 
@@ -126,7 +125,7 @@ class ParamPanel:
         # each button as wide as its longest label ("Resume" was cut at large text in a small
         # window), the spare width shared out equally
         button_font = manager.get_theme().get_font(["button"])
-        need = [button_font.size(t)[0] + 12 for t in BUTTON_LABELS]
+        need = [button_font.size(t)[0] + BUTTON_PAD for t in TOP_ROW]   # (Pause <-> Resume)
         spare = inner_w - 2 * gap - sum(need)
         widths = [max(1, n + spare // 3) for n in need]
         xs = [pad, pad + widths[0] + gap, pad + widths[0] + widths[1] + 2 * gap]

@@ -20,6 +20,7 @@ NORMAL_SHARE = 0.36      # the panel takes at most this share of the window's wi
 LARGE_SHARE = 0.30       # ... and at F2 at most this share (never less than PANEL_WIDTH)
 PAD, SCROLL_BAR = 10, 20  # the panel's inner padding and its scroll bar (panel.py)
 TOP_ROW = ("Resume", "Reset", "Help")   # the top row's widest labels (Pause <-> Resume)
+BUTTON_PAD = 12           # a button's width beyond its label (panel.py lays them out so)
 THEME_PATH = Path(__file__).resolve().parents[2] / "assets" / "theme.json"
 _THEMES: dict[float, dict] = {}
 
@@ -66,7 +67,8 @@ def top_row_need(scale: float) -> int:
     manager = pygame_gui.UIManager((64, 64), theme_path=theme(scale))
     font = manager.get_theme().get_font(["button"])
     gap = int(round(6 * scale))
-    return sum(font.size(t)[0] + 12 for t in TOP_ROW) + 2 * gap
+    return sum(font.size(t)[0] + BUTTON_PAD for t in TOP_ROW) + 2 * gap
 
 
-__all__ = ["panel_width", "panel_scale", "top_row_need", "theme", "PANEL_WIDTH", "LARGE_SHARE"]
+__all__ = ["panel_width", "panel_scale", "top_row_need", "theme", "PANEL_WIDTH", "LARGE_SHARE",
+           "TOP_ROW", "BUTTON_PAD"]

@@ -26,7 +26,7 @@ from app.runner import SceneRunner
 from app.scene import InputEvent, ParamError, Scene, SceneError, Try
 from app.window.camera_host import CameraHost
 from app.window.instrument_host import InstrumentHost
-from app.window.panel_size import panel_scale, panel_width
+from app.window.panel_size import panel_scale, panel_width, theme
 from app.window.recorder import changed_settings
 from app.window.timeline_host import TimelineHost
 from app.window.speed import SETTLE_FRAMES, SpeedWatch  # noqa: F401 (tests import it here)
@@ -95,7 +95,7 @@ class SceneView(CameraHost, TimelineHost, InstrumentHost, ShellView):
     def on_layout(self) -> None:
         """(Re)build the pygame-gui manager and the panel for the window's size and text size."""
         import pygame_gui
-        from app.window.panel import ParamPanel, theme
+        from app.window.panel import ParamPanel
         size = self.window.screen.get_size()
         scale = panel_scale(self.panel_width, TEXT.scale) if self.panel_visible else TEXT.scale
         self.manager = pygame_gui.UIManager(size, theme_path=theme(scale))
