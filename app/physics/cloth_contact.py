@@ -33,26 +33,14 @@ step's sweeps relax them. Measured: the penetration stays under 0.5 px at the en
 at the defaults and Coulomb's slope test still sticks exactly when tan(a) < mu
 (tests/test_cloth_contact.py); with the cheaper sweep test, the contact passes of a 64 x 64
 cloth on three obstacles cost half or less of what a projection and friction before and after
-the sweeps did (`python -m app bench cloth`, same run: 0.86 -> 0.42 ms hanging, 1.23 -> 0.40
-ms heaped on them). Testing each obstacle's paths and projecting its particles in one go, on
-one broad phase and one distance evaluation, with the tangent bound of tunnelling.through_one,
-took that to 0.31 and 0.29 ms (collisions + friction, the fastest of 300 steps from the same
-state, CPU time, the lab's machine at load 12; 0.42 and 0.47-0.55 before, same runs). As a
-share of the step (the goal: at most 30 %) that is 31.8 / 30.9 % hanging / heaped at load 0.4,
-33-34 % at load 6.5-7 (bench cloth, medians of 101 interleaved rounds, runs of 2026-11-26), and
-27-28 % / 31-33 % at load 3.3 in two runs of the same measurement (81-101 rounds, a script):
-at the goal's edge, on either side of it from run to run. Its time goes to some 300 NumPy calls on a few hundred to
-1,900 particles each (the box's distance and normal alone ~34, Coulomb's rule ~20), not to
-arithmetic; the same pass with x and y as (2, k) arrays (fewer calls; NumPy's 2-D fancy index
-then cost more than it saved, row by row it was even) measured 31.5 -> 32.9 % hanging and
-32.5 -> 29.6 % heaped in one process (load 3.2): within the noise, not kept. Fewer calls and
-temporaries, positions bit-identical (friction in place, the ends' x and y taken as one (2, k)
-array, the box's distance with its sums in place, through_one returning at once when no path
-is long enough for either test): the contact passes 0.435 -> 0.407 ms hanging, 0.508 -> 0.473
-ms heaped (medians of 201 interleaved rounds, one process, load 5.7-6.6). The hanging state
-itself was the larger error: bench cloth had put the ball and the box inside the hanging cloth
-at once (a particle trapped on the wrong side of each, put back by the tunnelling test every
-step); dragged up as a hand would, the same code costs 0.544 -> 0.435 ms there.
+the sweeps did. Each obstacle's paths are tested and its particles projected in one go (one
+broad phase, one distance evaluation, the tangent bound of tunnelling.through_one). What is left
+is some 180-300 NumPy calls a step on a few hundred to 1,900 particles each (the box's distance
+and normal ~34, Coulomb's rule ~20), not arithmetic. As a share of the step (the goal: at most
+30 %): 24 % hanging and 27 % heaped on the three obstacles in `python -m app bench cloth` on a
+quiet machine (2026-11-26, load 1.2, medians of 101 interleaved rounds), a few points more
+under load. What was measured on the way, and what was tried and not kept (x and y as (2, k)
+arrays: neutral), is in `git log app/physics/cloth_contact.py`.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
