@@ -46,10 +46,10 @@ and the scene says so (it never raises).
 
 The step uses plain float arithmetic (the math module; see rk4_tuple for why); `positions` returns
 a NumPy array for drawing and comparing. What it costs: advance() takes each step through
-`stepper()`, rk4_step and the energy check written out as one function (the same bits); one RK4
-step is four evaluations of the equations (six trigonometric calls and ~40 float operations
-each) and an energy check, ~5 us in CPython, and the energy budget asks for 2.4-3.2 steps a
-60 Hz frame at the defaults (at least 2: MAX_STEP), ~13-17 us a frame, more than pymunk's whole
+`stepper()`, rk4_tuple on derivative() and the energy check written out as one function (the
+same bits: a test compares them); one RK4 step is four evaluations of the equations (six
+trigonometric calls and ~40 float operations each) and an energy check, ~5 us in CPython, and
+the energy budget asks for 2.4-3.2 steps a 60 Hz frame at the defaults (at least 2: MAX_STEP), ~13-17 us a frame, more than pymunk's whole
 step of the same pendulum (~12 us, 10 substeps): `bench pymunk` measures both (2026-11-26).
 """
 
@@ -103,42 +103,9 @@ class DoublePendulumODE:
 
     def constants(self) -> tuple[float, ...]:
         """The products of the parameters that derivative() forms at every call, formed once
-        (for derivative_with; they hold while l1, l2, m1, m2 and g stay the same)."""
+        (for stepper(); they hold while l1, l2, m1, m2 and g stay the same)."""
         l1, l2, m1, m2, g = self.l1, self.l2, self.m1, self.m2, self.g
         return (l1, l2, m2, 2 * m1 + m2, m1 + m2, -g * (2 * m1 + m2), m2 * g, g * (m1 + m2))
-
-    @staticmethod
-    def derivative_with(y: State, c: tuple[float, ...]) -> State:
-        """derivative(y), with the parameters' products from constants(): the same operations
-        in the same order, so the same result to the last bit (a test checks it), in half the
-        time. The RK4 steps use it; derivative() is the formula to read."""
-        t1, t2, w1, w2 = y
-        l1, l2, m2, m_2m1_m2, m12, minus_g_2m1_m2, m2_g, g_m12 = c
-        d = t1 - t2
-        sin_d, cos_d = math.sin(d), math.cos(d)
-        den = m_2m1_m2 - m2 * math.cos(2 * d)
-        a1 = (minus_g_2m1_m2 * math.sin(t1) - m2_g * math.sin(t1 - 2 * t2)
-              - 2 * sin_d * m2 * (w2 * w2 * l2 + w1 * w1 * l1 * cos_d)) / (l1 * den)
-        a2 = (2 * sin_d * (w1 * w1 * l1 * m12 + g_m12 * math.cos(t1)
-                           + w2 * w2 * l2 * m2 * cos_d)) / (l2 * den)
-        return (w1, w2, a1, a2)
-
-    def rk4_step(self, h: float, c: tuple[float, ...] | None = None) -> None:
-        """One classical Runge-Kutta step of h seconds: integrators.rk4_tuple's formula written
-        out for the four numbers (the same arithmetic, so the same result to the last bit, a
-        test checks it; without its tuple-building loops a step costs about a third less).
-        c: constants(), if already formed."""
-        c = self.constants() if c is None else c
-        f = self.derivative_with
-        t1, t2, w1, w2 = y = self.state
-        hh = 0.5 * h
-        a1, b1, c1, d1 = f(y, c)                                              # k1 = f(y)
-        a2, b2, c2, d2 = f((t1 + hh * a1, t2 + hh * b1, w1 + hh * c1, w2 + hh * d1), c)
-        a3, b3, c3, d3 = f((t1 + hh * a2, t2 + hh * b2, w1 + hh * c2, w2 + hh * d2), c)
-        a4, b4, c4, d4 = f((t1 + h * a3, t2 + h * b3, w1 + h * c3, w2 + h * d3), c)
-        h6 = h / 6.0                                     # y + h/6 (k1 + 2 k2 + 2 k3 + k4)
-        self.state = (t1 + h6 * (a1 + 2 * a2 + 2 * a3 + a4), t2 + h6 * (b1 + 2 * b2 + 2 * b3 + b4),
-                      w1 + h6 * (c1 + 2 * c2 + 2 * c3 + c4), w2 + h6 * (d1 + 2 * d2 + 2 * d3 + d4))
 
     def energy_scale(self) -> float:
         """What the relative energy error is measured against: the energy at set_state, or, if
@@ -193,9 +160,9 @@ class DoublePendulumODE:
         return True
 
     def stepper(self):
-        """step(y, h) -> (y after one rk4_step of h, and energy_terms() there): rk4_step,
-        derivative_with and energy_terms written out once more as one function over plain
-        floats, with the parameters' products formed here, once per advance() (the same
+        """step(y, h) -> (y after one RK4 step of h, and energy_terms() there):
+        integrators.rk4_tuple on derivative() and energy_terms written out as one function over
+        plain floats, with the parameters' products formed here, once per advance() (the same
         operations in the same order, so the same numbers to the last bit: a test checks it;
         about a third less time than the three calls, which is what advance() spends its time
         on: ~2.5 RK4 steps a frame at the defaults)."""
@@ -206,7 +173,7 @@ class DoublePendulumODE:
         k3, k4, k5 = m2 * l1 * l2, (m1 + m2) * g * l1, m2 * g * l2
 
         def f(t1: float, t2: float, w1: float, w2: float) -> tuple[float, float]:
-            """derivative_with's (alpha1, alpha2)."""
+            """derivative()'s (alpha1, alpha2), with the products formed above."""
             d = t1 - t2
             sin_d, cos_d = sin(d), cos(d)
             den = m_2m1_m2 - m2 * cos(2 * d)
