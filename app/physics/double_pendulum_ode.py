@@ -50,7 +50,8 @@ a NumPy array for drawing and comparing. What it costs: advance() takes each ste
 same bits: a test compares them); one RK4 step is four evaluations of the equations (six
 trigonometric calls and ~40 float operations each) and an energy check, ~5 us in CPython, and
 the energy budget asks for 2.4-3.2 steps a 60 Hz frame at the defaults (at least 2: MAX_STEP),
-~13-17 us a frame, more than pymunk's whole step of the same pendulum (~12 us, 10 substeps): `bench pymunk` measures both (2026-11-26).
+~13-17 us a frame, more than pymunk's whole step of the same pendulum (~12 us, 10 substeps):
+`bench pymunk` measures both (2026-11-26).
 """
 
 from __future__ import annotations
