@@ -24,6 +24,8 @@ import warnings
 
 import numpy as np
 
+from app.pymunk_scene import extent
+
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in _flags's
 # product, on purpose: a NaN fails every comparison, so the ball goes to the exact tests and is
 # removed that step. NumPy would also print "invalid value encountered in dot" for it; the lab
@@ -211,21 +213,17 @@ class BallChecks:
         r = self.p["radius"]
         return -2 * r, -h, w + 2 * r, h + 2 * r
 
-    def remove_outside(self, k: np.ndarray, xy: np.ndarray, rows: np.ndarray | None = None
-                       ) -> None:
-        """remove_fallen(k, xy) (or of xy[rows], the balls among other bodies), after a quick
-        look: if the smallest and largest x and y are inside the box, no ball is out (the same
-        comparisons as remove_fallen's; argmin and argmax find a NaN too, which fails them)."""
+    def remove_outside(self, k: np.ndarray, xy: np.ndarray) -> None:
+        """remove_fallen(k, xy), after a quick look: if the points' extent is inside the box, no
+        ball is out (the same comparisons as remove_fallen's; a NaN fails them)."""
         if not len(xy):
             return
-        x, y = xy[:, 0], xy[:, 1]
-        w, h = self.world_size
-        r = self.p["radius"]
-        if (x[x.argmin()] >= -2 * r and x[x.argmax()] <= w + 2 * r and y[y.argmin()] >= -h
-                and y[y.argmax()] <= h + 2 * r):
+        x0, y0, x1, y1 = self.box()
+        lo_x, lo_y, hi_x, hi_y = extent(xy)
+        if lo_x >= x0 and lo_y >= y0 and hi_x <= x1 and hi_y <= y1:
             return
         self.flush_xy()
-        self.remove_fallen(k, xy if rows is None else xy[rows])
+        self.remove_fallen(k, xy)
 
     def awake_after_removal(self, bodies: list[int], gone: list[int]) -> tuple | None:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were
@@ -359,16 +357,14 @@ class BallChecks:
         so "above" needs the margin). A non-finite centre counts as out."""
         if not len(xy):
             return
-        w, h = self.world_size
-        r = self.p["radius"]
+        x0, y0, x1, y1 = self.box()
         if len(xy) <= 64:     # a few: one look at each (the same comparisons; NaN fails them)
-            x0, y0, x1, y1 = self.box()
             out = [i for i, (x, y) in enumerate(xy.tolist())
                    if not (x >= x0 and y >= y0 and x <= x1 and y <= y1)]
             if out:
                 self.remove_balls(k[out])
             return
-        inside = ((xy >= (-2 * r, -h)) & (xy <= (w + 2 * r, h + 2 * r))).all(axis=1)  # NaN: False
+        inside = ((xy >= (x0, y0)) & (xy <= (x1, y1))).all(axis=1)          # NaN: False
         if not inside.all():
             self.remove_balls(k[~inside])
 
