@@ -106,6 +106,7 @@ def test_the_bare_pymunk_loop_holds_the_labs_bodies_step_by_step():
     operations in the same order: pymunk is deterministic) after every step."""
     import numpy as np
     from app.bench.bare_pymunk import Replay, record
+    from app.bench.bare_pymunk import counts as bare_counts
     from app.pymunk_scene import _StateReader
     from scenes import get_scene
 
@@ -115,7 +116,7 @@ def test_the_bare_pymunk_loop_holds_the_labs_bodies_step_by_step():
             return get_scene(name)(settings)
         schedule = record(build, 240)
         lab, bare = build(), Replay(build(), schedule)
-        added, removed = bare.counts()
+        added, removed = bare_counts(schedule)
         assert added >= 40 and removed >= 3, (name, added, removed)
         read_lab, read_bare = _StateReader(), _StateReader()
         counts = set()

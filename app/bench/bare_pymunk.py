@@ -133,7 +133,9 @@ class Replay:
                 body = self.bodies[what]
                 space.remove(self.shapes.pop(id(body)), body)
 
-    def counts(self) -> tuple[int, int]:
-        """(balls added, balls removed) over the whole schedule."""
-        ops = [op for ops in self.schedule for op, _ in ops]
-        return ops.count("add"), ops.count("remove")
+
+
+def counts(schedule: list) -> tuple[int, int]:
+    """(balls added, balls removed) in a schedule (record(): a list of each substep's ops)."""
+    ops = [op for substep in schedule for op, _ in substep]
+    return ops.count("add"), ops.count("remove")

@@ -34,9 +34,10 @@ import time
 from typing import Callable
 
 from app.bench import Report, Timing
-from app.bench.bare_pymunk import Replay, record
+from app.bench.bare_pymunk import Replay, counts, record
 from app.scene import Scene
 
+GHOST_ON, GHOST_OFF = "double_pendulum (default: + RK4 ghost)", "double_pendulum (reference off)"
 GOAL = 1.5          # the lab's step at most this many times the bare loop's (issue 28)
 WARM = 5            # untimed steps on each side first: the first steps after a build pay once
                     # for cold caches and Python's not yet specialised bytecode (a settled pile,
@@ -77,9 +78,8 @@ def cases(quick: bool, full: bool = False) -> list[tuple[str, Callable[[], Scene
            (f"a settled pile of {pile}, asleep", lambda: _pile(pile, True)),
            ("newtons_cradle (default)", warmed("newtons_cradle", 30)),
            (f"pivoting_l (default, after {warm // 60} s)", warmed("pivoting_l", warm)),
-           ("double_pendulum (reference off)", warmed("double_pendulum", 30,
-                                                      reference=False)),
-           ("double_pendulum (default: + RK4 ghost)", warmed("double_pendulum", 30))]
+           (GHOST_OFF, warmed("double_pendulum", 30, reference=False)),
+           (GHOST_ON, warmed("double_pendulum", 30))]
     if full:                # each round builds its pile again: ~20 s at load ~3
         out[2:2] = [("a settled pile of 1000, asleep", lambda: _pile(1000, True)),
                     ("a pile of 1000, awake (sleeping off)", lambda: _pile(1000, False))]
@@ -149,16 +149,15 @@ def run(report: Report) -> dict:
     for label, build in cases(quick, report.full):
         report.progress(f"lab vs bare pymunk: {label}")
         schedule = record(build, WARM + steps)
-        ops = [op for substep in schedule for op, _ in substep]
+        added, removed = counts(schedule)
         lab, bare = lab_and_bare(build, steps, rounds, schedule)
         lab_ms, bare_ms = Timing.of(lab) * 1e3, Timing.of(bare) * 1e3
         ratio = float(lab_ms) / float(bare_ms)
         load = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
-        changes = (f"{ops.count('add')} / {ops.count('remove')} in {WARM + steps}"
-                   if ops else "none")
+        changes = f"{added} / {removed} in {WARM + steps}" if added or removed else "none"
         out.append({"scene": label, "lab_ms": lab_ms, "bare_ms": bare_ms, "ratio": ratio,
                     "lab_spread_ms": (max(lab) - min(lab)) * 1e3, "rounds": rounds,
-                    "bare_adds": ops.count("add"), "bare_removes": ops.count("remove"),
+                    "bare_adds": added, "bare_removes": removed,
                     "load": load})
         rows.append([label, lab_ms, bare_ms, changes, ratio, "yes" if ratio <= GOAL else "NO",
                      f"{load:.2f}"])
@@ -182,7 +181,6 @@ def run(report: Report) -> dict:
     return {"goal": GOAL, "bare_loop": BARE_WORDS, "scenes": out, "ghost": ghost}
 
 
-GHOST_ON, GHOST_OFF = "double_pendulum (default: + RK4 ghost)", "double_pendulum (reference off)"
 
 
 def ghost_cost(steps: int, rounds: int) -> dict:
