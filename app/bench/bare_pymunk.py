@@ -134,7 +134,6 @@ class Replay:
                 space.remove(self.shapes.pop(id(body)), body)
 
 
-
 def counts(schedule: list) -> tuple[int, int]:
     """(balls added, balls removed) in a schedule (record(): a list of each substep's ops)."""
     ops = [op for substep in schedule for op, _ in substep]
