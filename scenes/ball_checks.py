@@ -179,12 +179,9 @@ class BallChecks:
                 prev = None                                 # kept for it)
             ax, bx = self.arm_extent
             for r in crossed:
-                if rows is not None:
-                    if not rows[r]:
-                        continue                       # not a ball (the L's row)
-                    j = int(np.count_nonzero(rows[:r]))
-                else:
-                    j = r
+                j = _ball_at(rows, r)
+                if j is None:
+                    continue                           # not a ball (the L's row)
                 p0 = self._xy[k[j]].tolist() if prev is None else prev[2][r, :2].tolist()
                 x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
                 if ax <= x0 <= bx and ax <= x1 <= bx:
@@ -193,12 +190,9 @@ class BallChecks:
             out = []                # flags changed (they were all true), by the exact test
             x0, y0, x1, y1 = self.box()
             for r in sorted({r for r, col in changed if col < 4}):
-                if rows is not None:
-                    if not rows[r]:
-                        continue
-                    j = int(np.count_nonzero(rows[:r]))
-                else:
-                    j = r
+                j = _ball_at(rows, r)
+                if j is None:
+                    continue
                 x, y = rows_now[r, :2].tolist()
                 if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
                     out.append(j)
@@ -367,6 +361,15 @@ class BallChecks:
         inside = ((xy >= (x0, y0)) & (xy <= (x1, y1))).all(axis=1)          # NaN: False
         if not inside.all():
             self.remove_balls(k[~inside])
+
+
+def _ball_at(rows: np.ndarray | None, r: int) -> int | None:
+    """The ball (its place among the awake balls) of awake row r, or None if that row is not a
+    ball (the L's); rows: which awake rows are balls, None if all are. (A rare path: a few rows
+    a step at most.)"""
+    if rows is None:
+        return r
+    return int(np.count_nonzero(rows[:r])) if rows[r] else None
 
 
 def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None) -> tuple:
