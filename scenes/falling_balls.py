@@ -352,7 +352,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
         or the sleep threshold is not yet set for this substep)."""
         p = self.p
         n = p["substeps"]
-        dt = 1.0 / p["hertz"]             # (self.dt)
+        dt = self.dt
         h = dt / n
         if p["spawn_rate"] > 0 or type(self).step is not FallingBallsScene.step \
                 or h != self._sleep_h:
