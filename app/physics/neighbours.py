@@ -157,6 +157,13 @@ class CellList:
     tests: int
 
 
+def cell_order(cell: np.ndarray, cells: int) -> np.ndarray:
+    """The particles' indices sorted by cell, in index order within a cell (a stable sort). With
+    at most 2^16 cells the keys are 16 bits, and NumPy's stable sort of them is a radix sort:
+    5x faster at 4096 particles, the same order."""
+    return np.argsort(cell.astype(np.uint16) if cells <= 1 << 16 else cell, kind="stable")
+
+
 def sort_into_cells(x: np.ndarray, cutoff: float, box: tuple[float, float]) -> CellList:
     """Steps 1-3 of the module docstring: cell index, sort, the runs of neighbouring cells."""
     n = len(x)
@@ -168,10 +175,7 @@ def sort_into_cells(x: np.ndarray, cutoff: float, box: tuple[float, float]) -> C
     cy = np.clip(np.floor(x[:, 1] * (ny / box[1])), 0, ny - 1).astype(np.intp)
     cell = cy * columns + cx
     # 2. sort: particle indices in cell order; each cell's run is start[c] .. stop[c] - 1
-    # (keys of 16 bits where they fit: NumPy's stable sort is then a radix sort, 5x faster
-    # at 4096 particles, the same order)
-    key = cell.astype(np.uint16) if columns * rows <= 1 << 16 else cell
-    order = np.argsort(key, kind="stable")
+    order = cell_order(cell, columns * rows)
     count = np.bincount(cell, minlength=columns * rows)    # particles per cell
     stop = np.cumsum(count)
     start = stop - count
@@ -301,7 +305,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     cy = np.minimum(((ys - lo_y) * (1 / cell_h)).astype(np.intp), ny - 1)
     cell = cy * nx + cx
     cells = nx * (ny + below)
-    order = np.argsort(cell.astype(np.uint16) if cells <= 1 << 16 else cell, kind="stable")
+    order = cell_order(cell, cells)
     stop = np.cumsum(np.bincount(cell, minlength=cells))
     # 3. the runs: the rest of the own row's reach, then each row below (start of cell c is the
     # stop of cell c - 1: c > 0 there, a row below)
