@@ -23,6 +23,7 @@ import os
 import sys
 from typing import NoReturn
 
+from app.ctrl_c import interrupted_inside
 from app.clips import DEFAULT_FPS, DEFAULT_WIDTH, check_video, frame_count
 from app.headless import (EXIT_NONFINITE, EXIT_OK, EXIT_USAGE, MAX_STEPS, Extras,
                           InputFileError, check_output_path, load_events, run_headless,
@@ -102,6 +103,10 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_OK
     except KeyboardInterrupt:   # Ctrl-C: one line, no traceback; no half-written file is left
         return interrupted()
+    except Exception as e:      # a Ctrl-C some library wrapped in its own error: the same
+        if interrupted_inside(e):
+            return interrupted()
+        raise
 
 
 def interrupted() -> int:

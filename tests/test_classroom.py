@@ -445,6 +445,7 @@ FLOORS = {"app.keys": 0, "app.units": 0, "app.loop": 0, "app.physics": 0, "app.p
           "app.vectors": 0, "app.series": 0, "app.equations": 0, "app.energy": 0,
           "app.timeline": 0, "app.outputs": 0, "app.progress": 0, "app.compare": 3,
           "app.form": 0,           # a scene's panel form: plain data (app/form.py)
+          "app.ctrl_c": 0,         # Ctrl-C held back across numba's compile (app/ctrl_c.py)
           "app.instruments": 3,
           "app.frames": 3, "app.headless_compare": 3, "app.cli_checks": 3, "app.cli_args": 3,
           "app.pymunk_scene": 3, "app.headless": 3, "scenes": 4, "app.bench": 5,

@@ -25,6 +25,7 @@ import importlib.util
 
 import numpy as np
 
+from app.ctrl_c import compiled
 from app.physics.rods import EPS, Batch
 
 # optional: the lab runs without it, and imports it (~0.5 s) only when the kernel is first used
@@ -70,15 +71,13 @@ def _sweeps(x, meta, rest, ka, kb, iterations):     # compiled by numba on first
                     k += 1
 
 
-_compiled = None
+def _make():
+    import numba as nb
+    return nb.njit(cache=True, nogil=True)(_sweeps)
 
 
-def _kernel():
-    global _compiled
-    if _compiled is None:
-        import numba as nb
-        _compiled = nb.njit(cache=True, nogil=True)(_sweeps)
-    return _compiled
+# made on first use, and that first call (the compile) with Ctrl-C held back: app/ctrl_c.py
+_kernel = compiled(_make)
 
 
 class CompiledPlan:
@@ -110,4 +109,4 @@ class CompiledPlan:
 
     def relax(self, x: np.ndarray, iterations: int) -> None:
         """`iterations` sweeps over the plan's batches, in place on x (2, rows, cols)."""
-        _kernel()(x, self.meta, self.rest, self.ka, self.kb, iterations)
+        _kernel(x, self.meta, self.rest, self.ka, self.kb, iterations)

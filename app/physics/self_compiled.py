@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-_compiled: dict = {}
+from app.ctrl_c import compiled
 
 
 def _find_pairs(xs, ys, lo_x, lo_y, scale_x, scale_y, nx, ny, r2_max, row, col, joined,
@@ -112,12 +112,16 @@ def _push_apart(xs, ys, i, j, w, dmin, over_relax, sweeps_done, moved_x, moved_y
             ys[p] += moved_y[p] * (over_relax / count[p])
 
 
-def _kernels():
-    if not _compiled:
+def _jit(fn):
+    """fn compiled by numba on its first call (with Ctrl-C held back: app/ctrl_c.py)."""
+    def make():
         import numba as nb
-        _compiled["find"] = nb.njit(cache=True, nogil=True)(_find_pairs)
-        _compiled["push"] = nb.njit(cache=True, nogil=True)(_push_apart)
-    return _compiled["find"], _compiled["push"]
+        return nb.njit(cache=True, nogil=True)(fn)
+    return compiled(make)
+
+
+_find = _jit(_find_pairs)
+_push = _jit(_push_apart)
 
 
 class Buffers:
@@ -140,25 +144,23 @@ def find_pairs(xs, ys, grid, distance: float, cols: int, joined: np.ndarray,
                buf: Buffers) -> tuple[np.ndarray, np.ndarray, int]:
     """(i, j, tests): the pairs closer than `distance`, not joined (joined: the (16,) table,
     (|dr|, |dc|) capped at 3), on the grid (lo_x, lo_y, nx / width, ny / height, nx, ny)."""
-    find, _ = _kernels()
     lo_x, lo_y, sx, sy, nx, ny = grid
     if buf.row.size != xs.size or buf.cols != cols:
         buf.row, buf.col = np.divmod(np.arange(xs.size), cols)
         buf.cols = cols
     args = (xs, ys, xs.dtype.type(lo_x), ys.dtype.type(lo_y), xs.dtype.type(sx),
             ys.dtype.type(sy), nx, ny, xs.dtype.type(distance) ** 2, buf.row, buf.col, joined)
-    found, tests = find(*args, buf.i, buf.j)
+    found, tests = _find(*args, buf.i, buf.j)
     if found < 0:                                       # more than ever before: grow, again
         buf.i, buf.j = np.empty(2 * tests + 1, np.int64), np.empty(2 * tests + 1, np.int64)
-        found, tests = find(*args, buf.i, buf.j)
+        found, tests = _find(*args, buf.i, buf.j)
     return buf.i[:found], buf.j[:found], tests
 
 
 def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweep: int,
                buf: Buffers) -> None:
     """One sweep of self-collision's Jacobi projection, in place on xs, ys."""
-    _, push = _kernels()
     if sweep == 0:
         buf.count[:] = 0
-    push(xs, ys, i, j, w, float(dmin), float(over_relax), sweep, buf.moved_x, buf.moved_y,
+    _push(xs, ys, i, j, w, float(dmin), float(over_relax), sweep, buf.moved_x, buf.moved_y,
          buf.count)
