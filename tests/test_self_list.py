@@ -59,6 +59,8 @@ def test_the_list_hands_out_exactly_the_pairs_a_fresh_search_finds(checked):
     card = ClothCollisionsScene({**FOLD, "self_collision": True})
     steps(card, 90)
     assert checked["reused"] > 40 and checked["pairs"] > 5000
+    lst = card.cloth.contact.self_list              # the HUD says how the list is doing
+    assert f"list reused {lst.reuses}, built {lst.builds}" in " ".join(map(str, card.hud_lines()))
     # a crumpled cloth falling onto the floor, landing, settling; then restored to a snapshot
     # taken while it fell, run on, self_distance changed, shear and bending switched on
     heap = ClothScene({"rows": 16, "cols": 16, "pins": "none", "start": "crumpled",

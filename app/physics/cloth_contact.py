@@ -70,14 +70,19 @@ interleaved rounds in one process, load 6.3 on the 2-core lab machine: search 0.
 largest part): 1.34 against a 0.95 ms step. Against the pass as it was (same process, direct
 calls, load 6.4): crumpled 2.11 -> 1.61 x the step, hanging 0.39 -> 0.47 x (three runs per
 particle and a larger cell table: a fixed cost); with all pairs in the same rounds, as the bench
-runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all pairs in the
-same rounds) reads 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before): the goal of at most 1 x is NOT
-met by NumPy. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth run: no faster),
-fewer cells per particle (coarser cells on the crumpled cloth's box: more candidates), blocks of
-4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps' x and y as one complex
-number (two gathers and one np.add.at: the same positions, 4 % faster: not worth plainer code). The compiled pass (kernel=numba,
-optional: app/physics/self_compiled.py; the same pairs) visits each candidate once: 0.85-0.89 x
-the step in the same runs.
+runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all
+pairs in the same rounds) read 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before), one step from the
+state. Since the list, the bench times 15 consecutive steps (one step would time only builds,
+or only reuses): 1.38-1.52 x at load 1.6 (main's pass, timed the same way in the same minutes:
+1.40-1.57 x; one step from the state 1.98-2.19 x: the work arrays are cold after the other
+rows' runs). The goal of at most 1 x is NOT met by NumPy: the search alone (fine_pairs) is
+0.65-0.7 ms of a 0.9 ms step. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth
+run: no faster), fewer cells per particle (coarser cells on the crumpled cloth's box: more
+candidates), blocks of 4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps'
+x and y as one complex number (two gathers and one np.add.at: the same positions, 4 % faster:
+not worth plainer code). The compiled pass (kernel=numba, optional: app/physics/self_compiled.py;
+the same pairs, searched every substep: no list) visits each candidate once: 0.73-0.89 x the
+step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
