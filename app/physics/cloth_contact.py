@@ -74,8 +74,8 @@ runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cl
 pairs in the same rounds) read 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before), one step from the
 state. Since the list, the bench times 15 consecutive steps (one step would time only builds,
 or only reuses): 1.38-1.52 x at load 1.6 (main's pass, timed the same way in the same minutes:
-1.40-1.57 x; one step from the state 1.98-2.19 x: the work arrays are cold after the other
-rows' runs). The goal of at most 1 x is NOT met by NumPy: the search alone (fine_pairs) is
+1.40-1.57 x; one step from the state 1.98-2.19 x: the first steps cost most, the pairs falling
+from 14,051 to 7,092 over the 15 as the cloth unfolds; the list changes neither). The goal of at most 1 x is NOT met by NumPy: the search alone (fine_pairs) is
 0.65-0.7 ms of a 0.9 ms step. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth
 run: no faster), fewer cells per particle (coarser cells on the crumpled cloth's box: more
 candidates), blocks of 4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps'
