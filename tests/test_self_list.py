@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 from app.physics import cloth_contact, self_list
-from app.physics.cloth_contact import close_ij
 from app.scene import InputEvent
 from scenes.cloth import ClothScene
 from scenes.cloth_collisions import FOLD, ClothCollisionsScene
@@ -20,32 +19,31 @@ def pair_set(i, j):
 
 @pytest.fixture
 def checked(monkeypatch):
-    """Every call of the list is checked against a fresh close_ij (as a set, no pair twice);
-    returns the counts (calls, reuses of the list, pairs handed out)."""
-    seen = {"calls": 0, "reused": 0, "pairs": 0}
+    """Every call of the list is checked against a fresh search (close_ij on the same cloth, as
+    a set, no pair twice); returns the counts (calls, reuses of the list, pairs handed out) and
+    the lists seen."""
+    seen = {"calls": 0, "reused": 0, "pairs": 0, "lists": []}
     listed = cloth_contact.listed_pairs
 
     def check(lst, x, distance, key, search, scratch):
         reuses = lst.reuses
         i, j, tests = listed(lst, x, distance, key, search, scratch)
+        i, j = i.copy(), j.copy()                   # (work arrays: the search below reuses them)
         got = pair_set(i, j)
         assert len(got) == len(i)
-        c = CLOTHS[-1]
-        fresh = close_ij(c, distance, "grid")
+        fresh = search(distance)                    # close_ij(cloth, distance, "grid")
         assert got == pair_set(fresh[0], fresh[1])
         seen["calls"] += 1
         seen["reused"] += lst.reuses - reuses
         seen["pairs"] += len(i)
+        if not any(lst is s for s in seen["lists"]):
+            seen["lists"].append(lst)
         return i, j, tests
     monkeypatch.setattr(cloth_contact, "listed_pairs", check)
     return seen
 
 
-CLOTHS: list = []          # the cloth being checked (the check reads its active rod sets)
-
-
 def steps(scene, n):
-    CLOTHS.append(scene.cloth)
     for _ in range(n):
         scene.advance()
 
@@ -59,22 +57,40 @@ def test_the_list_hands_out_exactly_the_pairs_a_fresh_search_finds(checked):
     card = ClothCollisionsScene({**FOLD, "self_collision": True})
     steps(card, 90)
     assert checked["reused"] > 40 and checked["pairs"] > 5000
-    lst = card.cloth.contact.self_list              # the HUD says how the list is doing
+    # its top layer's end dragged slowly (1 px a step, less than half the skin) along the bottom
+    # layer: it meets new partners, and only the measured sum of its moves tells when
+    lst = card.cloth.contact.self_list
+    grab = card.cloth.x[:, 0, -1].astype(float)
+    lmb(card, "mouse_down", grab)
+    builds = lst.builds
+    for k in range(1, 41):
+        lmb(card, "mouse_move", grab + (k, 0.0))
+        steps(card, 1)
+    lmb(card, "mouse_up", grab + (40.0, 0.0))
+    assert 5 < lst.builds - builds < 30             # (a list built every few steps)
+    steps(card, 5)
     assert f"list reused {lst.reuses}, built {lst.builds}" in " ".join(map(str, card.hud_lines()))
-    # a crumpled cloth falling onto the floor, landing, settling; then restored to a snapshot
-    # taken while it fell, run on, self_distance changed, shear and bending switched on
+    # a crumpled cloth falling onto the floor, landing, settling (the list reused); while a
+    # list with a skin is in use: self_distance raised, shear and bending switched on (a key
+    # change each), a restore of a snapshot taken while it fell
     heap = ClothScene({"rows": 16, "cols": 16, "pins": "none", "start": "crumpled",
-                       "obstacles": "floor", "self_collision": True, "substeps": 2})
+                       "obstacles": "floor", "self_collision": True})
+    lst = heap.cloth.contact.self_list
     steps(heap, 10)
     snap = heap.snapshot()
-    steps(heap, 60)
-    heap.restore(snap)
+    for change in (lambda: heap.set("self_distance", 1.0),
+                   lambda: (heap.set("shear", True), heap.set("bending", True)),
+                   lambda: heap.restore(snap)):
+        for _ in range(300):                        # on until a list is being reused
+            steps(heap, 1)
+            if lst.skin > 0 and lst.age > 0:
+                break
+        assert lst.skin > 0 and lst.age > 0
+        builds = lst.builds
+        change()
+        steps(heap, 1)
+        assert lst.builds == builds + 1             # rebuilt at once
     steps(heap, 5)
-    heap.set("self_distance", 1.0)
-    steps(heap, 5)
-    heap.set("shear", True)
-    heap.set("bending", True)
-    steps(heap, 10)
     # a cloth hanging, then one of its particles dragged across it by the mouse and let go
     hang = ClothScene({"rows": 12, "cols": 12, "self_collision": True})
     steps(hang, 20)
@@ -85,9 +101,8 @@ def test_the_list_hands_out_exactly_the_pairs_a_fresh_search_finds(checked):
         steps(hang, 1)
     lmb(hang, "mouse_up", grab + np.array([4.0, -6.0]) * 25)
     steps(hang, 10)
-    lists = [c.contact.self_list for c in CLOTHS[-3:]]
-    assert min(lst.builds for lst in lists) > 1 and min(lst.reuses for lst in lists) > 1
-    CLOTHS.clear()
+    lists = checked["lists"]
+    assert len(lists) == 3 and all(lst.builds > 1 and lst.reuses > 1 for lst in lists)
 
 
 @pytest.mark.parametrize("scene_of, settings, run", [

@@ -137,7 +137,7 @@ class ContactState:
     touching: np.ndarray | None = None    # particles that touched an obstacle in the last substep
     tunneled: int = 0                     # paths caught passing through an obstacle, since build
     self_pairs: int = 0                   # pairs pushed apart in the last self-collision pass
-    self_tests: int = 0                   # pair tests the last search took
+    self_tests: int = 0                   # pair tests the last search (or list filter) took
     start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
     crowded: bool = False                 # two obstacles meet (then corners are settled)
     joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for

@@ -81,10 +81,13 @@ class PairList:
 
 
 def moved(lst: PairList, x: np.ndarray) -> float:
-    """The largest distance any particle has moved since the build, squared (px^2)."""
-    d = np.subtract(x, lst.x0, out=lst.store.get("d", x.size, x.dtype).reshape(x.shape))
-    np.square(d, out=d)
-    return float(np.add(d[0], d[1], out=d[0]).max(initial=0.0))
+    """The largest distance any particle has moved since the build, squared (px^2); NaN or inf
+    for a cloth that has blown up (then the list is rebuilt: the search decides)."""
+    d = lst.store.get("d", x.size, x.dtype).reshape(x.shape)
+    with np.errstate(invalid="ignore", over="ignore"):          # (inf - inf, a huge square)
+        np.subtract(x, lst.x0, out=d)
+        np.square(d, out=d)
+        return float(np.add(d[0], d[1], out=d[0]).max(initial=0.0))
 
 
 def close_pairs(lst: PairList, x: np.ndarray, distance: float, key: tuple, search: Search,
