@@ -26,7 +26,8 @@ When does it pay? Only when the list lasts: each build searches R + s (more cand
 pairs to filter later) and each reuse filters the whole list. So the skin is chosen at each
 build: SKIN x R again if the last list was reused at least once; after a plain search, if the
 fastest particle moved slowly enough that the list would last LIFE substeps; else none (a
-plain search, exactly the pass without a list, plus one displacement test a substep).
+plain search, exactly the pass without a list, plus one displacement test and one copy of the
+positions a substep: 0.013 ms at 4,096 particles, 1-3 % of the pass).
 Measured (20 consecutive steps from the bench's states, one substep each, CPU ms of the pass
 per step, load 1.6; skin 0 is the pass without a list):
 
