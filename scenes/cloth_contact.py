@@ -235,8 +235,12 @@ class ClothContact:
                          f"{self.shown('penetration_max', m['penetration_max'])})")
         if "self_collision" in self.on:
             st = self.cloth.contact
+            lst = st.self_list                  # (the grid's Verlet list: app/physics/self_list.py)
+            listed = (f"; list reused {lst.reuses}, built {lst.builds}"
+                      if st.self_method == "grid" and self.cloth.kernel == "numpy" else "")
             lines.append(f"self-collision ({st.self_method}): {st.self_pairs} pairs pushed, "
-                         f"{m['self_overlaps']} still closer than {self.p['self_distance']:g} rods")
+                         f"{m['self_overlaps']} still closer than {self.p['self_distance']:g} "
+                         f"rods{listed}")
         return lines
 
     def contact_bounds(self, bounds: tuple[float, float, float, float]

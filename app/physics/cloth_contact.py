@@ -55,12 +55,12 @@ not thrown out), SELF_SWEEPS times, reusing the pairs found.
 
 What the pair search costs, and what was chosen. The grid is sorted once per substep (a stable
 sort on 16-bit cell keys: a radix sort), each pair met once (the half stencil), and a pair of
-rod neighbours is told by one table read (close_ij, _joined). A Verlet neighbour list (the pairs
-within self_distance plus a skin, kept until some particle has moved half the skin relative to
-the rest) was measured and not used: a crumpled 64 x 64 cloth let go moves up to 9-12 px per
-step away from its common fall (median 1.3 px, 99th percentile 4.3 px, steps 5-30) while
-self_distance is 6.4 px: a skin that lasts one step would be wider than 18 px, and the list
-would still be rebuilt every step. On that cloth (17,956 pairs closer than 6.4 px, 14,051 of
+rod neighbours is told by one table read (close_ij, _joined). The grid's pairs go through a
+Verlet neighbour list (app/physics/self_list.py: the pairs within self_distance plus a skin,
+filtered instead of searched while no particle has moved half the skin): it pays where the
+cloth lies still (the fold card's pass 0.29 -> 0.17 ms, a settled 64 x 64 heap 3.9 -> 3.0 ms),
+not on a crumpled cloth still falling (12-22 px a step against 6.4 px: a plain search every
+step, as before). On that cloth (17,956 pairs closer than 6.4 px, 14,051 of
 them not rod neighbours) cells self_distance wide gave 63,986 candidates; the finer cells, their
 stencil trimmed to the circle, give 41,050. Every work array of the search and the sweeps is kept
 in the contact state (neighbours.Scratch): fresh ones cost some 380 page faults a pass (memory
@@ -70,14 +70,19 @@ interleaved rounds in one process, load 6.3 on the 2-core lab machine: search 0.
 largest part): 1.34 against a 0.95 ms step. Against the pass as it was (same process, direct
 calls, load 6.4): crumpled 2.11 -> 1.61 x the step, hanging 0.39 -> 0.47 x (three runs per
 particle and a larger cell table: a fixed cost); with all pairs in the same rounds, as the bench
-runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all pairs in the
-same rounds) reads 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before): the goal of at most 1 x is NOT
-met by NumPy. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth run: no faster),
-fewer cells per particle (coarser cells on the crumpled cloth's box: more candidates), blocks of
-4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps' x and y as one complex
-number (two gathers and one np.add.at: the same positions, 4 % faster: not worth plainer code). The compiled pass (kernel=numba,
-optional: app/physics/self_compiled.py; the same pairs) visits each candidate once: 0.85-0.89 x
-the step in the same runs.
+runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all
+pairs in the same rounds) read 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before), one step from the
+state. Since the list, the bench times 15 consecutive steps (one step would time only builds,
+or only reuses): 1.38-1.52 x at load 1.6 (main's pass, timed the same way in the same minutes:
+1.40-1.57 x; one step from the state 1.98-2.19 x: the first steps cost most, the pairs falling
+from 14,051 to 7,092 over the 15 as the cloth unfolds; the list changes neither). The goal of at most 1 x is NOT met by NumPy: the search alone (fine_pairs) is
+0.65-0.7 ms of a 0.9 ms step. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth
+run: no faster), fewer cells per particle (coarser cells on the crumpled cloth's box: more
+candidates), blocks of 4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps'
+x and y as one complex number (two gathers and one np.add.at: the same positions, 4 % faster:
+not worth plainer code). The compiled pass (kernel=numba, optional: app/physics/self_compiled.py;
+the same pairs, searched every substep: no list) visits each candidate once: 0.73-0.89 x the
+step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
@@ -94,6 +99,8 @@ from typing import Callable
 import numpy as np
 
 from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
+from app.physics.self_list import PairList
+from app.physics.self_list import close_pairs as listed_pairs
 from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
                                    project, verlet_friction)
 from app.physics.tunnelling import through_one
@@ -130,13 +137,14 @@ class ContactState:
     touching: np.ndarray | None = None    # particles that touched an obstacle in the last substep
     tunneled: int = 0                     # paths caught passing through an obstacle, since build
     self_pairs: int = 0                   # pairs pushed apart in the last self-collision pass
-    self_tests: int = 0                   # pair tests the last search took
+    self_tests: int = 0                   # pair tests the last search (or list filter) took
     start: np.ndarray | None = None       # positions at the start of the substep, (2, n)
     crowded: bool = False                 # two obstacles meet (then corners are settled)
     joined_key: tuple | None = None       # (rows, cols, rod sets) the table below was made for
     joined_at: tuple | None = None        # self-collision's rod-neighbour table (_joined)
     compiled: object = None               # the numba pass's buffers (self_compiled.Buffers)
     scratch: Scratch = field(default_factory=Scratch)   # the grid's work arrays (fine_pairs)
+    self_list: PairList = field(default_factory=PairList)   # the grid's Verlet list (self_list)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
 
@@ -384,7 +392,13 @@ def self_collide(c, h: float) -> None:
     st = c.contact
     if c.kernel == "numba" and st.self_method == "grid":
         return _self_collide_compiled(c)
-    i, j, st.self_tests = close_ij(c, st.self_distance, st.self_method)
+    if st.self_method == "grid":        # through a Verlet list (app/physics/self_list.py)
+        key = ("grid", c.rows, c.cols, tuple(rs.name for rs in c.active_sets), st.self_distance,
+               c.x.dtype)
+        i, j, st.self_tests = listed_pairs(st.self_list, c.x.reshape(2, -1), st.self_distance,
+                                           key, lambda d: close_ij(c, d, "grid"), st.scratch)
+    else:
+        i, j, st.self_tests = close_ij(c, st.self_distance, st.self_method)
     st.self_pairs = len(i)
     if len(i) == 0:
         return

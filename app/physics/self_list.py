@@ -1,0 +1,147 @@
+"""A Verlet neighbour list for the cloth's self-collision: the pairs found once, then reused.
+
+The technique comes from molecular dynamics: Verlet kept, for each particle, the list of its
+neighbours within the cut-off plus a margin, and searched again only every few steps (L. Verlet,
+"Computer 'experiments' on classical fluids. I", Phys. Rev. 159, 98, 1967; M. P. Allen and
+D. J. Tildesley, "Computer Simulation of Liquids", section 5.3, with the displacement test used
+here). For self-collision, with R = self_distance and a skin s:
+
+    build:   the pairs closer than R + s (the grid's search, close_ij), and every particle's
+             position x0 at that moment;
+    reuse:   while every particle has moved less than s / 2 since (|x - x0| < s / 2 for all:
+             one subtract, square and max over the positions), the pairs closer than R are
+             those of the list closer than R: a filter, not a search.
+
+Why it is exact: a pair not in the list was at least R + s apart at the build; each end has
+moved less than s / 2, so they are still more than R + s - s / 2 - s / 2 = R apart. The filter
+computes |x_j - x_i|^2 with the same float operations as the search (so the same pairs, not
+only to rounding), and the test keeps a margin of 1e-4 of R + s for the rounding of the
+distances themselves. The displacement is measured, not predicted: a mouse drag, a restore of a
+snapshot, a particle put back by the tunnelling test all count. The list is also rebuilt when
+anything else that decides which pairs count changes (its `key`: the cloth's size, R, the active
+rod sets whose neighbours are left out, the method, the positions' precision). Tearing does not:
+the pairs left out are those of the rod sets (torn rods included), not of the intact rods.
+
+When does it pay? Only when the list lasts: each build searches R + s (more candidates, more
+pairs to filter later) and each reuse filters the whole list. So the skin is chosen at each
+build: SKIN x R again if the last list was reused at least once; after a plain search, if the
+fastest particle moved slowly enough that the list would last LIFE substeps; else none (a
+plain search, exactly the pass without a list, plus one displacement test and one copy of the
+positions a substep: 0.013 ms at 4,096 particles, 1-3 % of the pass).
+Measured (20 consecutive steps from the bench's states, one substep each, CPU ms of the pass
+per step, load 1.6; skin 0 is the pass without a list):
+
+    state                            pairs    skin 0   0.5 R   0.75 R  1 R    builds (0.75 R)
+    fold card (0.25 px a step)         195     0.29    0.16    0.17    0.17   2 of 20
+    64 x 64 heap settled (step 400)  54200     3.88    3.88    3.04    3.17   2 of 20
+    64 x 64 crumpled, falling         6-14k    1.14    1.12    1.14    1.13   20 of 20
+    64 x 64 hanging, swinging            0     0.38    0.39    0.35    0.36   18 of 20
+
+(0.5 R on the heap: its fastest particles move ~1 px a step, so LIFE's test never tries it.)
+The crumpled cloth falling onto the floor (the bench's goal state) has particles moving 12-22
+px a step, 8-16 px relative to the whole cloth's fall, against R = 6.4 px: no skin short of
+~3 R lasts one step, and without the gate a skin only adds to the search (0.25-1 R: 1.57-2.74
+ms a step, rebuilt every step). There the list is a plain search, as before.
+
+The compiled pass (kernel=numba, app/physics/self_compiled.py) does not use the list: its
+search is one loop over the candidates (0.16 ms hanging, 0.66 ms crumpled in the bench), and
+where the list pays (a cloth lying still) it would save a fraction of that.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from app.physics.neighbours import Scratch
+
+SKIN = 0.75         # the skin, in self_distances (chosen by measurement: the table above)
+LIFE = 2            # after a plain search, a skin only if the list would last this many substeps
+ROUNDING = 1e-4     # of R + s: kept back from s / 2 for the rounding of distances (float32)
+
+Search = Callable[[float], tuple[np.ndarray, np.ndarray, int]]
+
+
+@dataclass
+class PairList:
+    """The list (pairs i, j closer than R + skin at the build), the positions at the build and
+    what it has cost: builds and reuses since the cloth was made."""
+
+    key: tuple | None = None
+    skin: float = 0.0                   # px; 0: the last build was a plain search
+    x0: np.ndarray | None = None        # (2, n) positions at the build
+    i: np.ndarray | None = None
+    j: np.ndarray | None = None
+    age: int = 0                        # substeps since the build
+    builds: int = 0
+    reuses: int = 0
+    store: Scratch = field(default_factory=Scratch)     # the list's own arrays (kept)
+
+
+def moved(lst: PairList, x: np.ndarray) -> float:
+    """The largest distance any particle has moved since the build, squared (px^2); NaN or inf
+    for a cloth that has blown up (then the list is rebuilt: the search decides)."""
+    d = lst.store.get("d", x.size, x.dtype).reshape(x.shape)
+    with np.errstate(invalid="ignore", over="ignore"):          # (inf - inf, a huge square)
+        np.subtract(x, lst.x0, out=d)
+        np.square(d, out=d)
+        return float(np.add(d[0], d[1], out=d[0]).max(initial=0.0))
+
+
+def close_pairs(lst: PairList, x: np.ndarray, distance: float, key: tuple, search: Search,
+                scratch: Scratch) -> tuple[np.ndarray, np.ndarray, int]:
+    """(i, j, tests): the pairs closer than `distance`, as search(distance) finds them (as a
+    set; their order may differ), from the list while it is valid, else from a new search
+    (with a skin if the particles have been moving slowly enough). x: the positions (2, n).
+    tests: the pair distances computed (the list's length when it was filtered). i and j are
+    work arrays, valid until the next call."""
+    skin = 0.0
+    if lst.key == key and lst.x0 is not None and lst.x0.shape == x.shape:
+        lst.age += 1
+        far = moved(lst, x)
+        limit = lst.skin / 2 - ROUNDING * (distance + lst.skin)
+        if lst.skin > 0 and far < limit * limit:
+            lst.reuses += 1
+            return within(lst.i, lst.j, x, distance, scratch)
+        if lst.skin > 0:                # a list that was reused at least once: again
+            lasted = lst.age > 1
+        else:                           # after a plain search: if the particles moved slowly
+            lasted = math.sqrt(far) / lst.age * LIFE < SKIN * distance / 2
+        skin = SKIN * distance if lasted else 0.0
+    i, j, tests = search(distance + skin)
+    lst.key, lst.skin, lst.age = key, skin, 0
+    lst.builds += 1
+    lst.x0 = _kept(lst.store, "x0", x)
+    if skin == 0:
+        return i, j, tests
+    lst.i, lst.j = _kept(lst.store, "i", i), _kept(lst.store, "j", j)
+    return within(lst.i, lst.j, x, distance, scratch)[:2] + (tests,)
+
+
+def _kept(store: Scratch, name: str, a: np.ndarray) -> np.ndarray:
+    """A copy of `a` in the store's array `name` (kept between builds: no fresh memory)."""
+    out = store.get(name, a.size, a.dtype).reshape(a.shape)
+    np.copyto(out, a)
+    return out
+
+
+def within(i: np.ndarray, j: np.ndarray, x: np.ndarray, distance: float, scratch: Scratch
+           ) -> tuple[np.ndarray, np.ndarray, int]:
+    """(i, j, tests): the pairs of (i, j) closer than `distance`, |x_j - x_i|^2 computed as the
+    grid's search computes it (neighbours.fine_pairs: in the positions' precision, x then y),
+    so a pair is kept exactly when the search would find it."""
+    m, real = i.size, x.dtype
+    dx = np.subtract(np.take(x[0], j, out=scratch.get("list_xj", m, real), mode="wrap"),
+                     np.take(x[0], i, out=scratch.get("list_xi", m, real), mode="wrap"),
+                     out=scratch.get("list_dx", m, real))
+    dy = np.subtract(np.take(x[1], j, out=scratch.get("list_xj", m, real), mode="wrap"),
+                     np.take(x[1], i, out=scratch.get("list_xi", m, real), mode="wrap"),
+                     out=scratch.get("list_dy", m, real))
+    r2 = np.add(np.square(dx, out=dx), np.square(dy, out=dy), out=dx)
+    hit = np.less(r2, real.type(distance * distance), out=scratch.get("list_hit", m, bool))
+    k = int(np.count_nonzero(hit))
+    return (i.compress(hit, out=scratch.get("list_i", k, np.intp)),
+            j.compress(hit, out=scratch.get("list_j", k, np.intp)), m)
