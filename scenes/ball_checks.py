@@ -26,18 +26,19 @@ import numpy as np
 
 from app.pymunk_scene import extent
 
-# A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in _flags's
-# product, on purpose: a NaN fails every comparison, so the ball goes to the exact tests and is
-# removed that step. NumPy would also print "invalid value encountered in dot" for it; the lab
-# reports the ball itself, so that warning is not shown (only this module's, only that message;
-# np.errstate around the product would cost ~3 us on every step to hide a rare one).
+# A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
+# product of _usual_check, on purpose: a NaN fails every comparison, so the ball goes to the
+# exact tests and is removed that step. NumPy would also print "invalid value encountered in
+# dot" for it; the lab reports the ball itself, so that warning is not shown (only this
+# module's, only that message; np.errstate around the product would cost ~3 us on every step to
+# hide a rare one).
 warnings.filterwarnings("ignore", message="invalid value encountered in dot",
                         category=RuntimeWarning, module=r"scenes\.ball_checks")
 
 
 def _nan_fails_box() -> bool:
-    """Whether a NaN or an inf anywhere in a row makes its box flags false in _flags's product
-    (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights would
+    """Whether a NaN or an inf anywhere in a row makes its box flags false in _usual_check's
+    product (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights would
     not propagate a NaN from the angle or velocities: then the runner's own check stays on)."""
     M = np.zeros((6, 5))
     M[0, 0], M[0, 1], M[1, 2], M[1, 3], M[0, 4], M[1, 4] = -1.0, 1.0, -1.0, 1.0, 0.5, -0.8
@@ -69,11 +70,8 @@ class BallChecks:
         # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
         # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
         # ball leaves the indices as they were, a removal writes them first)
-        if not hasattr(self, "_flag_now"):
-            self._flag_now = None   # [pose, M, limits] (_flag_matrix; they depend on the pose
-                                    # alone: kept while the tables change)
-        self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4]
-                                    # (_flags)
+        self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4,
+                                    # M] (_flag_rows_at)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -98,21 +96,25 @@ class BallChecks:
         otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
         reuses the read), the L's pose with them while the same bodies stay awake."""
         ids, data = self.state_rows()
-        awake = self._awake
+        awake, fast = self._awake, self._fast
+        if fast is not None and fast[2] is not None and fast[0] == L0:
+            # the usual path was on: the same awake ids in the same order, then the same first
+            # static body (the batch's order is awake | static | asleep)? One bytes compare
+            # (awake[4] holds both; one NumPy call, not 2)
+            n = len(awake[0])
+            if ids.tobytes()[:8 * n + 8] == awake[4] and len(awake[2]):
+                L_row = awake[3]
+                L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
+                # (a sleeping ball does not move, but a moving L may pass it: so with balls
+                # asleep, a moving L means looking at every ball)
+                if L0 == L1 or len(ids) == n + len(self._static_ids):
+                    return self._usual_check(data[:n], L0, L1, awake, fast)
         n = -1 if awake is None else len(awake[0])
-        # the same awake ids in the same order, then the same first static body (the batch's
-        # order is awake | static | asleep): one bytes compare (awake[4] holds both)
-        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]   # (one NumPy call, not 2)
+        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]
         if same:
             L_row = awake[3]
             L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
-            # (a sleeping ball does not move, but a moving L may pass it: so with balls
-            # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
-            fast = self._fast
-            if same and fast is not None and fast[2] is not None and fast[0] == L0 \
-                    and len(awake[2]):
-                return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
         self.flush_xy()
@@ -154,7 +156,10 @@ class BallChecks:
         left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
         _, rows, k, L_row, _ = awake
-        flags = self._flags(rows_now, L1)
+        kept = self._flag_rows      # (for these rows and L1 already, unless a moving L moved)
+        if kept is None or kept[0] != len(rows_now) or kept[3] != L1:
+            kept = self._flag_rows_at(len(rows_now), L1)
+        flags = np.less_equal(rows_now.dot(kept[5], out=kept[1]), kept[2])
         b = flags.tobytes()                    # (_key, and the L's box flags, from one call)
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
         # (for flush_xy) the reader's rows themselves, no copy: they stay good through the next
@@ -305,23 +310,26 @@ class BallChecks:
             M, limits = now[1], now[2]
             M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
             now[0] = pose
+            if self._flag_rows is not None:     # (their limits and M are no longer for the
+                self._flag_rows[3] = None       # pose they were written for: _flag_rows_at)
         return now[1], now[2]
 
-    def _flags(self, rows: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
-        """rows.dot(M) <= limits (_flag_matrix) for n C-contiguous rows, into a product kept
-        for n rows and against the limits written out for every row (a comparison with a
-        broadcast (5,) row costs three times one with an (n, 5) array)."""
+    def _flag_rows_at(self, n: int, pose: tuple[float, float, float]) -> list:
+        """[n, product (n, 5), limits (n, 5), pose, the limits' column 4, M] for n rows with the
+        L at pose: rows.dot(M, out=product) <= limits are _flag_matrix's flags for n
+        C-contiguous rows (_usual_check), into a product kept for n rows and against the limits
+        written out for every row (a comparison with a broadcast (5,) row costs three times one
+        with an (n, 5) array)."""
         M, limits = self._flag_matrix(pose)
-        n = len(rows)
         kept = self._flag_rows
         if kept is None or kept[0] != n:
             full = np.empty((n, 5))
             full[:] = limits
-            kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4]]
+            kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4], M]
         elif kept[3] != pose:       # (a moving L) only the line's limit depends on the pose:
             kept[4].fill(limits[4])     # its column alone (0.2 us; the whole array 0.6)
             kept[3] = pose
-        return np.less_equal(rows.dot(M, out=kept[1]), kept[2])
+        return kept
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
                        L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
