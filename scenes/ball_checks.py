@@ -217,6 +217,10 @@ class BallChecks:
         ball is out (the same comparisons as remove_fallen's; a NaN fails them)."""
         if not len(xy):
             return
+        if len(xy) <= 64:       # a few: remove_fallen's look at each costs less (one call)
+            self.flush_xy()
+            self.remove_fallen(k, xy)
+            return
         x0, y0, x1, y1 = self.box()
         lo_x, lo_y, hi_x, hi_y = extent(xy)
         if lo_x >= x0 and lo_y >= y0 and hi_x <= x1 and hi_y <= y1:
@@ -339,7 +343,7 @@ class BallChecks:
         is looked at only for balls that crossed.)"""
         o0, axis0 = (np.array(v) for v in self._frame(L0))
         y0 = (xy0 - o0) @ axis0
-        o1, axis1 = (np.array(v) for v in self._frame(L1))
+        o1, axis1 = (o0, axis0) if L1 == L0 else (np.array(v) for v in self._frame(L1))
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
