@@ -20,6 +20,7 @@ are appended.
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 
 import numpy as np
@@ -227,6 +228,28 @@ class BallChecks:
             return
         self.flush_xy()
         self.remove_fallen(k, xy)
+
+    def awake_after_add(self, body: int, pos: tuple[float, float]) -> tuple | None:
+        """(self._awake, self._fast) after a ball with this body id was added at pos, the last
+        of self.balls and self._ids, if the usual path was on: Chipmunk appends a new body to
+        its awake ones, so the order is known without a read (the next step's check_balls
+        compares it with the read, and goes the long way if it differs); the new ball's flags
+        are a last row (flags_row)."""
+        awake, fast = self._awake, self._fast
+        if awake is None:
+            return None
+        ids, rows, k, L_row, key = awake
+        awake = (np.concatenate((ids, (body,))),
+                 None if rows is None else np.concatenate((rows, (True,))),
+                 np.concatenate((k, (len(self.balls) - 1,))), L_row,
+                 # (the key ends with the first static body's id)
+                 key[:-8] + body.to_bytes(8, sys.byteorder, signed=True) + key[-8:])
+        if fast is None:
+            return awake, None
+        row = self.flags_row(pos, fast[0])
+        b = row.tobytes()
+        inside = fast[2] is not None and b[:4] == b"\1\1\1\1"        # (in the box)
+        return awake, (fast[0], np.concatenate((fast[1], row)), fast[2] + b if inside else None)
 
     def awake_after_removal(self, bodies: list[int], gone: list[int]) -> tuple | None:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were

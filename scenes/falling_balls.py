@@ -30,7 +30,6 @@ g, iterations; effects: sleeping, gravity (off: the balls float where they appea
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 import pygame
@@ -241,27 +240,17 @@ class FallingBallsScene(BallChecks, PymunkScene):
         shape = pymunk.Circle(body, radius, (0, 0))
         shape.friction = self.p["friction"]
         self.space.add(body, shape)
-        self.wake()
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            bid = body.id
-            self._ids = np.concatenate((self._ids, (bid,)))
+            self._ids = np.concatenate((self._ids, (body.id,)))
             self._xy = np.concatenate((self._xy, (pos,)))
-            awake, fast = self._awake, self._fast
-            self._tables_changed()
-            if awake is not None:   # Chipmunk appends a new body to the awake ones (if not,
-                ids, rows, k, L_row, key = awake    # check_balls sees other ids: every ball)
-                self._awake = (np.concatenate((ids, (bid,))),
-                               None if rows is None else np.concatenate((rows, (True,))),
-                               np.concatenate((k, (len(self.balls) - 1,))), L_row,
-                               key[:-8] + bid.to_bytes(8, sys.byteorder, signed=True)
-                               + key[-8:])        # (the key ends with the first static id)
-                if fast is not None:    # and its flags (ball_checks), a last row
-                    row = self.flags_row(pos, fast[0])
-                    b = row.tobytes()
-                    inside = fast[2] is not None and b[:4] == b"\1\1\1\1"   # (in the box)
-                    self._fast = (fast[0], np.concatenate((fast[1], row)),
-                                  fast[2] + b if inside else None)
+            # who is awake, in Chipmunk's order, with the new ball (ball_checks; None: read again)
+            awake = self.awake_after_add(body.id, pos)
+            self._tables_changed()                      # (which wakes the scene)
+            if awake is not None:
+                self._awake, self._fast = awake
+        else:
+            self.wake()
         self.counts["spawned"] += 1
         return shape
 
