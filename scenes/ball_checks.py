@@ -176,7 +176,7 @@ class BallChecks:
             if _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1"):
                 self.finite_read = self._state_reader.reads
             return L1
-        old, self._fast = fast[1], fast_of(L1, flags, L_row)
+        old, self._fast = fast[1], fast_of(L1, flags, L_row, key)
         changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)
         crossed = [r for r, col in changed if col == 4 and flags[r, 4]]
         if crossed:                   # above the line before, on or below it now: inside the
@@ -407,10 +407,14 @@ def _ball_at(rows: np.ndarray | None, r: int) -> int | None:
     return int(np.count_nonzero(rows[:r])) if rows[r] else None
 
 
-def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None) -> tuple:
+def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None,
+            key: bytes | None = None) -> tuple:
     """BallChecks._fast: (the L's pose, the awake rows' flags (n, 5), their key; None if a ball
-    is outside the box or not finite: then the next step looks again)."""
-    return pose, flags, _key(flags, L_row) if _inside(flags, L_row) else None
+    is outside the box or not finite: then the next step looks again). key: _key(flags, L_row),
+    if the caller has it."""
+    if key is None:
+        key = _key(flags, L_row)
+    return pose, flags, key if _inside(key) else None
 
 
 def _key(flags: np.ndarray, L_row: int | None) -> bytes:
@@ -420,12 +424,11 @@ def _key(flags: np.ndarray, L_row: int | None) -> bytes:
     return key if L_row is None else key[:5 * L_row] + key[5 * L_row + 5:]
 
 
-def _inside(flags: np.ndarray, L_row: int | None) -> bool:
-    """Whether every ball's four box flags are true (each centre inside the world's box)."""
-    box = flags[:, :4].tobytes()
-    if L_row is not None:
-        box = box[:4 * L_row] + box[4 * L_row + 4:]
-    return box.count(0) == 0
+def _inside(key: bytes) -> bool:
+    """Whether every ball's four box flags are true (each centre inside the world's box), from
+    the flags' key: every fifth byte from the first, the second, the third and the fourth (no
+    NumPy call: each costs 1-2 us in the step)."""
+    return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])
 
 
 def _local_x(p: list[float], pose: tuple[float, float, float]) -> float:
