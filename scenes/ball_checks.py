@@ -39,8 +39,9 @@ warnings.filterwarnings("ignore", message="invalid value encountered in dot",
 
 def _nan_fails_box() -> bool:
     """Whether a NaN or an inf anywhere in a row makes its box flags false in _usual_check's
-    product (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights would
-    not propagate a NaN from the angle or velocities: then the runner's own check stays on)."""
+    product (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights
+    would not propagate a NaN from the angle or velocities: then the runner's own check stays
+    on)."""
     M = np.zeros((6, 5))
     M[0, 0], M[0, 1], M[1, 2], M[1, 3], M[0, 4], M[1, 4] = -1.0, 1.0, -1.0, 1.0, 0.5, -0.8
     limits = np.full(5, 1e9)
@@ -426,8 +427,8 @@ def _key(flags: np.ndarray, L_row: int | None) -> bytes:
 
 def _inside(key: bytes) -> bool:
     """Whether every ball's four box flags are true (each centre inside the world's box), from
-    the flags' key: every fifth byte from the first, the second, the third and the fourth (no
-    NumPy call: each costs 1-2 us in the step)."""
+    the flags' key: every fifth byte from the first, the second, the third and the fourth (in
+    plain Python: the key is at hand, no NumPy call)."""
     return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])
 
 

@@ -194,7 +194,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
         key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
         if key == last_ids:
             return last_k
-        if len(ids) <= 64:      # (4 NumPy calls, not 10: each costs 1-2 us in the step)
+        if len(ids) <= 64:      # (4 NumPy calls, not 10)
             index = self._index
             if index is None:
                 index = self._index = {b: i for i, b in enumerate(self._ids.tolist())}
