@@ -368,6 +368,8 @@ class PymunkScene(Scene):
             if self._finite_at_rest is None:
                 self._finite_at_rest = self._state_is_finite()
             return self._finite_at_rest
+        if self._rows is not None and self.finite_read == self._state_reader.reads:
+            return True     # the rows read since the step, found finite by the scene's checks
         return self._state_is_finite()
 
     def _state_is_finite(self) -> bool:

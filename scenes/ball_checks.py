@@ -20,25 +20,28 @@ are appended.
 from __future__ import annotations
 
 import math
+import sys
 import warnings
 
 import numpy as np
 
 from app.pymunk_scene import extent
 
-# A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in _flags's
-# product, on purpose: a NaN fails every comparison, so the ball goes to the exact tests and is
-# removed that step. NumPy would also print "invalid value encountered in dot" for it; the lab
-# reports the ball itself, so that warning is not shown (only this module's, only that message;
-# np.errstate around the product would cost ~3 us on every step to hide a rare one).
+# A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
+# product of _usual_check, on purpose: a NaN fails every comparison, so the ball goes to the
+# exact tests and is removed that step. NumPy would also print "invalid value encountered in
+# dot" for it; the lab reports the ball itself, so that warning is not shown (only this
+# module's, only that message; np.errstate around the product would cost ~3 us on every step to
+# hide a rare one).
 warnings.filterwarnings("ignore", message="invalid value encountered in dot",
                         category=RuntimeWarning, module=r"scenes\.ball_checks")
 
 
 def _nan_fails_box() -> bool:
-    """Whether a NaN or an inf anywhere in a row makes its box flags false in _flags's product
-    (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights would
-    not propagate a NaN from the angle or velocities: then the runner's own check stays on)."""
+    """Whether a NaN or an inf anywhere in a row makes its box flags false in _usual_check's
+    product (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights
+    would not propagate a NaN from the angle or velocities: then the runner's own check stays
+    on)."""
     M = np.zeros((6, 5))
     M[0, 0], M[0, 1], M[1, 2], M[1, 3], M[0, 4], M[1, 4] = -1.0, 1.0, -1.0, 1.0, 0.5, -0.8
     limits = np.full(5, 1e9)
@@ -69,11 +72,8 @@ class BallChecks:
         # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
         # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
         # ball leaves the indices as they were, a removal writes them first)
-        if not hasattr(self, "_flag_now"):
-            self._flag_now = None   # [pose, M, limits] (_flag_matrix; they depend on the pose
-                                    # alone: kept while the tables change)
-        self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4]
-                                    # (_flags)
+        self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4,
+                                    # M] (_flag_rows_at)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -98,21 +98,25 @@ class BallChecks:
         otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
         reuses the read), the L's pose with them while the same bodies stay awake."""
         ids, data = self.state_rows()
-        awake = self._awake
+        awake, fast = self._awake, self._fast
+        if fast is not None and fast[2] is not None and fast[0] == L0:
+            # the usual path was on: the same awake ids in the same order, then the same first
+            # static body (the batch's order is awake | static | asleep)? One bytes compare
+            # (awake[4] holds both; one NumPy call, not 2)
+            n = len(awake[0])
+            if ids.tobytes()[:8 * n + 8] == awake[4] and len(awake[2]):
+                L_row = awake[3]
+                L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
+                # (a sleeping ball does not move, but a moving L may pass it: so with balls
+                # asleep, a moving L means looking at every ball)
+                if L0 == L1 or len(ids) == n + len(self._static_ids):
+                    return self._usual_check(data[:n], L0, L1, awake, fast)
         n = -1 if awake is None else len(awake[0])
-        # the same awake ids in the same order, then the same first static body (the batch's
-        # order is awake | static | asleep): one bytes compare (awake[4] holds both)
-        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]   # (one NumPy call, not 2)
+        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]
         if same:
             L_row = awake[3]
             L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
-            # (a sleeping ball does not move, but a moving L may pass it: so with balls
-            # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
-            fast = self._fast
-            if same and fast is not None and fast[2] is not None and fast[0] == L0 \
-                    and len(awake[2]):
-                return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
         self.flush_xy()
@@ -154,7 +158,10 @@ class BallChecks:
         left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
         _, rows, k, L_row, _ = awake
-        flags = self._flags(rows_now, L1)
+        kept = self._flag_rows      # (for these rows and L1 already, unless a moving L moved)
+        if kept is None or kept[0] != len(rows_now) or kept[3] != L1:
+            kept = self._flag_rows_at(len(rows_now), L1)
+        flags = np.less_equal(rows_now.dot(kept[5], out=kept[1]), kept[2])
         b = flags.tobytes()                    # (_key, and the L's box flags, from one call)
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
         # (for flush_xy) the reader's rows themselves, no copy: they stay good through the next
@@ -170,7 +177,7 @@ class BallChecks:
             if _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1"):
                 self.finite_read = self._state_reader.reads
             return L1
-        old, self._fast = fast[1], fast_of(L1, flags, L_row)
+        old, self._fast = fast[1], fast_of(L1, flags, L_row, key)
         changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)
         crossed = [r for r, col in changed if col == 4 and flags[r, 4]]
         if crossed:                   # above the line before, on or below it now: inside the
@@ -212,12 +219,38 @@ class BallChecks:
         ball is out (the same comparisons as remove_fallen's; a NaN fails them)."""
         if not len(xy):
             return
+        if len(xy) <= 64:       # a few: remove_fallen's look at each costs less (one call)
+            self.flush_xy()
+            self.remove_fallen(k, xy)
+            return
         x0, y0, x1, y1 = self.box()
         lo_x, lo_y, hi_x, hi_y = extent(xy)
         if lo_x >= x0 and lo_y >= y0 and hi_x <= x1 and hi_y <= y1:
             return
         self.flush_xy()
         self.remove_fallen(k, xy)
+
+    def awake_after_add(self, body: int, pos: tuple[float, float]) -> tuple | None:
+        """(self._awake, self._fast) after a ball with this body id was added at pos, the last
+        of self.balls and self._ids, if the usual path was on: Chipmunk appends a new body to
+        its awake ones, so the order is known without a read (the next step's check_balls
+        compares it with the read, and goes the long way if it differs); the new ball's flags
+        are a last row (flags_row)."""
+        awake, fast = self._awake, self._fast
+        if awake is None:
+            return None
+        ids, rows, k, L_row, key = awake
+        awake = (np.concatenate((ids, (body,))),
+                 None if rows is None else np.concatenate((rows, (True,))),
+                 np.concatenate((k, (len(self.balls) - 1,))), L_row,
+                 # (the key ends with the first static body's id)
+                 key[:-8] + body.to_bytes(8, sys.byteorder, signed=True) + key[-8:])
+        if fast is None:
+            return awake, None
+        row = self.flags_row(pos, fast[0])
+        b = row.tobytes()
+        inside = fast[2] is not None and b[:4] == b"\1\1\1\1"        # (in the box)
+        return awake, (fast[0], np.concatenate((fast[1], row)), fast[2] + b if inside else None)
 
     def awake_after_removal(self, bodies: list[int], gone: list[int]) -> tuple | None:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were
@@ -305,23 +338,26 @@ class BallChecks:
             M, limits = now[1], now[2]
             M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
             now[0] = pose
+            if self._flag_rows is not None:     # (their limits and M are no longer for the
+                self._flag_rows[3] = None       # pose they were written for: _flag_rows_at)
         return now[1], now[2]
 
-    def _flags(self, rows: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
-        """rows.dot(M) <= limits (_flag_matrix) for n C-contiguous rows, into a product kept
-        for n rows and against the limits written out for every row (a comparison with a
-        broadcast (5,) row costs three times one with an (n, 5) array)."""
+    def _flag_rows_at(self, n: int, pose: tuple[float, float, float]) -> list:
+        """[n, product (n, 5), limits (n, 5), pose, the limits' column 4, M] for n rows with the
+        L at pose: rows.dot(M, out=product) <= limits are _flag_matrix's flags for n
+        C-contiguous rows (_usual_check), into a product kept for n rows and against the limits
+        written out for every row (a comparison with a broadcast (5,) row costs three times one
+        with an (n, 5) array)."""
         M, limits = self._flag_matrix(pose)
-        n = len(rows)
         kept = self._flag_rows
         if kept is None or kept[0] != n:
             full = np.empty((n, 5))
             full[:] = limits
-            kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4]]
+            kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4], M]
         elif kept[3] != pose:       # (a moving L) only the line's limit depends on the pose:
             kept[4].fill(limits[4])     # its column alone (0.2 us; the whole array 0.6)
             kept[3] = pose
-        return np.less_equal(rows.dot(M, out=kept[1]), kept[2])
+        return kept
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
                        L0: tuple[float, float, float], L1: tuple[float, float, float]) -> None:
@@ -331,7 +367,7 @@ class BallChecks:
         is looked at only for balls that crossed.)"""
         o0, axis0 = (np.array(v) for v in self._frame(L0))
         y0 = (xy0 - o0) @ axis0
-        o1, axis1 = (np.array(v) for v in self._frame(L1))
+        o1, axis1 = (o0, axis0) if L1 == L0 else (np.array(v) for v in self._frame(L1))
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
@@ -372,10 +408,14 @@ def _ball_at(rows: np.ndarray | None, r: int) -> int | None:
     return int(np.count_nonzero(rows[:r])) if rows[r] else None
 
 
-def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None) -> tuple:
+def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None,
+            key: bytes | None = None) -> tuple:
     """BallChecks._fast: (the L's pose, the awake rows' flags (n, 5), their key; None if a ball
-    is outside the box or not finite: then the next step looks again)."""
-    return pose, flags, _key(flags, L_row) if _inside(flags, L_row) else None
+    is outside the box or not finite: then the next step looks again). key: _key(flags, L_row),
+    if the caller has it."""
+    if key is None:
+        key = _key(flags, L_row)
+    return pose, flags, key if _inside(key) else None
 
 
 def _key(flags: np.ndarray, L_row: int | None) -> bytes:
@@ -385,12 +425,11 @@ def _key(flags: np.ndarray, L_row: int | None) -> bytes:
     return key if L_row is None else key[:5 * L_row] + key[5 * L_row + 5:]
 
 
-def _inside(flags: np.ndarray, L_row: int | None) -> bool:
-    """Whether every ball's four box flags are true (each centre inside the world's box)."""
-    box = flags[:, :4].tobytes()
-    if L_row is not None:
-        box = box[:4 * L_row] + box[4 * L_row + 4:]
-    return box.count(0) == 0
+def _inside(key: bytes) -> bool:
+    """Whether every ball's four box flags are true (each centre inside the world's box), from
+    the flags' key: every fifth byte from the first, the second, the third and the fourth (in
+    plain Python: the key is at hand, no NumPy call)."""
+    return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])
 
 
 def _local_x(p: list[float], pose: tuple[float, float, float]) -> float:

@@ -30,7 +30,6 @@ g, iterations; effects: sleeping, gravity (off: the balls float where they appea
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 import pygame
@@ -180,6 +179,7 @@ class FallingBallsScene(BallChecks, PymunkScene):
 
     def _tables_changed(self) -> None:
         self._sorted = None                       # (sorted ids, ball index of each), lazily
+        self._index = None                        # {body id: ball index}, lazily
         self._last = _NO_IDS
         self._awake = None  # (ids, ball rows (None: all), ball indices, L's row, ids as bytes)
         self._checks_reset()        # (ball_checks.py)
@@ -187,12 +187,20 @@ class FallingBallsScene(BallChecks, PymunkScene):
 
     def ball_index(self, ids: np.ndarray) -> np.ndarray:
         """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
-        a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search
-        in the sorted ids; and not even that while the batch order stays the same."""
+        a ball (a static body, the L). For a few, a dict lookup each; for many, vectorised: the
+        same lookup done by binary search in the sorted ids; and not even that while the batch
+        order stays the same."""
         last_ids, last_k = self._last
         key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
         if key == last_ids:
             return last_k
+        if len(ids) <= 64:      # (4 NumPy calls, not 10)
+            index = self._index
+            if index is None:
+                index = self._index = {b: i for i, b in enumerate(self._ids.tolist())}
+            k = np.array([index.get(b, -1) for b in ids.tolist()], dtype=np.int64)
+            self._last = (key, k)
+            return k
         if self._sorted is None:
             order = np.argsort(self._ids)
             self._sorted = (self._ids[order], order)
@@ -232,27 +240,17 @@ class FallingBallsScene(BallChecks, PymunkScene):
         shape = pymunk.Circle(body, radius, (0, 0))
         shape.friction = self.p["friction"]
         self.space.add(body, shape)
-        self.wake()
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            bid = body.id
-            self._ids = np.concatenate((self._ids, (bid,)))
+            self._ids = np.concatenate((self._ids, (body.id,)))
             self._xy = np.concatenate((self._xy, (pos,)))
-            awake, fast = self._awake, self._fast
-            self._tables_changed()
-            if awake is not None:   # Chipmunk appends a new body to the awake ones (if not,
-                ids, rows, k, L_row, key = awake    # check_balls sees other ids: every ball)
-                self._awake = (np.concatenate((ids, (bid,))),
-                               None if rows is None else np.concatenate((rows, (True,))),
-                               np.concatenate((k, (len(self.balls) - 1,))), L_row,
-                               key[:-8] + bid.to_bytes(8, sys.byteorder, signed=True)
-                               + key[-8:])        # (the key ends with the first static id)
-                if fast is not None:    # and its flags (ball_checks), a last row
-                    row = self.flags_row(pos, fast[0])
-                    b = row.tobytes()
-                    inside = fast[2] is not None and b[:4] == b"\1\1\1\1"   # (in the box)
-                    self._fast = (fast[0], np.concatenate((fast[1], row)),
-                                  fast[2] + b if inside else None)
+            # who is awake, in Chipmunk's order, with the new ball (ball_checks; None: read again)
+            awake = self.awake_after_add(body.id, pos)
+            self._tables_changed()                      # (which wakes the scene)
+            if awake is not None:
+                self._awake, self._fast = awake
+        else:
+            self.wake()
         self.counts["spawned"] += 1
         return shape
 
