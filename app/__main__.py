@@ -466,10 +466,15 @@ def leave(code: int) -> NoReturn:
     shutdown. Once a student's file ran here, or with such a thread alive, flush and leave at
     once; after a Ctrl-C too (its line is printed, its outputs discarded): Python exits by the
     signal itself, not with 130, if a KeyboardInterrupt was raised in some of its C paths."""
+    import signal
     import threading
     stray = [t for t in threading.enumerate()
              if t is not threading.main_thread() and t.is_alive() and not t.daemon]
     loading = sys.modules.get("app.exercises.loading")
+    # the command is done and its outputs are written: a Ctrl-C from here on has nothing left
+    # to stop, and in Python's own shutdown it would end the process by the signal (exit -2,
+    # not the command's code: hostile run, seed 7), so it is ignored
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     if not stray and not getattr(loading, "LOADED", None) and code != EXIT_INTERRUPTED:
         sys.exit(code)     # (after Ctrl-C, os._exit: Python would end by the signal, not 130)
     for stream in (sys.stdout, sys.stderr):

@@ -211,3 +211,16 @@ def _a_ctrl_c_during_a_fork(monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         spawn.raise_noted_ctrl_c()
     spawn.raise_noted_ctrl_c()                          # once only
+
+
+def test_names_with_control_characters_are_printed_escaped(tmp_path, capsys):
+    # once (hostile run, seed 7): `--out $'\x1b[31mred.csv'` was echoed raw to the terminal (an
+    # escape sequence turned the rest of the line red); a student folder's name, the same
+    c = tmp_path / "class"
+    (c / "al\x1b[2Jice").mkdir(parents=True)
+    (c / "al\x1b[2Jice" / "verlet.py").write_text((ANSWERS / "verlet_euler.py").read_text())
+    out = tmp_path / "\x1b[31mred.csv"
+    assert main(["exercise", "grade", str(c), "--out", str(out), "--timeout", "0.5"]) == 0
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and "\\x1b[31mred.csv" in err and "al\\x1b[2Jice:" in err, err
+    assert out.exists()                                    # the file has the name asked for

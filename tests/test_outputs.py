@@ -431,8 +431,13 @@ def test_after_ctrl_c_the_lab_leaves_with_130_itself(monkeypatch):
         left.append(code)
         raise SystemExit(code)
     monkeypatch.setattr(os, "_exit", os_exit)
-    with pytest.raises(SystemExit):
-        cli_main.leave(130)
+    before = signal.getsignal(signal.SIGINT)
+    try:
+        with pytest.raises(SystemExit):
+            cli_main.leave(130)
+        assert signal.getsignal(signal.SIGINT) is signal.SIG_IGN    # (what follows: shutdown)
+    finally:
+        signal.signal(signal.SIGINT, before)
     assert left == [130]
 
 

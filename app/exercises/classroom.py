@@ -34,7 +34,7 @@ from typing import Any, Iterator
 
 from app.exercises import EXERCISES, base
 from app.exercises.grade import CHECK_TIMEOUT, Report, grade_many
-from app.outputs import shown
+from app.outputs import one_line, shown
 
 EXIT_INTERRUPTED = 130
 FIELDS = ("student", "exercise", "passed", "checks", "verdict", "seed")
@@ -226,7 +226,7 @@ class Progress:
     def student(self, result: Result, resumed: bool = False) -> None:
         self.finished += 1
         passed = sum(e["passed"] for e in result.exercises)
-        line = (f"{result.student}: {passed}/{len(result.exercises)} exercises pass"
+        line = (f"{one_line(result.student)}: {passed}/{len(result.exercises)} exercises pass"
                 f"{' (graded before: files unchanged)' if resumed else ''} "
                 f"[{self.finished}/{self.students} students]")
         if self.bar is not None:
@@ -280,7 +280,8 @@ def grade_class(class_dir: str, jobs: int, out: str | None = None, gradescope: b
     try:
         return _grade_class(class_dir, jobs, out, gradescope, timeout, seed, ctrl_c)
     except KeyboardInterrupt:        # before the first student or after the last: still one line
-        print(f"interrupted (in {out}); the same command goes on from there", file=sys.stderr)
+        print(f"interrupted (in {one_line(out)}); the same command goes on from there",
+              file=sys.stderr)
         return EXIT_INTERRUPTED
     finally:
         if before is not None:
@@ -336,14 +337,14 @@ def _grade_class(class_dir: str, jobs: int, out: str, gradescope: bool, timeout:
     except KeyboardInterrupt:
         reports.close()                  # its children and their sandboxes end here
         progress.close()
-        print(f"interrupted: {len(results)} of {len(students)} students graded (in {out}); the "
-              "same command goes on from there", file=sys.stderr)
+        print(f"interrupted: {len(results)} of {len(students)} students graded (in "
+              f"{one_line(out)}); the same command goes on from there", file=sys.stderr)
         return EXIT_INTERRUPTED
     progress.close()
     print(f"graded {len(students)} students ({len(todo)} now, in "
-          f"{time.monotonic() - start:.1f} s with {jobs} at once): {out}"
+          f"{time.monotonic() - start:.1f} s with {jobs} at once): {one_line(out)}"
           f"{' (replaced the file that was there)' if replaced else ''}, reports in "
-          f"{folder}/", file=sys.stderr)
+          f"{one_line(folder)}/", file=sys.stderr)
     return 0
 
 
