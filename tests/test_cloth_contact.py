@@ -255,6 +255,17 @@ def test_the_grid_finds_the_same_close_pairs_as_all_pairs():
     assert a[5] < b[5]                                  # fewer tests
 
 
+@pytest.mark.parametrize("method", ["grid", "all_pairs"])
+def test_self_collision_with_bending_on_a_cloth_two_particles_high(method):
+    """A cloth 2 rows high has no (2, 0) bending rods: the rod-neighbour table (_joined) once
+    wrote their offset past its end (IndexError, a traceback from the command line)."""
+    for rows, cols in ((2, 6), (6, 2), (2, 2)):
+        scene = ClothScene({"rows": rows, "cols": cols, "pins": "none", "start": "folded",
+                            "self_collision": True, "bending": True, "self_method": method})
+        run(scene, 3)
+        assert scene.is_finite()
+
+
 def test_self_collision_off_costs_nothing_and_on_shows_its_cost():
     off = run(ClothScene({"rows": 10, "cols": 10}), 5)
     assert "self_collision" not in off.cloth.spent

@@ -371,6 +371,9 @@ def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
     if st.joined_key != key:
         offsets = {(0, 1), (1, 0), (1, 1)} | {o for rs in c.active_sets
                                               for o in ROD_OFFSETS[rs.name]}
+        # (only offsets the cloth holds: two rows have no (2, 0) rods, and their offset would
+        # fall past the table's end)
+        offsets = {(dr, dc) for dr, dc in offsets if dr < c.rows and dc < c.cols}
         w = 2 * c.cols
         row, col = np.divmod(np.arange(c.rows * c.cols), c.cols)
         reach = (c.rows - 1) * w + c.cols - 1          # the largest |k_j - k_i|
