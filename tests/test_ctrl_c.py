@@ -12,6 +12,16 @@ from app import ctrl_c
 from app.__main__ import main
 
 
+@pytest.fixture(autouse=True)
+def pythons_own_handler():
+    """Python's KeyboardInterrupt handler during each test, whatever this process inherited (a
+    suite started in the background by a shell, or under nohup, has SIGINT ignored: held()
+    then rightly holds nothing, and a Ctrl-C sent here would do nothing)."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
 def ctrl_c_now():
     os.kill(os.getpid(), signal.SIGINT)
 
