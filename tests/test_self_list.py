@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from app.physics import cloth_contact, self_list
+from app.physics.neighbours import Scratch, fine_pairs
 from app.scene import InputEvent
 from scenes.cloth import ClothScene
 from scenes.cloth_collisions import FOLD, ClothCollisionsScene
@@ -126,3 +127,38 @@ def test_the_list_moves_the_cloth_as_the_plain_search_does(monkeypatch, scene_of
     assert reuses > 10 and none == 0
     size = np.ptp(plain.reshape(2, -1), axis=1).max()
     assert np.abs(with_list - plain).max() <= 1e-6 * size
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_the_list_matches_every_pair_far_from_the_origin_and_at_the_boundary(dtype):
+    """Synthetic clouds jiggled in small steps (the list reused), far from the origin (float32's
+    spacing there is 1/128 px, against R = 0.2 px and a skin of 0.15 px) and across 2^16, with
+    pairs exactly R apart: the pairs handed out are those of the grid's search and those of an
+    all-pairs reference computed apart (the same float operations, all n^2 / 2 pairs), at
+    every call (one particle crosses the cloud: the list is rebuilt as it goes); and a float64
+    reference agrees away from the boundary."""
+    rng = np.random.default_rng(7)
+    reused = 0
+    for R, off in ((0.2, 1e5), (0.5, 65536.0 - 1.0), (6.4, -3e4)):
+        n = 150
+        x = (off + rng.random((2, n)) * 4 * R).astype(dtype)
+        x[0, 0] = dtype(off - 1.5 * R)
+        x[0, 1:11], x[1, 1:11] = x[0, 11:21] + dtype(R), x[1, 11:21]   # (R exact: 0.5 only)
+        lst, scratch, search_scratch = self_list.PairList(), Scratch(), Scratch()
+        iu, ju = np.triu_indices(n, 1)
+        for _ in range(40):
+            i, j, _ = self_list.close_pairs(lst, x, R, ("synthetic",),
+                                            lambda d: fine_pairs(x[0], x[1], d, search_scratch),
+                                            scratch)
+            got = pair_set(i, j)
+            grid = pair_set(*fine_pairs(x[0], x[1], R, Scratch())[:2])
+            dx, dy = x[0, ju] - x[0, iu], x[1, ju] - x[1, iu]
+            near = dx * dx + dy * dy < dtype(R * R)
+            assert got == grid == pair_set(iu[near], ju[near])
+            d = np.hypot(*(x[:, ju].astype(float) - x[:, iu].astype(float)))
+            sure, maybe = d < R * (1 - 1e-6), d < R * (1 + 1e-6)
+            assert pair_set(iu[sure], ju[sure]) <= got <= pair_set(iu[maybe], ju[maybe])
+            x += (rng.standard_normal(x.shape) * 0.01 * R).astype(dtype)
+            x[0, 0] += dtype(0.1 * R)       # one particle crossing the cloud (rebuilt every 4)
+        reused += lst.reuses
+    assert reused > 30
