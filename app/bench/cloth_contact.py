@@ -207,7 +207,7 @@ def interleaved(timers: dict[str, Callable[[], float]], rounds: int) -> dict[str
 def run(report: Report) -> dict:
     quick = report.quick
     settle = 10 if quick else 60
-    rounds = 5 if quick else 21            # (self-collision: each a run of SELF_RUN steps)
+    rounds = 3 if quick else 21            # (self-collision: each a run of SELF_RUN steps)
     step_rounds = 5 if quick else 101      # (a step costs ~1 ms: more rounds, a steadier median)
     self_steps = 3 if quick else SELF_STEPS
     out: dict = {"n": N, "rounds": rounds, "collisions": [], "self_collision": []}
@@ -260,7 +260,7 @@ def run(report: Report) -> dict:
         methods["grid_numba"] = {"self_method": "grid", "kernel": "numba"}
     else:
         report.say("numba is not installed: self-collision's compiled pass is not measured")
-    run_steps = 3 if quick else SELF_RUN
+    run_steps = 2 if quick else SELF_RUN
     for state, name, settings, steps in _self_states(self_steps, quick):
         report.progress(f"self-collision, {state}")
         scenes = {m: get_scene(name)({**settings, "self_collision": True, **extra})
