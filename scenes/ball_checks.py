@@ -99,24 +99,19 @@ class BallChecks:
         reuses the read), the L's pose with them while the same bodies stay awake."""
         ids, data = self.state_rows()
         awake, fast = self._awake, self._fast
-        if fast is not None and fast[2] is not None and fast[0] == L0:
-            # the usual path was on: the same awake ids in the same order, then the same first
-            # static body (the batch's order is awake | static | asleep)? One bytes compare
-            # (awake[4] holds both; one NumPy call, not 2)
-            n = len(awake[0])
-            if ids.tobytes()[:8 * n + 8] == awake[4] and len(awake[2]):
-                L_row = awake[3]
-                L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
-                # (a sleeping ball does not move, but a moving L may pass it: so with balls
-                # asleep, a moving L means looking at every ball)
-                if L0 == L1 or len(ids) == n + len(self._static_ids):
-                    return self._usual_check(data[:n], L0, L1, awake, fast)
         n = -1 if awake is None else len(awake[0])
-        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]
+        # the same awake ids in the same order, then the same first static body (the batch's
+        # order is awake | static | asleep): one bytes compare (awake[4] holds both)
+        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]   # (one NumPy call, not 2)
         if same:
             L_row = awake[3]
             L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
+            # (a sleeping ball does not move, but a moving L may pass it: so with balls
+            # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
+            if same and fast is not None and fast[2] is not None and fast[0] == L0 \
+                    and len(awake[2]):
+                return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
         self.flush_xy()

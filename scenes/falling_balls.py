@@ -179,7 +179,6 @@ class FallingBallsScene(BallChecks, PymunkScene):
 
     def _tables_changed(self) -> None:
         self._sorted = None                       # (sorted ids, ball index of each), lazily
-        self._index = None                        # {body id: ball index}, lazily
         self._last = _NO_IDS
         self._awake = None  # (ids, ball rows (None: all), ball indices, L's row, ids as bytes)
         self._checks_reset()        # (ball_checks.py)
@@ -187,20 +186,12 @@ class FallingBallsScene(BallChecks, PymunkScene):
 
     def ball_index(self, ids: np.ndarray) -> np.ndarray:
         """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
-        a ball (a static body, the L). For a few, a dict lookup each; for many, vectorised: the
-        same lookup done by binary search in the sorted ids; and not even that while the batch
-        order stays the same."""
+        a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search
+        in the sorted ids; and not even that while the batch order stays the same."""
         last_ids, last_k = self._last
         key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
         if key == last_ids:
             return last_k
-        if len(ids) <= 64:      # (4 NumPy calls, not 10)
-            index = self._index
-            if index is None:
-                index = self._index = {b: i for i, b in enumerate(self._ids.tolist())}
-            k = np.array([index.get(b, -1) for b in ids.tolist()], dtype=np.int64)
-            self._last = (key, k)
-            return k
         if self._sorted is None:
             order = np.argsort(self._ids)
             self._sorted = (self._ids[order], order)
