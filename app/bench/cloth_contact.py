@@ -155,21 +155,13 @@ def timed_state(state: str, settle: int, **settings):
     return scene
 
 
-def _one_step(scene, snap) -> float:
-    """CPU seconds of one step from `snap` (the scene is put back there first, untimed). CPU
-    time, not wall time: on the shared lab machine (load 3-7 on 2 cores) wall times of a 1 ms
-    step spread over 1-10 ms while CPU times stay within some 10 %."""
-    scene.restore(snap)
-    t0 = time.process_time()
-    scene.advance()
-    return time.process_time() - t0
-
-
 def _run_part(scene, snap, part: str, steps: int) -> float:
     """CPU seconds of `part` per step over `steps` consecutive steps from `snap` (the cloth's
     stopwatch, timing with the process's CPU clock for these steps; `part` "step": the whole
     step), the self-collision list started afresh (every round times the same thing, and one
-    step is a build, never a reuse of the list the last round left)."""
+    step is a build, never a reuse of the list the last round left). CPU time, not wall time:
+    on the shared lab machine (load 3-7 on 2 cores) wall times of a 1 ms step spread over 1-10
+    ms while CPU times stay within some 10 %."""
     from app.physics.self_list import PairList
     scene.restore(snap)
     c = scene.cloth
@@ -223,8 +215,8 @@ def run(report: Report) -> dict:
         bare = _cloth(state)                            # the same cloth without contact
         for name in ("collisions", "friction"):
             bare.set(name, False)
-        t = interleaved({"on": lambda: _one_step(scene, snap),
-                         "off": lambda: _one_step(bare, snap)}, step_rounds)
+        t = interleaved({"on": lambda: _run_part(scene, snap, "step", 1),
+                         "off": lambda: _run_part(bare, snap, "step", 1)}, step_rounds)
         on, off = t["on"], t["off"]
         fastest = 1 - off.fastest / on.fastest
         scene.restore(snap)
