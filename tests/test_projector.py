@@ -495,7 +495,13 @@ def test_the_watch_box_grows_with_a_cards_text_and_moves_the_rest(tmp_path):
     w.render()
     assert panel.watch_box.rect.height > before
     assert d.rect.top - panel.watch_box.rect.bottom == gap      # moved with it
+    # each slider's handle with it, on its track (once: moved twice, a box's growth off it)
+    for ctl in panel.numbers.values():
+        s = ctl.slider
+        assert s.rect.contains(s.sliding_button.rect), (ctl.prm.name, s.rect, s.sliding_button.rect)
     panel.show_watch(None, clicked=True)
+    for ctl in panel.numbers.values():
+        assert ctl.slider.rect.contains(ctl.slider.sliding_button.rect), ctl.prm.name
 
 
 def test_a_wheel_notch_scrolls_the_panel_three_rows(tmp_path):

@@ -277,9 +277,12 @@ class ParamPanel:
         if new == old:
             return
         top = box.relative_rect.top
+        # a slider's buttons sit in a container of their own, listed here too: the slider moves
+        # it, and moved again its handle stood a box's growth off the track
+        moved_by_slider = {id(c.slider.button_container) for c in self.numbers.values()}
         for el in list(self.container.get_container().elements):
             r = el.relative_rect
-            if el is not box and r.top > top:
+            if el is not box and r.top > top and id(el) not in moved_by_slider:
                 el.set_relative_position((r.left, r.top + new - old))
         box.set_dimensions((self._watch_w, new))
         self._height += new - old
