@@ -238,9 +238,9 @@ class ClothContact:
             lst = st.self_list                  # (the grid's Verlet list: app/physics/self_list.py)
             listed = (f"; list reused {lst.reuses}, built {lst.builds}"
                       if st.self_method == "grid" and self.cloth.kernel == "numpy" else "")
-            lines.append(f"self-collision ({st.self_method}): {st.self_pairs} pairs pushed, "
+            lines.append(f"self-collision ({st.self_method}): {st.self_pairs} pairs pushed; "
                          f"{m['self_overlaps']} still closer than {self.p['self_distance']:g} "
-                         f"rods{listed}")
+                         f"rods{listed}")       # ('; ': where a row may break, app/draw/wrap.py)
         return lines
 
     def contact_bounds(self, bounds: tuple[float, float, float, float]
