@@ -414,25 +414,33 @@ def self_collide(c, h: float) -> None:
         ok = total > 0
         i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
     n, m = xs.size, i.size
-    # one bincount a sweep gathers every particle's corrections, x and y: entries j, i (x) and
-    # j + n, i + n (y), weighted by each end's share, + w_j/(w_i+w_j) at j and - w_i/(...) at i;
-    # it replaces `for pair: x[j] += share_j * move; x[i] -= share_i * move`
+    # each sweep gathers every particle's corrections, x and y, with two bincounts: the j ends
+    # (entries j for x, j + n for y) pushed by + share_j of d times the overlap, the i ends by
+    # - share_i of it; they replace `for pair: x[j] += share_j * move; x[i] -= share_i * move`.
+    # Both ends free (w = 1 each, the usual case): both shares are 1/2, one set of weights.
     scratch = st.scratch
     ends = scratch.get("ends", 4 * m, np.intp)
-    ends[:m], ends[m:2 * m] = j, i
-    np.add(ends[:2 * m], n, out=ends[2 * m:])
-    share = scratch.get("share", 2 * m, w.dtype)
-    np.divide(wj, total, out=share[:m])
-    np.divide(wi, total, out=share[m:])
-    share[m:] *= -1
-    count = np.bincount(ends[:2 * m], minlength=n)     # pairs per particle
-    scale = (OVER_RELAX / np.maximum(count, 1)).astype(x.dtype)   # Jacobi's average, over-relaxed
-    move = scratch.get("move", 4 * m, np.float64)
+    jj, ii = ends[:2 * m], ends[2 * m:]
+    jj[:m], ii[:m] = j, i
+    np.add(j, n, out=jj[m:])
+    np.add(i, n, out=ii[m:])
+    even = bool(wi.all() and wj.all())                 # (w is 0 or 1: then every share is 1/2)
+    if not even:
+        share_j = np.divide(wj, total, out=scratch.get("share_j", m, w.dtype))
+        share_i = np.divide(wi, total, out=scratch.get("share_i", m, w.dtype))
+    count = np.bincount(j, minlength=n)                # pairs per particle
+    count += np.bincount(i, minlength=n)
+    scale = scratch.get("scale", 2 * n, np.float64)    # Jacobi's average, over-relaxed (x, y)
+    np.divide(OVER_RELAX, np.maximum(count, 1, out=count), out=scale[:n])
+    scale[n:] = scale[:n]
+    move_j = scratch.get("move_j", 2 * m, np.float64)
+    move_i = move_j if even else scratch.get("move_i", 2 * m, np.float64)
     xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
     flag = scratch.get("same", m, bool)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     movable = c.free.ravel() > 0
+    flat = c.x.reshape(-1)                              # x then y: what `moved` lists
     for sweep in range(SELF_SWEEPS):
         if floor_too:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
@@ -451,15 +459,18 @@ def self_collide(c, h: float) -> None:
         push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
-        dx *= push
-        dy *= push
-        for k, part in enumerate((dx, dx, dy, dy)):     # (weights in float64: bincount's own)
-            np.multiply(part, share[k % 2 * m:(k % 2 + 1) * m], out=move[k * m:(k + 1) * m])
-        moved = np.bincount(ends, move, 2 * n).astype(x.dtype)
-        moved[:n] *= scale
-        moved[n:] *= scale
-        xs += moved[:n]
-        ys += moved[n:]
+        if even:
+            push *= 0.5
+        # (weights in float64: bincount's own)
+        np.multiply(dx, push if even else push * share_j, out=move_j[:m])
+        np.multiply(dy, push if even else push * share_j, out=move_j[m:])
+        if not even:
+            np.multiply(dx, push * share_i, out=move_i[:m])
+            np.multiply(dy, push * share_i, out=move_i[m:])
+        moved = np.bincount(jj, move_j, 2 * n)
+        moved -= np.bincount(ii, move_i, 2 * n)
+        moved *= scale
+        np.add(flat, moved, out=flat, casting="unsafe")
 
 
 def _self_collide_compiled(c) -> None:

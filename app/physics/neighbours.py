@@ -236,15 +236,17 @@ def crowded_share(grid_tests: int, n: int) -> float:
 # ----- finer cells: fewer candidates -------------------------------------------------------------
 # The grid above tests 4.5 cells' worth of area per particle (cells R wide, 9 R^2 around it, half
 # of it), while the pairs lie within the circle of radius R (pi R^2, half of it): about 3 times
-# more candidates than pairs. Cells R/8 wide and R/2 high, with each row of cells below taking
-# only the cells a circle of radius R can reach, test about 2.9 R^2 (rows of 9, 9, 7 and 1
-# cells of R/8 x R/2): ~0.64 as many candidates (a crumpled 64 x 64 cloth: 41,050 against
-# 63,986 for 17,956 pairs). Cells numbered row by row
-# again, so each row of the stencil is one run of the sorted list: three runs per particle.
+# more candidates than pairs. Cells a hair over R/8 wide and R/2 high, with each row of cells
+# below taking only the cells a circle of radius R can reach, test about 2.5 R^2 (rows of 8, 17
+# and 15 cells): the bench's crumpled 64 x 64 cloth has 34,826 candidates for 17,924 pairs, where
+# cells R wide gave ~64,000 and cells of exactly R/8 x R/2 ~41,000 (they need a 9th column and a
+# 4th row for the rounding slack). Cells numbered row by row again, so each row of the stencil is one run of the
+# sorted list: three runs per particle.
 FINE_CELLS = (8, 2)       # cells per cut-off across and down
 CELLS_PER_PARTICLE = 8    # at most this many cells per particle: a spread-out crowd gets bigger
                           # cells (its count array stays small; it has few candidates anyway)
-FINE_BLOCK = 1 << 13     # candidates per block (their work arrays: some 300 kB, in the cache)
+FINE_BLOCK = 1 << 13      # candidates per block: their work arrays stay in the cache, and
+                          # np.repeat's (no out=) under glibc's 128 kB: heap, not fresh pages
 SLACK = 1e-3              # in cells: float32 rounding of a cell index never hides a pair
 
 
@@ -292,83 +294,80 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     n = xs.size
     lo_x, lo_y = float(xs.min()), float(ys.min())
     w, h = float(xs.max()) - lo_x, float(ys.max()) - lo_y
-    cell_w, cell_h = cutoff / FINE_CELLS[0], cutoff / FINE_CELLS[1]
+    # (a hair over R/8 and R/2: a pair's cells are then at most 8 columns and 2 rows apart with
+    # SLACK to spare, where exactly R/8 would need a 9th column and a 3rd row for the slack)
+    cell_w = cutoff / (FINE_CELLS[0] - 2 * SLACK)
+    cell_h = cutoff / (FINE_CELLS[1] * (1 - 2 * SLACK))
     grow = math.sqrt((w / cell_w + 1) * (h / cell_h + 3) / (CELLS_PER_PARTICLE * n))
     if grow > 1:
         cell_w, cell_h = cell_w * grow, cell_h * grow
     reach = fine_stencil(cutoff, cell_w, cell_h)
     below = len(reach) - 1
     nx, ny = int(w / cell_w) + 1, int(h / cell_h) + 1
-    # 1. cell index, 2. sort (16-bit keys: a radix sort), run ends: stop[c] (rows below the box
-    # are empty cells, so every stencil row exists)
+    # an empty border as wide as the stencil on either side and as many empty rows below: every
+    # stencil cell of every particle exists, in its own row, with no clipping
+    pad = max(reach)
+    columns = nx + 2 * pad
+    # 1. cell index, 2. sort (16-bit keys: a radix sort), run ends: stop[c]
     cx = np.minimum(((xs - lo_x) * (1 / cell_w)).astype(np.intp), nx - 1)
     cy = np.minimum(((ys - lo_y) * (1 / cell_h)).astype(np.intp), ny - 1)
-    cell = cy * nx + cx
-    cells = nx * (ny + below)
+    cell = cy * columns + cx
+    cell += pad
+    cells = columns * (ny + below)
     order = cell_order(cell, cells)
-    stop = np.cumsum(np.bincount(cell, minlength=cells))
-    # 3. the runs: the rest of the own row's reach, then each row below (start of cell c is the
-    # stop of cell c - 1: c > 0 there, a row below)
-    cx, row = cx.take(order), cy.take(order) * nx
+    stop = np.cumsum(np.bincount(cell, minlength=cells), out=scratch.get("stop", cells, np.intp))
+    # 3. the runs of the particle at sorted position k, in cell c: the rest of its own row's
+    # reach (k + 1 to the stop of cell c + reach[0]), then row r below: the cells c + r columns
+    # - reach[r] .. c + r columns + reach[r] (the start of a cell is the stop of the one before)
+    c = cell.take(order)
     first = scratch.get("first", n * (below + 1), np.intp).reshape(below + 1, n)
     length = scratch.get("length", n * (below + 1), np.intp).reshape(below + 1, n)
     first[0] = scratch.count(n + 1)[1:]
-    np.take(stop, row + np.minimum(cx + reach[0], nx - 1), out=length[0])
+    np.take(stop[reach[0]:], c, out=length[0])
     for r in range(1, below + 1):
-        np.take(stop, row + (r * nx - 1) + np.maximum(cx - reach[r], 0), out=first[r])
-        np.take(stop, row + r * nx + np.minimum(cx + reach[r], nx - 1), out=length[r])
+        np.take(stop[r * columns - reach[r] - 1:], c, out=first[r])
+        np.take(stop[r * columns + reach[r]:], c, out=length[r])
     first, length = first.ravel(), length.ravel()
     length -= first
-    keep = np.greater(length, 0, out=scratch.get("nonempty", length.size, bool))
-    nruns = int(np.count_nonzero(keep))        # the runs that hold a candidate, and their
-    if nruns == 0:                             # owner's sorted position (the runs come in
-        return np.zeros(0, np.intp), np.zeros(0, np.intp), 0   # blocks of n, one per row)
-    owners = scratch.get("owners", n * (below + 1), np.intp)
-    owners.reshape(below + 1, n)[:] = scratch.count(n)
-    length = length.compress(keep, out=scratch.get("run_length", nruns, np.intp))
-    first = first.compress(keep, out=scratch.get("run_first", nruns, np.intp))
-    own = owners.compress(keep, out=scratch.get("run_owner", nruns, np.intp))
-    ends = np.cumsum(length)
+    ends = np.cumsum(length, out=scratch.get("ends", length.size, np.intp))
     total = int(ends[-1])
-    first -= ends - length                     # q = c + first - slot for candidate c of a run
+    if total == 0:
+        return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
+    first -= ends - length                     # q = first + c for candidate c of a run
+    owner = scratch.get("owners", n * (below + 1), np.intp)
+    owner.reshape(below + 1, n)[:] = scratch.count(n)       # the run's particle (sorted position)
     real = np.result_type(xs, ys, np.float32)  # float32 or float64: all_pairs's own rounding
     pair = np.complex64 if real == np.float32 else np.complex128
     z = np.empty(n, pair)                      # positions in sorted order, x + i y
     z.real, z.imag = xs.take(order), ys.take(order)
-    z_own = np.take(z, own, out=scratch.get("z_own", nruns, pair), mode="wrap")
     count = scratch.count(total)
-    hit_run = scratch.get("hit_run", total, np.intp)
+    hit_p = scratch.get("hit_p", total, np.intp)
     hit_q = scratch.get("hit_q", total, np.intp)
     found = 0
     # blocks of whole runs, about FINE_BLOCK candidates each: their arrays stay in the cache
-    cuts = np.searchsorted(ends, np.arange(FINE_BLOCK, total, FINE_BLOCK))
-    bounds = np.unique(np.concatenate(([0], cuts + 1, [nruns])))
-    for r0, r1 in zip(bounds[:-1].tolist(), bounds[1:].tolist()):
+    cuts = np.searchsorted(ends, np.arange(FINE_BLOCK, total, FINE_BLOCK)) + 1
+    bounds = [0, *sorted(set(np.minimum(cuts, ends.size).tolist()) - {0, ends.size}), ends.size]
+    for r0, r1 in zip(bounds[:-1], bounds[1:]):
         c0 = int(ends[r0 - 1]) if r0 else 0
-        size = int(ends[r1 - 1]) - c0
-        # run[c]: the run candidate c belongs to (a cumulative sum of 1 at each run's start;
-        # replaces np.repeat(arange(r0, r1), length[r0:r1])); q[c]: its partner's position
-        run = scratch.get("run", size, np.intp)
-        run.fill(0)
-        run[ends[r0:r1 - 1] - c0] = 1
-        np.cumsum(run, out=run)
-        run += r0
-        q = np.take(first, run, out=scratch.get("q", size, np.intp), mode="wrap")
-        q += count[c0:c0 + size]
+        runs = length[r0:r1]
+        # p, q: each candidate's two sorted positions (np.repeat replaces `for each run: for q
+        # in range(first, stop): candidates.append((p, q))`)
+        p = np.repeat(owner[r0:r1], runs)
+        q = np.repeat(first[r0:r1], runs)
+        q += count[c0:c0 + q.size]
         # d = x_q - x_p, x and y as one complex number (one gather, not two), then |d|^2 in
         # the positions' precision (all_pairs's rounding: the same pairs, exactly)
-        d = np.take(z, q, out=scratch.get("d", size, pair), mode="wrap")
-        d -= np.take(z_own, run, out=scratch.get("dp", size, pair), mode="wrap")
+        d = np.take(z, q, out=scratch.get("d", q.size, pair), mode="wrap")
+        d -= np.take(z, p, out=scratch.get("dp", q.size, pair), mode="wrap")
         dd = d.view(real)
         dd *= dd
-        r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", size, real))
-        hit = np.less(r2, real.type(cutoff * cutoff), out=scratch.get("hit", size, bool))
+        r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", q.size, real))
+        hit = np.less(r2, real.type(cutoff * cutoff), out=scratch.get("hit", q.size, bool))
         k = int(np.count_nonzero(hit))
-        np.compress(hit, run, out=hit_run[found:found + k])
+        np.compress(hit, p, out=hit_p[found:found + k])
         np.compress(hit, q, out=hit_q[found:found + k])
         found += k
-    np.take(order, own, out=own, mode="wrap")   # (the owners' particle numbers)
-    i = np.take(own, hit_run[:found], out=scratch.get("i", found, np.intp))
+    i = np.take(order, hit_p[:found], out=scratch.get("i", found, np.intp))
     j = np.take(order, hit_q[:found], out=scratch.get("j", found, np.intp))
     return i, j, total
 
