@@ -45,44 +45,34 @@ arrays: neutral), is in `git log app/physics/cloth_contact.py`.
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
 or all pairs, the O(n^2) reference (`self_method`). Pairs of one grid cell (its sides and
-diagonals) and pairs joined by
-a rod of an active set are left out: the rods keep them apart, and a cell may shear freely (as
-it does without self-collision). Before each of its sweeps the obstacles are projected (if on),
-so a pair resting on a floor is parted by moving the upper particle, not by pushing the lower one
-in. All pairs found are pushed apart at once (Jacobi: each particle
-moves by the average of its pairs' corrections, times OVER_RELAX, so a particle in many pairs is
-not thrown out), SELF_SWEEPS times, reusing the pairs found.
+diagonals) and pairs joined by a rod of an active set are left out: the rods keep them apart,
+and a cell may shear freely (as it does without self-collision). Before each of its sweeps the
+obstacles are projected (if on), so a pair resting on a floor is parted by moving the upper
+particle, not by pushing the lower one in. All pairs found are pushed apart at once (Jacobi:
+each particle moves by the average of its pairs' corrections, times OVER_RELAX, so a particle in
+many pairs is not thrown out), SELF_SWEEPS times, reusing the pairs found.
 
-What the pair search costs, and what was chosen. The grid is sorted once per substep (a stable
-sort on 16-bit cell keys: a radix sort), each pair met once (the half stencil), and a pair of
-rod neighbours is told by one table read (close_ij, _joined). The grid's pairs go through a
-Verlet neighbour list (app/physics/self_list.py: the pairs within self_distance plus a skin,
-filtered instead of searched while no particle has moved half the skin): it pays where the
-cloth lies still (the fold card's pass 0.29 -> 0.17 ms, a settled 64 x 64 heap 3.9 -> 3.0 ms),
-not on a crumpled cloth still falling (12-22 px a step against 6.4 px: a plain search every
-step, as before). On that cloth (17,956 pairs closer than 6.4 px, 14,051 of
-them not rod neighbours) cells self_distance wide gave 63,986 candidates; the finer cells, their
-stencil trimmed to the circle, give 41,050. Every work array of the search and the sweeps is kept
-in the contact state (neighbours.Scratch): fresh ones cost some 380 page faults a pass (memory
-the allocator had handed back), now about 1. Its cost, CPU ms from the same state, 61-81
-interleaved rounds in one process, load 6.3 on the 2-core lab machine: search 0.73, rod filter
-0.08, set-up 0.12, each of the 2 sweeps 0.2 (its bincount over 4 x 14,051 weighted entries the
-largest part): 1.34 against a 0.95 ms step. Against the pass as it was (same process, direct
-calls, load 6.4): crumpled 2.11 -> 1.61 x the step, hanging 0.39 -> 0.47 x (three runs per
-particle and a larger cell table: a fixed cost); with all pairs in the same rounds, as the bench
-runs them (load 3.8): 3.07 -> 1.78 x and 0.45 -> 0.52 x; `python -m app bench cloth` (all
-pairs in the same rounds) read 1.5-1.9 x at load 3-7.7 (1.7-1.9 x before), one step from the
-state. Since the list, the bench times 15 consecutive steps (one step would time only builds,
-or only reuses): 1.38-1.52 x at load 1.6 (main's pass, timed the same way in the same minutes:
-1.40-1.57 x; one step from the state 1.98-2.19 x: the first steps cost most, the pairs falling
-from 14,051 to 7,092 over the 15 as the cloth unfolds; the list changes neither). The goal of at most 1 x is NOT met by NumPy: the search alone (fine_pairs) is
-0.65-0.7 ms of a 0.9 ms step. Tried and not kept: cells R/8 x R/3 (35,000 candidates, a fourth
-run: no faster), fewer cells per particle (coarser cells on the crumpled cloth's box: more
-candidates), blocks of 4,096 to 131,072 candidates (within the noise: 8,192 kept), the sweeps'
-x and y as one complex number (two gathers and one np.add.at: the same positions, 4 % faster:
-not worth plainer code). The compiled pass (kernel=numba, optional: app/physics/self_compiled.py;
-the same pairs, searched every substep: no list) visits each candidate once: 0.73-0.89 x the
-step in the same runs.
+What the pair search costs, and what was chosen. The grid is sorted once per substep (a radix
+sort of 16-bit cell keys), each pair met once (the half stencil), and a pair of rod neighbours
+is told by one table read (close_ij, _joined). The pairs go through a Verlet neighbour list
+(app/physics/self_list.py: the pairs within self_distance plus a skin, filtered instead of
+searched while no particle has moved half the skin): it pays where the cloth lies still (the
+fold card's pass 0.29 -> 0.17 ms, a settled 64 x 64 heap 3.9 -> 3.0 ms), not on a crumpled
+cloth still falling (12-22 px a step against 6.4 px: a plain search every step). On that cloth
+(17,924 pairs closer than 6.4 px, 14,037 not rod neighbours) cells self_distance wide gave
+~64,000 candidates, the finer cells with their stencil trimmed to the circle give 34,826. The
+work arrays are kept (neighbours.Scratch) or small: a fresh 264 kB cell table a call made the
+allocator hand pages back and fault them in again (~104 minor page faults, ~0.26 ms a pass;
+now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time, load 1.1, 2026-11-26):
+1.26 x the step crumpled (1.58 x before that day's changes), 0.36 x hanging: the goal of at
+most 1 x is NOT met by NumPy crumpled. There the ~1.1 ms go to the search ~0.5, the rod filter
+and the list ~0.1, each of the 2 sweeps ~0.15 (two bincounts over 4 x 14,037 weighted entries
+the largest part). Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
+no faster), fewer cells per particle (more candidates), blocks over 8,192 candidates
+(np.repeat's fresh arrays cross glibc's 128 kB: page faults again), x and y as one complex
+number in the sweeps (4 % faster: not worth plainer code). The compiled pass (kernel=numba,
+optional, app/physics/self_compiled.py: the same pairs, searched every substep, no list) visits
+each candidate once: 0.73 x the step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
@@ -419,22 +409,18 @@ def self_collide(c, h: float) -> None:
     # - share_i of it; they replace `for pair: x[j] += share_j * move; x[i] -= share_i * move`.
     # Both ends free (w = 1 each, the usual case): both shares are 1/2, one set of weights.
     scratch = st.scratch
-    ends = scratch.get("ends", 4 * m, np.intp)
-    jj, ii = ends[:2 * m], ends[2 * m:]
-    jj[:m], ii[:m] = j, i
-    np.add(j, n, out=jj[m:])
-    np.add(i, n, out=ii[m:])
+    ends = scratch.get("ends", 4 * m, np.intp).reshape(2, 2, m)     # [j, j + n], [i, i + n]
+    ends[0, 0], ends[1, 0] = j, i
+    np.add(ends[:, 0], n, out=ends[:, 1])
+    jj, ii = ends.reshape(2, 2 * m)
     even = bool(wi.all() and wj.all())                 # (w is 0 or 1: then every share is 1/2)
-    if not even:
-        share_j = np.divide(wj, total, out=scratch.get("share_j", m, w.dtype))
-        share_i = np.divide(wi, total, out=scratch.get("share_i", m, w.dtype))
+    share_j, share_i = (None, None) if even else (wj / total, wi / total)
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
     scale = scratch.get("scale", 2 * n, np.float64)    # Jacobi's average, over-relaxed (x, y)
     np.divide(OVER_RELAX, np.maximum(count, 1, out=count), out=scale[:n])
     scale[n:] = scale[:n]
-    move_j = scratch.get("move_j", 2 * m, np.float64)
-    move_i = move_j if even else scratch.get("move_i", 2 * m, np.float64)
+    move = scratch.get("move", 2 * m, np.float64)      # (weights in float64: bincount's own)
     xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
     flag = scratch.get("same", m, bool)
     dmin = st.self_distance
@@ -446,8 +432,7 @@ def self_collide(c, h: float) -> None:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
             project(st.obstacles, x.T, st.margin, movable)
-        # d = x_j - x_i for every pair, r = |d| (work arrays kept in the contact state: fresh
-        # ones would cost their page faults again each substep)
+        # d = x_j - x_i for every pair, r = |d| (in kept work arrays: no fresh pages)
         dx = np.subtract(np.take(xs, j, out=xj, mode="wrap"), np.take(xs, i, out=xi, mode="wrap"),
                          out=xj)
         dy = np.subtract(np.take(ys, j, out=yj, mode="wrap"), np.take(ys, i, out=yi, mode="wrap"),
@@ -459,18 +444,23 @@ def self_collide(c, h: float) -> None:
         push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
-        if even:
-            push *= 0.5
-        # (weights in float64: bincount's own)
-        np.multiply(dx, push if even else push * share_j, out=move_j[:m])
-        np.multiply(dy, push if even else push * share_j, out=move_j[m:])
+        if even:                                        # both shares 1/2: one set of weights
+            f_j = f_i = np.multiply(push, 0.5, out=push)
+        else:
+            f_j, f_i = push * share_j, push * share_i
+        moved = np.bincount(jj, _weights(move, dx, dy, f_j), 2 * n)     # + at the j ends
         if not even:
-            np.multiply(dx, push * share_i, out=move_i[:m])
-            np.multiply(dy, push * share_i, out=move_i[m:])
-        moved = np.bincount(jj, move_j, 2 * n)
-        moved -= np.bincount(ii, move_i, 2 * n)
+            _weights(move, dx, dy, f_i)
+        moved -= np.bincount(ii, move, 2 * n)                             # - at the i ends
         moved *= scale
         np.add(flat, moved, out=flat, casting="unsafe")
+
+
+def _weights(move: np.ndarray, dx: np.ndarray, dy: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """move = (dx f, dy f): one end's corrections, x then y, as bincount's weights."""
+    np.multiply(dx, f, out=move[:dx.size])
+    np.multiply(dy, f, out=move[dx.size:])
+    return move
 
 
 def _self_collide_compiled(c) -> None:
