@@ -147,6 +147,7 @@ class ContactState:
     self_list: PairList = field(default_factory=PairList)   # the grid's Verlet list (self_list)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
+    contact_arrays: tuple | None = None   # the Contacts' arrays, reused (_contact_arrays)
 
 
 Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
@@ -200,15 +201,16 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
     those inside to the margin: p += (margin - d) n. Returns the Contacts, as project() does.
     start: (2, n); x: (n, 2), written into."""
     n, margin = len(x), st.margin
-    depth, normal = np.zeros(n), np.zeros((2, n))   # (Contacts' (n, 2) normal: its .T)
-    index, hit = np.full(n, -1), np.zeros(n, bool)
+    depth, normal, index, hit = _contact_arrays(st, n)   # (Contacts' (n, 2) normal: its .T)
     px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
     ends_t = x.T                                # (2, n): x and y as rows (a view too)
     sx, sy = start[0], start[1]
-    boxes, hit_any = None, False
+    boxes, hit_any, extremes = None, False, {}
     grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
     for k, ob in enumerate(st.obstacles):
         if isinstance(ob, HalfPlane):           # nothing to pass through: where the ends are
+            if _clear_of(ob, px, py, margin, extremes):
+                continue
             ids = near_bounds(ob, px, py, margin, movable)
         else:
             if boxes is None:                   # each path's box, once for every obstacle
@@ -253,6 +255,37 @@ def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
         index[ids] = k
         hit[ids] = hit_any = True
     return Contacts(hit, depth, normal.T, index)
+
+
+def _contact_arrays(st: ContactState, n: int) -> tuple[np.ndarray, ...]:
+    """(depth, normal (2, n), index, hit): the arrays of the Contacts, kept in the contact state
+    and cleared each substep (fresh ones would cost their page faults again)."""
+    arrays = st.contact_arrays
+    if arrays is None or arrays[0].size != n:
+        arrays = st.contact_arrays = (np.zeros(n), np.zeros((2, n)), np.full(n, -1),
+                                      np.zeros(n, bool))
+    else:
+        for a, empty in zip(arrays, (0.0, 0.0, -1, False)):
+            a.fill(empty)
+    return arrays
+
+
+def _clear_of(plane: HalfPlane, px: np.ndarray, py: np.ndarray, margin: float,
+              extremes: dict) -> bool:
+    """Whether the whole cloth lies further than the margin from the half-plane (a floor below
+    a hanging cloth): then no particle needs its distance. The cloth's extreme x and y in the
+    plane's direction (a max or a min: one pass over the particles each, kept in `extremes`
+    for the substep) give the nearest any particle comes. (The slack covers the float32
+    sums of near_bounds, which would find nothing then either.)"""
+    nearest = slack = 0.0
+    for coord, p0, n in ((px, plane.px, plane.nx), (py, plane.py, plane.ny)):
+        if n:
+            key = (id(coord), n < 0)            # towards the plane: the min if n > 0, else max
+            if key not in extremes:
+                extremes[key] = float(coord.max() if n < 0 else coord.min())
+            nearest += (extremes[key] - p0) * n
+            slack += 1e-6 * (abs(extremes[key]) + abs(p0) + 1.0)
+    return nearest > margin + NEAR_SLACK + slack
 
 
 def _may_touch(st: ContactState) -> bool:

@@ -166,6 +166,11 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
     return dmin < -depth, t
 
 
+NOTHING_BACK = (np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0), 0)  # (read-only)
+for _empty in NOTHING_BACK[:4]:
+    _empty.flags.writeable = False
+
+
 def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy: np.ndarray,
                 d1: np.ndarray, n1x: np.ndarray, n1y: np.ndarray, tolerance: float
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
@@ -182,7 +187,7 @@ def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy
     only dip below -tolerance if d1 - n1 . v does. A particle sliding along a surface (n1 . v
     about 0) is dismissed by it; the length bound alone let every sliding particle longer than
     2 sqrt(2) tolerance through to the exact test (most of a cloth heaped on a tilted box)."""
-    none = np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0), 0
+    none = NOTHING_BACK
     shortest = shortest_dip(ob, tolerance)
     if isinstance(ob, HalfPlane):
         return none                                      # d linear along a path: nothing
