@@ -63,9 +63,9 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     if ids.size == 0 or mu <= 0:
         return
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
+    now = x.T.take(ids, axis=1)                # (2, k): the touching particles' x and y rows
     # the travel of this step, in float64 (NumPy casts both ends before subtracting)...
-    mx = np.subtract(xs.take(ids), x_prev[:, 0].take(ids), dtype=np.float64)
-    my = np.subtract(ys.take(ids), x_prev[:, 1].take(ids), dtype=np.float64)
+    mx, my = np.subtract(now, x_prev.T.take(ids, axis=1), dtype=np.float64)
     if h and any(ob.velocity[0] or ob.velocity[1] for ob in obstacles):
         # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
@@ -82,12 +82,15 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     removable *= mu
     # the share of the tangential travel removed: all of it (it sticks: mu * depth >= |t|) or
     # mu * depth / |t| of it (it slides); min(., 1) is that choice in one call
-    gone = np.divide(removable, np.maximum(np.hypot(mx, my), TINY), out=removable)
+    slide = np.square(mx)                                     # |t| = sqrt(tx^2 + ty^2)
+    slide += np.square(my, out=along)
+    gone = np.divide(removable, np.maximum(np.sqrt(slide, out=slide), TINY), out=removable)
     np.minimum(gone, 1.0, out=gone)
     mx *= gone
     my *= gone
-    xs[ids] -= mx.astype(x.dtype, copy=False)               # less travel: x moves back
-    ys[ids] -= my.astype(x.dtype, copy=False)
+    now[0] -= mx.astype(x.dtype, copy=False)                # less travel: x moves back
+    now[1] -= my.astype(x.dtype, copy=False)
+    xs[ids], ys[ids] = now
 
 
 __all__ = ["Contacts", "coulomb_friction", "verlet_friction"]

@@ -188,7 +188,7 @@ class Circle(Obstacle):
 
     def distance_xy(self, x, y):
         dx, dy = x - self.cx, y - self.cy
-        r = np.hypot(dx, dy)
+        r = np.sqrt(dx * dx + dy * dy)
         nx, ny = _unit_or(dx, dy, r, (0.0, -1.0))        # at the centre: out through the top
         return r - self.radius, nx, ny
 
