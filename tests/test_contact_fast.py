@@ -9,7 +9,8 @@ import pytest
 
 from app.physics import rods_compiled
 from app.physics.cloth import Cloth
-from app.physics.cloth_contact import ContactState, _tunnel_and_project, close_pairs, self_collide
+from app.physics.cloth_contact import ContactState, close_pairs, self_collide
+from app.physics.cloth_obstacles import tunnel_and_project
 from app.physics.neighbours import Scratch, all_pairs, fine_pairs
 from app.physics.obstacles import Box, Circle, Segment, floor, project
 from app.physics.tunnelling import swept, through_one
@@ -67,7 +68,7 @@ def test_fused_tunnelling_and_projection_match_the_plain_pipeline(ob):
         x_ref, x_new = b.copy(), b.copy()
         contacts, count = reference([ob], a.T.copy(), x_ref, movable, 0.25, 1.0)
         st = ContactState(obstacles=[ob])
-        fused = _tunnel_and_project(st, a.T.copy(), x_new, movable)
+        fused = tunnel_and_project(st, a.T.copy(), x_new, movable)
         assert contacts.count > 100 and st.tunneled == count
         assert np.array_equal(fused.mask, contacts.mask)
         # put back: on the surface where the path entered, then pushed out to the margin (the

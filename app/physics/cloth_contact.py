@@ -92,7 +92,6 @@ folds.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -101,9 +100,8 @@ import numpy as np
 from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
 from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
-from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
-                                   project, verlet_friction)
-from app.physics.tunnelling import through_one
+from app.physics.cloth_obstacles import may_touch, settle_corners, tunnel_and_project
+from app.physics.obstacles import Contacts, Obstacle, project, verlet_friction
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -178,158 +176,15 @@ def _points(a: np.ndarray) -> np.ndarray:
 def collide(c, h: float) -> None:
     """After the sweeps, each obstacle in turn (Jakobsen's loop over the constraints): paths
     through it over the whole substep are put back where they entered it, then every particle
-    inside it is projected to its surface. `_tunnel_and_project` says how it stays cheap."""
+    inside it is projected to its surface: app/physics/cloth_obstacles.py, which says how
+    it stays cheap."""
     st, x = c.contact, _points(c.x)
     st.start = c.x_prev.reshape(2, -1)          # where each particle began this substep (a view)
-    st.contacts = _tunnel_and_project(st, st.start, x, c.free.ravel() > 0)
+    st.contacts = tunnel_and_project(st, st.start, x, c.free.ravel() > 0)
     st.touching = st.contacts.mask
-    st.crowded = len(st.obstacles) > 1 and _may_touch(st)
+    st.crowded = len(st.obstacles) > 1 and may_touch(st)
     if st.crowded:
-        _settle_corners(st, x)
-
-
-def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
-                        movable: np.ndarray) -> Contacts:
-    """For each obstacle: (1) a broad phase: the particles whose path this substep (its box,
-    grown by the margin) meets the obstacle's box: no other can touch it or pass through it
-    (the floor: those below its line plus the margin); (2) the signed distance and normal of
-    their ends, computed once, for both tests; (3) tunnelling (tunnelling.through_one): a path
-    through the obstacle, or in from outside past its middle, puts the particle back where it
-    entered (on the surface, on the side it came from: then projected out, it rests there;
-    put back where it started the substep instead, it would hover a bar's width above a bar,
-    the next step's g h^2 carrying it through again for ever); (4) Jakobsen's projection of
-    those inside to the margin: p += (margin - d) n. Returns the Contacts, as project() does.
-    start: (2, n); x: (n, 2), written into."""
-    n, margin = len(x), st.margin
-    depth, normal, index, hit = _contact_arrays(st, n)   # (Contacts' (n, 2) normal: its .T)
-    px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
-    ends_t = x.T                                # (2, n): x and y as rows (a view too)
-    sx, sy = start[0], start[1]
-    boxes, hit_any, extremes = None, False, {}
-    grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
-    for k, ob in enumerate(st.obstacles):
-        if isinstance(ob, HalfPlane):           # nothing to pass through: where the ends are
-            if _clear_of(ob, px, py, margin, extremes):
-                continue
-            ids = near_bounds(ob, px, py, margin, movable)
-        else:
-            if boxes is None:                   # each path's box, once for every obstacle
-                boxes = (np.minimum(px, sx), np.maximum(px, sx), np.minimum(py, sy),
-                         np.maximum(py, sy))
-            lo_x, hi_x, lo_y, hi_y = boxes
-            x0, y0, x1, y1 = ob.bounds()
-            near = (hi_x > x0 - grow) & (lo_x < x1 + grow) & (hi_y > y0 - grow) & \
-                (lo_y < y1 + grow) & movable
-            ids = near.nonzero()[0]
-        if ids.size == 0:
-            continue
-        ends = ends_t.take(ids, axis=1).astype(np.float64)      # (2, k): x and y rows at once
-        ex, ey = ends[0], ends[1]
-        d, nx, ny = ob.distance_xy(ex, ey)
-        if not isinstance(ob, HalfPlane):
-            starts = start.take(ids, axis=1).astype(np.float64)
-            ax, ay = starts[0], starts[1]
-            vx, vy = ends - starts                              # each path, this substep
-            back, t, bx, by, through = through_one(ob, ax, ay, vx, vy, d, nx, ny, st.tolerance)
-            if back.size:                       # put back: on the surface, its normal there
-                ib = ids[back]
-                px[ib] = ax[back] + t * vx[back]
-                py[ib] = ay[back] + t * vy[back]
-                d[back], nx[back], ny[back] = 0.0, bx, by
-                st.tunneled += through
-        inside = d < margin
-        touching = int(np.count_nonzero(inside))
-        if touching == 0:
-            continue
-        if touching < ids.size:                 # (compress: a mask's take, without nonzero)
-            ids, d, nx, ny = (a.compress(inside) for a in (ids, d, nx, ny))
-        push = margin - d                                      # Jakobsen: p += (margin - d) n
-        normal[0][ids] = nx
-        normal[1][ids] = ny
-        px[ids] += np.multiply(push, nx, out=nx).astype(x.dtype, copy=False)   # (nx: ours)
-        py[ids] += np.multiply(push, ny, out=ny).astype(x.dtype, copy=False)
-        if hit_any:                             # a particle may touch two: the pushes add up
-            depth[ids] += push
-        else:
-            depth[ids] = push
-        index[ids] = k
-        hit[ids] = hit_any = True
-    return Contacts(hit, depth, normal.T, index)
-
-
-def _contact_arrays(st: ContactState, n: int) -> tuple[np.ndarray, ...]:
-    """(depth, normal (2, n), index, hit): the arrays of the Contacts, kept in the contact state
-    and cleared each substep (fresh ones would cost their page faults again)."""
-    arrays = st.contact_arrays
-    if arrays is None or arrays[0].size != n:
-        arrays = st.contact_arrays = (np.zeros(n), np.zeros((2, n)), np.full(n, -1),
-                                      np.zeros(n, bool))
-    else:
-        for a, empty in zip(arrays, (0.0, 0.0, -1, False)):
-            a.fill(empty)
-    return arrays
-
-
-def _clear_of(plane: HalfPlane, px: np.ndarray, py: np.ndarray, margin: float,
-              extremes: dict) -> bool:
-    """Whether the whole cloth lies further than the margin from the half-plane (a floor below
-    a hanging cloth): then no particle needs its distance. The cloth's extreme x and y in the
-    plane's direction (a max or a min: one pass over the particles each, kept in `extremes`
-    for the substep) give the nearest any particle comes. (The slack covers the float32
-    sums of near_bounds, which would find nothing then either.)"""
-    nearest = slack = 0.0
-    for coord, p0, n in ((px, plane.px, plane.nx), (py, plane.py, plane.ny)):
-        if n:
-            key = (id(coord), n < 0)            # towards the plane: the min if n > 0, else max
-            if key not in extremes:
-                extremes[key] = float(coord.max() if n < 0 else coord.min())
-            nearest += (extremes[key] - p0) * n
-            slack += 1e-6 * (abs(extremes[key]) + abs(p0) + 1.0)
-    return nearest > margin + NEAR_SLACK + slack
-
-
-def _may_touch(st: ContactState) -> bool:
-    """obstacles_may_touch, asked again only when an obstacle has moved or turned."""
-    key = tuple(tuple(vars(ob).values()) for ob in st.obstacles)   # every field of each
-    if st.touch_key != key:
-        st.touch_key, st.touch_value = key, obstacles_may_touch(st.obstacles, st.margin)
-    return st.touch_value
-
-
-def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
-    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
-    bounds reach it): only then can a particle pushed out of one land in another."""
-    grown = [ob.bounds() for ob in obstacles]
-    for a in range(len(obstacles)):
-        for b in range(a + 1, len(obstacles)):
-            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
-            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
-                         None)
-            if plane is not None:
-                other = grown[b] if plane is obstacles[a] else grown[a]
-                if math.isinf(other[0]):
-                    return True                                 # two half-planes
-                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
-                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
-                if lowest < 2 * margin:
-                    return True
-            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
-                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
-                return True
-    return False
-
-
-def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:
-    """Where obstacles meet (a table's leg on the floor), a particle pushed out of one may sit
-    in the next: project the touching particles again, a few passes (only those: cheap)."""
-    ids = st.contacts.mask.nonzero()[0]
-    for _ in range(passes):
-        if ids.size == 0:
-            return
-        sub = x[ids].copy()
-        again = project(st.obstacles, sub, st.margin)
-        x[ids] = sub
-        ids = ids[again.mask]
+        settle_corners(st, x)
 
 
 def rub(c, h: float) -> None:
