@@ -100,8 +100,9 @@ import numpy as np
 from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
 from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
-from app.physics.cloth_obstacles import may_touch, settle_corners, tunnel_and_project
-from app.physics.obstacles import Contacts, Obstacle, project, verlet_friction
+from app.physics.cloth_obstacles import Touched, may_touch, settle_corners, tunnel_and_project
+from app.physics.friction import slide_back
+from app.physics.obstacles import Obstacle, project
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -131,7 +132,7 @@ class ContactState:
     self_method: str = "grid"
     margin: float = MARGIN
     tolerance: float = TOLERANCE
-    contacts: Contacts | None = None      # the last projection's contacts
+    contacts: Touched | None = None       # what the last projection touched
     touching: np.ndarray | None = None    # particles that touched an obstacle in the last substep
     tunneled: int = 0                     # paths caught passing through an obstacle, since build
     self_pairs: int = 0                   # pairs pushed apart in the last self-collision pass
@@ -145,7 +146,6 @@ class ContactState:
     self_list: PairList = field(default_factory=PairList)   # the grid's Verlet list (self_list)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
-    contact_arrays: tuple | None = None   # the Contacts' arrays, reused (_contact_arrays)
 
 
 Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
@@ -190,7 +190,10 @@ def collide(c, h: float) -> None:
 def rub(c, h: float) -> None:
     """Coulomb friction on the last projection's contacts (app/physics/obstacles.py)."""
     st = c.contact
-    verlet_friction(_points(c.x), _points(c.x_prev), st.contacts, st.mu, st.obstacles, h)
+    t = st.contacts
+    if t.ids.size and st.mu > 0:
+        slide_back(_points(c.x), _points(c.x_prev), t.ids, t.nx, t.ny, t.depth,
+                   lambda: t.index, st.mu, st.obstacles, h)
 
 
 def rub_and_settle(c, h: float) -> None:

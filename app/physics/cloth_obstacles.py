@@ -20,7 +20,8 @@ The rest is not doing what is not needed, without changing a single result:
   tolerance for a box; a chord of a ball); when no path of the cloth is that long (the longest
   path is bounded by the path boxes, the same for every obstacle), the test is skipped, with
   the gathering of the paths' starts it needs (`_paths_too_short`);
-* the Contacts' four arrays are kept from substep to substep (`_contact_arrays`).
+* what touched is kept as lists (Touched), which friction reads as they are, not as arrays over
+  every particle to be cleared each substep and gathered again by friction.
 
 The box's distance (obstacles.Box.distance_xy) calls hypot only past its corners, and friction
 and the ball measure lengths as sqrt(x^2 + y^2): hypot was the slowest NumPy call of the pass
@@ -39,6 +40,7 @@ app/physics/cloth_contact.py.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -46,7 +48,35 @@ from app.physics.obstacles import NEAR_SLACK, Contacts, HalfPlane, near_bounds, 
 from app.physics.tunnelling import shortest_dip, through_one
 
 
-def tunnel_and_project(st, start: np.ndarray, x: np.ndarray, movable: np.ndarray) -> Contacts:
+@dataclass
+class Touched:
+    """What the pass touched, listed: `mask` (n,) True where a particle touched an obstacle
+    (was found within the margin of it and moved out); and for those particles, each once:
+    their flat indices `ids`, the outward normal (nx, ny) of the obstacle each was pushed out
+    of (the last, if two), how far it was pushed along it (`depth`, px: the sum, if two) and
+    that obstacle's position in the list (`index`). Friction reads these lists as they are;
+    `full()` is the same as the Contacts record of a projection (obstacles.project)."""
+
+    mask: np.ndarray
+    ids: np.ndarray
+    nx: np.ndarray
+    ny: np.ndarray
+    depth: np.ndarray
+    index: np.ndarray
+
+    @property
+    def count(self) -> int:
+        return int(self.ids.size)
+
+    def full(self) -> Contacts:
+        n = self.mask.size
+        depth, normal, index = np.zeros(n), np.zeros((n, 2)), np.full(n, -1)
+        depth[self.ids], normal[self.ids, 0], normal[self.ids, 1] = self.depth, self.nx, self.ny
+        index[self.ids] = self.index
+        return Contacts(self.mask, depth, normal, index)
+
+
+def tunnel_and_project(st, start: np.ndarray, x: np.ndarray, movable: np.ndarray) -> Touched:
     """For each obstacle: (1) a broad phase: the particles whose path this substep (its box,
     grown by the margin) meets the obstacle's box: no other can touch it or pass through it
     (the floor: those below its line plus the margin); (2) the signed distance and normal of
@@ -55,14 +85,16 @@ def tunnel_and_project(st, start: np.ndarray, x: np.ndarray, movable: np.ndarray
     entered (on the surface, on the side it came from: then projected out, it rests there;
     put back where it started the substep instead, it would hover a bar's width above a bar,
     the next step's g h^2 carrying it through again for ever); (4) Jakobsen's projection of
-    those inside to the margin: p += (margin - d) n. Returns the Contacts, as project() does.
+    those inside to the margin: p += (margin - d) n. Returns what touched (Touched).
     st: the contact state (cloth_contact.ContactState); start: (2, n); x: (n, 2), written into."""
     n, margin = len(x), st.margin
-    depth, normal, index, hit = _contact_arrays(st, n)   # (Contacts' (n, 2) normal: its .T)
+    hit = st.scratch.get("touched", n, bool)    # (kept: a fresh mask would cost page faults)
+    hit.fill(False)
+    touched = []                                # (ids, nx, ny, push, k) of each obstacle
     px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
     ends_t = x.T                                # (2, n): x and y as rows (a view too)
     sx, sy = start[0], start[1]
-    boxes, hit_any, extremes = None, False, {}
+    boxes, extremes = None, {}
     moved = 0.0                 # how far a particle may have moved since the boxes were made
     grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
     for k, ob in enumerate(st.obstacles):
@@ -105,32 +137,35 @@ def tunnel_and_project(st, start: np.ndarray, x: np.ndarray, movable: np.ndarray
         if touching < ids.size:                 # (compress: a mask's take, without nonzero)
             ids, d, nx, ny = (a.compress(inside) for a in (ids, d, nx, ny))
         push = margin - d                                      # Jakobsen: p += (margin - d) n
-        normal[0][ids] = nx
-        normal[1][ids] = ny
+        px[ids] += (push * nx).astype(x.dtype, copy=False)
+        py[ids] += (push * ny).astype(x.dtype, copy=False)
         if boxes is not None and moved < math.inf:
             moved += float(push.max())          # (|n| = 1: no particle moved further)
-        px[ids] += np.multiply(push, nx, out=nx).astype(x.dtype, copy=False)   # (nx: ours)
-        py[ids] += np.multiply(push, ny, out=ny).astype(x.dtype, copy=False)
-        if hit_any:                             # a particle may touch two: the pushes add up
-            depth[ids] += push
-        else:
-            depth[ids] = push
-        index[ids] = k
-        hit[ids] = hit_any = True
-    return Contacts(hit, depth, normal.T, index)
+        hit[ids] = True
+        touched.append((ids, nx, ny, push, k))
+    return _listed(hit, touched)
 
 
-def _contact_arrays(st, n: int) -> tuple[np.ndarray, ...]:
-    """(depth, normal (2, n), index, hit): the arrays of the Contacts, kept in the contact state
-    and cleared each substep (fresh ones would cost their page faults again)."""
-    arrays = st.contact_arrays
-    if arrays is None or arrays[0].size != n:
-        arrays = st.contact_arrays = (np.zeros(n), np.zeros((2, n)), np.full(n, -1),
-                                      np.zeros(n, bool))
-    else:
-        for a, empty in zip(arrays, (0.0, 0.0, -1, False)):
-            a.fill(empty)
-    return arrays
+def _listed(hit: np.ndarray, touched: list) -> Touched:
+    """The Touched record of the obstacles' lists (ids, nx, ny, push, k), in their order. A
+    particle found by two obstacles (where they meet, or put back by a tunnelling test after a
+    projection) has the pushes added up and the last obstacle's normal, as project() gives it:
+    then (only) the lists are merged through arrays over every particle."""
+    if not touched:
+        none = np.zeros(0)
+        return Touched(hit, np.zeros(0, np.intp), none, none, none, np.zeros(0, np.intp))
+    ids, nx, ny, depth = (np.concatenate(parts) if len(touched) > 1 else parts[0]
+                          for parts in list(zip(*touched))[:4])
+    index = np.repeat([k for *_, k in touched], [len(t[0]) for t in touched])
+    if ids.size > np.count_nonzero(hit):        # a particle is listed twice
+        n = hit.size
+        depth_all, normal, index_all = np.zeros(n), np.zeros((2, n)), np.full(n, -1)
+        for ids_k, nx_k, ny_k, push, k in touched:
+            depth_all[ids_k] += push
+            normal[0][ids_k], normal[1][ids_k], index_all[ids_k] = nx_k, ny_k, k
+        ids = hit.nonzero()[0]
+        nx, ny, depth, index = normal[0][ids], normal[1][ids], depth_all[ids], index_all[ids]
+    return Touched(hit, ids, nx, ny, depth, index)
 
 
 def _clear_of(plane: HalfPlane, px: np.ndarray, py: np.ndarray, margin: float,
