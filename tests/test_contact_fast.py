@@ -10,6 +10,7 @@ import pytest
 from app.physics import rods_compiled
 from app.physics.cloth import Cloth
 from app.physics.cloth_contact import ContactState, close_pairs, self_collide
+from app.physics import cloth_obstacles
 from app.physics.cloth_obstacles import tunnel_and_project
 from app.physics.neighbours import Scratch, all_pairs, fine_pairs
 from app.physics.obstacles import Box, Circle, Segment, floor, project
@@ -82,6 +83,31 @@ def test_fused_tunnelling_and_projection_match_the_plain_pipeline(ob):
         assert np.allclose(x_new[same], x_ref[same], atol=1e-9)
         assert np.allclose(fused.depth[same], contacts.depth[same], atol=1e-9)
         assert np.allclose(fused.normal[same], contacts.normal[same], atol=1e-9)
+
+
+@pytest.mark.parametrize("longest", [2.0, 5.0])
+def test_the_tunnelling_test_skipped_for_short_paths_changes_nothing(longest, monkeypatch):
+    """The pass skips an obstacle's tunnelling test when no path of the substep can be long
+    enough (cloth_obstacles._paths_too_short), counting what the obstacles before it moved a
+    particle (the ball pushes particles out by up to its radius, into the box it overlaps):
+    the same positions and contacts as with the test never skipped."""
+    obstacles = [Circle(0.0, 0.0, 30.0), Box(30.0, 0.0, 20.0, 10.0, 0.2), floor(8.0)]
+    rng = np.random.default_rng(3)
+    a = rng.uniform((-35, -20), (55, 12), (3000, 2)).astype(np.float32)
+    angle = rng.uniform(0, 2 * np.pi, len(a))
+    step = rng.uniform(0, longest / np.sqrt(2), len(a))[:, None]
+    b = (a + step * np.column_stack((np.cos(angle), np.sin(angle)))).astype(np.float32)
+    movable = rng.uniform(size=len(a)) > 0.1
+    runs = []
+    for skipping in (True, False):
+        if not skipping:
+            monkeypatch.setattr(cloth_obstacles, "_paths_too_short", lambda *args: False)
+        st, x = ContactState(obstacles=obstacles), b.copy()
+        runs.append((x, tunnel_and_project(st, a.T.copy(), x, movable).full(), st.tunneled))
+    (x1, c1, t1), (x2, c2, t2) = runs
+    assert c1.count > 500 and t1 == t2 and np.array_equal(x1, x2)
+    for mine, theirs in ((c1.mask, c2.mask), (c1.depth, c2.depth), (c1.normal, c2.normal)):
+        assert np.array_equal(mine, theirs)
 
 
 def test_a_particle_pushed_by_two_obstacles_is_listed_once_as_project_gives_it():

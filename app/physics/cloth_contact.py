@@ -34,13 +34,13 @@ at the defaults and Coulomb's slope test still sticks exactly when tan(a) < mu
 (tests/test_cloth_contact.py); with the cheaper sweep test, the contact passes of a 64 x 64
 cloth on three obstacles cost half or less of what a projection and friction before and after
 the sweeps did. Each obstacle's paths are tested and its particles projected in one go (one
-broad phase, one distance evaluation, the tangent bound of tunnelling.through_one). What is left
-is some 180-300 NumPy calls a step on a few hundred to 1,900 particles each (the box's distance
-and normal ~34, Coulomb's rule ~20), not arithmetic. As a share of the step (the goal: at most
-30 %): 24 % hanging and 27 % heaped on the three obstacles in `python -m app bench cloth` on a
-quiet machine (2026-11-26, load 1.2, medians of 101 interleaved rounds), a few points more
-under load. What was measured on the way, and what was tried and not kept (x and y as (2, k)
-arrays: neutral), is in `git log app/physics/cloth_contact.py`.
+broad phase, one distance evaluation, the tangent bound of tunnelling.through_one):
+app/physics/cloth_obstacles.py, which says what else it leaves out. What is left is some 150
+NumPy calls a substep on a few hundred to 1,900 particles each, not arithmetic. As a share of
+the step (the goal: at most 30 %), in `python -m app bench cloth`: SHARE_FIGURES. What was
+measured on the way, and what was tried and not kept (x and y as (2, k) arrays: neutral; their
+fancy indexing, a[:, ids], is 4 to 5 times slower than a row's), is in
+`git log app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
