@@ -76,7 +76,8 @@ def slide_back(x: np.ndarray, x_prev: np.ndarray, ids: np.ndarray, nx: np.ndarra
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
     now = x.T.take(ids, axis=1)                # (2, k): the touching particles' x and y rows
     # the travel of this step, in float64 (NumPy casts both ends before subtracting)...
-    mx, my = np.subtract(now, x_prev.T.take(ids, axis=1), dtype=np.float64)
+    travel = np.subtract(now, x_prev.T.take(ids, axis=1), dtype=np.float64)
+    mx, my = travel                            # (its rows: views)
     if h and any(ob.velocity[0] or ob.velocity[1] for ob in obstacles):
         # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
@@ -95,8 +96,7 @@ def slide_back(x: np.ndarray, x_prev: np.ndarray, ids: np.ndarray, nx: np.ndarra
     np.minimum(gone, 1.0, out=gone)
     mx *= gone
     my *= gone
-    now[0] -= mx.astype(x.dtype, copy=False)                # less travel: x moves back
-    now[1] -= my.astype(x.dtype, copy=False)
+    now -= travel.astype(x.dtype)                             # less travel: x moves back
     xs[ids], ys[ids] = now
 
 

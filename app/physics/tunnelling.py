@@ -194,12 +194,15 @@ def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy
     half = ob.half_width()
     length2 = vx * vx + vy * vy
     reach = min(shortest, half)
-    if length2.max(initial=0.0) <= reach * reach:
+    longest2 = length2.max(initial=0.0)
+    if longest2 <= reach * reach:
         return none                     # every path too short for either test (resting cloth)
     outside = d1 >= 0
-    maybe = np.where(outside, (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy)
-                                                                   < -tolerance),
-                     length2 > half * half)
+    maybe = (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy) < -tolerance)
+    if longest2 > half * half:          # (a path that ends inside: past the middle?)
+        maybe = np.where(outside, maybe, length2 > half * half)
+    else:
+        maybe &= outside
     k = maybe.nonzero()[0]
     if k.size == 0:
         return none
