@@ -62,11 +62,21 @@ class Touched:
     nx: np.ndarray
     ny: np.ndarray
     depth: np.ndarray
-    index: np.ndarray
+    owners: tuple = ()          # (obstacle's position, how many) of each run of `ids`, in order
+    listed_index: np.ndarray | None = None
 
     @property
     def count(self) -> int:
         return int(self.ids.size)
+
+    @property
+    def index(self) -> np.ndarray:
+        """The obstacle each listed particle touched, made when first asked (friction asks
+        only when an obstacle moves)."""
+        if self.listed_index is None:
+            self.listed_index = np.repeat(np.array([k for k, _ in self.owners], np.intp),
+                                          [size for _, size in self.owners])
+        return self.listed_index
 
     def full(self) -> Contacts:
         n = self.mask.size
@@ -153,19 +163,20 @@ def _listed(hit: np.ndarray, touched: list) -> Touched:
     then (only) the lists are merged through arrays over every particle."""
     if not touched:
         none = np.zeros(0)
-        return Touched(hit, np.zeros(0, np.intp), none, none, none, np.zeros(0, np.intp))
-    ids, nx, ny, depth = (np.concatenate(parts) if len(touched) > 1 else parts[0]
-                          for parts in list(zip(*touched))[:4])
-    index = np.repeat([k for *_, k in touched], [len(t[0]) for t in touched])
-    if ids.size > np.count_nonzero(hit):        # a particle is listed twice
-        n = hit.size
-        depth_all, normal, index_all = np.zeros(n), np.zeros((2, n)), np.full(n, -1)
-        for ids_k, nx_k, ny_k, push, k in touched:
-            depth_all[ids_k] += push
-            normal[0][ids_k], normal[1][ids_k], index_all[ids_k] = nx_k, ny_k, k
-        ids = hit.nonzero()[0]
-        nx, ny, depth, index = normal[0][ids], normal[1][ids], depth_all[ids], index_all[ids]
-    return Touched(hit, ids, nx, ny, depth, index)
+        return Touched(hit, np.zeros(0, np.intp), none, none, none)
+    owners = tuple((k, len(ids_k)) for ids_k, *_, k in touched)
+    if len(touched) == 1 or sum(size for _, size in owners) == np.count_nonzero(hit):
+        ids, nx, ny, depth = (np.concatenate(parts) if len(touched) > 1 else parts[0]
+                              for parts in list(zip(*touched))[:4])
+        return Touched(hit, ids, nx, ny, depth, owners)
+    n = hit.size                                # a particle is listed twice: through arrays
+    depth_all, normal, index_all = np.zeros(n), np.zeros((2, n)), np.full(n, -1)
+    for ids_k, nx_k, ny_k, push, k in touched:
+        depth_all[ids_k] += push
+        normal[0][ids_k], normal[1][ids_k], index_all[ids_k] = nx_k, ny_k, k
+    ids = hit.nonzero()[0]
+    return Touched(hit, ids, normal[0][ids], normal[1][ids], depth_all[ids],
+                   listed_index=index_all[ids])
 
 
 def _clear_of(plane: HalfPlane, px: np.ndarray, py: np.ndarray, margin: float,
