@@ -40,15 +40,16 @@ NumPy calls a substep (the box's distance and normal ~35, the ball's ~12, the tu
 ~15, Coulomb's rule ~25), on 1,000 to 1,900 particles each in the heap below, each a pass over
 its arrays: calls and their arrays, not a Python loop. As a share of the step (the goal: at
 most 30 %), in `python -m app bench cloth` (medians of 101 interleaved rounds, 2026-11-26, the
-lab machine shared, load 2.6-4.8; four runs, each beside a run of the pass as it was in the
-same minutes): heap 24.7-28.1 % (before 29.6-31.8 %), hanging 22.9-25.9 % (before 25.6-29.1 %);
-of the fastest rounds, heap 22.3-23.6 % (before 27.1-28.4 %). In one process, the two passes
-taking turns in the same steps (201 rounds, load 3.4): 363 -> 327 us a step on the heap
-(collisions 294 -> 273, friction 69 -> 55), 279 -> 257 hanging. The heap's share is NOT
-robustly under 25 %: what is left is the passes' NumPy calls themselves. What was measured on
-the way, and what was tried and not kept (x and y as (2, k) arrays: neutral; their fancy
-indexing, a[:, ids], is 4 to 5 times slower than a row's; work arrays kept for the path boxes
-and masks: no faster), is in `git log app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
+lab machine shared, load 2.6-4.8; eight runs, each beside a run of the pass as it was in the
+same minutes): heap 24.3-31.1 %, median of the runs 26.6 % (before 28.1-31.8 %, 29.6 %);
+hanging 21.9-26.1 % (before 24.3-29.1 %); of the fastest rounds, heap 22.3-25.4 % (before
+26.2-28.4 %). In one process, the two passes taking turns in the same steps (201 rounds, load
+3.4): 323 -> 270 us a step on the heap (collisions 257 -> 223, friction 66 -> 47), 323 -> 273
+hanging; the same positions to the last bit. The heap's share is NOT robustly under 25 %:
+what is left is the passes' NumPy calls themselves. What was measured on the way, and what was
+tried and not kept (x and y as (2, k) arrays: neutral; their fancy indexing, a[:, ids], is 4 to
+5 times slower than a row's; work arrays kept for the path boxes and masks: no faster), is in
+`git log app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
