@@ -43,7 +43,8 @@ most 30 %), in `python -m app bench cloth` (medians of 101 interleaved rounds, 2
 lab machine shared, load 2.6-4.8; eight runs, each beside a run of the pass as it was in the
 same minutes): heap 24.3-31.1 %, median of the runs 26.6 % (before 28.1-31.8 %, 29.6 %);
 hanging 21.9-26.1 % (before 24.3-29.1 %); of the fastest rounds, heap 22.3-25.4 % (before
-26.2-28.4 %). In one process, the two passes taking turns in the same steps (201 rounds, load
+26.2-28.4 %). At load 0.7-2.0 (three more runs each): heap 24.0, 24.4, 27.2 % (before 28.7,
+29.3, 30.4 %), hanging 22.0-23.7 % (before 25.0-27.2 %). In one process, the two passes taking turns in the same steps (201 rounds, load
 3.4): 323 -> 270 us a step on the heap (collisions 257 -> 223, friction 66 -> 47), 323 -> 273
 hanging; the same positions to the last bit. The heap's share is NOT robustly under 25 %:
 what is left is the passes' NumPy calls themselves. What was measured on the way, and what was
