@@ -44,10 +44,11 @@ lab machine shared, load 2.6-4.8; eight runs, each beside a run of the pass as i
 same minutes): heap 24.3-31.1 %, median of the runs 26.6 % (before 28.1-31.8 %, 29.6 %);
 hanging 21.9-26.1 % (before 24.3-29.1 %); of the fastest rounds, heap 22.3-25.4 % (before
 26.2-28.4 %). At load 0.7-2.0 (three more runs each): heap 24.0, 24.4, 27.2 % (before 28.7,
-29.3, 30.4 %), hanging 22.0-23.7 % (before 25.0-27.2 %). In one process, the two passes taking turns in the same steps (201 rounds, load
-3.4): 323 -> 270 us a step on the heap (collisions 257 -> 223, friction 66 -> 47), 323 -> 273
-hanging; the same positions to the last bit. The heap's share is NOT robustly under 25 %:
-what is left is the passes' NumPy calls themselves. What was measured on the way, and what was
+29.3, 30.4 %), hanging 22.0-23.7 % (before 25.0-27.2 %). In one process, the two passes
+taking turns in the same steps (201 rounds, load 3.4): 323 -> 270 us a step on the heap
+(collisions 257 -> 223, friction 66 -> 47), 323 -> 273 hanging; the same positions to the
+last bit. The heap's share is NOT robustly under 25 %: what is left is the passes' NumPy calls
+themselves. What was measured on the way, and what was
 tried and not kept (x and y as (2, k) arrays: neutral; their fancy indexing, a[:, ids], is 4 to
 5 times slower than a row's; work arrays kept for the path boxes and masks: no faster), is in
 `git log app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
