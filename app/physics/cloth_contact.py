@@ -48,10 +48,10 @@ hanging 21.9-26.1 % (before 24.3-29.1 %); of the fastest rounds, heap 22.3-25.4 
 taking turns in the same steps (201 rounds, load 3.4): 323 -> 270 us a step on the heap
 (collisions 257 -> 223, friction 66 -> 47), 323 -> 273 hanging; the same positions to the
 last bit. The heap's share is NOT robustly under 25 %: what is left is the passes' NumPy calls
-themselves. What was measured on the way, and what was
-tried and not kept (x and y as (2, k) arrays: neutral; their fancy indexing, a[:, ids], is 4 to
-5 times slower than a row's; work arrays kept for the path boxes and masks: no faster), is in
-`git log app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
+themselves. What was measured on the way, and what was tried and not kept (x and y as (2, k)
+arrays: neutral; their fancy indexing, a[:, ids], is 4 to 5 times slower than a row's; work
+arrays kept for the path boxes and masks: no faster), is in `git log
+app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
