@@ -9,7 +9,9 @@ import pytest
 
 from app.physics import rods_compiled
 from app.physics.cloth import Cloth
-from app.physics.cloth_contact import ContactState, _tunnel_and_project, close_pairs, self_collide
+from app.physics.cloth_contact import ContactState, close_pairs, self_collide
+from app.physics import cloth_obstacles
+from app.physics.cloth_obstacles import tunnel_and_project
 from app.physics.neighbours import Scratch, all_pairs, fine_pairs
 from app.physics.obstacles import Box, Circle, Segment, floor, project
 from app.physics.tunnelling import swept, through_one
@@ -67,7 +69,7 @@ def test_fused_tunnelling_and_projection_match_the_plain_pipeline(ob):
         x_ref, x_new = b.copy(), b.copy()
         contacts, count = reference([ob], a.T.copy(), x_ref, movable, 0.25, 1.0)
         st = ContactState(obstacles=[ob])
-        fused = _tunnel_and_project(st, a.T.copy(), x_new, movable)
+        fused = tunnel_and_project(st, a.T.copy(), x_new, movable).full()
         assert contacts.count > 100 and st.tunneled == count
         assert np.array_equal(fused.mask, contacts.mask)
         # put back: on the surface where the path entered, then pushed out to the margin (the
@@ -81,6 +83,52 @@ def test_fused_tunnelling_and_projection_match_the_plain_pipeline(ob):
         assert np.allclose(x_new[same], x_ref[same], atol=1e-9)
         assert np.allclose(fused.depth[same], contacts.depth[same], atol=1e-9)
         assert np.allclose(fused.normal[same], contacts.normal[same], atol=1e-9)
+
+
+@pytest.mark.parametrize("longest", [2.0, 5.0])
+def test_the_tunnelling_test_skipped_for_short_paths_changes_nothing(longest, monkeypatch):
+    """The pass skips an obstacle's tunnelling test when no path of the substep can be long
+    enough (cloth_obstacles._paths_too_short), counting what the obstacles before it moved a
+    particle (the ball pushes particles out by up to its radius, into the box it overlaps):
+    the same positions and contacts as with the test never skipped."""
+    obstacles = [Circle(0.0, 0.0, 30.0), Box(30.0, 0.0, 20.0, 10.0, 0.2), floor(8.0)]
+    rng = np.random.default_rng(3)
+    a = rng.uniform((-35, -20), (55, 12), (3000, 2)).astype(np.float32)
+    angle = rng.uniform(0, 2 * np.pi, len(a))
+    step = rng.uniform(0, longest / np.sqrt(2), len(a))[:, None]
+    b = (a + step * np.column_stack((np.cos(angle), np.sin(angle)))).astype(np.float32)
+    movable = rng.uniform(size=len(a)) > 0.1
+    runs = []
+    for skipping in (True, False):
+        if not skipping:
+            monkeypatch.setattr(cloth_obstacles, "_paths_too_short", lambda *args: False)
+        st, x = ContactState(obstacles=obstacles), b.copy()
+        runs.append((x, tunnel_and_project(st, a.T.copy(), x, movable).full(), st.tunneled))
+    (x1, c1, t1), (x2, c2, t2) = runs
+    assert c1.count > 500 and t1 == t2 and np.array_equal(x1, x2)
+    for mine, theirs in ((c1.mask, c2.mask), (c1.depth, c2.depth), (c1.normal, c2.normal)):
+        assert np.array_equal(mine, theirs)
+
+
+def test_a_particle_pushed_by_two_obstacles_is_listed_once_as_project_gives_it():
+    """Where two obstacles overlap, a particle pushed out of the first may land in the second:
+    the pass lists it once, its pushes added up and the second's normal, as project() does;
+    the positions come out the same to the last bit (short paths: no tunnelling)."""
+    obstacles = [Circle(0.0, 0.0, 30.0), Box(10.0, 0.0, 30.0, 12.0, 0.3), floor(12.0)]
+    rng = np.random.default_rng(5)           # (all within both boxes: candidates of both)
+    a = rng.uniform((-18, -17), (28, 17), (3000, 2)).astype(np.float32)
+    b = (a + rng.uniform(-0.4, 0.4, a.shape)).astype(np.float32)
+    movable = rng.uniform(size=len(a)) > 0.1
+    x_ref, x_new = b.copy(), b.copy()
+    contacts = project(obstacles, x_ref, 0.25, movable)
+    listed = tunnel_and_project(ContactState(obstacles=obstacles), a.T.copy(), x_new, movable)
+    twice = sum(np.count_nonzero(project([ob], b.copy(), 0.25, movable).mask) for ob in obstacles)
+    assert twice > contacts.count + 20 and listed.count == contacts.count
+    full = listed.full()
+    assert np.array_equal(x_new, x_ref) and np.array_equal(full.mask, contacts.mask)
+    for mine, theirs in ((full.depth, contacts.depth), (full.normal, contacts.normal),
+                         (full.index, contacts.index)):
+        assert np.array_equal(mine, theirs)
 
 
 def crumpled_cloth(seed, n=24):

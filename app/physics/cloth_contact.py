@@ -34,13 +34,24 @@ at the defaults and Coulomb's slope test still sticks exactly when tan(a) < mu
 (tests/test_cloth_contact.py); with the cheaper sweep test, the contact passes of a 64 x 64
 cloth on three obstacles cost half or less of what a projection and friction before and after
 the sweeps did. Each obstacle's paths are tested and its particles projected in one go (one
-broad phase, one distance evaluation, the tangent bound of tunnelling.through_one). What is left
-is some 180-300 NumPy calls a step on a few hundred to 1,900 particles each (the box's distance
-and normal ~34, Coulomb's rule ~20), not arithmetic. As a share of the step (the goal: at most
-30 %): 24 % hanging and 27 % heaped on the three obstacles in `python -m app bench cloth` on a
-quiet machine (2026-11-26, load 1.2, medians of 101 interleaved rounds), a few points more
-under load. What was measured on the way, and what was tried and not kept (x and y as (2, k)
-arrays: neutral), is in `git log app/physics/cloth_contact.py`.
+broad phase, one distance evaluation, the tangent bound of tunnelling.through_one):
+app/physics/cloth_obstacles.py, which says what else it leaves out. What is left is some 160
+NumPy calls a substep (the box's distance and normal ~35, the ball's ~12, the tunnelling test
+~15, Coulomb's rule ~25), on 1,000 to 1,900 particles each in the heap below, each a pass over
+its arrays: calls and their arrays, not a Python loop. As a share of the step (the goal: at
+most 30 %), in `python -m app bench cloth` (medians of 101 interleaved rounds, 2026-11-26, the
+lab machine shared, load 2.6-4.8; eight runs, each beside a run of the pass as it was in the
+same minutes): heap 24.3-31.1 %, median of the runs 26.6 % (before 28.1-31.8 %, 29.6 %);
+hanging 21.9-26.1 % (before 24.3-29.1 %); of the fastest rounds, heap 22.3-25.4 % (before
+26.2-28.4 %). At load 0.7-2.0 (three more runs each): heap 24.0, 24.4, 27.2 % (before 28.7,
+29.3, 30.4 %), hanging 22.0-23.7 % (before 25.0-27.2 %). In one process, the two passes
+taking turns in the same steps (201 rounds, load 3.4): 323 -> 270 us a step on the heap
+(collisions 257 -> 223, friction 66 -> 47), 323 -> 273 hanging; the same positions to the
+last bit. The heap's share is NOT robustly under 25 %: what is left is the passes' NumPy calls
+themselves. What was measured on the way, and what was tried and not kept (x and y as (2, k)
+arrays: neutral; their fancy indexing, a[:, ids], is 4 to 5 times slower than a row's; work
+arrays kept for the path boxes and masks: no faster), is in `git log
+app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
 
 Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
 grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
@@ -82,7 +93,6 @@ folds.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -91,9 +101,9 @@ import numpy as np
 from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
 from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
-from app.physics.obstacles import (NEAR_SLACK, Contacts, HalfPlane, Obstacle, near_bounds,
-                                   project, verlet_friction)
-from app.physics.tunnelling import through_one
+from app.physics.cloth_obstacles import Touched, may_touch, settle_corners, tunnel_and_project
+from app.physics.friction import slide_back
+from app.physics.obstacles import Obstacle, project
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -123,7 +133,7 @@ class ContactState:
     self_method: str = "grid"
     margin: float = MARGIN
     tolerance: float = TOLERANCE
-    contacts: Contacts | None = None      # the last projection's contacts
+    contacts: Touched | None = None       # what the last projection touched
     touching: np.ndarray | None = None    # particles that touched an obstacle in the last substep
     tunneled: int = 0                     # paths caught passing through an obstacle, since build
     self_pairs: int = 0                   # pairs pushed apart in the last self-collision pass
@@ -167,132 +177,24 @@ def _points(a: np.ndarray) -> np.ndarray:
 def collide(c, h: float) -> None:
     """After the sweeps, each obstacle in turn (Jakobsen's loop over the constraints): paths
     through it over the whole substep are put back where they entered it, then every particle
-    inside it is projected to its surface. `_tunnel_and_project` says how it stays cheap."""
+    inside it is projected to its surface: app/physics/cloth_obstacles.py, which says how
+    it stays cheap."""
     st, x = c.contact, _points(c.x)
     st.start = c.x_prev.reshape(2, -1)          # where each particle began this substep (a view)
-    st.contacts = _tunnel_and_project(st, st.start, x, c.free.ravel() > 0)
+    st.contacts = tunnel_and_project(st, st.start, x, c.free.ravel() > 0)
     st.touching = st.contacts.mask
-    st.crowded = len(st.obstacles) > 1 and _may_touch(st)
+    st.crowded = len(st.obstacles) > 1 and may_touch(st)
     if st.crowded:
-        _settle_corners(st, x)
-
-
-def _tunnel_and_project(st: ContactState, start: np.ndarray, x: np.ndarray,
-                        movable: np.ndarray) -> Contacts:
-    """For each obstacle: (1) a broad phase: the particles whose path this substep (its box,
-    grown by the margin) meets the obstacle's box: no other can touch it or pass through it
-    (the floor: those below its line plus the margin); (2) the signed distance and normal of
-    their ends, computed once, for both tests; (3) tunnelling (tunnelling.through_one): a path
-    through the obstacle, or in from outside past its middle, puts the particle back where it
-    entered (on the surface, on the side it came from: then projected out, it rests there;
-    put back where it started the substep instead, it would hover a bar's width above a bar,
-    the next step's g h^2 carrying it through again for ever); (4) Jakobsen's projection of
-    those inside to the margin: p += (margin - d) n. Returns the Contacts, as project() does.
-    start: (2, n); x: (n, 2), written into."""
-    n, margin = len(x), st.margin
-    depth, normal = np.zeros(n), np.zeros((2, n))   # (Contacts' (n, 2) normal: its .T)
-    index, hit = np.full(n, -1), np.zeros(n, bool)
-    px, py = x[:, 0], x[:, 1]                   # views: writing into them moves the cloth
-    ends_t = x.T                                # (2, n): x and y as rows (a view too)
-    sx, sy = start[0], start[1]
-    boxes, hit_any = None, False
-    grow = margin + NEAR_SLACK                  # (float32 positions: nothing lost to rounding)
-    for k, ob in enumerate(st.obstacles):
-        if isinstance(ob, HalfPlane):           # nothing to pass through: where the ends are
-            ids = near_bounds(ob, px, py, margin, movable)
-        else:
-            if boxes is None:                   # each path's box, once for every obstacle
-                boxes = (np.minimum(px, sx), np.maximum(px, sx), np.minimum(py, sy),
-                         np.maximum(py, sy))
-            lo_x, hi_x, lo_y, hi_y = boxes
-            x0, y0, x1, y1 = ob.bounds()
-            near = (hi_x > x0 - grow) & (lo_x < x1 + grow) & (hi_y > y0 - grow) & \
-                (lo_y < y1 + grow) & movable
-            ids = near.nonzero()[0]
-        if ids.size == 0:
-            continue
-        ends = ends_t.take(ids, axis=1).astype(np.float64)      # (2, k): x and y rows at once
-        ex, ey = ends[0], ends[1]
-        d, nx, ny = ob.distance_xy(ex, ey)
-        if not isinstance(ob, HalfPlane):
-            starts = start.take(ids, axis=1).astype(np.float64)
-            ax, ay = starts[0], starts[1]
-            vx, vy = ends - starts                              # each path, this substep
-            back, t, bx, by, through = through_one(ob, ax, ay, vx, vy, d, nx, ny, st.tolerance)
-            if back.size:                       # put back: on the surface, its normal there
-                ib = ids[back]
-                px[ib] = ax[back] + t * vx[back]
-                py[ib] = ay[back] + t * vy[back]
-                d[back], nx[back], ny[back] = 0.0, bx, by
-                st.tunneled += through
-        inside = d < margin
-        touching = int(np.count_nonzero(inside))
-        if touching == 0:
-            continue
-        if touching < ids.size:                 # (compress: a mask's take, without nonzero)
-            ids, d, nx, ny = (a.compress(inside) for a in (ids, d, nx, ny))
-        push = margin - d                                      # Jakobsen: p += (margin - d) n
-        normal[0][ids] = nx
-        normal[1][ids] = ny
-        px[ids] += np.multiply(push, nx, out=nx).astype(x.dtype, copy=False)   # (nx: ours)
-        py[ids] += np.multiply(push, ny, out=ny).astype(x.dtype, copy=False)
-        if hit_any:                             # a particle may touch two: the pushes add up
-            depth[ids] += push
-        else:
-            depth[ids] = push
-        index[ids] = k
-        hit[ids] = hit_any = True
-    return Contacts(hit, depth, normal.T, index)
-
-
-def _may_touch(st: ContactState) -> bool:
-    """obstacles_may_touch, asked again only when an obstacle has moved or turned."""
-    key = tuple(tuple(vars(ob).values()) for ob in st.obstacles)   # every field of each
-    if st.touch_key != key:
-        st.touch_key, st.touch_value = key, obstacles_may_touch(st.obstacles, st.margin)
-    return st.touch_value
-
-
-def obstacles_may_touch(obstacles, margin: float = 0.0) -> bool:
-    """Whether any two obstacles' bounds (grown by margin) meet (a half-plane: whether the other's
-    bounds reach it): only then can a particle pushed out of one land in another."""
-    grown = [ob.bounds() for ob in obstacles]
-    for a in range(len(obstacles)):
-        for b in range(a + 1, len(obstacles)):
-            (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = grown[a], grown[b]
-            plane = next((o for o in (obstacles[a], obstacles[b]) if isinstance(o, HalfPlane)),
-                         None)
-            if plane is not None:
-                other = grown[b] if plane is obstacles[a] else grown[a]
-                if math.isinf(other[0]):
-                    return True                                 # two half-planes
-                lowest = min((cx - plane.px) * plane.nx + (cy - plane.py) * plane.ny
-                             for cx in (other[0], other[2]) for cy in (other[1], other[3]))
-                if lowest < 2 * margin:
-                    return True
-            elif ax0 < bx1 + 2 * margin and bx0 < ax1 + 2 * margin and \
-                    ay0 < by1 + 2 * margin and by0 < ay1 + 2 * margin:
-                return True
-    return False
-
-
-def _settle_corners(st: ContactState, x: np.ndarray, passes: int = 3) -> None:
-    """Where obstacles meet (a table's leg on the floor), a particle pushed out of one may sit
-    in the next: project the touching particles again, a few passes (only those: cheap)."""
-    ids = st.contacts.mask.nonzero()[0]
-    for _ in range(passes):
-        if ids.size == 0:
-            return
-        sub = x[ids].copy()
-        again = project(st.obstacles, sub, st.margin)
-        x[ids] = sub
-        ids = ids[again.mask]
+        settle_corners(st, x)
 
 
 def rub(c, h: float) -> None:
     """Coulomb friction on the last projection's contacts (app/physics/obstacles.py)."""
     st = c.contact
-    verlet_friction(_points(c.x), _points(c.x_prev), st.contacts, st.mu, st.obstacles, h)
+    t = st.contacts
+    if t.ids.size and st.mu > 0:
+        slide_back(_points(c.x), _points(c.x_prev), t.ids, t.nx, t.ny, t.depth,
+                   lambda: t.index, st.mu, st.obstacles, h)
 
 
 def rub_and_settle(c, h: float) -> None:

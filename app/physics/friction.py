@@ -62,32 +62,42 @@ def verlet_friction(x: np.ndarray, x_prev: np.ndarray, contacts: Contacts, mu: f
     ids = contacts.mask.nonzero()[0]
     if ids.size == 0 or mu <= 0:
         return
+    normal = contacts.normal
+    slide_back(x, x_prev, ids, normal[:, 0].take(ids), normal[:, 1].take(ids),
+               contacts.depth.take(ids), lambda: contacts.index[ids], mu, obstacles, h)
+
+
+def slide_back(x: np.ndarray, x_prev: np.ndarray, ids: np.ndarray, nx: np.ndarray,
+               ny: np.ndarray, depth: np.ndarray, index, mu: float, obstacles=(),
+               h: float = 0.0) -> None:
+    """verlet_friction for the particles `ids` (each once), given the outward normal (nx, ny)
+    and the depth of each one's contact; index() gives the obstacle each touches (asked only
+    if an obstacle moves). Reads its arguments, writes x alone."""
     xs, ys = x[:, 0], x[:, 1]                  # column views: writing into them moves x
+    now = x.T.take(ids, axis=1)                # (2, k): the touching particles' x and y rows
     # the travel of this step, in float64 (NumPy casts both ends before subtracting)...
-    mx = np.subtract(xs.take(ids), x_prev[:, 0].take(ids), dtype=np.float64)
-    my = np.subtract(ys.take(ids), x_prev[:, 1].take(ids), dtype=np.float64)
+    travel = np.subtract(now, x_prev.T.take(ids, axis=1), dtype=np.float64)
+    mx, my = travel                            # (its rows: views)
     if h and any(ob.velocity[0] or ob.velocity[1] for ob in obstacles):
         # ...relative to the surface it touches (a moving obstacle: the sliding is relative)
         carry = np.array([ob.velocity for ob in obstacles], np.float64) * h
-        mx -= carry[contacts.index[ids], 0]
-        my -= carry[contacts.index[ids], 1]
-    nx, ny = contacts.normal[:, 0].take(ids), contacts.normal[:, 1].take(ids)
+        mx -= carry[index(), 0]
+        my -= carry[index(), 1]
     along = mx * nx
     along += my * ny                                          # m . n
-    nx *= along                                               # (the normal's copies: reused)
-    ny *= along
-    mx -= nx                                                  # t = m - (m . n) n: its part
-    my -= ny                                                  # along the surface
-    removable = contacts.depth.take(ids)
-    removable *= mu
+    mx -= nx * along                                          # t = m - (m . n) n: its part
+    my -= ny * along                                          # along the surface
     # the share of the tangential travel removed: all of it (it sticks: mu * depth >= |t|) or
     # mu * depth / |t| of it (it slides); min(., 1) is that choice in one call
-    gone = np.divide(removable, np.maximum(np.hypot(mx, my), TINY), out=removable)
+    removable = depth * mu
+    slide = np.square(mx)                                     # |t| = sqrt(tx^2 + ty^2)
+    slide += np.square(my, out=along)
+    gone = np.divide(removable, np.maximum(np.sqrt(slide, out=slide), TINY), out=removable)
     np.minimum(gone, 1.0, out=gone)
     mx *= gone
     my *= gone
-    xs[ids] -= mx.astype(x.dtype, copy=False)               # less travel: x moves back
-    ys[ids] -= my.astype(x.dtype, copy=False)
+    now -= travel.astype(x.dtype)                             # less travel: x moves back
+    xs[ids], ys[ids] = now
 
 
-__all__ = ["Contacts", "coulomb_friction", "verlet_friction"]
+__all__ = ["Contacts", "coulomb_friction", "verlet_friction", "slide_back"]

@@ -166,6 +166,11 @@ def dips_below(ob: Obstacle, p0: np.ndarray, p1: np.ndarray, depth: float
     return dmin < -depth, t
 
 
+NOTHING_BACK = (np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0), 0)  # (read-only)
+for _empty in NOTHING_BACK[:4]:
+    _empty.flags.writeable = False
+
+
 def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy: np.ndarray,
                 d1: np.ndarray, n1x: np.ndarray, n1y: np.ndarray, tolerance: float
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, int]:
@@ -182,19 +187,22 @@ def through_one(ob: Obstacle, ax: np.ndarray, ay: np.ndarray, vx: np.ndarray, vy
     only dip below -tolerance if d1 - n1 . v does. A particle sliding along a surface (n1 . v
     about 0) is dismissed by it; the length bound alone let every sliding particle longer than
     2 sqrt(2) tolerance through to the exact test (most of a cloth heaped on a tilted box)."""
-    none = np.zeros(0, np.intp), np.zeros(0), np.zeros(0), np.zeros(0), 0
+    none = NOTHING_BACK
     shortest = shortest_dip(ob, tolerance)
     if isinstance(ob, HalfPlane):
         return none                                      # d linear along a path: nothing
     half = ob.half_width()
     length2 = vx * vx + vy * vy
     reach = min(shortest, half)
-    if length2.max(initial=0.0) <= reach * reach:
+    longest2 = length2.max(initial=0.0)
+    if longest2 <= reach * reach:
         return none                     # every path too short for either test (resting cloth)
     outside = d1 >= 0
-    maybe = np.where(outside, (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy)
-                                                                   < -tolerance),
-                     length2 > half * half)
+    maybe = (length2 > shortest * shortest) & (d1 - (n1x * vx + n1y * vy) < -tolerance)
+    if longest2 > half * half:          # (a path that ends inside: past the middle?)
+        maybe = np.where(outside, maybe, length2 > half * half)
+    else:
+        maybe &= outside
     k = maybe.nonzero()[0]
     if k.size == 0:
         return none
