@@ -70,9 +70,7 @@ class BallChecks:
     def _checks_reset(self) -> None:
         """Forget what was kept between steps (the tables were rebuilt)."""
         self._awake: Awake | None = None    # who is awake after the last check
-        # self._fast: (the L's pose, the awake rows' flags (n, 5) (None after a ball came or
-        # went: then their bytes), the flags' bytes, their key: flags_of; the key None if a
-        # ball is outside the box or not finite)
+        # self._fast: (the L's pose, the awake rows' flags' bytes, their key: fast_of)
         self._fast = None
         # self._prev: (the Awake of the read, its rows) of the last step, not yet written into
         # self._xy (None: nothing kept; the slots stay a ball's while it lives, so a ball come
@@ -119,7 +117,7 @@ class BallChecks:
             # (a sleeping ball does not move, but a moving L may pass it: so with balls
             # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
-            if same and fast is not None and fast[3] is not None and fast[0] == L0 \
+            if same and fast is not None and fast[2] is not None and fast[0] == L0 \
                     and awake.balls:
                 return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
@@ -145,17 +143,17 @@ class BallChecks:
             return L1
         self.count_tunneled(self._xy[k], xy, L0, L1)
         self._xy[k] = xy
-        self.remove_outside(k, xy)
         awake = self._awake
-        if awake is not None and awake.balls:   # (None if remove_fallen removed)
-            self._fast = self.flags_of(data[:len(awake.ids)], L1, awake.L_row)
+        if awake is not None and awake.balls:   # (made before remove_fallen, which takes the
+            self._fast = self.flags_of(data[:len(awake.ids)], L1, awake.L_row)   # rows out)
+        self.remove_outside(k, xy)
         return L1
 
     def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
         """self._fast for these awake rows with the L at pose (fast_of)."""
         M, limits = self._flag_matrix(pose)
         flags = rows.dot(M) <= limits
-        return fast_of(pose, flags, flags.tobytes(), L_row)
+        return fast_of(pose, flags.tobytes(), L_row)
 
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
@@ -176,19 +174,16 @@ class BallChecks:
         prev, self._prev = self._prev, (awake, rows_now)
         reader = self._state_reader
         reader.keep = (reader.cur, self._own_prev)
-        if key == fast[3]:                     # the same flags as after the last step
-            self._fast = (L1, flags, b, key)
+        if key == fast[2]:                     # the same flags as after the last step
+            self._fast = (L1, b, key)
             # every ball in the box, so every row finite (a NaN or inf anywhere in a row fails
             # its box flags: _NAN_FAILS); the L's too if its box flags hold: the runner's
             # non-finite check need not look again at these rows (~1.75 us a step)
             if _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1"):
                 self.finite_read = self._state_reader.reads
             return L1
-        old = fast[1]               # (None after a ball came or went: its bytes then)
-        if old is None:
-            old = np.frombuffer(fast[2], dtype=np.bool_).reshape(-1, 5)
-        self._fast = fast_of(L1, flags, b, L_row, key)
-        changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)
+        self._fast = fast_of(L1, b, L_row, key)
+        changed = _changed(fast[1], b, flags)
         slots = awake.slots
         crossed = [r for r, col in changed if col == 4 and b[5 * r + 4] and slots[r] >= 0]
         if crossed:                   # above the line before, on or below it now: inside the
@@ -201,7 +196,7 @@ class BallChecks:
                 x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
                 if ax <= x0 <= bx and ax <= x1 <= bx:
                     self.counts["tunneled"] += 1
-        if self._fast[3] is None:   # a ball outside the box, or not finite: those whose box
+        if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
             out = []                # flags changed (they were all true), by the exact test
             x0, y0, x1, y1 = self.box()
             for r in sorted({r for r, col in changed if col < 4 and slots[r] >= 0}):
@@ -243,8 +238,8 @@ class BallChecks:
         if fast is None:
             return awake, None
         row = self.flags_row(pos, fast[0])
-        inside = fast[3] is not None and row[:4] == b"\1\1\1\1"        # (in the box)
-        return awake, (fast[0], None, fast[2] + row, fast[3] + row if inside else None)
+        inside = fast[2] is not None and row[:4] == b"\1\1\1\1"        # (in the box)
+        return awake, (fast[0], fast[1] + row, fast[2] + row if inside else None)
 
     def awake_after_removal(self, bodies: list[int]) -> tuple:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were
@@ -255,7 +250,7 @@ class BallChecks:
         awake, fast = self._awake, self._fast
         if awake is None or fast is None:
             return None, None
-        flags = fast[2]
+        flags = fast[1]
         for body in bodies:
             after = awake.without(body, flags)
             if after is None:
@@ -263,7 +258,7 @@ class BallChecks:
             awake, flags = after
         if not awake.ids:
             return None, None
-        return awake, fast_of(fast[0], None, flags, awake.L_row)
+        return awake, fast_of(fast[0], flags, awake.L_row)
 
     def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bytes:
         """The flags' bytes (5) of a body at rest at pos with the L at pose, as _usual_check
@@ -374,15 +369,32 @@ class BallChecks:
             self.remove_slots(k[~inside].tolist())
 
 
-def fast_of(pose: tuple[float, float, float], flags: np.ndarray | None, b: bytes,
-            L_row: int | None, key: bytes | None = None) -> tuple:
-    """BallChecks._fast: (the L's pose, the awake rows' flags (n, 5) or None, their bytes b, their
-    key: b less the L's row (a moving L's centre is on its own arm's line: its flag flips with
-    rounding); the key None if a ball is outside the box or not finite: then the next step
+def fast_of(pose: tuple[float, float, float], b: bytes, L_row: int | None,
+            key: bytes | None = None) -> tuple:
+    """BallChecks._fast: (the L's pose, the awake rows' flags' bytes b (5 a row, each 0 or 1),
+    their key: b less the L's row (a moving L's centre is on its own arm's line: its flag flips
+    with rounding); the key None if a ball is outside the box or not finite: then the next step
     looks again). key: the caller's, if it has it."""
     if key is None:
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
-    return pose, flags, b, key if _inside(key) else None
+    return pose, b, key if _inside(key) else None
+
+
+def _changed(old: bytes, new: bytes, flags: np.ndarray) -> list[tuple[int, int]]:
+    """(row, column) of each flag that differs between two flags' bytes (the last step's and
+    this one's, whose array is flags), in order. A few: the bytes as two integers, XOR, and its
+    set bits read off one by one (plain Python, a fraction of a NumPy call each); many (a bit
+    read is O(size) then): NumPy."""
+    x = int.from_bytes(old, "little") ^ int.from_bytes(new, "little")
+    if x.bit_count() > 16:
+        diff = np.frombuffer(old, dtype=np.bool_) != flags.reshape(-1)
+        return [divmod(i, 5) for i in np.flatnonzero(diff).tolist()]
+    out = []
+    while x:
+        low = x & -x                       # (each flag is one byte, 0 or 1: bit 8 i is flag i)
+        out.append(divmod((low.bit_length() - 1) >> 3, 5))
+        x ^= low
+    return out
 
 
 def _inside(key: bytes) -> bool:

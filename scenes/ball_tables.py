@@ -130,7 +130,8 @@ class BallTables:
             slot = self.pack_slots()
         self._used = slot + 1
         self._ids[slot] = body_id
-        self._xy[slot] = pos
+        xy = self._xy
+        xy[slot, 0], xy[slot, 1] = pos          # (two numbers: a tuple into a row costs more)
         return slot
 
     def pack_slots(self) -> int:
