@@ -61,8 +61,8 @@ _NAN_FAILS = _nan_fails_box()
 
 
 class BallChecks:
-    """The checks after a step of falling_balls. Expects self.balls, self._slots, self._ids and
-    self._xy (a ball's body id and its centre after the last step it was looked at, by slot),
+    """The checks after a step of falling_balls. Expects self.balls, the slot tables (a ball's
+    centre after the last step it was looked at, by slot: self._xy; ball_tables.py),
     self.L_body, self.counts and the tables of FallingBallsScene.restored."""
 
     arm_extent: tuple[float, float] = (0.0, 0.0)   # the long arm's ends along the L's own x
@@ -78,6 +78,7 @@ class BallChecks:
         self._prev = None
         self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4,
                                     # M] (_flag_rows_at)
+        self._frames: dict = {}     # the L's frame at a few poses (_frame)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -282,11 +283,18 @@ class BallChecks:
             pose = (x, y, self.L_body.angle)
         return pose
 
-    def _frame(self, pose: tuple[float, float, float]) -> tuple:
-        """(origin, axis) of the L's frame at pose: a point's height over the arm is
-        (p - origin) . axis (_to_local's y, axis the L's local y axis)."""
-        x, y, a = pose
-        return (x, y), (-math.sin(a), math.cos(a))
+    def _frame(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        """(origin, axis) arrays of the L's frame at pose: a point's height over the arm is
+        (p - origin) . axis (_to_local's y, axis the L's local y axis). The last few are kept
+        (a static L has one pose; a moving L's pose before a step is the one after the last)."""
+        kept = self._frames
+        frame = kept.get(pose)
+        if frame is None:
+            if len(kept) >= 4:
+                kept.clear()
+            x, y, a = pose
+            frame = kept[pose] = (np.array((x, y)), np.array((-math.sin(a), math.cos(a))))
+        return frame
 
     def _flag_matrix(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
         """(M (6, 5), limits (5,)) with the L at pose: for a body's row (x, y, angle, vx, vy,
@@ -335,9 +343,9 @@ class BallChecks:
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
         is looked at only for balls that crossed.)"""
-        o0, axis0 = (np.array(v) for v in self._frame(L0))
+        o0, axis0 = self._frame(L0)
         y0 = (xy0 - o0) @ axis0
-        o1, axis1 = (o0, axis0) if L1 == L0 else (np.array(v) for v in self._frame(L1))
+        o1, axis1 = self._frame(L1)
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)

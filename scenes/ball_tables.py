@@ -1,7 +1,7 @@
 """The tables falling_balls keeps beside its list of balls, laid out so that a ball added or
 removed costs plain Python and no NumPy call (each costs 1-2 us in the step's loop):
-  * every ball has a slot for life (self._slots, in the order of self.balls): its body id and
-    last known centre sit in row `slot` of self._ids and self._xy, so taking a ball out moves
+  * every ball has a slot for life (self._slots, in the order of self.balls; self._slot_of by
+    body id): its last known centre sits in row `slot` of self._xy, so taking a ball out moves
     no other ball's row (slots are handed out in turn and packed again when they run out);
   * who is awake (Awake) is kept as Chipmunk keeps it: a list of body ids in the order of its
     array of awake bodies, which appends a new body and fills a removed one's place with the
@@ -19,10 +19,9 @@ import numpy as np
 _NO_IDS = (b"", np.empty(0, dtype=np.int64))   # (slot_index's last: ids as bytes, slots)
 
 
-def slot_tables(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Empty slot tables for n balls and room for as many more: ids (-1: no ball) and centres."""
-    size = max(64, 2 * n + 2)
-    return np.full(size, -1, dtype=np.int64), np.zeros((size, 2))
+def slot_table(n: int) -> np.ndarray:
+    """An empty table of centres for n balls and room for as many more."""
+    return np.zeros((max(64, 2 * n + 2), 2))
 
 
 class Awake:
@@ -88,29 +87,21 @@ class BallTables:
     reads them)."""
 
     def _index_changed(self) -> None:
-        """Forget the lookups made from the slots' ids (a ball came or went)."""
-        self._sorted = None                       # (sorted ids, slot of each), lazily
+        """Forget the lookups made from the slots (a ball came or went)."""
         self._last = _NO_IDS
         self._ball_of = None                      # (each slot's place in self.balls), lazily
 
     def slot_index(self, ids: np.ndarray) -> np.ndarray:
         """For body ids (n,) from a batch read: the slot of each ball, -1 if it is not a ball (a
-        static body, the L). Vectorised: a dict lookup per id, done by binary search in the
-        sorted ids; and not even that while the batch order stays the same."""
+        static body, the L): a dict lookup per id (kept as balls come and go: a binary search
+        in sorted ids costs several NumPy calls more, and the sort again after every change);
+        not even that while the batch order stays the same."""
         last_ids, last_k = self._last
         key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
         if key == last_ids:
             return last_k
-        if self._sorted is None:
-            order = np.argsort(self._ids[:self._used])   # (a slot given up holds id -1)
-            self._sorted = (self._ids[order], order)
-        sorted_ids, order = self._sorted
-        if len(sorted_ids) == 0:
-            k = np.full(len(ids), -1, dtype=np.int64)
-        else:
-            at = np.searchsorted(sorted_ids, ids)       # (np.minimum, not .clip: the
-            np.minimum(at, len(sorted_ids) - 1, out=at)  # method costs ~5 us more)
-            k = np.where(sorted_ids[at] == ids, order[at], -1)
+        get = self._slot_of.get
+        k = np.array([get(i, -1) for i in ids.tolist()], dtype=np.int64)
         self._last = (key, k)
         return k
 
@@ -126,10 +117,10 @@ class BallTables:
     def new_slot(self, body_id: int, pos: tuple[float, float]) -> int:
         """A slot for a new ball (the next one not yet handed out), with its id and centre."""
         slot = self._used
-        if slot == len(self._ids):
+        if slot == len(self._xy):
             slot = self.pack_slots()
         self._used = slot + 1
-        self._ids[slot] = body_id
+        self._slot_of[body_id] = slot
         xy = self._xy
         xy[slot, 0], xy[slot, 1] = pos          # (two numbers: a tuple into a row costs more)
         return slot
@@ -140,11 +131,12 @@ class BallTables:
         self.flush_xy()
         live = np.array(self._slots, dtype=np.int64)
         n = len(live)
-        ids, xy = slot_tables(n)
-        ids[:n], xy[:n] = self._ids[live], self._xy[live]
-        self._ids, self._xy, self._used = ids, xy, n
+        xy = slot_table(n)
+        xy[:n] = self._xy[live]
+        self._xy, self._used = xy, n
         rename = {old: new for new, old in enumerate(self._slots)}
         self._slots = list(range(n))
+        self._slot_of = {body: rename[slot] for body, slot in self._slot_of.items()}
         awake = self._awake
         if awake is not None:
             self._awake = Awake(awake.ids, [rename.get(s, -1) for s in awake.slots],

@@ -40,7 +40,7 @@ from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
-from scenes.ball_tables import BallTables, slot_tables
+from scenes.ball_tables import BallTables, slot_table
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -174,9 +174,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         self._sleep_h = None        # the substep the sleep threshold was set for
         n = len(self.balls)
         self._slots = list(range(n))          # each ball's slot, in the order of self.balls
-        self._ids, self._xy = slot_tables(n)
+        self._slot_of = {shape.body.id: k for k, shape in enumerate(self.balls)}
+        self._xy = slot_table(n)
         if n:
-            self._ids[:n] = [shape.body.id for shape in self.balls]
             self._xy[:n] = [tuple(shape.body.position) for shape in self.balls]
         self._used = n                        # slots handed out (the next one is this)
         self._index_changed()
@@ -262,8 +262,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         for k in gone:                      # (in the set's order: the space's order after it)
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
-            removed.append(shape.body.id)
-            self._ids[self._slots[k]] = -1      # (a freed id may be a new body's one day)
+            body_id = shape.body.id
+            removed.append(body_id)
+            del self._slot_of[body_id]          # (a freed id may be a new body's one day)
         for k in sorted(gone, reverse=True):
             del self.balls[k]
             del self._slots[k]
