@@ -147,7 +147,9 @@ class BallChecks:
         awake = self._awake
         if awake is not None and awake.balls:   # (made before remove_fallen, which takes the
             self._fast = self.flags_of(data[:len(awake.ids)], L1, awake.L_row)   # rows out)
-        self.remove_outside(k, xy)
+            if self._fast[2] is not None:       # every awake ball in the box (their flags are
+                k, xy = k[awake.balls:], xy[awake.balls:]     # its very comparisons): only
+        self.remove_outside(k, xy)                            # those asleep are looked at
         return L1
 
     def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
