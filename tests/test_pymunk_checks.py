@@ -6,6 +6,7 @@ pile that wakes is read and checked again, a body beyond the blow-up reach is ca
 import math
 
 import numpy as np
+import pymunk.batch
 import pytest
 
 from scenes.double_pendulum import DoublePendulumScene
@@ -245,3 +246,31 @@ def test_the_rows_kept_from_the_last_step_survive_reads_between_steps():
         scene.wake()
         scene.state_rows()
         assert np.array_equal(scene._prev[-1], kept)
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_the_tables_follow_chipmunk_as_balls_come_and_go(cls):
+    # ball_tables.py mirrors Chipmunk's array of awake bodies (a new body last, a removed one's
+    # place filled by the last) instead of reading it after each add or removal: after every
+    # step and every add, the mirror must be the order the batch read gives, each row's slot
+    # the ball with that body id, and each ball's kept centre (flushed) where its body is. Many
+    # balls come and go (slots are packed again several times).
+    scene = cls({"spawn_rate": 60, "max_balls": 80, "seed": 4, "g": 3000})
+    packed, mirrored = 0, 0
+    for step in range(300):
+        used = scene._used
+        scene.advance()
+        packed += scene._used < used
+        awake = scene._awake
+        if awake is not None:
+            ids = scene.body_rows(pymunk.batch.BodyFields.POSITION)[0]
+            n = scene.awake_count(ids)
+            assert awake.ids == ids[:n].tolist() and awake.key == ids[:n + 1].tobytes()
+            assert awake.slots == [scene._slot_of.get(i, -1) for i in awake.ids]
+            assert awake.balls == sum(s >= 0 for s in awake.slots)
+            mirrored += 1
+        scene.flush_xy()
+        for shape, slot in zip(scene.balls, scene._slots):
+            assert scene._slot_of[shape.body.id] == slot
+            assert tuple(scene._xy[slot]) == tuple(shape.body.position)
+    assert packed >= 2 and mirrored > 250 and scene.counts["removed"] > 100
