@@ -10,9 +10,11 @@ the last step, no ball crossed the line and none left: 3 NumPy calls however man
 are (in the step's loop each costs 1-2 us; an (n, 2) reduction along an axis, a ufunc's max()
 or a comparison with a broadcast row costs several). A change (a ball that crossed the line, a
 ball outside the box, a NaN) is found among the few flags that changed, and each goes to the
-exact test on that ball alone (plain Python); a change in who is awake, or the L woken, goes
-the long way, with the exact tests below on every ball (count_tunneled, remove_fallen: a test
-checks the two ways agree, tunneling by tunneling).
+exact test on that ball alone (plain Python). A few balls falling asleep or waking (the L
+static) take the short way: the awake rows mirrored as Chipmunk moves them, the usual check on
+them, the usual tests on each ball that fell asleep. Any other change in who is awake, or the L
+woken, goes the long way, with the exact tests below on every ball (count_tunneled,
+remove_fallen: tests check the ways agree, tunneling by tunneling).
 
 The tables kept between steps (ball_tables.py) are laid out so that a ball added or removed
 keeps the usual path on at the cost of a few Python list and bytes moves, no NumPy call.
@@ -123,6 +125,10 @@ class BallChecks:
                 return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
+            if fast is not None and fast[2] is not None and self._L_static_pose is not None:
+                done = self._short_way(ids, data, L1, fast)   # (a few fell asleep or woke)
+                if done:
+                    return L1
         self.flush_xy()
         if same:                  # the same bodies awake as after the last step
             rows, k = awake.arrays()
@@ -151,6 +157,56 @@ class BallChecks:
                 k, xy = k[awake.balls:], xy[awake.balls:]     # its very comparisons): only
         self.remove_outside(k, xy)                            # those asleep are looked at
         return L1
+
+    def _short_way(self, ids: np.ndarray, data: np.ndarray, pose, fast: tuple) -> bool:
+        """check_balls when a few balls fell asleep or woke (the L static, the usual path on
+        until now); False if it cannot (then the long way). Chipmunk took each ball that fell
+        asleep out of its array of awake bodies (the last into its place) and appended each
+        one woken: the kept Awake after Awake.without and Awake.plus, if it is the read's, says
+        which row is which, and the usual check goes on, with the flags each woken ball had
+        where it slept. The balls that fell asleep get the usual tests on their own (their
+        flags before, from the kept bytes; now, flags_row), and their centres are kept."""
+        old = self._awake
+        n = self.awake_count(ids)
+        id_list = ids.tolist()
+        awake_ids = id_list[:n]
+        now, before = set(awake_ids), set(old.ids)
+        asleep = [body for body in old.ids if body not in now]
+        woke = [body for body in awake_ids if body not in before]
+        if not n or len(asleep) + len(woke) > 8:
+            return False
+        slot_of, awake, flags, gone = self._slot_of, old, fast[1], []
+        for body in asleep:
+            i = awake.ids.index(body)
+            gone.append((slot_of.get(body, -1), id_list.index(body), flags[5 * i:5 * i + 5]))
+            awake, flags = awake.without(body, flags)
+        for body in woke:
+            if body not in slot_of:
+                return False                 # (not a ball)
+            awake = awake.plus(body, slot_of[body])
+        if awake.ids != awake_ids or any(slot < 0 for slot, _, _ in gone):
+            return False
+        self.flush_xy()
+        xy = self._xy
+        for body in woke:
+            flags += self.flags_row(tuple(xy[slot_of[body]].tolist()), pose)
+        self._awake = awake
+        self._usual_check(data[:n], pose, pose, awake, fast_of(pose, flags, None))
+        ax, bx = self.arm_extent
+        x0, y0, x1, y1 = self.box()
+        out = []
+        for slot, row, was in gone:         # (asleep now: their rows are after the static ones)
+            p0, p1 = xy[slot].tolist(), data[row, :2].tolist()
+            xy[slot, 0], xy[slot, 1] = p1
+            if not was[4] and self.flags_row(p1, pose)[4]:     # crossed the arm's line
+                if ax <= _local_x(p0, pose) <= bx and ax <= _local_x(p1, pose) <= bx:
+                    self.counts["tunneled"] += 1
+            x, y = p1
+            if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
+                out.append(slot)
+        if out:
+            self.remove_slots(out)
+        return True
 
     def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
         """self._fast for these awake rows with the L at pose (fast_of)."""

@@ -274,3 +274,32 @@ def test_the_tables_follow_chipmunk_as_balls_come_and_go(cls):
             assert scene._slot_of[shape.body.id] == slot
             assert tuple(scene._xy[slot]) == tuple(shape.body.position)
     assert packed >= 2 and mirrored > 250 and scene.counts["removed"] > 100
+
+
+def test_balls_falling_asleep_or_waking_take_the_short_way_to_the_exact_results():
+    # With a static L, a few balls falling asleep or waking keep the usual check (the awake rows
+    # mirrored as Chipmunk moves them); against the exact tests on every ball every step: the
+    # same balls tunneled and removed, the same state, every ball's kept centre right, and the
+    # short way did take them.
+    class Exact(FallingBallsScene):
+        def check_balls(self, L0):
+            self._fast = None            # the long way every time
+            return super().check_balls(L0)
+
+    class Short(FallingBallsScene):
+        taken = 0
+
+        def _short_way(self, *args):
+            done = super()._short_way(*args)
+            Short.taken += done
+            return done
+    settings = {"seed": 1}
+    short, exact = Short(settings), Exact(settings)
+    for _ in range(900):
+        short.advance()
+        exact.advance()
+        short.flush_xy()                 # (every ball's kept centre where its body is)
+        assert all(tuple(short._xy[slot]) == tuple(shape.body.position)
+                   for shape, slot in zip(short.balls, short._slots))
+    assert Short.taken > 20 and short.counts == exact.counts and short.counts["removed"] > 20
+    assert short.state_hash() == exact.state_hash()
