@@ -106,9 +106,10 @@ class BallChecks:
         """After a step: count the balls that tunneled through the L, remove those that left the
         world, remember every ball's centre (self._xy); return the L's pose after the step (L0:
         before it). Only a body awake before or after the step can have moved: while the same
-        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at;
-        otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
-        reuses the read), the L's pose with them while the same bodies stay awake."""
+        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at, and
+        so they are when a few fall asleep or wake (_short_way); otherwise every ball is. The
+        bodies are read once (state_rows: the runner's is_finite reuses the read), the L's pose
+        with them while the same bodies stay awake."""
         ids, data = self.state_rows()
         awake, fast = self._awake, self._fast
         # the same awake ids in the same order, then the same first static body (the batch's
@@ -125,7 +126,8 @@ class BallChecks:
                 return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
-            if fast is not None and fast[2] is not None and self._L_static_pose is not None:
+            if fast is not None and fast[2] is not None and fast[0] == L0 == L1 \
+                    and self._L_static_pose is not None:
                 done = self._short_way(ids, data, L1, fast)   # (a few fell asleep or woke)
                 if done:
                     return L1
