@@ -225,8 +225,10 @@ class BallChecks:
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
         L_row = awake.L_row
         kept = self._flag_rows      # (for these rows and L1 already, unless a moving L moved)
-        if kept is None or kept[0] != len(rows_now) or kept[3] != L1:
+        if kept is None or kept[0] != len(rows_now):
             kept = self._flag_rows_at(len(rows_now), L1)
+        elif kept[3] != L1:
+            self._flag_matrix(L1)   # (a moving L: its line's limit written again, kept's too)
         flags = np.less_equal(rows_now.dot(kept[5], out=kept[1]), kept[2])
         b = flags.tobytes()                    # (the key, and the L's box flags, from one call)
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
@@ -373,11 +375,14 @@ class BallChecks:
         if now[0] != pose:
             x, y, a = pose
             ax, ay = -math.sin(a), math.cos(a)
+            c = -(x * ax + y * ay)
             M, limits = now[1], now[2]
-            M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
+            M[0, 4], M[1, 4], limits[4] = -ax, -ay, c
             now[0] = pose
-            if self._flag_rows is not None:     # (their limits and M are no longer for the
-                self._flag_rows[3] = None       # pose they were written for: _flag_rows_at)
+            kept = self._flag_rows      # (only the line's limit depends on the pose: the kept
+            if kept is not None:        # rows' column alone, 0.2 us; the whole array 0.6)
+                kept[4].fill(c)
+                kept[3] = pose
         return now[1], now[2]
 
     def _flag_rows_at(self, n: int, pose: tuple[float, float, float]) -> list:
@@ -386,15 +391,12 @@ class BallChecks:
         C-contiguous rows (_usual_check), into a product kept for n rows and against the limits
         written out for every row (a comparison with a broadcast (5,) row costs three times one
         with an (n, 5) array)."""
-        M, limits = self._flag_matrix(pose)
+        M, limits = self._flag_matrix(pose)       # (writes a new pose into the kept rows too)
         kept = self._flag_rows
         if kept is None or kept[0] != n:
             full = np.empty((n, 5))
             full[:] = limits
             kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4], M]
-        elif kept[3] != pose:       # (a moving L) only the line's limit depends on the pose:
-            kept[4].fill(limits[4])     # its column alone (0.2 us; the whole array 0.6)
-            kept[3] = pose
         return kept
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
