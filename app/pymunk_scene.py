@@ -440,14 +440,13 @@ class _StateReader:
     does, with its C call's arguments made once (the same C function and data). Two buffers, one
     read into each in turn: the rows of a read stay good through the next read (a scene may keep
     them a step without a copy: `keep`). While the number of bodies and a buffer's C arrays stay
-    the same, the NumPy views of that buffer's last read are returned again (the read refilled
-    them)."""
+    the same, the views of that buffer's last read are returned again (refilled in place)."""
 
     def __init__(self) -> None:
         self.buffers = (pymunk.batch.Buffer(), pymunk.batch.Buffer())
         self.cur = 1              # the buffer of the last read
-        # per buffer: (n, int array, float array, (ids, rows), flat) of its last read
-        self.last: list = [None, None]
+        self.last: list = [None, None]   # a buffer's (n, its arrays, (ids, rows), flat) last
+        self.room: list = [None, None]   # a buffer's (arrays, bodies they hold, ids, flat)
         self.flat = np.empty(0)   # the rows of the last read as one flat view (n * 6,)
         self.reads = 0            # reads made (PymunkScene.finite_read names one of them)
         # (buffer, callback): the rows of that buffer's read are kept by a scene; a read about
@@ -480,11 +479,21 @@ class _StateReader:
         floats.num = ints.num = 0
         _lib.cpSpaceEachBody(space._space, _BATCH_GET, self.data[i])
         n, last = ints.num, self.last[i]
-        if last is not None and last[0] == n and last[1] == ints.arr and last[2] == floats.arr:
+        int_arr, float_arr = ints.arr, floats.arr
+        if last is not None and last[0] == n and last[1] == int_arr and last[2] == float_arr:
             self.flat = last[4]
             return last[3]      # the same arrays, refilled in place: the views still fit
-        ids = np.frombuffer(_ffi.buffer(ints.arr, 8 * n), dtype=np.int64)
-        flat = self.flat = np.frombuffer(_ffi.buffer(floats.arr, 48 * n), dtype=np.float64)
+        # views of the arrays' whole room, made again when Chipmunk moves them (growing them by
+        # half): a body come or gone then costs two slices
+        room = self.room[i]
+        if room is None or room[0] != int_arr or room[1] != float_arr or room[2] < n:
+            size = min(ints.max, floats.max // 6)
+            room = self.room[i] = (
+                int_arr, float_arr, size,
+                np.frombuffer(_ffi.buffer(int_arr, 8 * size), dtype=np.int64),
+                np.frombuffer(_ffi.buffer(float_arr, 48 * size), dtype=np.float64))
+        ids, flat = room[3][:n], room[4][:6 * n]
+        self.flat = flat
         rows = ids, flat.reshape(n, 6)
-        self.last[i] = (n, ints.arr, floats.arr, rows, flat)
+        self.last[i] = (n, int_arr, float_arr, rows, flat)
         return rows

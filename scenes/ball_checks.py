@@ -10,22 +10,25 @@ the last step, no ball crossed the line and none left: 3 NumPy calls however man
 are (in the step's loop each costs 1-2 us; an (n, 2) reduction along an axis, a ufunc's max()
 or a comparison with a broadcast row costs several). A change (a ball that crossed the line, a
 ball outside the box, a NaN) is found among the few flags that changed, and each goes to the
-exact test on that ball alone (plain Python); a change in who is awake, or the L woken, goes
-the long way, with the exact tests below on every ball (count_tunneled, remove_fallen: a test
-checks the two ways agree, tunneling by tunneling). A new ball, or a removed one, keeps the
-usual path: Chipmunk's order of the awake bodies after it is known, and the new ball's flags
-are appended.
+exact test on that ball alone (plain Python). A few balls falling asleep or waking (the L
+static) take the short way: the awake rows mirrored as Chipmunk moves them, the usual check on
+them, the usual tests on each ball that fell asleep. Any other change in who is awake, or the L
+woken, goes the long way, with the exact tests below on every ball (count_tunneled,
+remove_fallen: tests check the ways agree, tunneling by tunneling).
+
+The tables kept between steps (ball_tables.py) are laid out so that a ball added or removed
+keeps the usual path on at the cost of a few Python list and bytes moves, no NumPy call.
 """
 
 from __future__ import annotations
 
 import math
-import sys
 import warnings
 
 import numpy as np
 
 from app.pymunk_scene import extent
+from scenes.ball_tables import Awake
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
 # product of _usual_check, on purpose: a NaN fails every comparison, so the ball goes to the
@@ -60,146 +63,211 @@ _NAN_FAILS = _nan_fails_box()
 
 
 class BallChecks:
-    """The checks after a step of falling_balls. Expects self.balls, self._xy (every ball's
-    centre after the last step it was looked at), self._awake, self.L_body, self.counts and
-    the tables of FallingBallsScene.restored."""
+    """The checks after a step of falling_balls. Expects self.balls, the slot tables (a ball's
+    centre after the last step it was looked at, by slot: self._xy; ball_tables.py),
+    self.L_body, self.counts and the tables of FallingBallsScene.restored."""
 
     arm_extent: tuple[float, float] = (0.0, 0.0)   # the long arm's ends along the L's own x
 
     def _checks_reset(self) -> None:
         """Forget what was kept between steps (the tables were rebuilt)."""
-        self._fast = None      # (the L's pose, the awake rows' flags, their key: flags_of)
-        # self._prev: (ball indices, ball rows (None: all), rows) of the awake bodies after the
-        # last step, not yet written into self._xy (None: nothing kept; set by restored(); a new
-        # ball leaves the indices as they were, a removal writes them first)
+        self._awake: Awake | None = None    # who is awake after the last check
+        # self._fast: (the L's pose, the awake rows' flags' bytes, their key: fast_of)
+        self._fast = None
+        # self._prev: (the Awake of the read, its rows) of the last step, not yet written into
+        # self._xy (None: nothing kept; the slots stay a ball's while it lives, so a ball come
+        # or gone since does not spoil them)
+        self._prev = None
         self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4,
                                     # M] (_flag_rows_at)
+        self._frames: dict = {}     # the L's frame at a few poses (_frame)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
-        a copy of their rows aside: one call, while writing them into place by index is
-        slower)."""
+        the reader's rows aside: writing them into place by slot costs more than keeping)."""
         prev = self._prev
         if prev is not None:
-            self._xy[prev[0]] = _centres(prev)
             self._prev = None
+            self._write_centres(prev)
+
+    def _write_centres(self, kept: tuple) -> None:
+        """Write the ball rows' centres of a kept read (Awake, rows) into self._xy."""
+        rows, slots = kept[0].arrays()
+        data = kept[1]
+        self._xy[slots] = data[:, :2] if rows is None else data[rows, :2]
 
     def _own_prev(self) -> None:
         """The reader is about to refill the rows self._prev holds: copy them (_usual_check)."""
         prev = self._prev
-        if prev is not None and prev[2].base is not None:
-            self._prev = (prev[0], prev[1], prev[2].copy())
+        if prev is not None and prev[1].base is not None:
+            self._prev = (prev[0], prev[1].copy())
 
     def check_balls(self, L0: tuple[float, float, float]) -> tuple[float, float, float]:
         """After a step: count the balls that tunneled through the L, remove those that left the
         world, remember every ball's centre (self._xy); return the L's pose after the step (L0:
         before it). Only a body awake before or after the step can have moved: while the same
-        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at;
-        otherwise every ball is. The bodies are read once (state_rows: the runner's is_finite
-        reuses the read), the L's pose with them while the same bodies stay awake."""
+        bodies stay awake (and the L stays put, or no body sleeps), only they are looked at, and
+        so they are when a few fall asleep or wake (_short_way); otherwise every ball is. The
+        bodies are read once (state_rows: the runner's is_finite reuses the read), the L's pose
+        with them while the same bodies stay awake."""
         ids, data = self.state_rows()
         awake, fast = self._awake, self._fast
-        n = -1 if awake is None else len(awake[0])
         # the same awake ids in the same order, then the same first static body (the batch's
-        # order is awake | static | asleep): one bytes compare (awake[4] holds both)
-        same = n >= 0 and ids.tobytes()[:8 * n + 8] == awake[4]   # (one NumPy call, not 2)
+        # order is awake | static | asleep): one bytes compare (awake.key holds both)
+        same = awake is not None and ids.tobytes()[:len(awake.key)] == awake.key
         if same:
-            L_row = awake[3]
+            n, L_row = len(awake.ids), awake.L_row
             L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
             # (a sleeping ball does not move, but a moving L may pass it: so with balls
             # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
             if same and fast is not None and fast[2] is not None and fast[0] == L0 \
-                    and len(awake[2]):
+                    and awake.balls:
                 return self._usual_check(data[:n], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
+            if fast is not None and fast[2] is not None and fast[0] == L0 == L1 \
+                    and self._L_static_pose is not None:
+                done = self._short_way(ids, data, L1, fast)   # (a few fell asleep or woke)
+                if done:
+                    return L1
         self.flush_xy()
-        if same:
-            _, rows, k, _, _ = awake      # the same bodies awake as after the last step
-            xy = data[:n, :2] if rows is None else data[:n, :2][rows]
+        if same:                  # the same bodies awake as after the last step
+            rows, k = awake.arrays()
+            xy = data[:n, :2] if rows is None else data[rows, :2]
         else:
             n = self.awake_count(ids)
-            k = self.ball_index(ids)
-            ball = k >= 0
-            xy, k = data[ball, :2], k[ball]       # every ball, awake or asleep
-            rows = ball[:n]
-            count = int(np.count_nonzero(rows))
-            L_row = np.flatnonzero(ids[:n] == self._L_id)
-            self._awake = (ids[:n].copy(), None if count == n else rows, k[:count],
-                           int(L_row[0]) if len(L_row) else None, ids[:n + 1].tobytes())
+            every = self.slot_index(ids)
+            ball = every >= 0
+            xy, k = data[ball, :2], every[ball]       # every ball, awake or asleep
+            count = int(np.count_nonzero(ball[:n]))
+            id_list, L = ids[:n].tolist(), self._L_id
+            self._awake = Awake(id_list, every[:n].tolist(),
+                                id_list.index(L) if L in id_list else None, count,
+                                ids[:n + 1].tobytes(),
+                                (None if count == n else np.flatnonzero(ball[:n]), k[:count]))
             self.resting = n == 0
         self._fast = None
         if not len(k):
             return L1
         self.count_tunneled(self._xy[k], xy, L0, L1)
         self._xy[k] = xy
-        self.remove_outside(k, xy)
-        if self._awake is not None and len(self._awake[2]):   # (not if remove_fallen removed)
-            self._fast = self.flags_of(data[:len(self._awake[0])], L1, self._awake[3])
+        awake = self._awake
+        if awake is not None and awake.balls:   # (made before remove_fallen, which takes the
+            self._fast = self.flags_of(data[:len(awake.ids)], L1, awake.L_row)   # rows out)
+            if self._fast[2] is not None:       # every awake ball in the box (their flags are
+                k, xy = k[awake.balls:], xy[awake.balls:]     # its very comparisons): only
+        self.remove_outside(k, xy)                            # those asleep are looked at
         return L1
 
-    def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
-        """self._fast for these awake rows with the L at pose: (pose, flags (n, 5), their key;
-        None if a ball is outside the box or not finite: then the next step looks again)."""
-        M, limits = self._flag_matrix(pose)
-        return fast_of(pose, rows.dot(M) <= limits, L_row)
+    def _short_way(self, ids: np.ndarray, data: np.ndarray, pose, fast: tuple) -> bool:
+        """check_balls when a few balls fell asleep or woke (the L static, the usual path on
+        until now); False if it cannot (then the long way). Chipmunk took each ball that fell
+        asleep out of its array of awake bodies (the last into its place) and appended each
+        one woken: the kept Awake after Awake.without and Awake.plus, if it is the read's, says
+        which row is which, and the usual check goes on, with the flags each woken ball had
+        where it slept. The balls that fell asleep get the usual tests on their own (their
+        flags before, from the kept bytes; now, flags_row), and their centres are kept."""
+        old = self._awake
+        n = self.awake_count(ids)
+        id_list = ids.tolist()
+        awake_ids = id_list[:n]
+        now, before = set(awake_ids), set(old.ids)
+        asleep = [body for body in old.ids if body not in now]
+        woke = [body for body in awake_ids if body not in before]
+        if not n or len(asleep) + len(woke) > 8:
+            return False
+        slot_of, awake, flags, gone = self._slot_of, old, fast[1], []
+        for body in asleep:
+            i = awake.ids.index(body)
+            gone.append((slot_of.get(body, -1), id_list.index(body), flags[5 * i:5 * i + 5]))
+            awake, flags = awake.without(body, flags)
+        for body in woke:
+            if body not in slot_of:
+                return False                 # (not a ball)
+            awake = awake.plus(body, slot_of[body])
+        if awake.ids != awake_ids or any(slot < 0 for slot, _, _ in gone):
+            return False
+        self.flush_xy()
+        xy = self._xy
+        for body in woke:
+            flags += self.flags_row(tuple(xy[slot_of[body]].tolist()), pose)
+        self._awake = awake
+        self._usual_check(data[:n], pose, pose, awake, fast_of(pose, flags, None))
+        ax, bx = self.arm_extent
+        x0, y0, x1, y1 = self.box()
+        out = []
+        for slot, row, was in gone:         # (asleep now: their rows are after the static ones)
+            p0, p1 = xy[slot].tolist(), data[row, :2].tolist()
+            xy[slot, 0], xy[slot, 1] = p1
+            if not was[4] and self.flags_row(p1, pose)[4]:     # crossed the arm's line
+                if ax <= _local_x(p0, pose) <= bx and ax <= _local_x(p1, pose) <= bx:
+                    self.counts["tunneled"] += 1
+            x, y = p1
+            if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
+                out.append(slot)
+        if out:
+            self.remove_slots(out)
+        return True
 
-    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake, fast: tuple):
+    def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
+        """self._fast for these awake rows with the L at pose (fast_of)."""
+        M, limits = self._flag_matrix(pose)
+        flags = rows.dot(M) <= limits
+        return fast_of(pose, flags.tobytes(), L_row)
+
+    def _usual_check(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
         the L): one product of the rows with a (6, 5) matrix and one comparison give five flags
         a row (x and y inside the world's box, four, and the centre on or below the arm's
         line); if their bytes are the ones of the last step, no ball crossed the line and none
         left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
-        _, rows, k, L_row, _ = awake
+        L_row = awake.L_row
         kept = self._flag_rows      # (for these rows and L1 already, unless a moving L moved)
-        if kept is None or kept[0] != len(rows_now) or kept[3] != L1:
+        if kept is None or kept[0] != len(rows_now):
             kept = self._flag_rows_at(len(rows_now), L1)
+        elif kept[3] != L1:
+            self._flag_matrix(L1)   # (a moving L: its line's limit written again, kept's too)
         flags = np.less_equal(rows_now.dot(kept[5], out=kept[1]), kept[2])
-        b = flags.tobytes()                    # (_key, and the L's box flags, from one call)
+        b = flags.tobytes()                    # (the key, and the L's box flags, from one call)
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
         # (for flush_xy) the reader's rows themselves, no copy: they stay good through the next
         # read, and a read that would refill them first has _own_prev copy them (0.5 us a check)
-        prev, self._prev = self._prev, (k, rows, rows_now)
+        prev, self._prev = self._prev, (awake, rows_now)
         reader = self._state_reader
         reader.keep = (reader.cur, self._own_prev)
         if key == fast[2]:                     # the same flags as after the last step
-            self._fast = (L1, flags, key)
+            self._fast = (L1, b, key)
             # every ball in the box, so every row finite (a NaN or inf anywhere in a row fails
             # its box flags: _NAN_FAILS); the L's too if its box flags hold: the runner's
             # non-finite check need not look again at these rows (~1.75 us a step)
             if _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1"):
                 self.finite_read = self._state_reader.reads
             return L1
-        old, self._fast = fast[1], fast_of(L1, flags, L_row, key)
-        changed = [divmod(i, 5) for i in np.flatnonzero(old != flags).tolist()]   # (a few)
-        crossed = [r for r, col in changed if col == 4 and flags[r, 4]]
+        self._fast = fast_of(L1, b, L_row, key)
+        changed = _changed(fast[1], b, flags)
+        slots = awake.slots
+        crossed = [r for r, col in changed if col == 4 and b[5 * r + 4] and slots[r] >= 0]
         if crossed:                   # above the line before, on or below it now: inside the
-            if prev is not None and prev[0] is not k:       # arm's extent? (a ball was added
-                self._xy[prev[0]] = _centres(prev)          # since the last step: no rows
-                prev = None                                 # kept for it)
+            if prev is not None and prev[0] is not awake:   # arm's extent? (a ball came or
+                self._write_centres(prev)                   # went since the last step: its
+                prev = None                                 # rows are in another order)
             ax, bx = self.arm_extent
             for r in crossed:
-                j = _ball_at(rows, r)
-                if j is None:
-                    continue                           # not a ball (the L's row)
-                p0 = self._xy[k[j]].tolist() if prev is None else prev[2][r, :2].tolist()
+                p0 = self._xy[slots[r]].tolist() if prev is None else prev[1][r, :2].tolist()
                 x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
                 if ax <= x0 <= bx and ax <= x1 <= bx:
                     self.counts["tunneled"] += 1
         if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
             out = []                # flags changed (they were all true), by the exact test
             x0, y0, x1, y1 = self.box()
-            for r in sorted({r for r, col in changed if col < 4}):
-                j = _ball_at(rows, r)
-                if j is None:
-                    continue
+            for r in sorted({r for r, col in changed if col < 4 and slots[r] >= 0}):
                 x, y = rows_now[r, :2].tolist()
                 if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
-                    out.append(j)
+                    out.append(slots[r])
             if out:
-                self.remove_balls(k[out])
+                self.remove_slots(out)
         return L1
 
     def box(self) -> tuple[float, float, float, float]:
@@ -214,89 +282,59 @@ class BallChecks:
         ball is out (the same comparisons as remove_fallen's; a NaN fails them)."""
         if not len(xy):
             return
-        if len(xy) <= 64:       # a few: remove_fallen's look at each costs less (one call)
-            self.flush_xy()
-            self.remove_fallen(k, xy)
-            return
-        x0, y0, x1, y1 = self.box()
-        lo_x, lo_y, hi_x, hi_y = extent(xy)
-        if lo_x >= x0 and lo_y >= y0 and hi_x <= x1 and hi_y <= y1:
-            return
-        self.flush_xy()
+        if len(xy) > 64:        # (a few: remove_fallen's look at each costs less, one call)
+            x0, y0, x1, y1 = self.box()
+            lo_x, lo_y, hi_x, hi_y = extent(xy)
+            if lo_x >= x0 and lo_y >= y0 and hi_x <= x1 and hi_y <= y1:
+                return
         self.remove_fallen(k, xy)
 
-    def awake_after_add(self, body: int, pos: tuple[float, float]) -> tuple | None:
-        """(self._awake, self._fast) after a ball with this body id was added at pos, the last
-        of self.balls and self._ids, if the usual path was on: Chipmunk appends a new body to
-        its awake ones, so the order is known without a read (the next step's check_balls
-        compares it with the read, and goes the long way if it differs); the new ball's flags
-        are a last row (flags_row)."""
+    def awake_after_add(self, body: int, slot: int, pos: tuple[float, float]) -> tuple:
+        """(self._awake, self._fast) after a ball with this body id and slot was added at pos
+        (Awake.plus: Chipmunk appends it to its awake bodies, so the order is known without a
+        read; the next step's check_balls compares it with the read, and goes the long way if
+        it differs); its flags are a last row (flags_row). (None, None) if nothing was kept."""
         awake, fast = self._awake, self._fast
         if awake is None:
-            return None
-        ids, rows, k, L_row, key = awake
-        awake = (np.concatenate((ids, (body,))),
-                 None if rows is None else np.concatenate((rows, (True,))),
-                 np.concatenate((k, (len(self.balls) - 1,))), L_row,
-                 # (the key ends with the first static body's id)
-                 key[:-8] + body.to_bytes(8, sys.byteorder, signed=True) + key[-8:])
+            return None, None
+        awake = awake.plus(body, slot)
         if fast is None:
             return awake, None
         row = self.flags_row(pos, fast[0])
-        b = row.tobytes()
-        inside = fast[2] is not None and b[:4] == b"\1\1\1\1"        # (in the box)
-        return awake, (fast[0], np.concatenate((fast[1], row)), fast[2] + b if inside else None)
+        inside = fast[2] is not None and row[:4] == b"\1\1\1\1"        # (in the box)
+        return awake, (fast[0], fast[1] + row, fast[2] + row if inside else None)
 
-    def awake_after_removal(self, bodies: list[int], gone: list[int]) -> tuple | None:
+    def awake_after_removal(self, bodies: list[int]) -> tuple:
         """(self._awake, self._fast) after the balls with these body ids (in the order they were
-        taken out; gone: their indices in self.balls before, sorted) left the space and
-        self.balls and self._ids, if the usual path was on:
-        Chipmunk takes a body out of its awake array by moving the last one into its place, so
-        the order of the rest is known without a read (the next step's check_balls compares it
-        with the read, and goes the long way if it differs)."""
+        taken out) left the space (Awake.without, for each in turn: Chipmunk fills a removed
+        body's place in its awake array with the last one, so the order of the rest is known
+        without a read; the next step's check_balls compares it with the read), if the usual
+        path was on; else (None, None)."""
         awake, fast = self._awake, self._fast
         if awake is None or fast is None:
-            return None
-        ids, rows, k, L_row, _ = awake
-        id_list, order = ids.tolist(), list(range(len(ids)))   # order: the rows kept, as
-        for body in bodies:                  # cpArrayDeleteObj leaves them: the last fills
-            if body not in id_list:          # the gap
-                return None
-            i = id_list.index(body)
-            for column in (id_list, order):
-                last = column.pop()
-                if i < len(column):
-                    column[i] = last
-        if not order:
-            return None
-        order = np.array(order)
-        ids_now = ids[order]
-        if rows is None:
-            ball, k_now = None, k[order]
-        else:
-            every = np.full(len(ids), -1, dtype=np.int64)     # each row's ball index
-            every[rows] = k
-            ball = rows[order]
-            k_now = every[order][ball]
-        # (the balls after each one gone move up one)
-        k_now = k_now - (k_now > gone[0]) if len(gone) == 1 else \
-            k_now - np.searchsorted(gone, k_now)
-        L = self._L_id
-        L_row = id_list.index(L) if L in id_list else None
-        return (ids_now, ball, k_now, L_row, ids_now.tobytes() + awake[4][-8:]), \
-            fast_of(fast[0], fast[1][order], L_row)
+            return None, None
+        flags = fast[1]
+        for body in bodies:
+            after = awake.without(body, flags)
+            if after is None:
+                return None, None
+            awake, flags = after
+        if not awake.ids:
+            return None, None
+        return awake, fast_of(fast[0], flags, awake.L_row)
 
-    def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> np.ndarray:
-        """The flags (1, 5) of a body at rest at pos with the L at pose, as _usual_check makes
-        them for a body's row."""
+    def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bytes:
+        """The flags' bytes (5) of a body at rest at pos with the L at pose, as _usual_check
+        makes them for a body's row."""
         M, limits = self._flag_matrix(pose)
         x, y = float(pos[0]), float(pos[1])
         lx, ux, ly, uy, c = limits.tolist()
-        ax, ay = -M[0, 4], -M[1, 4]
+        m0, m1 = M[:2, 4].tolist()
+        ax, ay = -m0, -m1
         v = x * -ax + y * -ay                  # the product's last column, in plain Python:
         if abs(v - c) <= 1e-12 * (abs(x * ax) + abs(y * ay) + abs(c)):   # its sign is the
-            return np.array(((x, y, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits   # product's
-        return np.array(((-x <= lx, x <= ux, -y <= ly, y <= uy, v <= c),))  # unless this near
+            return (np.array(((x, y, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits).tobytes()
+        return bytes((-x <= lx, x <= ux, -y <= ly, y <= uy, v <= c))   # product's unless near
 
     def L_pose(self) -> tuple[float, float, float]:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
@@ -307,11 +345,18 @@ class BallChecks:
             pose = (x, y, self.L_body.angle)
         return pose
 
-    def _frame(self, pose: tuple[float, float, float]) -> tuple:
-        """(origin, axis) of the L's frame at pose: a point's height over the arm is
-        (p - origin) . axis (_to_local's y, axis the L's local y axis)."""
-        x, y, a = pose
-        return (x, y), (-math.sin(a), math.cos(a))
+    def _frame(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
+        """(origin, axis) arrays of the L's frame at pose: a point's height over the arm is
+        (p - origin) . axis (_to_local's y, axis the L's local y axis). The last few are kept
+        (a static L has one pose; a moving L's pose before a step is the one after the last)."""
+        kept = self._frames
+        frame = kept.get(pose)
+        if frame is None:
+            if len(kept) >= 4:
+                kept.clear()
+            x, y, a = pose
+            frame = kept[pose] = (np.array((x, y)), np.array((-math.sin(a), math.cos(a))))
+        return frame
 
     def _flag_matrix(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
         """(M (6, 5), limits (5,)) with the L at pose: for a body's row (x, y, angle, vx, vy,
@@ -330,11 +375,14 @@ class BallChecks:
         if now[0] != pose:
             x, y, a = pose
             ax, ay = -math.sin(a), math.cos(a)
+            c = -(x * ax + y * ay)
             M, limits = now[1], now[2]
-            M[0, 4], M[1, 4], limits[4] = -ax, -ay, -(x * ax + y * ay)
+            M[0, 4], M[1, 4], limits[4] = -ax, -ay, c
             now[0] = pose
-            if self._flag_rows is not None:     # (their limits and M are no longer for the
-                self._flag_rows[3] = None       # pose they were written for: _flag_rows_at)
+            kept = self._flag_rows      # (only the line's limit depends on the pose: the kept
+            if kept is not None:        # rows' column alone, 0.2 us; the whole array 0.6)
+                kept[4].fill(c)
+                kept[3] = pose
         return now[1], now[2]
 
     def _flag_rows_at(self, n: int, pose: tuple[float, float, float]) -> list:
@@ -343,15 +391,12 @@ class BallChecks:
         C-contiguous rows (_usual_check), into a product kept for n rows and against the limits
         written out for every row (a comparison with a broadcast (5,) row costs three times one
         with an (n, 5) array)."""
-        M, limits = self._flag_matrix(pose)
+        M, limits = self._flag_matrix(pose)       # (writes a new pose into the kept rows too)
         kept = self._flag_rows
         if kept is None or kept[0] != n:
             full = np.empty((n, 5))
             full[:] = limits
             kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4], M]
-        elif kept[3] != pose:       # (a moving L) only the line's limit depends on the pose:
-            kept[4].fill(limits[4])     # its column alone (0.2 us; the whole array 0.6)
-            kept[3] = pose
         return kept
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
@@ -360,9 +405,9 @@ class BallChecks:
         while inside its x-extent, seen in the L's own frame before (L0) and after (L1), all
         balls at once. xy0 and xy1 (n, 2) hold the same balls in the same order. (The x-extent
         is looked at only for balls that crossed.)"""
-        o0, axis0 = (np.array(v) for v in self._frame(L0))
+        o0, axis0 = self._frame(L0)
         y0 = (xy0 - o0) @ axis0
-        o1, axis1 = (o0, axis0) if L1 == L0 else (np.array(v) for v in self._frame(L1))
+        o1, axis1 = self._frame(L1)
         y1 = (xy1 - o1) @ axis1
         crossed = (y0 < 0) & (y1 >= 0)               # above the arm, then on/below it
         if np.count_nonzero(crossed):     # (a ball at rest, asleep or not, never crossed)
@@ -377,7 +422,7 @@ class BallChecks:
         self.counts["tunneled"] += int(np.count_nonzero(inside))
 
     def remove_fallen(self, k: np.ndarray, xy: np.ndarray) -> None:
-        """Remove the balls (indices k, centres xy) whose centre left the world: below it, far
+        """Remove the balls (slots k, centres xy) whose centre left the world: below it, far
         to a side, or more than a world's height above it (new balls fall in from just above,
         so "above" needs the margin). A non-finite centre counts as out."""
         if not len(xy):
@@ -387,37 +432,39 @@ class BallChecks:
             out = [i for i, (x, y) in enumerate(xy.tolist())
                    if not (x >= x0 and y >= y0 and x <= x1 and y <= y1)]
             if out:
-                self.remove_balls(k[out])
+                self.remove_slots(k[out].tolist())
             return
         inside = ((xy >= (x0, y0)) & (xy <= (x1, y1))).all(axis=1)          # NaN: False
         if not inside.all():
-            self.remove_balls(k[~inside])
+            self.remove_slots(k[~inside].tolist())
 
 
-def _ball_at(rows: np.ndarray | None, r: int) -> int | None:
-    """The ball (its place among the awake balls) of awake row r, or None if that row is not a
-    ball (the L's); rows: which awake rows are balls, None if all are. (A rare path: a few rows
-    a step at most.)"""
-    if rows is None:
-        return r
-    return int(np.count_nonzero(rows[:r])) if rows[r] else None
-
-
-def fast_of(pose: tuple[float, float, float], flags: np.ndarray, L_row: int | None,
+def fast_of(pose: tuple[float, float, float], b: bytes, L_row: int | None,
             key: bytes | None = None) -> tuple:
-    """BallChecks._fast: (the L's pose, the awake rows' flags (n, 5), their key; None if a ball
-    is outside the box or not finite: then the next step looks again). key: _key(flags, L_row),
-    if the caller has it."""
+    """BallChecks._fast: (the L's pose, the awake rows' flags' bytes b (5 a row, each 0 or 1),
+    their key: b less the L's row (a moving L's centre is on its own arm's line: its flag flips
+    with rounding); the key None if a ball is outside the box or not finite: then the next step
+    looks again). key: the caller's, if it has it."""
     if key is None:
-        key = _key(flags, L_row)
-    return pose, flags, key if _inside(key) else None
+        key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
+    return pose, b, key if _inside(key) else None
 
 
-def _key(flags: np.ndarray, L_row: int | None) -> bytes:
-    """The bytes of the flags (n, 5), less the L's row (a moving L's centre is on its own arm's
-    line: its flag flips with rounding)."""
-    key = flags.tobytes()
-    return key if L_row is None else key[:5 * L_row] + key[5 * L_row + 5:]
+def _changed(old: bytes, new: bytes, flags: np.ndarray) -> list[tuple[int, int]]:
+    """(row, column) of each flag that differs between two flags' bytes (the last step's and
+    this one's, whose array is flags), in order. A few: the bytes as two integers, XOR, and its
+    set bits read off one by one (plain Python, a fraction of a NumPy call each); many (a bit
+    read is O(size) then): NumPy."""
+    x = int.from_bytes(old, "little") ^ int.from_bytes(new, "little")
+    if x.bit_count() > 16:
+        diff = np.frombuffer(old, dtype=np.bool_) != flags.reshape(-1)
+        return [divmod(i, 5) for i in np.flatnonzero(diff).tolist()]
+    out = []
+    while x:
+        low = x & -x                       # (each flag is one byte, 0 or 1: bit 8 i is flag i)
+        out.append(divmod((low.bit_length() - 1) >> 3, 5))
+        x ^= low
+    return out
 
 
 def _inside(key: bytes) -> bool:
@@ -431,12 +478,6 @@ def _local_x(p: list[float], pose: tuple[float, float, float]) -> float:
     """_to_local's x for one point, in plain Python."""
     x, y, a = pose
     return math.cos(a) * (p[0] - x) + math.sin(a) * (p[1] - y)
-
-
-def _centres(kept: tuple) -> np.ndarray:
-    """The balls' centres from a BallChecks._prev: (ball indices, ball rows (None: all), rows)."""
-    _, rows, data = kept
-    return data[:, :2] if rows is None else data[rows, :2]
 
 
 def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:

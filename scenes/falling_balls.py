@@ -40,6 +40,7 @@ from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
+from scenes.ball_tables import BallTables, slot_table
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -73,10 +74,9 @@ BALL_PARAMS: tuple[Param, ...] = (
 )
 
 
-_NO_IDS = (b"", np.empty(0, dtype=np.int64))   # (ball_index's last: ids as bytes, indices)
 
 
-class FallingBallsScene(BallChecks, PymunkScene):
+class FallingBallsScene(BallChecks, BallTables, PymunkScene):
     """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
     world. Asleep, a settled pile costs about pymunk's own step; `tunneled` counts balls that
     passed through the L.
@@ -162,9 +162,9 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.walls = walls
 
     def restored(self) -> None:
-        """(Re)build the tables kept beside self.balls: body ids and last known centres, and
-        what is known of the L (its id; its pose, if static: nothing moves it)."""
-        self._prev = None
+        """(Re)build the tables kept beside self.balls: a slot for each ball (its body id and last
+        known centre, ball_checks), and what is known of the L (its id; its pose, if static:
+        nothing moves it)."""
         self._flag_now = None       # (ball_checks: the flags' matrix and limits)
         self._L_id = self.L_body.id
         self._L_static_pose = None
@@ -172,38 +172,21 @@ class FallingBallsScene(BallChecks, PymunkScene):
             x, y = self.L_body.position
             self._L_static_pose = (x, y, self.L_body.angle)
         self._sleep_h = None        # the substep the sleep threshold was set for
-        self._ids = np.array([shape.body.id for shape in self.balls], dtype=np.int64)
-        self._xy = np.array([tuple(shape.body.position) for shape in self.balls],
-                            dtype=np.float64).reshape(-1, 2)
-        self._tables_changed()
-
-    def _tables_changed(self) -> None:
-        self._sorted = None                       # (sorted ids, ball index of each), lazily
-        self._last = _NO_IDS
-        self._awake = None  # (ids, ball rows (None: all), ball indices, L's row, ids as bytes)
+        n = len(self.balls)
+        self._slots = list(range(n))          # each ball's slot, in the order of self.balls
+        self._slot_of = {shape.body.id: k for k, shape in enumerate(self.balls)}
+        self._xy = slot_table(n)
+        if n:
+            self._xy[:n] = [tuple(shape.body.position) for shape in self.balls]
+        self._used = n                        # slots handed out (the next one is this)
+        self._index_changed()
         self._checks_reset()        # (ball_checks.py)
         self.wake()
 
-    def ball_index(self, ids: np.ndarray) -> np.ndarray:
-        """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
-        a ball (a static body, the L). Vectorised: a dict lookup per id, done by binary search
-        in the sorted ids; and not even that while the batch order stays the same."""
-        last_ids, last_k = self._last
-        key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
-        if key == last_ids:
-            return last_k
-        if self._sorted is None:
-            order = np.argsort(self._ids)
-            self._sorted = (self._ids[order], order)
-        sorted_ids, order = self._sorted
-        if len(sorted_ids) == 0:
-            k = np.full(len(ids), -1, dtype=np.int64)
-        else:
-            at = np.searchsorted(sorted_ids, ids)       # (np.minimum, not .clip: the
-            np.minimum(at, len(sorted_ids) - 1, out=at)  # method costs ~5 us more)
-            k = np.where(sorted_ids[at] == ids, order[at], -1)
-        self._last = (key, k)
-        return k
+    def _bodies_changed(self) -> None:
+        """A ball came or went: what wake() forgets, but the L's pose (it did not move)."""
+        PymunkScene.wake(self)
+        self._rest_plan = None
 
     def set_sleeping(self, on: bool) -> None:
         """Sleeping on: groups at rest for SLEEP_TIME (and 4 substeps) fall asleep. Off: the
@@ -233,13 +216,13 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.space.add(body, shape)
         self.balls.append(shape)
         if index:          # add_balls indexes once at the end
-            self._ids = np.concatenate((self._ids, (body.id,)))
-            self._xy = np.concatenate((self._xy, (pos,)))
+            body_id = body.id
+            slot = self.new_slot(body_id, pos)
+            self._slots.append(slot)
             # who is awake, in Chipmunk's order, with the new ball (ball_checks; None: read again)
-            awake = self.awake_after_add(body.id, pos)
-            self._tables_changed()                      # (which wakes the scene)
-            if awake is not None:
-                self._awake, self._fast = awake
+            self._awake, self._fast = self.awake_after_add(body_id, slot, pos)
+            self._index_changed()
+            self._bodies_changed()
         else:
             self.wake()
         self.counts["spawned"] += 1
@@ -266,32 +249,29 @@ class FallingBallsScene(BallChecks, PymunkScene):
         self.restored()
         return added
 
-    def remove_balls(self, which: np.ndarray) -> None:
-        """Remove the balls with these indices from the space and from the list (the
-        tutorial's balls_to_remove)."""
-        if len(which) == 0:
+    def remove_balls(self, which) -> None:
+        """Remove the balls with these indices in self.balls from the space and from the list
+        (the tutorial's balls_to_remove)."""
+        gone = set(which.tolist() if isinstance(which, np.ndarray) else which)
+        if not gone:
             return
-        gone = set(which.tolist())
-        self.flush_xy()
-        if self.mouse_joint is not None and self.ball_index(
-                np.array([self.mouse_joint.b.id]))[0] in gone:
+        held = self.mouse_joint
+        if held is not None and any(self.balls[k].body is held.b for k in gone):
             self.release()
         removed = []
-        for k in gone:
+        for k in gone:                      # (in the set's order: the space's order after it)
             shape = self.balls[k]
             self.space.remove(shape, shape.body)
-            removed.append(shape.body.id)
-        gone_sorted = sorted(gone)
-        for k in reversed(gone_sorted):
+            body_id = shape.body.id
+            removed.append(body_id)
+            del self._slot_of[body_id]          # (a freed id may be a new body's one day)
+        for k in sorted(gone, reverse=True):
             del self.balls[k]
-        keep = np.ones(len(self._ids), dtype=bool)
-        keep[which] = False
-        self._ids, self._xy = self._ids[keep], self._xy[keep]
+            del self._slots[k]
         # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
-        awake = self.awake_after_removal(removed, gone_sorted)
-        self._tables_changed()
-        if awake is not None:
-            self._awake, self._fast = awake
+        self._awake, self._fast = self.awake_after_removal(removed)
+        self._index_changed()
+        self._bodies_changed()
         self.counts["removed"] += len(gone)
 
     def read_balls(self, fields: pymunk.batch.BodyFields = pymunk.batch.BodyFields.POSITION,

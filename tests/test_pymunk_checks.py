@@ -6,6 +6,7 @@ pile that wakes is read and checked again, a body beyond the blow-up reach is ca
 import math
 
 import numpy as np
+import pymunk.batch
 import pytest
 
 from scenes.double_pendulum import DoublePendulumScene
@@ -191,7 +192,7 @@ def test_a_new_balls_flags_are_the_products():
             pos = (x + t * math.cos(a), y + t * math.sin(a))
         M, limits = scene._flag_matrix(pose)
         product = np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits
-        assert scene.flags_row(pos, pose).tobytes() == product.tobytes()
+        assert scene.flags_row(pos, pose) == product.tobytes()
 
 
 def test_the_finite_check_reads_the_rows_of_the_last_read_as_bodies_come_and_go():
@@ -239,9 +240,66 @@ def test_the_rows_kept_from_the_last_step_survive_reads_between_steps():
     # _usual_check keeps the reader's own rows (no copy): they stay good through one more read,
     # and a second read (a wake and a metric between steps) has them copied before refilling.
     scene = balls_on_the_L()
-    kept = scene._prev[2].copy()
+    kept = scene._prev[-1].copy()
     for i in range(3):
         scene.balls[3].body.position = (100.0 + i, 50.0)      # (a test's kick between steps)
         scene.wake()
         scene.state_rows()
-        assert np.array_equal(scene._prev[2], kept)
+        assert np.array_equal(scene._prev[-1], kept)
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_the_tables_follow_chipmunk_as_balls_come_and_go(cls):
+    # ball_tables.py mirrors Chipmunk's array of awake bodies (a new body last, a removed one's
+    # place filled by the last) instead of reading it after each add or removal: after every
+    # step and every add, the mirror must be the order the batch read gives, each row's slot
+    # the ball with that body id, and each ball's kept centre (flushed) where its body is. Many
+    # balls come and go (slots are packed again several times).
+    scene = cls({"spawn_rate": 60, "max_balls": 80, "seed": 4, "g": 3000})
+    packed, mirrored = 0, 0
+    for step in range(300):
+        used = scene._used
+        scene.advance()
+        packed += scene._used < used
+        awake = scene._awake
+        if awake is not None:
+            ids = scene.body_rows(pymunk.batch.BodyFields.POSITION)[0]
+            n = scene.awake_count(ids)
+            assert awake.ids == ids[:n].tolist() and awake.key == ids[:n + 1].tobytes()
+            assert awake.slots == [scene._slot_of.get(i, -1) for i in awake.ids]
+            assert awake.balls == sum(s >= 0 for s in awake.slots)
+            mirrored += 1
+        scene.flush_xy()
+        for shape, slot in zip(scene.balls, scene._slots):
+            assert scene._slot_of[shape.body.id] == slot
+            assert tuple(scene._xy[slot]) == tuple(shape.body.position)
+    assert packed >= 2 and mirrored > 250 and scene.counts["removed"] > 100
+
+
+def test_balls_falling_asleep_or_waking_take_the_short_way_to_the_exact_results():
+    # With a static L, a few balls falling asleep or waking keep the usual check (the awake rows
+    # mirrored as Chipmunk moves them); against the exact tests on every ball every step: the
+    # same balls tunneled and removed, the same state, every ball's kept centre right, and the
+    # short way did take them.
+    class Exact(FallingBallsScene):
+        def check_balls(self, L0):
+            self._fast = None            # the long way every time
+            return super().check_balls(L0)
+
+    class Short(FallingBallsScene):
+        taken = 0
+
+        def _short_way(self, *args):
+            done = super()._short_way(*args)
+            Short.taken += done
+            return done
+    settings = {"seed": 1}
+    short, exact = Short(settings), Exact(settings)
+    for _ in range(900):
+        short.advance()
+        exact.advance()
+        short.flush_xy()                 # (every ball's kept centre where its body is)
+        assert all(tuple(short._xy[slot]) == tuple(shape.body.position)
+                   for shape, slot in zip(short.balls, short._slots))
+    assert Short.taken > 20 and short.counts == exact.counts and short.counts["removed"] > 20
+    assert short.state_hash() == exact.state_hash()

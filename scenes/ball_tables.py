@@ -1,0 +1,155 @@
+"""The tables falling_balls keeps beside its list of balls, laid out so that a ball added or
+removed costs plain Python and no NumPy call (each costs 1-2 us in the step's loop):
+  * every ball has a slot for life (self._slots, in the order of self.balls; self._slot_of by
+    body id): its last known centre sits in row `slot` of self._xy, so taking a ball out moves
+    no other ball's row (slots are handed out in turn and packed again when they run out);
+  * who is awake (Awake) is kept as Chipmunk keeps it: a list of body ids in the order of its
+    array of awake bodies, which appends a new body and fills a removed one's place with the
+    last (cpArrayDeleteObj). The same moves on Python lists and on the bytes of the ids and of
+    the flags let the usual check (ball_checks.py) go on after a ball came or went, with no
+    read.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import numpy as np
+
+_NO_IDS = (b"", np.empty(0, dtype=np.int64))   # (slot_index's last: ids as bytes, slots)
+
+
+def slot_table(n: int) -> np.ndarray:
+    """An empty table of centres for n balls and room for as many more."""
+    return np.zeros((max(64, 2 * n + 2), 2))
+
+
+class Awake:
+    """The bodies awake after the last check, row by row in the batch's order (Chipmunk's array
+    of awake bodies): what the next read is compared with, and which ball each row is."""
+
+    __slots__ = ("ids", "slots", "L_row", "balls", "key", "_arrays")
+
+    def __init__(self, ids: list[int], slots: list[int], L_row: int | None, balls: int,
+                 key: bytes, arrays: tuple | None = None):
+        self.ids = ids          # each row's body id
+        self.slots = slots      # each row's ball slot, -1 for a row that is no ball (the L)
+        self.L_row = L_row      # the L's row (None: the L is not awake: static or asleep)
+        self.balls = balls      # how many rows are balls
+        self.key = key          # the ids' bytes and the first static body's id (8 bytes more)
+        self._arrays = arrays
+
+    def arrays(self) -> tuple[np.ndarray | None, np.ndarray]:
+        """(the rows that are balls, None if every row is; their slots), as arrays, made once
+        (for writing a read's centres into self._xy)."""
+        if self._arrays is None:
+            slots = np.array(self.slots, dtype=np.int64)
+            rows = None
+            if self.balls != len(slots):
+                rows = np.flatnonzero(slots >= 0)
+                slots = slots[rows]
+            self._arrays = (rows, slots)
+        return self._arrays
+
+    def plus(self, body: int, slot: int) -> "Awake":
+        """The same with a new ball's body last (Chipmunk appends a new body to its array)."""
+        key = self.key
+        return Awake(self.ids + [body], self.slots + [slot], self.L_row, self.balls + 1,
+                     key[:-8] + body.to_bytes(8, sys.byteorder, signed=True) + key[-8:])
+
+    def without(self, body: int, flags: bytes) -> tuple["Awake", bytes] | None:
+        """(the same without this body, the flags' bytes (5 a row) without its row): as
+        cpArrayDeleteObj takes it out of Chipmunk's array, the last row moves into its place.
+        None if the body is not among them."""
+        ids, slots = list(self.ids), list(self.slots)
+        try:
+            i = ids.index(body)
+        except ValueError:
+            return None
+        last = len(ids) - 1
+        balls = self.balls - (slots[i] >= 0)
+        key, L_row = self.key, self.L_row
+        for column in (ids, slots):
+            moved = column.pop()
+            if i < last:
+                column[i] = moved
+        if i < last:
+            key = key[:8 * i] + key[8 * last:8 * last + 8] + key[8 * i + 8:8 * last] + key[-8:]
+            flags = flags[:5 * i] + flags[5 * last:] + flags[5 * i + 5:5 * last]
+            L_row = i if L_row == last else L_row
+        else:
+            key, flags = key[:8 * last] + key[-8:], flags[:5 * last]
+        return Awake(ids, slots, L_row, balls, key), flags
+
+
+class BallTables:
+    """The slot tables of FallingBallsScene (restored() builds them; ball_checks.BallChecks
+    reads them)."""
+
+    def _index_changed(self) -> None:
+        """Forget the lookups made from the slots (a ball came or went)."""
+        self._last = _NO_IDS
+        self._ball_of = None                      # (each slot's place in self.balls), lazily
+
+    def slot_index(self, ids: np.ndarray) -> np.ndarray:
+        """For body ids (n,) from a batch read: the slot of each ball, -1 if it is not a ball (a
+        static body, the L): a dict lookup per id (kept as balls come and go: a binary search
+        in sorted ids costs several NumPy calls more, and the sort again after every change);
+        not even that while the batch order stays the same."""
+        last_ids, last_k = self._last
+        key = ids.tobytes()                 # (a bytes compare: np.array_equal costs 4x)
+        if key == last_ids:
+            return last_k
+        get = self._slot_of.get
+        k = np.array([get(i, -1) for i in ids.tolist()], dtype=np.int64)
+        self._last = (key, k)
+        return k
+
+    def ball_index(self, ids: np.ndarray) -> np.ndarray:
+        """For body ids (n,) from a batch read: the index of each in self.balls, -1 if it is not
+        a ball."""
+        if self._ball_of is None:
+            ball_of = np.full(self._used + 1, -1, dtype=np.int64)   # (slot -1: the last, -1)
+            ball_of[self._slots] = np.arange(len(self._slots))
+            self._ball_of = ball_of
+        return self._ball_of[self.slot_index(ids)]
+
+    def new_slot(self, body_id: int, pos: tuple[float, float]) -> int:
+        """A slot for a new ball (the next one not yet handed out), with its id and centre."""
+        slot = self._used
+        if slot == len(self._xy):
+            slot = self.pack_slots()
+        self._used = slot + 1
+        self._slot_of[body_id] = slot
+        xy = self._xy
+        xy[slot, 0], xy[slot, 1] = pos          # (two numbers: a tuple into a row costs more)
+        return slot
+
+    def pack_slots(self) -> int:
+        """The slots ran out: give the balls slots 0, 1, ... again in tables with room for as
+        many more (the awake rows' slots renamed with them); returns the first free slot."""
+        self.flush_xy()
+        live = np.array(self._slots, dtype=np.int64)
+        n = len(live)
+        xy = slot_table(n)
+        xy[:n] = self._xy[live]
+        self._xy, self._used = xy, n
+        rename = {old: new for new, old in enumerate(self._slots)}
+        self._slots = list(range(n))
+        self._slot_of = {body: rename[slot] for body, slot in self._slot_of.items()}
+        awake = self._awake
+        if awake is not None:
+            self._awake = Awake(awake.ids, [rename.get(s, -1) for s in awake.slots],
+                                awake.L_row, awake.balls, awake.key)
+        self._index_changed()
+        return n
+
+    def remove_slots(self, slots: list[int]) -> None:
+        """remove_balls for the balls in these slots, their indices listed in this order (the
+        set remove_balls makes of them is built in it: the order the space loses them in)."""
+        if len(slots) <= 8:
+            where = self._slots.index
+            self.remove_balls([where(s) for s in slots])
+        else:
+            place = {s: k for k, s in enumerate(self._slots)}
+            self.remove_balls([place[s] for s in slots])
