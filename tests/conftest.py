@@ -12,6 +12,7 @@ if ROOT not in sys.path:
     sys.path.insert(0, ROOT)
 
 # Property tests draw the same examples on every run (deterministic suite, no example database).
+import pytest  # noqa: E402
 from hypothesis import settings  # noqa: E402
 
 settings.register_profile("lab", derandomize=True, database=None)
@@ -34,3 +35,11 @@ def pytest_configure(config):
         path = os.path.join(ROOT, folder)
         if os.path.isdir(path):
             compileall.compile_dir(path, quiet=1, rx=skip)
+
+
+@pytest.fixture
+def png_charts(monkeypatch):
+    """A benchmark's charts written as PNG only, not also as SVG (~0.4 s a chart): for the tests
+    of a benchmark's numbers and files; the SVG (size, texts, ids) is tests/test_charts.py's."""
+    import app.draw.plot as plot
+    monkeypatch.setattr(plot, "FORMATS", ("png",))
