@@ -37,6 +37,22 @@ def pytest_configure(config):
             compileall.compile_dir(path, quiet=1, rx=skip)
 
 
+_DONT_WRITE_BYTECODE = sys.dont_write_bytecode
+
+
+def pytest_collection(session):
+    """While the tests are collected, pytest keeps each test module's rewritten asserts in
+    tests/__pycache__ (*-pytest-<version>.pyc, checked against the source's mtime and size, as
+    Python's own .pyc): where PYTHONDONTWRITEBYTECODE is set it kept none, and every worker of
+    every run rewrote all the test modules again (~2.5 s CPU a worker). Only the collection
+    writes: a test's own imports (a student's file in a test's folder) write nothing."""
+    sys.dont_write_bytecode = False
+
+
+def pytest_collection_finish(session):
+    sys.dont_write_bytecode = _DONT_WRITE_BYTECODE
+
+
 @pytest.fixture
 def png_charts(monkeypatch):
     """A benchmark's charts written as PNG only, not also as SVG (~0.4 s a chart): for the tests
