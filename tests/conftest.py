@@ -12,6 +12,7 @@ if ROOT not in sys.path:
     sys.path.insert(0, ROOT)
 
 # Property tests draw the same examples on every run (deterministic suite, no example database).
+import pytest  # noqa: E402
 from hypothesis import settings  # noqa: E402
 
 settings.register_profile("lab", derandomize=True, database=None)
@@ -34,3 +35,27 @@ def pytest_configure(config):
         path = os.path.join(ROOT, folder)
         if os.path.isdir(path):
             compileall.compile_dir(path, quiet=1, rx=skip)
+
+
+_DONT_WRITE_BYTECODE = sys.dont_write_bytecode
+
+
+def pytest_collection(session):
+    """While the tests are collected, pytest keeps each test module's rewritten asserts in
+    tests/__pycache__ (*-pytest-<version>.pyc, checked against the source's mtime and size, as
+    Python's own .pyc): where PYTHONDONTWRITEBYTECODE is set it kept none, and every worker of
+    every run rewrote all the test modules again (~2.5 s CPU a worker). Only the collection
+    writes: a test's own imports (a student's file in a test's folder) write nothing."""
+    sys.dont_write_bytecode = False
+
+
+def pytest_collection_finish(session):
+    sys.dont_write_bytecode = _DONT_WRITE_BYTECODE
+
+
+@pytest.fixture
+def png_charts(monkeypatch):
+    """A benchmark's charts written as PNG only, not also as SVG (~0.4 s a chart): for the tests
+    of a benchmark's numbers and files; the SVG (size, texts, ids) is tests/test_charts.py's."""
+    import app.draw.plot as plot
+    monkeypatch.setattr(plot, "FORMATS", ("png",))

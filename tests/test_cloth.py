@@ -341,7 +341,7 @@ def test_the_strain_key_is_in_the_hud_with_every_colour():
     assert [c for c, _ in keys if c is not None] == list(STRAIN_COLORS)
 
 
-def test_the_benchmark_runs_quickly(tmp_path):
+def test_the_benchmark_runs_quickly(tmp_path, png_charts):
     from app.bench import Report
     from app.bench.cloth import run as bench
     out = bench(Report(out_dir=str(tmp_path), quick=True))

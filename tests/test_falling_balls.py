@@ -160,7 +160,7 @@ def test_draws_a_pile_with_sleepers_and_a_drag():
     assert surface.get_at((int(x), int(y)))[:3] != scene.background
 
 
-def test_the_pymunk_benchmark_runs_quick(tmp_path):
+def test_the_pymunk_benchmark_runs_quick(tmp_path, png_charts):
     from app.bench import Report
     from app.bench.pymunk_bench import run as bench
     report = Report(str(tmp_path), quick=True)

@@ -1,5 +1,7 @@
-"""Hostile input that once broke the contract (issue 11), each replayed: through the real command
-line with files the test writes, or, for drawing and mouse handling, in-process on the scene.
+"""Hostile input that once broke the contract (issue 11), each replayed: through the command line's
+entry point (app.__main__.main, in this process: the `cli` fixture) with files the test writes, in
+a process of its own where the contract needs one (a closed pipe, a student's file that exits), or,
+for drawing and mouse handling, in-process on the scene.
 
 The contract: bad usage is one line on stderr (`python -m app: error: ...`) and exit 2, never a
 traceback; a legal but extreme run always prints its summary and exit code; nothing stray on
@@ -31,6 +33,30 @@ def run_cli(*args):
                           capture_output=True, text=True, timeout=120)
 
 
+@pytest.fixture
+def cli(capfd):
+    """`python -m app ARGS` run as app.__main__.main(ARGS) in this process (the same code, without
+    a Python start-up of ~0.5 s each): what it writes to stdout and stderr, Python's and the file
+    descriptors' (SDL's or a C library's too), and every warning it raises as the text Python
+    would print on stderr (as a process of its own shows them: not the deprecations), so
+    `r.stderr == ""` holds here only where it would in a process of its own. The contract that
+    needs a process (exit codes at a death, a closed pipe, Ctrl-C) keeps one: run_cli."""
+    from app.__main__ import main
+
+    def run(*args):
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            for quiet in (DeprecationWarning, PendingDeprecationWarning, ImportWarning,
+                          ResourceWarning):
+                warnings.simplefilter("ignore", quiet)
+            code = main(list(args))
+        out, err = capfd.readouterr()
+        err += "".join(warnings.formatwarning(w.message, w.category, w.filename, w.lineno)
+                       for w in caught)
+        return subprocess.CompletedProcess(args, code, out, err)
+    return run
+
+
 def assert_usage_error(r, *words):
     assert r.returncode == 2, r.stderr
     assert r.stdout == "" and "Traceback" not in r.stderr
@@ -50,15 +76,15 @@ def assert_usage_error(r, *words):
     ('[{"t": 1, "type": "key_down", "key": null}]', ["'key'", "got null"]),
     ("null", ["got null"]),
 ], ids=["deep", "t400digits", "pos400digits", "t5001digits", "missing_t", "null_key", "null"])
-def test_hostile_input_files_are_one_line_and_exit_2(tmp_path, text, words):
+def test_hostile_input_files_are_one_line_and_exit_2(tmp_path, text, words, cli):
     path = tmp_path / "events.json"
     path.write_text(text)
-    assert_usage_error(run_cli("--headless", "--scene", "cloth", "--steps", "1",
-                               "--input", str(path)), *words)
+    assert_usage_error(cli("--headless", "--scene", "cloth", "--steps", "1",
+                           "--input", str(path)), *words)
 
 
-def test_an_empty_input_name_is_refused():
-    assert_usage_error(run_cli("--headless", "--scene", "cloth", "--steps", "1", "--input", ""),
+def test_an_empty_input_name_is_refused(cli):
+    assert_usage_error(cli("--headless", "--scene", "cloth", "--steps", "1", "--input", ""),
                        "--input needs a file name")
 
 
@@ -70,11 +96,12 @@ def test_an_empty_input_name_is_refused():
     (["--scen", "cloth"], ["unrecognized arguments: --scen"]),                       # no abbreviations
     (["--scene", "newtons_cradle", "--set", "hertz=1", "--set", "substeps=1"], ["too coarse"]),
 ], ids=["effect", "all", "underscore", "arabic_indic", "abbreviation", "cradle_step"])
-def test_surprising_command_lines_are_refused_with_the_reason(args, words):
-    assert_usage_error(run_cli("--headless", "--steps", "1", *args), *words)
+def test_surprising_command_lines_are_refused_with_the_reason(args, words, cli):
+    assert_usage_error(cli("--headless", "--steps", "1", *args), *words)
 
 
-def test_a_drag_to_the_end_of_the_doubles_still_gives_the_summary_and_the_screenshot(tmp_path):
+def test_a_drag_to_the_end_of_the_doubles_still_gives_the_summary_and_the_screenshot(tmp_path,
+                                                                                     cli):
     # Once: the L went non-finite, drawing raised, and the summary was lost. The target is now
     # pulled within 1e5 px of the world, the space stays finite, and the screenshot is saved.
     events = [{"t": 0, "type": "mouse_down", "button": 1, "pos": [400, 440]},      # the L
@@ -82,8 +109,8 @@ def test_a_drag_to_the_end_of_the_doubles_still_gives_the_summary_and_the_screen
     path = tmp_path / "drag.json"
     path.write_text(json.dumps(events))
     shot = tmp_path / "shot.png"
-    r = run_cli("--headless", "--scene", "pivoting_l", "--seconds", "1", "--json",
-                "--input", str(path), "--screenshot", str(shot))
+    r = cli("--headless", "--scene", "pivoting_l", "--seconds", "1", "--json",
+            "--input", str(path), "--screenshot", str(shot))
     assert r.returncode == 0 and r.stderr == "", r.stderr
     summary = json.loads(r.stdout)
     assert summary["finite"] and summary["screenshot"] == str(shot) and shot.exists()
@@ -91,14 +118,15 @@ def test_a_drag_to_the_end_of_the_doubles_still_gives_the_summary_and_the_screen
                                           for v in summary["metrics"].values())
 
 
-def test_a_click_far_above_the_world_adds_a_ball_that_is_removed_without_warnings(tmp_path):
+def test_a_click_far_above_the_world_adds_a_ball_that_is_removed_without_warnings(tmp_path,
+                                                                                   cli):
     events = [{"t": 0, "type": "mouse_down", "button": 1, "pos": [480, -1e300]},
               {"t": 0, "type": "mouse_up", "button": 1, "pos": [480, -1e300]}]
     path = tmp_path / "click.json"
     path.write_text(json.dumps(events))
-    r = run_cli("--headless", "--scene", "falling_balls", "--steps", "3", "--json",
-                "--set", "spawn_rate=0", "--input", str(path), "--screenshot",
-                str(tmp_path / "a.png"))
+    r = cli("--headless", "--scene", "falling_balls", "--steps", "3", "--json",
+            "--set", "spawn_rate=0", "--input", str(path), "--screenshot",
+            str(tmp_path / "a.png"))
     assert r.returncode == 0 and r.stderr == "", r.stderr          # no RuntimeWarning either
     m = json.loads(r.stdout)["metrics"]
     assert m["balls_spawned"] == 1 and m["balls_removed"] == 1 and m["balls_alive"] == 0
@@ -149,13 +177,13 @@ def test_drawing_never_raises_or_warns_on_an_extreme_state(cls):
         scene.draw(surface, View.fit(cls.world_size, (0, 0, 400, 300)))
 
 
-def test_scene_all_goes_on_after_an_extreme_drag_in_every_scene(tmp_path):
+def test_scene_all_goes_on_after_an_extreme_drag_in_every_scene(tmp_path, cli):
     events = [{"t": 0, "type": "mouse_down", "button": 1, "pos": [400, 440]},
               {"t": 0.01, "type": "mouse_move", "pos": [1.797e308, 1e300]}]
     path = tmp_path / "drag.json"
     path.write_text(json.dumps(events))
-    r = run_cli("--headless", "--scene", "all", "--steps", "5", "--json", "--input", str(path),
-                "--screenshot", str(tmp_path / "x.png"))
+    r = cli("--headless", "--scene", "all", "--steps", "5", "--json", "--input", str(path),
+            "--screenshot", str(tmp_path / "x.png"))
     assert r.returncode == 0 and r.stderr == "", r.stderr
     summaries = [json.loads(line) for line in r.stdout.splitlines()]
     assert [s["scene"] for s in summaries] == [cls.name for cls in SCENES]
@@ -286,15 +314,14 @@ def test_the_constraints_exercise_refuses_a_step_over_its_budget(capsys):
                        "iterations x substeps", "budget")
 
 
-def test_a_pendulum_flung_out_of_the_world_is_a_blow_up_and_the_advice_fits_the_settings():
+def test_a_pendulum_flung_out_of_the_world_is_a_blow_up_and_the_advice_fits_the_settings(cli):
     """Finite but 1e23 px away is blown up (exit 1, finite false), and with hertz and substeps
     at their largest the message does not tell the user to raise them."""
     args = ["--headless", "--scene", "double_pendulum", "--steps", "20", "--json",
             "--set", "g=2500", "--set", "hertz=1000", "--set", "substeps=50",
             "--set", "angle1=-180", "--set", "angle2=180", "--set", "length1=170",
             "--set", "length2=95", "--set", "mass1=0.05", "--set", "mass2=10.025"]
-    done = subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True,
-                          timeout=120)
+    done = cli(*args)
     assert done.returncode == 1
     summary = json.loads(done.stdout)
     assert summary["finite"] is False and summary["steps"] < 20

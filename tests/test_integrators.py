@@ -198,7 +198,7 @@ def test_scene_reports_each_integrator_at_the_default_step():
     assert m["rk4_step_us"] > 0
 
 
-def test_benchmark_quick_run(tmp_path):
+def test_benchmark_quick_run(tmp_path, png_charts):
     result = run_bench(Report(out_dir=str(tmp_path), quick=True))
     json.dumps(result, allow_nan=False)                   # --json must be valid JSON
     assert set(result["problems"]) == {"spring", "pendulum", "orbit", "bounce"}

@@ -3,8 +3,6 @@ limit it predicts, its materials, its effects and its command line."""
 
 import json
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -17,8 +15,6 @@ from app.physics.mass_spring_stability import (marginal, predicted_limit, symple
 from app.physics.spring_forces import SpringDamping, SpringSet
 from app.scene import ParamError
 from scenes.mass_spring_cloth import JOULE, MassSpringClothScene
-
-ROOT = __file__.rsplit("/tests/", 1)[0]
 
 
 def small_cloth(rows=4, cols=5, material="denim", pins="top", on=None, spacing=16.0):
@@ -341,12 +337,12 @@ def test_check_combination_refuses_a_step_over_budget():
         MassSpringClothScene({"rows": 64, "cols": 64, "substeps": 20})
 
 
-def test_bench_mass_spring_quick_runs_and_has_its_json_keys(tmp_path):
-    r = subprocess.run([sys.executable, "-m", "app", "bench", "mass_spring", "--quick", "--json",
-                        "--out", str(tmp_path)], cwd=ROOT, capture_output=True, text=True,
-                       timeout=120)
-    assert r.returncode == 0, r.stderr
-    data = json.loads(r.stdout)
+def test_bench_mass_spring_quick_runs_and_has_its_json_keys(tmp_path, capsys, png_charts):
+    from app.__main__ import main         # the command line's entry point, in this process
+    code = main(["bench", "mass_spring", "--quick", "--json", "--out", str(tmp_path)])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    data = json.loads(out)
     assert {"large_steps", "step_ms", "implicit_vs_explicit"} <= set(data)
     row = data["large_steps"][0]
     assert {"material", "stiffness_scale", "integrator", "max_stable_h", "predicted_h",

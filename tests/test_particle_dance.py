@@ -353,7 +353,7 @@ def test_bad_input_on_the_command_line_is_one_line_and_exit_2(capsys, args, frag
     assert err.count("\n") == 1 and fragment in err and "Traceback" not in err
 
 
-def test_bench_particles_quick_has_the_scaling_table(capsys, tmp_path):
+def test_bench_particles_quick_has_the_scaling_table(capsys, tmp_path, png_charts):
     assert main(["bench", "particles", "--quick", "--json", "--out", str(tmp_path)]) == 0
     out = json.loads(capsys.readouterr().out)
     rows = out["scaling"]
