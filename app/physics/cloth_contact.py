@@ -315,7 +315,7 @@ def self_collide(c, h: float) -> None:
     ends[0, 0], ends[1, 0] = j, i
     np.add(ends[:, 0], n, out=ends[:, 1])
     jj, ii = ends.reshape(2, 2 * m)
-    even = bool(wi.all() and wj.all())                 # (w is 0 or 1: then every share is 1/2)
+    even = bool(np.array_equal(wi, wj))                # equal weights: every share is 1/2
     share_j, share_i = (None, None) if even else (wj / total, wi / total)
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
