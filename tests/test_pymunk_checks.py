@@ -27,6 +27,15 @@ def balls_on_the_L(cls=FallingBallsScene) -> FallingBallsScene:
     return scene
 
 
+def exact_tests(cls):
+    """cls checking its balls the long way every step (the exact tests on every ball)."""
+    class Exact(cls):
+        def check_balls(self, L0):
+            self._fast = None            # the long way every time
+            return super().check_balls(L0)
+    return Exact
+
+
 @pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
 def test_a_body_that_goes_nan_is_caught_the_step_it_happens(cls):
     # A NaN ball: pymunk spreads it to its centre (even in free fall) and to the balls it
@@ -156,10 +165,7 @@ def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
 def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings, steps):
     # the quick path (five flags a ball from one product, compared as bytes) against the exact
     # tests run on every ball every substep: the same balls tunneled, removed, and the same state
-    class Exact(cls):
-        def check_balls(self, L0):
-            self._fast = None            # the long way every time
-            return super().check_balls(L0)
+    Exact = exact_tests(cls)
     class Quick(cls):
         usual = 0
 
@@ -281,10 +287,7 @@ def test_balls_falling_asleep_or_waking_take_the_short_way_to_the_exact_results(
     # mirrored as Chipmunk moves them); against the exact tests on every ball every step: the
     # same balls tunneled and removed, the same state, every ball's kept centre right, and the
     # short way did take them.
-    class Exact(FallingBallsScene):
-        def check_balls(self, L0):
-            self._fast = None            # the long way every time
-            return super().check_balls(L0)
+    Exact = exact_tests(FallingBallsScene)
 
     class Short(FallingBallsScene):
         taken = 0
