@@ -300,22 +300,26 @@ def self_collide(c, h: float) -> None:
     x = c.x.reshape(2, -1)
     xs, ys = x[0], x[1]                                 # views: writing moves the cloth
     w = c.w.ravel()
-    wi, wj = w.take(i), w.take(j)
-    total = wi + wj
-    if not total.all():                                 # both ends pinned: nothing to move
-        ok = total > 0
-        i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
+    # every particle free with the same weight (nothing pinned or grabbed: the usual case):
+    # every share is 1/2, with no weights to read pair by pair
+    even = bool(w[0] > 0 and w.min() == w.max())
+    if not even:
+        wi, wj = w.take(i), w.take(j)
+        total = wi + wj
+        if not total.all():                             # both ends pinned: nothing to move
+            ok = total > 0
+            i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
+        even = bool(np.array_equal(wi, wj))             # equal weights at both ends, all pairs
     n, m = xs.size, i.size
     # each sweep gathers every particle's corrections, x and y, with two bincounts: the j ends
     # (entries j for x, j + n for y) pushed by + share_j of d times the overlap, the i ends by
     # - share_i of it; they replace `for pair: x[j] += share_j * move; x[i] -= share_i * move`.
     # Both ends free (w = 1 each, the usual case): both shares are 1/2, one set of weights.
     scratch = st.scratch
-    ends = scratch.get("ends", 4 * m, np.intp).reshape(2, 2, m)     # [j, j + n], [i, i + n]
+    ends = scratch.get("pair_ends", 4 * m, np.intp).reshape(2, 2, m)  # [j, j + n], [i, i + n]
     ends[0, 0], ends[1, 0] = j, i
     np.add(ends[:, 0], n, out=ends[:, 1])
     jj, ii = ends.reshape(2, 2 * m)
-    even = bool(np.array_equal(wi, wj))                # equal weights: every share is 1/2
     share_j, share_i = (None, None) if even else (wj / total, wi / total)
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)

@@ -245,8 +245,8 @@ def crowded_share(grid_tests: int, n: int) -> float:
 FINE_CELLS = (8, 2)       # cells per cut-off across and down
 CELLS_PER_PARTICLE = 8    # at most this many cells per particle: a spread-out crowd gets bigger
                           # cells (its count array stays small; it has few candidates anyway)
-FINE_BLOCK = 1 << 15      # candidates per block (whole runs): their work arrays (1.2 MB) stay
-                          # in the cache, and a crowd's millions of candidates need no more
+FINE_BLOCK = 1 << 13      # candidates per block: their work arrays stay in the cache, and
+                          # np.repeat's (no out=) under glibc's 128 kB: heap, not fresh pages
 SLACK = 1e-3              # in cells: float32 rounding of a cell index never hides a pair
 
 
@@ -333,57 +333,42 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     total = int(ends[-1])
     if total == 0:
         return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
+    first -= ends - length                     # q = first + c for candidate c of a run
+    owner = scratch.get("owners", n * (below + 1), np.intp)
+    owner.reshape(below + 1, n)[:] = scratch.count(n)       # the run's particle (sorted position)
     real = np.result_type(xs, ys, np.float32)  # float32 or float64: all_pairs's own rounding
     pair = np.complex64 if real == np.float32 else np.complex128
-    z = np.empty(n, pair)                      # positions, x + i y
-    z.real, z.imag = xs, ys
-    zs = z.take(order)                         # and in sorted order
-    # every candidate (p, q), block by block: p is the run's particle, q from the run's first
-    # partner up by one; both as running sums of their steps, which are 0 and 1 inside a run
-    # and jump where a run starts (np.cumsum replaces `for each run: for q in range(first,
-    # stop): candidates.append((p, q))`). Only the runs that hold a candidate count.
-    full = np.flatnonzero(length.astype(bool))
-    size = length.take(full)
-    begin = ends.take(full)
-    begin -= size                              # where each begins in the candidate list
-    owner = scratch.get("owner", n * (below + 1), np.intp).reshape(below + 1, n)
-    owner[:] = order                           # run k's particle: order[k % n]
-    fp = owner.ravel().take(full)
-    fq = first.take(full)                      # its first partner (a sorted position)
-    size += fq                                 # past its last partner
-    cuts = np.searchsorted(begin, np.arange(FINE_BLOCK, total, FINE_BLOCK))
-    bounds = [0, *sorted(set(cuts.tolist()) - {0, full.size}), full.size]
-    i = scratch.get("i", total, np.intp)
-    j = scratch.get("j", total, np.intp)
+    z = np.empty(n, pair)                      # positions in sorted order, x + i y
+    z.real, z.imag = xs.take(order), ys.take(order)
+    count = scratch.count(total)
+    hit_p = scratch.get("hit_p", total, np.intp)
+    hit_q = scratch.get("hit_q", total, np.intp)
     found = 0
-    for a, b in zip(bounds[:-1], bounds[1:]):
-        c0, c1 = int(begin[a]), int(begin[b]) if b < full.size else total
-        m = c1 - c0
-        p = scratch.get("p", m, np.intp)
-        q = scratch.get("q", m, np.intp)
-        p.fill(0)
-        q.fill(1)
-        # the jumps: from the last candidate of the run before to the first of this one
-        jump = begin[a + 1:b] - c0
-        p[jump] = fp[a + 1:b] - fp[a:b - 1]
-        q[jump] = fq[a + 1:b] - size[a:b - 1] + 1
-        p[0], q[0] = fp[a], fq[a]
-        np.cumsum(p, out=p)
-        np.cumsum(q, out=q)
+    # blocks of whole runs, about FINE_BLOCK candidates each: their arrays stay in the cache
+    cuts = np.searchsorted(ends, np.arange(FINE_BLOCK, total, FINE_BLOCK)) + 1
+    bounds = [0, *sorted(set(np.minimum(cuts, ends.size).tolist()) - {0, ends.size}), ends.size]
+    for r0, r1 in zip(bounds[:-1], bounds[1:]):
+        c0 = int(ends[r0 - 1]) if r0 else 0
+        runs = length[r0:r1]
+        # p, q: each candidate's two sorted positions (np.repeat replaces `for each run: for q
+        # in range(first, stop): candidates.append((p, q))`)
+        p = np.repeat(owner[r0:r1], runs)
+        q = np.repeat(first[r0:r1], runs)
+        q += count[c0:c0 + q.size]
         # d = x_q - x_p, x and y as one complex number (one gather, not two), then |d|^2 in
         # the positions' precision (all_pairs's rounding: the same pairs, exactly)
-        d = np.take(zs, q, out=scratch.get("d", m, pair), mode="wrap")
-        d -= np.take(z, p, out=scratch.get("dp", m, pair), mode="wrap")
+        d = np.take(z, q, out=scratch.get("d", q.size, pair), mode="wrap")
+        d -= np.take(z, p, out=scratch.get("dp", q.size, pair), mode="wrap")
         dd = d.view(real)
         dd *= dd
-        r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", m, real))
-        hit = np.less(r2, real.type(cutoff * cutoff), out=scratch.get("hit", m, bool))
-        at = np.flatnonzero(hit)
-        k = at.size
-        np.take(p, at, out=i[found:found + k])
-        np.take(q, at, out=j[found:found + k])
+        r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", q.size, real))
+        hit = np.less(r2, real.type(cutoff * cutoff), out=scratch.get("hit", q.size, bool))
+        k = int(np.count_nonzero(hit))
+        np.compress(hit, p, out=hit_p[found:found + k])
+        np.compress(hit, q, out=hit_q[found:found + k])
         found += k
-    i, j = i[:found], np.take(order, j[:found], out=scratch.get("j_", found, np.intp))
+    i = np.take(order, hit_p[:found], out=scratch.get("i", found, np.intp))
+    j = np.take(order, hit_q[:found], out=scratch.get("j", found, np.intp))
     return i, j, total
 
 
