@@ -53,6 +53,7 @@ import pymunk
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
 from app.scene import Param, Try, Unit, common
+from scenes.ball_checks import cos_sin
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 
@@ -167,7 +168,7 @@ class PivotingLScene(FallingBallsScene):
             d, pin = self.joint_distances(pose)
         else:            # joint_distances' sums written out (a call and a loop: ~1 us a substep)
             x, y, a = pose
-            c, s = math.cos(a), math.sin(a)
+            c, s = cos_sin(a)
             vx, vy, fx, fy, wx, wy, gx, gy = fixed
             dx, dy = c * vx - s * vy + x - fx, s * vx + c * vy + y - fy
             d = math.sqrt(dx * dx + dy * dy)
@@ -188,7 +189,7 @@ class PivotingLScene(FallingBallsScene):
         Body.local_to_world gives (a test compares the two). A joint built otherwise (a student's
         add_L may) is read from pymunk."""
         x, y, a = pose
-        c, s = math.cos(a), math.sin(a)
+        c, s = cos_sin(a)
         out = []
         for joint, points in zip((self.slide, self.pin), self._joint_points):
             if points is None:

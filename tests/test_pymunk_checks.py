@@ -59,6 +59,24 @@ def test_a_body_that_goes_nan_is_caught_the_step_it_happens(cls):
         assert not scene.is_finite()
 
 
+@pytest.mark.parametrize("angle", [math.inf, -math.inf, math.nan])
+def test_an_L_whose_angle_is_not_finite_is_caught_and_rolled_back(angle):
+    # An infinite angle made math.sin raise ValueError inside the balls' checks (a crash, not a
+    # report): now the step ends, the runner finds the state non-finite and rolls it back.
+    from app.runner import SceneRunner
+    scene = balls_on_the_L(PivotingLScene)
+    runner = SceneRunner(scene, rollback=True)
+    good = scene.state_hash()                # (the runner's first snapshot: where it goes back)
+    assert runner.run(2) == (2, None)
+    scene.L_body.angle = angle
+    scene.wake()
+    steps, rollback = runner.run(3)
+    assert steps == 1 and rollback is not None and "went non-finite" in rollback.text()
+    assert scene.is_finite() and scene.state_hash() == good
+    scene.advance()                          # and it goes on from there
+    assert scene.is_finite()
+
+
 @pytest.mark.parametrize("then", ["", "a ball added", "a ball removed"])
 def test_a_tunneling_ball_is_counted_on_the_quick_path(then):
     scene = balls_on_the_L()
