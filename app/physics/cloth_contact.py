@@ -83,9 +83,9 @@ no faster), fewer cells per particle (more candidates), blocks over 8,192 candid
 (np.repeat's fresh arrays cross glibc's 128 kB: page faults again), x and y as one complex
 number in the sweeps (4 % faster: not worth plainer code), the candidates as running sums of
 their steps (np.cumsum) instead of np.repeat (15 % faster alone, 0-5 % inside the step: after
-the step's own work the search waits on memory, whichever way it is written). The compiled pass (kernel=numba,
-optional, app/physics/self_compiled.py: the same pairs, searched every substep, no list) visits
-each candidate once: 0.73 x the step in the same runs.
+the step's own work the search waits on memory, whichever way it is written). The compiled
+pass (kernel=numba, optional, app/physics/self_compiled.py: the same pairs, searched every
+substep, no list) visits each candidate once: 0.73 x the step in the same runs.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
