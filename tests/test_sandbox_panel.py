@@ -40,10 +40,7 @@ def test_the_panel_edits_the_selected_body_and_asks_the_name_to_save(tmp_path, m
     monkeypatch.chdir(tmp_path)
     pygame.display.init()
     pygame.font.init()
-    # (nothing left by an earlier test of this worker: no key held, no event queued; the test
-    # failed 1 in ~4 full runs on 2026-11-26 while it passed alone every time)
-    pygame.key.set_mods(0)
-    pygame.event.clear()
+    # (no event of an earlier test is queued: tests/conftest.py's no_display_events_left)
     w = Window(pygame.display.set_mode((1024, 768)), [SandboxScene], large_text=True,
                screenshot_dir=tmp_path, record=tmp_path / "rec.json")
     try:
@@ -59,7 +56,7 @@ def test_the_panel_edits_the_selected_body_and_asks_the_name_to_save(tmp_path, m
                                    "y", "angle", "vx", "vy"} and "type" in form.menus
         where = view.panel.form.boxes["mass"].rect.copy()
         type_enter(w, view.panel.form.boxes["mass"], "abc")          # refused: nothing changes
-        assert scene.message_error and "not a finite number" in scene.message
+        assert scene.message_error and "not a finite number" in scene.message, scene.message
         assert view.panel.form.boxes["mass"].rect == where    # the refusal moved no box
         assert scene.selected_body()["density"] == 0.01
         type_enter(w, view.panel.form.boxes["mass"], "4")
