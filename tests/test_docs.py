@@ -164,6 +164,8 @@ SHORT_SECONDS = "0.1"     # a headless command's --seconds, unless it must blow 
 WINDOW_FRAMES = 4         # frames a window command draws before the test closes its window
 WINDOW_FRAMES_TO_FAIL = 60   # ... and one that must exit 1 (a student's code at hertz 2 runs
                              # its first step after half a simulated second)
+WINDOW_FRAMES_TO_FAIL_SOON = 8   # ... at the default hertz: a starter raises in its first
+                                 # step, by the third frame (tests/test_exercises.py's starters)
 
 
 def as_run(args: list[str], code: int) -> list[str]:
@@ -249,7 +251,8 @@ def test_every_command_in_the_docs_runs_as_written(doc, command, comment, docs_f
             args = ["exercise", "copy", "another"]       # mywork/ holds the copy already
     elif "--headless" not in args and "--list" not in args:
         close_the_window_after(monkeypatch, WINDOW_FRAMES if not code else
-                               WINDOW_FRAMES_TO_FAIL if "hertz=2" in command else 20)
+                               WINDOW_FRAMES_TO_FAIL if "hertz=2" in command
+                               else WINDOW_FRAMES_TO_FAIL_SOON)
     got = main(as_run(args, code))
     err = capsys.readouterr().err
     assert got == code, (where, got, err[-2000:])

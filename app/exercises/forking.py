@@ -3,9 +3,31 @@ child is known (spawn.py's sandboxed children, sandbox.py's probe), never droppe
 
 from __future__ import annotations
 
+import ctypes
 import os
 import signal
 import threading
+
+
+def _malloc_trim():
+    """glibc's malloc_trim, or None (another C library: nothing to trim)."""
+    try:
+        return ctypes.CDLL(None).malloc_trim
+    except (OSError, AttributeError):
+        return None
+
+
+_TRIM = _malloc_trim()
+
+
+def trim() -> None:
+    """Give the memory the C allocator holds free back to the system before a fork. A fork
+    copies the page tables of every page the process has mapped, and glibc keeps what Python,
+    NumPy and SDL freed mapped: a process that had drawn windows and stepped big scenes (an xdist
+    worker of the tests: ~580 MB resident, of which ~180 MB in use) forked in 14.6 ms, 5.8 ms once
+    trimmed (the trim: ~30 ms the first time, ~1.5 ms when there is little to give back)."""
+    if _TRIM is not None:
+        _TRIM(0)
 
 
 def fork() -> int:
@@ -15,7 +37,9 @@ def fork() -> int:
     _releaseLock"): a Ctrl-C that landed during a fork was lost (seen once in CI). Blocking the
     signal is not enough (the kernel may hand it to another thread: BLAS's, a progress bar's),
     so across the fork a Ctrl-C is only noted; the caller raises it with raise_noted_ctrl_c()
-    once the child is known (so that stopping ends it too)."""
+    once the child is known (so that stopping ends it too). The allocator's free memory is
+    given back first (trim())."""
+    trim()
     if threading.current_thread() is not threading.main_thread() or \
             signal.getsignal(signal.SIGINT) is None:
         return os.fork()                  # (signal handlers are the main thread's to set)

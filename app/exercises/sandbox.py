@@ -403,7 +403,11 @@ def keeper(box: Box, channel: int, output: int, control: int) -> None:
         group = None
         if p.pids:
             group = os.path.join(p.pids, f"lab-grader-{os.getpid()}")
-            os.mkdir(group)
+            try:
+                os.mkdir(group)
+            except FileExistsError:          # left by a keeper killed before it removed it,
+                _remove_group(group)         # whose pid this one has now (no live keeper can
+                os.mkdir(group)              # own it): 268 such were left on the CI machine
             with open(os.path.join(group, "pids.max"), "w") as f:
                 f.write(str(PROCESSES))
         if p.namespaces:

@@ -105,6 +105,7 @@ class FormWidgets:
                     box = UITextEntryLine(pygame.Rect(x + need, y, cell - need, row), m,
                                           container=c)
                     box.set_text(f.value)
+                    box.lab_form = (self.key, f.name)
                     self.boxes[f.name] = box
                 y += row + gap
         if form.prompt:
@@ -112,6 +113,7 @@ class FormWidgets:
             y += row
             self.prompt = UITextEntryLine(pygame.Rect(pad, y, w, row), m, container=c)
             self.prompt.set_text(form.answer)
+            self.prompt.lab_form = (self.key, None)
             y += row + gap
             label("Enter: " + ("save" if form.action == "save" else "open") + "   Esc: cancel",
                   pad, w)
@@ -156,6 +158,8 @@ class FormWidgets:
         gui = self.panel.gui
         if element is None:
             return False
+        if ev.type == gui.UI_TEXT_ENTRY_FINISHED and element not in self.entries():
+            element = self.successor(element)
         if ev.type == gui.UI_TEXT_ENTRY_FINISHED and element is self.prompt:
             self.panel.release_keyboard()
             self.host.deliver(InputEvent(self.form.action, value=ev.text))
@@ -171,6 +175,16 @@ class FormWidgets:
                 self.host.deliver(InputEvent("edit", field=name, value=ev.text))
                 return True
         return False
+
+    def successor(self, element):
+        """The box of this panel that took over from `element`, a box of a panel built before
+        it from the same form (the window was resized between Enter and the event pygame-gui
+        queued for it: the panel was laid out again, and what was typed would have been lost in
+        silence); else `element`."""
+        key, name = getattr(element, "lab_form", (None, None))
+        if key is None or key != self.key:
+            return element
+        return self.prompt if name is None else self.boxes.get(name, element)
 
     def escape(self) -> bool:
         """Esc: an open prompt is cancelled (an event, as Enter is); a field being typed in
