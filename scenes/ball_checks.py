@@ -213,7 +213,8 @@ class BallChecks:
     def flags_of(self, rows: np.ndarray, pose, L_row: int | None) -> tuple:
         """self._fast for these awake rows with the L at pose (fast_of)."""
         M, limits = self._flag_matrix(pose)
-        flags = rows.dot(M) <= limits
+        with np.errstate(invalid="ignore"):   # (a row gone inf: NaN flags; the runner reports it)
+            flags = rows.dot(M) <= limits
         return fast_of(pose, flags.tobytes(), L_row)
 
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple):
@@ -492,8 +493,7 @@ def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
 
 
 def cos_sin(a: float) -> tuple[float, float]:
-    """(cos a, sin a); NaN for an infinite angle (math raises ValueError): an L gone non-finite
-    makes NaN heights (no ball crosses a NaN line) and the runner's check reports it."""
+    """(cos a, sin a); NaN for an infinite angle (math raises): the runner reports the L."""
     try:
         return math.cos(a), math.sin(a)
     except ValueError:
