@@ -138,3 +138,32 @@ def test_panel_events_for_a_scene_without_a_form_are_refused_in_one_line(tmp_pat
     err = capsys.readouterr().err.strip()
     assert "\n" not in err and 'the event "edit"' in err and "cloth has none" in err
     assert main(["--headless", "--scene", "sandbox", "--input", str(events), "--steps", "1"]) == 0
+
+
+def test_a_setting_typed_before_the_window_is_resized_still_reaches_the_scene(tmp_path,
+                                                                             monkeypatch):
+    """The settings panel's number boxes, as the form's above: Enter, then a resize handled
+    before pygame-gui's event lays the panel out again; the value typed is still applied."""
+    from scenes.cloth import ClothScene
+    monkeypatch.chdir(tmp_path)
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1024, 768)), [ClothScene], screenshot_dir=tmp_path)
+    assert w.open_scene(ClothScene)
+    view, scene = w.scene_view, w.scene
+    for typed, resize_to in (("7", (1100, 800)), ("12", (1024, 768))):
+        old = view.panel
+        entry = old.entries["iterations"]
+        view.manager.set_focus_set(entry)
+        entry.focus()
+        entry.set_text("")
+        w.handle_pygame_event(pygame.event.Event(pygame.TEXTINPUT, text=typed))
+        press(w, pygame.K_RETURN)                 # pygame-gui queues UI_TEXT_ENTRY_FINISHED
+        w.resize(pygame.display.set_mode(resize_to))     # (a VIDEORESIZE first in the queue)
+        assert view.panel is not old and view.panel.entries["iterations"] is not entry
+        for ev in pygame.event.get():
+            w.handle_pygame_event(ev)
+        frame(w)
+        assert scene.p["iterations"] == int(typed)
+        assert view.panel.entries["iterations"].get_text() == typed
+        assert not view.panel.is_typing()

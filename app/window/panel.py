@@ -232,6 +232,7 @@ class ParamPanel:
             entry.set_text(_value_text(value))
             self.entries[prm.name] = entry
             self._by_element[entry] = ("entry", prm.name)
+            entry.lab_setting = (scene, prm.name)   # (for successor: the scene's, this name)
             if slider is not None:
                 ctl = _NumberControl(prm, slider)
                 slider.set_current_value(ctl.pos_of(value))
@@ -438,6 +439,8 @@ class ParamPanel:
         if self.form.handle(ev, element):
             return True
         what = self._by_element.get(element)
+        if what is None and ev.type == gui.UI_TEXT_ENTRY_FINISHED:
+            what = self.successor(element)
         if what is None:
             return False
         kind, name = what
@@ -457,7 +460,15 @@ class ParamPanel:
         self.refresh()
         return True
 
-
+    def successor(self, element) -> tuple[str, str] | None:
+        """("entry", name) for a number box of a panel built before this one for the same scene
+        (the window was resized between Enter and the event pygame-gui queued for the box: the
+        panel was laid out again, and what was typed would have been lost in silence; the form's
+        boxes: panel_form.FormWidgets.successor); else None."""
+        scene, name = getattr(element, "lab_setting", (None, None))
+        if scene is not self.host.scene or name not in self.entries:
+            return None
+        return "entry", name
 
 
 def _cut(button, text: str) -> bool:
