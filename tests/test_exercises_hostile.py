@@ -525,6 +525,16 @@ NEEDS_NET_WALL = pytest.mark.skipif(WALLS.landlock < 4 and not WALLS.namespaces
                                     & sandbox.CLONE_NEWNET, reason="no network wall here")
 
 
+def test_a_pids_group_left_by_a_killed_keeper_of_the_same_pid_is_made_again(tmp_path):
+    # a keeper killed before it removed its lab-grader-<pid> folder left it behind, and the next
+    # keeper given that pid failed its setup ([Errno 17] File exists: two CI-like runs did)
+    stale = tmp_path / "lab-grader-4242"
+    stale.mkdir()
+    assert sandbox.make_group(str(tmp_path), 4242) == str(stale) and stale.is_dir()
+    assert sandbox.make_group(str(tmp_path), 4243) == str(tmp_path / "lab-grader-4243")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["lab-grader-4242", "lab-grader-4243"]
+
+
 def test_every_report_says_which_walls_are_in_force_and_which_are_missing():
     report, _ = graded("verlet_prints")
     first = report.text().splitlines()[0]

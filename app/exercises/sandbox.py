@@ -402,12 +402,7 @@ def keeper(box: Box, channel: int, output: int, control: int) -> None:
         p = box.protections
         group = None
         if p.pids:
-            group = os.path.join(p.pids, f"lab-grader-{os.getpid()}")
-            try:
-                os.mkdir(group)
-            except FileExistsError:          # left by a keeper killed before it removed it,
-                _remove_group(group)         # whose pid this one has now (no live keeper can
-                os.mkdir(group)              # own it): 268 such were left on the CI machine
+            group = make_group(p.pids, os.getpid())
             with open(os.path.join(group, "pids.max"), "w") as f:
                 f.write(str(PROCESSES))
         if p.namespaces:
@@ -438,6 +433,19 @@ def keeper(box: Box, channel: int, output: int, control: int) -> None:
             except OSError:
                 pass
     os._exit(code)
+
+
+def make_group(root: str, pid: int) -> str:
+    """The keeper's pids cgroup, root/lab-grader-<pid>: made, or made again where a keeper killed
+    before it removed its own left it, one whose pid this keeper has now (no live keeper can own
+    it; 268 such were left on the CI machine, and a keeper that met one failed its setup)."""
+    group = os.path.join(root, f"lab-grader-{pid}")
+    try:
+        os.mkdir(group)
+    except FileExistsError:
+        _remove_group(group)
+        os.mkdir(group)
+    return group
 
 
 def _remove_group(group: str) -> None:
