@@ -15,17 +15,31 @@ from app.window import Window
 from tests.toy_scenes import key as press
 
 
-def type_enter(w: Window, entry, text: str) -> None:
-    """Click into `entry`, replace its text with `text` as typed, press Enter."""
+def type_enter(w: Window, entry, text: str, resize_to: tuple[int, int] | None = None) -> None:
+    """Click into `entry`, replace its text with `text` as typed, press Enter; with resize_to,
+    the window is resized before pygame-gui's event for that Enter is handled (the resize lays
+    the panel out again: the event then names a box of the panel before)."""
     view = w.scene_view
     view.manager.set_focus_set(entry)
     entry.focus()
     entry.set_text("")
     w.handle_pygame_event(pygame.event.Event(pygame.TEXTINPUT, text=text))
     press(w, pygame.K_RETURN)
+    if resize_to is not None:
+        w.resize(pygame.display.set_mode(resize_to))     # (a VIDEORESIZE first in the queue)
     for ev in pygame.event.get():          # pygame-gui posts UI_TEXT_ENTRY_FINISHED
         w.handle_pygame_event(ev)
     frame(w)
+
+
+def open_window(tmp_path, monkeypatch, cls) -> Window:
+    """A 1024x768 window on scene `cls`, run from tmp_path."""
+    monkeypatch.chdir(tmp_path)
+    pygame.display.init()
+    pygame.font.init()
+    w = Window(pygame.display.set_mode((1024, 768)), [cls], screenshot_dir=tmp_path)
+    assert w.open_scene(cls)
+    return w
 
 
 def frame(w: Window) -> None:
@@ -98,29 +112,16 @@ def test_a_value_typed_before_the_window_is_resized_still_reaches_the_scene(tmp_
     """Enter in a box queues pygame-gui's event for it; a resize handled before that event lays
     the panel out again (a new box): the value still arrives, refused or taken, not lost."""
     from scenes.sandbox import SandboxScene
-    monkeypatch.chdir(tmp_path)
-    pygame.display.init()
-    pygame.font.init()
-    w = Window(pygame.display.set_mode((1024, 768)), [SandboxScene], screenshot_dir=tmp_path)
-    assert w.open_scene(SandboxScene)
+    w = open_window(tmp_path, monkeypatch, SandboxScene)
     view, scene = w.scene_view, w.scene
     for e in (InputEvent("key_down", key="c"), InputEvent("mouse_down", (400, 200), 1),
               InputEvent("mouse_up", (425, 200), 1)):
         view.deliver(e)
     frame(w)
     for typed, resize_to in (("abc", (1100, 800)), ("4", (1024, 768))):
-        old = view.panel
-        entry = old.form.boxes["mass"]
-        view.manager.set_focus_set(entry)
-        entry.focus()
-        entry.set_text("")
-        w.handle_pygame_event(pygame.event.Event(pygame.TEXTINPUT, text=typed))
-        press(w, pygame.K_RETURN)                 # pygame-gui queues UI_TEXT_ENTRY_FINISHED
-        w.resize(pygame.display.set_mode(resize_to))     # (a VIDEORESIZE first in the queue)
-        assert view.panel is not old and view.panel.form.boxes["mass"] is not entry
-        for ev in pygame.event.get():
-            w.handle_pygame_event(ev)
-        frame(w)
+        entry = view.panel.form.boxes["mass"]
+        type_enter(w, entry, typed, resize_to)
+        assert view.panel.form.boxes["mass"] is not entry      # (laid out again: a new box)
         if typed == "abc":
             assert scene.message_error and "not a finite number" in scene.message, scene.message
         else:
@@ -145,25 +146,12 @@ def test_a_setting_typed_before_the_window_is_resized_still_reaches_the_scene(tm
     """The settings panel's number boxes, as the form's above: Enter, then a resize handled
     before pygame-gui's event lays the panel out again; the value typed is still applied."""
     from scenes.cloth import ClothScene
-    monkeypatch.chdir(tmp_path)
-    pygame.display.init()
-    pygame.font.init()
-    w = Window(pygame.display.set_mode((1024, 768)), [ClothScene], screenshot_dir=tmp_path)
-    assert w.open_scene(ClothScene)
+    w = open_window(tmp_path, monkeypatch, ClothScene)
     view, scene = w.scene_view, w.scene
     for typed, resize_to in (("7", (1100, 800)), ("12", (1024, 768))):
-        old = view.panel
-        entry = old.entries["iterations"]
-        view.manager.set_focus_set(entry)
-        entry.focus()
-        entry.set_text("")
-        w.handle_pygame_event(pygame.event.Event(pygame.TEXTINPUT, text=typed))
-        press(w, pygame.K_RETURN)                 # pygame-gui queues UI_TEXT_ENTRY_FINISHED
-        w.resize(pygame.display.set_mode(resize_to))     # (a VIDEORESIZE first in the queue)
-        assert view.panel is not old and view.panel.entries["iterations"] is not entry
-        for ev in pygame.event.get():
-            w.handle_pygame_event(ev)
-        frame(w)
+        entry = view.panel.entries["iterations"]
+        type_enter(w, entry, typed, resize_to)
+        assert view.panel.entries["iterations"] is not entry    # (laid out again: a new box)
         assert scene.p["iterations"] == int(typed)
         assert view.panel.entries["iterations"].get_text() == typed
         assert not view.panel.is_typing()
