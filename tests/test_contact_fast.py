@@ -220,23 +220,90 @@ needs_numba = pytest.mark.skipif(not rods_compiled.available(), reason="numba no
 
 @needs_numba
 def test_the_compiled_self_collision_finds_the_same_pairs_and_moves_the_same():
-    """kernel=numba: the same pairs as the NumPy grid (its own grid, cells self_distance wide:
-    more candidates than the NumPy grid's finer cells), the same positions after the pass (to
-    float32 rounding), and the HUD names it."""
-    for seed, sets in ((0, {"shear"}), (1, {"shear", "bending"})):
+    """kernel=numba: the very pairs of the NumPy grid (the same grid: fine_grid), the same
+    positions after the pass (to float32 rounding), with every particle free and with some
+    pinned or grabbed (their weights read pair by pair), and the HUD names it."""
+    from app.physics import self_compiled
+    from app.physics.cloth_contact import close_ij, joined_table
+    for seed, sets, pinned in ((0, {"shear"}, 0), (1, {"shear", "bending"}, 0),
+                               (2, {"shear"}, 40)):
         a, b = crumpled_cloth(seed), crumpled_cloth(seed)
         for c in (a, b):
             c.set_effects(sets | {"self_collision"})
             c.contact.self_distance = 6.4
+            if pinned:                          # some pinned (w 0), one grabbed (heavier)
+                w = c.w.reshape(-1)
+                w[np.random.default_rng(seed).choice(w.size, pinned, replace=False)] = 0.0
+                w[7] = 0.25
+        i, j, tests = close_ij(a, 6.4, "grid")
+        ci, cj, ctests = self_compiled.find_pairs(*b.x.reshape(2, -1), 6.4, joined_table(b),
+                                                  self_compiled.Buffers(b.x[0].size))
+        assert pair_set(i, j) == pair_set(ci, cj) and len(ci) == len(i) > 1000
+        assert ctests == tests
         b.kernel = "numba"
         self_collide(a, 1 / 60)
         self_collide(b, 1 / 60)
-        assert a.contact.self_pairs == b.contact.self_pairs > 1000
-        assert a.contact.self_tests < b.contact.self_tests
-        assert np.abs(a.x - b.x).max() < 1e-3
+        assert a.contact.self_pairs == b.contact.self_pairs == len(i)
+        moved = np.abs(a.x - crumpled_cloth(seed).x).max()
+        assert moved > 0.5 and np.abs(a.x - b.x).max() < 1e-3
     scene = ClothScene({"rows": 8, "cols": 8, "kernel": "numba", "self_collision": True})
     scene.advance()
     assert "numba kernel (rods, self-collision)" in scene.hud_lines()[0]
+
+
+@needs_numba
+def test_the_compiled_search_finds_exactly_the_pairs_all_pairs_finds():
+    """Random clouds of every kind (spread, one crowd, every point at one place, far from the
+    origin, on a lattice of the cut-off, flat), sizes, cut-offs, precisions and rod tables,
+    with pair arrays too short at first: the compiled search's pairs are all pairs' closer
+    than the cut-off less the joined ones, each once (seeded; the seed is in the message)."""
+    from app.physics import self_compiled
+    rng = np.random.default_rng(2611)
+    for case in range(120):
+        rows, cols = (int(v) for v in rng.choice([1, 2, 3, 7, 16], 2))
+        n = rows * cols
+        cutoff = float(rng.choice([0.01, 1.0, 6.4, 50.0]) * rng.uniform(0.5, 2))
+        kind = case % 6
+        x = [rng.uniform(0, 100, (n, 2)), rng.normal(0, cutoff, (n, 2)),
+             np.repeat(rng.uniform(0, 10, (1, 2)), n, 0), rng.uniform(0, 1e4, (n, 2)) + 1e5,
+             np.round(rng.uniform(0, 50, (n, 2)) / cutoff) * cutoff,
+             rng.uniform(-1e3, 1e3, (n, 2)) * (1, 1e-3)][kind]
+        x = x.astype(np.float32 if case % 2 else np.float64)
+        offsets = {o for o in ((0, 1), (1, 0), (1, 1), (0, 2), (2, 0)) if rng.random() < 0.5}
+        offsets = {(dr, dc) for dr, dc in offsets if dr < rows and dc < cols}
+        w = 2 * cols                                   # cloth_contact.joined_table's numbering
+        reach = (rows - 1) * w + cols - 1
+        table = np.zeros(2 * reach + 1, bool)
+        for dr, dc in offsets:
+            for sr, sc in itertools.product((1, -1), (1, -1)):
+                table[reach + sr * dr * w + sc * dc] = True
+        row, col = np.divmod(np.arange(n), cols)
+        buf = self_compiled.Buffers(n)
+        buf.i, buf.j = buf.i[:case % 3], buf.j[:case % 3]        # grown as the search needs
+        i, j, tests = self_compiled.find_pairs(
+            np.ascontiguousarray(x[:, 0]), np.ascontiguousarray(x[:, 1]), cutoff,
+            (row * w + col + reach, row * w + col, table), buf)
+        bi, bj, _ = all_pairs(x, cutoff)
+        keep = [(abs(int(row[p] - row[q])), abs(int(col[p] - col[q]))) not in offsets
+                for p, q in zip(bi, bj)]
+        expected = pair_set(bi[keep], bj[keep]) if len(bi) else set()
+        assert pair_set(i, j) == expected and len(i) == len(expected), (2611, case)
+        assert np.all(i != j) and tests >= len(i), (2611, case)
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+def test_self_collision_on_a_cloth_gone_non_finite_leaves_it_to_the_runner(kernel):
+    """A NaN or an inf in the cloth: self-collision finds no pair (before, the grid's box made
+    a ValueError that ended the step); the scene reports the state non-finite."""
+    if kernel == "numba" and not rods_compiled.available():
+        pytest.skip("numba not installed")
+    for bad in (np.nan, np.inf):
+        scene = ClothScene({"rows": 8, "cols": 8, "self_collision": True, "kernel": kernel})
+        scene.advance()
+        scene.cloth.x[0, 3, 3] = bad
+        with np.errstate(invalid="ignore", over="ignore"):
+            scene.advance()
+        assert not scene.is_finite()
 
 
 def test_the_benchs_hanging_state_is_one_a_drag_leaves():

@@ -84,8 +84,11 @@ no faster), fewer cells per particle (more candidates), blocks over 8,192 candid
 number in the sweeps (4 % faster: not worth plainer code), the candidates as running sums of
 their steps (np.cumsum) instead of np.repeat (15 % faster alone, 0-5 % inside the step: after
 the step's own work the search waits on memory, whichever way it is written). The compiled
-pass (kernel=numba, optional, app/physics/self_compiled.py: the same pairs, searched every
-substep, no list) visits each candidate once: 0.73 x the step in the same runs.
+pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid and pairs, searched
+every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
+with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like
+it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
+met either (bench of 2026-11-27, load 1.1).
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
@@ -100,7 +103,7 @@ from typing import Callable
 
 import numpy as np
 
-from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs, grid_shape
+from app.physics.neighbours import Scratch, all_pair_blocks, fine_pairs
 from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
 from app.physics.cloth_obstacles import Touched, may_touch, settle_corners, tunnel_and_project
@@ -119,7 +122,6 @@ SELF_DISTANCE = 0.8    # default minimum distance between particles, in rod leng
 SELF_METHODS = ("grid", "all_pairs")
 OVER_RELAX = 1.5       # Jacobi's averaged corrections times this (successive over-relaxation):
                        # a layer resting on another is held at 0.98 of self_distance, not 0.955
-MAX_CELLS = 400        # at most this many grid cells across (a flung cloth: cells grow instead)
 # rod offsets (|dr|, |dc|) of each set: such pairs are joined by a rod, never pushed apart
 ROD_OFFSETS = {"structural": ((0, 1), (1, 0)), "shear": ((1, 1),), "bending": ((0, 2), (2, 0))}
 
@@ -247,19 +249,12 @@ def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, i
             j.compress(keep, out=scratch.get("pair_j", k, np.intp)), tests)
 
 
-def _grid_frame(pts: np.ndarray, distance: float) -> tuple[np.ndarray, tuple, float]:
-    """(lo, box, cell): the grid's corner, its size (w, h) and the least cell size: the cloth's
-    own box, cells `distance` wide (bigger for a flung cloth: at most MAX_CELLS across)."""
-    lo = pts.min(0)
-    box = tuple(np.maximum(pts.max(0) - lo, distance) * (1 + 1e-6) + 1e-6)
-    return lo, box, max(distance, max(box) / MAX_CELLS)
-
-
-def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
-    """True where particles i and j are never pushed apart: a cell's sides and diagonals (|dr|,
-    |dc| <= 1) or a rod of an active set. Each particle carries the number row * W + col with
-    W = 2 cols, so k_j - k_i = dr W + dc tells (dr, dc) apart (|dc| < cols < W / 2) and one
-    table read per pair answers; it replaces `(|row_i - row_j|, |col_i - col_j|) in joined`."""
+def joined_table(c) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(plus, minus, table): pair (i, j) is never pushed apart (a cell's sides and diagonals,
+    |dr|, |dc| <= 1, or a rod of an active set) where table[plus[j] - minus[i]] is True. Each
+    particle carries the number row * W + col with W = 2 cols, so k_j - k_i = dr W + dc tells
+    (dr, dc) apart (|dc| < cols) and one table read per pair answers; it replaces
+    `(|row_i - row_j|, |col_i - col_j|) in joined`. Made again when the rod sets change."""
     key = (c.rows, c.cols, tuple(rs.name for rs in c.active_sets))
     st = c.contact
     if st.joined_key != key:
@@ -277,10 +272,16 @@ def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
                 for sc in (1, -1):
                     table[reach + sr * dr * w + sc * dc] = True
         st.joined_key, st.joined_at = key, (row * w + col + reach, row * w + col, table)
-    plus, minus, table = st.joined_at
-    k = np.take(plus, j, out=st.scratch.get("joined_k", j.size, np.intp), mode="wrap")
+    return st.joined_at
+
+
+def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """True where particles i and j are never pushed apart (joined_table), pair by pair."""
+    plus, minus, table = joined_table(c)
+    scratch = c.contact.scratch
+    k = np.take(plus, j, out=scratch.get("joined_k", j.size, np.intp), mode="wrap")
     k -= minus.take(i)
-    return np.take(table, k, out=st.scratch.get("joined", j.size, bool), mode="wrap")
+    return np.take(table, k, out=scratch.get("joined", j.size, bool), mode="wrap")
 
 
 def self_collide(c, h: float) -> None:
@@ -379,26 +380,17 @@ def _self_collide_compiled(c) -> None:
     dmin, n = st.self_distance, x.shape[1]
     if st.compiled is None or st.compiled.count.size != n:
         st.compiled = self_compiled.Buffers(n)
-    lo, box, cell = _grid_frame(_points(c.x), dmin)
-    nx, ny = grid_shape(box, cell)
-    frame = (lo[0], lo[1], nx / box[0], ny / box[1], nx, ny)
-    key = tuple(rs.name for rs in c.active_sets)
-    if st.compiled.joined_key != key:                   # (|dr|, |dc|) capped at 3: joined?
-        table = np.zeros((4, 4), bool)
-        for dr, dc in {(0, 1), (1, 0), (1, 1)} | {o for name in key for o in ROD_OFFSETS[name]}:
-            table[dr, dc] = True
-        st.compiled.joined_key, st.compiled.joined = key, table.ravel()
-    i, j, st.self_tests = self_compiled.find_pairs(x[0], x[1], frame, dmin, c.cols,
-                                                   st.compiled.joined, st.compiled)
+    i, j, st.self_tests = self_compiled.find_pairs(x[0], x[1], dmin, joined_table(c),
+                                                   st.compiled)
     st.self_pairs = len(i)
     if len(i) == 0:
         return
-    floor_too = "collisions" in c.on and st.obstacles
-    movable, w = c.free.ravel() > 0, c.w.ravel()
-    for sweep in range(SELF_SWEEPS):
-        if floor_too:                                   # as in self_collide
-            project(st.obstacles, x.T, st.margin, movable)
-        self_compiled.push_apart(x[0], x[1], i, j, w, dmin, OVER_RELAX, sweep, st.compiled)
+    between = None
+    if "collisions" in c.on and st.obstacles:          # as in self_collide
+        movable = c.free.ravel() > 0
+        between = lambda: project(st.obstacles, x.T, st.margin, movable)    # noqa: E731
+    self_compiled.push_apart(x[0], x[1], i, j, c.w.ravel(), dmin, OVER_RELAX, SELF_SWEEPS,
+                             between, st.compiled)
 
 
 def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERLAP_SLACK) -> int:

@@ -285,6 +285,26 @@ class Scratch:
         return a[:size]
 
 
+def fine_grid(xs: np.ndarray, ys: np.ndarray, cutoff: float) -> tuple | None:
+    """fine_pairs's grid over the points' own box: (lo_x, lo_y, cell_w, cell_h, nx, ny, reach),
+    the box's corner, the cells' size, how many across and down, and fine_stencil's reach (the
+    compiled self-collision, app/physics/self_compiled.py, searches the same grid); None if a
+    point is not finite (no pair is closer than the cut-off to a NaN; the runner reports it)."""
+    lo_x, lo_y = float(xs.min()), float(ys.min())
+    w, h = float(xs.max()) - lo_x, float(ys.max()) - lo_y
+    if not (math.isfinite(w) and math.isfinite(h)):
+        return None
+    # (a hair over R/8 and R/2: a pair's cells are then at most 8 columns and 2 rows apart with
+    # SLACK to spare, where exactly R/8 would need a 9th column and a 3rd row for the slack)
+    cell_w = cutoff / (FINE_CELLS[0] - 2 * SLACK)
+    cell_h = cutoff / (FINE_CELLS[1] * (1 - 2 * SLACK))
+    grow = math.sqrt((w / cell_w + 1) * (h / cell_h + 3) / (CELLS_PER_PARTICLE * xs.size))
+    if grow > 1:
+        cell_w, cell_h = cell_w * grow, cell_h * grow
+    reach = fine_stencil(cutoff, cell_w, cell_h)
+    return lo_x, lo_y, cell_w, cell_h, int(w / cell_w) + 1, int(h / cell_h) + 1, reach
+
+
 def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch | None = None
                ) -> tuple[np.ndarray, np.ndarray, int]:
     """Every pair with |x_j - x_i| < cutoff (each once, i != j), found with the finer cells
@@ -292,18 +312,11 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     candidates block by block. i and j are work arrays of `scratch`: valid until its next use."""
     scratch = scratch if scratch is not None else Scratch()
     n = xs.size
-    lo_x, lo_y = float(xs.min()), float(ys.min())
-    w, h = float(xs.max()) - lo_x, float(ys.max()) - lo_y
-    # (a hair over R/8 and R/2: a pair's cells are then at most 8 columns and 2 rows apart with
-    # SLACK to spare, where exactly R/8 would need a 9th column and a 3rd row for the slack)
-    cell_w = cutoff / (FINE_CELLS[0] - 2 * SLACK)
-    cell_h = cutoff / (FINE_CELLS[1] * (1 - 2 * SLACK))
-    grow = math.sqrt((w / cell_w + 1) * (h / cell_h + 3) / (CELLS_PER_PARTICLE * n))
-    if grow > 1:
-        cell_w, cell_h = cell_w * grow, cell_h * grow
-    reach = fine_stencil(cutoff, cell_w, cell_h)
+    grid = fine_grid(xs, ys, cutoff)
+    if grid is None:
+        return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
+    lo_x, lo_y, cell_w, cell_h, nx, ny, reach = grid
     below = len(reach) - 1
-    nx, ny = int(w / cell_w) + 1, int(h / cell_h) + 1
     # an empty border as wide as the stencil on either side and as many empty rows below: every
     # stencil cell of every particle exists, in its own row, with no clipping
     pad = max(reach)
@@ -394,4 +407,5 @@ def expected_grid_tests(n: int, cutoff: float, box: tuple[float, float]) -> floa
 
 __all__ = ["NEIGHBOUR_METHODS", "PairBlock", "CellList", "all_pairs", "all_pair_blocks",
            "grid_pairs", "grid_pair_blocks", "sort_into_cells", "crowded_share", "find_pairs",
-           "all_pair_tests", "grid_shape", "expected_grid_tests", "fine_pairs", "Scratch"]
+           "all_pair_tests", "grid_shape", "expected_grid_tests", "fine_pairs", "fine_grid",
+           "Scratch"]

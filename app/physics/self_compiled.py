@@ -2,17 +2,26 @@
 when the cloth's `kernel` is "numba" (the rods' option, app/physics/rods_compiled.py; off by
 default, named in the HUD). The physics is the NumPy pass's, written per pair (the slide's loop):
 
-    find the pairs closer than self_distance (a grid of cells at least that wide, each pair
-    once: a particle's own cell after it and 4 of its 8 neighbours, the half stencil), leaving
-    out pairs joined by a rod of an active set or a cell's sides and diagonals;
+    find the pairs closer than self_distance on the NumPy pass's own grid (fine_pairs's cells,
+    R/8 wide and R/2 high, and its stencil: app/physics/neighbours.py, fine_grid), each pair
+    once, leaving out pairs joined by a rod of an active set or a cell's sides and diagonals
+    (the same table: cloth_contact.joined_table);
     SELF_SWEEPS times: every pair pushed apart to self_distance, each end by its share
     w / (w_i + w_j), every particle moved by the average of its pairs' pushes x OVER_RELAX.
 
-Why: the NumPy pass costs about 25 array operations per candidate pair and per pair found (sort,
-runs of candidates, distances, the rod table, gathers, bincounts); on a crumpled 64 x 64 cloth
-(some 65,000 candidates, 15,000 pairs) that is about twice the whole step without it, however
-the operations are fused (`python -m app bench cloth`). A compiled loop visits each candidate
-once, in registers. The pairs are the same; positions agree with the NumPy pass to rounding.
+Why: the NumPy pass costs a dozen array operations per candidate pair and as many per pair
+found (sort, runs of candidates, distances, the rod table, gathers, bincounts), each a pass over
+memory. A compiled loop visits each candidate once, in registers. The pairs are the same (a test
+compares them, and with all pairs on random clouds); positions agree to rounding.
+
+What it costs, like with like (`python -m app bench cloth`: the pass beside the compiled step,
+which kernel=numba also makes shorter: 0.35 ms, not NumPy's 0.89): on the crumpled 64 x 64
+cloth 1.33 times that step, 0.42 times hanging (2026-11-27, load 1.1); 1.6 times crumpled with
+cells R wide and a search that counted its candidates before listing them (41,342 candidates
+for 24,845 now; the search 0.46 -> 0.28 ms, the sweeps 0.19 -> 0.15 ms, load ~1.5). Tried and
+not kept: a branch per candidate instead of writing every candidate and counting the close ones
+(1.2 x slower on the falling cloth: half the candidates are close, the branch guesses wrong),
+32-bit work arrays, cells R/8 x R or R x R (the same time within the noise).
 """
 
 from __future__ import annotations
@@ -20,96 +29,109 @@ from __future__ import annotations
 import numpy as np
 
 from app.ctrl_c import compiled
+from app.physics.neighbours import fine_grid
 
 
-def _find_pairs(xs, ys, lo_x, lo_y, scale_x, scale_y, nx, ny, r2_max, row, col, joined,
-                out_i, out_j):     # compiled by numba on first use
-    """(pairs found, candidate tests): pairs closer than sqrt(r2_max) into out_i, out_j; if
-    they have fewer than tests + 1 places, nothing is searched and found is -1 (the caller
-    grows them and asks again). row, col: each particle's place in the cloth's grid."""
+def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus, minus, joined,
+                cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # compiled on use
+    """(pairs found, candidate tests): the pairs closer than sqrt(r2_max) on fine_pairs's grid
+    (cells cell_w x cell_h from (lo_x, lo_y), nx x ny of them, the stencil's reach per row),
+    not joined, into out_i, out_j; found is -1 if those are too short (the caller grows them and
+    asks again). Pair (p, q) is joined where joined[plus[q] - minus[p]] (cloth_contact's
+    joined_table); the rest: work arrays."""
     n = xs.size
-    cell = np.empty(n, np.int64)
-    cell_x = np.empty(n, np.int64)
-    cell_y = np.empty(n, np.int64)
-    count = np.zeros(nx * ny + 1, np.int64)
+    pad = 0
+    for r in range(reach.size):
+        pad = max(pad, reach[r])
+    below = reach.size - 1
+    columns = nx + 2 * pad          # empty borders: every stencil cell exists, no clipping
+    cells = columns * (ny + below)
+    for c in range(cells + 2):
+        start[c] = 0
     for p in range(n):                                  # 1. each particle's cell
-        cell_x[p] = min(max(int(np.floor((xs[p] - lo_x) * scale_x)), 0), nx - 1)
-        cell_y[p] = min(max(int(np.floor((ys[p] - lo_y) * scale_y)), 0), ny - 1)
-        cell[p] = cell_y[p] * nx + cell_x[p]
-        count[cell[p] + 1] += 1
-    for c in range(nx * ny):                            # 2. sorted by cell (a counting sort)
-        count[c + 1] += count[c]
-    start = count[:-1].copy()
-    fill = start.copy()
-    order = np.empty(n, np.int64)                       # sorted copies: a cell's particles
-    sx, sy = np.empty_like(xs), np.empty_like(ys)       # side by side in memory
-    s_row, s_col = np.empty_like(row), np.empty_like(col)
-    for p in range(n):
-        k = fill[cell[p]]
-        order[k], sx[k], sy[k], s_row[k], s_col[k] = p, xs[p], ys[p], row[p], col[p]
-        fill[cell[p]] += 1
-    # 3. candidates, the half stencil: the rest of its own cell, the cell to its right, the
-    # three below; first only counted (the output must hold them all: see below)
-    first = np.empty((n, 5), np.int64)
-    last = np.empty((n, 5), np.int64)
-    tests = 0
-    for k in range(n):
-        p = order[k]
-        cx, cy = cell_x[p], cell_y[p]
-        first[k, 0], last[k, 0] = k + 1, count[cell[p] + 1]
-        for oc in range(1, 5):
-            ox, oy = (1, 0) if oc == 1 else (oc - 3, 1)   # right; below-left, below, right
-            qx, qy = cx + ox, cy + oy
-            if qx < 0 or qx >= nx or qy >= ny:
-                first[k, oc] = last[k, oc] = 0
-            else:
-                first[k, oc], last[k, oc] = start[qy * nx + qx], count[qy * nx + qx + 1]
-        for oc in range(5):
-            tests += last[k, oc] - first[k, oc]
-    if out_i.size < tests + 1:
-        return -1, tests
-    # every candidate is written and `found` steps on only for a close pair that no rod joins:
-    # no branch to mispredict (half the candidates are close: an `if` cost more than the test)
+        cx = max(min(int((xs[p] - lo_x) / cell_w), nx - 1), 0)     # (clamped: no write
+        cy = max(min(int((ys[p] - lo_y) / cell_h), ny - 1), 0)     # outside the arrays)
+        cell[p] = cy * columns + cx + pad
+        start[cell[p] + 1] += 1
+    for c in range(1, cells + 1):                       # 2. sorted by cell (a counting sort):
+        start[c] += start[c - 1]                        # start[c + 1]: where cell c ends
+    start[cells + 1] = n
+    for p in range(n - 1, -1, -1):                      # (filled from the end: each cell's
+        c = cell[p]                                     # particles in index order; then
+        k = start[c + 1] - 1                            # start[c + 1] is where cell c begins,
+        start[c + 1] = k                                # start[c + 2] where it ends)
+        order[k], sx[k], sy[k], s_cell[k], s_plus[k] = p, xs[p], ys[p], c, plus[p]
+    # 3. each particle's runs: the rest of its own row's reach, then each row below
     found = 0
+    tests = 0
+    cap = out_i.size
     for k in range(n):
-        p, px, py, pr, pc = order[k], sx[k], sy[k], s_row[k], s_col[k]
-        for oc in range(5):
-            for s in range(first[k, oc], last[k, oc]):
-                dx, dy = sx[s] - px, sy[s] - py
-                dr, dc = min(abs(pr - s_row[s]), 3), min(abs(pc - s_col[s]), 3)
-                out_i[found], out_j[found] = p, order[s]
-                found += (dx * dx + dy * dy < r2_max) & ~joined[dr * 4 + dc]
+        c, p, px, py = s_cell[k], order[k], sx[k], sy[k]
+        pk = minus[p]
+        for r in range(below + 1):
+            if r == 0:
+                lo, hi = k + 1, start[c + reach[0] + 2]
+            else:
+                lo, hi = start[c + r * columns - reach[r] + 1], start[c + r * columns + reach[r] + 2]
+            tests += hi - lo
+            if found + hi - lo > cap:
+                return -1, tests
+            # every candidate is written, and `found` steps on only for a close pair no rod
+            # joins: no branch to mispredict (a third to a half of the candidates are close)
+            for q in range(lo, hi):
+                dx, dy = sx[q] - px, sy[q] - py
+                out_i[found], out_j[found] = p, order[q]
+                found += (dx * dx + dy * dy < r2_max) & ~joined[s_plus[q] - pk]
     return found, tests
 
 
-def _push_apart(xs, ys, i, j, w, dmin, over_relax, sweeps_done, moved_x, moved_y, count):
-    """One Jacobi sweep over the pairs (count: pairs per particle, filled on the first)."""
+def _shares(i, j, w, over_relax, count, scale):
+    """Before the sweeps: each particle's scale = over_relax / its pairs (Jacobi's average,
+    over-relaxed; pairs with both ends pinned left out); True if every particle is free with
+    the same weight (nothing pinned or grabbed: every share is 1/2, no weights to read)."""
+    n, m = w.size, i.size
+    even = w[0] > 0
+    for p in range(n):
+        count[p] = 0
+        even = even and w[p] == w[0]
+    for k in range(m):
+        a, b = i[k], j[k]
+        if even or w[a] + w[b] > 0:
+            count[a] += 1
+            count[b] += 1
+    for p in range(n):
+        scale[p] = over_relax / count[p] if count[p] > 0 else 0.0
+    return even
+
+
+def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
+    """One Jacobi sweep over the pairs: every pair pushed apart to dmin, each end by its share
+    w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale."""
     n, m = xs.size, i.size
     for p in range(n):
         moved_x[p] = 0.0
         moved_y[p] = 0.0
+    share_a = share_b = 0.5
     for k in range(m):
         a, b = i[k], j[k]
-        total = w[a] + w[b]
-        if total <= 0:
-            continue                                    # both pinned: neither moves
-        if sweeps_done == 0:
-            count[a] += 1
-            count[b] += 1
+        if not even:
+            total = w[a] + w[b]
+            if total <= 0:
+                continue                                # both pinned: neither moves
+            share_a, share_b = w[a] / total, w[b] / total
         dx, dy = xs[b] - xs[a], ys[b] - ys[a]
         r = np.sqrt(dx * dx + dy * dy)
         if r < 1e-6 * dmin:                             # at one point: part them along x
             dx, r = 1.0, 1.0
-        push = max(dmin - r, 0.0) / (r * total)         # the overlap per unit of d, / total
+        push = max(dmin - r, 0.0) / r                   # the overlap per unit of d
         mx, my = dx * push, dy * push
-        moved_x[b] += mx * w[b]                         # each end its share w / (w_a + w_b)
-        moved_y[b] += my * w[b]
-        moved_x[a] -= mx * w[a]
-        moved_y[a] -= my * w[a]
+        moved_x[b] += mx * share_b
+        moved_y[b] += my * share_b
+        moved_x[a] -= mx * share_a
+        moved_y[a] -= my * share_a
     for p in range(n):
-        if count[p] > 0:
-            xs[p] += moved_x[p] * (over_relax / count[p])
-            ys[p] += moved_y[p] * (over_relax / count[p])
+        xs[p] += moved_x[p] * scale[p]
+        ys[p] += moved_y[p] * scale[p]
 
 
 def _jit(fn):
@@ -122,45 +144,62 @@ def _jit(fn):
 
 _find = _jit(_find_pairs)
 _push = _jit(_push_apart)
+_share = _jit(_shares)
 
 
 class Buffers:
     """What the compiled pass keeps between steps: the pair arrays (grown when a step finds
-    more pairs than they hold) and the per-particle sums."""
+    more pairs than they hold), the search's work arrays and the per-particle sums."""
 
     def __init__(self, n: int):
-        self.i = np.empty(4 * n, np.int64)
-        self.j = np.empty(4 * n, np.int64)
+        self.i = np.empty(8 * n, np.int64)
+        self.j = np.empty(8 * n, np.int64)
         self.moved_x = np.empty(n)
         self.moved_y = np.empty(n)
         self.count = np.zeros(n, np.int64)
-        self.row = self.col = np.zeros(0, np.int64)     # each particle's (row, column)
-        self.cols = 0
-        self.joined_key: tuple | None = None            # the rod sets `joined` was made for
-        self.joined = np.zeros(16, bool)
+        self.scale = np.zeros(n)
+        self.cell = np.empty(n, np.int64)
+        self.order = np.empty(n, np.int64)
+        self.s_cell = np.empty(n, np.int64)
+        self.s_plus = np.empty(n, np.int64)
+        self.start = np.empty(0, np.int64)              # per cell (grown with the grid)
+        self.sorted: dict = {}                          # positions in cell order, by dtype
 
 
-def find_pairs(xs, ys, grid, distance: float, cols: int, joined: np.ndarray,
-               buf: Buffers) -> tuple[np.ndarray, np.ndarray, int]:
-    """(i, j, tests): the pairs closer than `distance`, not joined (joined: the (16,) table,
-    (|dr|, |dc|) capped at 3), on the grid (lo_x, lo_y, nx / width, ny / height, nx, ny)."""
-    lo_x, lo_y, sx, sy, nx, ny = grid
-    if buf.row.size != xs.size or buf.cols != cols:
-        buf.row, buf.col = np.divmod(np.arange(xs.size), cols)
-        buf.cols = cols
-    args = (xs, ys, xs.dtype.type(lo_x), ys.dtype.type(lo_y), xs.dtype.type(sx),
-            ys.dtype.type(sy), nx, ny, xs.dtype.type(distance) ** 2, buf.row, buf.col, joined)
+def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
+               ) -> tuple[np.ndarray, np.ndarray, int]:
+    """(i, j, tests): the pairs closer than `distance` that are not joined (joined: cloth_contact's
+    joined_table, (plus, minus, table)), on fine_pairs's grid (app/physics/neighbours.py)."""
+    n = xs.size
+    grid = fine_grid(xs, ys, distance)
+    if grid is None:                                    # a point not finite: the runner says so
+        return buf.i[:0], buf.j[:0], 0
+    lo_x, lo_y, cell_w, cell_h, nx, ny, reach = grid
+    pad, below = max(reach), len(reach) - 1
+    cells = (nx + 2 * pad) * (ny + below)
+    if buf.start.size < cells + 2:
+        buf.start = np.empty(cells + 2 + cells // 2, np.int64)
+    sx, sy = buf.sorted.get(xs.dtype, (None, None))
+    if sx is None or sx.size != n:
+        sx, sy = buf.sorted[xs.dtype] = np.empty_like(xs), np.empty_like(ys)
+    real = np.result_type(xs, ys, np.float32)           # fine_pairs's rounding: the same pairs
+    args = (xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, np.asarray(reach, np.int64),
+            real.type(distance * distance), *joined, buf.cell, buf.start, buf.order, sx, sy,
+            buf.s_cell, buf.s_plus)
     found, tests = _find(*args, buf.i, buf.j)
-    if found < 0:                                       # more than ever before: grow, again
-        buf.i, buf.j = np.empty(2 * tests + 1, np.int64), np.empty(2 * tests + 1, np.int64)
+    while found < 0:                        # more than ever before (tests: those seen until
+        size = 2 * max(tests, buf.i.size)   # the arrays were full): grow, search again
+        buf.i, buf.j = np.empty(size, np.int64), np.empty(size, np.int64)
         found, tests = _find(*args, buf.i, buf.j)
     return buf.i[:found], buf.j[:found], tests
 
 
-def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweep: int,
+def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, between,
                buf: Buffers) -> None:
-    """One sweep of self-collision's Jacobi projection, in place on xs, ys."""
-    if sweep == 0:
-        buf.count[:] = 0
-    _push(xs, ys, i, j, w, float(dmin), float(over_relax), sweep, buf.moved_x, buf.moved_y,
-         buf.count)
+    """`sweeps` sweeps of self-collision's Jacobi projection over the pairs (i, j), in place on
+    xs, ys, calling between() before each (the obstacles' projection, or None)."""
+    even = _share(i, j, w, float(over_relax), buf.count, buf.scale)
+    for _ in range(sweeps):
+        if between is not None:
+            between()
+        _push(xs, ys, i, j, w, float(dmin), even, buf.scale, buf.moved_x, buf.moved_y)
