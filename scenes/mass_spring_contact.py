@@ -28,8 +28,8 @@ from app.physics.spring_forces import Timed
 from app.scene import Effect, InputEvent, Param, Try, Unit
 from scenes.cloth_contact import BOX_ANGLE, MU, OBSTACLE_SETS, obstacle_layout
 
-# kg/s^2: the cards' cotton strip's lightest particle (a corner, 0.029 kg) has the contact limit
-# 2 sqrt(m/k_c) = 20 ms at this stiffness, above the default step of 16.7 ms
+# kg/s^2: the cards' cotton strip's lightest particle (a corner, 0.028 kg) has the contact limit
+# 2 sqrt(m/k_c) = 19 ms at this stiffness, above the default step of 16.7 ms
 PENALTY_K = 300.0
 
 MS_CONTACT_PARAMS = (
@@ -64,7 +64,7 @@ MS_CONTACT_TRIES = (
         "gives the contact's step limit 2 sqrt(m/k_c)"),
     Try("Penalty past its limit", {"obstacles": "ball", **STRIP, "cols": 60,
                                    "contact": "penalty", "contact_stiffness": 1e4},
-        "k_c = 1e4: the contact's limit (3.4 ms for the strip's corners) is far below h = "
+        "k_c = 1e4: the contact's limit (3.3 ms for the strip's corners) is far below h = "
         "16.7 ms: where the strip lands it is thrown off, fast, even with implicit Euler"),
     Try("Pull the tablecloth", {"obstacles": "table", **STRIP, "cols": 64},
         "the cloth settles on the table; grab an end (LMB) and pull: friction holds it back"),

@@ -181,3 +181,27 @@ def test_the_energy_bars_add_up_to_the_state_and_account_for_what_went():
     assert sum(removed.values()) + e.other == pytest.approx(e.lost, rel=1e-9)
     assert removed["drag"] > 0 and removed["coupling"] > 0 > removed["rods"]
     assert abs(e.other) < 0.02 * e.start      # no floor yet: pymunk's integration only
+
+
+def test_the_lesson_plan_quotes_the_first_bounce_as_measured():
+    """docs/instructors.md: "the band catches it at A px/s and throws it back up at B px/s (the
+    first bounce, default settings)": A is the ball's speed in the first step it touches the
+    band, B its speed in the last one (it said 615 px/s, the speed six steps before contact)."""
+    import re
+    from pathlib import Path
+    text = " ".join((Path(__file__).parents[1] / "docs" / "instructors.md").read_text().split())
+    m = re.search(r"catches it at ([0-9,]+) px/s and throws it back up at ([0-9,]+) px/s", text)
+    assert m, "the sentence is gone: update this test"
+    caught, thrown = (float(g.replace(",", "")) for g in m.groups())
+    scene = TrampolineScene({})
+    first = last = None
+    for _ in range(120):
+        scene.advance()
+        m_ = scene.metrics()
+        if m_["contacts"]:
+            first = m_["body_vy"] if first is None else first
+            last = m_["body_vy"]
+        elif first is not None:
+            break
+    assert abs(first - caught) <= 0.02 * caught, (first, caught)
+    assert abs(-last - thrown) <= 0.02 * thrown, (last, thrown)
