@@ -10,7 +10,8 @@ this in.
   penalty     a stiff spring k_c = contact_stiffness pushes it out: a force every integrator
               sees, which raises the cloth's highest frequency (k_c/m on that particle) and so
               lowers the step limit: the HUD gives the contact's own limit 2 sqrt(m/k_c) beside
-              h, and the bound on the whole cloth's, 2/sqrt(omega_max^2 + k_c/m).
+              h, and the bound on the whole cloth's, 2/sqrt(omega_max^2 + k_c/m), undamped (the
+              spring damping lowers it: at the defaults the strip blows up at half of it).
 The mouse: LMB pressed inside an obstacle drags it (its motion is its velocity, so friction
 carries what rests on it); anywhere else it grabs a particle as before.
 """
@@ -214,7 +215,7 @@ class MassSpringContact:
         verdict = "below it" if h < own else "past it: unstable in contact"
         return [f"contact: penalty k_c {self.p['contact_stiffness']:g} kg/s^2  |  {fr}: "
                 f"{m['contacts']} touching, deepest {deep}",
-                f"its limit 2 sqrt(m/k_c) = {own * 1e3:.3g} ms  |  cloth and contact: >= "
+                f"its limit 2 sqrt(m/k_c) = {own * 1e3:.3g} ms  |  cloth and contact, undamped: >= "
                 f"{bound * 1e3:.3g} ms; h = {h * 1e3:.3g} ms, {verdict}"]
 
     def contact_bounds(self, bounds):
