@@ -7,7 +7,7 @@ Obstacle sets (`obstacles`), placed below the cloth as built (the cloth drapes o
 falls, pins=none, or once you drag it or them together):
   ball    a ball                         box    a box tilted by `box_angle` degrees
   table   a table top on two legs (thin rods), on a floor
-  floor   the floor                      bar    a thin bar (2 px) far below: tunnelling
+  floor   the floor                      bar    a thin bar (4 px thick) far below: tunnelling
 Starts (`start`): flat (the grid), folded (a strip folded once onto itself: the self-collision
 card), crumpled (the grid squeezed to a third and jittered: a crumpled cloth let go).
 
@@ -35,7 +35,7 @@ OBSTACLE_SETS = ("none", "ball", "box", "table", "floor", "bar")
 STARTS = ("flat", "folded", "crumpled")
 MU = 0.5                       # Coulomb coefficient: holds a cloth on a slope up to atan(0.5) = 27 deg
 BOX_ANGLE = 20.0               # degrees
-BAR_THICKNESS = 2.0            # px: the thin bar that fast particles would tunnel through
+BAR_THICKNESS = 2.0            # px each side of its line (4 px thick): where fast particles tunnel
 
 CONTACT_PARAMS = (
     Param("obstacles", "none", str, choices=OBSTACLE_SETS,
