@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from app.physics.cloth_contact import SELF_DISTANCE, SELF_METHODS, self_overlaps
+from app.physics.cloth_contact import OVERLAP_SLACK, SELF_DISTANCE, SELF_METHODS, self_overlaps
 from app.physics.obstacles import (Box, Circle, HalfPlane, Obstacle, Segment, floor,
                                    obstacle_at, penetration_max)
 from app.scene import Effect, InputEvent, Param, Unit
@@ -239,7 +239,8 @@ class ClothContact:
             listed = (f"; list reused {lst.reuses}, built {lst.builds}"
                       if st.self_method == "grid" and self.cloth.kernel == "numpy" else "")
             lines.append(f"self-collision ({st.self_method}): {st.self_pairs} pairs pushed; "
-                         f"{m['self_overlaps']} still closer than {self.p['self_distance']:g} "
+                         f"{m['self_overlaps']} still closer than "
+                         f"{100 * (1 - OVERLAP_SLACK):.0f}% of {self.p['self_distance']:g} "
                          f"rods{listed}")       # ('; ': where a row may break, app/draw/wrap.py)
         return lines
 
