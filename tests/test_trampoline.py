@@ -155,6 +155,21 @@ def test_heavy_ball_comparison_says_what_happens():
     assert stiff.body.position.y > stiff.cloth.x[1].max() + 30    # through the band
 
 
+def test_the_stiff_band_lets_the_ball_through_by_opening_one_rod():
+    """At 20 iterations the ball does not pass because the rods hold: it pushes two particles
+    apart until the rod between them is as long as the ball is wide (60 px against 16: 273%
+    stretched), then slips between them. The cards said 'the rods cannot stretch' / 'hold'."""
+    card = next(t for t in TrampolineScene.comparisons if t.label == "Heavy ball: soft vs stiff")
+    stiff = TrampolineScene({**card.settings, **card.compare[1]})
+    stretch = 0.0
+    for _ in range(70):
+        stiff.advance()
+        stretch = max(stretch, stiff.metrics()["max_stretch"])
+    assert stretch > 2.0 and stiff.body.position.y > stiff.cloth.x[1].max()
+    texts = [t.watch for t in TrampolineScene.tries + TrampolineScene.comparisons]
+    assert not any("rods cannot stretch" in w or "rods hold" in w for w in texts)
+
+
 def test_the_energy_bars_add_up_to_the_state_and_account_for_what_went():
     """The bars' parts recomputed here from the body and the particles; what drag, rods and
     coupling took out plus the rest is all that was lost; drag only takes, and the catch is
