@@ -38,10 +38,11 @@ Watch it:   python -m app --scene exercise:collisions   (your rope left, the lab
 
 What the grader measures: particles inside end on the surface and report how far they moved;
 particles outside, exactly on the surface and pinned ones do not move; a particle at the
-centre leaves through the top; friction stops a slow slide (static), slows a fast one by exactly
-mu * depth (kinetic) without reversing it or touching the normal travel, and leaves particles
-that did not touch alone; x_prev, w, center and depth are not changed. Then random circles and
-particles (seeded: the seed is printed, --seed N repeats it): any centre and radius, 1 to 60
+centre leaves through the top; friction stops a slow slide (static, however shallow the
+contact), slows a fast one by exactly mu * depth (kinetic) without reversing it or touching the
+normal travel, and leaves particles that did not touch alone; x_prev, w, center and depth are
+not changed. Then random circles and particles (seeded: the seed is printed, --seed N repeats
+it): any centre and radius, 1 to 60
 particles inside, on, outside and at the centre, pinned ones, any travel and any mu,
 compared with the lab's answer (app/physics/circle_contact.py) within float64 rounding. The
 depth you return is checked against how far the grader sees each particle move.

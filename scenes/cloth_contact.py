@@ -7,7 +7,7 @@ Obstacle sets (`obstacles`), placed below the cloth as built (the cloth drapes o
 falls, pins=none, or once you drag it or them together):
   ball    a ball                         box    a box tilted by `box_angle` degrees
   table   a table top on two legs (thin rods), on a floor
-  floor   the floor                      bar    a thin bar (2 px) far below: tunnelling
+  floor   the floor                      bar    a thin bar (4 px thick) far below: tunnelling
 Starts (`start`): flat (the grid), folded (a strip folded once onto itself: the self-collision
 card), crumpled (the grid squeezed to a third and jittered: a crumpled cloth let go).
 
@@ -26,7 +26,7 @@ import math
 
 import numpy as np
 
-from app.physics.cloth_contact import SELF_DISTANCE, SELF_METHODS, self_overlaps
+from app.physics.cloth_contact import OVERLAP_SLACK, SELF_DISTANCE, SELF_METHODS, self_overlaps
 from app.physics.obstacles import (Box, Circle, HalfPlane, Obstacle, Segment, floor,
                                    obstacle_at, penetration_max)
 from app.scene import Effect, InputEvent, Param, Unit
@@ -35,7 +35,7 @@ OBSTACLE_SETS = ("none", "ball", "box", "table", "floor", "bar")
 STARTS = ("flat", "folded", "crumpled")
 MU = 0.5                       # Coulomb coefficient: holds a cloth on a slope up to atan(0.5) = 27 deg
 BOX_ANGLE = 20.0               # degrees
-BAR_THICKNESS = 2.0            # px: the thin bar that fast particles would tunnel through
+BAR_THICKNESS = 2.0            # px each side of its line (4 px thick): where fast particles tunnel
 
 CONTACT_PARAMS = (
     Param("obstacles", "none", str, choices=OBSTACLE_SETS,
@@ -239,7 +239,8 @@ class ClothContact:
             listed = (f"; list reused {lst.reuses}, built {lst.builds}"
                       if st.self_method == "grid" and self.cloth.kernel == "numpy" else "")
             lines.append(f"self-collision ({st.self_method}): {st.self_pairs} pairs pushed; "
-                         f"{m['self_overlaps']} still closer than {self.p['self_distance']:g} "
+                         f"{m['self_overlaps']} still closer than "
+                         f"{100 * (1 - OVERLAP_SLACK):.0f}% of {self.p['self_distance']:g} "
                          f"rods{listed}")       # ('; ': where a row may break, app/draw/wrap.py)
         return lines
 

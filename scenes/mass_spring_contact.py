@@ -10,7 +10,8 @@ this in.
   penalty     a stiff spring k_c = contact_stiffness pushes it out: a force every integrator
               sees, which raises the cloth's highest frequency (k_c/m on that particle) and so
               lowers the step limit: the HUD gives the contact's own limit 2 sqrt(m/k_c) beside
-              h, and the bound on the whole cloth's, 2/sqrt(omega_max^2 + k_c/m).
+              h, and the bound on the whole cloth's, 2/sqrt(omega_max^2 + k_c/m), undamped (the
+              spring damping lowers it: at the defaults the strip blows up at half of it).
 The mouse: LMB pressed inside an obstacle drags it (its motion is its velocity, so friction
 carries what rests on it); anywhere else it grabs a particle as before.
 """
@@ -28,8 +29,8 @@ from app.physics.spring_forces import Timed
 from app.scene import Effect, InputEvent, Param, Try, Unit
 from scenes.cloth_contact import BOX_ANGLE, MU, OBSTACLE_SETS, obstacle_layout
 
-# kg/s^2: the cards' cotton strip's lightest particle (a corner, 0.029 kg) has the contact limit
-# 2 sqrt(m/k_c) = 20 ms at this stiffness, above the default step of 16.7 ms
+# kg/s^2: the cards' cotton strip's lightest particle (a corner, 0.028 kg) has the contact limit
+# 2 sqrt(m/k_c) = 19 ms at this stiffness, above the default step of 16.7 ms
 PENALTY_K = 300.0
 
 MS_CONTACT_PARAMS = (
@@ -64,7 +65,7 @@ MS_CONTACT_TRIES = (
         "gives the contact's step limit 2 sqrt(m/k_c)"),
     Try("Penalty past its limit", {"obstacles": "ball", **STRIP, "cols": 60,
                                    "contact": "penalty", "contact_stiffness": 1e4},
-        "k_c = 1e4: the contact's limit (3.4 ms for the strip's corners) is far below h = "
+        "k_c = 1e4: the contact's limit (3.3 ms for the strip's corners) is far below h = "
         "16.7 ms: where the strip lands it is thrown off, fast, even with implicit Euler"),
     Try("Pull the tablecloth", {"obstacles": "table", **STRIP, "cols": 64},
         "the cloth settles on the table; grab an end (LMB) and pull: friction holds it back"),
@@ -214,7 +215,7 @@ class MassSpringContact:
         verdict = "below it" if h < own else "past it: unstable in contact"
         return [f"contact: penalty k_c {self.p['contact_stiffness']:g} kg/s^2  |  {fr}: "
                 f"{m['contacts']} touching, deepest {deep}",
-                f"its limit 2 sqrt(m/k_c) = {own * 1e3:.3g} ms  |  cloth and contact: >= "
+                f"its limit 2 sqrt(m/k_c) = {own * 1e3:.3g} ms  |  cloth and contact, undamped: >= "
                 f"{bound * 1e3:.3g} ms; h = {h * 1e3:.3g} ms, {verdict}"]
 
     def contact_bounds(self, bounds):

@@ -282,3 +282,37 @@ def test_penetration_is_measured_against_the_free_particles_only():
     assert penetration_max([ball], points(scene), free) <= 0.5
     assert penetration_max([ball], points(scene)) > 5                # the pins are inside
     assert scene.metrics()["penetration_max"] <= 0.5
+
+
+def test_the_lesson_plan_quotes_the_draped_strips_contacts_as_measured():
+    """docs/instructors.md, the drape card: "the HUD reads about N particles touching" once the
+    strip has settled (it said 64, a count of 2-3 s; from 3 s on it is 58 to 62)."""
+    import re
+    from pathlib import Path
+    text = " ".join((Path(__file__).parents[1] / "docs" / "instructors.md").read_text().split())
+    m = re.search(r"the HUD reads about (\d+) particles touching", text)
+    assert m, "the sentence is gone: update this test"
+    scene = run(ClothCollisionsScene({}), 180)
+    counts = []
+    for _ in range(120):                                # 3 s to 5 s
+        scene.advance()
+        counts.append(scene.metrics()["contacts"])
+    assert abs(float(np.median(counts)) - int(m.group(1))) <= 2, (counts, m.group(1))
+
+
+def test_the_huds_self_collision_line_counts_what_it_names():
+    """'N still closer than 95% of D rods': N is the pairs (not cell or rod neighbours) closer
+    than 0.95 D spacings, counted here by brute force. (It said 'closer than 0.8 rods' for the
+    95% count: on the fold card 195 pairs were closer than 0.8 rods when it read 0.)"""
+    import re
+    scene = run(ClothCollisionsScene({**FOLD, "self_collision": True}), 120)
+    line = scene.contact_hud(scene.metrics())[-1]
+    m = re.search(r"(\d+) still closer than 95% of ([0-9.]+) rods", line)
+    assert m, line
+    c = scene.cloth
+    p = points(scene)
+    row, col = np.divmod(np.arange(len(p)), c.cols)
+    d = np.hypot(*(p[:, None] - p[None]).transpose(2, 0, 1))
+    apart = (np.abs(row[:, None] - row[None]) > 1) | (np.abs(col[:, None] - col[None]) > 1)
+    close = (d < 0.95 * float(m.group(2)) * c.spacing) & apart    # (no shear or bending rods)
+    assert int(m.group(1)) == int(np.count_nonzero(np.triu(close, 1)))

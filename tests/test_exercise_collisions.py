@@ -32,6 +32,8 @@ COLLISIONS_WRONG = {
     "collisions_friction_everywhere": ("friction only where touching",
                                        "did not touch the circle"),
     "collisions_mu_capped": ("random travels and mu", "capped at 1"),   # right on the fixed cases
+    # passed the random checks on 4 of 6 seeds before the fixed case had a shallow contact
+    "collisions_friction_skips_shallow": ("a slow slide sticks", "touched only a little"),
 }
 
 

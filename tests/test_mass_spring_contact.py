@@ -175,3 +175,38 @@ def test_the_collisions_scene_is_the_strip_over_the_ball_and_projection_beats_pe
             deep = max(deep, scene.metrics()["penetration_max"])
         deepest[variant["contact"]] = deep
     assert deepest["projection"] < 0.01 < 0.5 < deepest["penalty"], deepest
+
+
+def test_the_penalty_cards_quote_the_limit_the_scene_computes():
+    """A card that quotes the contact's limit ("the contact's limit (X ms ...") gives the HUD's
+    2 sqrt(m/k_c) at the card's settings, to the digits it prints (it said 3.4 ms for 3.34)."""
+    import re
+    quoted = 0
+    for card in MassSpringCollisionsScene.tries:
+        m = re.search(r"limit \(([0-9.]+) ms", card.watch)
+        if not m:
+            continue
+        scene = MassSpringCollisionsScene(card.settings)
+        own_ms = 1e3 * scene.penalty_limits()[0]
+        digits = len(m.group(1).split(".")[1]) if "." in m.group(1) else 0
+        assert float(m.group(1)) == round(own_ms, digits), (card.label, m.group(1), own_ms)
+        quoted += 1
+    assert quoted >= 1
+
+
+def test_the_huds_cloth_and_contact_bound_is_the_undamped_one():
+    """The HUD's 'cloth and contact' step, 2/sqrt(omega_max^2 + k_c/m), is symplectic Euler's
+    limit without damping: with the spring damping on (the default) the strip blows up at half
+    of it (measured: within 0.11 s, at k_c 300, 1e4 and 1e5), so the HUD must say undamped."""
+    scene = MassSpringCollisionsScene({"contact": "penalty", "integrator": "symplectic_euler"})
+    bound = scene.penalty_limits()[1]
+    line = scene.contact_hud()[1]
+    assert f"{bound * 1e3:.3g} ms" in line and "undamped" in line, line
+    hz = round(1 / (0.5 * bound * 50))                    # h = half the bound, 50 substeps
+    fast = MassSpringCollisionsScene({"contact": "penalty", "integrator": "symplectic_euler",
+                                      "hertz": hz, "substeps": 50})
+    for _ in range(hz // 2):
+        fast.advance()
+        if not fast.is_finite():
+            break
+    assert not fast.is_finite()

@@ -15,7 +15,8 @@ r = 100:
                      it (450, 300) -> (500, 300)
   pinned             w = 0 inside and at the centre: not moved, depth 0; a free one beside moves
   slow slide sticks  mu = 0.5: on top, depth 4, travel (1.5, 3): |v_t| = 1.5 <= mu depth = 2, so
-                     x goes back to x_prev's x: (398.5, 200); a purely normal travel stays
+                     x goes back to x_prev's x: (398.5, 200); a purely normal travel stays; at
+                     (500, 300) a contact only 1e-4 px deep with a slide of 3e-5 px sticks too
   fast slide slows   mu = 0.5: at (500, 300), depth 2, travel (-1, 4): v_t = (0, 4) loses
                      mu depth = 1: (500, 299); at (340, 220), depth 5, |v_t| = 10 loses 2.5
   only touching      depth 0 (outside, on the surface) with any travel: friction moves nothing;
@@ -139,8 +140,10 @@ def judge_push(case, what: str):
 # ----- friction: the fixed cases -----------------------------------------------------------------
 MU = 0.5
 # (x on the surface, depth, travel v = x - x_prev, where it belongs after friction)
-STICK = (np.array([[400.0, 200.0], [300.0, 300.0]]), np.array([4.0, 3.0]),
-         np.array([[1.5, 3.0], [2.0, 0.0]]), np.array([[398.5, 200.0], [300.0, 300.0]]))
+# (the third touched only a little, depth 1e-4 px, as a resting cloth at 1000 Hz does: it sticks)
+STICK = (np.array([[400.0, 200.0], [300.0, 300.0], [500.0, 300.0]]), np.array([4.0, 3.0, 1e-4]),
+         np.array([[1.5, 3.0], [2.0, 0.0], [-2e-5, 3e-5]]),
+         np.array([[398.5, 200.0], [300.0, 300.0], [500.0, 300.0 - 3e-5]]))
 SLIDE = (np.array([[500.0, 300.0], [340.0, 220.0]]), np.array([2.0, 5.0]),
          np.array([[-1.0, 4.0], [7.4, -6.8]]), np.array([[500.0, 299.0], [338.0, 221.5]]))
 APART = (np.array([[600.0, 300.0], [460.0, 380.0], [500.0, 300.0]]), np.array([0.0, 0.0, 2.0]),
@@ -148,7 +151,7 @@ APART = (np.array([[600.0, 300.0], [460.0, 380.0], [500.0, 300.0]]), np.array([0
 APART_MU = np.array([MU, MU, 0.0])          # the touching particle's call has mu = 0
 
 FRICTION_KINDS = ("reverses", "position", "whole travel", "drag everywhere", "fraction",
-                  "never slides")
+                  "never slides", "skips shallow")
 
 
 def friction_measure(case, mus=None):
