@@ -222,16 +222,17 @@ RANDOM_CASES = 6
 
 
 def random_cases() -> list[tuple[np.ndarray, np.ndarray, np.ndarray, float]]:
-    """(x, w, center, radius): a centre anywhere in +-2000 px, a radius of 0.1 to 1000 px, 1 to 60
-    particles: inside (any depth), on the surface (up to rounding), outside (to 3 r away),
-    exactly at the centre; about a fifth pinned (w = 0), the others any w > 0. The first case
-    has one particle, the second every kind at once."""
+    """(x, w, center, radius): a centre anywhere in +-2000 px, a radius of 0.1 to 1000 px (cases
+    1 to 4 one decade each, 0.1-1, 1-10, 10-100, 100-1000, so a run never misses one; the
+    others any), 1 to 60 particles: inside (any depth), on the surface (up to rounding),
+    outside (to 3 r away), exactly at the centre; about a fifth pinned (w = 0), the others any
+    w > 0. The first case has one particle, the second every kind at once."""
     rng = cases_rng("collisions random")
     cases = []
     for k in range(RANDOM_CASES):
         n = 1 if k == 0 else int(rng.integers(5 if k == 1 else 2, 61))
         c = rng.uniform(-2000.0, 2000.0, 2)
-        r = float(10 ** rng.uniform(-1.0, 3.0))
+        r = float(10 ** (rng.uniform(k - 2, k - 1) if 1 <= k <= 4 else rng.uniform(-1.0, 3.0)))
         kind = rng.integers(0, 4, n) if k != 1 else np.arange(n) % 4
         angle = rng.uniform(0.0, 2 * math.pi, n)
         rho = np.select([kind == 0, kind == 1, kind == 2],
