@@ -202,6 +202,41 @@ def test_the_fine_grid_matches_all_pairs_on_random_clouds_of_every_kind():
         assert np.all(i != j), (seed, case)
 
 
+def test_a_long_thin_box_keeps_the_grid_small_and_exact():
+    """One point flung 1e8 to 1e30 px away from a row or a column of others (a blown-up cloth
+    lying flat): the same pairs as all pairs, and the cells' counts stay under a MB (growing
+    the cells alike on both sides left ~sqrt(length) cells along it: 86 GB at 1e20 px, a
+    MemoryError that ended the step)."""
+    rng = np.random.default_rng(7)
+    for far in (1e8, 1e15, 1e20, 1e30):
+        for axis in (0, 1):
+            x = rng.normal(0, 6.4, (300, 2))
+            x[:, 1 - axis] = 3.0
+            x[0, axis] = far
+            scratch = Scratch()
+            i, j, _ = fine_pairs(np.ascontiguousarray(x[:, 0]), np.ascontiguousarray(x[:, 1]),
+                                 6.4, scratch)
+            with np.errstate(over="ignore"):
+                bi, bj, _ = all_pairs(x, 6.4)
+            assert pair_set(i, j) == pair_set(bi, bj) and len(i) == len(bi) > 0, (far, axis)
+            assert scratch.arrays["stop"].nbytes < 1e6, (far, axis)      # (the counts)
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+def test_a_cloth_flung_far_and_flat_steps_on(kernel):
+    """A cloth with one particle 1e20 px away and the rest in a row: the self-collision pass
+    runs (before: a MemoryError from the grid's counts, in both kernels)."""
+    if kernel == "numba" and not rods_compiled.available():
+        pytest.skip("numba not installed")
+    scene = ClothScene({"rows": 8, "cols": 8, "self_collision": True, "kernel": kernel})
+    scene.advance()
+    scene.cloth.x[0, 3, 3] = 1e20
+    scene.cloth.x[1] = 100.0
+    with np.errstate(all="ignore"):
+        scene.advance()
+    assert scene.cloth.contact.self_tests < 10_000
+
+
 def test_the_grids_work_arrays_are_given_back_once_a_crowd_has_spread_out():
     """A crowd (1,500 points within a few px: a million candidates) grows the work arrays to
     tens of MB; the next search of a spread-out cloth hands them back (a cloth that was crushed

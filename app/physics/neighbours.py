@@ -301,6 +301,15 @@ def fine_grid(xs: np.ndarray, ys: np.ndarray, cutoff: float) -> tuple | None:
     grow = math.sqrt((w / cell_w + 1) * (h / cell_h + 3) / (CELLS_PER_PARTICLE * xs.size))
     if grow > 1:
         cell_w, cell_h = cell_w * grow, cell_h * grow
+    # a long thin box (one particle flung 1e20 px away, the rest in a row): growing both sides
+    # alike leaves ~sqrt(length) cells along it (129 GB of counts at 1e20 px); the long side's
+    # cells grow on until the count is within twice the budget
+    budget = 2 * CELLS_PER_PARTICLE * xs.size + 64
+    if (w / cell_w + 1) * (h / cell_h + 3) > budget:
+        if w / cell_w > h / cell_h:
+            cell_w = max(cell_w, w / max(budget / (h / cell_h + 3) - 1, 1.0))
+        else:
+            cell_h = max(cell_h, h / max(budget / (w / cell_w + 1) - 3, 1.0))
     reach = fine_stencil(cutoff, cell_w, cell_h)
     return lo_x, lo_y, cell_w, cell_h, int(w / cell_w) + 1, int(h / cell_h) + 1, reach
 
