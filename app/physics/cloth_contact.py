@@ -386,9 +386,11 @@ def _self_collide_compiled(c) -> None:
     if len(i) == 0:
         return
     between = None
-    if "collisions" in c.on and st.obstacles:          # as in self_collide
+    if "collisions" in c.on and st.obstacles:          # as in self_collide: before each sweep
         movable = c.free.ravel() > 0
-        between = lambda: project(st.obstacles, x.T, st.margin, movable)    # noqa: E731
+
+        def between() -> None:
+            project(st.obstacles, x.T, st.margin, movable)
     self_compiled.push_apart(x[0], x[1], i, j, c.w.ravel(), dmin, OVER_RELAX, SELF_SWEEPS,
                              between, st.compiled)
 
