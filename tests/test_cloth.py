@@ -357,6 +357,11 @@ def test_the_benchmark_runs_quickly(tmp_path, png_charts):
     assert card["pairs"] > 0 and card["grid_ms"] > 0 and card["step_ms"] > 0
     assert out["contact"]["self_goal"]["met"] == all(rows[s]["met"] for s in ("hanging",
                                                                               "crumpled"))
+    from app.physics import rods_compiled
+    if rods_compiled.available():     # the compiled pass beside the compiled step it runs with
+        for r in rows.values():       # (it was divided by the NumPy step: 0.75 x, "MET")
+            assert r["step_numba_ms"] > 0
+            assert r["numba_ratio"] == pytest.approx(r["grid_numba_ms"] / r["step_numba_ms"])
 
 
 def test_bend_and_tear_are_accepted_names_for_bending_and_tearing():
