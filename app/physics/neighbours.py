@@ -286,32 +286,52 @@ class Scratch:
 
 
 def fine_grid(xs: np.ndarray, ys: np.ndarray, cutoff: float) -> tuple | None:
-    """fine_pairs's grid over the points' own box: (lo_x, lo_y, cell_w, cell_h, nx, ny, reach),
-    the box's corner, the cells' size, how many across and down, and fine_stencil's reach (the
-    compiled self-collision, app/physics/self_compiled.py, searches the same grid); None if a
-    point is not finite (no pair is closer than the cut-off to a NaN; the runner reports it)."""
+    """fine_pairs's grid: (lo_x, lo_y, cell_w, cell_h, nx, ny, reach, clamped), the grid's
+    corner, the cells' size, how many across and down, fine_stencil's reach, and whether some
+    points lie outside the grid (each is then counted in the nearest border cell: the callers
+    clamp). The grid covers the points' own box, or, when a few points were flung far from the
+    rest (a blown-up cloth lying flat: a long thin box), the box of the bulk. The compiled
+    self-collision (app/physics/self_compiled.py) searches the same grid. None if a point is
+    not finite (no pair is closer than the cut-off to a NaN; the runner reports it)."""
     lo_x, lo_y = float(xs.min()), float(ys.min())
     w, h = float(xs.max()) - lo_x, float(ys.max()) - lo_y
     if not (math.isfinite(w) and math.isfinite(h)):
         return None
     # (a hair over R/8 and R/2: a pair's cells are then at most 8 columns and 2 rows apart with
     # SLACK to spare, where exactly R/8 would need a 9th column and a 3rd row for the slack)
-    cell_w = cutoff / (FINE_CELLS[0] - 2 * SLACK)
-    cell_h = cutoff / (FINE_CELLS[1] * (1 - 2 * SLACK))
-    grow = math.sqrt((w / cell_w + 1) * (h / cell_h + 3) / (CELLS_PER_PARTICLE * xs.size))
-    if grow > 1:
-        cell_w, cell_h = cell_w * grow, cell_h * grow
-    # a long thin box (one particle flung 1e20 px away, the rest in a row): growing both sides
-    # alike leaves ~sqrt(length) cells along it (129 GB of counts at 1e20 px); the long side's
-    # cells grow on until the count is within twice the budget
+    fine_w = cutoff / (FINE_CELLS[0] - 2 * SLACK)
+    fine_h = cutoff / (FINE_CELLS[1] * (1 - 2 * SLACK))
+    cell_w, cell_h = _grown(w, h, fine_w, fine_h, xs.size)
     budget = 2 * CELLS_PER_PARTICLE * xs.size + 64
-    if (w / cell_w + 1) * (h / cell_h + 3) > budget:
-        if w / cell_w > h / cell_h:
-            cell_w = max(cell_w, w / max(budget / (h / cell_h + 3) - 1, 1.0))
-        else:
+    clamped = False
+    if (w / cell_w + 1) * (h / cell_h + 3) > budget and xs.size >= 20:
+        # a long thin box: growing both sides alike leaves ~sqrt(length) cells along it (86 GB
+        # of counts at 1e20 px). The grid covers the middle 90 % of the points on each axis and
+        # a cut-off around them; a point outside is counted in the nearest border cell. Still
+        # exact: clamping never moves two points' cells further apart, so a pair's cells stay
+        # within the stencil's reach
+        k = xs.size // 20
+        qx = np.partition(xs, (k, xs.size - 1 - k))
+        qy = np.partition(ys, (k, ys.size - 1 - k))
+        lo_x, lo_y = float(qx[k]) - cutoff, float(qy[k]) - cutoff
+        w, h = float(qx[-1 - k]) - lo_x + cutoff, float(qy[-1 - k]) - lo_y + cutoff
+        cell_w, cell_h = _grown(w, h, fine_w, fine_h, xs.size)
+        clamped = True
+    if (w / cell_w + 1) * (h / cell_h + 3) > budget:     # the bulk itself long and thin: the
+        if w / cell_w > h / cell_h:                       # long side's cells grow on until
+            cell_w = max(cell_w, w / max(budget / (h / cell_h + 3) - 1, 1.0))     # the count
+        else:                                             # is within the budget
             cell_h = max(cell_h, h / max(budget / (w / cell_w + 1) - 3, 1.0))
     reach = fine_stencil(cutoff, cell_w, cell_h)
-    return lo_x, lo_y, cell_w, cell_h, int(w / cell_w) + 1, int(h / cell_h) + 1, reach
+    return (lo_x, lo_y, cell_w, cell_h, int(w / cell_w) + 1, int(h / cell_h) + 1, reach,
+            clamped)
+
+
+def _grown(w: float, h: float, cell_w: float, cell_h: float, n: int) -> tuple[float, float]:
+    """The cells, grown alike on both sides if a box w x h would need more than
+    CELLS_PER_PARTICLE cells a point (a spread-out crowd: its count array stays small)."""
+    grow = math.sqrt((w / cell_w + 1) * (h / cell_h + 3) / (CELLS_PER_PARTICLE * n))
+    return (cell_w * grow, cell_h * grow) if grow > 1 else (cell_w, cell_h)
 
 
 def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch | None = None
@@ -324,15 +344,19 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     grid = fine_grid(xs, ys, cutoff)
     if grid is None:
         return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
-    lo_x, lo_y, cell_w, cell_h, nx, ny, reach = grid
+    lo_x, lo_y, cell_w, cell_h, nx, ny, reach, clamped = grid
     below = len(reach) - 1
     # an empty border as wide as the stencil on either side and as many empty rows below: every
     # stencil cell of every particle exists, in its own row, with no clipping
     pad = max(reach)
     columns = nx + 2 * pad
     # 1. cell index, 2. sort (16-bit keys: a radix sort), run ends: stop[c]
-    cx = np.minimum(((xs - lo_x) * (1 / cell_w)).astype(np.intp), nx - 1)
-    cy = np.minimum(((ys - lo_y) * (1 / cell_h)).astype(np.intp), ny - 1)
+    if clamped:            # points outside the grid: into the nearest border cell (fine_grid)
+        cx = np.clip((xs - lo_x) * (1 / cell_w), 0, nx - 1).astype(np.intp)
+        cy = np.clip((ys - lo_y) * (1 / cell_h), 0, ny - 1).astype(np.intp)
+    else:
+        cx = np.minimum(((xs - lo_x) * (1 / cell_w)).astype(np.intp), nx - 1)
+        cy = np.minimum(((ys - lo_y) * (1 / cell_h)).astype(np.intp), ny - 1)
     cell = cy * columns + cx
     cell += pad
     cells = columns * (ny + below)

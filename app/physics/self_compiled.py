@@ -49,8 +49,10 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
     for c in range(cells + 2):
         start[c] = 0
     for p in range(n):                                  # 1. each particle's cell
-        cx = max(min(int((xs[p] - lo_x) / cell_w), nx - 1), 0)     # (clamped: no write
-        cy = max(min(int((ys[p] - lo_y) / cell_h), ny - 1), 0)     # outside the arrays)
+        # clamped before the int (a point outside the grid goes to the nearest border cell:
+        # fine_grid), so no cell index falls outside the arrays
+        cx = int(min(max((xs[p] - lo_x) / cell_w, 0.0), nx - 1.0))
+        cy = int(min(max((ys[p] - lo_y) / cell_h, 0.0), ny - 1.0))
         cell[p] = cy * columns + cx + pad
         start[cell[p] + 1] += 1
     for c in range(1, cells + 1):                       # 2. sorted by cell (a counting sort):
@@ -174,7 +176,7 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     grid = fine_grid(xs, ys, distance)
     if grid is None:                                    # a point not finite: the runner says so
         return buf.i[:0], buf.j[:0], 0
-    lo_x, lo_y, cell_w, cell_h, nx, ny, reach = grid
+    lo_x, lo_y, cell_w, cell_h, nx, ny, reach, _ = grid   # (_find clamps every point)
     pad, below = max(reach), len(reach) - 1
     cells = (nx + 2 * pad) * (ny + below)
     if buf.start.size < cells + 2:
