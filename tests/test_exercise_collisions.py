@@ -140,3 +140,22 @@ def test_every_run_of_the_grader_draws_a_circle_from_every_decade_of_radius(monk
         radii = [r for _, _, _, r in random_cases()]
         decades = {int(np.floor(np.log10(r))) for r in radii}
         assert decades >= {-1, 0, 1, 2} and all(0.1 <= r <= 1000 for r in radii), (seed, radii)
+
+
+def test_the_random_friction_cases_touch_as_shallow_as_a_resting_cloth(monkeypatch):
+    """Contact depths take every decade from 1e-6 r to r in every run, so friction that skips
+    shallow contacts fails the random check too, not only the fixed case (with depths drawn
+    uniformly it passed the random checks on 35 of seeds 1 to 40)."""
+    import app.exercises.grade as grading
+    from app.exercises import base
+    from app.exercises.collisions.grader import friction_cases
+    monkeypatch.setattr(grading, "CAN_FORK", False)
+    monkeypatch.setattr(base, "SEED", base.SEED)        # (given back after the test)
+    for seed in SEEDS:
+        base.set_seed(seed)
+        depths = np.concatenate([d[d > 0] for _, _, _, d, _ in friction_cases()])
+        assert depths.min() < 1e-3, (seed, depths.min())
+        report = grade(get_exercise("collisions"),
+                       str(ANSWERS / "collisions_friction_skips_shallow.py"),
+                       only=("random travels and mu",), seed=seed)
+        assert not report.checks[-1].passed, report.text()
