@@ -32,12 +32,13 @@ def type_enter(w: Window, entry, text: str, resize_to: tuple[int, int] | None = 
     frame(w)
 
 
-def open_window(tmp_path, monkeypatch, cls) -> Window:
-    """A 1024x768 window on scene `cls`, run from tmp_path."""
+def open_window(tmp_path, monkeypatch, cls, **options) -> Window:
+    """A 1024x768 window on scene `cls`, run from tmp_path (options: Window's, e.g. large_text).
+    No event of an earlier test is queued: tests/conftest.py's no_display_events_left."""
     monkeypatch.chdir(tmp_path)
     pygame.display.init()
     pygame.font.init()
-    w = Window(pygame.display.set_mode((1024, 768)), [cls], screenshot_dir=tmp_path)
+    w = Window(pygame.display.set_mode((1024, 768)), [cls], screenshot_dir=tmp_path, **options)
     assert w.open_scene(cls)
     return w
 
@@ -51,14 +52,9 @@ def test_the_panel_edits_the_selected_body_and_asks_the_name_to_save(tmp_path, m
     """At 1024x768 with large text (F2), the tightest panel: a field per row, no box over
     another; a refused value changes nothing; the prompt has the keyboard; Esc cancels."""
     from scenes.sandbox import SandboxScene
-    monkeypatch.chdir(tmp_path)
-    pygame.display.init()
-    pygame.font.init()
-    # (no event of an earlier test is queued: tests/conftest.py's no_display_events_left)
-    w = Window(pygame.display.set_mode((1024, 768)), [SandboxScene], large_text=True,
-               screenshot_dir=tmp_path, record=tmp_path / "rec.json")
+    w = open_window(tmp_path, monkeypatch, SandboxScene, large_text=True,
+                    record=tmp_path / "rec.json")
     try:
-        assert w.open_scene(SandboxScene)
         view, scene = w.scene_view, w.scene
         assert view.panel.form.form.title == "Nothing selected" and not view.panel.form.boxes
         for e in (InputEvent("key_down", key="c"), InputEvent("mouse_down", (400, 200), 1),

@@ -18,7 +18,7 @@ What it costs, like with like (`python -m app bench cloth`: the pass beside the 
 which kernel=numba also makes shorter: 0.35 ms, not NumPy's 0.89): on the crumpled 64 x 64
 cloth 1.33 times that step, 0.42 times hanging (2026-11-27, load 1.1); 1.6 times crumpled with
 cells R wide and a search that counted its candidates before listing them (41,342 candidates
-for 24,845 now; the search 0.46 -> 0.28 ms, the sweeps 0.19 -> 0.15 ms, load ~1.5). Tried and
+for 24,845 now; the search 0.46 -> 0.28 ms, the sweeps 0.20 -> 0.15 ms, load ~1.5). Tried and
 not kept: a branch per candidate instead of writing every candidate and counting the close ones
 (1.2 x slower on the falling cloth: half the candidates are close, the branch guesses wrong),
 32-bit work arrays, cells R/8 x R or R x R (the same time within the noise).
