@@ -313,7 +313,29 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         # Straight to Scene.advance (the substeps calling self.step): PymunkScene.advance would
         # only find that this scene has a step of its own and go there, two super() calls later
         # (~0.5 us of a ~40 us step)
-        Scene.advance(self)
+        n = self.p["substeps"]
+        if n == 1:
+            Scene.advance(self)
+            return
+        # Several substeps: the balls are looked at once, after the last (the tutorial looks
+        # once a frame): a ball that tunneled is counted, and one that left removed, when its
+        # centre is past the arm or outside the world at the step's end; the substeps before
+        # only step the engine, the spawner's clock and pivoting_l's joint records (step)
+        dt = self.dt
+        h = dt / n
+        self._look = False
+        try:
+            for _ in range(n - 1):
+                self.step(h)
+        finally:
+            self._look = True
+        self.step(h)
+        self.time += dt
+        self.steps += 1
+        self.after_step()
+
+    # False during the substeps before a step's last (advance): step() does not look at the balls
+    _look = True
 
     def rest_plan(self) -> tuple:
         """(substeps, h, dt, whether after_step does anything) for a step at rest,
@@ -345,7 +367,15 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             self._L_after = None
             self.spawn(h)
             return
-        # the L's pose before the step: where the last step left it, unless woken since
+        if not self._look:        # not the step's last substep: the engine's step, no look
+            if self._L_known is None:             # (woken: the pose before the step, for the
+                self._L_known = self.L_pose()     # look after its last substep)
+            self.space.step(h)
+            self._rows = None
+            self._L_after = self.L_pose()         # (pivoting_l's joints read it)
+            self.spawn(h)
+            return
+        # the L's pose before the step: where the last look left it, unless woken since
         L0 = self._L_known or self.L_pose()
         self.space.step(h)                        # (PymunkScene.step)
         self._rows = None

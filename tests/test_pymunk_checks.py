@@ -109,6 +109,39 @@ def test_a_ball_that_leaves_is_removed_the_step_it_leaves():
     assert scene.counts["removed"] == 1 and body not in scene.space.bodies
 
 
+
+def test_with_substeps_the_balls_are_looked_at_once_a_step_and_the_joints_every_substep():
+    # pivoting_l takes two substeps a step: the balls are read and checked after the last one
+    # only (as the tutorial looks once a frame), while the joints' records take the L's pose
+    # after every substep (the largest pin error seen is the largest of every substep's)
+    class Counted(PivotingLScene):
+        looks: list = []
+
+        def check_balls(self, L0):
+            Counted.looks.append(L0)
+            return super().check_balls(L0)
+    scene = Counted({"spawn_rate": 30})
+    assert scene.p["substeps"] == 2
+    pins = [scene.pin_error()]
+    engine_step = scene.space.step
+
+    def step(h):
+        engine_step(h)
+        pins.append(scene.pin_error())
+    scene.space.step = step
+    for _ in range(600):
+        scene.advance()
+    assert len(Counted.looks) == 600 and len(pins) == 1 + 1200
+    assert scene.record["pin_error"] == pytest.approx(max(pins), rel=1e-9)
+    assert scene.counts["removed"] > 0                 # (balls did come and go)
+    # woken between steps: the look after the step starts from the L's pose before it
+    scene.L_body.angular_velocity = 0.5
+    scene.wake()
+    before = scene.L_pose()
+    scene.advance()
+    assert Counted.looks[-1] == before and scene.L_pose() != before
+
+
 # the inf below makes the flags' product NaN on purpose; the lab hides NumPy's warning of it
 # (a filter in scenes/ball_checks.py, which pytest's own warning capture sets aside)
 @pytest.mark.filterwarnings("ignore:invalid value encountered in dot:RuntimeWarning")
