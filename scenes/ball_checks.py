@@ -27,7 +27,7 @@ import warnings
 
 import numpy as np
 
-from app.pymunk_scene import extent
+from app.pymunk_scene import _lib, extent
 from scenes.ball_tables import Awake
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
@@ -342,8 +342,13 @@ class BallChecks:
         step does not, nor can the mouse), the pose it had when the tables were built."""
         pose = self._L_static_pose
         if pose is None:
-            x, y = self.L_body.position
-            pose = (x, y, self.L_body.angle)
+            body = self.L_body
+            if _lib is None:
+                x, y = body.position
+                return (x, y, body.angle)
+            # (Chipmunk's own getters, what Body.position and .angle call: 0.28 us, not 0.83)
+            p = _lib.cpBodyGetPosition(body._body)
+            pose = (p.x, p.y, _lib.cpBodyGetAngle(body._body))
         return pose
 
     def _frame(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
