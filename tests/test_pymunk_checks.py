@@ -142,6 +142,28 @@ def test_with_substeps_the_balls_are_looked_at_once_a_step_and_the_joints_every_
     assert Counted.looks[-1] == before and scene.L_pose() != before
 
 
+
+def test_pivoting_ls_written_out_step_does_what_the_general_way_does():
+    # PivotingLScene.advance writes its usual step out; a subclass with a step of its own goes
+    # the general way (FallingBallsScene.advance, step by step): the same balls, counts, joint
+    # records and state, step after step
+    class General(PivotingLScene):
+        def step(self, h):
+            super().step(h)
+    written, general = PivotingLScene({"spawn_rate": 30}), General({"spawn_rate": 30})
+    looks, general_steps = [], []
+    check, step = written.check_balls, written.step
+    written.check_balls = lambda L0: looks.append(L0) or check(L0)
+    written.step = lambda h: general_steps.append(h) or step(h)   # (the general way's substeps)
+    for _ in range(400):
+        written.advance()
+        general.advance()
+        assert written.record == general.record
+    assert written.counts == general.counts and written.counts["removed"] > 10
+    assert written.state_hash() == general.state_hash() and len(looks) == 400
+    assert len(general_steps) < 40                      # (the written-out way took most steps)
+
+
 # the inf below makes the flags' product NaN on purpose; the lab hides NumPy's warning of it
 # (a filter in scenes/ball_checks.py, which pytest's own warning capture sets aside)
 @pytest.mark.filterwarnings("ignore:invalid value encountered in dot:RuntimeWarning")
