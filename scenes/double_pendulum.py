@@ -249,6 +249,7 @@ class DoublePendulumScene(PymunkScene):
         now, with the new g, is the baseline."""
         self.ode.g = self.gravity()
         self.ode.set_state(self.ode.state)      # the ghost's energy baseline moves with g too
+        self._energy_terms = None               # (the bobs' weights: made again with this g)
         self.track["energy0"] = self.energy()
 
     def settings_changed(self, names: set[str]) -> None:
@@ -268,21 +269,22 @@ class DoublePendulumScene(PymunkScene):
         """Kinetic (incl. spin) + potential energy of the bobs, zero when both hang straight down
         at rest (y is down, so a bob's height above its lowest point is lowest_y - y). rows: the
         bobs' rows_of as a list, if already read."""
-        g = self.gravity()
+        # the terms are made again for new bobs (a build: the lengths are rebuild params; a
+        # restore) and for a new g (gravity_changed forgets them)
         cache = getattr(self, "_energy_terms", None)
-        if cache is None or cache[0] is not self.bobs or cache[1] != g \
-                or cache[2] != (self.p["length1"], self.p["length2"]):
+        if cache is None or cache[0] is not self.bobs:
+            g = self.gravity()
             l1, l2 = self.p["length1"], self.p["length2"]
             lowest = (PIVOT[1] + l1, PIVOT[1] + l1 + l2)
             # per bob: (mass, half its moment: 0 for a bob of infinite moment, which cannot
             # spin (inf * 0 is NaN), its weight, the height of its lowest point)
-            cache = self._energy_terms = (self.bobs, g, (l1, l2), [
+            cache = self._energy_terms = (self.bobs, [
                 (0.5 * mass, 0.5 * moment if math.isfinite(moment) else 0.0, mass * g, y0)
                 for (mass, moment), y0 in zip(self.bob_masses(), lowest)])
         e = 0.0
         # each bob's (x, y, angle, vx, vy, w) from the step's one batch read
         for (_, y, _, vx, vy, w), (half_mass, half_moment, weight, y0) in zip(
-                self.rows_of(self.bobs).tolist() if rows is None else rows, cache[3]):
+                self.rows_of(self.bobs).tolist() if rows is None else rows, cache[1]):
             # x * x, not x ** 2: a float ** overflows with an exception, * gives inf
             e += half_mass * (vx * vx + vy * vy) + (half_moment * w * w if half_moment
                                                       else 0.0) + weight * (y0 - y)

@@ -23,9 +23,13 @@ class Ring:
         self.count = 0          # samples stored so far (at most n)
 
     def append(self, sample) -> None:
-        self.data[self.head] = sample
-        self.head = (self.head + 1) % len(self.data)
-        self.count = min(self.count + 1, len(self.data))
+        head = self.head
+        self.data[head] = sample
+        head += 1
+        n = len(self.data)
+        self.head = head if head < n else 0
+        if self.count < n:
+            self.count += 1
 
     def clear(self) -> None:
         self.head = 0
