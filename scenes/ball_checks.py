@@ -27,8 +27,9 @@ import warnings
 
 import numpy as np
 
-from app.pymunk_scene import _lib, extent
+from app.pymunk_scene import extent
 from scenes.ball_tables import Awake
+from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as _to_local
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
 # product of _usual_check, on purpose: a NaN fails every comparison, so the ball goes to the
@@ -341,15 +342,7 @@ class BallChecks:
         """The L's (x, y, angle): read from its body, or, for a static L (nothing moves it: a
         step does not, nor can the mouse), the pose it had when the tables were built."""
         pose = self._L_static_pose
-        if pose is None:
-            body = self.L_body
-            if _lib is None:
-                x, y = body.position
-                return (x, y, body.angle)
-            # (Chipmunk's own getters, what Body.position and .angle call: 0.28 us, not 0.83)
-            p = _lib.cpBodyGetPosition(body._body)
-            pose = (p.x, p.y, _lib.cpBodyGetAngle(body._body))
-        return pose
+        return body_pose(self.L_body) if pose is None else pose
 
     def _frame(self, pose: tuple[float, float, float]) -> tuple[np.ndarray, np.ndarray]:
         """(origin, axis) arrays of the L's frame at pose: a point's height over the arm is
@@ -480,26 +473,3 @@ def _inside(key: bytes) -> bool:
     the flags' key: every fifth byte from the first, the second, the third and the fourth (in
     plain Python: the key is at hand, no NumPy call)."""
     return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])
-
-
-def _local_x(p: list[float], pose: tuple[float, float, float]) -> float:
-    """_to_local's x for one point, in plain Python."""
-    x, y, a = pose
-    c, s = cos_sin(a)
-    return c * (p[0] - x) + s * (p[1] - y)
-
-
-def _to_local(xy: np.ndarray, pose: tuple[float, float, float]) -> np.ndarray:
-    """World points (n, 2) -> the frame of a body at pose (x, y, angle): rotate by -angle."""
-    x, y, a = pose
-    c, s = cos_sin(a)
-    # (x', y') = (c dx + s dy, -s dx + c dy) for every row at once: one 2x2 product
-    return (xy - (x, y)) @ np.array(((c, -s), (s, c)))
-
-
-def cos_sin(a: float) -> tuple[float, float]:
-    """(cos a, sin a); NaN for an infinite angle (math raises): the runner reports the L."""
-    try:
-        return math.cos(a), math.sin(a)
-    except ValueError:
-        return math.nan, math.nan

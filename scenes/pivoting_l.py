@@ -53,9 +53,9 @@ import pymunk
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
 from app.scene import Param, Try, Unit, common
-from scenes.ball_checks import cos_sin
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
+from scenes.l_frame import cos_sin
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
 PIN_LOOSE = 5.0                  # px: a pin error beyond this is flagged (HUD, pin_let_go)
