@@ -3,6 +3,8 @@ speed belongs to `python -m app bench`)."""
 
 import math
 
+import pytest
+
 from app.bench import Report
 
 
@@ -130,3 +132,31 @@ def test_the_bare_pymunk_loop_holds_the_labs_bodies_step_by_step():
             assert np.array_equal(rows_lab, rows_bare)
             counts.add(len(lab.balls))
         assert len(counts) > 10          # balls came and went while they were compared
+
+
+def test_the_instruction_counts_say_so_when_valgrind_is_missing(tmp_path, monkeypatch):
+    import shutil
+
+    from app.bench import pymunk_ir
+    from app.bench.pymunk_cost import instructions
+    assert pymunk_ir.collected("==1== Events    : Ir\n==1== Collected : 12345\n") == 12345
+    with pytest.raises(RuntimeError, match="no count"):
+        pymunk_ir.collected("valgrind: command not found")
+    monkeypatch.setattr(shutil, "which", lambda tool: None)
+    said = []
+    report = Report(str(tmp_path), full=True)
+    report.say = said.append
+    out = instructions(report, ["pymunk_cost's first case"])
+    assert out.startswith("not measured: valgrind and callgrind_control not found")
+    assert "not measured" in said[-1]
+
+
+@pytest.mark.slow
+def test_the_instruction_counts_of_a_case_are_exact_and_the_labs_larger(tmp_path):
+    from app.bench import pymunk_ir
+    if pymunk_ir.available():
+        pytest.skip(pymunk_ir.available())
+    label = "newtons_cradle (default)"
+    (_, lab, bare), = pymunk_ir.per_step([label], steps=20)
+    assert lab > bare > 0
+    assert pymunk_ir.count(label, "bare", 20) == pymunk_ir.count(label, "bare", 20)  # exact
