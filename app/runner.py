@@ -73,6 +73,11 @@ def deliver(scene: Scene, event: InputEvent) -> bool:
     return False
 
 
+def _resets(event: InputEvent) -> bool:
+    """The R key pressed: deliver() resets the scene."""
+    return event.kind == "key_down" and event.key == "r"
+
+
 class StreamingMedian:
     """The median of a stream of positive numbers (the wall seconds of every step) in bounded
     memory. The first EXACT values are kept as they are, so a short run's median is exact; past
@@ -208,9 +213,28 @@ class SceneRunner:
             event = self.events[self.next_event]
             self.next_event += 1
             n += 1
+            if _resets(event) and self._reset_again():
+                continue        # another R is due before anything else acts: its rebuild
+                                # would throw this one's away (a file of 200,000 Rs: 1 rebuild)
             if self.deliver(replace(event)) and self.on_reset is not None:   # a copy: the file's
                 self.on_reset()                                             # t stays as read
         return n
+
+    def _reset_again(self) -> bool:
+        """Whether, among the replayed events due before the next step, another R comes before
+        any event that acts (anything but a shell key other than R or a scrub key, which
+        deliver() passes by)."""
+        events = self.events
+        for k in range(self.next_event, len(events)):     # (no slice: a copy of the rest)
+            event = events[k]
+            if event.t > self.clock + EVENT_SLACK:
+                return False
+            if _resets(event):
+                return True
+            if not (event.kind.startswith("key") and event.key in SHELL_KEYS
+                    and event.key not in SCRUB_KEYS):
+                return False
+        return False
 
     @property
     def events_left(self) -> list[InputEvent]:

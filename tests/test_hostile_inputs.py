@@ -327,3 +327,28 @@ def test_a_pendulum_flung_out_of_the_world_is_a_blow_up_and_the_advice_fits_the_
     assert summary["finite"] is False and summary["steps"] < 20
     assert "blow-up bounds" in done.stderr and "at their largest" in done.stderr
     assert "raise hertz" not in done.stderr
+
+
+def test_repeated_resets_in_a_file_rebuild_once_and_end_where_one_reset_does():
+    # A file of 200,000 R presses took 125 s (one rebuild each); Rs due together with nothing
+    # acting between them (their key_ups, another shell key) rebuild once: the same world
+    from app.runner import SceneRunner
+    from app.scene import InputEvent
+    from scenes import get_scene
+
+    def run(events):
+        scene = get_scene("falling_balls")({})
+        builds = []
+        build = scene.build
+        scene.build = lambda: builds.append(1) or build()
+        SceneRunner(scene, events=events).run(30)
+        return len(builds), scene.state_hash(), scene.steps
+
+    down = [InputEvent("key_down", key="r", t=0.1)]
+    many = [InputEvent(kind, key=key, t=0.1) for _ in range(500)
+            for kind, key in (("key_down", "r"), ("key_up", "r"), ("key_down", "h"))]
+    click = [InputEvent("mouse_down", pos=(300.0, 300.0), button=1, t=0.1)]
+    assert run(down) == run(many) == (1, *run(down)[1:])
+    # an event that acts between two Rs keeps both: the click's ball is made, then reset away
+    builds, state, _ = run(down + click + down)
+    assert builds == 2 and state == run(down)[1]
