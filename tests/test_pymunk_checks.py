@@ -237,7 +237,7 @@ def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
     (PivotingLScene, {"spawn_rate": 30}, 300)])
 def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings, steps):
     # the quick path (five flags a ball from one product, compared as bytes) against the exact
-    # tests run on every ball every substep: the same balls tunneled, removed, and the same state
+    # tests run on every ball every step: the same balls tunneled, removed, and the same state
     Exact = exact_tests(cls)
     class Quick(cls):
         usual = 0
