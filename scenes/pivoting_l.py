@@ -162,12 +162,14 @@ class PivotingLScene(FallingBallsScene):
         """FallingBallsScene.advance, its usual case written out (the step() of each substep and
         its super() calls cost ~1 us a step): the substeps, the joints' records after each, one
         look at the balls after the last, the spawner's clock. Anything else (a world at rest,
-        woken since the last step, the sleep threshold to set for a new substep, one substep, a
-        subclass's own step) goes the general way, which does the same (a test compares)."""
+        woken since the last step, the sleep threshold to set for a new substep (sleeping on:
+        with it off there is none), one substep, a subclass's own step) goes the general way,
+        which does the same (a test compares)."""
         n = self.p["substeps"]
         dt = self.dt
         h = dt / n
-        if n == 1 or self.resting or self._L_known is None or h != self._sleep_h \
+        if n == 1 or self.resting or self._L_known is None \
+                or (h != self._sleep_h and "sleeping" in self.on) \
                 or type(self).step is not PivotingLScene.step:
             super().advance()
             return

@@ -210,14 +210,17 @@ def test_with_substeps_each_steps_counts_are_those_of_the_balls_at_its_start_and
     assert scene.counts["tunneled"] > 20 and scene.counts["removed"] > 20
 
 
-def test_pivoting_ls_written_out_step_does_what_the_general_way_does():
+@pytest.mark.parametrize("sleeping", [True, False])
+def test_pivoting_ls_written_out_step_does_what_the_general_way_does(sleeping):
     # PivotingLScene.advance writes its usual step out; a subclass with a step of its own goes
     # the general way (FallingBallsScene.advance, step by step): the same balls, counts, joint
-    # records and state, step after step
+    # records and state, step after step; with sleeping on or off (off: no threshold to set,
+    # the written-out way as well)
     class General(PivotingLScene):
         def step(self, h):
             super().step(h)
-    written, general = PivotingLScene({"spawn_rate": 30}), General({"spawn_rate": 30})
+    settings = {"spawn_rate": 30, "sleeping": sleeping}
+    written, general = PivotingLScene(settings), General(settings)
     looks, general_steps = [], []
     check, step = written.check_balls, written.step
     written.check_balls = lambda L0: looks.append(L0) or check(L0)
