@@ -363,7 +363,7 @@ class BallChecks:
         w), row . M <= limits are its five flags: x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r
         (inside the world's box, remove_fallen's test) and height over the arm >= 0 (on or
         below its line; a NaN fails all five). Only the last column depends on the pose: it is
-        written in place when the pose changed (a moving L: every substep), so the arrays are
+        written in place when the pose changed (a moving L: every step), so the arrays are
         good until the next call with another pose."""
         now = self._flag_now
         if now is None:

@@ -17,10 +17,10 @@ A lesson in the numbers: a PinJoint keeps a DISTANCE (here 0) between its anchor
 only along the line between them; with both anchors on one point it acts only once they have
 separated, and a ball's blow sideways opens a gap that the joint then closes step by step. The
 `pin_error` metric shows it (about 0.7 to 1.2 px with one substep, 0.6 to 0.7 px with two, the
-default here: 30 s runs, seeds 0 to 2); set `pivot=pivot` for a PivotJoint, which holds both directions at
-once. The slide joint is just as soft: when the loaded L slams into it, it overshoots its max by
-about 1 to 3 px with two substeps (3.5 to 5 px with one): `slide_seen_max` is larger than the
-param `slide_max`.
+default here: 30 s runs, seeds 0 to 2); set `pivot=pivot` for a PivotJoint, which holds both
+directions at once. The slide joint is just as soft: when the loaded L slams into it, it
+overshoots its max by about 1 to 3 px with two substeps (3.5 to 5 px with one): `slide_seen_max`
+is larger than the param `slide_max`.
 
 On screen: the pin (white dot), the slide joint's allowed range (the green band from its min to its
 max, measured from the static anchor; the dot on the L turns red at a limit).
@@ -162,12 +162,14 @@ class PivotingLScene(FallingBallsScene):
         """FallingBallsScene.advance, its usual case written out (the step() of each substep and
         its super() calls cost ~1 us a step): the substeps, the joints' records after each, one
         look at the balls after the last, the spawner's clock. Anything else (a world at rest,
-        woken since the last step, the sleep threshold to set for a new substep, one substep, a
-        subclass's own step) goes the general way, which does the same (a test compares)."""
+        woken since the last step, the sleep threshold to set for a new substep (sleeping on:
+        with it off there is none), one substep, a subclass's own step) goes the general way,
+        which does the same (a test compares)."""
         n = self.p["substeps"]
         dt = self.dt
         h = dt / n
-        if n == 1 or self.resting or self._L_known is None or h != self._sleep_h \
+        if n == 1 or self.resting or self._L_known is None \
+                or (h != self._sleep_h and "sleeping" in self.on) \
                 or type(self).step is not PivotingLScene.step:
             super().advance()
             return

@@ -221,6 +221,18 @@ def test_ring_keeps_the_last_samples_oldest_first():
     assert len(ring) == 0 and ring.values().shape == (0, 2)
 
 
+
+@pytest.mark.parametrize("n", [1, 2, 5])
+def test_a_ring_of_any_size_keeps_its_last_samples_scalars_or_rows(n):
+    # (a ring of one sample wraps at every append; a k = 1 ring takes plain numbers)
+    for k in (1, 2):
+        ring = Ring(n, k)
+        for i in range(2 * n + 1):
+            ring.append(float(i) if k == 1 else (i, -i))
+            want = list(range(max(0, i + 1 - n), i + 1))
+            assert len(ring) == len(want) and 0 <= ring.head < n
+            assert ring.values()[:, 0].tolist() == want and ring.last()[0] == i
+
 # ----- the facts the help text states (issue 11), each measured ---------------------------------
 def _energies(name: str, omega_h: float, steps: int) -> np.ndarray:
     problem = oscillator()

@@ -143,14 +143,84 @@ def test_with_substeps_the_balls_are_looked_at_once_a_step_and_the_joints_every_
 
 
 
-def test_pivoting_ls_written_out_step_does_what_the_general_way_does():
+def looked_at_by_hand(cls):
+    """cls, with what each step's counts should be worked out by hand after it: every ball alive
+    at the last step's end (or dropped since: from where it was dropped) on its own, its centre
+    then and now in the L's frame then and now (tunneled: from above the long arm's line to on or
+    below it, inside the arm's extent both times; removed: outside the box now)."""
+    from scenes.l_frame import body_pose, cos_sin
+
+    def local(p, pose):
+        c, s = cos_sin(pose[2])
+        dx, dy = p[0] - pose[0], p[1] - pose[1]
+        return c * dx + s * dy, c * dy - s * dx
+
+    class ByHand(cls):
+        def build_space(self, space):
+            super().build_space(space)
+            self.seen, self.pose, self.wrong = {}, body_pose(self.L_body), []
+            self.by_hand = {"tunneled": 0, "removed": 0}
+
+        def add_ball(self, pos, index=True):
+            shape = super().add_ball(pos, index)
+            self.seen[shape.body] = tuple(pos)
+            return shape
+
+        def after_step(self):
+            super().after_step()
+            L0, L1 = self.pose, body_pose(self.L_body)
+            ax, bx = self.arm_extent
+            x0, y0, x1, y1 = self.box()
+            for body, p0 in self.seen.items():
+                p1 = tuple(body.position)          # (a removed ball's body keeps its place)
+                (lx0, ly0), (lx1, ly1) = local(p0, L0), local(p1, L1)
+                self.by_hand["tunneled"] += ly0 < 0 <= ly1 and ax <= lx0 <= bx and ax <= lx1 <= bx
+                self.by_hand["removed"] += not (x0 <= p1[0] <= x1 and y0 <= p1[1] <= y1)
+            self.seen = {shape.body: tuple(shape.body.position) for shape in self.balls}
+            self.pose = L1
+            if any(self.counts[k] != v for k, v in self.by_hand.items()):
+                self.wrong.append((self.steps, dict(self.by_hand), dict(self.counts)))
+                self.by_hand = {k: self.counts[k] for k in self.by_hand}
+    return ByHand
+
+
+@pytest.mark.parametrize("cls, settings, steps", [
+    (FallingBallsScene, {"g": 5000, "hertz": 15, "radius": 4, "substeps": 3, "spawn_rate": 30},
+     100),
+    (PivotingLScene, {"hertz": 5, "substeps": 3, "spawn_rate": 30}, 60)])
+def test_with_substeps_each_steps_counts_are_those_of_the_balls_at_its_start_and_end(cls, settings,
+                                                                                   steps):
+    # the lab looks at the balls once a step, after its last substep: each step's tunneled and
+    # removed are those a look at every ball at the step's start and end finds, whatever
+    # happened between steps: the L kicked (wake: the look starts from the L's pose before the
+    # step, not after a substep), a ball dropped with the mouse, sleeping switched
+    from app.scene import InputEvent
+    scene = looked_at_by_hand(cls)(settings)
+    for i in range(steps):
+        if i % 2 and cls is PivotingLScene:
+            scene.L_body.angular_velocity = 1.5 if i % 4 == 1 else -1.5
+            scene.wake()
+        if i % 10 == 5:
+            scene.handle_event(InputEvent("mouse_down", pos=(150.0 + 9 * i, 100.0), button=1))
+            scene.handle_event(InputEvent("mouse_up", pos=(150.0 + 9 * i, 100.0), button=1))
+        if i % 25 == 20:
+            scene.set("sleeping", "sleeping" not in scene.on)
+        scene.advance()
+    assert scene.wrong == []
+    assert scene.counts["tunneled"] > 20 and scene.counts["removed"] > 20
+
+
+@pytest.mark.parametrize("sleeping", [True, False])
+def test_pivoting_ls_written_out_step_does_what_the_general_way_does(sleeping):
     # PivotingLScene.advance writes its usual step out; a subclass with a step of its own goes
     # the general way (FallingBallsScene.advance, step by step): the same balls, counts, joint
-    # records and state, step after step
+    # records and state, step after step; with sleeping on or off (off: no threshold to set,
+    # the written-out way as well)
     class General(PivotingLScene):
         def step(self, h):
             super().step(h)
-    written, general = PivotingLScene({"spawn_rate": 30}), General({"spawn_rate": 30})
+    settings = {"spawn_rate": 30, "sleeping": sleeping}
+    written, general = PivotingLScene(settings), General(settings)
     looks, general_steps = [], []
     check, step = written.check_balls, written.step
     written.check_balls = lambda L0: looks.append(L0) or check(L0)
@@ -237,7 +307,7 @@ def test_the_reference_step_is_rk4_on_the_slide_formula_to_the_last_bit():
     (PivotingLScene, {"spawn_rate": 30}, 300)])
 def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings, steps):
     # the quick path (five flags a ball from one product, compared as bytes) against the exact
-    # tests run on every ball every substep: the same balls tunneled, removed, and the same state
+    # tests run on every ball every step: the same balls tunneled, removed, and the same state
     Exact = exact_tests(cls)
     class Quick(cls):
         usual = 0
