@@ -108,7 +108,7 @@ from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
 from app.physics.cloth_obstacles import Touched, may_touch, settle_corners, tunnel_and_project
 from app.physics.friction import slide_back
-from app.physics.obstacles import Obstacle, project
+from app.physics.obstacles import Obstacle, near_bounds, project
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -327,7 +327,9 @@ def self_collide(c, h: float) -> None:
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
     scale = scratch.get("scale", 2 * n, np.float64)    # Jacobi's average, over-relaxed (x, y)
-    np.divide(OVER_RELAX, np.maximum(count, 1, out=count), out=scale[:n])
+    # (both shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
+    np.divide(OVER_RELAX / 2 if even else OVER_RELAX, np.maximum(count, 1, out=count),
+              out=scale[:n])
     scale[n:] = scale[:n]
     move = scratch.get("move", 2 * m, np.float64)      # (weights in float64: bincount's own)
     xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
@@ -340,21 +342,21 @@ def self_collide(c, h: float) -> None:
         if floor_too:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
-            project(st.obstacles, x.T, st.margin, movable)
+            _push_out(st.obstacles, x.T, st.margin, movable)
         # d = x_j - x_i for every pair, r = |d| (in kept work arrays: no fresh pages)
         dx = np.subtract(np.take(xs, j, out=xj, mode="wrap"), np.take(xs, i, out=xi, mode="wrap"),
                          out=xj)
         dy = np.subtract(np.take(ys, j, out=yj, mode="wrap"), np.take(ys, i, out=yi, mode="wrap"),
                          out=yj)
         r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
-        same = np.less(r, 1e-6 * dmin, out=flag)        # at one point: part them along x
-        if same.any():
+        if r.min() < 1e-6 * dmin:                       # at one point: part them along x
+            same = np.less(r, 1e-6 * dmin, out=flag)
             dx[same], r[same] = 1.0, 1.0
         push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
-        if even:                                        # both shares 1/2: one set of weights
-            f_j = f_i = np.multiply(push, 0.5, out=push)
+        if even:                                        # both shares 1/2 (in scale): one
+            f_j = f_i = push                            # set of weights
         else:
             f_j, f_i = push * share_j, push * share_i
         moved = np.bincount(jj, _weights(move, dx, dy, f_j), 2 * n)     # + at the j ends
@@ -363,6 +365,16 @@ def self_collide(c, h: float) -> None:
         moved -= np.bincount(ii, move, 2 * n)                             # - at the i ends
         moved *= scale
         np.add(flat, moved, out=flat, casting="unsafe")
+
+
+def _push_out(obstacles: list, points: np.ndarray, margin: float, movable: np.ndarray) -> None:
+    """project(obstacles, points, margin, movable), without the contacts it returns and with
+    nothing made while no point is near an obstacle's bounds (a sweep above the floor)."""
+    px, py = points[:, 0], points[:, 1]
+    for k, ob in enumerate(obstacles):
+        if near_bounds(ob, px, py, margin, movable).size:     # (project skips those before k)
+            project(obstacles[k:], points, margin, movable)
+            return
 
 
 def _weights(move: np.ndarray, dx: np.ndarray, dy: np.ndarray, f: np.ndarray) -> np.ndarray:

@@ -60,6 +60,7 @@ Verlet cloth's self-collision uses it; see the section "finer cells" below).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from typing import Iterator
@@ -250,7 +251,8 @@ FINE_BLOCK = 1 << 13      # candidates per block: their work arrays stay in the 
 SLACK = 1e-3              # in cells: float32 rounding of a cell index never hides a pair
 
 
-def fine_stencil(cutoff: float, cell_w: float, cell_h: float) -> list[int]:
+@functools.lru_cache(maxsize=64)       # (the same cells step after step: asked once)
+def fine_stencil(cutoff: float, cell_w: float, cell_h: float) -> tuple[int, ...]:
     """reach[r]: the cells left and right of a particle's column that its row (r = 0) and the
     r-th row below can hold a partner in: row r starts (r - 1) cell heights below the particle,
     where a partner is at most sqrt(R^2 - dy^2) away across."""
@@ -258,7 +260,7 @@ def fine_stencil(cutoff: float, cell_w: float, cell_h: float) -> list[int]:
     while (len(reach) - 1) * cell_h * (1 - SLACK) < cutoff:
         dy = max((len(reach) - 1) * cell_h * (1 - SLACK), 0.0)
         reach.append(math.ceil(math.sqrt(cutoff * cutoff - dy * dy) / cell_w + SLACK))
-    return reach
+    return tuple(reach)
 
 
 class Scratch:
