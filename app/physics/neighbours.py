@@ -279,6 +279,14 @@ class Scratch:
             a = self.arrays[name] = np.empty(max(size + size // 2, 1024), dtype)
         return a[:size]
 
+    def owners(self, n: int, rows: int) -> np.ndarray:
+        """0, 1, ..., n - 1, `rows` times over (kept, and made again only for another n or
+        rows: never write into it)."""
+        a = self.arrays.get("owner_rows")
+        if a is None or a.shape != (rows, n):
+            a = self.arrays["owner_rows"] = np.tile(np.arange(n), (rows, 1))
+        return a.reshape(-1)
+
     def count(self, size: int) -> np.ndarray:
         """0, 1, ..., size - 1 (np.arange, kept)."""
         a = self.arrays.get("count")
@@ -359,7 +367,8 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     else:
         cx = np.minimum(((xs - lo_x) * (1 / cell_w)).astype(np.intp), nx - 1)
         cy = np.minimum(((ys - lo_y) * (1 / cell_h)).astype(np.intp), ny - 1)
-    cell = cy * columns + cx
+    cell = np.multiply(cy, columns, out=cy)
+    cell += cx
     cell += pad
     cells = columns * (ny + below)
     order = cell_order(cell, cells)
@@ -382,8 +391,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     if total == 0:
         return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
     first -= ends - length                     # q = first + c for candidate c of a run
-    owner = scratch.get("owners", n * (below + 1), np.intp)
-    owner.reshape(below + 1, n)[:] = scratch.count(n)       # the run's particle (sorted position)
+    owner = scratch.owners(n, below + 1)       # the run's particle (sorted position)
     real = np.result_type(xs, ys, np.float32)  # float32 or float64: all_pairs's own rounding
     pair = np.complex64 if real == np.float32 else np.complex128
     z = np.empty(n, pair)                      # positions in sorted order, x + i y
