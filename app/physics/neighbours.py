@@ -372,7 +372,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     cell += pad
     cells = columns * (ny + below)
     order = cell_order(cell, cells)
-    stop = np.cumsum(np.bincount(cell, minlength=cells), out=scratch.get("stop", cells, np.intp))
+    stop = np.bincount(cell, minlength=cells).cumsum(out=scratch.get("stop", cells, np.intp))
     # 3. the runs of the particle at sorted position k, in cell c: the rest of its own row's
     # reach (k + 1 to the stop of cell c + reach[0]), then row r below: the cells c + r columns
     # - reach[r] .. c + r columns + reach[r] (the start of a cell is the stop of the one before)
@@ -380,13 +380,13 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     first = scratch.get("first", n * (below + 1), np.intp).reshape(below + 1, n)
     length = scratch.get("length", n * (below + 1), np.intp).reshape(below + 1, n)
     first[0] = scratch.count(n + 1)[1:]
-    np.take(stop[reach[0]:], c, out=length[0])
+    stop[reach[0]:].take(c, out=length[0])
     for r in range(1, below + 1):
-        np.take(stop[r * columns - reach[r] - 1:], c, out=first[r])
-        np.take(stop[r * columns + reach[r]:], c, out=length[r])
+        stop[r * columns - reach[r] - 1:].take(c, out=first[r])
+        stop[r * columns + reach[r]:].take(c, out=length[r])
     first, length = first.ravel(), length.ravel()
     length -= first
-    ends = np.cumsum(length, out=scratch.get("ends", length.size, np.intp))
+    ends = length.cumsum(out=scratch.get("ends", length.size, np.intp))
     total = int(ends[-1])
     if total == 0:
         return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
@@ -401,30 +401,32 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     hit_q = scratch.get("hit_q", total, np.intp)
     found = 0
     # blocks of whole runs, about FINE_BLOCK candidates each: their arrays stay in the cache
-    cuts = np.searchsorted(ends, np.arange(FINE_BLOCK, total, FINE_BLOCK)) + 1
+    cuts = ends.searchsorted(np.arange(FINE_BLOCK, total, FINE_BLOCK)) + 1
     bounds = [0, *sorted(set(np.minimum(cuts, ends.size).tolist()) - {0, ends.size}), ends.size]
     for r0, r1 in zip(bounds[:-1], bounds[1:]):
         c0 = int(ends[r0 - 1]) if r0 else 0
         runs = length[r0:r1]
-        # p, q: each candidate's two sorted positions (np.repeat replaces `for each run: for q
-        # in range(first, stop): candidates.append((p, q))`)
-        p = np.repeat(owner[r0:r1], runs)
-        q = np.repeat(first[r0:r1], runs)
+        # p, q: each candidate's two sorted positions (repeat replaces `for each run: for q
+        # in range(first, stop): candidates.append((p, q))`). The arrays' own methods (a.take,
+        # a.repeat, a.compress), not np.take and the like: those Python wrappers cost ~1 us a
+        # call, some 50 us of the crumpled cloth's pass
+        p = owner[r0:r1].repeat(runs)
+        q = first[r0:r1].repeat(runs)
         q += count[c0:c0 + q.size]
         # d = x_q - x_p, x and y as one complex number (one gather, not two), then |d|^2 in
         # the positions' precision (all_pairs's rounding: the same pairs, exactly)
-        d = np.take(z, q, out=scratch.get("d", q.size, pair), mode="wrap")
-        d -= np.take(z, p, out=scratch.get("dp", q.size, pair), mode="wrap")
+        d = z.take(q, out=scratch.get("d", q.size, pair), mode="wrap")
+        d -= z.take(p, out=scratch.get("dp", q.size, pair), mode="wrap")
         dd = d.view(real)
         dd *= dd
         r2 = np.add(dd[0::2], dd[1::2], out=scratch.get("r2", q.size, real))
         hit = np.less(r2, real.type(cutoff * cutoff), out=scratch.get("hit", q.size, bool))
         k = int(np.count_nonzero(hit))
-        np.compress(hit, p, out=hit_p[found:found + k])
-        np.compress(hit, q, out=hit_q[found:found + k])
+        p.compress(hit, out=hit_p[found:found + k])
+        q.compress(hit, out=hit_q[found:found + k])
         found += k
-    i = np.take(order, hit_p[:found], out=scratch.get("i", found, np.intp))
-    j = np.take(order, hit_q[:found], out=scratch.get("j", found, np.intp))
+    i = order.take(hit_p[:found], out=scratch.get("i", found, np.intp))
+    j = order.take(hit_q[:found], out=scratch.get("j", found, np.intp))
     return i, j, total
 
 
