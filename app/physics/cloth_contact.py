@@ -243,10 +243,10 @@ def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, i
     else:                                               # the grid, over the cloth's own box
         i, j, tests = fine_pairs(pts[:, 0], pts[:, 1], distance, c.contact.scratch)
     keep = np.logical_not(_joined(c, i, j), out=c.contact.scratch.get("keep", i.size, bool))
-    k = int(np.count_nonzero(keep))
+    kept = keep.nonzero()[0]                            # (faster than i.compress(keep))
     scratch = c.contact.scratch
-    return (i.compress(keep, out=scratch.get("pair_i", k, np.intp)),
-            j.compress(keep, out=scratch.get("pair_j", k, np.intp)), tests)
+    return (i.take(kept, out=scratch.get("pair_i", kept.size, np.intp), mode="wrap"),
+            j.take(kept, out=scratch.get("pair_j", kept.size, np.intp), mode="wrap"), tests)
 
 
 def joined_table(c) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

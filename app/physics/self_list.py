@@ -142,6 +142,6 @@ def within(i: np.ndarray, j: np.ndarray, x: np.ndarray, distance: float, scratch
                      out=scratch.get("list_dy", m, real))
     r2 = np.add(np.square(dx, out=dx), np.square(dy, out=dy), out=dx)
     hit = np.less(r2, real.type(distance * distance), out=scratch.get("list_hit", m, bool))
-    k = int(np.count_nonzero(hit))
-    return (i.compress(hit, out=scratch.get("list_i", k, np.intp)),
-            j.compress(hit, out=scratch.get("list_j", k, np.intp)), m)
+    kept = hit.nonzero()[0]                             # (faster than i.compress(hit))
+    return (i.take(kept, out=scratch.get("list_i", kept.size, np.intp), mode="wrap"),
+            j.take(kept, out=scratch.get("list_j", kept.size, np.intp), mode="wrap"), m)
