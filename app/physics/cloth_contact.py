@@ -74,18 +74,35 @@ cloth still falling (12-22 px a step against 6.4 px: a plain search every step).
 ~64,000 candidates, the finer cells with their stencil trimmed to the circle give 34,826. The
 work arrays are kept (neighbours.Scratch) or small: a fresh 264 kB cell table a call made the
 allocator hand pages back and fault them in again (~104 minor page faults, ~0.26 ms a pass;
-now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time, load 1.1, 2026-11-26):
-1.26 x the step crumpled (1.58 x before that day's changes), 0.36 x hanging: the goal of at
-most 1 x is NOT met by NumPy crumpled. There the ~1.1 ms go to the search ~0.5, the rod filter
-and the list ~0.1, each of the 2 sweeps ~0.15 (two bincounts over 4 x 14,037 weighted entries
-the largest part). Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
+now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time): 1.26 x the step
+crumpled on 2026-11-26 (load 1.1; 1.58 x before that day's changes); on 2026-11-27 1.08 and
+1.09 x, hanging 0.34 and 0.33 x (two runs, load 0.6-0.8, taking turns with the day before's
+code: 1.27 and 1.24 x crumpled, 0.37 and 0.35 x hanging): the goal of at most 1 x is still NOT
+met by NumPy crumpled. There the ~1.0 ms go to the search ~0.5, the rod
+filter and the list ~0.1, the 2 sweeps ~0.35 (each one's four bincounts over 14,037 weighted
+entries the largest part). What 2026-11-27 gained (each measured in one process against the commit
+before, the pass over the bench's 15 steps in 101-201 interleaved rounds, load 0.6-3.4; the
+same positions to the last bit): the arrays' own methods, a.take, a.repeat (np.take and the like
+go through a Python wrapper: ~1.2 us a call, ~6 %); the mask's indices and two takes, not
+a.compress twice (3 x faster alone, ~4 %); the run's particle by its index, so i needs no
+gather through the sort after the search (~4 %); four bincounts over j and i instead of two over
+[j, j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share and the coincident
+test done once, the obstacles projected only when a particle is near one (~4 %). Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
 no faster), fewer cells per particle (more candidates), blocks over 8,192 candidates
-(np.repeat's fresh arrays cross glibc's 128 kB: page faults again), x and y as one complex
-number in the sweeps (4 % faster: not worth plainer code), the candidates as running sums of
-their steps (np.cumsum) instead of np.repeat (15 % faster alone, 0-5 % inside the step: after
-the step's own work the search waits on memory, whichever way it is written). The compiled
-pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid and pairs, searched
-every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
+(np.repeat's fresh arrays cross glibc's 128 kB: page faults again), blocks of 4,096 (1.03-1.06
+x), one repeat of the (owner, first) pairs of a run (1.04 x: its 16-byte rows cross 128 kB
+again), the candidates as running sums of their steps (np.cumsum) instead of np.repeat (15 %
+faster alone, 0-5 % inside the step), x and y as one complex number in the sweeps (4 % faster
+once, 1.02 x on 2026-11-27), the rod filter fused into the search, read on the sorted
+positions (1.03 x), int32 index arrays in the search (1.15 x crumpled, 1.6 x hanging: take and
+repeat cast int32 indices to intp, a pass each), np.add.at instead of bincount (1.05 x), a
+sparse matrix (scipy CSR) for the sweeps' scatter (its mat-vec: 35 us against bincount's 80
+alone, but building it from the pairs needs a sort of 2 x 14,037 ends by particle, 112 us a
+substep for two sweeps). After the step's own work the pass waits on memory: an operation
+costs 2-4 x inside the step what it costs alone (the cell table's bincount and cumsum: 18 us
+alone, ~86 us in the step), so fewer passes over fewer bytes, not fewer operations, is what
+counts. The compiled pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid
+and pairs, searched every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
 with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like
 it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
 met either (bench of 2026-11-27, load 1.1).
