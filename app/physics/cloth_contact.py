@@ -74,18 +74,35 @@ cloth still falling (12-22 px a step against 6.4 px: a plain search every step).
 ~64,000 candidates, the finer cells with their stencil trimmed to the circle give 34,826. The
 work arrays are kept (neighbours.Scratch) or small: a fresh 264 kB cell table a call made the
 allocator hand pages back and fault them in again (~104 minor page faults, ~0.26 ms a pass;
-now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time, load 1.1, 2026-11-26):
-1.26 x the step crumpled (1.58 x before that day's changes), 0.36 x hanging: the goal of at
-most 1 x is NOT met by NumPy crumpled. There the ~1.1 ms go to the search ~0.5, the rod filter
-and the list ~0.1, each of the 2 sweeps ~0.15 (two bincounts over 4 x 14,037 weighted entries
-the largest part). Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
+now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time): 1.26 x the step
+crumpled on 2026-11-26 (load 1.1; 1.58 x before that day's changes); on 2026-11-27 1.08 and
+1.09 x, hanging 0.34 and 0.33 x (two runs, load 0.6-0.8, taking turns with the day before's
+code: 1.27 and 1.24 x crumpled, 0.37 and 0.35 x hanging): the goal of at most 1 x is still NOT
+met by NumPy crumpled. There the ~1.0 ms go to the search ~0.5, the rod
+filter and the list ~0.1, the 2 sweeps ~0.35 (each one's four bincounts over 14,037 weighted
+entries the largest part). What 2026-11-27 gained (each measured in one process against the commit
+before, the pass over the bench's 15 steps in 101-201 interleaved rounds, load 0.6-3.4; the
+same positions to the last bit): the arrays' own methods, a.take, a.repeat (np.take and the like
+go through a Python wrapper: ~1.2 us a call, ~6 %); the mask's indices and two takes, not
+a.compress twice (3 x faster alone, ~4 %); the run's particle by its index, so i needs no
+gather through the sort after the search (~4 %); four bincounts over j and i instead of two over
+[j, j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share and the coincident
+test done once, the obstacles projected only when a particle is near one (~4 %). Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
 no faster), fewer cells per particle (more candidates), blocks over 8,192 candidates
-(np.repeat's fresh arrays cross glibc's 128 kB: page faults again), x and y as one complex
-number in the sweeps (4 % faster: not worth plainer code), the candidates as running sums of
-their steps (np.cumsum) instead of np.repeat (15 % faster alone, 0-5 % inside the step: after
-the step's own work the search waits on memory, whichever way it is written). The compiled
-pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid and pairs, searched
-every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
+(np.repeat's fresh arrays cross glibc's 128 kB: page faults again), blocks of 4,096 (1.03-1.06
+x), one repeat of the (owner, first) pairs of a run (1.04 x: its 16-byte rows cross 128 kB
+again), the candidates as running sums of their steps (np.cumsum) instead of np.repeat (15 %
+faster alone, 0-5 % inside the step), x and y as one complex number in the sweeps (4 % faster
+once, 1.02 x on 2026-11-27), the rod filter fused into the search, read on the sorted
+positions (1.03 x), int32 index arrays in the search (1.15 x crumpled, 1.6 x hanging: take and
+repeat cast int32 indices to intp, a pass each), np.add.at instead of bincount (1.05 x), a
+sparse matrix (scipy CSR) for the sweeps' scatter (its mat-vec: 35 us against bincount's 80
+alone, but building it from the pairs needs a sort of 2 x 14,037 ends by particle, 112 us a
+substep for two sweeps). After the step's own work the pass waits on memory: an operation
+costs 2-4 x inside the step what it costs alone (the cell table's bincount and cumsum: 18 us
+alone, ~86 us in the step), so fewer passes over fewer bytes, not fewer operations, is what
+counts. The compiled pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid
+and pairs, searched every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
 with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like
 it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
 met either (bench of 2026-11-27, load 1.1).
@@ -108,7 +125,7 @@ from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
 from app.physics.cloth_obstacles import Touched, may_touch, settle_corners, tunnel_and_project
 from app.physics.friction import slide_back
-from app.physics.obstacles import Obstacle, project
+from app.physics.obstacles import Obstacle, near_bounds, project
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -243,10 +260,10 @@ def close_ij(c, distance: float, method: str) -> tuple[np.ndarray, np.ndarray, i
     else:                                               # the grid, over the cloth's own box
         i, j, tests = fine_pairs(pts[:, 0], pts[:, 1], distance, c.contact.scratch)
     keep = np.logical_not(_joined(c, i, j), out=c.contact.scratch.get("keep", i.size, bool))
-    k = int(np.count_nonzero(keep))
+    kept = keep.nonzero()[0]                            # (faster than i.compress(keep))
     scratch = c.contact.scratch
-    return (i.compress(keep, out=scratch.get("pair_i", k, np.intp)),
-            j.compress(keep, out=scratch.get("pair_j", k, np.intp)), tests)
+    return (i.take(kept, out=scratch.get("pair_i", kept.size, np.intp), mode="wrap"),
+            j.take(kept, out=scratch.get("pair_j", kept.size, np.intp), mode="wrap"), tests)
 
 
 def joined_table(c) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -279,9 +296,9 @@ def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
     """True where particles i and j are never pushed apart (joined_table), pair by pair."""
     plus, minus, table = joined_table(c)
     scratch = c.contact.scratch
-    k = np.take(plus, j, out=scratch.get("joined_k", j.size, np.intp), mode="wrap")
+    k = plus.take(j, out=scratch.get("joined_k", j.size, np.intp), mode="wrap")
     k -= minus.take(i)
-    return np.take(table, k, out=scratch.get("joined", j.size, bool), mode="wrap")
+    return table.take(k, out=scratch.get("joined", j.size, bool), mode="wrap")
 
 
 def self_collide(c, h: float) -> None:
@@ -314,62 +331,73 @@ def self_collide(c, h: float) -> None:
             i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
         even = bool(np.array_equal(wi, wj))             # equal weights at both ends, all pairs
     n, m = xs.size, i.size
-    # each sweep gathers every particle's corrections, x and y, with two bincounts: the j ends
-    # (entries j for x, j + n for y) pushed by + share_j of d times the overlap, the i ends by
-    # - share_i of it; they replace `for pair: x[j] += share_j * move; x[i] -= share_i * move`.
-    # Both ends free (w = 1 each, the usual case): both shares are 1/2, one set of weights.
+    # each sweep gathers every particle's corrections with bincounts, x and y apart: the j
+    # ends pushed by + share_j of d times the overlap, the i ends by - share_i of it; they
+    # replace `for pair: x[j] += share_j * move; x[i] -= share_i * move`. Both ends free (w = 1
+    # each, the usual case): both shares are 1/2, one set of weights. (Four bincounts over j
+    # and i, not two over [j, j + n] and [i, i + n]: no 4m-entry index array to build and keep
+    # in the cache; ~3 % of the crumpled cloth's pass, the same sums.)
     scratch = st.scratch
-    ends = scratch.get("pair_ends", 4 * m, np.intp).reshape(2, 2, m)  # [j, j + n], [i, i + n]
-    ends[0, 0], ends[1, 0] = j, i
-    np.add(ends[:, 0], n, out=ends[:, 1])
-    jj, ii = ends.reshape(2, 2 * m)
     share_j, share_i = (None, None) if even else (wj / total, wi / total)
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
-    scale = scratch.get("scale", 2 * n, np.float64)    # Jacobi's average, over-relaxed (x, y)
-    np.divide(OVER_RELAX, np.maximum(count, 1, out=count), out=scale[:n])
-    scale[n:] = scale[:n]
+    scale = scratch.get("scale", n, np.float64)        # Jacobi's average, over-relaxed
+    # (both shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
+    np.divide(OVER_RELAX / 2 if even else OVER_RELAX, np.maximum(count, 1, out=count),
+              out=scale)
     move = scratch.get("move", 2 * m, np.float64)      # (weights in float64: bincount's own)
     xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
     flag = scratch.get("same", m, bool)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     movable = c.free.ravel() > 0
-    flat = c.x.reshape(-1)                              # x then y: what `moved` lists
     for sweep in range(SELF_SWEEPS):
         if floor_too:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
-            project(st.obstacles, x.T, st.margin, movable)
+            _push_out(st.obstacles, x.T, st.margin, movable)
         # d = x_j - x_i for every pair, r = |d| (in kept work arrays: no fresh pages)
-        dx = np.subtract(np.take(xs, j, out=xj, mode="wrap"), np.take(xs, i, out=xi, mode="wrap"),
-                         out=xj)
-        dy = np.subtract(np.take(ys, j, out=yj, mode="wrap"), np.take(ys, i, out=yi, mode="wrap"),
-                         out=yj)
+        # (the arrays' own take, not np.take: its Python wrapper costs ~1 us a call)
+        dx = np.subtract(xs.take(j, out=xj, mode="wrap"), xs.take(i, out=xi, mode="wrap"), out=xj)
+        dy = np.subtract(ys.take(j, out=yj, mode="wrap"), ys.take(i, out=yi, mode="wrap"), out=yj)
         r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
-        same = np.less(r, 1e-6 * dmin, out=flag)        # at one point: part them along x
-        if same.any():
+        if r.min() < 1e-6 * dmin:                       # at one point: part them along x
+            same = np.less(r, 1e-6 * dmin, out=flag)
             dx[same], r[same] = 1.0, 1.0
         push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
-        if even:                                        # both shares 1/2: one set of weights
-            f_j = f_i = np.multiply(push, 0.5, out=push)
+        if even:                                        # both shares 1/2 (in scale): one
+            f_j = f_i = push                            # set of weights
         else:
             f_j, f_i = push * share_j, push * share_i
-        moved = np.bincount(jj, _weights(move, dx, dy, f_j), 2 * n)     # + at the j ends
+        wx, wy = _weights(move, dx, dy, f_j)
+        moved_x, moved_y = np.bincount(j, wx, n), np.bincount(j, wy, n)     # + at the j ends
         if not even:
             _weights(move, dx, dy, f_i)
-        moved -= np.bincount(ii, move, 2 * n)                             # - at the i ends
-        moved *= scale
-        np.add(flat, moved, out=flat, casting="unsafe")
+        moved_x -= np.bincount(i, wx, n)                                     # - at the i ends
+        moved_y -= np.bincount(i, wy, n)
+        moved_x *= scale
+        moved_y *= scale
+        np.add(xs, moved_x, out=xs, casting="unsafe")
+        np.add(ys, moved_y, out=ys, casting="unsafe")
 
 
-def _weights(move: np.ndarray, dx: np.ndarray, dy: np.ndarray, f: np.ndarray) -> np.ndarray:
-    """move = (dx f, dy f): one end's corrections, x then y, as bincount's weights."""
-    np.multiply(dx, f, out=move[:dx.size])
-    np.multiply(dy, f, out=move[dx.size:])
-    return move
+def _push_out(obstacles: list, points: np.ndarray, margin: float, movable: np.ndarray) -> None:
+    """project(obstacles, points, margin, movable), without the contacts it returns and with
+    nothing made while no point is near an obstacle's bounds (a sweep above the floor)."""
+    px, py = points[:, 0], points[:, 1]
+    for k, ob in enumerate(obstacles):
+        if near_bounds(ob, px, py, margin, movable).size:     # (project skips those before k)
+            project(obstacles[k:], points, margin, movable)
+            return
+
+
+def _weights(move: np.ndarray, dx: np.ndarray, dy: np.ndarray, f: np.ndarray
+             ) -> tuple[np.ndarray, np.ndarray]:
+    """(dx f, dy f) in `move`: one end's corrections, x and y, as bincount's weights."""
+    m = dx.size
+    return (np.multiply(dx, f, out=move[:m]), np.multiply(dy, f, out=move[m:]))
 
 
 def _self_collide_compiled(c) -> None:

@@ -134,14 +134,14 @@ def within(i: np.ndarray, j: np.ndarray, x: np.ndarray, distance: float, scratch
     grid's search computes it (neighbours.fine_pairs: in the positions' precision, x then y),
     so a pair is kept exactly when the search would find it."""
     m, real = i.size, x.dtype
-    dx = np.subtract(np.take(x[0], j, out=scratch.get("list_xj", m, real), mode="wrap"),
-                     np.take(x[0], i, out=scratch.get("list_xi", m, real), mode="wrap"),
+    dx = np.subtract(x[0].take(j, out=scratch.get("list_xj", m, real), mode="wrap"),
+                     x[0].take(i, out=scratch.get("list_xi", m, real), mode="wrap"),
                      out=scratch.get("list_dx", m, real))
-    dy = np.subtract(np.take(x[1], j, out=scratch.get("list_xj", m, real), mode="wrap"),
-                     np.take(x[1], i, out=scratch.get("list_xi", m, real), mode="wrap"),
+    dy = np.subtract(x[1].take(j, out=scratch.get("list_xj", m, real), mode="wrap"),
+                     x[1].take(i, out=scratch.get("list_xi", m, real), mode="wrap"),
                      out=scratch.get("list_dy", m, real))
     r2 = np.add(np.square(dx, out=dx), np.square(dy, out=dy), out=dx)
     hit = np.less(r2, real.type(distance * distance), out=scratch.get("list_hit", m, bool))
-    k = int(np.count_nonzero(hit))
-    return (i.compress(hit, out=scratch.get("list_i", k, np.intp)),
-            j.compress(hit, out=scratch.get("list_j", k, np.intp)), m)
+    kept = hit.nonzero()[0]                             # (faster than i.compress(hit))
+    return (i.take(kept, out=scratch.get("list_i", kept.size, np.intp), mode="wrap"),
+            j.take(kept, out=scratch.get("list_j", kept.size, np.intp), mode="wrap"), m)
