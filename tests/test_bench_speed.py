@@ -138,7 +138,7 @@ def test_the_instruction_counts_say_so_when_valgrind_is_missing(tmp_path, monkey
     import shutil
 
     from app.bench import pymunk_ir
-    from app.bench.pymunk_cost import instructions
+    from app.bench.pymunk_ir import instructions
     assert pymunk_ir.collected("==1== Events    : Ir\n==1== Collected : 12345\n") == 12345
     with pytest.raises(RuntimeError, match="no count"):
         pymunk_ir.collected("valgrind: command not found")

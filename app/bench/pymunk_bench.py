@@ -18,7 +18,7 @@ from __future__ import annotations
 import pygame
 import pymunk.pygame_util
 
-from app.bench import Report, median_time, pymunk_cost
+from app.bench import Report, median_time, pymunk_cost, pymunk_ir
 from app.draw.plot import LineChart
 from app.draw.view import View
 from app.scene import Scene
@@ -63,6 +63,9 @@ def run(report: Report) -> dict:
     results: dict = {"radius": RADIUS, "by_count": []}
     # 0: the lab's step against a bare pymunk loop over the same bodies (app/bench/pymunk_cost.py)
     results["engine_cost"] = pymunk_cost.run(report)
+    if report.full:          # the same cases in instructions (valgrind, when installed)
+        labels = [label for label, _ in pymunk_cost.cases(False)]
+        results["engine_cost"]["instructions"] = pymunk_ir.instructions(report, labels)
 
     # 1 + 2: many awake balls, stepping and drawing, ours vs debug_draw
     draw_own, draw_debug, step_awake, step_asleep = [], [], [], []

@@ -178,32 +178,7 @@ def run(report: Report) -> dict:
         f"({float(on['bare_ms']) * 1e3:.1f} us). So with the ghost on, lab/bare is at least "
         f"1 + {share:.2f} before any bookkeeping (measured: {on['ratio']:.2f}; with the ghost off "
         f"{off['ratio']:.2f}): the goal of {GOAL} is out of reach while the ghost runs.")
-    result = {"goal": GOAL, "bare_loop": BARE_WORDS, "scenes": out, "ghost": ghost}
-    if report.full:
-        result["instructions"] = instructions(report, [label for label, _ in cases(False)])
-    return result
-
-
-def instructions(report: Report, labels: list[str]) -> list[dict] | str:
-    """With --full: the same cases' lab and bare steps in instructions (app/bench/pymunk_ir.py:
-    callgrind's counts, free of the load), or why they could not be counted."""
-    from app.bench import pymunk_ir
-    missing = pymunk_ir.available()
-    if missing:
-        report.say(f"\nInstruction counts: not measured, {missing}.")
-        return f"not measured: {missing}"
-    report.progress(f"instructions (callgrind, {len(labels)} cases, ~10 s each)")
-    counts = pymunk_ir.per_step(labels)
-    report.table(
-        f"the same in instructions a step (valgrind callgrind over the timed {pymunk_ir.STEPS} "
-        "steps: the same on every run, whatever the load; the lab's Python runs fewer "
-        "instructions a cycle than pymunk's C, so its time ratio is higher)",
-        ["scene", "lab", "bare pymunk", "lab/bare"],
-        [[label, f"{lab:,.0f}", f"{bare:,.0f}", lab / bare] for label, lab, bare in counts])
-    return [{"scene": label, "lab": lab, "bare": bare, "ratio": lab / bare}
-            for label, lab, bare in counts]
-
-
+    return {"goal": GOAL, "bare_loop": BARE_WORDS, "scenes": out, "ghost": ghost}
 
 
 def ghost_cost(steps: int, rounds: int) -> dict:

@@ -26,6 +26,10 @@ import subprocess
 import sys
 import tempfile
 
+from app.bench import Report
+from app.bench.bare_pymunk import Replay, record
+from app.bench.pymunk_cost import WARM, cases
+
 STEPS = 120          # counted steps a child: the timing's (the counts are exact: no repeats)
 _COLLECTED = re.compile(r"Collected\s*:\s*(\d+)")
 
@@ -70,10 +74,27 @@ def per_step(labels: list[str], steps: int = STEPS) -> list[tuple[str, float, fl
              (count(label, "bare", steps) - fixed) / steps) for label in labels]
 
 
+def instructions(report: Report, labels: list[str]) -> list[dict] | str:
+    """With --full: the same cases' lab and bare steps in instructions (callgrind's counts, free of
+    the load), or why they could not be counted."""
+    missing = available()
+    if missing:
+        report.say(f"\nInstruction counts: not measured, {missing}.")
+        return f"not measured: {missing}"
+    report.progress(f"instructions (callgrind, {len(labels)} cases, ~10 s each)")
+    counts = per_step(labels)
+    report.table(
+        f"the same in instructions a step (valgrind callgrind over the timed {STEPS} "
+        "steps: the same on every run, whatever the load; the lab's Python runs fewer "
+        "instructions a cycle than pymunk's C, so its time ratio is higher)",
+        ["scene", "lab", "bare pymunk", "lab/bare"],
+        [[label, f"{lab:,.0f}", f"{bare:,.0f}", lab / bare] for label, lab, bare in counts])
+    return [{"scene": label, "lab": lab, "bare": bare, "ratio": lab / bare}
+            for label, lab, bare in counts]
+
+
 def _child(label: str, mode: str, steps: int) -> None:
     """Build the case, step it WARM steps, count `steps` steps of the lab or the bare loop."""
-    from app.bench.bare_pymunk import Replay, record
-    from app.bench.pymunk_cost import WARM, cases
     builds = dict(cases(quick=False))
     if label not in builds:
         raise SystemExit(f"no case {label!r}: {', '.join(builds)}")
