@@ -176,6 +176,7 @@ class PivotingLScene(FallingBallsScene):
         space_step, record, spawn = self.space.step, self.record_joints, self.spawn
         for _ in range(n - 1):          # (FallingBallsScene.step without its look)
             space_step(h)
+            self._rows = None           # (the rows read before this step are old now)
             record(self.L_pose())
             spawn(h)
         L0 = self._L_known
