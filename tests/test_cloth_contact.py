@@ -316,3 +316,20 @@ def test_the_huds_self_collision_line_counts_what_it_names():
     apart = (np.abs(row[:, None] - row[None]) > 1) | (np.abs(col[:, None] - col[None]) > 1)
     close = (d < 0.95 * float(m.group(2)) * c.spacing) & apart    # (no shear or bending rods)
     assert int(m.group(1)) == int(np.count_nonzero(np.triu(close, 1)))
+
+
+def test_the_sweeps_lazy_projection_moves_the_points_as_project_does():
+    # self-collision projects the obstacles before each sweep through _push_out, which makes
+    # nothing while no point is near one: the same positions as project, to the last bit
+    from app.physics.cloth_contact import _push_out
+    from app.physics.obstacles import project
+    rng = np.random.default_rng(5)
+    obstacles = [Circle(120.0, 80.0, 30.0), Box(60.0, 150.0, 80.0, 16.0, 0.3), floor(200.0)]
+    for spread in ((0, 240), (0, 40)):          # crossing the obstacles; all far above them
+        points = rng.uniform(*spread, (500, 2)).astype(np.float32)
+        movable = rng.random(500) > 0.1
+        a, b = points.copy(), points.copy()
+        project(obstacles, a, 0.25, movable)
+        _push_out(obstacles, b, 0.25, movable)
+        assert np.array_equal(a, b)
+        assert (spread[1] > 40) == (not np.array_equal(a, points))   # (it did move some)

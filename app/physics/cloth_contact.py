@@ -418,7 +418,7 @@ def _self_collide_compiled(c) -> None:
         movable = c.free.ravel() > 0
 
         def between() -> None:
-            project(st.obstacles, x.T, st.margin, movable)
+            _push_out(st.obstacles, x.T, st.margin, movable)
     self_compiled.push_apart(x[0], x[1], i, j, c.w.ravel(), dmin, OVER_RELAX, SELF_SWEEPS,
                              between, st.compiled)
 
