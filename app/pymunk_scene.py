@@ -40,8 +40,9 @@ import pymunk.batch
 try:          # the batch API's own C entry points (pymunk 7), to read the bodies without the
     from pymunk._chipmunk import ffi as _ffi, lib as _lib     # ~1.3 us a call of its wrapper
     _BATCH_GET = _ffi.addressof(_lib, "pmSpaceBodyGetIteratorFuncBatched")
+    _EACH_BODY = _lib.cpSpaceEachBody
 except (ImportError, AttributeError):      # (another pymunk: the public wrapper, same data)
-    _ffi = _lib = _BATCH_GET = None
+    _ffi = _lib = _BATCH_GET = _EACH_BODY = None
 
 from app.draw.pymunk_draw import draw_pivot_joint
 from app.physics.bounds import clamp_point
@@ -460,6 +461,8 @@ class _StateReader:
                 data.floatArray = buf._float_arr
                 data.intArray = buf._int_arr
                 self.data.append(data)
+            self.arrays = tuple((buf._float_arr, buf._int_arr, data)
+                                for buf, data in zip(self.buffers, self.data))
 
     def read(self, space: pymunk.Space) -> tuple[np.ndarray, np.ndarray]:
         self.reads += 1
@@ -468,21 +471,25 @@ class _StateReader:
         if keep is not None and keep[0] == i:
             self.keep = None
             keep[1]()
-        buf = self.buffers[i]
         if _lib is None:
+            buf = self.buffers[i]
             buf.clear()
             pymunk.batch.get_space_bodies(space, _STATE_ID, buf)
             ids = np.frombuffer(buf.int_buf(), dtype=np.int64)
             self.flat = np.frombuffer(buf.float_buf(), dtype=np.float64)
             return ids, self.flat.reshape(len(ids), 6)
-        floats, ints = buf._float_arr, buf._int_arr
+        floats, ints, data = self.arrays[i]
         floats.num = ints.num = 0
-        _lib.cpSpaceEachBody(space._space, _BATCH_GET, self.data[i])
+        _EACH_BODY(space._space, _BATCH_GET, data)
         n, last = ints.num, self.last[i]
-        int_arr, float_arr = ints.arr, floats.arr
-        if last is not None and last[0] == n and last[1] == int_arr and last[2] == float_arr:
+        if last is not None and last[0] == n:
+            # the same number of bodies as this buffer's last read: the same pushes from 0, so
+            # Chipmunk grew none of its arrays (pmIntArrayPush and pmFloatArrayPush grow one
+            # only when it is nearly full, which the last read left it not): the views fit
+            # (reading the arrays' addresses to compare cost ~1.5k instructions a read)
             self.flat = last[4]
-            return last[3]      # the same arrays, refilled in place: the views still fit
+            return last[3]
+        int_arr, float_arr = ints.arr, floats.arr
         # views of the arrays' whole room, made again when Chipmunk moves them (growing them by
         # half): a body come or gone then costs two slices
         room = self.room[i]

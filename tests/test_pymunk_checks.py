@@ -310,16 +310,16 @@ def test_the_quick_path_counts_and_removes_what_the_exact_tests_do(cls, settings
     # tests run on every ball every step: the same balls tunneled, removed, and the same state
     Exact = exact_tests(cls)
     class Quick(cls):
-        usual = 0
+        long = 0                  # (count_tunneled: on the long way only)
 
-        def _usual_check(self, *args):
-            Quick.usual += 1
-            return super()._usual_check(*args)
+        def count_tunneled(self, *args):
+            Quick.long += 1
+            return super().count_tunneled(*args)
     quick, exact = Quick(settings), Exact(settings)
     for _ in range(steps):
         quick.advance()
         exact.advance()
-    assert Quick.usual > steps // 2                     # (the quick path did the checking)
+    assert Quick.long < steps // 2                      # (the quick path did the checking)
     assert quick.counts == exact.counts and quick.counts["removed"] > 30
     assert quick.state_hash() == exact.state_hash()
     if settings.get("hertz", 60) < 60:
@@ -449,3 +449,35 @@ def test_balls_falling_asleep_or_waking_take_the_short_way_to_the_exact_results(
                    for shape, slot in zip(short.balls, short._slots))
     assert Short.taken > 20 and short.counts == exact.counts and short.counts["removed"] > 20
     assert short.state_hash() == exact.state_hash()
+
+
+@pytest.mark.parametrize("settings, steps", [({}, 600),
+                                             ({"g": 5000, "hertz": 15, "radius": 4}, 300)])
+def test_the_written_out_look_leaves_what_check_balls_leaves(settings, steps):
+    # scenes/ball_look.look's usual case (the L static, the same balls awake, the same flags)
+    # against check_balls on every step: after each step the same counts, flags, kept centres,
+    # finite check's word and state; and it is the one that looked on most steps
+    from scenes.ball_look import look
+
+    class General(FallingBallsScene):
+        def check_balls(self, L0):           # (a check_balls of its own: look defers to it)
+            return super().check_balls(L0)
+    a, b = FallingBallsScene(settings), General(settings)
+    quick = 0
+    for _ in range(steps):
+        armed = a._quick is not None and a._quick[0] is a._awake and a._quick[1] is a._fast
+        a.advance()
+        b.advance()
+        quick += armed and a._quick is not None and a._quick[1] is a._fast
+        assert b._quick is None and a.counts == b.counts and a._fast == b._fast
+        assert (a.finite_read == a._state_reader.reads) == (b.finite_read == b._state_reader.reads)
+        assert a.is_finite() and b.is_finite()
+        a.flush_xy()
+        b.flush_xy()
+        assert np.array_equal(a._xy[:a._used], b._xy[:b._used])
+    assert a.state_hash() == b.state_hash() and a.counts["removed"] > 0
+    assert look.__module__ == "scenes.ball_look"
+    if settings:              # (coarse steps: balls tunnel, flags change on most steps)
+        assert a.counts["tunneled"] > 0 and quick > 10
+    else:
+        assert quick > steps // 2
