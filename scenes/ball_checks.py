@@ -358,8 +358,10 @@ class BallChecks:
         makes them for a body's row."""
         M, limits = self._flag_matrix(pose)
         x, y = float(pos[0]), float(pos[1])
-        lx, ux, ly, uy, c = limits.tolist()
-        m0, m1 = M[:2, 4].tolist()
+        now = self._flag_now
+        if now[3] is None:          # (limits and M[:2, 4] as floats, made once a pose)
+            now[3] = tuple(limits.tolist() + M[:2, 4].tolist())
+        lx, ux, ly, uy, c, m0, m1 = now[3]
         ax, ay = -m0, -m1
         v = x * -ax + y * -ay                  # the product's last column, in plain Python:
         if abs(v - c) <= 1e-12 * (abs(x * ax) + abs(y * ay) + abs(c)):   # its sign is the
@@ -399,7 +401,8 @@ class BallChecks:
             r = self.p["radius"]
             M = np.zeros((6, 5))
             M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
-            now = self._flag_now = [None, M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0))]
+            now = self._flag_now = [None, M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0)),
+                                    None]
         if now[0] != pose:
             x, y, a = pose
             cos, sin = cos_sin(a)
@@ -408,6 +411,7 @@ class BallChecks:
             M, limits = now[1], now[2]
             M[0, 4], M[1, 4], limits[4] = -ax, -ay, c
             now[0] = pose
+            now[3] = None           # (flags_row's floats of them: made when it needs them)
             kept = self._flag_rows      # (only the line's limit depends on the pose: the kept
             if kept is not None:        # rows' column alone, 0.2 us; the whole array 0.6)
                 kept[4].fill(c)
