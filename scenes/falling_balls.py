@@ -387,7 +387,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         self._rows = None
         self._L_after = self._L_known = look(self, L0)   # (check_balls; pivoting_l's joints
                                                          # use it)
-        if self.p["spawn_rate"] > 0:              # (spawn's clock first: a ball is due about
+        if type(self).spawn is not FallingBallsScene.spawn:
+            self.spawn(h)                         # (a subclass's own spawner)
+        elif self.p["spawn_rate"] > 0:            # (spawn's clock first: a ball is due about
             self._spawn_due -= h                  # once in 15 steps; spawn(0.0) is spawn(h)
             if self._spawn_due <= 0:              # with h taken off)
                 self.spawn(0.0)
