@@ -80,3 +80,71 @@ def _rows_view(q: list, data: np.ndarray) -> np.ndarray:
         views.clear()
     now = views[id(data)] = data[:q[2][0]]
     return now
+
+
+def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
+    """look for an L that moves (pivoting_l's written-out step): the same with the L's row
+    among the awake rows (its pose from the read, the flags' line written again for it, the
+    key without its row) and every body awake or static (none asleep: a moving L may pass a
+    sleeping ball, and check_balls then looks at every ball)."""
+    q = scene._quick_moving
+    if q is not None and q[0] is scene._awake and q[1] is scene._fast and q[1][0] is L0 \
+            and q[2] is scene._flag_rows:
+        reader = scene._state_reader
+        rows = scene._rows = reader.read(scene.space)
+        ids, data = rows
+        if len(ids) == q[6] and ids.tobytes()[:q[3]] == q[4]:
+            views = q[5].get(id(data))
+            if views is None:
+                views = _moving_views(q, data)
+            now = views[0]
+            L1 = tuple(views[1].tolist())
+            kept = q[2]
+            if kept[3] != L1:
+                scene._flag_matrix(L1)             # (the line's column and limit for L1)
+            flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
+            b = flags.tobytes()
+            fast, r = q[1], q[7]
+            key = b[:r] + b[r + 5:]
+            if key == fast[2]:                     # (_flags_seen's, when the flags match)
+                scene._prev = (q[0], now)
+                reader.keep = (reader.cur, scene._own_prev)
+                scene._fast = q[1] = (L1, b, key)
+                if _NAN_FAILS and b[r:r + 4] == b"\1\1\1\1":
+                    scene.finite_read = reader.reads
+                return L1
+            L1 = scene._flags_seen(now, L0, L1, q[0], fast, flags, b)
+            scene._quick_moving = arm_moving(scene, L1)
+            return L1
+    L1 = scene.check_balls(L0)
+    scene._quick_moving = arm_moving(scene, L1)
+    return L1
+
+
+def arm_moving(scene, L1: tuple[float, float, float]) -> list | None:
+    """scene._quick_moving after a look that left the L at L1: [awake, fast, the flags' kept
+    arrays, the key's length, the key, each read's (awake rows, the L's row) by the rows' id,
+    the number of bodies awake or static, 5 x the L's row], or None (as arm, and an L that is
+    not awake)."""
+    awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
+    if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
+            is not BallChecks._usual_check:
+        return None
+    if awake is None or fast is None or fast[2] is None or awake.L_row is None \
+            or not awake.balls or fast[0] is not L1 or kept is None \
+            or kept[0] != len(awake.ids):
+        return None
+    q = scene._quick_moving
+    views = q[5] if q is not None and q[0] is awake else {}
+    return [awake, fast, kept, len(awake.key), awake.key, views,
+            len(awake.ids) + len(scene._static_ids), 5 * awake.L_row]
+
+
+def _moving_views(q: list, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """_rows_view's (awake rows, the L's (x, y, angle)) for look_moving."""
+    views = q[5]
+    if len(views) >= 2:
+        views.clear()
+    r = q[7] // 5
+    out = views[id(data)] = (data[:q[2][0]], data[r, :3])
+    return out

@@ -167,7 +167,8 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         known centre, ball_checks), and what is known of the L (its id; its pose, if static:
         nothing moves it)."""
         self._flag_now = None       # (ball_checks: the flags' matrix and limits)
-        self._quick = None          # (ball_look: the usual look's arrays and key)
+        self._quick = None          # (ball_look: the usual look's arrays and key, and
+        self._quick_moving = None   # a moving L's)
         self._L_id = self.L_body.id
         self._L_static_pose = None
         if self.L_body.body_type == pymunk.Body.STATIC:

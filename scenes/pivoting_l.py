@@ -55,6 +55,7 @@ from app.pymunk_scene import PYMUNK_PARAMS
 from app.scene import Param, Try, Unit, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
+from scenes.ball_look import look_moving
 from scenes.l_frame import cos_sin
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
@@ -187,7 +188,7 @@ class PivotingLScene(FallingBallsScene):
         L0 = self._L_known
         space_step(h)
         self._rows = None
-        pose = self._L_after = self._L_known = self.check_balls(L0)
+        pose = self._L_after = self._L_known = look_moving(self, L0)   # (check_balls)
         record(pose)
         if rate > 0:
             self._spawn_due -= h
