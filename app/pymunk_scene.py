@@ -40,8 +40,8 @@ import pymunk.batch
 
 try:          # the batch API's own C entry points (pymunk 7), to read the bodies without the
     from pymunk._chipmunk import ffi as _ffi, lib as _lib     # ~1.3 us a call of its wrapper
-    _BATCH_GET = _ffi.addressof(_lib, "pmSpaceBodyGetIteratorFuncBatched")
-    _EACH_BODY = _lib.cpSpaceEachBody
+    _BATCH_GET, _EACH_BODY = (_ffi.addressof(_lib, "pmSpaceBodyGetIteratorFuncBatched"),
+                              _lib.cpSpaceEachBody)
 except (ImportError, AttributeError):      # (another pymunk: the public wrapper, same data)
     _ffi = _lib = _BATCH_GET = _EACH_BODY = None
 
@@ -268,9 +268,8 @@ class PymunkScene(Scene):
         return self.state_rows()[1][at[0]]
 
     def rows_list(self, bodies: list[pymunk.Body]) -> list[Sequence[float]]:
-        """rows_of(bodies) as rows of Python floats, without the array: the rows' bytes (one
-        NumPy call) and each body's six numbers unpacked from them (struct: the same float64s;
-        ~1.5k instructions a row, where NumPy 2's tolist() of every row cost ~340 a number)."""
+        """rows_of(bodies) as rows of Python floats: each body's six unpacked from the rows'
+        bytes (struct: ~180 instructions a number; NumPy 2's tolist() costs ~340)."""
         at = self._rows_at(bodies)
         if at is None:
             return self.rows_of(bodies).tolist()
@@ -443,8 +442,8 @@ class _StateReader:
     """Reads _STATE_ID of every body into a buffer of its own, as pymunk.batch.get_space_bodies
     does, with its C call's arguments made once (the same C function and data). Two buffers, one
     read into each in turn: the rows of a read stay good through the next read (a scene may keep
-    them a step without a copy: `keep`). While the number of bodies and a buffer's C arrays stay
-    the same, the views of that buffer's last read are returned again (refilled in place)."""
+    them a step without a copy: `keep`). While as many bodies are read as in a buffer's last
+    read, the views of that read are returned again (refilled in place)."""
 
     def __init__(self) -> None:
         self.buffers = (pymunk.batch.Buffer(), pymunk.batch.Buffer())
@@ -456,16 +455,11 @@ class _StateReader:
         # (buffer, callback): the rows of that buffer's read are kept by a scene; a read about
         # to refill it calls callback first (to copy what it keeps), then forgets it
         self.keep: tuple | None = None
-        if _lib is not None:
-            self.data = []
-            for buf in self.buffers:
-                data = _ffi.new("pmBatchedData *")
-                data.fields = _STATE_ID.value
-                data.floatArray = buf._float_arr
-                data.intArray = buf._int_arr
-                self.data.append(data)
-            self.arrays = tuple((buf._float_arr, buf._int_arr, data)
-                                for buf, data in zip(self.buffers, self.data))
+        self.arrays = []          # each buffer's (float array, int array, the C call's data)
+        for buf in self.buffers if _lib is not None else ():
+            data, floats, ints = _ffi.new("pmBatchedData *"), buf._float_arr, buf._int_arr
+            data.fields, data.floatArray, data.intArray = _STATE_ID.value, floats, ints
+            self.arrays.append((floats, ints, data))
 
     def read(self, space: pymunk.Space) -> tuple[np.ndarray, np.ndarray]:
         self.reads += 1
@@ -486,22 +480,18 @@ class _StateReader:
         _EACH_BODY(space._space, _BATCH_GET, data)
         n, last = ints.num, self.last[i]
         if last is not None and last[0] == n:
-            # the same number of bodies as this buffer's last read: the same pushes from 0, so
-            # Chipmunk grew none of its arrays (pmIntArrayPush and pmFloatArrayPush grow one
-            # only when it is nearly full, which the last read left it not): the views fit
-            # (reading the arrays' addresses to compare cost ~1.5k instructions a read)
+            # as many bodies as this buffer's last read: the same pushes, so Chipmunk grew no
+            # array (pm*ArrayPush grows one only when nearly full): the same views (~1.5k saved)
             self.flat = last[4]
             return last[3]
         int_arr, float_arr = ints.arr, floats.arr
-        # views of the arrays' whole room, made again when Chipmunk moves them (growing them by
-        # half): a body come or gone then costs two slices
+        # views of the arrays' whole room, made again when Chipmunk moves them (grown by half)
         room = self.room[i]
         if room is None or room[0] != int_arr or room[1] != float_arr or room[2] < n:
             size = min(ints.max, floats.max // 6)
-            room = self.room[i] = (
-                int_arr, float_arr, size,
-                np.frombuffer(_ffi.buffer(int_arr, 8 * size), dtype=np.int64),
-                np.frombuffer(_ffi.buffer(float_arr, 48 * size), dtype=np.float64))
+            room = self.room[i] = (int_arr, float_arr, size,
+                                   np.frombuffer(_ffi.buffer(int_arr, 8 * size), dtype=np.int64),
+                                   np.frombuffer(_ffi.buffer(float_arr, 48 * size)))
         ids, flat = room[3][:n], room[4][:6 * n]
         self.flat = flat
         rows = ids, flat.reshape(n, 6)

@@ -1,17 +1,18 @@
 """falling_balls' look at its balls after a step (FallingBallsScene.step), its usual case written
 out: the L static, the same bodies awake as after the last look, every ball's five flags
-(ball_checks.py) as they were. What it computes is what BallChecks.check_balls and _usual_check
-compute then, with the same NumPy calls on the same arrays: the read, the ids' bytes against
-the kept key, one product, one comparison, the flags' bytes against the last ones. It leaves
-out the checks those make on every step to find which case this is (who is awake and where the
-L is, the kept arrays' size and pose), about half of the lab's own work on a step of the
-default scene (callgrind): they are made once, when the usual case starts (`arm`), and kept
-in scene._quick, which is good while scene._awake and scene._fast are the very objects it was
-made with (anything that changes who is awake, a ball added or removed, a restore, a look
-the general way, makes new ones). Flags that changed go on to _usual_check's end
-(_flags_seen, with the flags made here); anything else to check_balls, which finds the read in
-scene._rows. tests/test_pymunk_checks.py compares the counts and the state with the exact
-tests, ball by ball, and the seeded runs' metrics and state hashes are main's.
+(ball_checks.py) as they were; look_moving does the same for pivoting_l's moving L. What they
+compute is what BallChecks.check_balls and _usual_check compute then, with the same NumPy calls
+on the same arrays: the read, the ids' bytes against the kept key, one product, one comparison,
+the flags' bytes against the last ones. They leave out the checks those make on every step to
+find which case this is (who is awake and where the L is, the kept arrays' size and pose: ~10k
+instructions a step, against the usual look's ~19k besides the read; callgrind, 37 balls):
+those are made once, when the usual case starts (`arm`), and kept in scene._quick, which is
+good while scene._awake and scene._fast are the very objects it was made with (anything that
+changes who is awake, a ball added or removed, a restore, a look the general way, makes new
+ones). Flags that changed go on to _usual_check's end (_flags_seen, with the flags made here);
+anything else to check_balls, which finds the read in scene._rows. tests/test_falling_balls.py
+compares them with check_balls step by step, tests/test_pymunk_checks.py the counts and the
+state with the exact tests, ball by ball; the seeded runs' metrics and state hashes are main's.
 """
 
 from __future__ import annotations
