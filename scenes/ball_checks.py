@@ -170,14 +170,15 @@ class BallChecks:
         return L1
 
     def _awake_views(self, data: np.ndarray, awake: Awake) -> tuple:
-        """(awake, the awake rows data[:n], the L's (x, y, angle) or None) for a read's rows,
-        kept by the rows' id (the reader's two buffers give two; a slice costs ~1.7k
+        """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data) for a read's
+        rows, kept by the rows' id (the reader's two buffers give two; a slice costs ~1.7k
         instructions, as much as a tenth of the usual check): made again when who is awake
-        changed (the views keep their rows, so an id is not a new array's)."""
+        changed (data kept too, so an id is not a new array's)."""
         if len(self._views) >= 2:
             self._views.clear()
         L_row = awake.L_row
-        views = (awake, data[:len(awake.ids)], None if L_row is None else data[L_row, :3])
+        views = (awake, data[:len(awake.ids)], None if L_row is None else data[L_row, :3],
+                 data)
         self._views[id(data)] = views
         return views
 

@@ -32,8 +32,7 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
         ids, data = rows
         if ids.tobytes()[:q[3]] == q[4]:           # the same bodies awake, in the same order
             now = q[5].get(id(data))
-            if now is None:
-                now = _rows_view(q, data)
+            now = _rows_view(q, data) if now is None else now[0]
             kept = q[2]
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
             b = flags.tobytes()
@@ -75,11 +74,12 @@ def arm(scene, L1: tuple[float, float, float]) -> list | None:
 
 def _rows_view(q: list, data: np.ndarray) -> np.ndarray:
     """The awake rows of a read (data[:n]), kept by the rows' id (the reader's two buffers:
-    two ids while the bodies stay; the views keep their rows, so an id is no new array's)."""
+    two ids while the bodies stay; the rows kept beside, so an id is no new array's)."""
     views = q[5]
     if len(views) >= 2:
         views.clear()
-    now = views[id(data)] = data[:q[2][0]]
+    now = data[:q[2][0]]
+    views[id(data)] = (now, data)       # (data too: alive while its id is a key)
     return now
 
 
@@ -147,5 +147,5 @@ def _moving_views(q: list, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if len(views) >= 2:
         views.clear()
     r = q[7] // 5
-    out = views[id(data)] = (data[:q[2][0]], data[r, :3])
+    out = views[id(data)] = (data[:q[2][0]], data[r, :3], data)
     return out
