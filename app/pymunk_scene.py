@@ -30,8 +30,9 @@ from __future__ import annotations
 
 import copy
 import math
+import struct
 from dataclasses import replace
-from typing import Any, Iterable
+from typing import Any, Iterable, Sequence
 
 import numpy as np
 import pymunk
@@ -39,9 +40,10 @@ import pymunk.batch
 
 try:          # the batch API's own C entry points (pymunk 7), to read the bodies without the
     from pymunk._chipmunk import ffi as _ffi, lib as _lib     # ~1.3 us a call of its wrapper
-    _BATCH_GET = _ffi.addressof(_lib, "pmSpaceBodyGetIteratorFuncBatched")
+    _BATCH_GET, _EACH_BODY = (_ffi.addressof(_lib, "pmSpaceBodyGetIteratorFuncBatched"),
+                              _lib.cpSpaceEachBody)
 except (ImportError, AttributeError):      # (another pymunk: the public wrapper, same data)
-    _ffi = _lib = _BATCH_GET = None
+    _ffi = _lib = _BATCH_GET = _EACH_BODY = None
 
 from app.draw.pymunk_draw import draw_pivot_joint
 from app.physics.bounds import clamp_point
@@ -52,6 +54,7 @@ from app.vectors import Arrows, sample_every, sample_text
 _STATE_FIELDS = (pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
                  | pymunk.batch.BodyFields.VELOCITY | pymunk.batch.BodyFields.ANGULAR_VELOCITY)
 _STATE_ID = _STATE_FIELDS | pymunk.batch.BodyFields.BODY_ID   # (an enum's | costs a few us)
+_ROW = struct.Struct("6d")          # one of those rows: (x, y, angle, vx, vy, w), float64s
 
 # The same names as the cloth's: the number is the param `g`, the on/off switch the effect `gravity`
 # (so `--scene all --set g=...` means one thing everywhere).
@@ -264,14 +267,14 @@ class PymunkScene(Scene):
                              for b in bodies], dtype=np.float64).reshape(-1, 6)
         return self.state_rows()[1][at[0]]
 
-    def rows_list(self, bodies: list[pymunk.Body]) -> list[list[float]]:
-        """rows_of(bodies).tolist(), without the array: for a few bodies, every row as a list
-        and theirs picked out is one NumPy call, not two (each costs 1-2 us in the step)."""
+    def rows_list(self, bodies: list[pymunk.Body]) -> list[Sequence[float]]:
+        """rows_of(bodies) as rows of Python floats: each body's six unpacked from the rows'
+        bytes (struct: ~180 instructions a number; NumPy 2's tolist() costs ~340)."""
         at = self._rows_at(bodies)
         if at is None:
             return self.rows_of(bodies).tolist()
-        rows = self.state_rows()[1].tolist()
-        return [rows[i] for i in at[1]]
+        data, unpack = self.state_rows()[1].tobytes(), _ROW.unpack_from
+        return [unpack(data, 48 * i) for i in at[1]]
 
     def _rows_at(self, bodies: list[pymunk.Body]) -> tuple[np.ndarray, list[int]] | None:
         """Where the bodies' rows are in state_rows (as an array and a list), or None if one
@@ -439,8 +442,8 @@ class _StateReader:
     """Reads _STATE_ID of every body into a buffer of its own, as pymunk.batch.get_space_bodies
     does, with its C call's arguments made once (the same C function and data). Two buffers, one
     read into each in turn: the rows of a read stay good through the next read (a scene may keep
-    them a step without a copy: `keep`). While the number of bodies and a buffer's C arrays stay
-    the same, the views of that buffer's last read are returned again (refilled in place)."""
+    them a step without a copy: `keep`). While as many bodies are read as in a buffer's last
+    read, the views of that read are returned again (refilled in place)."""
 
     def __init__(self) -> None:
         self.buffers = (pymunk.batch.Buffer(), pymunk.batch.Buffer())
@@ -452,14 +455,11 @@ class _StateReader:
         # (buffer, callback): the rows of that buffer's read are kept by a scene; a read about
         # to refill it calls callback first (to copy what it keeps), then forgets it
         self.keep: tuple | None = None
-        if _lib is not None:
-            self.data = []
-            for buf in self.buffers:
-                data = _ffi.new("pmBatchedData *")
-                data.fields = _STATE_ID.value
-                data.floatArray = buf._float_arr
-                data.intArray = buf._int_arr
-                self.data.append(data)
+        self.arrays = []          # each buffer's (float array, int array, the C call's data)
+        for buf in self.buffers if _lib is not None else ():
+            data, floats, ints = _ffi.new("pmBatchedData *"), buf._float_arr, buf._int_arr
+            data.fields, data.floatArray, data.intArray = _STATE_ID.value, floats, ints
+            self.arrays.append((floats, ints, data))
 
     def read(self, space: pymunk.Space) -> tuple[np.ndarray, np.ndarray]:
         self.reads += 1
@@ -468,30 +468,30 @@ class _StateReader:
         if keep is not None and keep[0] == i:
             self.keep = None
             keep[1]()
-        buf = self.buffers[i]
         if _lib is None:
+            buf = self.buffers[i]
             buf.clear()
             pymunk.batch.get_space_bodies(space, _STATE_ID, buf)
             ids = np.frombuffer(buf.int_buf(), dtype=np.int64)
             self.flat = np.frombuffer(buf.float_buf(), dtype=np.float64)
             return ids, self.flat.reshape(len(ids), 6)
-        floats, ints = buf._float_arr, buf._int_arr
+        floats, ints, data = self.arrays[i]
         floats.num = ints.num = 0
-        _lib.cpSpaceEachBody(space._space, _BATCH_GET, self.data[i])
+        _EACH_BODY(space._space, _BATCH_GET, data)
         n, last = ints.num, self.last[i]
-        int_arr, float_arr = ints.arr, floats.arr
-        if last is not None and last[0] == n and last[1] == int_arr and last[2] == float_arr:
+        if last is not None and last[0] == n:
+            # as many bodies as this buffer's last read: the same pushes, so Chipmunk grew no
+            # array (pm*ArrayPush grows one only when nearly full): the same views (~1.5k saved)
             self.flat = last[4]
-            return last[3]      # the same arrays, refilled in place: the views still fit
-        # views of the arrays' whole room, made again when Chipmunk moves them (growing them by
-        # half): a body come or gone then costs two slices
+            return last[3]
+        int_arr, float_arr = ints.arr, floats.arr
+        # views of the arrays' whole room, made again when Chipmunk moves them (grown by half)
         room = self.room[i]
         if room is None or room[0] != int_arr or room[1] != float_arr or room[2] < n:
             size = min(ints.max, floats.max // 6)
-            room = self.room[i] = (
-                int_arr, float_arr, size,
-                np.frombuffer(_ffi.buffer(int_arr, 8 * size), dtype=np.int64),
-                np.frombuffer(_ffi.buffer(float_arr, 48 * size), dtype=np.float64))
+            room = self.room[i] = (int_arr, float_arr, size,
+                                   np.frombuffer(_ffi.buffer(int_arr, 8 * size), dtype=np.int64),
+                                   np.frombuffer(_ffi.buffer(float_arr, 48 * size)))
         ids, flat = room[3][:n], room[4][:6 * n]
         self.flat = flat
         rows = ids, flat.reshape(n, 6)

@@ -28,7 +28,7 @@ import warnings
 import numpy as np
 
 from app.pymunk_scene import extent
-from scenes.ball_tables import Awake
+from scenes.ball_tables import Awake, _changed, fast_of
 from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as _to_local
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
@@ -38,7 +38,7 @@ from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as 
 # module's, only that message; np.errstate around the product would cost ~3 us on every step to
 # hide a rare one).
 warnings.filterwarnings("ignore", message="invalid value encountered in dot",
-                        category=RuntimeWarning, module=r"scenes\.ball_checks")
+                        category=RuntimeWarning, module=r"scenes\.ball_(checks|look)")
 
 
 def _nan_fails_box() -> bool:
@@ -80,8 +80,10 @@ class BallChecks:
         # or gone since does not spoil them)
         self._prev = None
         self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4,
-                                    # M] (_flag_rows_at)
+                                    # M] (_flag_rows_at), and those for other n by n
+        self._flag_sizes: dict = {}
         self._frames: dict = {}     # the L's frame at a few poses (_frame)
+        self._views: dict = {}      # a read's views by its rows' id (_awake_views)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -118,13 +120,19 @@ class BallChecks:
         same = awake is not None and ids.tobytes()[:len(awake.key)] == awake.key
         if same:
             n, L_row = len(awake.ids), awake.L_row
-            L1 = self.L_pose() if L_row is None else tuple(data[L_row, :3].tolist())
+            views = self._views.get(id(data))      # (this read's awake rows and the L's row)
+            if views is None or views[0] is not awake:
+                views = self._awake_views(data, awake)
+            if L_row is None:
+                L1 = self._L_static_pose or self.L_pose()
+            else:
+                L1 = tuple(views[2].tolist())
             # (a sleeping ball does not move, but a moving L may pass it: so with balls
             # asleep, a moving L means looking at every ball)
             same = L0 == L1 or len(ids) == n + len(self._static_ids)
             if same and fast is not None and fast[2] is not None and fast[0] == L0 \
                     and awake.balls:
-                return self._usual_check(data[:n], L0, L1, awake, fast)
+                return self._usual_check(views[1], L0, L1, awake, fast)
         else:
             L1 = self.L_pose()
             if fast is not None and fast[2] is not None and fast[0] == L0 == L1 \
@@ -160,6 +168,19 @@ class BallChecks:
                 k, xy = k[awake.balls:], xy[awake.balls:]     # its very comparisons): only
         self.remove_outside(k, xy)                            # those asleep are looked at
         return L1
+
+    def _awake_views(self, data: np.ndarray, awake: Awake) -> tuple:
+        """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data) for a read's
+        rows, kept by the rows' id (the reader's two buffers give two; a slice costs ~1.7k
+        instructions, as much as a tenth of the usual check): made again when who is awake
+        changed (data kept too, so an id is not a new array's)."""
+        if len(self._views) >= 2:
+            self._views.clear()
+        L_row = awake.L_row
+        views = (awake, data[:len(awake.ids)], None if L_row is None else data[L_row, :3],
+                 data)
+        self._views[id(data)] = views
+        return views
 
     def _short_way(self, ids: np.ndarray, data: np.ndarray, pose, fast: tuple) -> bool:
         """check_balls when a few balls fell asleep or woke (the L static, the usual path on
@@ -225,14 +246,19 @@ class BallChecks:
         line); if their bytes are the ones of the last step, no ball crossed the line and none
         left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
         line's flag and a ball outside by the box's, and each goes to the exact tests."""
-        L_row = awake.L_row
         kept = self._flag_rows      # (for these rows and L1 already, unless a moving L moved)
         if kept is None or kept[0] != len(rows_now):
             kept = self._flag_rows_at(len(rows_now), L1)
         elif kept[3] != L1:
             self._flag_matrix(L1)   # (a moving L: its line's limit written again, kept's too)
         flags = np.less_equal(rows_now.dot(kept[5], out=kept[1]), kept[2])
-        b = flags.tobytes()                    # (the key, and the L's box flags, from one call)
+        return self._flags_seen(rows_now, L0, L1, awake, fast, flags, flags.tobytes())
+
+    def _flags_seen(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple,
+                    flags: np.ndarray, b: bytes):
+        """_usual_check's end, from the flags made (flags, and their bytes b: the key, and the
+        L's box flags, from one call); ball_look.look comes here when they changed."""
+        L_row = awake.L_row
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
         # (for flush_xy) the reader's rows themselves, no copy: they stay good through the next
         # read, and a read that would refill them first has _own_prev copy them (0.5 us a check)
@@ -248,6 +274,9 @@ class BallChecks:
                 self.finite_read = self._state_reader.reads
             return L1
         self._fast = fast_of(L1, b, L_row, key)
+        if self._fast[2] is not None and _NAN_FAILS \
+                and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1"):
+            self.finite_read = self._state_reader.reads   # (every row in the box: as above)
         changed = _changed(fast[1], b, flags)
         slots = awake.slots
         crossed = [r for r, col in changed if col == 4 and b[5 * r + 4] and slots[r] >= 0]
@@ -330,8 +359,10 @@ class BallChecks:
         makes them for a body's row."""
         M, limits = self._flag_matrix(pose)
         x, y = float(pos[0]), float(pos[1])
-        lx, ux, ly, uy, c = limits.tolist()
-        m0, m1 = M[:2, 4].tolist()
+        now = self._flag_now
+        if now[3] is None:          # (limits and M[:2, 4] as floats, made once a pose)
+            now[3] = tuple(limits.tolist() + M[:2, 4].tolist())
+        lx, ux, ly, uy, c, m0, m1 = now[3]
         ax, ay = -m0, -m1
         v = x * -ax + y * -ay                  # the product's last column, in plain Python:
         if abs(v - c) <= 1e-12 * (abs(x * ax) + abs(y * ay) + abs(c)):   # its sign is the
@@ -371,7 +402,8 @@ class BallChecks:
             r = self.p["radius"]
             M = np.zeros((6, 5))
             M[0, 0], M[0, 1], M[1, 2], M[1, 3] = -1.0, 1.0, -1.0, 1.0
-            now = self._flag_now = [None, M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0))]
+            now = self._flag_now = [None, M, np.array((2 * r, w + 2 * r, h, h + 2 * r, 0.0)),
+                                    None]
         if now[0] != pose:
             x, y, a = pose
             cos, sin = cos_sin(a)
@@ -380,6 +412,7 @@ class BallChecks:
             M, limits = now[1], now[2]
             M[0, 4], M[1, 4], limits[4] = -ax, -ay, c
             now[0] = pose
+            now[3] = None           # (flags_row's floats of them: made when it needs them)
             kept = self._flag_rows      # (only the line's limit depends on the pose: the kept
             if kept is not None:        # rows' column alone, 0.2 us; the whole array 0.6)
                 kept[4].fill(c)
@@ -391,13 +424,22 @@ class BallChecks:
         L at pose: rows.dot(M, out=product) <= limits are _flag_matrix's flags for n
         C-contiguous rows (_usual_check), into a product kept for n rows and against the limits
         written out for every row (a comparison with a broadcast (5,) row costs three times one
-        with an (n, 5) array)."""
+        with an (n, 5) array; into a kept bool array too, out=, costs ~400 instructions more)."""
         M, limits = self._flag_matrix(pose)       # (writes a new pose into the kept rows too)
         kept = self._flag_rows
-        if kept is None or kept[0] != n:
-            full = np.empty((n, 5))
-            full[:] = limits
-            kept = self._flag_rows = [n, np.empty((n, 5)), full, pose, full[:, 4], M]
+        if kept is None or kept[0] != n:      # (kept by n too: balls come and go, ~10k
+            sizes = self._flag_sizes          # instructions a new one)
+            kept = sizes.get(n)
+            if kept is None:
+                if len(sizes) >= 16:
+                    sizes.clear()
+                full = np.empty((n, 5))
+                full[:] = limits
+                kept = sizes[n] = [n, np.empty((n, 5)), full, pose, full[:, 4], M]
+            elif kept[3] != pose:             # (made at another pose of a moving L)
+                kept[4].fill(limits[4])
+                kept[3] = pose
+            self._flag_rows = kept
         return kept
 
     def count_tunneled(self, xy0: np.ndarray, xy1: np.ndarray,
@@ -438,38 +480,3 @@ class BallChecks:
         inside = ((xy >= (x0, y0)) & (xy <= (x1, y1))).all(axis=1)          # NaN: False
         if not inside.all():
             self.remove_slots(k[~inside].tolist())
-
-
-def fast_of(pose: tuple[float, float, float], b: bytes, L_row: int | None,
-            key: bytes | None = None) -> tuple:
-    """BallChecks._fast: (the L's pose, the awake rows' flags' bytes b (5 a row, each 0 or 1),
-    their key: b less the L's row (a moving L's centre is on its own arm's line: its flag flips
-    with rounding); the key None if a ball is outside the box or not finite: then the next step
-    looks again). key: the caller's, if it has it."""
-    if key is None:
-        key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
-    return pose, b, key if _inside(key) else None
-
-
-def _changed(old: bytes, new: bytes, flags: np.ndarray) -> list[tuple[int, int]]:
-    """(row, column) of each flag that differs between two flags' bytes (the last step's and
-    this one's, whose array is flags), in order. A few: the bytes as two integers, XOR, and its
-    set bits read off one by one (plain Python, a fraction of a NumPy call each); many (a bit
-    read is O(size) then): NumPy."""
-    x = int.from_bytes(old, "little") ^ int.from_bytes(new, "little")
-    if x.bit_count() > 16:
-        diff = np.frombuffer(old, dtype=np.bool_) != flags.reshape(-1)
-        return [divmod(i, 5) for i in np.flatnonzero(diff).tolist()]
-    out = []
-    while x:
-        low = x & -x                       # (each flag is one byte, 0 or 1: bit 8 i is flag i)
-        out.append(divmod((low.bit_length() - 1) >> 3, 5))
-        x ^= low
-    return out
-
-
-def _inside(key: bytes) -> bool:
-    """Whether every ball's four box flags are true (each centre inside the world's box), from
-    the flags' key: every fifth byte from the first, the second, the third and the fourth (in
-    plain Python: the key is at hand, no NumPy call)."""
-    return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])

@@ -7,7 +7,8 @@ removed costs plain Python and no NumPy call (each costs 1-2 us in the step's lo
     array of awake bodies, which appends a new body and fills a removed one's place with the
     last (cpArrayDeleteObj). The same moves on Python lists and on the bytes of the ids and of
     the flags let the usual check (ball_checks.py) go on after a ball came or went, with no
-    read.
+    read;
+  * the flags' bytes themselves (fast_of, _changed, _inside: BallChecks._fast).
 """
 
 from __future__ import annotations
@@ -153,3 +154,38 @@ class BallTables:
         else:
             place = {s: k for k, s in enumerate(self._slots)}
             self.remove_balls([place[s] for s in slots])
+
+
+def fast_of(pose: tuple[float, float, float], b: bytes, L_row: int | None,
+            key: bytes | None = None) -> tuple:
+    """BallChecks._fast (ball_checks.py): (the L's pose, the awake rows' flags' bytes b (5 a row,
+    each 0 or 1), their key: b less the L's row (a moving L's centre is on its own arm's line:
+    its flag flips with rounding); the key None if a ball is outside the box or not finite: then
+    the next step looks again). key: the caller's, if it has it."""
+    if key is None:
+        key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
+    return pose, b, key if _inside(key) else None
+
+
+def _changed(old: bytes, new: bytes, flags: np.ndarray) -> list[tuple[int, int]]:
+    """(row, column) of each flag that differs between two flags' bytes (the last step's and
+    this one's, whose array is flags), in order. A few: the bytes as two integers, XOR, and its
+    set bits read off one by one (plain Python, a fraction of a NumPy call each); many (a bit
+    read is O(size) then): NumPy."""
+    x = int.from_bytes(old, "little") ^ int.from_bytes(new, "little")
+    if x.bit_count() > 16:
+        diff = np.frombuffer(old, dtype=np.bool_) != flags.reshape(-1)
+        return [divmod(i, 5) for i in np.flatnonzero(diff).tolist()]
+    out = []
+    while x:
+        low = x & -x                       # (each flag is one byte, 0 or 1: bit 8 i is flag i)
+        out.append(divmod((low.bit_length() - 1) >> 3, 5))
+        x ^= low
+    return out
+
+
+def _inside(key: bytes) -> bool:
+    """Whether every ball's four box flags are true (each centre inside the world's box), from
+    the flags' key: every fifth byte from the first, the second, the third and the fourth (in
+    plain Python: the key is at hand, no NumPy call)."""
+    return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])

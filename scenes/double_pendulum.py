@@ -65,7 +65,7 @@ import pygame
 import pymunk
 
 from app.draw import pymunk_draw as D
-from app.draw.ring import Ring
+from app.draw.ring import PendingRing, Ring
 from app.physics.double_pendulum_ode import DoublePendulumODE
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.draw.text import px
@@ -188,8 +188,9 @@ class DoublePendulumScene(PymunkScene):
         self.ode = DoublePendulumODE(l1, l2, p["mass1"], p["mass2"], self.gravity(),
                                      (t1, t2, 0, 0))
         n = max(2, round(p["trail_seconds"] * p["hertz"]))
-        self.trail = Ring(n, 2)            # the tip's last positions, one per physics step
-        self.ghost_trail = Ring(n, 2)
+        # the tip's last positions, one per physics step (put into the array when drawn)
+        self.trail = PendingRing(n, 2)
+        self.ghost_trail = PendingRing(n, 2)
         self.new_release()
 
     def add_bobs(self, space: pymunk.Space, lengths: tuple[float, float],
@@ -222,12 +223,14 @@ class DoublePendulumScene(PymunkScene):
             return
         t = self.track
         rows = self.rows_list(self.bobs)           # (x, y, angle, vx, vy, w) of each bob
-        drift = self.energy_drift(rows)
-        t["energy_drift_max"] = max(t["energy_drift_max"], abs(drift))
-        if t["engine_blowup"] is None and not abs(drift) <= BLOWUP_DRIFT:   # (NaN counts)
+        e0 = t["energy0"]                          # (energy_drift(rows), written out)
+        drift = abs((self.energy(rows) - e0) / e0 if e0 > 1e-9 else 0.0)
+        if drift > t["energy_drift_max"]:          # (max(seen, drift): a NaN leaves it)
+            t["energy_drift_max"] = drift
+        if t["engine_blowup"] is None and not drift <= BLOWUP_DRIFT:   # (NaN counts)
             t["engine_blowup"] = self.time - t["start"]
         tip = rows[1][0], rows[1][1]               # (the batch read's copy of bobs[1].position)
-        if self.ghost_alive():
+        if "reference" in self.on and t["ref_blowup"] is None:       # (ghost_alive())
             if not self.ode.advance(self.dt):
                 t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
                 return
@@ -281,6 +284,12 @@ class DoublePendulumScene(PymunkScene):
             cache = self._energy_terms = (self.bobs, [
                 (0.5 * mass, 0.5 * moment if math.isfinite(moment) else 0.0, mass * g, y0)
                 for (mass, moment), y0 in zip(self.bob_masses(), lowest)])
+        terms = cache[1]
+        if rows is not None and len(terms) == 2:   # (after_step's: the loop below, written out)
+            (_, y, _, vx, vy, w), (_, y2, _, vx2, vy2, w2) = rows
+            (m, j, g, y0), (m2, j2, g2, y02) = terms
+            return 0.0 + (m * (vx * vx + vy * vy) + (j * w * w if j else 0.0) + g * (y0 - y)) \
+                + (m2 * (vx2 * vx2 + vy2 * vy2) + (j2 * w2 * w2 if j2 else 0.0) + g2 * (y02 - y2))
         e = 0.0
         # each bob's (x, y, angle, vx, vy, w) from the step's one batch read
         for (_, y, _, vx, vy, w), (half_mass, half_moment, weight, y0) in zip(

@@ -40,6 +40,7 @@ from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
+from scenes.ball_look import look
 from scenes.ball_tables import BallTables, slot_table
 
 S = 1.5                      # the tutorial's lengths scaled to this world
@@ -166,6 +167,8 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         known centre, ball_checks), and what is known of the L (its id; its pose, if static:
         nothing moves it)."""
         self._flag_now = None       # (ball_checks: the flags' matrix and limits)
+        self._quick = None          # (ball_look: the usual look's arrays and key, and
+        self._quick_moving = None   # a moving L's)
         self._L_id = self.L_body.id
         self._L_static_pose = None
         if self.L_body.body_type == pymunk.Body.STATIC:
@@ -314,8 +317,12 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         # only find that this scene has a step of its own and go there, two super() calls later
         # (~0.5 us of a ~40 us step)
         n = self.p["substeps"]
-        if n == 1:
-            Scene.advance(self)
+        if n == 1:              # (Scene.advance's loop of one, written out: ~2k instructions)
+            dt = self.dt
+            self.step(dt)
+            self.time += dt
+            self.steps += 1
+            self.after_step()
             return
         # Several substeps: the balls are looked at once, after the last (the tutorial looks
         # once a frame): a ball that tunneled is counted, and one that left removed, when its
@@ -379,8 +386,14 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         L0 = self._L_known or self.L_pose()
         self.space.step(h)                        # (PymunkScene.step)
         self._rows = None
-        self._L_after = self._L_known = self.check_balls(L0)   # (pivoting_l's joints use it)
-        self.spawn(h)
+        self._L_after = self._L_known = look(self, L0)   # (check_balls; pivoting_l's joints
+                                                         # use it)
+        if type(self).spawn is not FallingBallsScene.spawn:
+            self.spawn(h)                         # (a subclass's own spawner)
+        elif self.p["spawn_rate"] > 0:            # (spawn's clock first: a ball is due about
+            self._spawn_due -= h                  # once in 15 steps; spawn(0.0) is spawn(h)
+            if self._spawn_due <= 0:              # with h taken off)
+                self.spawn(0.0)
 
     def spawn(self, h: float) -> None:
         """Drop balls at a steady rate at random x above the L, from above the world (seeded:

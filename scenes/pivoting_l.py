@@ -55,6 +55,7 @@ from app.pymunk_scene import PYMUNK_PARAMS
 from app.scene import Param, Try, Unit, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
+from scenes.ball_look import look_moving
 from scenes.l_frame import cos_sin
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
@@ -163,28 +164,36 @@ class PivotingLScene(FallingBallsScene):
         its super() calls cost ~1 us a step): the substeps, the joints' records after each, one
         look at the balls after the last, the spawner's clock. Anything else (a world at rest,
         woken since the last step, the sleep threshold to set for a new substep (sleeping on:
-        with it off there is none), one substep, a subclass's own step) goes the general way,
-        which does the same (a test compares)."""
+        with it off there is none), one substep, a subclass's own step or spawner) goes the
+        general way, which does the same (a test compares)."""
         n = self.p["substeps"]
         dt = self.dt
         h = dt / n
         if n == 1 or self.resting or self._L_known is None \
                 or (h != self._sleep_h and "sleeping" in self.on) \
-                or type(self).step is not PivotingLScene.step:
+                or type(self).step is not PivotingLScene.step \
+                or type(self).spawn is not FallingBallsScene.spawn:
             super().advance()
             return
         space_step, record, spawn = self.space.step, self.record_joints, self.spawn
+        rate = self.p["spawn_rate"]     # (spawn(h)'s clock written out: spawn(0.0) when due)
         for _ in range(n - 1):          # (FallingBallsScene.step without its look)
             space_step(h)
             self._rows = None           # (the rows read before this step are old now)
             record(self.L_pose())
-            spawn(h)
+            if rate > 0:
+                self._spawn_due -= h
+                if self._spawn_due <= 0:
+                    spawn(0.0)
         L0 = self._L_known
         space_step(h)
         self._rows = None
-        pose = self._L_after = self._L_known = self.check_balls(L0)
+        pose = self._L_after = self._L_known = look_moving(self, L0)   # (check_balls)
         record(pose)
-        spawn(h)
+        if rate > 0:
+            self._spawn_due -= h
+            if self._spawn_due <= 0:
+                spawn(0.0)
         self.time += dt
         self.steps += 1
         self.after_step()

@@ -246,3 +246,32 @@ def test_set_from_cartesian_with_huge_numbers_gives_no_exception():
     ode = DoublePendulumODE(100, 100, 1, 1, 900)
     ode.set_from_cartesian((0, 0), (1e200, 1e200), (1e300, 0), (3e200, 1e200), (0, 1e300))
     assert len(ode.state) == 4
+
+
+@pytest.mark.parametrize("n", [1, 3, 7])
+def test_a_pending_ring_holds_what_a_ring_holds_after_the_same_appends(n):
+    # the trails' PendingRing keeps its appends in a list until it is read: read at any time
+    # (or never, past n appends), it gives a Ring's rows, head and count
+    import random
+
+    from app.draw.ring import PendingRing, Ring
+    rng = random.Random(n)
+    for k in (1, 2):
+        a, b = Ring(n, k), PendingRing(n, k)
+        for i in range(6 * n + 3):
+            sample = float(i) if k == 1 else (i + 0.5, -i)
+            a.append(sample)
+            b.append(sample)
+            assert len(a) == len(b)
+            if rng.random() < 0.3:
+                assert np.array_equal(a.values(), b.values())
+                assert np.array_equal(a.last(), b.last()) and (a.head, a.count) == (b.head, b.count)
+            if rng.random() < 0.05:
+                a.clear()
+                b.clear()
+        assert np.array_equal(a.values(), b.values()) and (a.head, a.count) == (b.head, b.count)
+    scene = DoublePendulumScene({})                 # the scene's trail: put in when it is read
+    for _ in range(5):
+        scene.advance()
+    assert isinstance(scene.trail, PendingRing) and len(scene.trail.pending) == 5
+    assert len(scene.trail.values()) == 5 and not scene.trail.pending

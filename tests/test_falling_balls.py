@@ -11,6 +11,7 @@ import pytest
 from app.draw.view import View
 from app.scene import InputEvent, ParamError
 from scenes.falling_balls import L_LONG, L_ORIGIN, SPAWN_Y, FallingBallsScene
+from scenes.pivoting_l import PivotingLScene
 
 
 def run(seconds: float, **overrides) -> FallingBallsScene:
@@ -215,3 +216,40 @@ def test_the_container_walls_follow_the_param_and_a_rollback():
     scene.set("container", True)
     scene.restore(snap)                       # the restored walls are the restored space's own
     assert len(scene.walls) == 3 and all(w in scene.space.shapes for w in scene.walls)
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+@pytest.mark.parametrize("settings, steps", [({}, 600),
+                                             ({"g": 5000, "hertz": 15, "radius": 4}, 300)])
+def test_the_written_out_look_leaves_what_check_balls_leaves(cls, settings, steps):
+    # scenes/ball_look's look (the L static) and look_moving (pivoting_l's): their usual case
+    # (the same balls awake, the same flags) against check_balls on every step: after each
+    # step the same counts, flags, kept centres, finite check's word and state; and it is the
+    # one that looked on most steps
+    from scenes import ball_look
+    kept = "_quick" if cls is FallingBallsScene else "_quick_moving"
+
+    class General(cls):
+        def check_balls(self, L0):           # (a check_balls of its own: look defers to it)
+            return super().check_balls(L0)
+    a, b = cls(settings), General(settings)
+    quick = 0
+    for _ in range(steps):
+        q = getattr(a, kept)
+        armed = q is not None and q[0] is a._awake and q[1] is a._fast
+        a.advance()
+        b.advance()
+        q = getattr(a, kept)
+        quick += armed and q is not None and q[1] is a._fast
+        assert getattr(b, kept) is None and a.counts == b.counts and a._fast == b._fast
+        assert (a.finite_read == a._state_reader.reads) == (b.finite_read == b._state_reader.reads)
+        assert a.is_finite() and b.is_finite()
+        a.flush_xy()
+        b.flush_xy()
+        assert np.array_equal(a._xy[:a._used], b._xy[:b._used])
+    assert a.state_hash() == b.state_hash() and a.counts["removed"] > 0
+    assert ball_look.look.__module__ == "scenes.ball_look"
+    if settings:              # (coarse steps: balls tunnel, flags change on most steps)
+        assert a.counts["tunneled"] > 0 and quick > 10
+    else:
+        assert quick > steps // 2

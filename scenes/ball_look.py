@@ -1,0 +1,151 @@
+"""falling_balls' look at its balls after a step (FallingBallsScene.step), its usual case written
+out: the L static, the same bodies awake as after the last look, every ball's five flags
+(ball_checks.py) as they were; look_moving does the same for pivoting_l's moving L. What they
+compute is what BallChecks.check_balls and _usual_check compute then, with the same NumPy calls
+on the same arrays: the read, the ids' bytes against the kept key, one product, one comparison,
+the flags' bytes against the last ones. They leave out the checks those make on every step to
+find which case this is (who is awake and where the L is, the kept arrays' size and pose: ~10k
+instructions a step, against the usual look's ~19k besides the read; callgrind, 37 balls):
+those are made once, when the usual case starts (`arm`), and kept in scene._quick, which is
+good while scene._awake and scene._fast are the very objects it was made with (anything that
+changes who is awake, a ball added or removed, a restore, a look the general way, makes new
+ones). Flags that changed go on to _usual_check's end (_flags_seen, with the flags made here);
+anything else to check_balls, which finds the read in scene._rows. tests/test_falling_balls.py
+compares them with check_balls step by step, tests/test_pymunk_checks.py the counts and the
+state with the exact tests, ball by ball; the seeded runs' metrics and state hashes are main's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from scenes.ball_checks import _NAN_FAILS, BallChecks
+
+
+def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
+    """scene.check_balls(L0) after a step: the L's pose after it (L0: before it)."""
+    q = scene._quick
+    if q is not None and q[0] is scene._awake and q[1] is scene._fast and L0 is q[6] \
+            and q[2][3] is q[7]:
+        reader = scene._state_reader
+        rows = scene._rows = reader.read(scene.space)
+        ids, data = rows
+        if ids.tobytes()[:q[3]] == q[4]:           # the same bodies awake, in the same order
+            now = q[5].get(id(data))
+            now = _rows_view(q, data) if now is None else now[0]
+            kept = q[2]
+            flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
+            b = flags.tobytes()
+            fast = q[1]
+            if b == fast[2]:                       # the same flags as after the last look
+                scene._prev = (q[0], now)          # (_usual_check's, when the flags match)
+                reader.keep = (reader.cur, scene._own_prev)
+                scene._fast = q[1] = (L0, b, b)
+                if _NAN_FAILS:
+                    scene.finite_read = reader.reads
+                return L0
+            L1 = scene._flags_seen(now, L0, L0, q[0], fast, flags, b)
+            scene._quick = arm(scene, L1)
+            return L1
+    L1 = scene.check_balls(L0)
+    scene._quick = arm(scene, L1)
+    return L1
+
+
+def arm(scene, L1: tuple[float, float, float]) -> list | None:
+    """scene._quick after a look that left the L at L1: [awake, fast, the flags' kept arrays
+    (_flag_rows_at), the key's length, the key (the awake ids' bytes and the first static
+    body's), each read's awake rows by the rows' id, the L's pose, the pose the kept arrays
+    were made for (the same object: _flag_matrix puts another in if another pose rewrote
+    them)], or None if look's usual case does not hold (a moving L, a ball outside the box,
+    no ball awake, the flags made for another pose, a subclass's own check_balls)."""
+    awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
+    if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
+            is not BallChecks._usual_check:       # (a subclass checks otherwise: its way)
+        return None
+    if awake is None or fast is None or fast[2] is None or awake.L_row is not None \
+            or not awake.balls or L1 != scene._L_static_pose or fast[0] != L1 \
+            or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
+        return None
+    q = scene._quick             # (the views of the reads: kept while the same are awake)
+    views = q[5] if q is not None and q[0] is awake else {}
+    return [awake, fast, kept, len(awake.key), awake.key, views, L1, kept[3]]
+
+
+def _rows_view(q: list, data: np.ndarray) -> np.ndarray:
+    """The awake rows of a read (data[:n]), kept by the rows' id (the reader's two buffers:
+    two ids while the bodies stay; the rows kept beside, so an id is no new array's)."""
+    views = q[5]
+    if len(views) >= 2:
+        views.clear()
+    now = data[:q[2][0]]
+    views[id(data)] = (now, data)       # (data too: alive while its id is a key)
+    return now
+
+
+def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
+    """look for an L that moves (pivoting_l's written-out step): the same with the L's row
+    among the awake rows (its pose from the read, the flags' line written again for it, the
+    key without its row) and every body awake or static (none asleep: a moving L may pass a
+    sleeping ball, and check_balls then looks at every ball)."""
+    q = scene._quick_moving
+    if q is not None and q[0] is scene._awake and q[1] is scene._fast and q[1][0] is L0 \
+            and q[2] is scene._flag_rows:
+        reader = scene._state_reader
+        rows = scene._rows = reader.read(scene.space)
+        ids, data = rows
+        if len(ids) == q[6] and ids.tobytes()[:q[3]] == q[4]:
+            views = q[5].get(id(data))
+            if views is None:
+                views = _moving_views(q, data)
+            now = views[0]
+            L1 = tuple(views[1].tolist())
+            kept = q[2]
+            if kept[3] != L1:
+                scene._flag_matrix(L1)             # (the line's column and limit for L1)
+            flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
+            b = flags.tobytes()
+            fast, r = q[1], q[7]
+            key = b[:r] + b[r + 5:]
+            if key == fast[2]:                     # (_flags_seen's, when the flags match)
+                scene._prev = (q[0], now)
+                reader.keep = (reader.cur, scene._own_prev)
+                scene._fast = q[1] = (L1, b, key)
+                if _NAN_FAILS and b[r:r + 4] == b"\1\1\1\1":
+                    scene.finite_read = reader.reads
+                return L1
+            L1 = scene._flags_seen(now, L0, L1, q[0], fast, flags, b)
+            scene._quick_moving = arm_moving(scene, L1)
+            return L1
+    L1 = scene.check_balls(L0)
+    scene._quick_moving = arm_moving(scene, L1)
+    return L1
+
+
+def arm_moving(scene, L1: tuple[float, float, float]) -> list | None:
+    """scene._quick_moving after a look that left the L at L1: [awake, fast, the flags' kept
+    arrays, the key's length, the key, each read's (awake rows, the L's row) by the rows' id,
+    the number of bodies awake or static, 5 x the L's row], or None (as arm, and an L that is
+    not awake)."""
+    awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
+    if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
+            is not BallChecks._usual_check:
+        return None
+    if awake is None or fast is None or fast[2] is None or awake.L_row is None \
+            or not awake.balls or fast[0] is not L1 or kept is None \
+            or kept[0] != len(awake.ids):
+        return None
+    q = scene._quick_moving
+    views = q[5] if q is not None and q[0] is awake else {}
+    return [awake, fast, kept, len(awake.key), awake.key, views,
+            len(awake.ids) + len(scene._static_ids), 5 * awake.L_row]
+
+
+def _moving_views(q: list, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """_rows_view's (awake rows, the L's (x, y, angle)) for look_moving."""
+    views = q[5]
+    if len(views) >= 2:
+        views.clear()
+    r = q[7] // 5
+    out = views[id(data)] = (data[:q[2][0]], data[r, :3], data)
+    return out
