@@ -22,29 +22,50 @@ import numpy as np
 from scenes.ball_checks import _NAN_FAILS, BallChecks
 
 
+class Armed:
+    """What a look's usual case was armed with (arm, arm_moving): good while `awake` and `fast`
+    are the scene's very objects (a new look the general way makes new ones)."""
+
+    __slots__ = ("awake", "fast", "kept", "key_len", "key", "views", "pose", "kept_pose",
+                 "bodies", "flag_at")
+
+    def __init__(self, awake, fast, kept, key: bytes, views: dict, pose=None, kept_pose=None,
+                 bodies: int = 0, flag_at: int = 0):
+        self.awake = awake          # scene._awake: who is awake (ball_checks)
+        self.fast = fast            # scene._fast: (the L's pose, the flags' bytes, their key)
+        self.kept = kept            # scene._flag_rows: the flags' kept arrays (_flag_rows_at)
+        self.key_len = len(key)     # the key: the awake ids' bytes (and the first static body's)
+        self.key = key
+        self.views = views          # each read's awake rows by the rows' id (_rows_view)
+        self.pose = pose            # look: the L's static pose, and the pose the kept arrays
+        self.kept_pose = kept_pose  # were made for (_flag_matrix puts another in for another)
+        self.bodies = bodies        # look_moving: the bodies awake or static,
+        self.flag_at = flag_at      # and 5 x the L's row: where its flags are in the bytes
+
+
 def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
     """scene.check_balls(L0) after a step: the L's pose after it (L0: before it)."""
     q = scene._quick
-    if q is not None and q[0] is scene._awake and q[1] is scene._fast and L0 is q[6] \
-            and q[2][3] is q[7]:
+    if q is not None and q.awake is scene._awake and q.fast is scene._fast and L0 is q.pose \
+            and q.kept[3] is q.kept_pose:
         reader = scene._state_reader
         rows = scene._rows = reader.read(scene.space)
         ids, data = rows
-        if ids.tobytes()[:q[3]] == q[4]:           # the same bodies awake, in the same order
-            now = q[5].get(id(data))
+        if ids.tobytes()[:q.key_len] == q.key:     # the same bodies awake, in the same order
+            now = q.views.get(id(data))
             now = _rows_view(q, data) if now is None else now[0]
-            kept = q[2]
+            kept = q.kept
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
             b = flags.tobytes()
-            fast = q[1]
+            fast = q.fast
             if b == fast[2]:                       # the same flags as after the last look
-                scene._prev = (q[0], now)          # (_usual_check's, when the flags match)
+                scene._prev = (q.awake, now)       # (_usual_check's, when the flags match)
                 reader.keep = (reader.cur, scene._own_prev)
-                scene._fast = q[1] = (L0, b, b)
+                scene._fast = q.fast = (L0, b, b)
                 if _NAN_FAILS:
                     scene.finite_read = reader.reads
                 return L0
-            L1 = scene._flags_seen(now, L0, L0, q[0], fast, flags, b)
+            L1 = scene._flags_seen(now, L0, L0, q.awake, fast, flags, b)
             scene._quick = arm(scene, L1)
             return L1
     L1 = scene.check_balls(L0)
@@ -52,12 +73,9 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
     return L1
 
 
-def arm(scene, L1: tuple[float, float, float]) -> list | None:
-    """scene._quick after a look that left the L at L1: [awake, fast, the flags' kept arrays
-    (_flag_rows_at), the key's length, the key (the awake ids' bytes and the first static
-    body's), each read's awake rows by the rows' id, the L's pose, the pose the kept arrays
-    were made for (the same object: _flag_matrix puts another in if another pose rewrote
-    them)], or None if look's usual case does not hold (a moving L, a ball outside the box,
+def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
+    """scene._quick after a look that left the L at L1 (Armed), or None if look's usual case
+    does not hold (a moving L, a ball outside the box,
     no ball awake, the flags made for another pose, a subclass's own check_balls)."""
     awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
     if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
@@ -68,17 +86,17 @@ def arm(scene, L1: tuple[float, float, float]) -> list | None:
             or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
         return None
     q = scene._quick             # (the views of the reads: kept while the same are awake)
-    views = q[5] if q is not None and q[0] is awake else {}
-    return [awake, fast, kept, len(awake.key), awake.key, views, L1, kept[3]]
+    views = q.views if q is not None and q.awake is awake else {}
+    return Armed(awake, fast, kept, awake.key, views, pose=L1, kept_pose=kept[3])
 
 
-def _rows_view(q: list, data: np.ndarray) -> np.ndarray:
+def _rows_view(q: Armed, data: np.ndarray) -> np.ndarray:
     """The awake rows of a read (data[:n]), kept by the rows' id (the reader's two buffers:
     two ids while the bodies stay; the rows kept beside, so an id is no new array's)."""
-    views = q[5]
+    views = q.views
     if len(views) >= 2:
         views.clear()
-    now = data[:q[2][0]]
+    now = data[:q.kept[0]]
     views[id(data)] = (now, data)       # (data too: alive while its id is a key)
     return now
 
@@ -89,32 +107,32 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
     key without its row) and every body awake or static (none asleep: a moving L may pass a
     sleeping ball, and check_balls then looks at every ball)."""
     q = scene._quick_moving
-    if q is not None and q[0] is scene._awake and q[1] is scene._fast and q[1][0] is L0 \
-            and q[2] is scene._flag_rows:
+    if q is not None and q.awake is scene._awake and q.fast is scene._fast \
+            and q.fast[0] is L0 and q.kept is scene._flag_rows:
         reader = scene._state_reader
         rows = scene._rows = reader.read(scene.space)
         ids, data = rows
-        if len(ids) == q[6] and ids.tobytes()[:q[3]] == q[4]:
-            views = q[5].get(id(data))
+        if len(ids) == q.bodies and ids.tobytes()[:q.key_len] == q.key:
+            views = q.views.get(id(data))
             if views is None:
                 views = _moving_views(q, data)
             now = views[0]
             L1 = tuple(views[1].tolist())
-            kept = q[2]
+            kept = q.kept
             if kept[3] != L1:
                 scene._flag_matrix(L1)             # (the line's column and limit for L1)
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
             b = flags.tobytes()
-            fast, r = q[1], q[7]
+            fast, r = q.fast, q.flag_at
             key = b[:r] + b[r + 5:]
             if key == fast[2]:                     # (_flags_seen's, when the flags match)
-                scene._prev = (q[0], now)
+                scene._prev = (q.awake, now)
                 reader.keep = (reader.cur, scene._own_prev)
-                scene._fast = q[1] = (L1, b, key)
+                scene._fast = q.fast = (L1, b, key)
                 if _NAN_FAILS and b[r:r + 4] == b"\1\1\1\1":
                     scene.finite_read = reader.reads
                 return L1
-            L1 = scene._flags_seen(now, L0, L1, q[0], fast, flags, b)
+            L1 = scene._flags_seen(now, L0, L1, q.awake, fast, flags, b)
             scene._quick_moving = arm_moving(scene, L1)
             return L1
     L1 = scene.check_balls(L0)
@@ -122,10 +140,9 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
     return L1
 
 
-def arm_moving(scene, L1: tuple[float, float, float]) -> list | None:
-    """scene._quick_moving after a look that left the L at L1: [awake, fast, the flags' kept
-    arrays, the key's length, the key, each read's (awake rows, the L's row) by the rows' id,
-    the number of bodies awake or static, 5 x the L's row], or None (as arm, and an L that is
+def arm_moving(scene, L1: tuple[float, float, float]) -> Armed | None:
+    """scene._quick_moving after a look that left the L at L1 (Armed, with the number of
+    bodies awake or static and where the L's flags are), or None (as arm, and an L that is
     not awake)."""
     awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
     if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
@@ -136,16 +153,16 @@ def arm_moving(scene, L1: tuple[float, float, float]) -> list | None:
             or kept[0] != len(awake.ids):
         return None
     q = scene._quick_moving
-    views = q[5] if q is not None and q[0] is awake else {}
-    return [awake, fast, kept, len(awake.key), awake.key, views,
-            len(awake.ids) + len(scene._static_ids), 5 * awake.L_row]
+    views = q.views if q is not None and q.awake is awake else {}
+    return Armed(awake, fast, kept, awake.key, views,
+                 bodies=len(awake.ids) + len(scene._static_ids), flag_at=5 * awake.L_row)
 
 
-def _moving_views(q: list, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _moving_views(q: Armed, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """_rows_view's (awake rows, the L's (x, y, angle)) for look_moving."""
-    views = q[5]
+    views = q.views
     if len(views) >= 2:
         views.clear()
-    r = q[7] // 5
-    out = views[id(data)] = (data[:q[2][0]], data[r, :3], data)
+    r = q.flag_at // 5
+    out = views[id(data)] = (data[:q.kept[0]], data[r, :3], data)
     return out

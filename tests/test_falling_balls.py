@@ -236,11 +236,11 @@ def test_the_written_out_look_leaves_what_check_balls_leaves(cls, settings, step
     quick = 0
     for _ in range(steps):
         q = getattr(a, kept)
-        armed = q is not None and q[0] is a._awake and q[1] is a._fast
+        armed = q is not None and q.awake is a._awake and q.fast is a._fast
         a.advance()
         b.advance()
         q = getattr(a, kept)
-        quick += armed and q is not None and q[1] is a._fast
+        quick += armed and q is not None and q.fast is a._fast
         assert getattr(b, kept) is None and a.counts == b.counts and a._fast == b._fast
         assert (a.finite_read == a._state_reader.reads) == (b.finite_read == b._state_reader.reads)
         assert a.is_finite() and b.is_finite()
