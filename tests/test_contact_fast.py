@@ -329,7 +329,7 @@ def test_the_compiled_search_finds_exactly_the_pairs_all_pairs_finds():
                 table[reach + sr * dr * w + sc * dc] = True
         row, col = np.divmod(np.arange(n), cols)
         buf = self_compiled.Buffers(n)
-        buf.a, buf.b = buf.a[:case % 3], buf.b[:case % 3]        # grown as the search needs
+        buf.i, buf.j = buf.i[:case % 3], buf.j[:case % 3]        # grown as the search needs
         i, j, tests = self_compiled.find_pairs(
             np.ascontiguousarray(x[:, 0]), np.ascontiguousarray(x[:, 1]), cutoff,
             (row * w + col + reach, row * w + col, table), buf)

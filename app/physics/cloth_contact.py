@@ -408,15 +408,19 @@ def _self_collide_compiled(c) -> None:
     dmin, n = st.self_distance, x.shape[1]
     if st.compiled is None or st.compiled.count.size != n:
         st.compiled = self_compiled.Buffers(n)
+    i, j, st.self_tests = self_compiled.find_pairs(x[0], x[1], dmin, joined_table(c),
+                                                   st.compiled)
+    st.self_pairs = len(i)
+    if len(i) == 0:
+        return
     between = None
     if "collisions" in c.on and st.obstacles:          # as in self_collide: before each sweep
         movable = c.free.ravel() > 0
 
         def between() -> None:
             _push_out(st.obstacles, x.T, st.margin, movable)
-    st.self_pairs, st.self_tests = self_compiled.self_collide(
-        x[0], x[1], c.w.ravel(), dmin, joined_table(c), OVER_RELAX, SELF_SWEEPS, between,
-        st.compiled)
+    self_compiled.push_apart(x[0], x[1], i, j, c.w.ravel(), dmin, OVER_RELAX, SELF_SWEEPS,
+                             between, st.compiled)
 
 
 def self_overlaps(c, distance: float, method: str = "grid", slack: float = OVERLAP_SLACK) -> int:
