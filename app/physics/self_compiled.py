@@ -22,6 +22,26 @@ for 24,845 now; the search 0.46 -> 0.28 ms, the sweeps 0.20 -> 0.15 ms, load ~1.
 not kept: a branch per candidate instead of writing every candidate and counting the close ones
 (1.2 x slower on the falling cloth: half the candidates are close, the branch guesses wrong),
 32-bit work arrays, cells R/8 x R or R x R (the same time within the noise).
+
+2026-11-27, later: the rod table is read in a pass of its own over the close pairs (step 4 of
+_find_pairs). Written as `close & ~joined[...]` in the candidate loop, the compiler read the
+table only for a close candidate, behind a branch that mispredicted on a third to a half of
+them. In one process against the pass before, over the 15 states of a bench run (31 rounds,
+load 1.0): hanging 0.91-0.93 x, crumpled 0.99-1.02 x (no gain where it counts); the same
+positions to the last bit. `bench cloth`'s self-collision rows (scripted alone, 41 rounds, four
+runs each taking turns with the code before, load 0.9-1.4): crumpled 1.17-1.29 x the compiled
+step (before 1.25-1.37 x), hanging 0.38-0.40 x (0.38-0.44 x): the goal of 1 x is NOT met. Where
+the time goes (the bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663
+candidates, 12,174 pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
+before each ~25, the grid's box and numba's dispatch of some 20 arguments a call ~15. Tried on
+the way and not kept (each against the pass before, in one process): the sweeps on the
+cell-sorted copies, written back once (n = 4,096 fits the caches: no gain, the gather and
+scatter cost ~10 us); the pairs as per-particle lists (CSR: the search 13 % faster alone, the
+sweeps 25 % slower: their inner loop's end mispredicts); a particle's three runs walked as one
+list in blocks of 4 or 8 candidates (blocks of 8: hanging 1.35 x slower); a's sums kept in
+registers along its pairs (slower); the pushes in float32 (no change). Timing a kernel called
+again and again on one state misleads: the branch predictor learns the state (the search 88 us
+there, 190-245 us when the states change as in a run).
 """
 
 from __future__ import annotations
@@ -32,13 +52,13 @@ from app.ctrl_c import compiled
 from app.physics.neighbours import fine_grid
 
 
-def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus, minus, joined,
+def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus, minus, keep,
                 cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # compiled on use
     """(pairs found, candidate tests): the pairs closer than sqrt(r2_max) on fine_pairs's grid
     (cells cell_w x cell_h from (lo_x, lo_y), nx x ny of them, the stencil's reach per row),
     not joined, into out_i, out_j; found is -1 if those are too short (the caller grows them and
-    asks again). Pair (p, q) is joined where joined[plus[q] - minus[p]] (cloth_contact's
-    joined_table); the rest: work arrays."""
+    asks again). Pair (p, q) is kept where keep[plus[q] - minus[p]] is 1 (cloth_contact's
+    joined_table, inverted, as bytes); the rest: work arrays."""
     n = xs.size
     pad = 0
     for r in range(reach.size):
@@ -69,7 +89,6 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
     cap = out_i.size
     for k in range(n):
         c, p, px, py = s_cell[k], order[k], sx[k], sy[k]
-        pk = minus[p]
         for r in range(below + 1):
             if r == 0:
                 lo, hi = k + 1, start[c + reach[0] + 2]
@@ -78,13 +97,21 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
             tests += hi - lo
             if found + hi - lo > cap:
                 return -1, tests
-            # every candidate is written, and `found` steps on only for a close pair no rod
-            # joins: no branch to mispredict (a third to a half of the candidates are close)
+            # every candidate is written, and `found` steps on only for a close pair: no
+            # branch to mispredict (a third to a half of the candidates are close)
             for q in range(lo, hi):
                 dx, dy = sx[q] - px, sy[q] - py
-                out_i[found], out_j[found] = p, order[q]
-                found += (dx * dx + dy * dy < r2_max) & ~joined[s_plus[q] - pk]
-    return found, tests
+                out_i[found], out_j[found] = p, q
+                found += dx * dx + dy * dy < r2_max
+    # 4. the pairs a rod joins left out, in a pass of their own over the close ones (tested in
+    # the loop above, the compiler read the table only for a close candidate, behind a branch
+    # that mispredicted on a third to a half of them): keep[...] is 1 for a pair kept
+    kept = 0
+    for t in range(found):
+        p, q = out_i[t], out_j[t]
+        out_i[kept], out_j[kept] = p, order[q]
+        kept += keep[s_plus[q] - minus[p]]
+    return kept, tests
 
 
 def _shares(i, j, w, over_relax, count, scale):
@@ -166,6 +193,7 @@ class Buffers:
         self.s_plus = np.empty(n, np.int64)
         self.start = np.empty(0, np.int64)              # per cell (grown with the grid)
         self.sorted: dict = {}                          # positions in cell order, by dtype
+        self.keep: tuple = (None, None)                 # (joined table, its inverse as bytes)
 
 
 def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
@@ -185,9 +213,12 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     if sx is None or sx.size != n:
         sx, sy = buf.sorted[xs.dtype] = np.empty_like(xs), np.empty_like(ys)
     real = np.result_type(xs, ys, np.float32)           # fine_pairs's rounding: the same pairs
+    plus, minus, table = joined
+    if buf.keep[0] is not table:                        # (the table inverted, as bytes)
+        buf.keep = (table, np.logical_not(table).view(np.uint8))
     args = (xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, np.asarray(reach, np.int64),
-            real.type(distance * distance), *joined, buf.cell, buf.start, buf.order, sx, sy,
-            buf.s_cell, buf.s_plus)
+            real.type(distance * distance), plus, minus, buf.keep[1], buf.cell, buf.start,
+            buf.order, sx, sy, buf.s_cell, buf.s_plus)
     found, tests = _find(*args, buf.i, buf.j)
     while found < 0:                        # more than ever before (tests: those seen until
         size = 2 * max(tests, buf.i.size)   # the arrays were full): grow, search again
