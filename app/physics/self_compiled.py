@@ -30,7 +30,9 @@ them. In one process against the pass before, over the 15 states of a bench run 
 load 1.0): hanging 0.91-0.93 x, crumpled 0.99-1.02 x (no gain where it counts); the same
 positions to the last bit. `bench cloth`'s self-collision rows (scripted alone, 41 rounds, four
 runs each taking turns with the code before, load 0.9-1.4): crumpled 1.17-1.29 x the compiled
-step (before 1.25-1.37 x), hanging 0.38-0.40 x (0.38-0.44 x): the goal of 1 x is NOT met. Where
+step (before 1.25-1.37 x), hanging 0.38-0.40 x (0.38-0.44 x); the whole `bench cloth`, six
+runs each taking turns (load 1.4-3.2): crumpled 1.21-1.29 x, median 1.23 (before 1.23-1.28 x,
+median 1.26), hanging 0.39-0.42 x (0.42-0.49 x). The goal of 1 x is NOT met. Where
 the time goes (the bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663
 candidates, 12,174 pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
 before each ~25, the grid's box and numba's dispatch of some 20 arguments a call ~15. Tried on
