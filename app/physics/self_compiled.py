@@ -28,7 +28,10 @@ _find_pairs). Written as `close & ~joined[...]` in the candidate loop, the compi
 table only for a close candidate, behind a branch that mispredicted on a third to a half of
 them. In one process against the pass before, over the 15 states of a bench run (31 rounds,
 load 1.0): hanging 0.91-0.93 x, crumpled 0.99-1.02 x (no gain where it counts); the same
-positions to the last bit. `bench cloth`'s self-collision rows (scripted alone, 41 rounds, four
+positions to the last bit. And the first sweep counts each particle's pairs as it goes (the
+pushes are summed unscaled, the scale set before anyone moves), where a pass of its own over
+the pairs counted them before: both together 0.98-0.99 x crumpled, 0.92-0.94 x hanging (the
+same way, load 1.6; the same positions to the last bit). `bench cloth`'s self-collision rows (scripted alone, 41 rounds, four
 runs each taking turns with the code before, load 0.9-1.4): crumpled 1.17-1.29 x the compiled
 step (before 1.25-1.37 x), hanging 0.38-0.40 x (0.38-0.44 x); the whole `bench cloth`, six
 runs each taking turns (load 1.4-3.2): crumpled 1.21-1.29 x, median 1.23 (before 1.23-1.28 x,
@@ -116,32 +119,22 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
     return kept, tests
 
 
-def _shares(i, j, w, over_relax, count, scale):
-    """Before the sweeps: each particle's scale = over_relax / its pairs (Jacobi's average,
-    over-relaxed; pairs with both ends pinned left out); True if every particle is free with
-    the same weight (nothing pinned or grabbed: every share is 1/2, no weights to read)."""
-    n, m = w.size, i.size
-    even = w[0] > 0
-    for p in range(n):
-        count[p] = 0
-        even = even and w[p] == w[0]
-    for k in range(m):
-        a, b = i[k], j[k]
-        if even or w[a] + w[b] > 0:
-            count[a] += 1
-            count[b] += 1
-    for p in range(n):
-        scale[p] = over_relax / count[p] if count[p] > 0 else 0.0
-    return even
-
-
-def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
+def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, moved_y):
     """One Jacobi sweep over the pairs: every pair pushed apart to dmin, each end by its share
-    w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale."""
+    w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale. The
+    first sweep (once) also counts each particle's pairs as it goes (pairs with both ends pinned
+    left out) and sets scale = over_relax / its pairs (Jacobi's average, over-relaxed) before
+    moving anyone: the pushes are summed unscaled, so no pass of its own over the pairs is
+    needed for the counts. Every particle free with the same weight (nothing pinned or grabbed):
+    every share is 1/2, no weights read pair by pair."""
     n, m = xs.size, i.size
+    even = w[0] > 0
     for p in range(n):
         moved_x[p] = 0.0
         moved_y[p] = 0.0
+        even = even and w[p] == w[0]
+        if once:
+            count[p] = 0
     share_a = share_b = 0.5
     for k in range(m):
         a, b = i[k], j[k]
@@ -150,6 +143,9 @@ def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
             if total <= 0:
                 continue                                # both pinned: neither moves
             share_a, share_b = w[a] / total, w[b] / total
+        if once:
+            count[a] += 1
+            count[b] += 1
         dx, dy = xs[b] - xs[a], ys[b] - ys[a]
         r = np.sqrt(dx * dx + dy * dy)
         if r < 1e-6 * dmin:                             # at one point: part them along x
@@ -161,6 +157,8 @@ def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
         moved_x[a] -= mx * share_a
         moved_y[a] -= my * share_a
     for p in range(n):
+        if once:
+            scale[p] = over_relax / count[p] if count[p] > 0 else 0.0
         xs[p] += moved_x[p] * scale[p]
         ys[p] += moved_y[p] * scale[p]
 
@@ -175,7 +173,6 @@ def _jit(fn):
 
 _find = _jit(_find_pairs)
 _push = _jit(_push_apart)
-_share = _jit(_shares)
 
 
 class Buffers:
@@ -233,8 +230,8 @@ def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, bet
                buf: Buffers) -> None:
     """`sweeps` sweeps of self-collision's Jacobi projection over the pairs (i, j), in place on
     xs, ys, calling between() before each (the obstacles' projection, or None)."""
-    even = _share(i, j, w, float(over_relax), buf.count, buf.scale)
-    for _ in range(sweeps):
+    for sweep in range(sweeps):
         if between is not None:
             between()
-        _push(xs, ys, i, j, w, float(dmin), even, buf.scale, buf.moved_x, buf.moved_y)
+        _push(xs, ys, i, j, w, float(dmin), sweep == 0, float(over_relax), buf.count, buf.scale,
+              buf.moved_x, buf.moved_y)
