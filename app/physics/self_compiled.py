@@ -23,19 +23,22 @@ not kept: a branch per candidate instead of writing every candidate and counting
 (1.2 x slower on the falling cloth: half the candidates are close, the branch guesses wrong),
 32-bit work arrays, cells R/8 x R or R x R (the same time within the noise).
 
-2026-11-27, later: the rod table is read in a pass of its own over the close pairs (step 4 of
-_find_pairs). Written as `close & ~joined[...]` in the candidate loop, the compiler read the
-table only for a close candidate, behind a branch that mispredicted on a third to a half of
-them. In one process against the pass before, over the 15 states of a bench run (31 rounds,
-load 1.0): hanging 0.91-0.93 x, crumpled 0.99-1.02 x (no gain where it counts); the same
-positions to the last bit. And the first sweep counts each particle's pairs as it goes (the
-pushes are summed unscaled, the scale set before anyone moves), where a pass of its own over
-the pairs counted them before: both together 0.98-0.99 x crumpled, 0.92-0.94 x hanging (the
-same way, load 1.6; the same positions to the last bit). `bench cloth`'s self-collision rows (scripted alone, 41 rounds, four
-runs each taking turns with the code before, load 0.9-1.4): crumpled 1.17-1.29 x the compiled
-step (before 1.25-1.37 x), hanging 0.38-0.40 x (0.38-0.44 x); the whole `bench cloth`, six
-runs each taking turns (load 1.4-3.2): crumpled 1.21-1.29 x, median 1.23 (before 1.23-1.28 x,
-median 1.26), hanging 0.39-0.42 x (0.42-0.49 x). The goal of 1 x is NOT met. Where
+2026-11-27, later, three changes, each with the same positions to the last bit and measured
+in one process against the pass before, over the 15 states of a bench run (31 rounds): the rod
+table read in a pass of its own over the close pairs (step 4 of _find_pairs: written as `close
+& ~joined[...]` in the candidate loop, the compiler read the table only for a close candidate,
+behind a branch that mispredicted on a third to a half of them): hanging 0.91-0.93 x, crumpled
+0.99-1.02 x (load 1.0); the first sweep counting each particle's pairs as it goes (the pushes
+summed unscaled, the scale set before anyone moves), where a pass of its own over the pairs
+counted them: with the first, 0.98-0.99 x crumpled, 0.92-0.94 x hanging (load 1.6); each
+particle's cell computed as fine_pairs computes it, (x - lo) times 1 / width in the positions'
+precision (a multiply, not a float64 division; the very cells of the NumPy search): all three
+0.94-0.97 x crumpled, 0.90-0.92 x hanging (load 1.5). `bench cloth`'s self-collision rows with
+the first (scripted alone, 41 rounds, four runs each taking turns with the code before, load
+0.9-1.4): crumpled 1.17-1.29 x the compiled step (before 1.25-1.37 x), hanging 0.38-0.40 x
+(0.38-0.44 x); the whole `bench cloth`, six runs each taking turns (load 1.4-3.2): crumpled
+1.21-1.29 x, median 1.23 (before 1.23-1.28 x, median 1.26), hanging 0.39-0.42 x (0.42-0.49 x);
+with the first two, three more (load 1.5-3.8): crumpled 1.22-1.24 x (before 1.29-1.37 x). The goal of 1 x is NOT met. Where
 the time goes (the bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663
 candidates, 12,174 pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
 before each ~25, the grid's box and numba's dispatch of some 20 arguments a call ~15. Tried on
@@ -57,10 +60,11 @@ from app.ctrl_c import compiled
 from app.physics.neighbours import fine_grid
 
 
-def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus, minus, keep,
-                cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # compiled on use
+def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, r2_max, plus, minus,
+                keep, cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # (compiled)
     """(pairs found, candidate tests): the pairs closer than sqrt(r2_max) on fine_pairs's grid
-    (cells cell_w x cell_h from (lo_x, lo_y), nx x ny of them, the stencil's reach per row),
+    (cells 1 / to_cell_x by 1 / to_cell_y from (lo_x, lo_y), nx x ny of them, the stencil's
+    reach per row),
     not joined, into out_i, out_j; found is -1 if those are too short (the caller grows them and
     asks again). Pair (p, q) is kept where keep[plus[q] - minus[p]] is 1 (cloth_contact's
     joined_table, inverted, as bytes); the rest: work arrays."""
@@ -75,9 +79,10 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
         start[c] = 0
     for p in range(n):                                  # 1. each particle's cell
         # clamped before the int (a point outside the grid goes to the nearest border cell:
-        # fine_grid), so no cell index falls outside the arrays
-        cx = int(min(max((xs[p] - lo_x) / cell_w, 0.0), nx - 1.0))
-        cy = int(min(max((ys[p] - lo_y) / cell_h, 0.0), ny - 1.0))
+        # fine_grid), so no cell index falls outside the arrays; (x - lo) times 1 / width in
+        # the positions' precision, as fine_pairs computes it: the very same cells
+        cx = int(min(max((xs[p] - lo_x) * to_cell_x, 0.0), nx - 1.0))
+        cy = int(min(max((ys[p] - lo_y) * to_cell_y, 0.0), ny - 1.0))
         cell[p] = cy * columns + cx + pad
         start[cell[p] + 1] += 1
     for c in range(1, cells + 1):                       # 2. sorted by cell (a counting sort):
@@ -215,7 +220,8 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     plus, minus, table = joined
     if buf.keep[0] is not table:                        # (the table inverted, as bytes)
         buf.keep = (table, np.logical_not(table).view(np.uint8))
-    args = (xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, np.asarray(reach, np.int64),
+    args = (xs, ys, real.type(lo_x), real.type(lo_y), real.type(1 / cell_w),
+            real.type(1 / cell_h), nx, ny, np.asarray(reach, np.int64),
             real.type(distance * distance), plus, minus, buf.keep[1], buf.cell, buf.start,
             buf.order, sx, sy, buf.s_cell, buf.s_plus)
     found, tests = _find(*args, buf.i, buf.j)
