@@ -82,9 +82,9 @@ met by NumPy crumpled. Later that day the list backs off where it never pays (se
 displacement test or copy for 4 substeps after 2 too fast; 2 % of the crumpled pass, 4-6 % of
 the hanging one): the bench's self-collision rows, four runs taking turns with the code before
 (41 rounds, load 0.9-1.4), crumpled 1.02-1.11 x (before 1.03-1.09 x: within the noise of the
-runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, six runs each taking turns
-with the code before (load 1.4-3.2): crumpled 0.97-1.12 x, median 1.02 (before 0.99-1.06 x,
-median 1.01), hanging 0.30-0.36 x (0.31-0.42 x). At the line, NOT robustly met. There the ~1.0
+runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, twelve runs each taking
+turns with the code before (load 1.4-3.8): crumpled 0.97-1.25 x, median 1.025 (before 0.99-1.14
+x, median 1.015), hanging 0.30-0.36 x (0.31-0.46 x). At the line, NOT robustly met. There the ~1.0
 ms go to the search ~0.5,
 the rod filter and the list ~0.1, the 2 sweeps ~0.35 (each one's four bincounts over 14,037 weighted
 entries the largest part). What 2026-11-27 gained (each measured in one process against the commit
@@ -114,7 +114,8 @@ with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): 
 it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
 met either (bench of 2026-11-27, load 1.1); with the rod table read in a pass of its own (later
 that day) 1.17-1.29 x (before 1.25-1.37 x in the same runs; the whole bench, six runs each:
-1.21-1.29 x, median 1.23, before 1.23-1.28 x, median 1.26), still NOT met: its search, sort and
+1.21-1.29 x, median 1.23, before 1.23-1.28 x, median 1.26; twelve: median 1.235 x, before
+1.275 x), still NOT met: its search, sort and
 sweeps and what was tried on them are in self_compiled.py's docstring.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves

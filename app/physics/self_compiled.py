@@ -38,9 +38,11 @@ the first (scripted alone, 41 rounds, four runs each taking turns with the code 
 0.9-1.4): crumpled 1.17-1.29 x the compiled step (before 1.25-1.37 x), hanging 0.38-0.40 x
 (0.38-0.44 x); the whole `bench cloth`, six runs each taking turns (load 1.4-3.2): crumpled
 1.21-1.29 x, median 1.23 (before 1.23-1.28 x, median 1.26), hanging 0.39-0.42 x (0.42-0.49 x);
-with the first two, three more (load 1.5-3.8): crumpled 1.22-1.24 x (before 1.29-1.37 x). The goal of 1 x is NOT met. Where
-the time goes (the bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663
-candidates, 12,174 pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
+with the first two, three more (load 1.5-3.8): crumpled 1.22-1.24 x (before 1.29-1.37 x); with
+all three, three more (load 1.6-2.7): 1.23-1.30 x (before 1.25-1.32 x). In all twelve whole
+runs: median 1.235 x (before 1.275 x). The goal of 1 x is NOT met. Where the time goes (the
+bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663 candidates, 12,174
+pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
 before each ~25, the grid's box and numba's dispatch of some 20 arguments a call ~15. Tried on
 the way and not kept (each against the pass before, in one process): the sweeps on the
 cell-sorted copies, written back once (n = 4,096 fits the caches: no gain, the gather and
