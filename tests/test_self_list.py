@@ -162,3 +162,25 @@ def test_the_list_matches_every_pair_far_from_the_origin_and_at_the_boundary(dty
             x[0, 0] += dtype(0.1 * R)       # one particle crossing the cloud (rebuilt every 4)
         reused += lst.reuses
     assert reused > 30
+
+
+def test_the_list_backs_off_where_it_never_pays(monkeypatch):
+    """Particles moving 10 px a substep against R = 1 (no skin lasts): after MISSES plain
+    searches in a row the next WAIT substeps search with no displacement test (before, one every
+    substep: 11 of 12); once they stop, the list is built with a skin and reused again."""
+    tested = []
+    real = self_list.moved
+    monkeypatch.setattr(self_list, "moved", lambda lst, x: tested.append(1) or real(lst, x))
+    lst, x = self_list.PairList(), np.zeros((2, 10), np.float32)
+    x[0] = np.arange(10) * 3.0
+
+    def search(d):
+        return fine_pairs(x[0], x[1], d, Scratch())
+    for step in range(12):
+        x += 10.0
+        self_list.close_pairs(lst, x, 1.0, ("k",), search, Scratch())
+    assert lst.builds == 12 and len(tested) == 3        # substeps 2, 3 and 8
+    assert (self_list.MISSES, self_list.WAIT) == (2, 4)
+    for step in range(2 * self_list.WAIT + 4):
+        self_list.close_pairs(lst, x, 1.0, ("k",), search, Scratch())
+    assert lst.reuses > 0

@@ -78,8 +78,15 @@ now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time): 1.26 x t
 crumpled on 2026-11-26 (load 1.1; 1.58 x before that day's changes); on 2026-11-27 1.08 and
 1.09 x, hanging 0.34 and 0.33 x (two runs, load 0.6-0.8, taking turns with the day before's
 code: 1.27 and 1.24 x crumpled, 0.37 and 0.35 x hanging): the goal of at most 1 x is still NOT
-met by NumPy crumpled. There the ~1.0 ms go to the search ~0.5, the rod
-filter and the list ~0.1, the 2 sweeps ~0.35 (each one's four bincounts over 14,037 weighted
+met by NumPy crumpled. Later that day the list backs off where it never pays (self_list.py: no
+displacement test or copy for 4 substeps after 2 too fast; 2 % of the crumpled pass, 4-6 % of
+the hanging one): the bench's self-collision rows, four runs taking turns with the code before
+(41 rounds, load 0.9-1.4), crumpled 1.02-1.11 x (before 1.03-1.09 x: within the noise of the
+runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, twelve runs each taking
+turns with the code before (load 1.4-3.8): crumpled 0.97-1.25 x, median 1.025 (before 0.99-1.14
+x, median 1.015), hanging 0.30-0.36 x (0.31-0.46 x). At the line, NOT robustly met. There the ~1.0
+ms go to the search ~0.5,
+the rod filter and the list ~0.1, the 2 sweeps ~0.35 (each one's four bincounts over 14,037 weighted
 entries the largest part). What 2026-11-27 gained (each measured in one process against the commit
 before, the pass over the bench's 15 steps in 101-201 interleaved rounds, load 0.6-3.4; the
 same positions to the last bit): the arrays' own methods, a.take, a.repeat (np.take and the like
@@ -105,7 +112,11 @@ counts. The compiled pass (kernel=numba, optional, app/physics/self_compiled.py:
 and pairs, searched every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
 with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like
 it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
-met either (bench of 2026-11-27, load 1.1).
+met either (bench of 2026-11-27, load 1.1); with the rod table read in a pass of its own (later
+that day) 1.17-1.29 x (before 1.25-1.37 x in the same runs; the whole bench, six runs each:
+1.21-1.29 x, median 1.23, before 1.23-1.28 x, median 1.26; twelve: median 1.235 x, before
+1.275 x), still NOT met: its search, sort and
+sweeps and what was tried on them are in self_compiled.py's docstring.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer

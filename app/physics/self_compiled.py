@@ -22,6 +22,36 @@ for 24,845 now; the search 0.46 -> 0.28 ms, the sweeps 0.20 -> 0.15 ms, load ~1.
 not kept: a branch per candidate instead of writing every candidate and counting the close ones
 (1.2 x slower on the falling cloth: half the candidates are close, the branch guesses wrong),
 32-bit work arrays, cells R/8 x R or R x R (the same time within the noise).
+
+2026-11-27, later, three changes, each with the same positions to the last bit and measured
+in one process against the pass before, over the 15 states of a bench run (31 rounds): the rod
+table read in a pass of its own over the close pairs (step 4 of _find_pairs: written as `close
+& ~joined[...]` in the candidate loop, the compiler read the table only for a close candidate,
+behind a branch that mispredicted on a third to a half of them): hanging 0.91-0.93 x, crumpled
+0.99-1.02 x (load 1.0); the first sweep counting each particle's pairs as it goes (the pushes
+summed unscaled, the scale set before anyone moves), where a pass of its own over the pairs
+counted them: with the first, 0.98-0.99 x crumpled, 0.92-0.94 x hanging (load 1.6); each
+particle's cell computed as fine_pairs computes it, (x - lo) times 1 / width in the positions'
+precision (a multiply, not a float64 division; the very cells of the NumPy search): all three
+0.94-0.97 x crumpled, 0.90-0.92 x hanging (load 1.5). `bench cloth`'s self-collision rows with
+the first (scripted alone, 41 rounds, four runs each taking turns with the code before, load
+0.9-1.4): crumpled 1.17-1.29 x the compiled step (before 1.25-1.37 x), hanging 0.38-0.40 x
+(0.38-0.44 x); the whole `bench cloth`, six runs each taking turns (load 1.4-3.2): crumpled
+1.21-1.29 x, median 1.23 (before 1.23-1.28 x, median 1.26), hanging 0.39-0.42 x (0.42-0.49 x);
+with the first two, three more (load 1.5-3.8): crumpled 1.22-1.24 x (before 1.29-1.37 x); with
+all three, three more (load 1.6-2.7): 1.23-1.30 x (before 1.25-1.32 x). In all twelve whole
+runs: median 1.235 x (before 1.275 x). The goal of 1 x is NOT met. Where the time goes (the
+bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663 candidates, 12,174
+pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
+before each ~25, the grid's box and numba's dispatch of some 20 arguments a call ~15. Tried on
+the way and not kept (each against the pass before, in one process): the sweeps on the
+cell-sorted copies, written back once (n = 4,096 fits the caches: no gain, the gather and
+scatter cost ~10 us); the pairs as per-particle lists (CSR: the search 13 % faster alone, the
+sweeps 25 % slower: their inner loop's end mispredicts); a particle's three runs walked as one
+list in blocks of 4 or 8 candidates (blocks of 8: hanging 1.35 x slower); a's sums kept in
+registers along its pairs (slower); the pushes in float32 (no change). Timing a kernel called
+again and again on one state misleads: the branch predictor learns the state (the search 88 us
+there, 190-245 us when the states change as in a run).
 """
 
 from __future__ import annotations
@@ -32,13 +62,14 @@ from app.ctrl_c import compiled
 from app.physics.neighbours import fine_grid
 
 
-def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus, minus, joined,
-                cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # compiled on use
+def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, r2_max, plus, minus,
+                keep, cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # (compiled)
     """(pairs found, candidate tests): the pairs closer than sqrt(r2_max) on fine_pairs's grid
-    (cells cell_w x cell_h from (lo_x, lo_y), nx x ny of them, the stencil's reach per row),
+    (cells 1 / to_cell_x by 1 / to_cell_y from (lo_x, lo_y), nx x ny of them, the stencil's
+    reach per row),
     not joined, into out_i, out_j; found is -1 if those are too short (the caller grows them and
-    asks again). Pair (p, q) is joined where joined[plus[q] - minus[p]] (cloth_contact's
-    joined_table); the rest: work arrays."""
+    asks again). Pair (p, q) is kept where keep[plus[q] - minus[p]] is 1 (cloth_contact's
+    joined_table, inverted, as bytes); the rest: work arrays."""
     n = xs.size
     pad = 0
     for r in range(reach.size):
@@ -50,9 +81,10 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
         start[c] = 0
     for p in range(n):                                  # 1. each particle's cell
         # clamped before the int (a point outside the grid goes to the nearest border cell:
-        # fine_grid), so no cell index falls outside the arrays
-        cx = int(min(max((xs[p] - lo_x) / cell_w, 0.0), nx - 1.0))
-        cy = int(min(max((ys[p] - lo_y) / cell_h, 0.0), ny - 1.0))
+        # fine_grid), so no cell index falls outside the arrays; (x - lo) times 1 / width in
+        # the positions' precision, as fine_pairs computes it: the very same cells
+        cx = int(min(max((xs[p] - lo_x) * to_cell_x, 0.0), nx - 1.0))
+        cy = int(min(max((ys[p] - lo_y) * to_cell_y, 0.0), ny - 1.0))
         cell[p] = cy * columns + cx + pad
         start[cell[p] + 1] += 1
     for c in range(1, cells + 1):                       # 2. sorted by cell (a counting sort):
@@ -69,7 +101,6 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
     cap = out_i.size
     for k in range(n):
         c, p, px, py = s_cell[k], order[k], sx[k], sy[k]
-        pk = minus[p]
         for r in range(below + 1):
             if r == 0:
                 lo, hi = k + 1, start[c + reach[0] + 2]
@@ -78,41 +109,39 @@ def _find_pairs(xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, reach, r2_max, plus,
             tests += hi - lo
             if found + hi - lo > cap:
                 return -1, tests
-            # every candidate is written, and `found` steps on only for a close pair no rod
-            # joins: no branch to mispredict (a third to a half of the candidates are close)
+            # every candidate is written, and `found` steps on only for a close pair: no
+            # branch to mispredict (a third to a half of the candidates are close)
             for q in range(lo, hi):
                 dx, dy = sx[q] - px, sy[q] - py
-                out_i[found], out_j[found] = p, order[q]
-                found += (dx * dx + dy * dy < r2_max) & ~joined[s_plus[q] - pk]
-    return found, tests
+                out_i[found], out_j[found] = p, q
+                found += dx * dx + dy * dy < r2_max
+    # 4. the pairs a rod joins left out, in a pass of their own over the close ones (tested in
+    # the loop above, the compiler read the table only for a close candidate, behind a branch
+    # that mispredicted on a third to a half of them): keep[...] is 1 for a pair kept
+    kept = 0
+    for t in range(found):
+        p, q = out_i[t], out_j[t]
+        out_i[kept], out_j[kept] = p, order[q]
+        kept += keep[s_plus[q] - minus[p]]
+    return kept, tests
 
 
-def _shares(i, j, w, over_relax, count, scale):
-    """Before the sweeps: each particle's scale = over_relax / its pairs (Jacobi's average,
-    over-relaxed; pairs with both ends pinned left out); True if every particle is free with
-    the same weight (nothing pinned or grabbed: every share is 1/2, no weights to read)."""
-    n, m = w.size, i.size
-    even = w[0] > 0
-    for p in range(n):
-        count[p] = 0
-        even = even and w[p] == w[0]
-    for k in range(m):
-        a, b = i[k], j[k]
-        if even or w[a] + w[b] > 0:
-            count[a] += 1
-            count[b] += 1
-    for p in range(n):
-        scale[p] = over_relax / count[p] if count[p] > 0 else 0.0
-    return even
-
-
-def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
+def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, moved_y):
     """One Jacobi sweep over the pairs: every pair pushed apart to dmin, each end by its share
-    w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale."""
+    w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale. The
+    first sweep (once) also counts each particle's pairs as it goes (pairs with both ends pinned
+    left out) and sets scale = over_relax / its pairs (Jacobi's average, over-relaxed) before
+    moving anyone: the pushes are summed unscaled, so no pass of its own over the pairs is
+    needed for the counts. Every particle free with the same weight (nothing pinned or grabbed):
+    every share is 1/2, no weights read pair by pair."""
     n, m = xs.size, i.size
+    even = w[0] > 0
     for p in range(n):
         moved_x[p] = 0.0
         moved_y[p] = 0.0
+        even = even and w[p] == w[0]
+        if once:
+            count[p] = 0
     share_a = share_b = 0.5
     for k in range(m):
         a, b = i[k], j[k]
@@ -121,6 +150,9 @@ def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
             if total <= 0:
                 continue                                # both pinned: neither moves
             share_a, share_b = w[a] / total, w[b] / total
+        if once:
+            count[a] += 1
+            count[b] += 1
         dx, dy = xs[b] - xs[a], ys[b] - ys[a]
         r = np.sqrt(dx * dx + dy * dy)
         if r < 1e-6 * dmin:                             # at one point: part them along x
@@ -132,6 +164,8 @@ def _push_apart(xs, ys, i, j, w, dmin, even, scale, moved_x, moved_y):
         moved_x[a] -= mx * share_a
         moved_y[a] -= my * share_a
     for p in range(n):
+        if once:
+            scale[p] = over_relax / count[p] if count[p] > 0 else 0.0
         xs[p] += moved_x[p] * scale[p]
         ys[p] += moved_y[p] * scale[p]
 
@@ -146,7 +180,6 @@ def _jit(fn):
 
 _find = _jit(_find_pairs)
 _push = _jit(_push_apart)
-_share = _jit(_shares)
 
 
 class Buffers:
@@ -166,6 +199,7 @@ class Buffers:
         self.s_plus = np.empty(n, np.int64)
         self.start = np.empty(0, np.int64)              # per cell (grown with the grid)
         self.sorted: dict = {}                          # positions in cell order, by dtype
+        self.keep: tuple = (None, None)                 # (joined table, its inverse as bytes)
 
 
 def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
@@ -185,9 +219,13 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     if sx is None or sx.size != n:
         sx, sy = buf.sorted[xs.dtype] = np.empty_like(xs), np.empty_like(ys)
     real = np.result_type(xs, ys, np.float32)           # fine_pairs's rounding: the same pairs
-    args = (xs, ys, lo_x, lo_y, cell_w, cell_h, nx, ny, np.asarray(reach, np.int64),
-            real.type(distance * distance), *joined, buf.cell, buf.start, buf.order, sx, sy,
-            buf.s_cell, buf.s_plus)
+    plus, minus, table = joined
+    if buf.keep[0] is not table:                        # (the table inverted, as bytes)
+        buf.keep = (table, np.logical_not(table).view(np.uint8))
+    args = (xs, ys, real.type(lo_x), real.type(lo_y), real.type(1 / cell_w),
+            real.type(1 / cell_h), nx, ny, np.asarray(reach, np.int64),
+            real.type(distance * distance), plus, minus, buf.keep[1], buf.cell, buf.start,
+            buf.order, sx, sy, buf.s_cell, buf.s_plus)
     found, tests = _find(*args, buf.i, buf.j)
     while found < 0:                        # more than ever before (tests: those seen until
         size = 2 * max(tests, buf.i.size)   # the arrays were full): grow, search again
@@ -200,8 +238,8 @@ def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, bet
                buf: Buffers) -> None:
     """`sweeps` sweeps of self-collision's Jacobi projection over the pairs (i, j), in place on
     xs, ys, calling between() before each (the obstacles' projection, or None)."""
-    even = _share(i, j, w, float(over_relax), buf.count, buf.scale)
-    for _ in range(sweeps):
+    for sweep in range(sweeps):
         if between is not None:
             between()
-        _push(xs, ys, i, j, w, float(dmin), even, buf.scale, buf.moved_x, buf.moved_y)
+        _push(xs, ys, i, j, w, float(dmin), sweep == 0, float(over_relax), buf.count, buf.scale,
+              buf.moved_x, buf.moved_y)
