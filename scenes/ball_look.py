@@ -75,8 +75,8 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
 
 def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
     """scene._quick after a look that left the L at L1 (Armed), or None if look's usual case
-    does not hold (a moving L, a ball outside the box,
-    no ball awake, the flags made for another pose, a subclass's own check_balls)."""
+    does not hold (a moving L, a ball outside the box, no ball awake, the flags made for
+    another pose, a subclass's own check_balls)."""
     awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
     if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
             is not BallChecks._usual_check:       # (a subclass checks otherwise: its way)
