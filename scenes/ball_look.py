@@ -158,8 +158,9 @@ def arm_moving(scene, L1: tuple[float, float, float]) -> Armed | None:
                  bodies=len(awake.ids) + len(scene._static_ids), flag_at=5 * awake.L_row)
 
 
-def _moving_views(q: Armed, data: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """_rows_view's (awake rows, the L's (x, y, angle)) for look_moving."""
+def _moving_views(q: Armed, data: np.ndarray) -> tuple:
+    """_rows_view's for look_moving: (the awake rows, the L's (x, y, angle) in its row, the
+    rows themselves: alive while their id is a key)."""
     views = q.views
     if len(views) >= 2:
         views.clear()

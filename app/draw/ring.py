@@ -86,6 +86,13 @@ class PendingRing(Ring):
         self.pending = []
         super().clear()
 
+    def __getstate__(self) -> dict:
+        """A copy (deepcopy: a snapshot, which the timeline keeps 61 of) holds the waiting
+        samples in the array, as a Ring's copy does: a list of tuples of floats takes ~6x the
+        bytes, and the timeline's memory cap would keep a shorter span."""
+        self.flush()
+        return self.__dict__.copy()
+
     def __len__(self) -> int:
         return min(self.count + len(self.pending), len(self.data))
 
