@@ -253,3 +253,23 @@ def test_the_written_out_look_leaves_what_check_balls_leaves(cls, settings, step
         assert a.counts["tunneled"] > 0 and quick > 10
     else:
         assert quick > steps // 2
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_the_step_after_a_ball_came_or_went_takes_the_usual_look(cls):
+    # ball_look.rearm: a ball added (spawned) or removed keeps the usual look armed, so the
+    # next step's look need not go the general way (check_balls) to find who is awake; what it
+    # leaves is check_balls' (test_the_written_out_look_leaves_what_check_balls_leaves)
+    scene = cls({"spawn_rate": 20})
+    general = []
+    check_balls = scene.check_balls
+    scene.check_balls = lambda L0: general.append(scene.steps) or check_balls(L0)
+    after = []
+    for _ in range(400):
+        before = (scene.counts["spawned"], scene.counts["removed"])
+        scene.advance()
+        if (scene.counts["spawned"], scene.counts["removed"]) != before:
+            after.append(scene.steps)          # (the next step's look: at steps == this)
+    assert scene.counts["removed"] > 3 and len(after) > 20
+    looked_generally = [s for s in after if s in general]
+    assert len(looked_generally) < len(after) // 4
