@@ -100,19 +100,19 @@ def rearm(scene) -> None:
     of rows here (_flag_rows_at), as _usual_check would make them in the next look."""
     awake, fast = scene._awake, scene._fast
     scene._quick = scene._quick_moving = None
-    reader, kept = scene._state_reader, scene._finite_kept
-    scene._finite_kept = -1
+    reader, kept = scene._state_reader, scene.finite_kept
+    scene.finite_kept = -1
     if awake is None or fast is None or fast[2] is None or not awake.balls:
         return                                  # (nothing to arm: the general way next step)
     # Every body finite still? The flags are those of the last read (no step since it: its rows
     # still kept, or a change before this one found the same), every awake ball's box flags
     # hold (a NaN anywhere in a row fails them: _NAN_FAILS), and so do the L's if it is awake;
     # a new ball is at rest in the box. Then the runner's is_finite need not read the bodies
-    # again after the change (FallingBallsScene.is_finite: a read and a check, ~5 us)
+    # again after the change (PymunkScene.is_finite: a read and a check, ~5 us)
     r = awake.L_row
     if (scene._rows is not None or kept == reader.reads) and _NAN_FAILS \
             and (r is None or fast[1][5 * r:5 * r + 4] == b"\1\1\1\1"):
-        scene._finite_kept = reader.reads
+        scene.finite_kept = reader.reads
     scene._flag_rows_at(len(awake.ids), fast[0])
     if awake.L_row is None:
         scene._quick = arm(scene, fast[0])

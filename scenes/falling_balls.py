@@ -290,19 +290,11 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         return k[ball], data[ball], asleep
 
     # ----- stepping -------------------------------------------------------------------------
-    # The reader's read (its number) after which only balls came or went, every body finite
-    # still (ball_look.rearm; -1: not known): is_finite need not read them again
-    _finite_kept = -1
-
-    def is_finite(self) -> bool:
-        if self._rows is None and self._finite_kept == self._state_reader.reads \
-                and not self.resting:
-            return True
-        return super().is_finite()
-
     def wake(self) -> None:
         super().wake()
-        self._finite_kept = -1    # (a body may have been changed: is_finite reads them again)
+        # (a body may have been changed: is_finite reads them again; ball_look.rearm keeps the
+        # read after which only balls came or went, every body finite still, in finite_kept)
+        self.finite_kept = -1
         self._L_known = None      # the L's pose is read again before the next step
         self._rest_plan = None    # (advance: what a step at rest does, made again)
 
