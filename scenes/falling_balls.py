@@ -40,7 +40,7 @@ from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
-from scenes.ball_look import look
+from scenes.ball_look import look, rearm
 from scenes.ball_tables import BallTables, slot_table
 
 S = 1.5                      # the tutorial's lengths scaled to this world
@@ -224,6 +224,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             self._slots.append(slot)
             # who is awake, in Chipmunk's order, with the new ball (ball_checks; None: read again)
             self._awake, self._fast = self.awake_after_add(body_id, slot, pos)
+            rearm(self)             # (ball_look: the next look's usual case, for them)
             self._index_changed()
             self._bodies_changed()
         else:
@@ -273,6 +274,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             del self._slots[k]
         # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
         self._awake, self._fast = self.awake_after_removal(removed)
+        rearm(self)                 # (ball_look: the next look's usual case, for them)
         self._index_changed()
         self._bodies_changed()
         self.counts["removed"] += len(gone)
@@ -290,6 +292,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
     # ----- stepping -------------------------------------------------------------------------
     def wake(self) -> None:
         super().wake()
+        # (a body may have been changed: is_finite reads them again; ball_look.rearm keeps the
+        # read after which only balls came or went, every body finite still, in finite_kept)
+        self.finite_kept = -1
         self._L_known = None      # the L's pose is read again before the next step
         self._rest_plan = None    # (advance: what a step at rest does, made again)
 

@@ -253,3 +253,45 @@ def test_the_written_out_look_leaves_what_check_balls_leaves(cls, settings, step
         assert a.counts["tunneled"] > 0 and quick > 10
     else:
         assert quick > steps // 2
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_the_step_after_a_ball_came_or_went_takes_the_usual_look(cls):
+    # ball_look.rearm: a ball added (spawned) or removed keeps the usual look armed, so the
+    # next step's look need not go the general way (check_balls) to find who is awake; what it
+    # leaves is check_balls' (test_the_written_out_look_leaves_what_check_balls_leaves)
+    scene = cls({"spawn_rate": 20})
+    general = []
+    check_balls = scene.check_balls
+    scene.check_balls = lambda L0: general.append(scene.steps) or check_balls(L0)
+    after = []
+    for _ in range(400):
+        before = (scene.counts["spawned"], scene.counts["removed"])
+        scene.advance()
+        if (scene.counts["spawned"], scene.counts["removed"]) != before:
+            after.append(scene.steps)          # (the next step's look: at steps == this)
+    assert scene.counts["removed"] > 3 and len(after) > 20
+    looked_generally = [s for s in after if s in general]
+    assert len(looked_generally) < len(after) // 4
+
+
+@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+def test_after_a_ball_came_or_went_the_finite_check_reads_the_bodies_only_if_it_must(cls):
+    # ball_look.rearm: a step's look found every body finite, then a ball was added or removed:
+    # the runner's is_finite trusts that (no read); a body changed by hand (wake) is read again
+    scene = cls({"spawn_rate": 20})
+    changed = trusted = 0
+    for _ in range(400):
+        before = (scene.counts["spawned"], scene.counts["removed"])
+        scene.advance()
+        reads = scene._state_reader.reads
+        assert scene.is_finite()
+        if (scene.counts["spawned"], scene.counts["removed"]) != before:
+            changed += 1
+            trusted += scene._state_reader.reads == reads
+    assert changed > 20 and trusted >= changed - 2     # (main: 0 of 159, pivoting_l 125 of 159)
+    scene.add_ball((scene.world_size[0] / 2, 10.0))
+    assert scene.is_finite()
+    scene.balls[0].body.velocity = (math.nan, 0.0)
+    scene.wake()
+    assert not scene.is_finite()
