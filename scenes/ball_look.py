@@ -26,17 +26,16 @@ class Armed:
     """What a look's usual case was armed with (arm, arm_moving): good while `awake` and `fast`
     are the scene's very objects (a new look the general way makes new ones)."""
 
-    __slots__ = ("awake", "fast", "kept", "key_len", "key", "views", "pose", "kept_pose",
-                 "bodies", "flag_at")
+    __slots__ = ("awake", "fast", "kept", "key_len", "key", "pose", "kept_pose", "bodies",
+                 "flag_at")
 
-    def __init__(self, awake, fast, kept, key: bytes, views: dict, pose=None, kept_pose=None,
+    def __init__(self, awake, fast, kept, key: bytes, pose=None, kept_pose=None,
                  bodies: int = 0, flag_at: int = 0):
         self.awake = awake          # scene._awake: who is awake (ball_checks)
         self.fast = fast            # scene._fast: (the L's pose, the flags' bytes, their key)
         self.kept = kept            # scene._flag_rows: the flags' kept arrays (_flag_rows_at)
         self.key_len = len(key)     # the key: the awake ids' bytes (and the first static body's)
         self.key = key
-        self.views = views          # each read's awake rows by the rows' id (_rows_view)
         self.pose = pose            # look: the L's static pose, and the pose the kept arrays
         self.kept_pose = kept_pose  # were made for (_flag_matrix puts another in for another)
         self.bodies = bodies        # look_moving: the bodies awake or static,
@@ -52,8 +51,10 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
         rows = scene._rows = reader.read(scene.space)
         ids, data = rows
         if ids.tobytes()[:q.key_len] == q.key:     # the same bodies awake, in the same order
-            now = q.views.get(id(data))
-            now = _rows_view(q, data) if now is None else now[0]
+            views = scene._views.get(id(data))     # (the read's awake rows: ball_checks)
+            if views is None or views[0] is not q.awake:
+                views = scene._awake_views(data, q.awake)
+            now = views[1]
             kept = q.kept
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
             b = flags.tobytes()
@@ -85,9 +86,7 @@ def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
             or not awake.balls or L1 != scene._L_static_pose or fast[0] != L1 \
             or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
         return None
-    q = scene._quick             # (the views of the reads: kept while the same are awake)
-    views = q.views if q is not None and q.awake is awake else {}
-    return Armed(awake, fast, kept, awake.key, views, pose=L1, kept_pose=kept[3])
+    return Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3])
 
 
 def rearm(scene) -> None:
@@ -120,16 +119,6 @@ def rearm(scene) -> None:
         scene._quick_moving = arm_moving(scene, fast[0])
 
 
-def _rows_view(q: Armed, data: np.ndarray) -> np.ndarray:
-    """The awake rows of a read (data[:n]), kept by the rows' id (the reader's two buffers:
-    two ids while the bodies stay; the rows kept beside, so an id is no new array's)."""
-    views = q.views
-    if len(views) >= 2:
-        views.clear()
-    now = data[:q.kept[0]]
-    views[id(data)] = (now, data)       # (data too: alive while its id is a key)
-    return now
-
 
 def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
     """look for an L that moves (pivoting_l's written-out step): the same with the L's row
@@ -143,11 +132,11 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
         rows = scene._rows = reader.read(scene.space)
         ids, data = rows
         if len(ids) == q.bodies and ids.tobytes()[:q.key_len] == q.key:
-            views = q.views.get(id(data))
-            if views is None:
-                views = _moving_views(q, data)
-            now = views[0]
-            L1 = tuple(views[1].tolist())
+            views = scene._views.get(id(data))     # (the read's awake rows and the L's)
+            if views is None or views[0] is not q.awake:
+                views = scene._awake_views(data, q.awake)
+            now = views[1]
+            L1 = tuple(views[2].tolist())
             kept = q.kept
             if kept[3] != L1:
                 scene._flag_matrix(L1)             # (the line's column and limit for L1)
@@ -182,18 +171,5 @@ def arm_moving(scene, L1: tuple[float, float, float]) -> Armed | None:
             or not awake.balls or fast[0] is not L1 or kept is None \
             or kept[0] != len(awake.ids):
         return None
-    q = scene._quick_moving
-    views = q.views if q is not None and q.awake is awake else {}
-    return Armed(awake, fast, kept, awake.key, views,
+    return Armed(awake, fast, kept, awake.key,
                  bodies=len(awake.ids) + len(scene._static_ids), flag_at=5 * awake.L_row)
-
-
-def _moving_views(q: Armed, data: np.ndarray) -> tuple:
-    """_rows_view's for look_moving: (the awake rows, the L's (x, y, angle) in its row, the
-    rows themselves: alive while their id is a key)."""
-    views = q.views
-    if len(views) >= 2:
-        views.clear()
-    r = q.flag_at // 5
-    out = views[id(data)] = (data[:q.kept[0]], data[r, :3], data)
-    return out
