@@ -223,14 +223,13 @@ class DoublePendulumScene(PymunkScene):
             return
         t = self.track
         rows = self.rows_list(self.bobs)           # (x, y, angle, vx, vy, w) of each bob
-        e0 = t["energy0"]                          # (energy_drift(rows), written out)
-        drift = abs((self.energy(rows) - e0) / e0 if e0 > 1e-9 else 0.0)
+        drift = abs(self.energy_drift(rows))
         if drift > t["energy_drift_max"]:          # (max(seen, drift): a NaN leaves it)
             t["energy_drift_max"] = drift
         if t["engine_blowup"] is None and not drift <= BLOWUP_DRIFT:   # (NaN counts)
             t["engine_blowup"] = self.time - t["start"]
         tip = rows[1][0], rows[1][1]               # (the batch read's copy of bobs[1].position)
-        if "reference" in self.on and t["ref_blowup"] is None:       # (ghost_alive())
+        if self.ghost_alive():
             if not self.ode.advance(self.dt):
                 t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
                 return
