@@ -373,7 +373,7 @@ class PymunkScene(Scene):
                 self._finite_at_rest = self._state_is_finite()
             return self._finite_at_rest
         reads = self._state_reader.reads    # (finite_kept: falling_balls' ball_look.rearm)
-        if self._rows is not None and self.finite_read == reads or self.finite_kept == reads:
+        if (self._rows is not None and self.finite_read == reads) or self.finite_kept == reads:
             return True     # the rows read since the step, found finite by the scene's checks
         return self._state_is_finite()
 

@@ -395,9 +395,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
                                                          # use it)
         if type(self).spawn is not FallingBallsScene.spawn:
             self.spawn(h)                         # (a subclass's own spawner)
-        elif self.p["spawn_rate"] > 0:            # (spawn's clock first: a ball is due about
-            self._spawn_due -= h                  # once in 15 steps; spawn(0.0) is spawn(h)
-            if self._spawn_due <= 0:              # with h taken off)
+        elif self.p["spawn_rate"] > 0:            # (spawn's clock first: at the defaults a
+            self._spawn_due -= h                  # ball is due once in 15 steps; spawn(0.0)
+            if self._spawn_due <= 0:              # is spawn(h) with h taken off)
                 self.spawn(0.0)
 
     def spawn(self, h: float) -> None:
