@@ -241,13 +241,15 @@ def crowded_share(grid_tests: int, n: int) -> float:
 # below taking only the cells a circle of radius R can reach, test about 2.5 R^2 (rows of 8, 17
 # and 15 cells): the bench's crumpled 64 x 64 cloth has 34,826 candidates for 17,924 pairs, where
 # cells R wide gave ~64,000 and cells of exactly R/8 x R/2 ~41,000 (they need a 9th column and a
-# 4th row for the rounding slack). Cells numbered row by row again, so each row of the stencil is one run of the
-# sorted list: three runs per particle.
+# 4th row for the rounding slack). Cells numbered row by row again, so each row of the stencil
+# is one run of the sorted list: three runs per particle.
 FINE_CELLS = (8, 2)       # cells per cut-off across and down
 CELLS_PER_PARTICLE = 8    # at most this many cells per particle: a spread-out crowd gets bigger
                           # cells (its count array stays small; it has few candidates anyway)
-FINE_BLOCK = 1 << 13      # candidates per block: their work arrays stay in the cache, and
-                          # np.repeat's (no out=) under glibc's 128 kB: heap, not fresh pages
+FINE_BLOCK = 1 << 16      # candidates per block (whole runs): the crumpled 64 x 64 cloth's
+                          # ~29,000 in one block. Blocks of 8,192 (np.repeat's fresh arrays
+                          # under glibc's 128 kB) made its pass ~4 % slower on 2026-11-27 (more
+                          # calls), blocks of 16-32 k ~10 % (100 page faults a pass)
 SLACK = 1e-3              # in cells: float32 rounding of a cell index never hides a pair
 
 
@@ -364,11 +366,23 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     cell += pad
     cells = columns * (ny + below)
     order = cell_order(cell, cells)
-    stop = np.bincount(cell, minlength=cells).cumsum(out=scratch.get("stop", cells, np.intp))
+    c = cell.take(order)
+    # stop[cell]: the particles in this cell and the ones before it. It is a step function of
+    # the sorted cells: t from the cell of the t-th particle (sorted order) up to the next
+    # particle's, so 0, 1, ..., n repeated over the gaps between them. It replaces
+    # np.bincount(cell).cumsum(), the same numbers: a cumsum waits on its last sum at each
+    # of the ~30,000 cells (~2.5 ns a cell), repeat writes them independently (4x faster alone)
+    gap = scratch.get("gap", n + 1, np.intp)
+    gap[0], gap[n] = c[0], cells - c[-1]
+    np.subtract(c[1:], c[:-1], out=gap[1:n])
+    stop = scratch.count(n + 1).repeat(gap)
+    # (repeat has no out=: the table, ~270 kB, is fresh; held until the next search, so the
+    # allocator does not give its pages back and fault them in again: 189 -> ~10 minor page
+    # faults a pass on the crumpled cloth)
+    scratch.arrays["stop"] = stop
     # 3. the runs of the particle at sorted position k, in cell c: the rest of its own row's
     # reach (k + 1 to the stop of cell c + reach[0]), then row r below: the cells c + r columns
     # - reach[r] .. c + r columns + reach[r] (the start of a cell is the stop of the one before)
-    c = cell.take(order)
     first = scratch.get("first", n * (below + 1), np.intp).reshape(below + 1, n)
     length = scratch.get("length", n * (below + 1), np.intp).reshape(below + 1, n)
     first[0] = scratch.count(n + 1)[1:]
@@ -385,11 +399,16 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     first -= ends - length                     # q = first + c for candidate c of a run
     real = np.result_type(xs, ys, np.float32)  # float32 or float64: all_pairs's own rounding
     pair = np.complex64 if real == np.float32 else np.complex128
-    # the run's particle by its index (order[k]), not its sorted position k: a pair's i is
-    # then found as it is, with no gather through `order` after the search (~4 % of the pass)
-    owner = scratch.get("owner_ids", n * (below + 1), np.intp).reshape(below + 1, n)
-    owner[:] = order
-    owner = owner.reshape(-1)
+    # each run as one 8-byte row (owner, first), two int32s, so that one repeat hands out both
+    # (np.repeat makes a fresh array a call: one of them, not two). The owner is the run's
+    # particle by its index (order[k]), not its sorted position k: a pair's i is then found as
+    # it is, with no gather through `order` after the search (~4 % of the pass)
+    # (int64 halves only where int32 cannot hold them: 2^31 candidates, a crowd of 65,536)
+    half = np.int32 if total < 1 << 31 else np.int64
+    runs_of = scratch.get("runs_of", 2 * first.size, half).reshape(below + 1, n, 2)
+    runs_of[:, :, 0] = order
+    runs_of[:, :, 1] = first.reshape(below + 1, n)
+    runs_of = runs_of.reshape(-1, 2).view(np.dtype((np.void, 2 * runs_of.itemsize))).reshape(-1)
     z_id = np.empty(n, pair)                   # positions x + i y, by index...
     z_id.real, z_id.imag = xs, ys
     z = z_id.take(order)                       # ...and in sorted order (the partners q)
@@ -407,9 +426,11 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
         # repeat replaces `for each run: for q in range(first, stop): candidates.append((p,
         # q))`. The arrays' own methods (a.take, a.repeat), not np.take and the like: those
         # Python wrappers cost ~1 us a call, some 50 us of the crumpled cloth's pass
-        p = owner[r0:r1].repeat(runs)
-        q = first[r0:r1].repeat(runs)
-        q += count[c0:c0 + q.size]
+        both = runs_of[r0:r1].repeat(runs).view(half)
+        m = both.size // 2
+        p = scratch.get("p", m, np.intp)
+        p[:] = both[0::2]
+        q = np.add(both[1::2], count[c0:c0 + m], out=scratch.get("q", m, np.intp))
         # d = x_q - x_p, x and y as one complex number (one gather, not two), then |d|^2 in
         # the positions' precision (all_pairs's rounding: the same pairs, exactly)
         d = z.take(q, out=scratch.get("d", q.size, pair), mode="wrap")
