@@ -202,6 +202,26 @@ def test_the_fine_grid_matches_all_pairs_on_random_clouds_of_every_kind():
         assert np.all(i != j), (seed, case)
 
 
+def test_the_fine_grid_lists_the_same_pairs_in_blocks_and_with_int64_runs(monkeypatch):
+    """fine_pairs hands out its candidates in blocks of whole runs (one block up to FINE_BLOCK
+    candidates) and each run's (owner, first) as two int32s (int64 above HALF_LIMIT
+    candidates): many small blocks and int64 runs give the very same pairs, in the same order
+    (the order the sweeps sum them in), on the crumpled cloth and on a crowd."""
+    from app.physics import neighbours
+    rng = np.random.default_rng(11)
+    x = crumpled_cloth(0).x.reshape(2, -1)
+    clouds = [(x[0].copy(), x[1].copy(), 6.4),
+              (*rng.normal(0, 3, (2, 300)).astype(np.float32), 6.4)]
+    plain = [tuple(a.copy() for a in fine_pairs(*cloud)[:2]) for cloud in clouds]
+    assert len(plain[0][0]) > 1000 and len(plain[1][0]) > 5000
+    for block, limit in ((64, 1 << 31), (1 << 16, 0), (1000, 0)):
+        monkeypatch.setattr(neighbours, "FINE_BLOCK", block)
+        monkeypatch.setattr(neighbours, "HALF_LIMIT", limit)
+        for cloud, (i, j) in zip(clouds, plain):
+            bi, bj, _ = fine_pairs(*cloud)
+            assert np.array_equal(bi, i) and np.array_equal(bj, j), (block, limit)
+
+
 def test_a_long_thin_box_keeps_the_grid_small_and_exact():
     """One point flung 1e8 to 1e30 px away from a row or a column of others (a blown-up cloth
     lying flat): the same pairs as all pairs, and the cells' counts stay under a MB (growing

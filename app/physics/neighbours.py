@@ -251,6 +251,7 @@ FINE_BLOCK = 1 << 16      # candidates per block (whole runs): the crumpled 64 x
                           # under glibc's 128 kB) made its pass ~4 % slower on 2026-11-27 (more
                           # calls), blocks of 16-32 k ~10 % (100 page faults a pass)
 SLACK = 1e-3              # in cells: float32 rounding of a cell index never hides a pair
+HALF_LIMIT = 1 << 31      # a run's (owner, first) as two int32s below this many candidates
 
 
 @functools.lru_cache(maxsize=64)       # (the same cells step after step: asked once)
@@ -404,7 +405,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     # particle by its index (order[k]), not its sorted position k: a pair's i is then found as
     # it is, with no gather through `order` after the search (~4 % of the pass)
     # (int64 halves only where int32 cannot hold them: 2^31 candidates, a crowd of 65,536)
-    half = np.int32 if total < 1 << 31 else np.int64
+    half = np.int32 if total < HALF_LIMIT else np.int64
     runs_of = scratch.get("runs_of", 2 * first.size, half).reshape(below + 1, n, 2)
     runs_of[:, :, 0] = order
     runs_of[:, :, 1] = first.reshape(below + 1, n)
