@@ -428,6 +428,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
         # q))`. The arrays' own methods (a.take, a.repeat), not np.take and the like: those
         # Python wrappers cost ~1 us a call, some 50 us of the crumpled cloth's pass
         both = runs_of[r0:r1].repeat(runs).view(half)
+        scratch.arrays["both"] = both
         m = both.size // 2
         p = scratch.get("p", m, np.intp)
         p[:] = both[0::2]
