@@ -118,6 +118,26 @@ that day) 1.17-1.29 x (before 1.25-1.37 x in the same runs; the whole bench, six
 1.275 x), still NOT met: its search, sort and
 sweeps and what was tried on them are in self_compiled.py's docstring.
 
+Later on 2026-11-27, the NumPy search itself (neighbours.fine_pairs; the same pairs in the same
+order, the same positions to the last bit): the cell table made by one repeat over the gaps
+between the sorted cells, not a bincount and a cumsum over its ~30,000 cells (a cumsum waits
+on its last sum at every cell: 4x slower alone); one repeat of each run's (owner, first) as two
+int32s, not two repeats; all of the crumpled cloth's ~29,000 candidates in one block (not
+blocks of 8,192: fewer calls); the table and the repeat's array held until the next search
+(minor page faults of a crumpled pass ~9 -> 0). In the step (the bench's 15 steps, 30 rounds,
+five runs taking turns with the code before, load 4.9-5.2; medians): the search 670 -> 621
+us, the crumpled pass 1,116 -> 1,065 us (-5 %); hanging 429-448 -> 374-397 us (three runs).
+The bench's rows (the whole contact bench, four runs each taking turns, load 4.6-6.0): crumpled
+1.11-1.23 x (before 1.10-1.20 x: the same within the noise of the runs), hanging 0.38-0.42 x
+(0.43-0.44 x). The goal is still NOT met by NumPy crumpled. What is left is work per element:
+the search's candidates (~10 passes over each), the rod filter (~0.07 ms) and the sweeps (~0.3
+ms, half of it their bincounts). Tried that day and not kept: the sweeps' x and y as one
+complex number again (one gather per end: the sweeps 301-341 us, without it 297-303 us);
+blocks of 16,384-32,768 candidates (~100 page faults a pass, the pass ~10 % slower); the cell
+table's cumsum down the columns of a column-major table (vectorised, but its lookups then cost
+more: the table and lookups 200 -> 170 us alone, where the repeat makes the table in 29 us
+against bincount and cumsum's ~100 us).
+
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
 without ever being seen closer than the minimum. Raise substeps (or lower the drop) for fast

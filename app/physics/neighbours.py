@@ -397,7 +397,8 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     total = int(ends[-1])
     if total == 0:
         return np.zeros(0, np.intp), np.zeros(0, np.intp), 0
-    first -= ends - length                     # q = first + c for candidate c of a run
+    first -= np.subtract(ends, length, out=scratch.get("starts", length.size, np.intp))
+    # (q = first + c for candidate c of a run)
     real = np.result_type(xs, ys, np.float32)  # float32 or float64: all_pairs's own rounding
     pair = np.complex64 if real == np.float32 else np.complex128
     # each run as one 8-byte row (owner, first), two int32s, so that one repeat hands out both
@@ -428,7 +429,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
         # q))`. The arrays' own methods (a.take, a.repeat), not np.take and the like: those
         # Python wrappers cost ~1 us a call, some 50 us of the crumpled cloth's pass
         both = runs_of[r0:r1].repeat(runs).view(half)
-        scratch.arrays["both"] = both
+        scratch.arrays["both"] = both          # (held, as the cell table: no page faults)
         m = both.size // 2
         p = scratch.get("p", m, np.intp)
         p[:] = both[0::2]
