@@ -133,6 +133,8 @@ The bench's rows (the whole contact bench, four runs each taking turns, load 4.6
 the search's candidates (~10 passes over each), the rod filter (~0.07 ms) and the sweeps (~0.3
 ms, half of it their bincounts). Tried that day and not kept: the sweeps' x and y as one
 complex number again (one gather per end: the sweeps 301-341 us, without it 297-303 us);
+two bincounts over [j, j + n] and [i, i + n] again, written into kept arrays with no 4m array
+built (each bin the same sum: the sweeps 363-409 us, the four bincounts 327-348 us, load 5.7);
 blocks of 16,384-32,768 candidates (~100 page faults a pass, the pass ~10 % slower); the cell
 table's cumsum down the columns of a column-major table (vectorised, but its lookups then cost
 more: the table and lookups 200 -> 170 us alone, where the repeat makes the table in 29 us
