@@ -295,3 +295,37 @@ def test_after_a_ball_came_or_went_the_finite_check_reads_the_bodies_only_if_it_
     scene.balls[0].body.velocity = (math.nan, 0.0)
     scene.wake()
     assert not scene.is_finite()
+
+
+def test_the_looks_comparisons_change_exactly_when_the_flags_do():
+    # ball_look.bounds_for: look compares the rows with bounds instead of the flags' product;
+    # rows at each bound, one float either side, and NaN or inf in each column: for a row
+    # finite and inside the box (what an armed look kept), another row gives the same
+    # comparisons' bytes exactly when it gives the same flags
+    from scenes import ball_look
+    scene = FallingBallsScene({})
+    M, limits = scene._flag_matrix(scene._L_static_pose)
+    bounds, inside = ball_look.bounds_for(scene, 1)
+    lx, ux, ly, uy, c = limits.tolist()
+    xs = [-lx, ux, 0.0, 300.0]
+    ys = [-ly, uy, -c, 0.0, 100.0]
+    near = [math.nextafter(v, d) for v in xs for d in (-math.inf, math.inf)] + xs
+    near_y = [math.nextafter(v, d) for v in ys for d in (-math.inf, math.inf)] + ys
+    rows = [(x, y, 0.3, -2.0, 5.0, 0.1) for x in near for y in near_y]
+    for col in range(6):
+        for bad in (math.nan, math.inf, -math.inf):
+            row = [200.0, 100.0, 0.3, -2.0, 5.0, 0.1]
+            row[col] = bad
+            rows.append(tuple(row))
+
+    def flags(row):
+        with np.errstate(invalid="ignore"):
+            return (np.array([row]).dot(M) <= limits).tobytes()
+
+    def compared(row):
+        return np.less_equal(np.array([row]), bounds, out=inside).tobytes()
+    kept = [row for row in rows if flags(row)[:4] == b"\1\1\1\1"]
+    assert len(kept) > 20
+    for a in kept:
+        for b in rows:
+            assert (compared(a) == compared(b)) == (flags(a) == flags(b)), (a, b)
