@@ -326,6 +326,13 @@ def test_the_looks_comparisons_change_exactly_when_the_flags_do():
         return np.less_equal(np.array([row]), bounds, out=inside).tobytes()
     kept = [row for row in rows if flags(row)[:4] == b"\1\1\1\1"]
     assert len(kept) > 20
+    # (what an armed look starts from: the comparisons made out of the flags, for finite rows)
+    finite = [row for row in rows if all(map(math.isfinite, row))]
+    assert all(ball_look.compared_of(flags(row)) == compared(row) for row in finite)
+    three = np.array(finite[:3])
+    bounds3, inside3 = ball_look.bounds_for(scene, 3)
+    assert ball_look.compared_of((three.dot(M) <= limits).tobytes()) \
+        == np.less_equal(three, bounds3, out=inside3).tobytes()
     for a in kept:
         for b in rows:
             assert (compared(a) == compared(b)) == (flags(a) == flags(b)), (a, b)
