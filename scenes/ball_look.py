@@ -51,7 +51,7 @@ class Armed:
         self.flag_at = flag_at      # and 5 x the L's row: where its flags are in the bytes
         # look: the bounds (3, n, 6) the rows are compared with instead of the product
         # (bounds_for), the comparisons' array, and their bytes for the flags kept (None: not
-        # yet made, made on the next look whose flags are the kept ones)
+        # yet made: the look makes them out of the flags, compared_of)
         self.bounds, self.inside = bounds or (None, None)
         self.sig = None
 
@@ -72,7 +72,10 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
             bounds = q.bounds
             if bounds is not None:                 # (the flags' comparisons, no product)
                 sig = np.less_equal(now, bounds, out=q.inside).tobytes()
-                if sig == q.sig:                   # the same flags as after the last look
+                kept_sig = q.sig
+                if kept_sig is None:               # (armed since the last look)
+                    kept_sig = q.sig = compared_of(q.fast[1])
+                if sig == kept_sig:                # the same flags as after the last look
                     scene._prev = (q.awake, now)
                     reader.keep = (reader.cur, scene._own_prev)
                     if _NAN_FAILS:
@@ -92,7 +95,10 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                     q.sig = sig
                 return L0
             L1 = scene._flags_seen(now, L0, L0, q.awake, fast, flags, b)
-            scene._quick = arm(scene, L1)
+            armed = scene._quick = arm(scene, L1)
+            if bounds is not None and armed is not None and armed.bounds is bounds \
+                    and scene._fast[1] is b:
+                armed.sig = sig                    # (these rows' flags are the kept ones)
             return L1
     L1 = scene.check_balls(L0)
     scene._quick = arm(scene, L1)
@@ -111,11 +117,8 @@ def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
             or not awake.balls or L1 != scene._L_static_pose or fast[0] != L1 \
             or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
         return None
-    q = Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3],
-              bounds=bounds_for(scene, kept[0]))
-    if q.bounds is not None:
-        q.sig = compared_of(fast[1])
-    return q
+    return Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3],
+                 bounds=bounds_for(scene, kept[0]))
 
 
 _NOT = bytes.maketrans(b"\0\1", b"\1\0")
