@@ -9,13 +9,22 @@ instructions a step, against the usual look's ~19k besides the read; callgrind, 
 those are made once, when the usual case starts (`arm`), and kept in scene._quick, which is
 good while scene._awake and scene._fast are the very objects it was made with (anything that
 changes who is awake, a ball added or removed, a restore, a look the general way, makes new
-ones). Flags that changed go on to _usual_check's end (_flags_seen, with the flags made here);
+ones). With the L static at angle 0 (falling_balls), look does not even make the product while
+the flags stay: one comparison of the rows with bounds (bounds_for) says whether they did, exactly
+(the flags are comparisons of x and y then). Not for its cost alone (about one product's): right
+after OpenBLAS's product (its FMA kernels) pymunk's next step took ~1.5 us longer (falling_balls'
+space.step, 37 balls, medians of 20 rounds: 18.6-18.7 us alone, 20.3-20.6 with a product of (37,
+6) by (6, 5) between steps, 18.5-19.1 with the comparison; load 1.1), which instructions do not
+show. Flags that changed go on to
+_usual_check's end (_flags_seen, with the flags made here);
 anything else to check_balls, which finds the read in scene._rows. tests/test_falling_balls.py
 compares them with check_balls step by step, tests/test_pymunk_checks.py the counts and the
 state with the exact tests, ball by ball; the seeded runs' metrics and state hashes are main's.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
@@ -27,10 +36,10 @@ class Armed:
     are the scene's very objects (a new look the general way makes new ones)."""
 
     __slots__ = ("awake", "fast", "kept", "key_len", "key", "pose", "kept_pose", "bodies",
-                 "flag_at")
+                 "flag_at", "bounds", "inside", "sig")
 
     def __init__(self, awake, fast, kept, key: bytes, pose=None, kept_pose=None,
-                 bodies: int = 0, flag_at: int = 0):
+                 bodies: int = 0, flag_at: int = 0, bounds: tuple | None = None):
         self.awake = awake          # scene._awake: who is awake (ball_checks)
         self.fast = fast            # scene._fast: (the L's pose, the flags' bytes, their key)
         self.kept = kept            # scene._flag_rows: the flags' kept arrays (_flag_rows_at)
@@ -40,6 +49,11 @@ class Armed:
         self.kept_pose = kept_pose  # were made for (_flag_matrix puts another in for another)
         self.bodies = bodies        # look_moving: the bodies awake or static,
         self.flag_at = flag_at      # and 5 x the L's row: where its flags are in the bytes
+        # look: the bounds (3, n, 6) the rows are compared with instead of the product
+        # (bounds_for), the comparisons' array, and their bytes for the flags kept (None: not
+        # yet made: the look makes them out of the flags, compared_of)
+        self.bounds, self.inside = bounds or (None, None)
+        self.sig = None
 
 
 def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
@@ -55,6 +69,18 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
             if views is None or views[0] is not q.awake:
                 views = scene._awake_views(data, q.awake)
             now = views[1]
+            bounds = q.bounds
+            if bounds is not None:                 # (the flags' comparisons, no product)
+                sig = np.less_equal(now, bounds, out=q.inside).tobytes()
+                kept_sig = q.sig
+                if kept_sig is None:               # (armed since the last look)
+                    kept_sig = q.sig = compared_of(q.fast[1])
+                if sig == kept_sig:                # the same flags as after the last look
+                    scene._prev = (q.awake, now)
+                    reader.keep = (reader.cur, scene._own_prev)
+                    if _NAN_FAILS:
+                        scene.finite_read = reader.reads
+                    return L0
             kept = q.kept
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
             b = flags.tobytes()
@@ -65,9 +91,14 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                 scene._fast = q.fast = (L0, b, b)
                 if _NAN_FAILS:
                     scene.finite_read = reader.reads
+                if bounds is not None:             # (the comparisons of rows with these flags)
+                    q.sig = sig
                 return L0
             L1 = scene._flags_seen(now, L0, L0, q.awake, fast, flags, b)
-            scene._quick = arm(scene, L1)
+            armed = scene._quick = arm(scene, L1)
+            if bounds is not None and armed is not None and armed.bounds is bounds \
+                    and scene._fast[1] is b:
+                armed.sig = sig                    # (these rows' flags are the kept ones)
             return L1
     L1 = scene.check_balls(L0)
     scene._quick = arm(scene, L1)
@@ -86,7 +117,63 @@ def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
             or not awake.balls or L1 != scene._L_static_pose or fast[0] != L1 \
             or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
         return None
-    return Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3])
+    return Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3],
+                 bounds=bounds_for(scene, kept[0]))
+
+
+_NOT = bytes.maketrans(b"\0\1", b"\1\0")
+
+
+def compared_of(b: bytes) -> bytes:
+    """The bytes of look's comparisons (bounds_for) of finite rows whose flags' bytes are b (5
+    a row): for each row (x <= w + 2r, y <= h + 2r, and four 1s: finite), then (x < -2r, y <
+    -h, four 0s), then (0, y < -c, four 0s); flag 1 is the first, flag 0 not the second, and so
+    on. Bytes moves, no NumPy call (~1.5 us): with it a look armed after a ball came or went,
+    or after flags changed, needs no product. (Rows not finite: their comparisons differ from
+    these, so look goes on to the product, which finds them.)"""
+    n = len(b) // 5
+    upper, lower, line = bytearray(b"\1" * (6 * n)), bytearray(6 * n), bytearray(6 * n)
+    upper[0::6], upper[1::6] = b[1::5], b[3::5]
+    lower[0::6], lower[1::6] = b[0::5].translate(_NOT), b[2::5].translate(_NOT)
+    line[1::6] = b[4::5].translate(_NOT)
+    return bytes(upper + lower + line)
+
+
+_BIG = float(np.finfo(np.float64).max)
+
+
+def bounds_for(scene, n: int) -> tuple | None:
+    """(bounds (3, n, 6), a bool array for the comparisons) with which look finds, without the
+    product, whether n awake rows' flags are the kept ones: `rows <= bounds` (rows broadcast)
+    gives, for each row, (x, y) at most the box's right and bottom ends and (angle, vx, vy, w)
+    at most the largest float; x and y below the box's left and top ends; y above the arm's
+    line. For rows that are finite and inside the box (the kept flags say so: look is armed
+    only then) these say exactly what the flags say: x <= w + 2r is flag 1; -x <= 2r (flag 0)
+    is not x < -2r, which is x <= the float before -2r; the same for y; the arm's line with the
+    L at angle 0 (its column in the flags' matrix (0, -1)) is -y <= c, not y < -c. A NaN fails
+    all of them and an inf one of the first; so do the flags (NaN times 0 is NaN). So when the
+    comparisons' bytes are those of a look whose flags were the kept ones, so are the flags.
+    None if the arm's line is not along x (a static L at another angle: the product then)."""
+    now = scene._flag_now
+    key = (n, now[0])               # (the matrix and limits are made for a pose: _flag_matrix)
+    sizes = scene._bound_sizes
+    made = sizes.get(key, False)
+    if made is False:
+        if len(sizes) >= 16:
+            sizes.clear()
+        M, limits = now[1], now[2]
+        if not (M[0, 4] == 0.0 and M[1, 4] == -1.0):      # (M's rows 2-5 are 0)
+            sizes[key] = None
+            return None
+        lx, ux, ly, uy, c = limits.tolist()
+        below = -math.inf
+        bounds = np.empty((3, n, 6))
+        bounds[0] = (ux, uy, _BIG, _BIG, _BIG, _BIG)
+        bounds[1] = (math.nextafter(-lx, below), math.nextafter(-ly, below),
+                     below, below, below, below)
+        bounds[2] = (below, math.nextafter(-c, below), below, below, below, below)
+        made = sizes[key] = (bounds, np.empty((3, n, 6), dtype=bool))
+    return made
 
 
 def rearm(scene) -> None:

@@ -218,15 +218,20 @@ def test_the_container_walls_follow_the_param_and_a_rollback():
     assert len(scene.walls) == 3 and all(w in scene.space.shapes for w in scene.walls)
 
 
-@pytest.mark.parametrize("cls", [FallingBallsScene, PivotingLScene])
+@pytest.mark.parametrize("cls, compared", [(FallingBallsScene, True), (FallingBallsScene, False),
+                                           (PivotingLScene, False)])
 @pytest.mark.parametrize("settings, steps", [({}, 600),
                                              ({"g": 5000, "hertz": 15, "radius": 4}, 300)])
-def test_the_written_out_look_leaves_what_check_balls_leaves(cls, settings, steps):
+def test_the_written_out_look_leaves_what_check_balls_leaves(cls, compared, settings, steps,
+                                                             monkeypatch):
     # scenes/ball_look's look (the L static) and look_moving (pivoting_l's): their usual case
     # (the same balls awake, the same flags) against check_balls on every step: after each
     # step the same counts, flags, kept centres, finite check's word and state; and it is the
-    # one that looked on most steps
+    # one that looked on most steps. look with its comparisons (bounds_for), and without them
+    # (as for a static L at another angle: the product every step)
     from scenes import ball_look
+    if not compared:
+        monkeypatch.setattr(ball_look, "bounds_for", lambda scene, n: None)
     kept = "_quick" if cls is FallingBallsScene else "_quick_moving"
 
     class General(cls):
@@ -295,3 +300,44 @@ def test_after_a_ball_came_or_went_the_finite_check_reads_the_bodies_only_if_it_
     scene.balls[0].body.velocity = (math.nan, 0.0)
     scene.wake()
     assert not scene.is_finite()
+
+
+def test_the_looks_comparisons_change_exactly_when_the_flags_do():
+    # ball_look.bounds_for: look compares the rows with bounds instead of the flags' product;
+    # rows at each bound, one float either side, and NaN or inf in each column: for a row
+    # finite and inside the box (what an armed look kept), another row gives the same
+    # comparisons' bytes exactly when it gives the same flags
+    from scenes import ball_look
+    scene = FallingBallsScene({})
+    M, limits = scene._flag_matrix(scene._L_static_pose)
+    bounds, inside = ball_look.bounds_for(scene, 1)
+    lx, ux, ly, uy, c = limits.tolist()
+    xs = [-lx, ux, 0.0, 300.0]
+    ys = [-ly, uy, -c, 0.0, 100.0]
+    near = [math.nextafter(v, d) for v in xs for d in (-math.inf, math.inf)] + xs
+    near_y = [math.nextafter(v, d) for v in ys for d in (-math.inf, math.inf)] + ys
+    rows = [(x, y, 0.3, -2.0, 5.0, 0.1) for x in near for y in near_y]
+    for col in range(6):
+        for bad in (math.nan, math.inf, -math.inf):
+            row = [200.0, 100.0, 0.3, -2.0, 5.0, 0.1]
+            row[col] = bad
+            rows.append(tuple(row))
+
+    def flags(row):
+        with np.errstate(invalid="ignore"):
+            return (np.array([row]).dot(M) <= limits).tobytes()
+
+    def compared(row):
+        return np.less_equal(np.array([row]), bounds, out=inside).tobytes()
+    kept = [row for row in rows if flags(row)[:4] == b"\1\1\1\1"]
+    assert len(kept) > 20
+    # (what an armed look starts from: the comparisons made out of the flags, for finite rows)
+    finite = [row for row in rows if all(map(math.isfinite, row))]
+    assert all(ball_look.compared_of(flags(row)) == compared(row) for row in finite)
+    three = np.array(finite[:3])
+    bounds3, inside3 = ball_look.bounds_for(scene, 3)
+    assert ball_look.compared_of((three.dot(M) <= limits).tobytes()) \
+        == np.less_equal(three, bounds3, out=inside3).tobytes()
+    for a in kept:
+        for b in rows:
+            assert (compared(a) == compared(b)) == (flags(a) == flags(b)), (a, b)
