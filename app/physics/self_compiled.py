@@ -62,14 +62,14 @@ from app.ctrl_c import compiled
 from app.physics.neighbours import fine_grid
 
 
-def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, r2_max, plus, minus,
-                keep, cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # (compiled)
-    """(pairs found, candidate tests): the pairs closer than sqrt(r2_max) on fine_pairs's grid
-    (cells 1 / to_cell_x by 1 / to_cell_y from (lo_x, lo_y), nx x ny of them, the stencil's
-    reach per row),
-    not joined, into out_i, out_j; found is -1 if those are too short (the caller grows them and
-    asks again). Pair (p, q) is kept where keep[plus[q] - minus[p]] is 1 (cloth_contact's
-    joined_table, inverted, as bytes); the rest: work arrays."""
+def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, limit, plus, minus,
+                cell, start, order, sx, sy, s_cell, s_plus, out_i, out_j):  # (compiled)
+    """(pairs found, candidate tests): the pairs of fine_pairs's grid (cells 1 / to_cell_x by
+    1 / to_cell_y from (lo_x, lo_y), nx x ny of them, the stencil's reach per row) closer than
+    the cut-off and not joined, into out_i, out_j; found is -1 if those are too short (the
+    caller grows them and asks again). Pair (p, q) counts where |x_q - x_p|^2 <
+    limit[plus[q] - minus[p]]: limit is r2_max (the cut-off squared) where cloth_contact's
+    joined_table says free, -1 where it says joined. The rest: work arrays."""
     n = xs.size
     pad = 0
     for r in range(reach.size):
@@ -95,35 +95,59 @@ def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, r2_max,
         k = start[c + 1] - 1                            # start[c + 1] is where cell c begins,
         start[c + 1] = k                                # start[c + 2] where it ends)
         order[k], sx[k], sy[k], s_cell[k], s_plus[k] = p, xs[p], ys[p], c, plus[p]
-    # 3. each particle's runs: the rest of its own row's reach, then each row below
+    # 3. each particle's runs: the rest of its own row's reach (from k + 1), then row r below
+    # from cell c + lo_at[r] to the end of cell c + hi_at[r] - 2. Every candidate is written,
+    # and `found` steps on only for a pair that counts: no branch to mispredict (a third to a
+    # half of the candidates count). The limit read for every candidate, not only for a close
+    # one: the compiler then makes no branch of it either
     found = 0
     tests = 0
     cap = out_i.size
+    if below > 2:                                       # (more rows than fine_grid makes)
+        for k in range(n):
+            c, p, px, py = s_cell[k], order[k], sx[k], sy[k]
+            mp = minus[p]
+            for r in range(below + 1):
+                lo = start[c + r * columns - reach[r] + 1] if r else k + 1
+                hi = start[c + r * columns + reach[r] + 2]
+                tests += hi - lo
+                if found + hi - lo > cap:
+                    return -1, tests
+                for q in range(lo, hi):
+                    dx, dy = sx[q] - px, sy[q] - py
+                    out_i[found], out_j[found] = p, order[q]
+                    found += dx * dx + dy * dy < limit[s_plus[q] - mp]
+        return found, tests
+    # at most three rows (what fine_grid makes): a particle's three runs walked as one, t
+    # from 0 to e2, run 1 from t = e0 and run 2 from e1 (a missing row: an empty run). One
+    # loop per particle, not three: its end is mispredicted once, not three times (~75 us of
+    # the crumpled cloth's 28,700 candidates). Indices as unsigned: numba then does not test
+    # them for Python's negative indices
+    r0 = reach[0] + 2
+    lo1 = hi1 = lo2 = hi2 = r0
+    if below >= 1:
+        lo1, hi1 = columns - reach[1] + 1, columns + reach[1] + 2
+        lo2 = hi2 = hi1
+    if below == 2:
+        lo2, hi2 = 2 * columns - reach[2] + 1, 2 * columns + reach[2] + 2
     for k in range(n):
         c, p, px, py = s_cell[k], order[k], sx[k], sy[k]
-        for r in range(below + 1):
-            if r == 0:
-                lo, hi = k + 1, start[c + reach[0] + 2]
-            else:
-                lo, hi = start[c + r * columns - reach[r] + 1], start[c + r * columns + reach[r] + 2]
-            tests += hi - lo
-            if found + hi - lo > cap:
-                return -1, tests
-            # every candidate is written, and `found` steps on only for a close pair: no
-            # branch to mispredict (a third to a half of the candidates are close)
-            for q in range(lo, hi):
-                dx, dy = sx[q] - px, sy[q] - py
-                out_i[found], out_j[found] = p, q
-                found += dx * dx + dy * dy < r2_max
-    # 4. the pairs a rod joins left out, in a pass of their own over the close ones (tested in
-    # the loop above, the compiler read the table only for a close candidate, behind a branch
-    # that mispredicted on a third to a half of them): keep[...] is 1 for a pair kept
-    kept = 0
-    for t in range(found):
-        p, q = out_i[t], out_j[t]
-        out_i[kept], out_j[kept] = p, order[q]
-        kept += keep[s_plus[q] - minus[p]]
-    return kept, tests
+        mp = minus[p]
+        a0, a1, a2 = k + 1, start[c + lo1], start[c + lo2]      # the runs' first candidates
+        e0 = start[c + r0] - a0                                 # and where each ends in t
+        e1 = e0 + start[c + hi1] - a1
+        e2 = e1 + start[c + hi2] - a2
+        b1, b2 = a1 - e0 - a0, a2 - e1 - a1 + e0
+        tests += e2
+        if found + e2 > cap:
+            return -1, tests
+        for t in range(e2):
+            q = np.uint64(t + a0 + (t >= e0) * b1 + (t >= e1) * b2)
+            dx, dy = sx[q] - px, sy[q] - py
+            f = np.uint64(found)
+            out_i[f], out_j[f] = p, order[q]
+            found += dx * dx + dy * dy < limit[np.uint64(s_plus[q] - mp)]
+    return found, tests
 
 
 def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, moved_y):
@@ -131,25 +155,20 @@ def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, 
     w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale. The
     first sweep (once) also counts each particle's pairs as it goes (pairs with both ends pinned
     left out) and sets scale = over_relax / its pairs (Jacobi's average, over-relaxed) before
-    moving anyone: the pushes are summed unscaled, so no pass of its own over the pairs is
-    needed for the counts. Every particle free with the same weight (nothing pinned or grabbed):
-    every share is 1/2, no weights read pair by pair."""
+    moving anyone: the pushes are summed unscaled. (Some particle pinned or grabbed; all free
+    with the same weight: _push_even.)"""
     n, m = xs.size, i.size
-    even = w[0] > 0
     for p in range(n):
         moved_x[p] = 0.0
         moved_y[p] = 0.0
-        even = even and w[p] == w[0]
         if once:
             count[p] = 0
-    share_a = share_b = 0.5
     for k in range(m):
         a, b = i[k], j[k]
-        if not even:
-            total = w[a] + w[b]
-            if total <= 0:
-                continue                                # both pinned: neither moves
-            share_a, share_b = w[a] / total, w[b] / total
+        total = w[a] + w[b]
+        if total <= 0:
+            continue                                # both pinned: neither moves
+        share_a, share_b = w[a] / total, w[b] / total
         if once:
             count[a] += 1
             count[b] += 1
@@ -170,16 +189,64 @@ def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, 
         ys[p] += moved_y[p] * scale[p]
 
 
+def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved_x, moved_y, fx, fy):
+    """_push_apart's sweep with every particle free and of the same weight (nothing pinned or
+    grabbed): every share is 1/2 (in scale), no weights read. In three loops: d gathered pair
+    by pair; the pushes, a loop with no gather and no branch that the compiler turns into
+    vector instructions (8 pairs at a time), in the positions' precision as NumPy's pass
+    computes them; then summed per particle. The first sweep counts the pairs in a loop of
+    its own."""
+    n, m = xs.size, i.size
+    for k in range(m):
+        a, b = i[k], j[k]
+        fx[k] = xs[b] - xs[a]
+        fy[k] = ys[b] - ys[a]
+    one, zero, tiny = np.float32(1.0), np.float32(0.0), 1e-6 * dmin
+    for k in range(m):
+        dx, dy = fx[k], fy[k]
+        r = np.sqrt(dx * dx + dy * dy)
+        same = r < tiny                                 # at one point: part them along x
+        dx = one if same else dx
+        r = one if same else r
+        over = dmin - r
+        push = (over if over > 0 else zero) / r         # the overlap per unit of d
+        fx[k] = dx * push
+        fy[k] = dy * push
+    for p in range(n):
+        moved_x[p] = 0.0
+        moved_y[p] = 0.0
+    if once:
+        for p in range(n):
+            count[p] = 0
+        for k in range(m):
+            count[i[k]] += 1
+            count[j[k]] += 1
+        for p in range(n):
+            scale[p] = 0.5 * over_relax / count[p] if count[p] > 0 else 0.0
+    for k in range(m):
+        a, b = i[k], j[k]
+        moved_x[b] += fx[k]
+        moved_y[b] += fy[k]
+        moved_x[a] -= fx[k]
+        moved_y[a] -= fy[k]
+    for p in range(n):
+        xs[p] += moved_x[p] * scale[p]
+        ys[p] += moved_y[p] * scale[p]
+
+
 def _jit(fn):
-    """fn compiled by numba on its first call (with Ctrl-C held back: app/ctrl_c.py)."""
+    """fn compiled by numba on its first call (with Ctrl-C held back: app/ctrl_c.py). NumPy's
+    error model: a division by zero gives inf or NaN as NumPy's pass does, with no test and
+    branch before each division (which kept the compiler from vector instructions)."""
     def make():
         import numba as nb
-        return nb.njit(cache=True, nogil=True)(fn)
+        return nb.njit(cache=True, nogil=True, error_model="numpy")(fn)
     return compiled(make)
 
 
 _find = _jit(_find_pairs)
 _push = _jit(_push_apart)
+_push_same = _jit(_push_even)
 
 
 class Buffers:
@@ -193,13 +260,14 @@ class Buffers:
         self.moved_y = np.empty(n)
         self.count = np.zeros(n, np.int64)
         self.scale = np.zeros(n)
-        self.cell = np.empty(n, np.int64)
-        self.order = np.empty(n, np.int64)
-        self.s_cell = np.empty(n, np.int64)
+        self.cell = np.empty(n, np.int32)               # (32-bit: the cell table's passes
+        self.order = np.empty(n, np.int64)              # over memory half as long)
+        self.s_cell = np.empty(n, np.int32)
         self.s_plus = np.empty(n, np.int64)
-        self.start = np.empty(0, np.int64)              # per cell (grown with the grid)
+        self.start = np.empty(0, np.int32)              # per cell (grown with the grid)
         self.sorted: dict = {}                          # positions in cell order, by dtype
-        self.keep: tuple = (None, None)                 # (joined table, its inverse as bytes)
+        self.pushes: dict = {}                          # each pair's push, x and y, by dtype
+        self.limit: tuple = (None, None, None)          # (joined table, r2_max, limit)
 
 
 def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
@@ -214,18 +282,18 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     pad, below = max(reach), len(reach) - 1
     cells = (nx + 2 * pad) * (ny + below)
     if buf.start.size < cells + 2:
-        buf.start = np.empty(cells + 2 + cells // 2, np.int64)
+        buf.start = np.empty(cells + 2 + cells // 2, np.int32)
     sx, sy = buf.sorted.get(xs.dtype, (None, None))
     if sx is None or sx.size != n:
         sx, sy = buf.sorted[xs.dtype] = np.empty_like(xs), np.empty_like(ys)
     real = np.result_type(xs, ys, np.float32)           # fine_pairs's rounding: the same pairs
     plus, minus, table = joined
-    if buf.keep[0] is not table:                        # (the table inverted, as bytes)
-        buf.keep = (table, np.logical_not(table).view(np.uint8))
+    r2_max = real.type(distance * distance)
+    if buf.limit[0] is not table or buf.limit[1] != r2_max or buf.limit[2].dtype != real:
+        buf.limit = (table, r2_max, np.where(table, real.type(-1), r2_max).astype(real))
     args = (xs, ys, real.type(lo_x), real.type(lo_y), real.type(1 / cell_w),
-            real.type(1 / cell_h), nx, ny, np.asarray(reach, np.int64),
-            real.type(distance * distance), plus, minus, buf.keep[1], buf.cell, buf.start,
-            buf.order, sx, sy, buf.s_cell, buf.s_plus)
+            real.type(1 / cell_h), nx, ny, np.asarray(reach, np.int64), buf.limit[2], plus,
+            minus, buf.cell, buf.start, buf.order, sx, sy, buf.s_cell, buf.s_plus)
     found, tests = _find(*args, buf.i, buf.j)
     while found < 0:                        # more than ever before (tests: those seen until
         size = 2 * max(tests, buf.i.size)   # the arrays were full): grow, search again
@@ -238,8 +306,19 @@ def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, bet
                buf: Buffers) -> None:
     """`sweeps` sweeps of self-collision's Jacobi projection over the pairs (i, j), in place on
     xs, ys, calling between() before each (the obstacles' projection, or None)."""
+    even = bool(w[0] > 0 and w.min() == w.max())        # every particle free, the same weight
+    if even:
+        fx, fy = buf.pushes.get(xs.dtype, (None, None))
+        if fx is None or fx.size < i.size:
+            size = i.size + i.size // 2
+            fx, fy = buf.pushes[xs.dtype] = np.empty(size, xs.dtype), np.empty(size, xs.dtype)
+        dmin = xs.dtype.type(dmin)                      # (the pushes in the positions' precision)
     for sweep in range(sweeps):
         if between is not None:
             between()
-        _push(xs, ys, i, j, w, float(dmin), sweep == 0, float(over_relax), buf.count, buf.scale,
-              buf.moved_x, buf.moved_y)
+        if even:
+            _push_same(xs, ys, i, j, dmin, sweep == 0, float(over_relax), buf.count, buf.scale,
+                       buf.moved_x, buf.moved_y, fx, fy)
+        else:
+            _push(xs, ys, i, j, w, float(dmin), sweep == 0, float(over_relax), buf.count,
+                  buf.scale, buf.moved_x, buf.moved_y)
