@@ -234,6 +234,14 @@ def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved_x, move
         ys[p] += moved_y[p] * scale[p]
 
 
+def _all_same(w):
+    """True if every weight is w[0] and that is above 0 (every particle free, none grabbed)."""
+    for p in range(w.size):
+        if w[p] != w[0]:
+            return False
+    return w.size > 0 and w[0] > 0
+
+
 def _jit(fn):
     """fn compiled by numba on its first call (with Ctrl-C held back: app/ctrl_c.py). NumPy's
     error model: a division by zero gives inf or NaN as NumPy's pass does, with no test and
@@ -247,6 +255,7 @@ def _jit(fn):
 _find = _jit(_find_pairs)
 _push = _jit(_push_apart)
 _push_same = _jit(_push_even)
+_same = _jit(_all_same)
 
 
 class Buffers:
@@ -268,6 +277,7 @@ class Buffers:
         self.sorted: dict = {}                          # positions in cell order, by dtype
         self.pushes: dict = {}                          # each pair's push, x and y, by dtype
         self.limit: tuple = (None, None, None)          # (joined table, r2_max, limit)
+        self.reach: tuple = (None, None)                # (the stencil, as an array)
 
 
 def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
@@ -291,9 +301,11 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     r2_max = real.type(distance * distance)
     if buf.limit[0] is not table or buf.limit[1] != r2_max or buf.limit[2].dtype != real:
         buf.limit = (table, r2_max, np.where(table, real.type(-1), r2_max).astype(real))
+    if buf.reach[0] != reach:
+        buf.reach = (reach, np.asarray(reach, np.int64))
     args = (xs, ys, real.type(lo_x), real.type(lo_y), real.type(1 / cell_w),
-            real.type(1 / cell_h), nx, ny, np.asarray(reach, np.int64), buf.limit[2], plus,
-            minus, buf.cell, buf.start, buf.order, sx, sy, buf.s_cell, buf.s_plus)
+            real.type(1 / cell_h), nx, ny, buf.reach[1], buf.limit[2], plus, minus, buf.cell,
+            buf.start, buf.order, sx, sy, buf.s_cell, buf.s_plus)
     found, tests = _find(*args, buf.i, buf.j)
     while found < 0:                        # more than ever before (tests: those seen until
         size = 2 * max(tests, buf.i.size)   # the arrays were full): grow, search again
@@ -306,7 +318,7 @@ def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, bet
                buf: Buffers) -> None:
     """`sweeps` sweeps of self-collision's Jacobi projection over the pairs (i, j), in place on
     xs, ys, calling between() before each (the obstacles' projection, or None)."""
-    even = bool(w[0] > 0 and w.min() == w.max())        # every particle free, the same weight
+    even = _same(w)                                     # every particle free, the same weight
     if even:
         fx, fy = buf.pushes.get(xs.dtype, (None, None))
         if fx is None or fx.size < i.size:
