@@ -12,46 +12,64 @@ default, named in the HUD). The physics is the NumPy pass's, written per pair (t
 Why: the NumPy pass costs a dozen array operations per candidate pair and as many per pair
 found (sort, runs of candidates, distances, the rod table, gathers, bincounts), each a pass over
 memory. A compiled loop visits each candidate once, in registers. The pairs are the same (a test
-compares them, and with all pairs on random clouds); positions agree to rounding.
+compares them, and with all pairs on random clouds); positions agree to rounding (to the
+last bit in the bench's runs: below; tests/test_self_compiled.py compares whole passes).
 
 What it costs, like with like (`python -m app bench cloth`: the pass beside the compiled step,
-which kernel=numba also makes shorter: 0.35 ms, not NumPy's 0.89): on the crumpled 64 x 64
-cloth 1.33 times that step, 0.42 times hanging (2026-11-27, load 1.1); 1.6 times crumpled with
-cells R wide and a search that counted its candidates before listing them (41,342 candidates
-for 24,845 now; the search 0.46 -> 0.28 ms, the sweeps 0.20 -> 0.15 ms, load ~1.5). Tried and
-not kept: a branch per candidate instead of writing every candidate and counting the close ones
-(1.2 x slower on the falling cloth: half the candidates are close, the branch guesses wrong),
-32-bit work arrays, cells R/8 x R or R x R (the same time within the noise).
+which kernel=numba also makes shorter, ~0.32 ms): on 2026-11-27, four whole runs of the bench
+taking turns with main's code (load 1.7-11): crumpled 0.95-0.99 x the compiled step, median
+0.97 (main 1.36-1.42 x, median 1.40), hanging 0.31-0.38 x (main 0.37-0.38 x). The goal of at
+most 1 x is met crumpled, but not by much: at load 8-11 0.99 x. In one process, the pass taking
+turns with main's over the bench's 15 crumpled steps (31 rounds, load 3.1): 0.94-0.97 x (main
+1.37-1.39 x), hanging 0.32-0.33 x (0.38-0.40 x). What made it (each against the code before
+it, one process, the bench's 15 states in turn, CPU us a step, load 1.5-4.5):
 
-2026-11-27, later, three changes, each with the same positions to the last bit and measured
-in one process against the pass before, over the 15 states of a bench run (31 rounds): the rod
-table read in a pass of its own over the close pairs (step 4 of _find_pairs: written as `close
-& ~joined[...]` in the candidate loop, the compiler read the table only for a close candidate,
-behind a branch that mispredicted on a third to a half of them): hanging 0.91-0.93 x, crumpled
-0.99-1.02 x (load 1.0); the first sweep counting each particle's pairs as it goes (the pushes
-summed unscaled, the scale set before anyone moves), where a pass of its own over the pairs
-counted them: with the first, 0.98-0.99 x crumpled, 0.92-0.94 x hanging (load 1.6); each
-particle's cell computed as fine_pairs computes it, (x - lo) times 1 / width in the positions'
-precision (a multiply, not a float64 division; the very cells of the NumPy search): all three
-0.94-0.97 x crumpled, 0.90-0.92 x hanging (load 1.5). `bench cloth`'s self-collision rows with
-the first (scripted alone, 41 rounds, four runs each taking turns with the code before, load
-0.9-1.4): crumpled 1.17-1.29 x the compiled step (before 1.25-1.37 x), hanging 0.38-0.40 x
-(0.38-0.44 x); the whole `bench cloth`, six runs each taking turns (load 1.4-3.2): crumpled
-1.21-1.29 x, median 1.23 (before 1.23-1.28 x, median 1.26), hanging 0.39-0.42 x (0.42-0.49 x);
-with the first two, three more (load 1.5-3.8): crumpled 1.22-1.24 x (before 1.29-1.37 x); with
-all three, three more (load 1.6-2.7): 1.23-1.30 x (before 1.25-1.32 x). In all twelve whole
-runs: median 1.235 x (before 1.275 x). The goal of 1 x is NOT met. Where the time goes (the
-bench's crumpled runs, CPU us a step, load ~3): the search ~190 (28,663 candidates, 12,174
-pairs), the sort into cells ~40, two sweeps ~130, the obstacles' projection
-before each ~25, the grid's box and numba's dispatch of some 20 arguments a call ~15. Tried on
-the way and not kept (each against the pass before, in one process): the sweeps on the
-cell-sorted copies, written back once (n = 4,096 fits the caches: no gain, the gather and
-scatter cost ~10 us); the pairs as per-particle lists (CSR: the search 13 % faster alone, the
-sweeps 25 % slower: their inner loop's end mispredicts); a particle's three runs walked as one
-list in blocks of 4 or 8 candidates (blocks of 8: hanging 1.35 x slower); a's sums kept in
-registers along its pairs (slower); the pushes in float32 (no change). Timing a kernel called
-again and again on one state misleads: the branch predictor learns the state (the search 88 us
-there, 190-245 us when the states change as in a run).
+  * a particle's three runs walked as one loop (t from 0 to e2: run 1 from e0, run 2 from e1,
+    the candidate's place picked with no branch): the loop's end is mispredicted once a
+    particle, not three times; the search 268 -> 191 us;
+  * indices as unsigned integers where the compiler cannot see they are not negative (numba
+    tests a signed index for Python's negative indexing: ~10 instructions a candidate);
+    193 -> 160 us;
+  * the cell table in 32 bits (its zeroing and running sum over ~30,000 cells, mostly empty):
+    162 -> 147 us (hanging 96 -> 88);
+  * numba's NumPy error model: no test and branch before each division (as NumPy, a division
+    by zero gives inf or NaN), so the sweeps' pushes, computed in a loop of their own after d
+    is gathered, become vector instructions: the two sweeps 132 -> 118 us; the pushes in the
+    positions' precision (float32), as the NumPy pass computes them: 131 -> 114 us.
+
+With float32 pushes summed in float64 (a sum of a few float32 numbers is exact in float64
+unless their sizes differ by some 2^25 or more, so the order of the sums does not matter) the
+compiled pass now leaves the very positions the NumPy pass leaves: over the bench's 15 crumpled
+steps, kernel=numba and kernel=numpy agreed to the last bit at every step (main's float64
+pushes: 6e-5 px apart after one step, 14 px after 15, the crumpled cloth being chaotic). Where
+the time goes now (the same states, load ~4.7, CPU us a step): the Python side, fine_grid's four
+NumPy reductions and numba's dispatch ~20; the cells and their running sum ~27; the sort's fill
+~16; each particle's runs ~14; the 28,700 candidates ~100 (10,100 pairs, averages of the 15
+states); the two sweeps ~110-120 (each: d gathered, the pushes, the sums per pair, two or three
+passes over the particles), plus the obstacles' projection before each
+(cloth_contact._push_out, NumPy: ~15 in the run).
+
+Tried and not kept, the same way: the rod table read in a pass of its own over the close pairs
+(as main's code does; with unsigned indices 155 -> 186 us); the pairs counted by the
+search (free for the i ends, one pass over the j ends) instead of in the first sweep (crumpled
+the same, hanging +5 us); the count in the first sweep's gather loop (the same); d gathered in
+the pushes' loop (no vector instructions then: the sweeps 108 -> 133-141 us); the sums in two
+halves at once, so consecutive pairs do not share an end (the same); rows of the stencil three
+at a time through a table of offsets, one path for every stencil (+6 us, hanging +16); the
+positions and (index, rod number) interleaved in one array each (the same); cells 2, 1.5 or 0.75
+times as wide, or 2 times as wide and 1.5 as high (the same or up to 15 us slower); the running
+sum of the cell table with an accumulator or as two sums at once, the cells computed in a loop
+of their own before the histogram, a 16-bit cell table (the same within the noise, or slower); the
+grid's box in a compiled pass instead of fine_grid's four reductions (~5-10 us, but a second copy
+of fine_grid's rules: left to neighbours.py). Before 2026-11-27 (with their figures then): cells
+R wide and a search that counted its candidates before listing them (1.6 x the compiled step
+against 1.33); a branch per candidate instead of writing every candidate and counting the close
+ones (1.2 x slower falling: the branch guesses wrong); cells R/8 x R or R x R (the same); the
+sweeps on the cell-sorted copies (the gather and scatter cost ~10 us); the pairs as
+per-particle lists (CSR: the sweeps 25 % slower); a particle's runs in blocks of 4 or 8
+candidates (hanging 1.35 x slower); a's sums kept in registers along its pairs (slower).
+Timing a kernel called again and again on one state misleads: the branch predictor learns the
+state (the old search 88 us there, 190-245 us when the states change as in a run).
 """
 
 from __future__ import annotations
