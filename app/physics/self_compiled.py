@@ -168,7 +168,7 @@ def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, limit, 
     return found, tests
 
 
-def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, moved_y):
+def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved):
     """One Jacobi sweep over the pairs: every pair pushed apart to dmin, each end by its share
     w / (w_i + w_j) of the overlap, every particle moved by its pushes times its scale. The
     first sweep (once) also counts each particle's pairs as it goes (pairs with both ends pinned
@@ -177,8 +177,8 @@ def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, 
     with the same weight: _push_even.)"""
     n, m = xs.size, i.size
     for p in range(n):
-        moved_x[p] = 0.0
-        moved_y[p] = 0.0
+        moved[2 * p] = 0.0
+        moved[2 * p + 1] = 0.0
         if once:
             count[p] = 0
     for k in range(m):
@@ -196,18 +196,18 @@ def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved_x, 
             dx, r = 1.0, 1.0
         push = max(dmin - r, 0.0) / r                   # the overlap per unit of d
         mx, my = dx * push, dy * push
-        moved_x[b] += mx * share_b
-        moved_y[b] += my * share_b
-        moved_x[a] -= mx * share_a
-        moved_y[a] -= my * share_a
+        moved[2 * b] += mx * share_b
+        moved[2 * b + 1] += my * share_b
+        moved[2 * a] -= mx * share_a
+        moved[2 * a + 1] -= my * share_a
     for p in range(n):
         if once:
             scale[p] = over_relax / count[p] if count[p] > 0 else 0.0
-        xs[p] += moved_x[p] * scale[p]
-        ys[p] += moved_y[p] * scale[p]
+        xs[p] += moved[2 * p] * scale[p]
+        ys[p] += moved[2 * p + 1] * scale[p]
 
 
-def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved_x, moved_y, fx, fy):
+def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved, fx, fy):
     """_push_apart's sweep with every particle free and of the same weight (nothing pinned or
     grabbed): every share is 1/2 (in scale), no weights read. In three loops: d gathered pair
     by pair; the pushes, a loop with no gather and no branch that the compiler turns into
@@ -230,9 +230,8 @@ def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved_x, move
         push = (over if over > 0 else zero) / r         # the overlap per unit of d
         fx[k] = dx * push
         fy[k] = dy * push
-    for p in range(n):
-        moved_x[p] = 0.0
-        moved_y[p] = 0.0
+    for p in range(2 * n):
+        moved[p] = 0.0
     if once:
         for p in range(n):
             count[p] = 0
@@ -241,15 +240,16 @@ def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved_x, move
             count[j[k]] += 1
         for p in range(n):
             scale[p] = 0.5 * over_relax / count[p] if count[p] > 0 else 0.0
-    for k in range(m):
-        a, b = i[k], j[k]
-        moved_x[b] += fx[k]
-        moved_y[b] += fy[k]
-        moved_x[a] -= fx[k]
-        moved_y[a] -= fy[k]
+    for k in range(m):                                  # (x and y side by side in `moved`:
+        a, b = 2 * i[k], 2 * j[k]                       # a particle's two sums in one line
+        mx, my = np.float64(fx[k]), np.float64(fy[k])   # of the cache, one array)
+        moved[b] += mx
+        moved[b + 1] += my
+        moved[a] -= mx
+        moved[a + 1] -= my
     for p in range(n):
-        xs[p] += moved_x[p] * scale[p]
-        ys[p] += moved_y[p] * scale[p]
+        xs[p] += moved[2 * p] * scale[p]
+        ys[p] += moved[2 * p + 1] * scale[p]
 
 
 def _all_same(w):
@@ -283,8 +283,7 @@ class Buffers:
     def __init__(self, n: int):
         self.i = np.empty(8 * n, np.int64)
         self.j = np.empty(8 * n, np.int64)
-        self.moved_x = np.empty(n)
-        self.moved_y = np.empty(n)
+        self.moved = np.empty(2 * n)                    # each particle's sums, x then y
         self.count = np.zeros(n, np.int64)
         self.scale = np.zeros(n)
         self.cell = np.empty(n, np.int32)               # (32-bit: the cell table's passes
@@ -348,7 +347,7 @@ def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, bet
             between()
         if even:
             _push_same(xs, ys, i, j, dmin, sweep == 0, float(over_relax), buf.count, buf.scale,
-                       buf.moved_x, buf.moved_y, fx, fy)
+                       buf.moved, fx, fy)
         else:
             _push(xs, ys, i, j, w, float(dmin), sweep == 0, float(over_relax), buf.count,
-                  buf.scale, buf.moved_x, buf.moved_y)
+                  buf.scale, buf.moved)
