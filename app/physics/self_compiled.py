@@ -35,7 +35,12 @@ it, one process, the bench's 15 states in turn, CPU us a step, load 1.5-4.5):
   * numba's NumPy error model: no test and branch before each division (as NumPy, a division
     by zero gives inf or NaN), so the sweeps' pushes, computed in a loop of their own after d
     is gathered, become vector instructions: the two sweeps 132 -> 118 us; the pushes in the
-    positions' precision (float32), as the NumPy pass computes them: 131 -> 114 us.
+    positions' precision (float32), as the NumPy pass computes them: 131 -> 114 us;
+  * each particle's two sums, x and y, side by side in one array (one line of the cache):
+    the two sweeps 117 -> 107 us;
+  * the pairs (i, j) as unsigned 32-bit numbers, so that the sweeps index with them without
+    numba's test for negative indices (and read half the bytes): the sweeps 116-122 -> 94-96
+    us; in the run, the pass 0.96-0.97 -> 0.88-0.89 x the compiled step (load 4.8-5.0).
 
 With float32 pushes summed in float64 (a sum of a few float32 numbers is exact in float64
 unless their sizes differ by some 2^25 or more, so the order of the sums does not matter) the
@@ -45,14 +50,17 @@ pushes: 6e-5 px apart after one step, 14 px after 15, the crumpled cloth being c
 the time goes now (the same states, load ~4.7, CPU us a step): the Python side, fine_grid's four
 NumPy reductions and numba's dispatch ~20; the cells and their running sum ~27; the sort's fill
 ~16; each particle's runs ~14; the 28,700 candidates ~100 (10,100 pairs, averages of the 15
-states); the two sweeps ~110-120 (each: d gathered, the pushes, the sums per pair, two or three
-passes over the particles), plus the obstacles' projection before each
-(cloth_contact._push_out, NumPy: ~15 in the run).
+states); the two sweeps ~110-120 before their sums were side by side (the sums per pair ~40-48
+of it, d gathered ~15-25, the pushes ~8-16, the passes over the particles, numba's calls and the
+Python side ~33), plus the obstacles' projection before each (cloth_contact._push_out, NumPy:
+~15 in the run).
 
 Tried and not kept, the same way: the rod table read in a pass of its own over the close pairs
 (as main's code does; with unsigned indices 155 -> 186 us); the pairs counted by the
 search (free for the i ends, one pass over the j ends) instead of in the first sweep (crumpled
-the same, hanging +5 us); the count in the first sweep's gather loop (the same); d gathered in
+the same, hanging +5 us); the count in the first sweep's gather loop (the same); the pushes'
+x and y side by side too (+4-6 us: their loop is then less of a vector loop); the sums zeroed
+in the sweep's last pass over the particles, not a pass of their own (no faster); d gathered in
 the pushes' loop (no vector instructions then: the sweeps 108 -> 133-141 us); the sums in two
 halves at once, so consecutive pairs do not share an end (the same); rows of the stencil three
 at a time through a table of offsets, one path for every stencil (+6 us, hanging +16); the
@@ -241,12 +249,13 @@ def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved, fx, fy
         for p in range(n):
             scale[p] = 0.5 * over_relax / count[p] if count[p] > 0 else 0.0
     for k in range(m):                                  # (x and y side by side in `moved`:
-        a, b = 2 * i[k], 2 * j[k]                       # a particle's two sums in one line
-        mx, my = np.float64(fx[k]), np.float64(fy[k])   # of the cache, one array)
+        a, b = np.uint64(i[k]), np.uint64(j[k])         # a particle's two sums in one line
+        a, b, y = a + a, b + b, np.uint64(1)            # of the cache, one array)
+        mx, my = np.float64(fx[k]), np.float64(fy[k])
         moved[b] += mx
-        moved[b + 1] += my
+        moved[b + y] += my
         moved[a] -= mx
-        moved[a + 1] -= my
+        moved[a + y] -= my
     for p in range(n):
         xs[p] += moved[2 * p] * scale[p]
         ys[p] += moved[2 * p + 1] * scale[p]
@@ -281,8 +290,8 @@ class Buffers:
     more pairs than they hold), the search's work arrays and the per-particle sums."""
 
     def __init__(self, n: int):
-        self.i = np.empty(8 * n, np.int64)
-        self.j = np.empty(8 * n, np.int64)
+        self.i = np.empty(8 * n, np.uint32)             # (unsigned: no test for Python's
+        self.j = np.empty(8 * n, np.uint32)             # negative indices in the sweeps)
         self.moved = np.empty(2 * n)                    # each particle's sums, x then y
         self.count = np.zeros(n, np.int64)
         self.scale = np.zeros(n)
@@ -326,7 +335,7 @@ def find_pairs(xs, ys, distance: float, joined: tuple, buf: Buffers
     found, tests = _find(*args, buf.i, buf.j)
     while found < 0:                        # more than ever before (tests: those seen until
         size = 2 * max(tests, buf.i.size)   # the arrays were full): grow, search again
-        buf.i, buf.j = np.empty(size, np.int64), np.empty(size, np.int64)
+        buf.i, buf.j = np.empty(size, np.uint32), np.empty(size, np.uint32)
         found, tests = _find(*args, buf.i, buf.j)
     return buf.i[:found], buf.j[:found], tests
 
