@@ -112,20 +112,21 @@ def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, limit, 
         cx = int(min(max((xs[p] - lo_x) * to_cell_x, 0.0), nx - 1.0))
         cy = int(min(max((ys[p] - lo_y) * to_cell_y, 0.0), ny - 1.0))
         cell[p] = cy * columns + cx + pad
-        start[cell[p] + 1] += 1
+        start[np.uint64(cy * columns + cx + pad + 1)] += 1
     for c in range(1, cells + 1):                       # 2. sorted by cell (a counting sort):
         start[c] += start[c - 1]                        # start[c + 1]: where cell c ends
     start[cells + 1] = n
+    one = np.uint64(1)                                  # (unsigned indices: below)
     for p in range(n - 1, -1, -1):                      # (filled from the end: each cell's
-        c = cell[p]                                     # particles in index order; then
-        k = start[c + 1] - 1                            # start[c + 1] is where cell c begins,
-        start[c + 1] = k                                # start[c + 2] where it ends)
+        c = np.uint64(cell[p])                          # particles in index order; then
+        k = np.uint64(start[c + one] - 1)               # start[c + 1] is where cell c begins,
+        start[c + one] = k                              # start[c + 2] where it ends)
         order[k], sx[k], sy[k], s_cell[k], s_plus[k] = p, xs[p], ys[p], c, plus[p]
-    # 3. each particle's runs: the rest of its own row's reach (from k + 1), then row r below
-    # from cell c + lo_at[r] to the end of cell c + hi_at[r] - 2. Every candidate is written,
-    # and `found` steps on only for a pair that counts: no branch to mispredict (a third to a
-    # half of the candidates count). The limit read for every candidate, not only for a close
-    # one: the compiler then makes no branch of it either
+    # 3. each particle's runs of candidates: the rest of its own row's reach (from k + 1),
+    # then in each row r below the cells c + r columns - reach[r] .. c + r columns + reach[r].
+    # Every candidate is written, and `found` steps on only for a pair that counts: no branch
+    # to mispredict (a third to a half of the candidates count). The limit is read for every
+    # candidate, not only for a close one: the compiler then makes no branch of it either
     found = 0
     tests = 0
     cap = out_i.size
@@ -156,13 +157,15 @@ def _find_pairs(xs, ys, lo_x, lo_y, to_cell_x, to_cell_y, nx, ny, reach, limit, 
         lo2 = hi2 = hi1
     if below == 2:
         lo2, hi2 = 2 * columns - reach[2] + 1, 2 * columns + reach[2] + 2
+    u0, ul1, uh1, ul2, uh2 = (np.uint64(r0), np.uint64(lo1), np.uint64(hi1), np.uint64(lo2),
+                              np.uint64(hi2))
     for k in range(n):
-        c, p, px, py = s_cell[k], order[k], sx[k], sy[k]
-        mp = minus[p]
-        a0, a1, a2 = k + 1, start[c + lo1], start[c + lo2]      # the runs' first candidates
-        e0 = start[c + r0] - a0                                 # and where each ends in t
-        e1 = e0 + start[c + hi1] - a1
-        e2 = e1 + start[c + hi2] - a2
+        c, p, px, py = np.uint64(s_cell[k]), order[k], sx[k], sy[k]
+        mp = minus[np.uint64(p)]
+        a0, a1, a2 = k + 1, start[c + ul1], start[c + ul2]      # the runs' first candidates
+        e0 = start[c + u0] - a0                                 # and where each ends in t
+        e1 = e0 + start[c + uh1] - a1
+        e2 = e1 + start[c + uh2] - a2
         b1, b2 = a1 - e0 - a0, a2 - e1 - a1 + e0
         tests += e2
         if found + e2 > cap:
