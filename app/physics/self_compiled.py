@@ -299,9 +299,9 @@ class Buffers:
         self.count = np.zeros(n, np.int64)
         self.scale = np.zeros(n)
         self.cell = np.empty(n, np.int32)               # (32-bit: the cell table's passes
-        self.order = np.empty(n, np.int64)              # over memory half as long)
+        self.order = np.empty(n, np.uint32)             # over memory half as long)
         self.s_cell = np.empty(n, np.int32)
-        self.s_plus = np.empty(n, np.int64)
+        self.s_plus = np.empty(n, np.int32)
         self.start = np.empty(0, np.int32)              # per cell (grown with the grid)
         self.sorted: dict = {}                          # positions in cell order, by dtype
         self.pushes: dict = {}                          # each pair's push, x and y, by dtype
