@@ -16,13 +16,14 @@ compares them, and with all pairs on random clouds); positions agree to rounding
 last bit in the bench's runs: below; tests/test_self_compiled.py compares whole passes).
 
 What it costs, like with like (`python -m app bench cloth`: the pass beside the compiled step,
-which kernel=numba also makes shorter, ~0.32 ms): on 2026-11-27, four whole runs of the bench
-taking turns with main's code (load 1.7-11): crumpled 0.95-0.99 x the compiled step, median
-0.97 (main 1.36-1.42 x, median 1.40), hanging 0.31-0.38 x (main 0.37-0.38 x). The goal of at
-most 1 x is met crumpled, but not by much: at load 8-11 0.99 x. In one process, the pass taking
-turns with main's over the bench's 15 crumpled steps (31 rounds, load 3.1): 0.94-0.97 x (main
-1.37-1.39 x), hanging 0.32-0.33 x (0.38-0.40 x). What made it (each against the code before
-it, one process, the bench's 15 states in turn, CPU us a step, load 1.5-4.5):
+which kernel=numba also makes shorter, ~0.31-0.38 ms): on 2026-11-27, four whole runs of the
+bench taking turns with main's code (load 5.5-9.2): crumpled 0.88-0.91 x the compiled step,
+median 0.90 (main 1.42-1.50 x, median 1.46), hanging 0.33-0.35 x (main 0.42-0.46 x): the goal
+of at most 1 x is met. (Four runs earlier that day, before the last four changes below, load
+1.7-11: 0.95-0.99 x.) In one process, the pass taking turns with main's over the bench's 15
+crumpled steps (31 rounds, load 4.2): 0.85 x (main 1.38-1.39 x), hanging 0.30-0.31 x
+(0.39-0.41 x). What made it (each against the code before it, one process, the bench's 15
+states in turn, CPU us a step, load 1.5-7.6):
 
   * a particle's three runs walked as one loop (t from 0 to e2: run 1 from e0, run 2 from e1,
     the candidate's place picked with no branch): the loop's end is mispredicted once a
@@ -40,44 +41,46 @@ it, one process, the bench's 15 states in turn, CPU us a step, load 1.5-4.5):
     the two sweeps 117 -> 107 us;
   * the pairs (i, j) as unsigned 32-bit numbers, so that the sweeps index with them without
     numba's test for negative indices (and read half the bytes): the sweeps 116-122 -> 94-96
-    us; in the run, the pass 0.96-0.97 -> 0.88-0.89 x the compiled step (load 4.8-5.0).
+    us; in the run, the pass 0.96-0.97 -> 0.88-0.89 x the compiled step (load 4.8-5.0);
+  * the sort's and each particle's cell indices unsigned too: the search 178-182 -> 172-175
+    us, hanging 102-104 -> 97-98; the sorted particles' indices and rod numbers in 32 bits:
+    166-174 -> 164-170 us, hanging 92-102 -> 89-98.
 
 With float32 pushes summed in float64 (a sum of a few float32 numbers is exact in float64
 unless their sizes differ by some 2^25 or more, so the order of the sums does not matter) the
 compiled pass now leaves the very positions the NumPy pass leaves: over the bench's 15 crumpled
 steps, kernel=numba and kernel=numpy agreed to the last bit at every step (main's float64
 pushes: 6e-5 px apart after one step, 14 px after 15, the crumpled cloth being chaotic). Where
-the time goes now (the same states, load ~4.7, CPU us a step): the Python side, fine_grid's four
-NumPy reductions and numba's dispatch ~20; the cells and their running sum ~27; the sort's fill
-~16; each particle's runs ~14; the 28,700 candidates ~100 (10,100 pairs, averages of the 15
-states); the two sweeps ~110-120 before their sums were side by side (the sums per pair ~40-48
-of it, d gathered ~15-25, the pushes ~8-16, the passes over the particles, numba's calls and the
-Python side ~33), plus the obstacles' projection before each (cloth_contact._push_out, NumPy:
-~15 in the run).
+the time goes now (the same states, 41 rounds, load ~4, CPU us a step): the Python side,
+fine_grid's four NumPy reductions and numba's dispatch ~25-30; the cells and their running sum
+~26; the sort's fill ~15; each particle's runs ~7; the 28,700 candidates ~99 (10,100 pairs,
+averages of the 15 states); the two sweeps ~95 (the sums per pair ~29, d gathered and the pushes
+~30, the passes over the particles, numba's calls and the Python side ~36), plus the obstacles'
+projection before each (cloth_contact._push_out, NumPy: ~15 in the run).
 
 Tried and not kept, the same way: the rod table read in a pass of its own over the close pairs
-(as main's code does; with unsigned indices 155 -> 186 us); the pairs counted by the
-search (free for the i ends, one pass over the j ends) instead of in the first sweep (crumpled
-the same, hanging +5 us); the count in the first sweep's gather loop (the same); the pushes'
-x and y side by side too (+4-6 us: their loop is then less of a vector loop); the sums zeroed
-in the sweep's last pass over the particles, not a pass of their own (no faster); d gathered in
-the pushes' loop (no vector instructions then: the sweeps 108 -> 133-141 us); the sums in two
-halves at once, so consecutive pairs do not share an end (the same); rows of the stencil three
-at a time through a table of offsets, one path for every stencil (+6 us, hanging +16); the
-positions and (index, rod number) interleaved in one array each (the same); cells 2, 1.5 or 0.75
-times as wide, or 2 times as wide and 1.5 as high (the same or up to 15 us slower); the running
-sum of the cell table with an accumulator or as two sums at once, the cells computed in a loop
-of their own before the histogram, a 16-bit cell table (the same within the noise, or slower); the
-grid's box in a compiled pass instead of fine_grid's four reductions (~5-10 us, but a second copy
-of fine_grid's rules: left to neighbours.py). Before 2026-11-27 (with their figures then): cells
-R wide and a search that counted its candidates before listing them (1.6 x the compiled step
+(as main's code does; with unsigned indices 155 -> 186 us); the pairs counted by the search
+(free for the i ends, one pass over the j ends) instead of in the first sweep (crumpled the
+same, hanging +5 us); the count in the first sweep's gather loop (the same); the pushes' x and y
+side by side too (+4-6 us: their loop is then less of a vector loop); the sums zeroed in the
+sweep's last pass over the particles, not a pass of their own (no faster); d gathered in the
+pushes' loop (no vector instructions then: the sweeps 108 -> 133-141 us); the sums in two halves
+at once, so consecutive pairs do not share an end (the same); rows of the stencil three at a
+time through a table of offsets, one path for every stencil (+6 us, hanging +16); the positions
+and (index, rod number) interleaved in one array each (the same); cells 2, 1.5 or 0.75 times as
+wide, or 2 times as wide and 1.5 as high (the same or up to 15 us slower); the running sum of
+the cell table with an accumulator or as two sums at once, the cells computed in a loop of their
+own before the histogram, a 16-bit cell table (the same within the noise, or slower); the grid's
+box in a compiled pass instead of fine_grid's four reductions (~5-10 us, but a second copy of
+fine_grid's rules: left to neighbours.py). Before 2026-11-27 (with their figures then): cells R
+wide and a search that counted its candidates before listing them (1.6 x the compiled step
 against 1.33); a branch per candidate instead of writing every candidate and counting the close
 ones (1.2 x slower falling: the branch guesses wrong); cells R/8 x R or R x R (the same); the
-sweeps on the cell-sorted copies (the gather and scatter cost ~10 us); the pairs as
-per-particle lists (CSR: the sweeps 25 % slower); a particle's runs in blocks of 4 or 8
-candidates (hanging 1.35 x slower); a's sums kept in registers along its pairs (slower).
-Timing a kernel called again and again on one state misleads: the branch predictor learns the
-state (the old search 88 us there, 190-245 us when the states change as in a run).
+sweeps on the cell-sorted copies (the gather and scatter cost ~10 us); the pairs as per-particle
+lists (CSR: the sweeps 25 % slower); a particle's runs in blocks of 4 or 8 candidates (hanging
+1.35 x slower); a's sums kept in registers along its pairs (slower). Timing a kernel called
+again and again on one state misleads: the branch predictor learns the state (the old search 88
+us there, 190-245 us when the states change as in a run).
 """
 
 from __future__ import annotations
