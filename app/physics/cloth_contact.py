@@ -94,7 +94,8 @@ go through a Python wrapper: ~1.2 us a call, ~6 %); the mask's indices and two t
 a.compress twice (3 x faster alone, ~4 %); the run's particle by its index, so i needs no
 gather through the sort after the search (~4 %); four bincounts over j and i instead of two over
 [j, j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share and the coincident
-test done once, the obstacles projected only when a particle is near one (~4 %). Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
+test done once, the obstacles projected only when a particle is near one (~4 %). Tried and not
+kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
 no faster), fewer cells per particle (more candidates), blocks over 8,192 candidates
 (np.repeat's fresh arrays cross glibc's 128 kB: page faults again), blocks of 4,096 (1.03-1.06
 x), one repeat of the (owner, first) pairs of a run (1.04 x: its 16-byte rows cross 128 kB
@@ -109,14 +110,18 @@ substep for two sweeps). After the step's own work the pass waits on memory: an 
 costs 2-4 x inside the step what it costs alone (the cell table's bincount and cumsum: 18 us
 alone, ~86 us in the step), so fewer passes over fewer bytes, not fewer operations, is what
 counts. The compiled pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid
-and pairs, searched every substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs
+and pairs, searched every substep, no list) visits each candidate once. It took 0.73 x the
+NumPy step, but it runs
 with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like
 it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
 met either (bench of 2026-11-27, load 1.1); with the rod table read in a pass of its own (later
 that day) 1.17-1.29 x (before 1.25-1.37 x in the same runs; the whole bench, six runs each:
 1.21-1.29 x, median 1.23, before 1.23-1.28 x, median 1.26; twelve: median 1.235 x, before
-1.275 x), still NOT met: its search, sort and
-sweeps and what was tried on them are in self_compiled.py's docstring.
+1.275 x), still NOT met then. Later that day the compiled search walks each particle's runs as
+one loop, with 32-bit unsigned indices and the sweeps' pushes in float32 as NumPy's pass: 0.88-
+0.91 x the compiled step crumpled, median 0.90 (four whole bench runs taking turns with the code
+before, which gave 1.42-1.50 x; load 5.5-9.2), 0.33-0.35 x hanging: MET with kernel=numba. Its
+search, sort and sweeps and what was tried on them are in self_compiled.py's docstring.
 
 Later on 2026-11-27, the NumPy search itself (neighbours.fine_pairs; the same pairs in the same
 order, the same positions to the last bit): the cell table made by one repeat over the gaps
