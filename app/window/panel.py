@@ -111,6 +111,7 @@ class ParamPanel:
         self.dropdowns: dict[str, Any] = {}
         self.toggles: dict[str, Any] = {}         # name -> UIButton (bool params and effects)
         self._by_element: dict[Any, tuple[str, str]] = {}
+        self._toggle_state: dict[str, bool | None] = {}
 
         label_font = manager.get_theme().get_font(["label"])
 
@@ -137,8 +138,9 @@ class ParamPanel:
         self.plot_button = UIButton(pygame.Rect(pad, y, inner_w, row), "Plot over time (P)",
                                     manager, container=self.container)
         y += row + gap
-        self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
-                                      container=self.container)
+        self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), self._arrows_look()[0],
+                                      manager, container=self.container,
+                                      object_id=self._arrows_look()[1])
         y += row + 2 * gap
         # the scene's own form (the sandbox's selected body, its save prompt): app/form.py
         self.form = FormWidgets(self, host, manager, self.container, pad, inner_w, row, gap)
@@ -200,8 +202,10 @@ class ParamPanel:
                 continue
             if prm.kind is bool:
                 label(prm.name, width=inner_w // 2)
+                text, look = self._toggle_look(prm.name)
                 b = UIButton(pygame.Rect(pad + inner_w // 2, y, inner_w - inner_w // 2, row),
-                             "", manager, container=self.container, tool_tip_text=tip)
+                             text, manager, container=self.container, tool_tip_text=tip,
+                             object_id=look)
                 self.toggles[prm.name] = b
                 self._by_element[b] = ("toggle", prm.name)
                 y += row + gap
@@ -248,8 +252,10 @@ class ParamPanel:
                     label(f"{eff.name}: differs by pane", short=eff.name)
                     y += row + gap
                     continue
-                b = UIButton(pygame.Rect(pad, y, inner_w, row), "", manager,
-                             container=self.container, tool_tip_text=eff.help or None)
+                text, look = self._toggle_look(eff.name)
+                b = UIButton(pygame.Rect(pad, y, inner_w, row), text, manager,
+                             container=self.container, tool_tip_text=eff.help or None,
+                             object_id=look)
                 self.toggles[eff.name] = b
                 self._by_element[b] = ("toggle", eff.name)
                 y += row + gap
@@ -257,7 +263,6 @@ class ParamPanel:
         self._height = y + pad
         self._row_step = row + gap
         self._wheel_speed()
-        self._toggle_state: dict[str, bool | None] = {}
         self.refresh()
 
     def _wheel_speed(self) -> None:
@@ -316,19 +321,29 @@ class ParamPanel:
         for name, b in self.toggles.items():
             on = bool(self._current(name))
             if self._toggle_state.get(name) != on:
-                self._toggle_state[name] = on
-                b.set_text(f"{name}: {'ON' if on else 'OFF'}" if self.host.scene.effect(name)
-                           else ("ON" if on else "OFF"))
-                b.change_object_id("#toggle_on" if on else "#toggle_off")
+                text, look = self._toggle_look(name)
+                b.set_text(text)
+                b.change_object_id(look)
         paused = self.host.paused
         want = "Resume" if paused else "Pause"
         if self.pause_button.text != want:
             self.pause_button.set_text(want)
-        arrows = bool(getattr(getattr(self.host, "inst", None), "arrows", False))
-        want = f"Arrows (V): {'ON' if arrows else 'OFF'}"
+        want, look = self._arrows_look()
         if self.arrows_button.text != want:
             self.arrows_button.set_text(want)
-            self.arrows_button.change_object_id("#toggle_on" if arrows else "#toggle_off")
+            self.arrows_button.change_object_id(look)
+
+    def _toggle_look(self, name: str) -> tuple[str, str]:
+        """A toggle's text and theme id, its value noted as shown (it is made with them)."""
+        on = bool(self._current(name))
+        self._toggle_state[name] = on
+        text = (f"{name}: {'ON' if on else 'OFF'}" if self.host.scene.effect(name)
+                else ("ON" if on else "OFF"))
+        return text, "#toggle_on" if on else "#toggle_off"
+
+    def _arrows_look(self) -> tuple[str, str]:
+        arrows = bool(getattr(getattr(self.host, "inst", None), "arrows", False))
+        return f"Arrows (V): {'ON' if arrows else 'OFF'}", "#toggle_on" if arrows else "#toggle_off"
 
     def _aim_menus(self) -> None:
         """Each closed drop-down opens where its list fits in the window: down, or up where
