@@ -412,6 +412,15 @@ def test_pointing_at_a_card_shows_what_it_sets_below_the_cards_not_over_them(tmp
     assert int(theme(1.6)["tool_tip.text_box"]["font"]["size"]) == round(
         1.6 * int(theme(1.0)["tool_tip.text_box"]["font"]["size"]))
     cls = get_scene("mass_spring_cloth")
+    # the tooltip is as much wider with F2 as its font is bigger: its lines hold the same words
+    # (its width stayed 170 px, and at F2 the cloth's 'tearing' tip wrapped a word a line)
+    tip = "rods stretched beyond tear_ratio break"
+    lines = {}
+    for large in (False, True):
+        w = open_window(cls, tmp_path, size=(1280, 800), large_text=large)
+        box = pygame_gui.elements.UITooltip(tip, (0, 0), w.scene_view.manager)
+        lines[large] = len(box.text_block.text_box_layout.layout_rows)
+    assert lines[True] == lines[False], lines
     w = open_window(cls, tmp_path, size=(1024, 768))
     panel = w.scene_view.panel
     button, card = next(iter(panel.cards.items()))

@@ -26,7 +26,8 @@ _THEMES: dict[float, dict] = {}
 
 
 def theme(scale: float) -> dict:
-    """assets/theme.json with every font size multiplied by `scale` (the large-text theme)."""
+    """assets/theme.json with every font size (and the sizes that hold text) multiplied by
+    `scale` (the large-text theme)."""
     if scale not in _THEMES:
         data = json.loads(THEME_PATH.read_text())      # a fresh dict for every scale
         for block in data.values():
@@ -34,8 +35,11 @@ def theme(scale: float) -> dict:
             if isinstance(f, dict) and "size" in f:
                 f["size"] = str(int(round(float(f["size"]) * scale)))
             misc = block.get("misc") if isinstance(block, dict) else None
-            if isinstance(misc, dict) and "list_item_height" in misc:   # the drop-down's rows
-                misc["list_item_height"] = str(int(round(float(misc["list_item_height"]) * scale)))
+            # the drop-down's rows, and a tooltip's width (a fixed width put one word a line
+            # in F2's font)
+            for key in ("list_item_height", "rect_width"):
+                if isinstance(misc, dict) and key in misc:
+                    misc[key] = str(int(round(float(misc[key]) * scale)))
         _THEMES[scale] = data
     return _THEMES[scale]
 
