@@ -15,11 +15,10 @@ the flags stay: one comparison of the rows with bounds (bounds_for) says whether
 after OpenBLAS's product (its FMA kernels) pymunk's next step took ~1.5 us longer (falling_balls'
 space.step, 37 balls, medians of 20 rounds: 18.6-18.7 us alone, 20.3-20.6 with a product of (37,
 6) by (6, 5) between steps, 18.5-19.1 with the comparison; load 1.1), which instructions do not
-show. Flags that changed go on to
-_usual_check's end (_flags_seen, with the flags made here);
+show. Flags that changed go on to _usual_check's end (_flags_seen, with the flags made here);
 anything else to check_balls, which finds the read in scene._rows. tests/test_falling_balls.py
 compares them with check_balls step by step, tests/test_pymunk_checks.py the counts and the
-state with the exact tests, ball by ball; the seeded runs' metrics and state hashes are main's.
+state with the exact tests, ball by ball.
 """
 
 from __future__ import annotations
@@ -28,7 +27,7 @@ import math
 
 import numpy as np
 
-from scenes.ball_checks import _NAN_FAILS, BallChecks
+from scenes.ball_checks import _NAN_FAILS, BallChecks, rows_finite
 
 
 class Armed:
@@ -56,6 +55,15 @@ class Armed:
         self.sig = None
 
 
+def _kept(scene, reader, awake, now: np.ndarray, finite: bool) -> None:
+    """What a look whose flags are the last ones leaves (_flags_seen's, when they match): the
+    rows kept for flush_xy without a copy, and the read found finite if `finite`."""
+    scene._prev = (awake, now)
+    reader.keep = (reader.cur, scene._own_prev)
+    if finite:
+        scene.finite_read = reader.reads
+
+
 def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
     """scene.check_balls(L0) after a step: the L's pose after it (L0: before it)."""
     q = scene._quick
@@ -76,21 +84,15 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                 if kept_sig is None:               # (armed since the last look)
                     kept_sig = q.sig = compared_of(q.fast[1])
                 if sig == kept_sig:                # the same flags as after the last look
-                    scene._prev = (q.awake, now)
-                    reader.keep = (reader.cur, scene._own_prev)
-                    if _NAN_FAILS:
-                        scene.finite_read = reader.reads
+                    _kept(scene, reader, q.awake, now, _NAN_FAILS)
                     return L0
             kept = q.kept
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
             b = flags.tobytes()
             fast = q.fast
             if b == fast[2]:                       # the same flags as after the last look
-                scene._prev = (q.awake, now)       # (_usual_check's, when the flags match)
-                reader.keep = (reader.cur, scene._own_prev)
+                _kept(scene, reader, q.awake, now, _NAN_FAILS)
                 scene._fast = q.fast = (L0, b, b)
-                if _NAN_FAILS:
-                    scene.finite_read = reader.reads
                 if bounds is not None:             # (the comparisons of rows with these flags)
                     q.sig = sig
                 return L0
@@ -195,16 +197,13 @@ def rearm(scene) -> None:
     # hold (a NaN anywhere in a row fails them: _NAN_FAILS), and so do the L's if it is awake;
     # a new ball is at rest in the box. Then the runner's is_finite need not read the bodies
     # again after the change (PymunkScene.is_finite: a read and a check, ~5 us)
-    r = awake.L_row
-    if (scene._rows is not None or kept == reader.reads) and _NAN_FAILS \
-            and (r is None or fast[1][5 * r:5 * r + 4] == b"\1\1\1\1"):
+    if (scene._rows is not None or kept == reader.reads) and rows_finite(fast[1], awake.L_row):
         scene.finite_kept = reader.reads
     scene._flag_rows_at(len(awake.ids), fast[0])
     if awake.L_row is None:
         scene._quick = arm(scene, fast[0])
     else:
         scene._quick_moving = arm_moving(scene, fast[0])
-
 
 
 def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
@@ -232,11 +231,8 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
             fast, r = q.fast, q.flag_at
             key = b[:r] + b[r + 5:]
             if key == fast[2]:                     # (_flags_seen's, when the flags match)
-                scene._prev = (q.awake, now)
-                reader.keep = (reader.cur, scene._own_prev)
+                _kept(scene, reader, q.awake, now, rows_finite(b, q.awake.L_row))
                 scene._fast = q.fast = (L1, b, key)
-                if _NAN_FAILS and b[r:r + 4] == b"\1\1\1\1":
-                    scene.finite_read = reader.reads
                 return L1
             L1 = scene._flags_seen(now, L0, L1, q.awake, fast, flags, b)
             scene._quick_moving = arm_moving(scene, L1)
