@@ -138,9 +138,9 @@ class ParamPanel:
         self.plot_button = UIButton(pygame.Rect(pad, y, inner_w, row), "Plot over time (P)",
                                     manager, container=self.container)
         y += row + gap
-        self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), self._arrows_look()[0],
-                                      manager, container=self.container,
-                                      object_id=self._arrows_look()[1])
+        text, look = self._arrows_look()
+        self.arrows_button = UIButton(pygame.Rect(pad, y, inner_w, row), text, manager,
+                                      container=self.container, object_id=look)
         y += row + 2 * gap
         # the scene's own form (the sandbox's selected body, its save prompt): app/form.py
         self.form = FormWidgets(self, host, manager, self.container, pad, inner_w, row, gap)
