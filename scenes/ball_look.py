@@ -16,9 +16,12 @@ after OpenBLAS's product (its FMA kernels) pymunk's next step took ~1.5 us longe
 space.step, 37 balls, medians of 20 rounds: 18.6-18.7 us alone, 20.3-20.6 with a product of (37,
 6) by (6, 5) between steps, 18.5-19.1 with the comparison; load 1.1), which instructions do not
 show. Flags that changed go on to _usual_check's end (_flags_seen, with the flags made here);
-anything else to check_balls, which finds the read in scene._rows. tests/test_falling_balls.py
-compares them with check_balls step by step, tests/test_pymunk_checks.py the counts and the
-state with the exact tests, ball by ball.
+anything else to check_balls, which finds the read in scene._rows. look_moving does not make
+the product either while the flags stay: Line compares the rows with the box's bounds and each
+centre's height over the arm's line, as one complex product (the L's line moves, so it is no
+bound). tests/test_falling_balls.py compares them with check_balls step by step, and Line with
+the flags over random poses and rows; tests/test_pymunk_checks.py the counts and the state with
+the exact tests, ball by ball.
 """
 
 from __future__ import annotations
@@ -28,6 +31,7 @@ import math
 import numpy as np
 
 from scenes.ball_checks import _NAN_FAILS, BallChecks, rows_finite
+from scenes.l_frame import cos_sin
 
 
 class Armed:
@@ -35,7 +39,7 @@ class Armed:
     are the scene's very objects (a new look the general way makes new ones)."""
 
     __slots__ = ("awake", "fast", "kept", "key_len", "key", "pose", "kept_pose", "bodies",
-                 "flag_at", "bounds", "inside", "sig")
+                 "flag_at", "bounds", "inside", "sig", "line")
 
     def __init__(self, awake, fast, kept, key: bytes, pose=None, kept_pose=None,
                  bodies: int = 0, flag_at: int = 0, bounds: tuple | None = None):
@@ -53,6 +57,7 @@ class Armed:
         # yet made: the look makes them out of the flags, compared_of)
         self.bounds, self.inside = bounds or (None, None)
         self.sig = None
+        self.line = None            # look_moving: its Line (line_for), or None: the product
 
 
 def _kept(scene, reader, awake, now: np.ndarray, finite: bool) -> None:
@@ -167,15 +172,23 @@ def bounds_for(scene, n: int) -> tuple | None:
         if not (M[0, 4] == 0.0 and M[1, 4] == -1.0):      # (M's rows 2-5 are 0)
             sizes[key] = None
             return None
-        lx, ux, ly, uy, c = limits.tolist()
+        c = limits[4].item()
         below = -math.inf
         bounds = np.empty((3, n, 6))
-        bounds[0] = (ux, uy, _BIG, _BIG, _BIG, _BIG)
-        bounds[1] = (math.nextafter(-lx, below), math.nextafter(-ly, below),
-                     below, below, below, below)
+        bounds[0], bounds[1] = _box_rows(limits)
         bounds[2] = (below, math.nextafter(-c, below), below, below, below, below)
         made = sizes[key] = (bounds, np.empty((3, n, 6), dtype=bool))
     return made
+
+
+def _box_rows(limits: np.ndarray) -> tuple[tuple, tuple]:
+    """bounds_for's first two rows: (x, y) at most the box's right and bottom ends and the
+    rest at most the largest float; (x, y) below the box's left and top ends (the float before
+    -2r: x <= it is x < -2r, not flag 0) and the rest at -inf."""
+    lx, ux, ly, uy = limits[:4].tolist()
+    below = -math.inf
+    return ((ux, uy, _BIG, _BIG, _BIG, _BIG),
+            (math.nextafter(-lx, below), math.nextafter(-ly, below), below, below, below, below))
 
 
 def rearm(scene) -> None:
@@ -223,6 +236,12 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
                 views = scene._awake_views(data, q.awake)
             now = views[1]
             L1 = tuple(views[2].tolist())
+            line = q.line
+            if line is not None and line.same(now, L1):
+                _kept(scene, reader, q.awake, now, True)        # (the bounds: every row finite)
+                fast = q.fast
+                scene._fast = q.fast = (L1, fast[1], fast[2])
+                return L1
             kept = q.kept
             if kept[3] != L1:
                 scene._flag_matrix(L1)             # (the line's column and limit for L1)
@@ -254,5 +273,79 @@ def arm_moving(scene, L1: tuple[float, float, float]) -> Armed | None:
             or not awake.balls or fast[0] is not L1 or kept is None \
             or kept[0] != len(awake.ids):
         return None
-    return Armed(awake, fast, kept, awake.key,
-                 bodies=len(awake.ids) + len(scene._static_ids), flag_at=5 * awake.L_row)
+    armed = Armed(awake, fast, kept, awake.key,
+                  bodies=len(awake.ids) + len(scene._static_ids), flag_at=5 * awake.L_row)
+    armed.line = line_for(scene, kept[0], awake.L_row, fast[1])
+    return armed
+
+
+class Line:
+    """look_moving's test, without the product, of whether n awake rows' flags are the kept
+    ones with the L at a new pose: the rows against the box's bounds (_box_rows: every row
+    inside the box and finite, as the kept flags of a look armed say), and each centre's
+    height over the arm's line, the product's last column, X sin a - Y cos a (the L at (x, y,
+    a); the flag: at most x sin a - y cos a), as the real part of one complex product: the
+    centre X + iY times sin a + i cos a. More instructions than the product (callgrind: 44.7M
+    against 42.7M over the bench's 120 steps), less time: after OpenBLAS's product (its FMA
+    kernels; np.exp's AVX-512 loop too, not a multiply, a comparison or this complex product)
+    the code that follows runs slower on the lab's Xeon, ~2 us in pymunk's next 17 us step
+    (medians of 30 rounds, load 0.4). pivoting_l's lab step, this test against the product
+    every step, in one process taking turns (40 rounds of 120 steps, load 1.1): 0.959 and
+    0.972 x; with OPENBLAS_CORETYPE=Prescott (SSE kernels, no such slowdown) the product is
+    the faster one (1.03-1.04 x). The L's own
+    row has no line flag here (its centre is on its own arm's line: the flag flips with
+    rounding): its byte is left out. A row whose comparisons differ (a flag changed, or the
+    rounding of the two ways differs for a centre within ~1e-13 px of the line) goes on to the
+    product, which says."""
+
+    __slots__ = ("bounds", "inside", "box", "L_row", "z", "height", "below", "head", "tail",
+                 "rows", "centres")
+
+    def __init__(self, limits: np.ndarray, n: int, L_row: int):
+        self.bounds = np.empty((2, n, 6))
+        self.bounds[0], self.bounds[1] = _box_rows(limits)
+        self.inside = np.empty((2, n, 6), dtype=bool)
+        self.box = b"\1" * (6 * n) + b"\0" * (6 * n)     # every row inside the box, finite
+        self.L_row = L_row
+        self.z, self.below = np.empty(n, complex), np.empty(n, bool)
+        self.height = self.z.real           # (a view, made once)
+        self.head = self.tail = b""         # the kept line flags' bytes before the L's row, after
+        # the rows of the last two reads (the reader's two buffers: the same views while the
+        # bodies are, ball_checks._awake_views), each with its centres x + iy (a view)
+        self.rows, self.centres = [None, None], [None, None]
+
+    def same(self, now: np.ndarray, pose: tuple[float, float, float]) -> bool:
+        """Whether the rows `now` (n, 6) have the kept flags with the L at pose."""
+        rows = self.rows
+        k = 0 if now is rows[0] else 1
+        if now is not rows[k]:
+            rows[1], self.centres[1] = rows[0], self.centres[0]
+            rows[0], k = now, 0
+            self.centres[0] = now[:, :2].view(complex)[:, 0] if now.flags.c_contiguous else None
+        centres = self.centres[k]
+        if centres is None or np.less_equal(now, self.bounds, out=self.inside).tobytes() \
+                != self.box:
+            return False
+        x, y, a = pose
+        c, s = cos_sin(a)
+        np.multiply(centres, complex(s, c), out=self.z)
+        b = np.less_equal(self.height, x * s - y * c, out=self.below).tobytes()
+        r = self.L_row
+        return b[:r] == self.head and b[r + 1:] == self.tail
+
+
+def line_for(scene, n: int, L_row: int, b: bytes) -> Line | None:
+    """The Line for n awake rows with the L's at L_row, armed with the flags' bytes b (5 a
+    row); kept by (n, L_row). None if the L's box flags do not hold (then the product)."""
+    if b[5 * L_row:5 * L_row + 4] != b"\1\1\1\1":
+        return None
+    sizes = scene._bound_sizes
+    key = ("line", n, L_row)
+    line = sizes.get(key)
+    if line is None:
+        if len(sizes) >= 16:
+            sizes.clear()
+        line = sizes[key] = Line(scene._flag_now[2], n, L_row)
+    sig = b[4::5]
+    line.head, line.tail = sig[:L_row], sig[L_row + 1:]
+    return line
