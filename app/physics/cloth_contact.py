@@ -145,6 +145,29 @@ table's cumsum down the columns of a column-major table (vectorised, but its loo
 more: the table and lookups 200 -> 170 us alone, where the repeat makes the table in 29 us
 against bincount and cumsum's ~100 us).
 
+Measured later still on 2026-11-27 (the bench's crumpled state, load 0.3-1.3), nothing kept:
+after the first sweep 85-91 % of the pairs are still closer than self_distance, so a second
+sweep over those alone saves at most ~18 us, what compressing i and j costs alone (21 us); the
+search's pairs are grouped by i only within each stencil row (7,873 runs of 3,880 particles),
+and np.add.reduceat takes 70 us alone where bincount takes 19. Neither the step nor the pass
+calls a BLAS product, exp or hypot here: with NumPy's AVX-512 loops off
+(NPY_DISABLE_CPU_FEATURES) the step is 7-14 % shorter and the pass the same (0.88-0.96 ms,
+default 0.91-0.93); OPENBLAS_CORETYPE=Prescott changes neither. Nor is it the step before that
+makes the pass's operations dearer than alone: the pass run again at once on the same positions
+costs what it did after the step (929-958 us both times), fine_pairs alone in a loop 460-560 us,
+about its share in the step: most likely the pass's own other work evicts its arrays (the cell
+table and its lookups: 37 us alone in a loop, 46-50 us after the cloth's 10 rod sweeps, 63-81 us
+after a 32 MB pass). By perf, np.repeat is 19 % of fine_pairs alone (a branch per run); each
+candidate's run found without it (a cumsum of the jumps at the runs' starts, two takes): 11-15 %
+slower. SELF_SWEEPS = 1 (OVER_RELAX 1.5-2.0): the pass over the bench's 15 steps only 1-5 %
+shorter (more pairs stay close), 1.5-3.3 x as many pairs left closer than 95 % of self_distance
+(120 steps; self_distance 0.5-1, iterations 2-50, substeps 1 and 4), the fold card 8-24 at the
+end, not 0; at 2.0 tests/test_self_list.py fails (its heap's list reused 5 times, not over 10):
+2 sweeps kept. Also not faster (the same positions; the noise of these runs +-1.5 %): the cell
+table in int16, |d|^2 in dp's bytes, _push_out without project's arrays, the rod filter reading
+the table only where j - i is an offset's (25 %); in fine_pairs alone (1.00-1.02 x), the runs'
+rows with int64 halves, or with the owner's position in them (16 bytes: no gather of it).
+
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
 without ever being seen closer than the minimum. Raise substeps (or lower the drop) for fast
