@@ -252,7 +252,9 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
             if key == fast[2]:                     # (_flags_seen's, when the flags match)
                 _kept(scene, reader, q.awake, now, rows_finite(b, q.awake.L_row))
                 scene._fast = q.fast = (L1, b, key)
-                return L1
+                if (b[r:r + 4] == b"\1\1\1\1") is (line is None):    # (the L left the box
+                    q.line = line_for(scene, kept[0], q.awake.L_row, b)   # or came back: Line
+                return L1                          # keeps the bytes, so only with them true)
             L1 = scene._flags_seen(now, L0, L1, q.awake, fast, flags, b)
             scene._quick_moving = arm_moving(scene, L1)
             return L1
