@@ -252,7 +252,9 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
             if key == fast[2]:                     # (_flags_seen's, when the flags match)
                 _kept(scene, reader, q.awake, now, rows_finite(b, q.awake.L_row))
                 scene._fast = q.fast = (L1, b, key)
-                return L1
+                if (b[r:r + 4] == b"\1\1\1\1") is (line is None):    # (the L left the box
+                    q.line = line_for(scene, kept[0], q.awake.L_row, b)   # or came back: Line
+                return L1                          # keeps the bytes, so only with them true)
             L1 = scene._flags_seen(now, L0, L1, q.awake, fast, flags, b)
             scene._quick_moving = arm_moving(scene, L1)
             return L1
@@ -295,8 +297,11 @@ class Line:
     the faster one (1.03-1.04 x). The L's own
     row has no line flag here (its centre is on its own arm's line: the flag flips with
     rounding): its byte is left out. A row whose comparisons differ (a flag changed, or the
-    rounding of the two ways differs for a centre within ~1e-13 px of the line) goes on to the
-    product, which says."""
+    rounding of the two ways differs for a centre within ~4e-13 px of the line) goes on to the
+    product, which says; the other way round (this rounding gives the kept flag, the product's
+    would not) the flags stay: that near the line the flag is a coin flip of rounding either
+    way, as the product's own is from pose to pose (and with OpenBLAS's kernels for another
+    CPU: OPENBLAS_CORETYPE=Prescott's flags differ from the FMA kernels' there)."""
 
     __slots__ = ("bounds", "inside", "box", "L_row", "z", "height", "below", "head", "tail",
                  "rows", "centres")

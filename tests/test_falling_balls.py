@@ -424,3 +424,46 @@ def test_the_moving_looks_line_test_says_same_exactly_when_the_flags_are():
         assert line.same(now, pose1) == same, (n, L_row, pose0, pose1)
         results[same] += 1
     assert results[True] > 100 and results[False] > 100, results
+
+
+def test_the_moving_look_leaves_the_Ls_box_flags_of_its_step_after_the_L_came_back(monkeypatch):
+    # pivoting_l's L leaves the world's box for a step and comes back while every ball keeps
+    # its flags (the key leaves the L's row out, so look_moving keeps the flags the product
+    # made: the L's box flags false), as when the mouse yanks it at a coarse step (hertz 1 or 2,
+    # the pin letting go). The step it is back, Line says "same": scene._fast must still be
+    # check_balls' (the L's box flags true), not the last product's. Here the L is moved along
+    # its own arm's line (the balls' sides of it stay) out of the box and back.
+    from scenes import ball_look
+    said = []
+    same = ball_look.Line.same
+    monkeypatch.setattr(ball_look.Line, "same", lambda line, now, pose: said.append(
+        same(line, now, pose)) or said[-1])
+
+    class General(PivotingLScene):
+        def check_balls(self, L0):           # (a check_balls of its own: look defers to it)
+            return super().check_balls(L0)
+    settings = {"spawn_rate": 0, "g": 0, "sleeping": False}
+    a, b = PivotingLScene(settings), General(settings)
+    for scene in (a, b):
+        for x in (200.0, 500.0, 800.0):      # three balls at rest above the L
+            scene.handle_event(InputEvent("mouse_down", pos=(x, 100.0), button=1))
+            scene.handle_event(InputEvent("mouse_up", pos=(x, 100.0), button=1))
+    for _ in range(5):
+        a.advance()
+        b.advance()
+    assert len(a.balls) == 3 and a._quick_moving is not None and a._quick_moving.line is not None
+    x0, y0, x1, y1 = a.box()
+    L = a._awake.L_row
+    x, y, angle = a.L_pose()
+    assert b.L_pose() == (x, y, angle)
+    for far in (x1 + 100.0 - x, 0.0, None):  # out (past the box's right end), back, a step
+        for scene in (a, b) if far is not None else ():
+            scene.L_body.position = (x + far * math.cos(angle), y + far * math.sin(angle))
+            scene.L_body.velocity, scene.L_body.angular_velocity = (0.0, 0.0), 0.0
+        said.clear()
+        a.advance()
+        b.advance()
+        assert a.counts == b.counts and len(a.balls) == 3
+        assert _without_L_line(a) == _without_L_line(b)
+        assert (a._fast[1][5 * L:5 * L + 4] == b"\1\1\1\1") == (not far)
+    assert said == [True]                     # (Line's way again, the L back in the box)
