@@ -39,6 +39,8 @@ import tempfile
 from contextlib import contextmanager
 from typing import IO, Iterator, Sequence
 
+from app.ctrl_c import held
+
 _SHORT = reprlib.Repr()
 _SHORT.maxstring = 60          # a pasted page, a 100k-character path: cut in the middle
 _SHORT.maxother = 60
@@ -122,10 +124,13 @@ class Pending:
             os.makedirs(folder, exist_ok=True)
             # the extension stays last: writers that pick a format by name (ffmpeg) see it
             # in plain ASCII: a writer given a name that is not UTF-8 (pygame's image.save)
-            # would write another file, and leave it behind
-            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=f".{_ascii(root)[:40]}.",
-                                            suffix=f".part{_ascii(ext)[:12]}")
-            _PENDING.add(self)        # at once: a Ctrl-C from here on removes it
+            # would write another file, and leave it behind. A Ctrl-C between the file's making
+            # and its listing (a KeyboardInterrupt as mkstemp returns) left it behind: held
+            # back until it is listed, from where a Ctrl-C removes it (seen once in a CI run)
+            with held():
+                fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=f".{_ascii(root)[:40]}.",
+                                                suffix=f".part{_ascii(ext)[:12]}")
+                _PENDING.add(self)
             os.close(fd)
         except OSError as e:
             raise OutputError(self.failed(e)) from None
@@ -289,9 +294,10 @@ def output_problem(path: str, what: str) -> str | None:
     folder = os.path.dirname(os.path.abspath(path))
     try:
         os.makedirs(folder, exist_ok=True)
-        fd, probe = tempfile.mkstemp(dir=folder, prefix=".probe.")  # the very folder, written
-        os.close(fd)
-        os.remove(probe)
+        with held():                # (a Ctrl-C between the two would leave the probe behind)
+            fd, probe = tempfile.mkstemp(dir=folder, prefix=".probe.")  # the very folder
+            os.close(fd)
+            os.remove(probe)
         name = os.path.basename(path).encode("utf-8", "surrogateescape")
         if len(name) > os.pathconf(folder, "PC_NAME_MAX"):      # renamed into place at the end
             raise OSError(36, "File name too long")

@@ -10,13 +10,12 @@ again gives the same text.
 
 from __future__ import annotations
 
-import os
 import re
-import tempfile
 from typing import Any
 
 import tomli_w
 
+from app.outputs import write_text
 from app.scenefile.schema import SCHEMA, Section
 
 HEADER = ("# A scene file of the physics lab: python -m app --scene THIS.toml "
@@ -75,17 +74,6 @@ def dumps(spec: dict[str, Any]) -> str:
 
 
 def save(spec: dict[str, Any], path: str) -> None:
-    """Write the file whole or not at all: a temporary file beside `path`, then os.replace."""
-    text = dumps(spec)
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".scene-", suffix=".toml", dir=folder)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    """Write the file whole or not at all (app/outputs.py: a temporary file beside `path`,
+    then renamed into place; OutputError, an OSError, if it cannot be written)."""
+    write_text(path, dumps(spec), what="scene file")
