@@ -17,6 +17,7 @@ import os
 import re
 
 from app.form import Form, FormField
+from app.outputs import OutputError
 from app.scenefile.load import SceneFileError, load_spec
 from app.scenefile.parts import area_of
 from app.scenefile.write import save
@@ -83,9 +84,10 @@ class SandboxForm:
             return
         try:
             save(self.drawing, path)
-        except OSError as e:
+        except OSError as e:        # (OutputError: one line, what and why, the old file kept)
             self.asking = (action, text)
-            self.say(f"not saved: {path}: {e.strerror or e}", error=True)
+            self.say(f"not saved: {e}" if isinstance(e, OutputError)
+                     else f"not saved: {path}: {e.strerror or e}", error=True)
             return
         self.asking, self.confirm, self.last_name = None, None, name
         self.say(f"saved to {os.path.abspath(path)}"

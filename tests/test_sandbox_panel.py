@@ -151,3 +151,21 @@ def test_a_setting_typed_before_the_window_is_resized_still_reaches_the_scene(tm
         assert scene.p["iterations"] == int(typed)
         assert view.panel.entries["iterations"].get_text() == typed
         assert not view.panel.is_typing()
+
+
+def test_a_save_that_cannot_be_written_says_so_in_one_line_and_leaves_nothing(tmp_path,
+                                                                             monkeypatch):
+    """Ctrl+S onto a name that is a folder: app/outputs' one line (what, why, the old one kept),
+    the name once, the prompt kept for another name, and no temporary file left."""
+    from scenes.sandbox import SandboxScene
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "ramp.toml").mkdir()
+    scene = SandboxScene({})
+    scene.answered("save", "ramp")                 # it is there: Enter again replaces it
+    scene.answered("save", "ramp")
+    assert scene.message_error and scene.message.startswith(
+        "not saved: could not write scene file 'ramp.toml': "), scene.message
+    assert scene.message.count("ramp.toml") == 1 and "\n" not in scene.message
+    assert scene.asking == ("save", "ramp")
+    assert [p.name for p in tmp_path.iterdir()] == ["ramp.toml"]
+    assert (tmp_path / "ramp.toml").is_dir()
