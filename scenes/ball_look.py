@@ -287,16 +287,15 @@ class Line:
     inside the box and finite, as the kept flags of a look armed say), and each centre's
     height over the arm's line, the product's last column, X sin a - Y cos a (the L at (x, y,
     a); the flag: at most x sin a - y cos a), as the real part of one complex product: the
-    centre X + iY times sin a + i cos a. More instructions than the product (callgrind: 44.7M
-    against 42.7M over the bench's 120 steps), less time: after OpenBLAS's product (its FMA
-    kernels; np.exp's AVX-512 loop too, not a multiply, a comparison or this complex product)
-    the code that follows runs slower on the lab's Xeon, ~2 us in pymunk's next 17 us step
-    (medians of 30 rounds, load 0.4). pivoting_l's lab step, this test against the product
-    every step, in one process taking turns (40 rounds of 120 steps, load 1.1): 0.959 and
-    0.972 x; with OPENBLAS_CORETYPE=Prescott (SSE kernels, no such slowdown) the product is
-    the faster one (1.03-1.04 x). The L's own
-    row has no line flag here (its centre is on its own arm's line: the flag flips with
-    rounding): its byte is left out. A row whose comparisons differ (a flag changed, or the
+    centre X + iY times sin a + i cos a. More instructions than the product (`bench pymunk
+    --full`, pivoting_l: 1.294 -> 1.328 x the bare loop's), less time: after OpenBLAS's product
+    (its FMA kernels; np.exp's AVX-512 loop too, not a multiply, a comparison or this complex
+    product) the code that follows runs slower on the lab's Xeon, ~2 us in pymunk's next 17 us
+    step (medians of 30 rounds, load 0.4). pivoting_l's lab step, this test against the
+    product every step, in one process taking turns (40 rounds of 120 steps, load 1.1): 0.959
+    and 0.972 x; with OPENBLAS_CORETYPE=Prescott (SSE kernels, no such slowdown) the product is
+    the faster one (1.03-1.04 x). The L's own row has no line flag here (its centre is on its
+    own arm's line: the flag flips with rounding): its byte is left out. A row whose comparisons differ (a flag changed, or the
     rounding of the two ways differs for a centre within ~4e-13 px of the line) goes on to the
     product, which says; the other way round (this rounding gives the kept flag, the product's
     would not) the flags stay: that near the line the flag is a coin flip of rounding either
