@@ -295,12 +295,13 @@ class Line:
     product every step, in one process taking turns (40 rounds of 120 steps, load 1.1): 0.959
     and 0.972 x; with OPENBLAS_CORETYPE=Prescott (SSE kernels, no such slowdown) the product is
     the faster one (1.03-1.04 x). The L's own row has no line flag here (its centre is on its
-    own arm's line: the flag flips with rounding): its byte is left out. A row whose comparisons differ (a flag changed, or the
-    rounding of the two ways differs for a centre within ~4e-13 px of the line) goes on to the
-    product, which says; the other way round (this rounding gives the kept flag, the product's
-    would not) the flags stay: that near the line the flag is a coin flip of rounding either
-    way, as the product's own is from pose to pose (and with OpenBLAS's kernels for another
-    CPU: OPENBLAS_CORETYPE=Prescott's flags differ from the FMA kernels' there)."""
+    own arm's line: the flag flips with rounding): its byte is left out. A row whose
+    comparisons differ (a flag changed, or the rounding of the two ways differs for a centre
+    within ~4e-13 px of the line) goes on to the product, which says; the other way round (this
+    rounding gives the kept flag, the product's would not) the flags stay: that near the line
+    the flag is a coin flip of rounding either way, as the product's own is from pose to pose
+    (and with OpenBLAS's kernels for another CPU: OPENBLAS_CORETYPE=Prescott's flags differ
+    from the FMA kernels' there)."""
 
     __slots__ = ("bounds", "inside", "box", "L_row", "z", "height", "below", "head", "tail",
                  "rows", "centres")
