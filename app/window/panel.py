@@ -321,7 +321,7 @@ class ParamPanel:
         for name, b in self.toggles.items():
             on = bool(self._current(name))
             if self._toggle_state.get(name) != on:
-                text, look = self._toggle_look(name)
+                text, look = self._toggle_look(name, on)
                 b.set_text(text)
                 b.change_object_id(look)
         paused = self.host.paused
@@ -333,9 +333,9 @@ class ParamPanel:
             self.arrows_button.set_text(want)
             self.arrows_button.change_object_id(look)
 
-    def _toggle_look(self, name: str) -> tuple[str, str]:
-        """A toggle's text and theme id, its value noted as shown (it is made with them)."""
-        on = bool(self._current(name))
+    def _toggle_look(self, name: str, on: bool | None = None) -> tuple[str, str]:
+        """A toggle's text and theme id, its value (read if not given) noted as shown."""
+        on = bool(self._current(name)) if on is None else on
         self._toggle_state[name] = on
         text = (f"{name}: {'ON' if on else 'OFF'}" if self.host.scene.effect(name)
                 else ("ON" if on else "OFF"))
