@@ -1,27 +1,27 @@
 """falling_balls' look at its balls after a step (FallingBallsScene.step), its usual case written
 out: the L static, the same bodies awake as after the last look, every ball's five flags
 (ball_checks.py) as they were; look_moving does the same for pivoting_l's moving L. What they
-compute is what BallChecks.check_balls and _usual_check compute then, with the same NumPy calls
-on the same arrays: the read, the ids' bytes against the kept key, one product, one comparison,
-the flags' bytes against the last ones. They leave out the checks those make on every step to
-find which case this is (who is awake and where the L is, the kept arrays' size and pose: ~10k
-instructions a step, against the usual look's ~19k besides the read; callgrind, 37 balls):
-those are made once, when the usual case starts (`arm`), and kept in scene._quick, which is
-good while scene._awake and scene._fast are the very objects it was made with (anything that
-changes who is awake, a ball added or removed, a restore, a look the general way, makes new
-ones). With the L static at angle 0 (falling_balls), look does not even make the product while
-the flags stay: one comparison of the rows with bounds (bounds_for) says whether they did, exactly
-(the flags are comparisons of x and y then). Not for its cost alone (about one product's): right
-after OpenBLAS's product (its FMA kernels) pymunk's next step took ~1.5 us longer (falling_balls'
-space.step, 37 balls, medians of 20 rounds: 18.6-18.7 us alone, 20.3-20.6 with a product of (37,
-6) by (6, 5) between steps, 18.5-19.1 with the comparison; load 1.1), which instructions do not
-show. Flags that changed go on to _usual_check's end (_flags_seen, with the flags made here);
-anything else to check_balls, which finds the read in scene._rows. look_moving does not make
-the product either while the flags stay: Line compares the rows with the box's bounds and each
-centre's height over the arm's line, as one complex product (the L's line moves, so it is no
-bound). tests/test_falling_balls.py compares them with check_balls step by step, and Line with
-the flags over random poses and rows; tests/test_pymunk_checks.py the counts and the state with
-the exact tests, ball by ball.
+compute is what BallChecks.check_balls and _usual_check compute then, on the same arrays: the
+read, the ids' bytes against the kept key, one product and one comparison (or, while the flags
+stay, comparisons alone: below), the flags' bytes against the last ones. They leave out the
+checks those make on every step to find which case this is (who is awake and where the L is, the
+kept arrays' size and pose: ~10k instructions a step, against the usual look's ~19k besides the
+read; callgrind, 37 balls): those are made once, when the usual case starts (`arm`), and kept in
+scene._quick, which is good while scene._awake and scene._fast are the very objects it was made
+with (anything that changes who is awake, a ball added or removed, a restore, a look the general
+way, makes new ones). With the L static at angle 0 (falling_balls), look does not even make the
+product while the flags stay: one comparison of the rows with bounds (bounds_for) says whether
+they did, exactly (the flags are comparisons of x and y then). Not for its cost alone (about one
+product's): right after OpenBLAS's product (its FMA kernels) pymunk's next step took ~1.5 us
+longer (falling_balls' space.step, 37 balls, medians of 20 rounds: 18.6-18.7 us alone, 20.3-20.6
+with a product of (37, 6) by (6, 5) between steps, 18.5-19.1 with the comparison; load 1.1),
+which instructions do not show. Flags that changed go on to _usual_check's end (_flags_seen,
+with the flags made here); anything else to check_balls, which finds the read in scene._rows.
+look_moving does not make the product either while the flags stay and the L is in the box: Line
+compares the rows with the box's bounds and each centre's height over the arm's line, as one
+complex product (the L's line moves, so it is no bound). tests/test_falling_balls.py compares
+them with check_balls step by step, and Line with the flags over random poses and rows;
+tests/test_pymunk_checks.py the counts and the state with the exact tests, ball by ball.
 """
 
 from __future__ import annotations

@@ -69,9 +69,9 @@ def _fsync_checks_the_fd_only(fd):
 
 @pytest.fixture(autouse=True)
 def no_disk_flush_but_in_the_outputs_tests(request, monkeypatch):
-    """Every file the lab writes is flushed to the disk before its rename (app/outputs.py,
-    app/scenefile/write.py: os.fsync), ~4 ms each on this machine's disk when quiet and longer
-    when other work writes: ~1100 of them in a suite, a worker waiting on the disk ~4.5 s of
+    """Every file the lab writes is flushed to the disk before its rename (app/outputs.py:
+    os.fsync; scene files go through it too), ~4 ms each on this machine's disk when quiet and
+    longer when other work writes: ~1100 of them in a suite, a worker waiting on the disk ~4.5 s of
     wall time (cProfile, 2026-11-27). No test can see whether the data reached the platters, so
     outside tests/test_outputs.py (the tests of the writes themselves, which keep the real
     fsync) the flush only checks its descriptor; the temporary file, its rename and every
