@@ -61,6 +61,10 @@ def _nan_fails_box() -> bool:
 
 
 _NAN_FAILS = _nan_fails_box()
+# arrays kept by the number of awake rows (and pose): as many sizes as this, then made afresh.
+# pivoting_l's awake rows take more than 16 sizes in a minute (16 kept: 160 new arrays in 100
+# s, ~0.35 us a step); a size's arrays are a few kB
+SIZES_KEPT = 64
 
 
 def rows_finite(b: bytes, L_row: int | None) -> bool:
@@ -179,15 +183,16 @@ class BallChecks:
         return L1
 
     def _awake_views(self, data: np.ndarray, awake: Awake) -> tuple:
-        """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data) for a read's
+        """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data, and with the L
+        awake the rows' centres x + iy as complex numbers (ball_look.Line) or None) for a read's
         rows, kept by the rows' id (the reader's two buffers give two; a slice costs ~1.7k
         instructions, as much as a tenth of the usual check): made again when who is awake
         changed (data kept too, so an id is not a new array's)."""
         if len(self._views) >= 2:
             self._views.clear()
-        L_row = awake.L_row
-        views = (awake, data[:len(awake.ids)], None if L_row is None else data[L_row, :3],
-                 data)
+        L_row, n = awake.L_row, len(awake.ids)
+        views = (awake, data[:n], None if L_row is None else data[L_row, :3], data,
+                 None if L_row is None else data[:n, :2].view(complex)[:, 0])
         self._views[id(data)] = views
         return views
 
@@ -434,7 +439,7 @@ class BallChecks:
             sizes = self._flag_sizes          # instructions a new one)
             kept = sizes.get(n)
             if kept is None:
-                if len(sizes) >= 16:
+                if len(sizes) >= SIZES_KEPT:
                     sizes.clear()
                 full = np.empty((n, 5))
                 full[:] = limits

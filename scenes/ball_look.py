@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from scenes.ball_checks import _NAN_FAILS, BallChecks, rows_finite
+from scenes.ball_checks import _NAN_FAILS, SIZES_KEPT, BallChecks, rows_finite
 from scenes.l_frame import cos_sin
 
 
@@ -89,7 +89,10 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                 if kept_sig is None:               # (armed since the last look)
                     kept_sig = q.sig = compared_of(q.fast[1])
                 if sig == kept_sig:                # the same flags as after the last look
-                    _kept(scene, reader, q.awake, now, _NAN_FAILS)
+                    scene._prev = (q.awake, now)                # (_kept's, written out)
+                    reader.keep = (reader.cur, scene._own_prev)
+                    if _NAN_FAILS:
+                        scene.finite_read = reader.reads
                     return L0
             kept = q.kept
             flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
@@ -166,7 +169,7 @@ def bounds_for(scene, n: int) -> tuple | None:
     sizes = scene._bound_sizes
     made = sizes.get(key, False)
     if made is False:
-        if len(sizes) >= 16:
+        if len(sizes) >= SIZES_KEPT:
             sizes.clear()
         M, limits = now[1], now[2]
         if not (M[0, 4] == 0.0 and M[1, 4] == -1.0):      # (M's rows 2-5 are 0)
@@ -237,8 +240,10 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
             now = views[1]
             L1 = tuple(views[2].tolist())
             line = q.line
-            if line is not None and line.same(now, L1):
-                _kept(scene, reader, q.awake, now, True)        # (the bounds: every row finite)
+            if line is not None and line.same(now, L1, views[4]):
+                scene._prev = (q.awake, now)                    # (_kept's, written out; the
+                reader.keep = (reader.cur, scene._own_prev)     # bounds: every row finite)
+                scene.finite_read = reader.reads
                 fast = q.fast
                 scene._fast = q.fast = (L1, fast[1], fast[2])
                 return L1
@@ -303,8 +308,7 @@ class Line:
     (and with OpenBLAS's kernels for another CPU: OPENBLAS_CORETYPE=Prescott's flags differ
     from the FMA kernels' there)."""
 
-    __slots__ = ("bounds", "inside", "box", "L_row", "z", "height", "below", "head", "tail",
-                 "rows", "centres")
+    __slots__ = ("bounds", "inside", "box", "L_row", "z", "height", "below", "head", "tail")
 
     def __init__(self, limits: np.ndarray, n: int, L_row: int):
         self.bounds = np.empty((2, n, 6))
@@ -315,24 +319,23 @@ class Line:
         self.z, self.below = np.empty(n, complex), np.empty(n, bool)
         self.height = self.z.real           # (a view, made once)
         self.head = self.tail = b""         # the kept line flags' bytes before the L's row, after
-        # the rows of the last two reads (the reader's two buffers: the same views while the
-        # bodies are, ball_checks._awake_views), each with its centres x + iy (a view)
-        self.rows, self.centres = [None, None], [None, None]
 
-    def same(self, now: np.ndarray, pose: tuple[float, float, float]) -> bool:
-        """Whether the rows `now` (n, 6) have the kept flags with the L at pose."""
-        rows = self.rows
-        k = 0 if now is rows[0] else 1
-        if now is not rows[k]:
-            rows[1], self.centres[1] = rows[0], self.centres[0]
-            rows[0], k = now, 0
-            self.centres[0] = now[:, :2].view(complex)[:, 0] if now.flags.c_contiguous else None
-        centres = self.centres[k]
-        if centres is None or np.less_equal(now, self.bounds, out=self.inside).tobytes() \
-                != self.box:
+    def same(self, now: np.ndarray, pose: tuple[float, float, float],
+             centres: np.ndarray | None = None) -> bool:
+        """Whether the rows `now` (n, 6, C-contiguous) have the kept flags with the L at pose
+        (its row of now); centres: now's centres x + iy as complex numbers, a view of now
+        (ball_checks._awake_views keeps one a read), made here if not given."""
+        if np.less_equal(now, self.bounds, out=self.inside).tobytes() != self.box:
             return False
+        if centres is None:
+            if not now.flags.c_contiguous:
+                return False
+            centres = now[:, :2].view(complex)[:, 0]
         x, y, a = pose
-        c, s = cos_sin(a)
+        try:                  # (the L's row passed the box test: its angle is finite)
+            c, s = math.cos(a), math.sin(a)
+        except ValueError:
+            return False
         np.multiply(centres, complex(s, c), out=self.z)
         b = np.less_equal(self.height, x * s - y * c, out=self.below).tobytes()
         r = self.L_row
@@ -341,16 +344,18 @@ class Line:
 
 def line_for(scene, n: int, L_row: int, b: bytes) -> Line | None:
     """The Line for n awake rows with the L's at L_row, armed with the flags' bytes b (5 a
-    row); kept by (n, L_row). None if the L's box flags do not hold (then the product)."""
+    row); kept by n (its arrays are the same whichever row is the L's: that row, and the bytes
+    before and after it, are set here). None if the L's box flags do not hold (then the
+    product)."""
     if b[5 * L_row:5 * L_row + 4] != b"\1\1\1\1":
         return None
     sizes = scene._bound_sizes
-    key = ("line", n, L_row)
+    key = ("line", n)
     line = sizes.get(key)
     if line is None:
-        if len(sizes) >= 16:
+        if len(sizes) >= SIZES_KEPT:
             sizes.clear()
         line = sizes[key] = Line(scene._flag_now[2], n, L_row)
     sig = b[4::5]
-    line.head, line.tail = sig[:L_row], sig[L_row + 1:]
+    line.L_row, line.head, line.tail = L_row, sig[:L_row], sig[L_row + 1:]
     return line

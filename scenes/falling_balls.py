@@ -75,8 +75,6 @@ BALL_PARAMS: tuple[Param, ...] = (
 )
 
 
-
-
 class FallingBallsScene(BallChecks, BallTables, PymunkScene):
     """Falling balls: balls drop onto a static L, roll off and are removed when they leave the
     world. Asleep, a settled pile costs about pymunk's own step; `tunneled` counts balls that
@@ -98,6 +96,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
     effects = PYMUNK_EFFECTS + (
         Effect("sleeping", True, "resting groups of bodies fall asleep (not simulated)"),)
     world_keys = ("space", "balls", "L_shapes", "L_body", "walls", "counts", "_spawn_due")
+    _step_plan = _moving_plan = None        # (advance's usual step: step_plan; pivoting_l's)
     color_key = ((D.BALL, "awake (simulated)"),
                  (D.dim(D.BALL), "asleep (skipped by the solver)"))
     tries = (
@@ -198,6 +197,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         self.space.sleep_time_threshold = SLEEP_TIME if on else math.inf
         self.space.idle_speed_threshold = IDLE_SPEED
         self._sleep_h = None
+        self._step_plan = self._moving_plan = None
         if not on:
             for body in self.space.bodies:
                 if body.body_type == pymunk.Body.DYNAMIC and body.is_sleeping:
@@ -296,13 +296,15 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         # read after which only balls came or went, every body finite still, in finite_kept)
         self.finite_kept = -1
         self._L_known = None      # the L's pose is read again before the next step
-        self._rest_plan = None    # (advance: what a step at rest does, made again)
+        self._rest_plan = None    # (advance: what a step at rest does, made again;
+        self._step_plan = self._moving_plan = None      # and a usual step: step_plan)
 
     def advance(self) -> None:
         """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
         engine's steps: nothing moves, nothing to read or test (step's first case, for every
         substep at once; what it takes is looked up once per rest: anything that could change
-        it wakes the scene)."""
+        it wakes the scene). A usual step (one substep, awake) is written out too (step_plan);
+        tests/test_pymunk_checks.py compares both with the general way, step by step."""
         if self.resting:
             plan = self._rest_plan
             if plan is None:
@@ -318,21 +320,33 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
                 if after:
                     self.after_step()
                 return
-        # Straight to Scene.advance (the substeps calling self.step): PymunkScene.advance would
-        # only find that this scene has a step of its own and go there, two super() calls later
-        # (~0.5 us of a ~40 us step)
+        else:
+            plan = self._step_plan
+            if plan is None:
+                plan = self._step_plan = self.step_plan()
+            if plan and self._L_known is not None:
+                # the usual step written out: step()'s last case, the tests it makes first
+                # made once, in the plan (~9 of the lab's ~95 lines a step, falling_balls)
+                dt, spawning, after = plan
+                L0 = self._L_known
+                self.space.step(dt)
+                self._rows = None
+                self._L_after = self._L_known = look(self, L0)
+                if spawning:
+                    self._spawn_due -= dt
+                    if self._spawn_due <= 0:
+                        self.spawn(0.0)
+                self.time += dt
+                self.steps += 1
+                if after:
+                    self.after_step()
+                return
+        # The general way: Scene.advance's substeps written out (PymunkScene.advance would go
+        # there, two super() calls later). The balls are looked at once, after the last substep
+        # (the tutorial looks once a frame): a ball that tunneled is counted, and one that left
+        # removed, when its centre is past the arm or outside the world at the step's end; the
+        # substeps before only step the engine, the spawner's clock and pivoting_l's joints
         n = self.p["substeps"]
-        if n == 1:              # (Scene.advance's loop of one, written out: ~2k instructions)
-            dt = self.dt
-            self.step(dt)
-            self.time += dt
-            self.steps += 1
-            self.after_step()
-            return
-        # Several substeps: the balls are looked at once, after the last (the tutorial looks
-        # once a frame): a ball that tunneled is counted, and one that left removed, when its
-        # centre is past the arm or outside the world at the step's end; the substeps before
-        # only step the engine, the spawner's clock and pivoting_l's joint records (step)
         dt = self.dt
         h = dt / n
         self._look = False
@@ -348,6 +362,20 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
 
     # False during the substeps before a step's last (advance): step() does not look at the balls
     _look = True
+
+    def step_plan(self) -> tuple | None:
+        """(dt, spawning, whether after_step does anything) for advance's usual step written out
+        (one substep: step()'s last case, the spawner's clock); () for the general way (several
+        substeps, a subclass's own step or spawner); None while the general way must set the
+        sleep threshold first (asked again next step). Kept until wake() (settings, restore)."""
+        p = self.p
+        if p["substeps"] != 1 or type(self).step is not FallingBallsScene.step \
+                or type(self).spawn is not FallingBallsScene.spawn:
+            return ()
+        dt = self.dt
+        if dt != self._sleep_h and "sleeping" in self.on:
+            return None
+        return dt, p["spawn_rate"] > 0, type(self).after_step is not Scene.after_step
 
     def rest_plan(self) -> tuple:
         """(substeps, h, dt, whether after_step does anything) for a step at rest,

@@ -52,7 +52,7 @@ import pymunk
 
 from app.draw import pymunk_draw as D
 from app.pymunk_scene import PYMUNK_PARAMS
-from app.scene import Param, Try, Unit, common
+from app.scene import Param, Scene, Try, Unit, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 from scenes.ball_look import look_moving
@@ -165,38 +165,52 @@ class PivotingLScene(FallingBallsScene):
         look at the balls after the last, the spawner's clock. Anything else (a world at rest,
         woken since the last step, the sleep threshold to set for a new substep (sleeping on:
         with it off there is none), one substep, a subclass's own step or spawner) goes the
-        general way, which does the same (a test compares)."""
-        n = self.p["substeps"]
-        dt = self.dt
-        h = dt / n
-        if n == 1 or self.resting or self._L_known is None \
-                or (h != self._sleep_h and "sleeping" in self.on) \
-                or type(self).step is not PivotingLScene.step \
-                or type(self).spawn is not FallingBallsScene.spawn:
+        general way, which does the same (a test compares). What it tests first is made once,
+        in moving_plan, and kept until wake()."""
+        plan = self._moving_plan
+        if plan is None:
+            plan = self._moving_plan = self.moving_plan()
+        if not plan or self.resting or self._L_known is None:
             super().advance()
             return
-        space_step, record, spawn = self.space.step, self.record_joints, self.spawn
-        rate = self.p["spawn_rate"]     # (spawn(h)'s clock written out: spawn(0.0) when due)
+        n, h, dt, spawning, after = plan
+        space_step, record = self.space.step, self.record_joints
         for _ in range(n - 1):          # (FallingBallsScene.step without its look)
             space_step(h)
             self._rows = None           # (the rows read before this step are old now)
             record(self.L_pose())
-            if rate > 0:
+            if spawning:                # (spawn(h)'s clock written out: spawn(0.0) when due)
                 self._spawn_due -= h
                 if self._spawn_due <= 0:
-                    spawn(0.0)
+                    self.spawn(0.0)
         L0 = self._L_known
         space_step(h)
         self._rows = None
         pose = self._L_after = self._L_known = look_moving(self, L0)   # (check_balls)
         record(pose)
-        if rate > 0:
+        if spawning:
             self._spawn_due -= h
             if self._spawn_due <= 0:
-                spawn(0.0)
+                self.spawn(0.0)
         self.time += dt
         self.steps += 1
-        self.after_step()
+        if after:
+            self.after_step()
+
+    def moving_plan(self) -> tuple | None:
+        """(substeps, h, dt, spawning, whether after_step does anything) for advance's written-out
+        step; () if steps go the general way (one substep, a subclass's own step or spawner);
+        None while the general way must first set the sleep threshold (asked again next step)."""
+        p = self.p
+        n = p["substeps"]
+        if n == 1 or type(self).step is not PivotingLScene.step \
+                or type(self).spawn is not FallingBallsScene.spawn:
+            return ()
+        dt = self.dt
+        h = dt / n
+        if h != self._sleep_h and "sleeping" in self.on:
+            return None
+        return n, h, dt, p["spawn_rate"] > 0, type(self).after_step is not Scene.after_step
 
     def step(self, h: float) -> None:
         super().step(h)
@@ -212,19 +226,20 @@ class PivotingLScene(FallingBallsScene):
             d, pin = self.joint_distances(pose)
         else:            # joint_distances' sums written out (a call and a loop: ~1 us a substep)
             x, y, a = pose
-            c, s = cos_sin(a)
+            try:
+                c, s = math.cos(a), math.sin(a)
+            except ValueError:          # (an infinite angle: NaN, as cos_sin)
+                c = s = math.nan
             vx, vy, fx, fy, wx, wy, gx, gy = fixed
             dx, dy = c * vx - s * vy + x - fx, s * vx + c * vy + y - fy
             d = math.sqrt(dx * dx + dy * dy)
             dx, dy = c * wx - s * wy + x - gx, s * wx + c * wy + y - gy
             pin = math.sqrt(dx * dx + dy * dy)
         r = self.record
-        if d < r["slide_seen_min"]:
-            r["slide_seen_min"] = d
-        if d > r["slide_seen_max"]:
-            r["slide_seen_max"] = d
-        if pin > r["pin_error"]:
-            r["pin_error"] = pin
+        if d < r["slide_seen_min"] or d > r["slide_seen_max"] or pin > r["pin_error"]:
+            r["slide_seen_min"] = min(r["slide_seen_min"], d)
+            r["slide_seen_max"] = max(r["slide_seen_max"], d)
+            r["pin_error"] = max(r["pin_error"], pin)
 
     def joint_distances(self, pose: tuple[float, float, float]) -> tuple[float, float]:
         """(slide_distance(), pin_error()) with the L at pose, computed without a call into

@@ -436,8 +436,8 @@ def test_the_moving_look_leaves_the_Ls_box_flags_of_its_step_after_the_L_came_ba
     from scenes import ball_look
     said = []
     same = ball_look.Line.same
-    monkeypatch.setattr(ball_look.Line, "same", lambda line, now, pose: said.append(
-        same(line, now, pose)) or said[-1])
+    monkeypatch.setattr(ball_look.Line, "same", lambda line, now, pose, centres=None:
+                        said.append(same(line, now, pose, centres)) or said[-1])
 
     class General(PivotingLScene):
         def check_balls(self, L0):           # (a check_balls of its own: look defers to it)

@@ -211,6 +211,41 @@ def test_with_substeps_each_steps_counts_are_those_of_the_balls_at_its_start_and
 
 
 @pytest.mark.parametrize("sleeping", [True, False])
+def test_falling_balls_written_out_step_does_what_the_general_way_does(sleeping):
+    # FallingBallsScene.advance writes its usual step out (step_plan, made once and kept until
+    # wake); a subclass with a step of its own goes the general way (step()): the same balls,
+    # counts, kept centres and state, step after step, through a change of g and of hertz
+    # (each makes the plan again) and a ball dropped with the mouse (a wake)
+    from app.scene import InputEvent
+
+    class General(FallingBallsScene):
+        def step(self, h):
+            super().step(h)
+    settings = {"spawn_rate": 30, "sleeping": sleeping}
+    written, general = FallingBallsScene(settings), General(settings)
+    general_steps = []
+    step = written.step
+    written.step = lambda h: general_steps.append(h) or step(h)   # (the general way's steps)
+    for i in range(400):
+        for scene in (written, general):
+            if i == 150:
+                scene.set("g", 1500.0)
+            if i == 250:
+                scene.set("hertz", 90.0)
+            if i == 300:
+                scene.handle_event(InputEvent("mouse_down", pos=(600.0, 100.0), button=1))
+                scene.handle_event(InputEvent("mouse_up", pos=(600.0, 100.0), button=1))
+        written.advance()
+        general.advance()
+        assert written.counts == general.counts and written.time == general.time
+        written.flush_xy()
+        general.flush_xy()
+        assert np.array_equal(written._xy[:written._used], general._xy[:general._used])
+    assert written.state_hash() == general.state_hash() and written.counts["removed"] > 10
+    assert 0 < len(general_steps) < 20       # (the written-out way took most steps)
+
+
+@pytest.mark.parametrize("sleeping", [True, False])
 def test_pivoting_ls_written_out_step_does_what_the_general_way_does(sleeping, monkeypatch):
     # PivotingLScene.advance writes its usual step out; a subclass with a step of its own goes
     # the general way (FallingBallsScene.advance, step by step): the same balls, counts, joint
