@@ -56,7 +56,8 @@ from app.scene import Param, Scene, Try, Unit, common
 from scenes.falling_balls import BALL_PARAMS, L_LIP, L_LONG, L_ORIGIN, L_RADIUS, S, \
     FallingBallsScene
 from scenes.ball_look import look_moving
-from scenes.l_frame import cos_sin
+from scenes.ball_checks import BallChecks
+from scenes.l_frame import body_pose, cos_sin
 
 SLIDE_ANCHOR = (-100 * S, 0.0)   # the slide joint's anchor on the L (the tutorial's (-100, 0))
 PIN_LOOSE = 5.0                  # px: a pin error beyond this is flagged (HUD, pin_let_go)
@@ -178,7 +179,7 @@ class PivotingLScene(FallingBallsScene):
         for _ in range(n - 1):          # (FallingBallsScene.step without its look)
             space_step(h)
             self._rows = None           # (the rows read before this step are old now)
-            record(self.L_pose())
+            record(body_pose(self.L_body))          # (L_pose's, the L not static: the plan)
             if spawning:                # (spawn(h)'s clock written out: spawn(0.0) when due)
                 self._spawn_due -= h
                 if self._spawn_due <= 0:
@@ -199,12 +200,14 @@ class PivotingLScene(FallingBallsScene):
 
     def moving_plan(self) -> tuple | None:
         """(substeps, h, dt, spawning, whether after_step does anything) for advance's written-out
-        step; () if steps go the general way (one substep, a subclass's own step or spawner);
-        None while the general way must first set the sleep threshold (asked again next step)."""
+        step; () if steps go the general way (one substep, a static L, a subclass's own step,
+        spawner or L_pose); None while the general way must first set the sleep threshold
+        (asked again next step)."""
         p = self.p
         n = p["substeps"]
         if n == 1 or type(self).step is not PivotingLScene.step \
-                or type(self).spawn is not FallingBallsScene.spawn:
+                or type(self).spawn is not FallingBallsScene.spawn \
+                or type(self).L_pose is not BallChecks.L_pose or self._L_static_pose is not None:
             return ()
         dt = self.dt
         h = dt / n
