@@ -63,7 +63,8 @@ def _nan_fails_box() -> bool:
 _NAN_FAILS = _nan_fails_box()
 # arrays kept by the number of awake rows (and pose): as many sizes as this, then made afresh.
 # pivoting_l's awake rows take more than 16 sizes in a minute (16 kept: 160 new arrays in 100
-# s, ~0.35 us a step); a size's arrays are a few kB
+# s, ~0.35 us a step); a size's arrays are ~250 bytes a row (~10 kB at pivoting_l's ~40 balls;
+# a 5000-ball pile with its spawner on had 74 MB of them at most)
 SIZES_KEPT = 64
 
 
