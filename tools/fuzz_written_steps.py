@@ -197,6 +197,11 @@ def run(scene_name: str, seed: int, steps: int, trace_file: str | None) -> int:
                   f"{[(x, y) for n, x, y in zip(names, a, b) if n in bad and n != 'xy']}")
             print("  settings", w.p, sorted(w.on))
             return 1
+        if "sleeping" not in w.on and (w.space.sleep_time_threshold != math.inf
+                                       or w.resting and w.balls):
+            print(f"SLEEPS seed={seed} step={i}: sleeping off, threshold "
+                  f"{w.space.sleep_time_threshold}, resting {w.resting}")
+            return 1
         h.update(repr(a).encode())
         if ew:
             h.update(ew.encode())
