@@ -61,10 +61,18 @@ def _nan_fails_box() -> bool:
 
 
 _NAN_FAILS = _nan_fails_box()
-# arrays kept by the number of awake rows (and pose): as many sizes as this, then made afresh.
-# In 6,000 steps of pivoting_l, 16 kept made 160 new flag arrays and 160 new Lines (one by size
-# and the L's row); 64 kept, a Line by size alone: 50 and 49. A size's arrays are a few kB
+# Arrays kept by the number of awake rows (and pose), up to SIZES_KEPT sizes, then made afresh
+# (in 6,000 steps of pivoting_l, 16 kept made 160 new flag arrays and 160 new Lines, one by
+# size and the L's row; 64 kept, a Line by size alone: 50 and 49). A size's arrays take ~250
+# bytes a row, so with many rows fewer are kept: ROWS_KEPT rows' worth, never fewer than 16 (as
+# before: a 5000-ball pile with its spawner on kept up to 74 MB with 64 sizes)
 SIZES_KEPT = 64
+ROWS_KEPT = 8192
+
+
+def sizes_full(sizes: dict, n: int) -> bool:
+    """Whether a table of arrays kept by size, about to take n rows more, is full (clear it)."""
+    return len(sizes) >= min(SIZES_KEPT, max(16, ROWS_KEPT // max(n, 1)))
 
 
 def rows_finite(b: bytes, L_row: int | None) -> bool:
@@ -439,7 +447,7 @@ class BallChecks:
             sizes = self._flag_sizes          # instructions a new one)
             kept = sizes.get(n)
             if kept is None:
-                if len(sizes) >= SIZES_KEPT:
+                if sizes_full(sizes, n):
                     sizes.clear()
                 full = np.empty((n, 5))
                 full[:] = limits

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from scenes.ball_checks import _NAN_FAILS, SIZES_KEPT, BallChecks, rows_finite
+from scenes.ball_checks import _NAN_FAILS, BallChecks, rows_finite, sizes_full
 from scenes.l_frame import cos_sin
 
 
@@ -169,7 +169,7 @@ def bounds_for(scene, n: int) -> tuple | None:
     sizes = scene._bound_sizes
     made = sizes.get(key, False)
     if made is False:
-        if len(sizes) >= SIZES_KEPT:
+        if sizes_full(sizes, n):
             sizes.clear()
         M, limits = now[1], now[2]
         if not (M[0, 4] == 0.0 and M[1, 4] == -1.0):      # (M's rows 2-5 are 0)
@@ -353,7 +353,7 @@ def line_for(scene, n: int, L_row: int, b: bytes) -> Line | None:
     key = ("line", n)
     line = sizes.get(key)
     if line is None:
-        if len(sizes) >= SIZES_KEPT:
+        if sizes_full(sizes, n):
             sizes.clear()
         line = sizes[key] = Line(scene._flag_now[2], n, L_row)
     sig = b[4::5]

@@ -137,7 +137,6 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         self.L_body, self.L_shapes = self.add_L(space)
         if self.p.get("container", False):
             self.add_container(space)
-        self.set_sleeping("sleeping" in self.on)
         self.restored()
 
     def add_L(self, space: pymunk.Space) -> tuple[pymunk.Body, list[pymunk.Segment]]:
@@ -163,8 +162,8 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
 
     def restored(self) -> None:
         """(Re)build the tables kept beside self.balls: a slot for each ball (its body id and last
-        known centre, ball_checks), and what is known of the L (its id; its pose, if static:
-        nothing moves it)."""
+        known centre, ball_checks), what is known of the L (its id; its pose, if static:
+        nothing moves it), and the sleep threshold the effect says."""
         self._flag_now = None       # (ball_checks: the flags' matrix and limits)
         self._quick = None          # (ball_look: the usual look's arrays and key, and
         self._quick_moving = None   # a moving L's)
@@ -173,7 +172,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         if self.L_body.body_type == pymunk.Body.STATIC:
             x, y = self.L_body.position
             self._L_static_pose = (x, y, self.L_body.angle)
-        self._sleep_h = None        # the substep the sleep threshold was set for
+        self.set_sleeping("sleeping" in self.on)  # (a restored space had its snapshot's)
         n = len(self.balls)
         self._slots = list(range(n))          # each ball's slot, in the order of self.balls
         self._slot_of = {shape.body.id: k for k, shape in enumerate(self.balls)}

@@ -121,6 +121,22 @@ def test_sleeping_off_sets_an_infinite_threshold():
     assert math.isinf(scene.space.sleep_time_threshold)
 
 
+def test_a_snapshot_made_with_sleeping_on_restored_with_it_off_lets_nothing_sleep():
+    # the space's copy holds the threshold of its time (0.5 s): a rollback or the timeline
+    # after sleeping was turned off brought it back, and the pile fell asleep with the effect off
+    scene = FallingBallsScene({"spawn_rate": 0, "container": True})
+    scene.add_balls(30)
+    for _ in range(10):
+        scene.advance()
+    snap = scene.snapshot()
+    scene.set("sleeping", False)
+    scene.restore(snap)
+    assert math.isinf(scene.space.sleep_time_threshold)
+    for _ in range(300):
+        scene.advance()
+    assert scene.metrics()["balls_asleep"] == 0 and not scene.resting
+
+
 def test_two_runs_hash_the_same():
     a, b = run(4.0, spawn_rate=10), run(4.0, spawn_rate=10)
     assert a.state_hash() == b.state_hash() and a.metrics() == b.metrics()

@@ -215,14 +215,19 @@ def test_falling_balls_written_out_step_does_what_the_general_way_does(sleeping)
     # FallingBallsScene.advance writes its usual step out (step_plan, made once and kept until
     # wake); a subclass with a step of its own goes the general way (step()): the same balls,
     # counts, kept centres and state, step after step, through a change of g and of hertz
-    # (each makes the plan again) and a ball dropped with the mouse (a wake)
+    # (each makes the plan again) and a ball dropped with the mouse (a wake); both with an
+    # after_step of their own (the plan's `after`), the state hashed after every step
     from app.scene import InputEvent
 
-    class General(FallingBallsScene):
+    class Written(FallingBallsScene):
+        def after_step(self):
+            self.seen = getattr(self, "seen", ()) + (len(self.balls),)
+
+    class General(Written):
         def step(self, h):
             super().step(h)
     settings = {"spawn_rate": 30, "sleeping": sleeping}
-    written, general = FallingBallsScene(settings), General(settings)
+    written, general = Written(settings), General(settings)
     general_steps = []
     step = written.step
     written.step = lambda h: general_steps.append(h) or step(h)   # (the general way's steps)
@@ -241,7 +246,8 @@ def test_falling_balls_written_out_step_does_what_the_general_way_does(sleeping)
         written.flush_xy()
         general.flush_xy()
         assert np.array_equal(written._xy[:written._used], general._xy[:general._used])
-    assert written.state_hash() == general.state_hash() and written.counts["removed"] > 10
+        assert written.state_hash() == general.state_hash() and written.seen == general.seen
+    assert written.counts["removed"] > 10 and len(written.seen) == 400
     assert 0 < len(general_steps) < 20       # (the written-out way took most steps)
 
 
