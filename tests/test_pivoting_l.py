@@ -135,6 +135,37 @@ def test_the_hud_says_why_the_slide_reads_past_its_max():
     assert scene.hud_lines()[0].endswith(f"(range 0..{top:g})")
 
 
+@pytest.mark.parametrize("substeps, pivot", [(2, "pin"), (3, "pivot"), (1, "pin")])
+def test_the_records_are_the_extremes_of_every_substeps_joint_lengths(substeps, pivot):
+    # after every space.step (every substep, the written-out step's too), the joints' lengths
+    # as pymunk gives them (Body.local_to_world): the records must be their smallest and
+    # largest, each from its own substep (the slide's and the pin's extremes come at
+    # different substeps), with balls landing, the L tipping and a drag on the way
+    scene = PivotingLScene({"substeps": substeps, "pivot": pivot, "spawn_rate": 10})
+    slides, pins = [scene.slide_distance()], [scene.pin_error()]
+    step = scene.space.step
+
+    def measured(h):
+        step(h)
+        slides.append(scene.slide_distance())
+        pins.append(scene.pin_error())
+    scene.space.step = measured
+    for i in range(600):
+        if i == 300:                          # (a drag: the L yanked, the pin opened)
+            scene.handle_event(InputEvent("mouse_down", pos=L_ORIGIN, button=1))
+        if 300 <= i < 330:
+            scene.handle_event(InputEvent("mouse_move", pos=(L_ORIGIN[0] + 3 * (i - 300),
+                                                             L_ORIGIN[1] + 2 * (i - 300))))
+        if i == 330:
+            scene.handle_event(InputEvent("mouse_up", pos=L_ORIGIN, button=1))
+        scene.advance()
+    r = scene.record
+    assert r["slide_seen_min"] == pytest.approx(min(slides), rel=1e-12, abs=1e-9)
+    assert r["slide_seen_max"] == pytest.approx(max(slides), rel=1e-12, abs=1e-9)
+    assert r["pin_error"] == pytest.approx(max(pins), rel=1e-12, abs=1e-9)
+    assert len(pins) == 600 * substeps + 1 and max(pins) > 0.1 and max(slides) > min(slides)
+
+
 @pytest.mark.parametrize("pivot", ["pin", "pivot"])
 def test_the_joint_lengths_each_substep_records_are_pymunks_own(pivot):
     # step() computes both joints' anchor distances from the L's pose (no call into pymunk);
