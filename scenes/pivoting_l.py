@@ -150,9 +150,10 @@ class PivotingLScene(FallingBallsScene):
     # ----- the joints, measured -------------------------------------------------------------
     @staticmethod
     def anchor_distance(joint: pymunk.Constraint) -> float:
-        """Distance between a joint's two anchors in the world, px."""
+        """Distance between a joint's two anchors in the world, px (hypot: Vec2d.length squares
+        with **, which raises OverflowError past ~1e154 px; a blown-up L is reported, not fatal)."""
         a, b = D.anchors(joint)
-        return (a - b).length
+        return math.hypot(a.x - b.x, a.y - b.y)
 
     def slide_distance(self) -> float:
         return self.anchor_distance(self.slide)

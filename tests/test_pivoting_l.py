@@ -135,6 +135,15 @@ def test_the_hud_says_why_the_slide_reads_past_its_max():
     assert scene.hud_lines()[0].endswith(f"(range 0..{top:g})")
 
 
+def test_an_L_thrown_far_but_finite_is_measured_not_a_crash():
+    # Vec2d.length squares with **, which raises OverflowError past ~1e154 px: the metrics and
+    # the HUD (read every frame) must say how far, not stop the lab
+    scene = PivotingLScene({})
+    scene.L_body.position = (1e200, 0.0)
+    assert scene.metrics()["slide_distance"] == pytest.approx(1e200, rel=1e-6)
+    assert scene.hud_lines()
+
+
 @pytest.mark.parametrize("substeps, pivot", [(2, "pin"), (3, "pivot"), (1, "pin")])
 def test_the_records_are_the_extremes_of_every_substeps_joint_lengths(substeps, pivot):
     # after every space.step (every substep, the written-out step's too), the joints' lengths
