@@ -282,8 +282,10 @@ class TrampolineScene(PymunkScene):
     def body_energy(self) -> tuple[float, float]:
         """The body's (kinetic, with its spin; potential in gravity)."""
         b = self.body
-        kinetic = 0.5 * b.mass * b.velocity.length_squared + \
-            0.5 * b.moment * b.angular_velocity ** 2
+        # (products, not Vec2d.length_squared and **, which raise OverflowError past ~1e154: a
+        # blown-up body's energy is inf, reported, not a crash)
+        (vx, vy), w = b.velocity, b.angular_velocity
+        kinetic = 0.5 * b.mass * (vx * vx + vy * vy) + 0.5 * b.moment * (w * w)
         return kinetic, b.mass * self.gravity() * (PIN_Y - b.position.y)
 
     def cloth_energy(self) -> tuple[float, float]:

@@ -136,12 +136,13 @@ def test_the_hud_says_why_the_slide_reads_past_its_max():
 
 
 def test_an_L_thrown_far_but_finite_is_measured_not_a_crash():
-    # Vec2d.length squares with **, which raises OverflowError past ~1e154 px: the metrics and
-    # the HUD (read every frame) must say how far, not stop the lab
+    # Vec2d.length squares with **, which raises OverflowError past ~1e154 px: the metrics, the
+    # HUD and the drawing (every frame) must say how far, not stop the lab
     scene = PivotingLScene({})
     scene.L_body.position = (1e200, 0.0)
     assert scene.metrics()["slide_distance"] == pytest.approx(1e200, rel=1e-6)
     assert scene.hud_lines()
+    scene.draw(pygame.Surface(scene.world_size), View())
 
 
 @pytest.mark.parametrize("substeps, pivot", [(2, "pin"), (3, "pivot"), (1, "pin")])

@@ -684,3 +684,18 @@ def test_a_bad_cloth_obstacle_or_coupling_gets_one_line(tmp_path, old, new, word
     with pytest.raises(SceneFileError) as e:
         load_spec(str(path))
     assert words in str(e.value) and "\n" not in str(e.value) and e.value.line is not None
+
+
+def test_a_body_or_joint_blown_far_but_finite_is_measured_not_a_crash():
+    # Vec2d.length squares with **, which raises OverflowError past ~1e154: a file's metrics
+    # (speed, joint distance and error, read every frame) must come out huge, not stop the lab
+    import pymunk
+    from app.scenefile.parts import body_measure, joint_measure
+    a, b = pymunk.Body(1, 1), pymunk.Body(1, 1)
+    a.position, b.position, a.velocity = (1e200, 0.0), (0.0, 0.0), (0.0, -1e200)
+    assert body_measure("speed", a) == 1e200
+    for joint in (pymunk.PinJoint(a, b), pymunk.SlideJoint(a, b, (0, 0), (0, 0), 0, 10),
+                  pymunk.PivotJoint(a, b, (0, 0), (0, 0)),
+                  pymunk.GrooveJoint(b, a, (0, 0), (10, 0), (0, 0))):
+        for kind in ("joint_distance", "joint_error"):
+            assert joint_measure(kind, joint) > 1e199

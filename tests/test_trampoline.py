@@ -244,3 +244,13 @@ def test_momentum_drifts_only_by_drag_and_the_float32_rounding(monkeypatch):
         exchanged += heavy.metrics()["coupling_impulse"]
     assert heavy.cloth.x.dtype == np.float64 and exchanged > 100
     assert np.abs(heavy.momentum() - p0).max() < 1e-8 * 150, heavy.momentum() - p0
+
+
+def test_a_body_spun_far_past_a_float_squares_range_has_inf_energy_not_a_crash():
+    # Vec2d.length_squared and ** raise OverflowError past ~1e154; the energy (the HUD's, every
+    # frame) must come out inf for a blown-up body, not stop the lab
+    scene = TrampolineScene({})
+    scene.body.angular_velocity = 1e200
+    assert math.isinf(scene.body_energy()[0])
+    scene.body.angular_velocity, scene.body.velocity = 0.0, (1e200, 0.0)
+    assert math.isinf(scene.body_energy()[0])

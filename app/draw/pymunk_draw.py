@@ -219,7 +219,7 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
     joint sits among the balls that land on the L (a plain green line between blue balls was
     lost among them)."""
     a, b = anchors(joint)
-    d = (a - b).length
+    d = math.hypot(a.x - b.x, a.y - b.y)     # (Vec2d.length raises OverflowError past 1e154)
     u = (a - b) / d if d > 1e-9 else pymunk.Vec2d(1, 0)
     lo, hi = b + u * joint.min, b + u * joint.max
     band = max(px(5), int(view.len(7)))

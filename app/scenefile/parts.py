@@ -12,11 +12,17 @@ import pymunk
 from app.draw.pymunk_draw import anchors
 
 
+def _norm(v: pymunk.Vec2d) -> float:
+    """|v| by math.hypot: Vec2d.length squares with **, which raises OverflowError past ~1e154
+    (a blown-up body's metric is then huge or inf, reported, not a crash)."""
+    return math.hypot(v.x, v.y)
+
+
 def joint_measure(kind: str, c: pymunk.Constraint) -> float:
     if kind == "joint_impulse":
         return float(c.impulse)
     a, b = anchors(c) if hasattr(c, "anchor_a") else (c.a.position, c.b.position)
-    d = float((a - b).length)
+    d = _norm(a - b)
     if kind == "joint_distance":
         return d
     if isinstance(c, pymunk.PinJoint):
@@ -30,7 +36,7 @@ def joint_measure(kind: str, c: pymunk.Constraint) -> float:
         p = c.b.local_to_world(c.anchor_b)
         u = gb - ga
         t = min(1.0, max(0.0, (p - ga).dot(u) / u.dot(u)))
-        return float((p - (ga + u * t)).length)
+        return _norm(p - (ga + u * t))
     return 0.0
 
 
@@ -42,7 +48,7 @@ def body_measure(kind: str, b: pymunk.Body) -> float:
     if kind == "angle":
         return math.degrees(b.angle)
     if kind == "speed":
-        return float(b.velocity.length)
+        return _norm(b.velocity)
     return math.degrees(b.angular_velocity)
 
 
