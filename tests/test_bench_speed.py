@@ -28,6 +28,12 @@ def test_the_pymunk_cost_table_compares_every_pymunk_scene_with_a_bare_loop(tmp_
     for scene in ("falling_balls", "newtons_cradle", "pivoting_l", "double_pendulum", "asleep"):
         assert scene in names
     assert all(s["ratio"] == s["lab_ms"] / s["bare_ms"] > 0 for s in result["scenes"])
+    # each round's own lab/bare, its pair measured side by side: as many as rounds, all positive,
+    # and the 'rounds' column's middle half of them
+    for s in result["scenes"]:
+        each = s["ratio_rounds"]
+        assert len(each) == s["rounds"] and min(each) > 0
+        assert min(each) <= s["ratio_q1"] <= s["ratio_q3"] <= max(each)
 
 
 def test_the_cloth_is_compared_with_c_when_a_compiler_is_there(tmp_path):
