@@ -170,7 +170,7 @@ rows with int64 halves, or with the owner's position in them (16 bytes: no gathe
 Nor a sweep's four bincounts as one sparse product B^T W (scipy's CSC array, made once a substep:
 column k holds +1 at j_k and -1 at i_k; W the pairs' x and y corrections): alone 78 us against
 136 (27,233 pairs), but the bench's crumpled pass took 1.00-1.04 ms against 0.89-0.95 (three
-whole bench runs each, taking turns, load 0.7-1.0).
+whole bench runs each, taking turns, load 0.5-1.0).
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
