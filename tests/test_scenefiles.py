@@ -699,3 +699,15 @@ def test_a_body_or_joint_blown_far_but_finite_is_measured_not_a_crash():
                   pymunk.GrooveJoint(b, a, (0, 0), (10, 0), (0, 0))):
         for kind in ("joint_distance", "joint_error"):
             assert joint_measure(kind, joint) > 1e199
+
+
+def test_a_body_spun_far_past_a_float_squares_range_has_inf_energy_not_a_crash():
+    # float ** 2 raises OverflowError past ~1e154: a file's energy metrics (energy_drift, read
+    # every frame) must come out inf for a body spun that fast, not stop the lab
+    import math
+    scene = get_scene("scenes/files/double_pendulum.toml")({})
+    body = next(b for b in scene.bodies("*"))
+    body.angular_velocity = 1e200
+    m = next(m for m in scene.data["metric"] if m["kind"] == "energy_drift")
+    assert math.isinf(scene.energy(scene.bodies(m["target"]), m))
+    assert scene.metrics()

@@ -316,8 +316,8 @@ class FileScene(PymunkScene):
         total = 0.0
         for b in bodies:
             if part in ("energy", "kinetic_energy"):
-                v = b.velocity
-                spin = 0.5 * b.moment * b.angular_velocity ** 2 if math.isfinite(b.moment) else 0
+                v, w = b.velocity, b.angular_velocity     # (w * w: ** raises OverflowError
+                spin = 0.5 * b.moment * (w * w) if math.isfinite(b.moment) else 0   # past 1e154)
                 total += 0.5 * b.mass * (v.x * v.x + v.y * v.y) + spin
             if part in ("energy", "potential_energy"):
                 total += b.mass * g * (zero - b.local_to_world(b.center_of_gravity).y)
