@@ -64,8 +64,10 @@ _NAN_FAILS = _nan_fails_box()
 # Arrays kept by the number of awake rows (and pose), up to SIZES_KEPT sizes, then made afresh
 # (in 6,000 steps of pivoting_l, 16 kept made 160 new flag arrays and 160 new Lines, one by
 # size and the L's row; 64 kept, a Line by size alone: 50 and 49). A size's arrays take ~250
-# bytes a row, so with many rows fewer are kept: ROWS_KEPT rows' worth, never fewer than 16 (as
-# before: a 5000-ball pile with its spawner on kept up to 74 MB with 64 sizes)
+# bytes a row, so fewer are kept when the size coming in is large: ROWS_KEPT // n sizes, never
+# fewer than 16 (so ROWS_KEPT rows' worth only below 512 rows: 16 sizes of 5000 rows are ~20 MB
+# at that rate; 64 had kept up to 74 MB for a 5000-ball pile with its spawner on). Counted as a
+# size comes in: the sizes kept before it may be larger.
 SIZES_KEPT = 64
 ROWS_KEPT = 8192
 
