@@ -166,3 +166,17 @@ def test_the_instruction_counts_of_a_case_are_exact_and_the_labs_larger(tmp_path
     (_, lab, bare), = pymunk_ir.per_step([label], steps=20)
     assert lab > bare > 0
     assert pymunk_ir.count(label, "bare", 20) == pymunk_ir.count(label, "bare", 20)  # exact
+
+
+def test_the_at_the_line_sentence_says_a_middle_half_only_of_enough_rounds():
+    # statistics.quantiles' 'exclusive' quartiles of three values are the smallest and largest
+    # (and _middle_half gives those of two): --quick's 2 rounds have no middle half to name
+    from app.bench.pymunk_cost import _middle_half, at_the_line
+    assert _middle_half([1.4, 1.6, 1.5]) == (1.4, 1.6) and _middle_half([1.6, 1.4]) == (1.4, 1.6)
+    q1, q3 = _middle_half([1.1, 1.9, 1.3, 1.4, 1.5, 1.6, 1.7, 1.2, 1.8])
+    assert (q1, q3) == pytest.approx((1.25, 1.75))
+    for rounds in (2, 3):
+        few = at_the_line(["pivoting_l"], rounds)
+        assert "middle half" not in few and "interquartile" not in few
+        assert "smallest and largest" in few and "pivoting_l" in few
+    assert "middle half" in at_the_line(["pivoting_l"], 9)

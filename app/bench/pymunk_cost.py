@@ -169,10 +169,7 @@ def run(report: Report) -> dict:
         row(rows[-1])
     near = [o["scene"] for o in out if o["ratio_q1"] <= GOAL < o["ratio_q3"]]
     if near:
-        report.say(f"At the line: {'; '.join(near)}. The middle half of their rounds' lab/bare "
-                   f"(the 'rounds' column: each round's lab over its own bare, measured side by "
-                   f"side; interquartile range) lies on both sides of {GOAL}: another run of the "
-                   f"same code may give the other verdict.")
+        report.say(at_the_line(near, rounds))
     ghost = ghost_cost(steps, rounds)
     by_label = {o["scene"]: o for o in out}
     on, off = by_label[GHOST_ON], by_label[GHOST_OFF]
@@ -192,8 +189,19 @@ def run(report: Report) -> dict:
     return {"goal": GOAL, "bare_loop": BARE_WORDS, "scenes": out, "ghost": ghost}
 
 
+def at_the_line(near: list[str], rounds: int) -> str:
+    """The line naming the scenes whose 'rounds' column (_middle_half) holds the goal."""
+    what = ("The middle half of their rounds' lab/bare (the 'rounds' column: each round's lab "
+            "over its own bare, measured side by side; interquartile range) lies" if rounds > 3
+            else f"The smallest and largest of their {rounds} rounds' lab/bare (the 'rounds' "
+            f"column: each round's lab over its own bare, measured side by side) lie")
+    return (f"At the line: {'; '.join(near)}. {what} on both sides of {GOAL}: another run "
+            f"of the same code may give the other verdict.")
+
+
 def _middle_half(values: list[float]) -> tuple[float, float]:
-    """(first quartile, third quartile) of a few numbers (the values themselves for one or two)."""
+    """(first quartile, third quartile) of a few numbers; the smallest and largest of up to
+    three (statistics.quantiles' 'exclusive' quartiles of three are those)."""
     if len(values) < 3:
         return min(values), max(values)
     q1, _, q3 = statistics.quantiles(values, n=4)
