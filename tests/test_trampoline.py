@@ -247,8 +247,9 @@ def test_momentum_drifts_only_by_drag_and_the_float32_rounding(monkeypatch):
 
 
 def test_a_body_spun_far_past_a_float_squares_range_has_inf_energy_not_a_crash():
-    # Vec2d.length_squared and ** raise OverflowError past ~1e154; the energy (the HUD's, every
-    # frame) must come out inf for a blown-up body, not stop the lab
+    # Vec2d.length_squared and ** raise OverflowError past ~1e154; the energy (the shell's
+    # energy bars, key E, read it every frame) must come out inf for a blown-up body, not stop
+    # the lab
     scene = TrampolineScene({})
     scene.body.angular_velocity = 1e200
     assert math.isinf(scene.body_energy()[0])
