@@ -31,7 +31,6 @@ import math
 import numpy as np
 
 from scenes.ball_checks import _NAN_FAILS, BallChecks, rows_finite, sizes_full
-from scenes.l_frame import cos_sin
 
 
 class Armed:
@@ -331,11 +330,8 @@ class Line:
             if not now.flags.c_contiguous:
                 return False
             centres = now[:, :2].view(complex)[:, 0]
-        x, y, a = pose
-        try:                  # (the L's row passed the box test: its angle is finite)
-            c, s = math.cos(a), math.sin(a)
-        except ValueError:
-            return False
+        x, y, a = pose        # (the L's row of now passed the box test: a finite angle)
+        c, s = math.cos(a), math.sin(a)
         np.multiply(centres, complex(s, c), out=self.z)
         b = np.less_equal(self.height, x * s - y * c, out=self.below).tobytes()
         r = self.L_row

@@ -295,14 +295,14 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         # read after which only balls came or went, every body finite still, in finite_kept)
         self.finite_kept = -1
         self._L_known = None      # the L's pose is read again before the next step
-        self._rest_plan = None    # (advance: what a step at rest does, made again;
-        self._step_plan = self._moving_plan = None      # and a usual step: step_plan)
+        self._rest_plan = self._step_plan = self._moving_plan = None   # (advance's: made again)
 
     def advance(self) -> None:
         """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
         engine's steps: nothing moves, nothing to read or test (step's first case, for every
         substep at once; what it takes is looked up once per rest: anything that could change
-        it wakes the scene). A usual step (one substep, awake) is written out too (step_plan);
+        it wakes the scene). A usual step (one substep, awake) is written out too, what step()
+        tests first made once (step_plan; Python lines a step in the bench's 120: 119 -> 112);
         tests/test_pymunk_checks.py compares both with the general way, step by step."""
         if self.resting:
             plan = self._rest_plan
@@ -323,28 +323,18 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             plan = self._step_plan
             if plan is None:
                 plan = self._step_plan = self.step_plan()
-            if plan and self._L_known is not None:
-                # the usual step written out: step()'s last case, what it tests first made
-                # once, in the plan (Python lines a step in the bench's 120: 119 -> 112)
+            if plan and self._L_known is not None:     # (step()'s last case, written out)
                 dt, spawning, after = plan
                 L0 = self._L_known
                 self.space.step(dt)
                 self._rows = None
                 self._L_after = self._L_known = look(self, L0)
-                if spawning:
-                    self._spawn_due -= dt
-                    if self._spawn_due <= 0:
-                        self.spawn(0.0)
-                self.time += dt
-                self.steps += 1
-                if after:
-                    self.after_step()
+                self.step_done(dt, dt, spawning, after)
                 return
-        # The general way: Scene.advance's substeps written out (PymunkScene.advance would go
-        # there, two super() calls later). The balls are looked at once, after the last substep
-        # (the tutorial looks once a frame): a ball that tunneled is counted, and one that left
-        # removed, when its centre is past the arm or outside the world at the step's end; the
-        # substeps before only step the engine, the spawner's clock and pivoting_l's joints
+        # The general way: Scene.advance's substeps (PymunkScene.advance would go there, two
+        # super() calls later). The balls are looked at once, after the last substep (as the
+        # tutorial looks once a frame): a ball that tunneled is counted, and one that left
+        # removed; the substeps before only step the engine, the spawner and pivoting_l's joints
         n = self.p["substeps"]
         dt = self.dt
         h = dt / n
@@ -362,11 +352,22 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
     # False during the substeps before a step's last (advance): step() does not look at the balls
     _look = True
 
+    def step_done(self, h: float, dt: float, spawning: bool, after: bool) -> None:
+        """The written-out steps' end (here and pivoting_l's): the spawner's clock after the last
+        substep h (spawn(0.0) when due), the step of dt counted, after_step if it does anything."""
+        if spawning:
+            self._spawn_due -= h
+            if self._spawn_due <= 0:
+                self.spawn(0.0)
+        self.time += dt
+        self.steps += 1
+        if after:
+            self.after_step()
+
     def step_plan(self) -> tuple | None:
-        """(dt, spawning, whether after_step does anything) for advance's usual step written out
-        (one substep: step()'s last case, the spawner's clock); () for the general way (several
-        substeps, a subclass's own step or spawner); None while the general way must set the
-        sleep threshold first (asked again next step). Kept until wake() (settings, restore)."""
+        """(dt, spawning, whether after_step does anything) for advance's written-out step; () for
+        the general way (several substeps, a subclass's own step or spawner); None while it must
+        set the sleep threshold first (asked again next step). Kept until wake()."""
         p = self.p
         if p["substeps"] != 1 or type(self).step is not FallingBallsScene.step \
                 or type(self).spawn is not FallingBallsScene.spawn:

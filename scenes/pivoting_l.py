@@ -190,14 +190,7 @@ class PivotingLScene(FallingBallsScene):
         self._rows = None
         pose = self._L_after = self._L_known = look_moving(self, L0)   # (check_balls)
         record(pose)
-        if spawning:
-            self._spawn_due -= h
-            if self._spawn_due <= 0:
-                self.spawn(0.0)
-        self.time += dt
-        self.steps += 1
-        if after:
-            self.after_step()
+        self.step_done(h, dt, spawning, after)
 
     def moving_plan(self) -> tuple | None:
         """(substeps, h, dt, spawning, whether after_step does anything) for advance's written-out

@@ -24,8 +24,6 @@ os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 warnings.simplefilter("ignore")
 
-import numpy as np  # noqa: E402
-
 from app.scene import InputEvent, ParamError  # noqa: E402
 from scenes.falling_balls import FallingBallsScene  # noqa: E402
 from scenes.pivoting_l import PivotingLScene  # noqa: E402
