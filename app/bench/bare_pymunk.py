@@ -46,6 +46,10 @@ def record(build: Callable[[], Scene], steps: int) -> list[list[tuple]]:
     n = scene.p["substeps"]
     schedule: list[list[tuple]] = [[] for _ in range(steps * n)]
     number = {id(b): i for i, b in enumerate(space.bodies)}
+    # every body numbered is held until the end: a ball removed and freed would leave its id to
+    # the next new Body (CPython hands the same memory out again), which would then take over
+    # its number, and every number after it would name another ball
+    held = list(space.bodies)
     done = [0]                    # space.step calls so far
     step, add, remove = space.step, space.add, space.remove
 
@@ -62,6 +66,7 @@ def record(build: Callable[[], Scene], steps: int) -> list[list[tuple]]:
                 or shapes[0].body is not bodies[0] or not done[0]):
             raise Unreplayable(f"space.add{objs!r} after {done[0]} substeps")
         number[id(bodies[0])] = len(number)
+        held.append(bodies[0])
         schedule[done[0] - 1].append(("add", _ball(bodies[0], shapes[0])))
         add(*objs)
 
