@@ -34,6 +34,16 @@ def test_the_pymunk_cost_table_compares_every_pymunk_scene_with_a_bare_loop(tmp_
         each = s["ratio_rounds"]
         assert len(each) == s["rounds"] and min(each) > 0
         assert min(each) <= s["ratio_q1"] <= s["ratio_q3"] <= max(each)
+    # the scenes whose balls come and go, also over a long run (blocks taking turns): the total
+    # times' ratio, the lab's own cost a step, one ratio a block
+    runs = {s["scene"].split()[0]: s.get("long_run") for s in result["scenes"]}
+    assert set(k for k, v in runs.items() if v) == {"falling_balls", "pivoting_l"}
+    for name in ("falling_balls", "pivoting_l"):
+        r = runs[name]
+        assert r["steps"] == 60 and len(r["block_ratios"]) == r["steps"] // r["block"] == 2
+        assert r["ratio"] == pytest.approx(r["lab_ms"] / r["bare_ms"])
+        assert r["own_us"] == pytest.approx((r["lab_ms"] - r["bare_ms"]) * 1e3)
+        assert min(r["block_ratios"]) > 0 and r["lab_ms"] > 0 and r["bare_ms"] > 0
 
 
 def test_the_cloth_is_compared_with_c_when_a_compiler_is_there(tmp_path):
