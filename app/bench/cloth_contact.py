@@ -19,8 +19,8 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
      (particles bunched at the box's corner, held by friction).
    Each is timed with the `collisions` and `friction` effects on and off, from the same state
    (a snapshot), and the share of the step is (on - off) / on. Goal: at most 30 %.
-2. Self-collision on a 64 x 64 cloth (hanging; crumpled on the floor, still unfolding; and the
-   same cloth settled there, SETTLED_STEPS later): the step without it,
+2. Self-collision on a 64 x 64 cloth (hanging; crumpled, still in the air, unfolding as it falls
+   onto the floor; and the same cloth settled there after SETTLED_STEPS): the step without it,
    and the self-collision pass alone (the scene's own stopwatch) with the neighbour grid and with
    all pairs. Goal: the grid's pass costs at most the step without it. A third row measures the
    card a teacher shows (cloth_collisions, "Fold onto itself": a 2 x 60 strip folded onto
@@ -32,11 +32,13 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
    every time, never what a run does. Each round starts with a fresh list, and the table says
    how many times it was built in the timed steps. The single step from the snapshot (a fresh
    list: a build, as the pass was timed before 2026-11-26) is printed beside it for comparison.
-   The settled row was added on 2026-11-27: the unfolding cloth (steps 17-32, ~14,000 pairs) is
-   the cheapest moment of a crumpled cloth's run, not the one a class sees for longest. Settled
-   on the floor, the 2D heap is some four times denser than its particles' discs allow (4,096
-   particles in ~500 x 70 px): ~52,000 pairs every step, ~47,000 of them still closer than 95 %
-   of self_distance after the pass (the HUD says so), and the pass costs ~3 x the step.
+   The settled row was added on 2026-11-27: the falling cloth (steps 17-32, 14,700 -> 7,100
+   pairs; no particle touches the floor before step ~48) is among the cheapest moments of a
+   crumpled cloth's run (the fewest pairs, ~2,900, as it lands), not the one a class
+   sees for longest. Settled on the floor, the 2D heap is some four times denser than its
+   particles' discs allow (4,096 particles in ~500 x 70 px): ~52,000 pairs every step, ~47,000
+   of them still closer than 95 % of self_distance after the pass (the HUD says so), and the
+   pass costs ~3 x the step.
 """
 
 from __future__ import annotations
@@ -52,7 +54,7 @@ N = 64
 COLLISION_GOAL = 0.30      # collisions + friction: at most this share of the step (issue 24)
 SELF_GOAL = 1.0            # self-collision's pass (grid): at most this many times the step
 SELF_STEPS = 17            # self-collision is timed from the state after this many steps (the
-                           # crumpled cloth still unfolding on the floor)
+                           # crumpled cloth unfolding as it falls: it lands at step ~48)
 SETTLED_STEPS = 400        # the crumpled cloth settled on the floor (~52,000 pairs: the table)
 SELF_RUN = 15              # ... over this many consecutive steps (the module docstring says why)
 
@@ -65,7 +67,7 @@ CARD_STEPS = 120           # the folded strip has landed: two layers on the floo
 
 def _self_states(self_steps: int, quick: bool) -> list[tuple[str, str, dict, int]]:
     """(state, scene, settings, steps before the timed step) of each self-collision row: the
-    64 x 64 cloth hanging, crumpled on the floor (unfolding) and settled there (the issue's
+    64 x 64 cloth hanging, crumpled (falling) and settled on the floor (the issue's
     goal), and the scene cloth_collisions' own card that folds a strip onto itself, with the
     card's settings."""
     from scenes import get_scene

@@ -51,7 +51,8 @@ from app.scene import Scene
 GHOST_ON, GHOST_OFF = "double_pendulum (default: + RK4 ghost)", "double_pendulum (reference off)"
 GOAL = 1.5          # the lab's step at most this many times the bare loop's (issue 28)
 COMING_AND_GOING = ("falling_balls", "pivoting_l")     # scenes whose balls come and go
-LONG_STEPS = 2400    # long_run: 40 s of the scene (pivoting_l fills its L and tips it in ~35 s)
+LONG_STEPS = 2400    # long_run: the scene's 40 s after the table's 10 s (pivoting_l fills its L
+                    # and tips it at ~44 s of its clock, ~34 s into the long run)
 LONG_BLOCK = 200     # ...in blocks of this many steps, lab and bare taking turns
 WARM = 5            # untimed steps on each side first: the first steps after a build pay once
                     # for cold caches and Python's not yet specialised bytecode (a settled pile,

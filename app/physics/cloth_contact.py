@@ -172,10 +172,10 @@ column k holds +1 at j_k and -1 at i_k; W the pairs' x and y corrections): alone
 136 (27,233 pairs), but the bench's crumpled pass took 1.00-1.04 ms against 0.89-0.95 (three
 whole bench runs each, taking turns, load 0.5-1.0).
 
-The crumpled cloth settled on the floor (400 steps; `bench cloth`'s row since 2026-11-27) is far
-dearer: a 2D heap ~4 x denser than its particles' discs allow, ~52,000 pairs, ~47,000 still too
-close after the pass (the HUD says so), particles jittering ~2 px (no skin up to 1 R lasts): the
-pass 2.95 x the step, the compiled one 1.83 x its step (load 0.6). NOT met by either.
+The crumpled cloth settled on the floor (400 steps; a `bench cloth` row) is far dearer: a 2D heap
+~4 x denser than its particles' discs allow, ~52,000 pairs, ~47,000 still too close after the pass
+(the HUD says so). It lies still (median 0.01 px a step) but for 1-2 particles moving 2.4-4 px a
+pass: no skin up to 1 R lasts a step. The pass 2.95 x the step, compiled 1.83 x (load 0.6): NOT met.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
