@@ -184,3 +184,26 @@ def test_the_list_backs_off_where_it_never_pays(monkeypatch):
     for step in range(2 * self_list.WAIT + 4):
         self_list.close_pairs(lst, x, 1.0, ("k",), search, Scratch())
     assert lst.reuses > 0
+
+
+def test_the_list_backs_off_longer_each_time_a_skin_did_not_last():
+    """A particle shaking back and forth (0.5 px a substep against R = 1 and a skin of 0.75,
+    so no list with a skin outlives a substep) while its net move over a few substeps is nil:
+    measured over the back-off's substeps it looks still, and a list with a skin was built
+    every ~7 substeps, each a search over R + skin that was never reused (a settled 64 x 64
+    heap: ~40 in 300 steps, 5.8 ms each against 2.4 for a plain search). After such a list the
+    back-off now lasts COOL substeps, twice as long after each one in a row: a few in 200."""
+    x = np.zeros((2, 10), np.float32)
+    x[0] = np.arange(10) * 3.0
+    skinned = []
+
+    def search(d):
+        skinned.append(d > 1.0)
+        return fine_pairs(x[0], x[1], d, Scratch())
+    lst = self_list.PairList()
+    for step in range(200):
+        x[0, 0] += 0.5 if step % 2 else -0.5
+        i, j, _ = self_list.close_pairs(lst, x, 1.0, ("k",), search, Scratch())
+        assert pair_set(i, j) == pair_set(*fine_pairs(x[0], x[1], 1.0, Scratch())[:2])
+    assert lst.reuses == 0 and 1 <= sum(skinned) <= 6
+    assert (self_list.COOL, self_list.COOL_MAX) == (8, 256)

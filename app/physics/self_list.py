@@ -51,6 +51,18 @@ substeps late. Measured on 2026-11-27 (the bench's runs of 15 steps, 31 and 41 i
 rounds in one process against WAIT = 0, load 1.6-1.9; the same positions to the last bit): the
 crumpled cloth's pass 1.9-2.1 % shorter, the hanging cloth's 4-6 %.
 
+A list that did not pay: in the crumpled 64 x 64 cloth settled on the floor (`bench cloth`'s
+settled row: ~52,000 pairs, the median particle 0.01 px a step, one or two shaking 2-4 px back
+and forth) the fastest particle's net move over the back-off's substeps is small, so a skin was
+tried every ~7 substeps, and no such list outlived a substep: ~40 searches over R + skin in 300
+steps (5.8 ms each, a plain search 2.4). Now a list built with a skin and never reused starts a
+back-off of COOL substeps, twice as long after each such list in a row (up to COOL_MAX), and a
+list reused at least once resets it. Measured on 2026-11-27 (one process, the two versions
+taking turns, five runs of 60 steps each, load 0.8; the same positions to the last bit): the
+settled heap's pass 3.03 -> 2.75 ms (6 skinned builds in 300 steps, not ~40; a plain search
+every step: 2.57 ms); the falling crumpled cloth 1.21 -> 1.19, the fold card 0.129 -> 0.130,
+the hanging cloth 0.260 -> 0.256 ms (their lists as before).
+
 The compiled pass (kernel=numba, app/physics/self_compiled.py) does not use the list: its
 search is one loop over the candidates (~0.1 ms of a 0.33 ms pass on the crumpled cloth,
 2026-11-27, load 4-7), and where the list pays (a cloth lying still) it would save a fraction
@@ -72,6 +84,9 @@ LIFE = 2            # after a plain search, a skin only if the list would last t
 ROUNDING = 1e-4     # of R + s: kept back from s / 2 for the rounding of distances (float32)
 MISSES = 2          # after this many plain searches in a row whose particles were too fast...
 WAIT = 4            # ...the next WAIT substeps search with no displacement test and no copy
+PAYS = 0            # a list built with a skin pays if reused more than PAYS times; if not...
+COOL = 8            # ...the next COOL substeps search with no test (no skin tried), twice as
+COOL_MAX = 256      # many after each such list in a row, up to COOL_MAX
 
 Search = Callable[[float], tuple[np.ndarray, np.ndarray, int]]
 
@@ -89,6 +104,7 @@ class PairList:
     age: int = 0                        # substeps since the build (since x0)
     misses: int = 0                     # plain searches in a row whose particles were too fast
     wait: int = 0                       # substeps left without a displacement test (back-off)
+    cool: int = COOL                    # the next back-off after a list that did not pay
     builds: int = 0
     reuses: int = 0
     store: Scratch = field(default_factory=Scratch)     # the list's own arrays (kept)
@@ -123,8 +139,12 @@ def close_pairs(lst: PairList, x: np.ndarray, distance: float, key: tuple, searc
         if lst.skin > 0 and far < limit * limit:
             lst.reuses += 1
             return within(lst.i, lst.j, x, distance, scratch)
-        if lst.skin > 0:                # a list that was reused at least once: again
-            lasted = lst.age > 1
+        if lst.skin > 0:                # a list that paid (reused more than PAYS times): again;
+            lasted = lst.age > PAYS + 1     # one that did not: back off, longer each time
+            if lasted:
+                lst.cool = COOL
+            else:
+                lst.wait, lst.cool = lst.cool, min(2 * lst.cool, COOL_MAX)
         else:                           # after a plain search: if the particles moved slowly
             lasted = math.sqrt(far) / lst.age * LIFE < SKIN * distance / 2
             lst.misses = 0 if lasted else lst.misses + 1
