@@ -44,6 +44,14 @@ def test_the_pymunk_cost_table_compares_every_pymunk_scene_with_a_bare_loop(tmp_
         assert r["ratio"] == pytest.approx(r["lab_ms"] / r["bare_ms"])
         assert r["own_us"] == pytest.approx((r["lab_ms"] - r["bare_ms"]) * 1e3)
         assert min(r["block_ratios"]) > 0 and r["lab_ms"] > 0 and r["bare_ms"] > 0
+    # one verdict: those two by their long run, the others by the table
+    verdict = result["verdict"]
+    judged = {s["scene"]: (s["long_run"]["ratio"] if "long_run" in s else s["ratio"])
+              for s in result["scenes"]}
+    assert {name for name, _, _ in verdict["not_within"]} == {
+        name for name, ratio in judged.items() if ratio > 1.5}
+    assert verdict["met"] == (not verdict["not_within"])
+    assert ("NOT met" in verdict["sentence"]) == (not verdict["met"])
 
 
 def test_the_cloth_is_compared_with_c_when_a_compiler_is_there(tmp_path):
