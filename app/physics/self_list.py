@@ -53,10 +53,11 @@ load 1.6-1.9; the same positions to the last bit): the crumpled cloth's pass 1.9
 the hanging cloth's 4-6 %.
 
 A list that did not pay: in the crumpled 64 x 64 cloth settled on the floor (`bench cloth`'s
-settled row: ~52,000 pairs, the median particle 0.01 px a step, one or two shaking 2-4 px back
-and forth) the fastest particle's net move over the back-off's substeps is small, so a skin was
-tried every ~7 substeps, and no such list outlived a substep: ~40 searches over R + skin in 300
-steps (5.8 ms each, a plain search 2.4). Now a list built with a skin and never reused starts a
+settled row: ~52,000 pairs, the median particle 0.01 px a step, 6-13 of the 4,096 shaking
+1-2.3 px a step back and forth: 20 steps from step 400, 2026-11-27) the fastest particle's net
+move over the back-off's substeps is small, so a skin was tried every ~7 substeps, and no such
+list outlived a substep: ~40 searches over R + skin in 300 steps (the grid's search alone:
+2.75 ms over R + skin, ~143,000 pairs, against 1.11 ms over R; load 0.5). Now a list built with a skin and never reused starts a
 back-off of COOL substeps, twice as long after each such list in a row (up to COOL_MAX), and a
 list reused at least once resets it; nothing else does (a fast fall, a key change, a restore of
 a snapshot in between keep it). Measured on 2026-11-27 (one process, the two versions
