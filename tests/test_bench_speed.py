@@ -224,3 +224,23 @@ def test_the_at_the_line_sentence_says_a_middle_half_only_of_enough_rounds():
         assert "middle half" not in few and "interquartile" not in few
         assert "smallest and largest" in few and "pivoting_l" in few
     assert "middle half" in at_the_line(["pivoting_l"], 9)
+
+
+def test_the_goal_verdict_says_what_a_reader_could_misread():
+    """The verdict's sentence names a ratio just over the goal with the digits that show it over
+    (1.504, not '1.50' against a goal of 1.5), names the scenes judged by the table whose rounds
+    lie on both sides of the goal (another run may judge them otherwise), and says how long the
+    long run was (60 steps with --quick, not the 40 s of LONG_STEPS)."""
+    from app.bench.pymunk_cost import goal_verdict
+    rows = [{"scene": "pile", "ratio": 1.504, "ratio_q1": 1.26, "ratio_q3": 1.79},
+            {"scene": "cradle", "ratio": 1.41, "ratio_q1": 1.30, "ratio_q3": 1.62},
+            {"scene": "calm", "ratio": 1.2, "ratio_q1": 1.1, "ratio_q3": 1.3},
+            {"scene": "balls", "ratio": 1.2, "ratio_q1": 1.1, "ratio_q3": 1.3,
+             "long_run": {"ratio": 1.8, "steps": 60}}]
+    verdict = goal_verdict(rows)
+    said = verdict["sentence"]
+    assert not verdict["met"] and [n for n, _, _ in verdict["not_within"]] == ["pile", "balls"]
+    assert "pile 1.504" in said and "1.50 " not in said
+    assert [n for n, _ in verdict["at_the_line"]] == ["pile", "cradle"]
+    assert "at the line" in said.lower() and "cradle" in said and "calm" not in said
+    assert "60 steps" in said

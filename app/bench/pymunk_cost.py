@@ -226,16 +226,23 @@ def run(report: Report) -> dict:
 def goal_verdict(out: list[dict]) -> dict:
     """The goal's verdict over the table's rows: a scene measured over a long run too is judged
     by it (40 s of balls coming and going, not one moment of them), the others by the table
-    (their bodies stay: the window is the run). {"met", "not_within": [(scene, ratio, by)],
-    "sentence"}."""
-    judged = [(o["scene"], o["long_run"]["ratio"], "long run") if "long_run" in o
-              else (o["scene"], o["ratio"], "table") for o in out]
+    (their bodies stay: the window is the run). Ratios with three decimals (1.504 is over 1.5;
+    '1.50' would read as on it); the table's scenes whose rounds lie on both sides of the goal
+    named (at_the_line: another run may judge them otherwise). {"met", "not_within": [(scene,
+    ratio, by)], "at_the_line": [(scene, ratio)], "sentence"}."""
+    judged = [(o["scene"], o["long_run"]["ratio"], f"over {o['long_run']['steps']} steps")
+              if "long_run" in o else (o["scene"], o["ratio"], "table") for o in out]
     over = [j for j in judged if j[1] > GOAL]
-    said = "; ".join(f"{name} {ratio:.2f} ({by})" for name, ratio, by in over)
+    near = [(o["scene"], o["ratio"]) for o in out
+            if "long_run" not in o and o["ratio_q1"] <= GOAL < o["ratio_q3"]]
+    said = "; ".join(f"{name} {ratio:.3f} ({by})" for name, ratio, by in over)
     sentence = (f"Goal, the lab's step at most {GOAL} x the bare loop's (scenes whose balls come "
                 f"and go judged over the long run, the others by the table): "
-                + ("MET" if not over else f"NOT met: {said}"))
-    return {"met": not over, "not_within": over, "sentence": sentence}
+                + ("MET" if not over else f"NOT met: {said}")
+                + (f". At the line (their rounds on both sides of {GOAL}: another run may judge "
+                   f"them otherwise): " + "; ".join(f"{n} {r:.3f}" for n, r in near)
+                   if near else ""))
+    return {"met": not over, "not_within": over, "at_the_line": near, "sentence": sentence}
 
 
 def long_run(build: Callable[[], Scene], steps: int = LONG_STEPS, block: int = LONG_BLOCK,
