@@ -229,7 +229,11 @@ def goal_verdict(out: list[dict]) -> dict:
     (their bodies stay: the window is the run). Ratios with three decimals (1.504 is over 1.5;
     '1.50' would read as on it); the table's scenes whose rounds lie on both sides of the goal
     named (at_the_line: another run may judge them otherwise). {"met", "not_within": [(scene,
-    ratio, by)], "at_the_line": [(scene, ratio)], "sentence"}."""
+    ratio, by)], "at_the_line": [(scene, ratio)], "not_judged", "sentence"}. The double
+    pendulum with its ghost is not judged: the goal is the lab's bookkeeping, and the ghost is a
+    second simulation (ghost_cost); its bookkeeping is the row with the ghost off."""
+    skip = [o for o in out if o["scene"] == GHOST_ON]
+    out = [o for o in out if o["scene"] != GHOST_ON]
     judged = [(o["scene"], o["long_run"]["ratio"], f"over {o['long_run']['steps']} steps")
               if "long_run" in o else (o["scene"], o["ratio"], "table") for o in out]
     over = [j for j in judged if j[1] > GOAL]
@@ -241,8 +245,12 @@ def goal_verdict(out: list[dict]) -> dict:
                 + ("MET" if not over else f"NOT met: {said}")
                 + (f". At the line (their rounds on both sides of {GOAL}: another run may judge "
                    f"them otherwise): " + "; ".join(f"{n} {r:.3f}" for n, r in near)
-                   if near else ""))
-    return {"met": not over, "not_within": over, "at_the_line": near, "sentence": sentence}
+                   if near else "")
+                + "".join(f". Not judged: {o['scene']} {o['ratio']:.3f} (its ghost is a second "
+                          f"simulation, not bookkeeping; see the row with the ghost off)"
+                          for o in skip))
+    return {"met": not over, "not_within": over, "at_the_line": near,
+            "not_judged": [o["scene"] for o in skip], "sentence": sentence}
 
 
 def long_run(build: Callable[[], Scene], steps: int = LONG_STEPS, block: int = LONG_BLOCK,
