@@ -174,8 +174,8 @@ whole bench runs each, taking turns, load 0.5-1.0).
 
 The crumpled cloth settled on the floor (400 steps; a `bench cloth` row) is far dearer: a 2D heap
 ~4 x denser than its particles' discs allow, ~52,000 pairs, ~47,000 still too close after the pass
-(the HUD says so). It lies still (median 0.01 px a step) but for 1-2 particles moving 2.4-4 px a
-pass: no skin up to 1 R lasts a step. The pass 2.95 x the step, compiled 1.83 x (load 0.6): NOT met.
+(the HUD says so), still (median 0.01 px a step) but for a few particles shaking 1-4 px: no skin
+up to 1 R lasts. The pass 2.88-2.95 x the step, compiled 1.81-1.83 x (load 0.6-0.7): NOT met.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
