@@ -101,44 +101,47 @@ def cases(quick: bool, full: bool = False) -> list[tuple[str, Callable[[], Scene
     return out
 
 
-def lab_and_bare(build: Callable[[], Scene], steps: int, rounds: int,
-                 schedule: list | None = None) -> tuple[list, list]:
-    """CPU seconds per step of the lab (advance + is_finite) and of the bare loop over a twin of
-    the same scene (app/bench/bare_pymunk.py: the same balls added and removed at the same
-    substeps; schedule: recorded over WARM + steps steps, else recorded here), `rounds` times
-    each, alternating which goes first."""
-    if schedule is None:
-        schedule = record(build, WARM + steps)
-    lab, bare = [], []
+def side_by_side(build: Callable[[], Scene], schedule: list, block: int, blocks: int,
+                 rounds: int) -> list[tuple[list[float], list[float]]]:
+    """For each of `rounds` fresh pairs (the scene, and the bare loop over a twin replaying
+    `schedule`: app/bench/bare_pymunk.py), after WARM untimed steps on each side: the CPU seconds
+    of each of `blocks` blocks of `block` steps of the lab (advance + is_finite) and of the bare
+    loop, taking turns (which side goes first alternates block by block and round by round)."""
+    out = []
     for r in range(rounds):
         a, replay = build(), Replay(build(), schedule)
         for _ in range(WARM):           # untimed: the first steps of a fresh scene, both sides
             a.advance()
             a.is_finite()
         replay.run(WARM)
-
-        def run_lab() -> float:
-            t0 = time.process_time()
-            for _ in range(steps):
-                a.advance()
-                a.is_finite()
-            return (time.process_time() - t0) / steps
-
-        def run_bare() -> float:
-            t0 = time.process_time()
-            replay.run(steps)
-            return (time.process_time() - t0) / steps
-
-        if r % 2:
-            bare.append(run_bare())
-            lab.append(run_lab())
-        else:
-            lab.append(run_lab())
-            bare.append(run_bare())
+        lab, bare = [], []
+        for k in range(blocks):
+            for side in ("lab", "bare") if (k + r) % 2 == 0 else ("bare", "lab"):
+                t0 = time.process_time()
+                if side == "lab":
+                    for _ in range(block):
+                        a.advance()
+                        a.is_finite()
+                    lab.append(time.process_time() - t0)
+                else:
+                    replay.run(block)
+                    bare.append(time.process_time() - t0)
         if len(a.space.bodies) != len(replay.space.bodies):
             raise AssertionError(f"the bare loop holds {len(replay.space.bodies)} bodies, the "
                                  f"lab {len(a.space.bodies)}: not the same bodies")
-    return lab, bare
+        out.append((lab, bare))
+    return out
+
+
+def lab_and_bare(build: Callable[[], Scene], steps: int, rounds: int,
+                 schedule: list | None = None) -> tuple[list, list]:
+    """CPU seconds per step of the lab and of the bare loop (side_by_side: one block of `steps`
+    steps a round; schedule: recorded over WARM + steps steps, else recorded here), `rounds`
+    times each, alternating which goes first."""
+    if schedule is None:
+        schedule = record(build, WARM + steps)
+    pairs = side_by_side(build, schedule, steps, 1, rounds)
+    return [lab[0] / steps for lab, _ in pairs], [bare[0] / steps for _, bare in pairs]
 
 
 BARE_WORDS = ("the bare loop: substeps x space.step(dt / substeps) a step over a twin of the "
@@ -170,7 +173,7 @@ def run(report: Report) -> dict:
         lab_ms, bare_ms = Timing.of(lab) * 1e3, Timing.of(bare) * 1e3
         ratio = float(lab_ms) / float(bare_ms)
         each = [a / b for a, b in zip(lab, bare)]      # (each round's pair, taken side by side)
-        load = os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
+        load = _load()
         changes = f"{added} / {removed} in {WARM + steps}" if added or removed else "none"
         out.append({"scene": label, "lab_ms": lab_ms, "bare_ms": bare_ms, "ratio": ratio,
                     "ratio_rounds": each, "lab_spread_ms": (max(lab) - min(lab)) * 1e3,
@@ -191,8 +194,7 @@ def run(report: Report) -> dict:
         report.progress(f"lab vs bare pymunk over a long run: {label}")
         run_ = long_run(build, long_steps, long_block, 1 if quick else 2)
         run_["scene"] = label
-        out_long = next(o for o in out if o["scene"] == label)
-        out_long["long_run"] = run_
+        next(o for o in out if o["scene"] == label)["long_run"] = run_
         each = run_["block_ratios"]
         report.say(f"Over a long run, {label}: {run_['steps']} steps ({run_['steps'] / 60:.0f} s "
                    f"at 60 Hz, {run_['rounds']} runs, blocks of {run_['block']} steps taking "
@@ -200,7 +202,7 @@ def run(report: Report) -> dict:
                    f"{run_['bare_ms'] * 1e3:.1f} us, lab/bare {run_['ratio']:.2f} "
                    f"({'within' if run_['ratio'] <= GOAL else 'NOT within'} {GOAL}); the lab's own "
                    f"cost {run_['own_us']:.1f} us a step; the blocks' lab/bare "
-                   f"{min(each):.2f}-{max(each):.2f} (load {os.getloadavg()[0]:.2f})")
+                   f"{min(each):.2f}-{max(each):.2f} (load {_load():.2f})")
     ghost = ghost_cost(steps, rounds)
     by_label = {o["scene"]: o for o in out}
     on, off = by_label[GHOST_ON], by_label[GHOST_OFF]
@@ -213,7 +215,7 @@ def run(report: Report) -> dict:
         f"{ghost['ms'] * 1e3:.1f} us a step here ({ghost['rk4_steps']:.2f} RK4 steps of its "
         f"adaptive size, {ghost['us_per_rk4']:.1f} us each: four evaluations of the equations "
         f"of motion and an energy check, in Python floats; median of {rounds} rounds of {steps} "
-        f"steps, load {os.getloadavg()[0]:.2f}), {share:.2f}x the bare pymunk step beside it "
+        f"steps, load {_load():.2f}), {share:.2f}x the bare pymunk step beside it "
         f"({float(on['bare_ms']) * 1e3:.1f} us). So with the ghost on, lab/bare is at least "
         f"1 + {share:.2f} before any bookkeeping (measured: {on['ratio']:.2f}; with the ghost off "
         f"{off['ratio']:.2f}): the goal of {GOAL} is out of reach while the ghost runs.")
@@ -257,37 +259,26 @@ def long_run(build: Callable[[], Scene], steps: int = LONG_STEPS, block: int = L
              rounds: int = 2) -> dict:
     """The lab against the bare loop over `steps` steps of one run (both from a fresh pair, the
     bare loop replaying the lab's balls), in blocks of `block` steps taking turns (which side
-    goes first alternates), `rounds` times: CPU seconds of each block, summed over the rounds.
+    goes first alternates: side_by_side), `rounds` times: each block's CPU seconds, summed over
+    the rounds.
     Returns the lab's and bare loop's ms a step over the whole run, their ratio (the total times'
     ratio: each step weighted by its cost), the lab's own us a step (lab - bare), and each
     block's lab/bare."""
     blocks = steps // block
-    schedule = record(build, WARM + blocks * block)
-    lab, bare = [0.0] * blocks, [0.0] * blocks
-    for r in range(rounds):
-        a, replay = build(), Replay(build(), schedule)
-        for _ in range(WARM):
-            a.advance()
-            a.is_finite()
-        replay.run(WARM)
-        for k in range(blocks):
-            for side in ((0, 1) if (k + r) % 2 == 0 else (1, 0)):
-                t0 = time.process_time()
-                if side == 0:
-                    for _ in range(block):
-                        a.advance()
-                        a.is_finite()
-                else:
-                    replay.run(block)
-                (lab if side == 0 else bare)[k] += time.process_time() - t0
-        if len(a.space.bodies) != len(replay.space.bodies):
-            raise AssertionError("the bare loop's bodies are not the lab's")
+    pairs = side_by_side(build, record(build, WARM + blocks * block), block, blocks, rounds)
+    lab = [sum(times) for times in zip(*(lab for lab, _ in pairs))]      # each block, summed
+    bare = [sum(times) for times in zip(*(bare for _, bare in pairs))]   # over the rounds
     n = rounds * blocks * block
     total_lab, total_bare = sum(lab), sum(bare)
     return {"steps": blocks * block, "block": block, "rounds": rounds,
             "lab_ms": total_lab / n * 1e3, "bare_ms": total_bare / n * 1e3,
             "ratio": total_lab / total_bare, "own_us": (total_lab - total_bare) / n * 1e6,
             "block_ratios": [x / y for x, y in zip(lab, bare)]}
+
+
+def _load() -> float:
+    """The load average over the last minute (NaN where the system has none)."""
+    return os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
 
 
 def at_the_line(near: list[str], rounds: int) -> str:
