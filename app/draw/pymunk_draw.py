@@ -190,6 +190,12 @@ def rod(surface: pygame.Surface, color: Color, pa, pb, width: int) -> None:
 
 
 # ----- joints -----------------------------------------------------------------------------------
+def length(v: pymunk.Vec2d) -> float:
+    """|v| by math.hypot: Vec2d.length squares with **, which raises OverflowError past ~1e154
+    (a blown-up body's measure is then huge or inf, reported, not a crash)."""
+    return math.hypot(v.x, v.y)
+
+
 def anchors(joint: pymunk.Constraint) -> tuple[pymunk.Vec2d, pymunk.Vec2d]:
     """The joint's two anchor points in world coordinates (their distance is what a pin or
     slide joint holds)."""
@@ -219,7 +225,7 @@ def draw_slide_joint(surface: pygame.Surface, view, joint: pymunk.SlideJoint,
     joint sits among the balls that land on the L (a plain green line between blue balls was
     lost among them)."""
     a, b = anchors(joint)
-    d = math.hypot(a.x - b.x, a.y - b.y)     # (Vec2d.length raises OverflowError past 1e154)
+    d = length(a - b)
     u = (a - b) / d if d > 1e-9 else pymunk.Vec2d(1, 0)
     lo, hi = b + u * joint.min, b + u * joint.max
     band = max(px(5), int(view.len(7)))

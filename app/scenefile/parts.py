@@ -9,20 +9,14 @@ import math
 
 import pymunk
 
-from app.draw.pymunk_draw import anchors
-
-
-def _norm(v: pymunk.Vec2d) -> float:
-    """|v| by math.hypot: Vec2d.length squares with **, which raises OverflowError past ~1e154
-    (a blown-up body's metric is then huge or inf, reported, not a crash)."""
-    return math.hypot(v.x, v.y)
+from app.draw.pymunk_draw import anchors, length
 
 
 def joint_measure(kind: str, c: pymunk.Constraint) -> float:
     if kind == "joint_impulse":
         return float(c.impulse)
     a, b = anchors(c) if hasattr(c, "anchor_a") else (c.a.position, c.b.position)
-    d = _norm(a - b)
+    d = length(a - b)
     if kind == "joint_distance":
         return d
     if isinstance(c, pymunk.PinJoint):
@@ -36,7 +30,7 @@ def joint_measure(kind: str, c: pymunk.Constraint) -> float:
         p = c.b.local_to_world(c.anchor_b)
         u = gb - ga
         t = min(1.0, max(0.0, (p - ga).dot(u) / u.dot(u)))
-        return _norm(p - (ga + u * t))
+        return length(p - (ga + u * t))
     return 0.0
 
 
@@ -48,7 +42,7 @@ def body_measure(kind: str, b: pymunk.Body) -> float:
     if kind == "angle":
         return math.degrees(b.angle)
     if kind == "speed":
-        return _norm(b.velocity)
+        return length(b.velocity)
     return math.degrees(b.angular_velocity)
 
 
