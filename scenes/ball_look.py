@@ -320,16 +320,12 @@ class Line:
         self.head = self.tail = b""         # the kept line flags' bytes before the L's row, after
 
     def same(self, now: np.ndarray, pose: tuple[float, float, float],
-             centres: np.ndarray | None = None) -> bool:
-        """Whether the rows `now` (n, 6, C-contiguous) have the kept flags with the L at pose
-        (its row of now); centres: now's centres x + iy as complex numbers, a view of now
-        (ball_checks._awake_views keeps one a read), made here if not given."""
+             centres: np.ndarray) -> bool:
+        """Whether the rows `now` (n, 6) have the kept flags with the L at pose (its row of
+        now); centres: now's centres x + iy as complex numbers, a view of now
+        (ball_checks._awake_views keeps one a read)."""
         if np.less_equal(now, self.bounds, out=self.inside).tobytes() != self.box:
             return False
-        if centres is None:
-            if not now.flags.c_contiguous:
-                return False
-            centres = now[:, :2].view(complex)[:, 0]
         x, y, a = pose        # (the L's row of now passed the box test: a finite angle)
         c, s = math.cos(a), math.sin(a)
         np.multiply(centres, complex(s, c), out=self.z)

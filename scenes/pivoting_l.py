@@ -150,10 +150,10 @@ class PivotingLScene(FallingBallsScene):
     # ----- the joints, measured -------------------------------------------------------------
     @staticmethod
     def anchor_distance(joint: pymunk.Constraint) -> float:
-        """Distance between a joint's two anchors in the world, px (hypot: Vec2d.length squares
-        with **, which raises OverflowError past ~1e154 px; a blown-up L is reported, not fatal)."""
+        """Distance between a joint's two anchors in the world, px (D.length: a blown-up L is
+        reported, not fatal)."""
         a, b = D.anchors(joint)
-        return math.hypot(a.x - b.x, a.y - b.y)
+        return D.length(a - b)
 
     def slide_distance(self) -> float:
         return self.anchor_distance(self.slide)
@@ -223,10 +223,7 @@ class PivotingLScene(FallingBallsScene):
             d, pin = self.joint_distances(pose)
         else:            # joint_distances' sums written out (a call and a loop: ~1 us a substep)
             x, y, a = pose
-            try:
-                c, s = math.cos(a), math.sin(a)
-            except ValueError:          # (an infinite angle: NaN, as cos_sin)
-                c = s = math.nan
+            c, s = cos_sin(a)
             vx, vy, fx, fy, wx, wy, gx, gy = fixed
             dx, dy = c * vx - s * vy + x - fx, s * vx + c * vy + y - fy
             d = math.sqrt(dx * dx + dy * dy)
