@@ -172,10 +172,10 @@ column k holds +1 at j_k and -1 at i_k; W the pairs' x and y corrections): alone
 136 (27,233 pairs), but the bench's crumpled pass took 1.00-1.04 ms against 0.89-0.95 (three
 whole bench runs each, taking turns, load 0.5-1.0).
 
-The crumpled cloth settled on the floor (400 steps; a `bench cloth` row) is far dearer: a 2D heap
-~4 x denser than its particles' discs allow, ~52,000 pairs, ~47,000 still too close after the pass
-(the HUD says so), still (median 0.01 px a step) but for a few particles shaking 1-4 px: no skin
-up to 1 R lasts. The pass 2.88-2.95 x the step, compiled 1.81-1.83 x (load 0.6-0.7): NOT met.
+Settled on the floor (400 steps; a `bench cloth` row) the crumpled cloth is a 2D heap ~4 x denser
+than its particles' discs allow: ~52,000 pairs, ~47,000 still too close after the pass (the HUD
+says so); no skin up to 1 R lasts. The pass 2.95-3.00 x the step, 2.88-2.92 x with self_list's
+back-off, compiled 1.81-1.83 x (2026-11-27, four runs, load 0.6-0.85): NOT met.
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer

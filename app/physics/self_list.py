@@ -94,9 +94,9 @@ LIFE = 2            # after a plain search, a skin only if the list would last t
 ROUNDING = 1e-4     # of R + s: kept back from s / 2 for the rounding of distances (float32)
 MISSES = 2          # after this many plain searches in a row whose particles were too fast...
 WAIT = 4            # ...the next WAIT substeps search with no displacement test and no copy
-PAYS = 0            # a list built with a skin pays if reused more than PAYS times; if not...
-COOL = 8            # ...the next COOL substeps search with no test (no skin tried), twice as
-COOL_MAX = 256      # many after each such list in a row, up to COOL_MAX
+COOL = 8            # after a list built with a skin and never reused, the next COOL substeps
+COOL_MAX = 256      # search with no test (no skin tried); twice as many after each such list
+                    # in a row, up to COOL_MAX
 
 Search = Callable[[float], tuple[np.ndarray, np.ndarray, int]]
 
@@ -149,8 +149,8 @@ def close_pairs(lst: PairList, x: np.ndarray, distance: float, key: tuple, searc
         if lst.skin > 0 and far < limit * limit:
             lst.reuses += 1
             return within(lst.i, lst.j, x, distance, scratch)
-        if lst.skin > 0:                # a list that paid (reused more than PAYS times): again;
-            lasted = lst.age > PAYS + 1     # one that did not: back off, longer each time
+        if lst.skin > 0:                # a list that was reused at least once: again; one
+            lasted = lst.age > 1        # that never was: back off, longer each time
             if lasted:
                 lst.cool = COOL
             else:
