@@ -242,6 +242,11 @@ class ClothContact:
                          f"{m['self_overlaps']} still closer than "
                          f"{100 * (1 - OVERLAP_SLACK):.0f}% of {self.p['self_distance']:g} "
                          f"rods{listed}")       # ('; ': where a row may break, app/draw/wrap.py)
+            if m["self_overlaps"] > self.cloth.rows * self.cloth.cols:
+                # the crumpled cloth's heap at 1 substep: its weight presses it into itself
+                # faster than 2 sweeps a substep part it (at 3 it holds: bench cloth's rows)
+                lines.append("pressed into itself (more pairs too close than particles): "
+                             "try more substeps")
         return lines
 
     def contact_bounds(self, bounds: tuple[float, float, float, float]

@@ -348,18 +348,23 @@ def test_the_benchmark_runs_quickly(tmp_path, png_charts):
     assert out["big_ms"] > 0 and out["naive"]["speedup"] > 0 and out["draw"]["draw_ms"] > 0
     assert all(math.isfinite(g["mean_stretch"]) for g in out["grid"])
     assert (tmp_path / "cloth.png").exists()
-    # contact: the three 64 x 64 states of the goal (the crumpled cloth unfolding and settled)
+    # contact: the three 64 x 64 states of the goal (the crumpled cloth unfolding, and settled
+    # at the substeps that hold its heap up), the same heap at 1 substep (crushed: not judged)
     # and the fold card a teacher shows (its own settings, landed: pairs found), each beside the
     # step without self-collision
     rows = {r["state"]: r for r in out["contact"]["self_collision"]}
-    assert set(rows) == {"hanging", "crumpled", "crumpled, settled", "fold card"}
+    judged = ("hanging", "crumpled", "crumpled, settled")
+    assert set(rows) == {*judged, "crumpled, crushed", "fold card"}
     assert rows["crumpled, settled"]["steps"] > rows["crumpled"]["steps"]
-    assert all(rows[s]["goal"] for s in ("hanging", "crumpled", "crumpled, settled"))
+    assert rows["crumpled, settled"]["substeps"] == 3 and rows["crumpled"]["substeps"] == 1
+    assert rows["crumpled, crushed"]["steps"] == rows["crumpled, settled"]["steps"]
+    assert rows["crumpled, crushed"]["substeps"] == 1 and not rows["crumpled, crushed"]["goal"]
+    assert all(rows[s]["goal"] for s in judged)
+    assert all(0 <= r["still_close"] <= r["pairs"] for r in rows.values())
     card = rows["fold card"]
     assert card["scene"] == "cloth_collisions" and card["particles"] == 120 and not card["goal"]
     assert card["pairs"] > 0 and card["grid_ms"] > 0 and card["step_ms"] > 0
-    assert out["contact"]["self_goal"]["met"] == all(
-        rows[s]["met"] for s in ("hanging", "crumpled", "crumpled, settled"))
+    assert out["contact"]["self_goal"]["met"] == all(rows[s]["met"] for s in judged)
     from app.physics import rods_compiled
     if rods_compiled.available():     # the compiled pass beside the compiled step it runs with
         for r in rows.values():       # (it was divided by the NumPy step: 0.75 x, "MET")

@@ -172,15 +172,15 @@ column k holds +1 at j_k and -1 at i_k; W the pairs' x and y corrections): alone
 136 (27,233 pairs), but the bench's crumpled pass took 1.00-1.04 ms against 0.89-0.95 (three
 whole bench runs each, taking turns, load 0.5-1.0).
 
-Settled on the floor (400 steps; a `bench cloth` row) the crumpled cloth is a 2D heap ~4 x denser
-than its particles' discs allow: ~52,000 pairs, ~47,000 still too close after the pass (the HUD
-says so); no skin up to 1 R lasts. The pass 2.95-3.00 x the step, 2.88-2.92 x with self_list's
-back-off, compiled 1.81-1.83 x (2026-11-27, four runs, load 0.6-0.85): NOT met.
+Settled on the floor at 1 substep (400 steps) the crumpled cloth is crushed: a 2D heap ~4 x too
+dense for its particles' discs, ~47,000 of ~52,000 pairs still too close (the HUD says so and
+what to try), the pass ~2.9-3.0 x the step. Its weight presses the layers together faster than 2
+sweeps a substep part them; at 3 substeps it stands (~2,900 still close): the goal's row, 0.81 x
+the step, compiled 0.75 x (2026-11-27, load 0.6; app/bench/cloth_contact.py says how measured).
 
 Self-collision is discrete, like the projection without the sweep test: a particle that moves
 more than about self_distance in one substep can pass between two particles of another layer
-without ever being seen closer than the minimum. Raise substeps (or lower the drop) for fast
-folds.
+unseen. Raise substeps (or lower the drop) for fast folds.
 """
 
 from __future__ import annotations
