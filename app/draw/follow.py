@@ -2,10 +2,13 @@
 cloth as wide as the window fall onto a ball a third as wide, and a view fitted to the strip as it
 starts leaves the draped strip a thin rim on the ball, two thirds of the picture empty (issue 26:
 content share .30 at 1024x768). `follow` eases the content's bounds from those wide ones towards
-the strip and the obstacles as they are now (never outside the wide ones), with a time
-constant of TAU simulated seconds closing in (TAU_OUT widening), so the picture closes in while
-the strip drapes and does not jump with every frame. A reset (time 0) starts wide again; the state is an attribute of the
-scene, so a rollback or a scrub of the timeline takes it back with the rest.
+the strip and the obstacles as they are now, with a time constant of TAU simulated seconds
+closing in (TAU_OUT widening), so the picture closes in while the strip drapes and does not jump
+with every frame. It never goes outside the wide bounds, or the world where the world reaches
+further: a crumpled cloth's heap, wider than the cloth it started as, stays in the picture (it
+was cut off at the pane's edge); a particle flung far off the world does not zoom it out. A
+reset (time 0) starts wide again; the state is an attribute of the scene, so a rollback or a
+scrub of the timeline takes it back with the rest.
 """
 
 from __future__ import annotations
@@ -34,14 +37,21 @@ def follow(scene, wide: tuple[float, float, float, float], pts: np.ndarray,
     tight = scene.contact_bounds((float(px.min()) - m, float(py.min()) - m,
                                   float(px.max() - px.min()) + 2 * m,
                                   float(py.max() - py.min()) + 2 * m))
-    tx0, ty0 = max(x0, tight[0]), max(y0, tight[1])
-    tx1, ty1 = min(x1, tight[0] + tight[2]), min(y1, tight[1] + tight[3])
+    # clipped to the wide bounds, or to the world where it reaches further: a cloth that
+    # spreads wider than a strip starts (a crumpled heap) stays in the picture; one flung far
+    # off the world does not zoom it out
+    ww, wh = scene.world_size
+    tx0, ty0 = max(min(x0, 0.0), tight[0]), max(min(y0, 0.0), tight[1])
+    tx1 = min(max(x1, float(ww)), tight[0] + tight[2])
+    ty1 = min(max(y1, float(wh)), tight[1] + tight[3])
     if tx1 <= tx0 or ty1 <= ty0:                    # the strip has left the wide bounds
         return wide
     t = scene.time
     last = getattr(scene, "_follow", None)
-    if t <= 0.0 or last is None or t < last[0]:
+    if t <= 0.0 or (last is not None and t < last[0]):
         now = (x0, y0, x1, y1)
+    elif last is None:          # first asked after the start (a headless run's picture at its
+        now = (tx0, ty0, tx1, ty1)      # end): where a view asked every frame would be by now
     else:
         k_in, k_out = (1.0 - math.exp(-(t - last[0]) / tau) for tau in (TAU, TAU_OUT))
         now = tuple(a + (k_out if (b - a) * side > 0 else k_in) * (b - a)
