@@ -42,17 +42,19 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
    pass costs ~3 x the step. That heap is crushed: self-collision does not hold it up there.
    Measured (2026-11-27, the same cloth, the substeps changed live): landed and settled at 4
    substeps (~240 px tall, ~1,600 pairs still close at step 200), then switched to 1 it falls
-   to ~60 px tall and ~39,000 pairs still close within 40 steps (at 2: ~170 px, ~5,600; at 3:
-   ~210 px, ~2,500): its weight presses the layers into one another faster than two Jacobi
-   sweeps a substep part them (at 1 substep gravity moves a particle g h^2 = 0.27 px a step,
-   9 x what it does in a substep of 3). More sweeps at 1 substep do not hold it (SELF_SWEEPS
-   4, 8, 16 from the start: ~95-150 px tall, 24,000-10,000 pairs still close at step 400).
+   to ~60 px tall within 40 steps and rocks at 45-80 px, 29,000-72,000 pairs still close
+   (~44,000 at 100 steps; at 2: ~170 px, ~5,600; at 3: ~210 px, ~2,500): its weight presses
+   the layers into one another faster than two Jacobi sweeps a substep part them (at 1
+   substep gravity moves a particle g h^2 = 0.27 px a step, 9 x what it does in a substep of
+   3). More sweeps at 1 substep do not hold it (SELF_SWEEPS 4, 8, 16 from the start: ~95-150
+   px tall, 24,000-10,000 pairs still close at step 400).
    So the goal's settled row is the heap landed and settled at SETTLED_SUBSTEPS = 3, the fewest
    substeps at which it stands (the step without self-collision at 3 substeps too), and the
    heap at 1 substep is a row of its own, "crumpled, crushed", timed and printed but not
    judged: it times a state self-collision has failed to keep, not the work of keeping one.
-   (At 3 substeps the heap is not perfect either: ~2,900 pairs still close, most of them left
-   by its landing; at 4 ~1,300, at 6 ~460.)
+   (At 3 substeps the heap is not perfect either: ~2,900 pairs still close, and not left by
+   its landing: landed at 4 (~1,600) and set to 3 it comes to ~2,200-2,900 too; at 4 ~1,300,
+   at 6 ~460.)
 """
 
 from __future__ import annotations
