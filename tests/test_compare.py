@@ -392,3 +392,24 @@ def test_a_slow_comparison_says_so_in_its_header_even_when_a_pane_has_its_own_wo
     w.update(8 / 60)
     header = " ".join(str(getattr(x, "text", x)) for x in w.scene_view.header_lines())
     assert "slower than real time: physics takes" in header
+
+
+def test_the_panes_of_a_comparison_show_one_world_rectangle_at_one_scale():
+    """Each pane was fitted to its own scene's content_bounds(): cloth_collisions' heap card
+    drew the crushed heap (1 substep) at twice the scale of the standing one (3 substeps), and
+    a heap two to three times as tall looked ~1.6 times. The panes now share the union of their
+    bounds: one scale, one world rectangle, and every scene's own bounds inside it."""
+    from app.draw.panes import PaneGrid
+    small = ClothScene({"rows": 6, "cols": 6})
+    big = ClothScene({"rows": 40, "cols": 40})
+    assert small.content_bounds() != big.content_bounds()
+    grid = PaneGrid([small, big])
+    for area in (pygame.Rect(0, 0, 1600, 700), pygame.Rect(0, 0, 800, 1000)):
+        grid.forget()
+        lines = [None, None]
+        a, b = grid.fit(area, None, lines)
+        assert a.bounds == b.bounds and a.view.scale == pytest.approx(b.view.scale)
+        for scene in (small, big):
+            x, y, w, h = scene.content_bounds()
+            bx, by, bw, bh = a.bounds
+            assert bx <= x and by <= y and x + w <= bx + bw and y + h <= by + bh

@@ -212,15 +212,18 @@ class Pane:
         self.room, self.hud_width = (0, 0), None
 
     def fit(self, rect: pygame.Rect, lines: list | None, strip: bool = False,
-            text_size: int | None = None) -> Layout:
+            text_size: int | None = None,
+            bounds: tuple[float, float, float, float] | None = None) -> Layout:
         """The layout in `rect` with these HUD lines (None: HUD and strip hidden). Lines that
         no longer fit the room reserved redo it (its width chosen again): the picture moves
-        then, and only then."""
-        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width, self.held,
+        then, and only then. `bounds`: the world rectangle to show, if not the scene's own
+        content_bounds() (a comparison's panes share one); a pane held still keeps its own."""
+        bounds = self.held or bounds
+        layout = scene_layout(rect, self.scene, lines, self.room, strip, self.hud_width, bounds,
                               text_size)
         if lines is not None and self.hud_width is not None and \
                 layout.hud.size != tuple(self.room):
-            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None, self.held,
+            layout = scene_layout(rect, self.scene, lines, (0, 0), strip, None, bounds,
                                   text_size)
         if lines is not None:
             self.room, self.hud_width = layout.hud.size, layout.hud_width

@@ -123,16 +123,18 @@ class PaneGrid:
         its size) if that shows the panes larger. A pane whose HUD box would run out of it (a
         small window, large text) takes its `brief` lines instead (`used` holds the lines each
         pane was laid out with)."""
+        shared = shared_bounds([p.scene for p in self.panes])
         top = self._header_at_top(area, header)
         corner = self._header_in_corner(area, header) if header and len(self.panes) == 3 \
             else None
         key = (tuple(top[2]), tuple(corner[0]) if corner else None, len(self.panes))
         if self.cells is None or self._for != key:
-            cells, score = self.choose(top[2], lines, strip, brief, _cap(header, top[1]))
+            cells, score = self.choose(top[2], lines, strip, brief, _cap(header, top[1]), shared)
             self.corner = False
             if corner is not None:
                 cells4 = split(area, 2, 2, 4)[:3]
-                score4 = self.score(cells4, lines, strip, brief, _cap(header, corner[1]))
+                score4 = self.score(cells4, lines, strip, brief, _cap(header, corner[1]),
+                                    shared)
                 if score4[0] > score[0] or (score4[0] == score[0] and score4[1] > 1.01 * score[1]):
                     cells, self.corner = cells4, True
             self.cells = cells
@@ -145,11 +147,11 @@ class PaneGrid:
         for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, lines)):
             if cap is not None and brief is not None and ln is not None and not strip:
                 ln = brief[k]               # (a crowded comparison: see _cap)
-            layout = p.fit(cell, ln, strip, text_size=cap)
+            layout = p.fit(cell, ln, strip, text_size=cap, bounds=shared)
             if brief is not None and ln is not None and _cramped(layout, cell, strip, cap):
                 p.forget()
                 ln = brief[k]
-                layout = p.fit(cell, ln, strip, text_size=cap)
+                layout = p.fit(cell, ln, strip, text_size=cap, bounds=shared)
             layouts.append(layout)
             self.used.append(ln)
         # brief in one pane, brief in all (on the first page): at 1024x768 with F2 cotton's
@@ -159,7 +161,8 @@ class PaneGrid:
                 if ln is not None and ln is not brief[k]:
                     p.forget()
                     self.used[k] = brief[k]
-                    layouts[k] = p.fit(cell, brief[k], strip, text_size=cap)
+                    layouts[k] = p.fit(cell, brief[k], strip, text_size=cap,
+                                           bounds=shared)
         # one text size in every pane: a pane whose text had to shrink sets it for all (three
         # panes large and one small reads as a mistake)
         shown = [lay.hud_text for lay, ln in zip(layouts, self.used) if ln is not None]
@@ -167,7 +170,8 @@ class PaneGrid:
             for k, (p, cell, ln) in enumerate(zip(self.panes, self.cells, self.used)):
                 if ln is not None and layouts[k].hud_text != min(shown):
                     p.forget()
-                    layouts[k] = p.fit(cell, ln, strip, text_size=min(shown))
+                    layouts[k] = p.fit(cell, ln, strip, text_size=min(shown),
+                                       bounds=shared)
         return layouts
 
     def _header_at_top(self, area: pygame.Rect, header: list | None
@@ -203,7 +207,7 @@ class PaneGrid:
         return pygame.Rect(cell.left + MARGIN, cell.top + MARGIN, width, h), size
 
     def choose(self, rest: pygame.Rect, lines: list, strip: bool,
-               brief: list | None = None, cap: float | None = None
+               brief: list | None = None, cap: float | None = None, shared=None
                ) -> tuple[list[pygame.Rect], tuple]:
         """The arrangement whose HUD boxes fit their panes (or spill least; with the `brief`
         lines where the full ones spill) and whose smallest pane shows the most content (on a
@@ -211,22 +215,24 @@ class PaneGrid:
         best, best_key = None, (-float("inf"), 0.0)
         for cols, rows in grids(len(self.panes), rest):
             cells = split(rest, cols, rows, len(self.panes))
-            key = self.score(cells, lines, strip, brief, cap)
+            key = self.score(cells, lines, strip, brief, cap, shared)
             if key[0] > best_key[0] or (key[0] == best_key[0] and key[1] > 1.01 * best_key[1]):
                 best, best_key = cells, key
         return best, best_key
 
     def score(self, cells: list[pygame.Rect], lines: list, strip: bool,
-              brief: list | None = None, cap: float | None = None) -> tuple[float, float]:
+              brief: list | None = None, cap: float | None = None, shared=None
+              ) -> tuple[float, float]:
         """(minus the worst spill of a HUD box out of its cell, or 0; the smallest pane's
         content area in pixels): higher is better."""
         layouts = []
         for k, (p, c, ln) in enumerate(zip(self.panes, cells, lines)):
             if cap is not None and brief is not None and ln is not None and not strip:
                 ln = brief[k]
-            lay = scene_layout(c, p.scene, ln, strip=strip, text_size=cap)
+            lay = scene_layout(c, p.scene, ln, strip=strip, text_size=cap, bounds=shared)
             if brief is not None and ln is not None and _cramped(lay, c, strip, cap):
-                lay = scene_layout(c, p.scene, brief[k], strip=strip, text_size=cap)
+                lay = scene_layout(c, p.scene, brief[k], strip=strip, text_size=cap,
+                                   bounds=shared)
             layouts.append(lay)
         spill = max(lay.hud.bottom - c.bottom for lay, c in zip(layouts, cells))
         return (min(0, -spill), min(_content_area(lay, c) for lay, c in zip(layouts, cells)))
@@ -257,6 +263,20 @@ class PaneGrid:
             if cell.collidepoint(pos):
                 return k
         return None
+
+
+def shared_bounds(scenes) -> tuple[float, float, float, float] | None:
+    """The world rectangle every pane of a comparison shows: the union of the scenes'
+    content_bounds(), so each is drawn at the same scale and what differs between the variants
+    is what a class sees (cloth_collisions' heap card: each pane fitted to its own heap drew
+    the crushed one at twice the scale, and a heap 2-3 x as tall looked ~1.6 x). None for one
+    pane, or where a scene fills its pane (content_fills: it lays itself out)."""
+    if len(scenes) < 2 or any(getattr(s, "content_fills", False) for s in scenes):
+        return None
+    boxes = [s.content_bounds() for s in scenes]
+    x0, y0 = min(b[0] for b in boxes), min(b[1] for b in boxes)
+    x1, y1 = max(b[0] + b[2] for b in boxes), max(b[1] + b[3] for b in boxes)
+    return (x0, y0, x1 - x0, y1 - y0)
 
 
 def _cap(header: list | None, size: float) -> float | None:
