@@ -36,6 +36,7 @@ STARTS = ("flat", "folded", "crumpled")
 MU = 0.5                       # Coulomb coefficient: holds a cloth on a slope up to atan(0.5) = 27 deg
 BOX_ANGLE = 20.0               # degrees
 BAR_THICKNESS = 2.0            # px each side of its line (4 px thick): where fast particles tunnel
+PRESSED_FOR = 1.0              # s: more pairs too close than particles this long: the HUD says so
 
 CONTACT_PARAMS = (
     Param("obstacles", "none", str, choices=OBSTACLE_SETS,
@@ -148,6 +149,8 @@ class ClothContact:
         self.dragged: int | None = None           # the obstacle LMB drags, and where to
         self.drag_target = (0.0, 0.0)
         self._contact_cache: dict | None = None
+        self._pressed_since: float | None = None  # when the pairs too close began to outnumber
+                                                  # the particles (None: they do not)
         self.sync_contact()
 
     def sync_contact(self) -> None:
@@ -221,6 +224,9 @@ class ClothContact:
                 "tunneled": st.tunneled,
                 "self_overlaps": self_overlaps(c, st.self_distance, st.self_method)}}
             self._contact_cache = cache
+            pressed = cache["values"]["self_overlaps"] > c.rows * c.cols
+            if not pressed or self._pressed_since is None:
+                self._pressed_since = self.time if pressed else None
         return dict(cache["values"])
 
     def contact_hud(self, m: dict) -> list[str]:
@@ -242,11 +248,14 @@ class ClothContact:
                          f"{m['self_overlaps']} still closer than "
                          f"{100 * (1 - OVERLAP_SLACK):.0f}% of {self.p['self_distance']:g} "
                          f"rods{listed}")       # ('; ': where a row may break, app/draw/wrap.py)
-            if m["self_overlaps"] > self.cloth.rows * self.cloth.cols:
+            since = self._pressed_since
+            if m["self_overlaps"] > self.cloth.rows * self.cloth.cols and since is not None \
+                    and self.time - since >= PRESSED_FOR:
                 # the crumpled cloth's heap at 1 substep: its weight presses it into itself
-                # faster than 2 sweeps a substep part it (at 3 it holds: bench cloth's rows)
-                lines.append("pressed into itself (more pairs too close than particles): "
-                             "try more substeps")
+                # faster than 2 sweeps a substep part it (at 3 it holds: bench cloth's rows);
+                # not a moment's crowd (a crumpled start falling, a landing)
+                lines.append("pressed into itself (more pairs too close than particles, for "
+                             "over a second): try more substeps")
         return lines
 
     def contact_bounds(self, bounds: tuple[float, float, float, float]
@@ -278,7 +287,7 @@ class ClothContact:
             ob.__dict__.update(copy.deepcopy(saved.__dict__))
         self.cloth.contact.tunneled = snap["tunneled"]
         self.dragged, self.drag_target = snap["dragged"], snap["target"]
-        self._contact_cache = None
+        self._contact_cache = self._pressed_since = None
 
     def obstacle_state(self) -> np.ndarray:
         """Every obstacle's centre, for the state hash and the finite check."""
