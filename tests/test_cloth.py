@@ -423,3 +423,25 @@ def test_the_step_is_timed_from_outside_and_the_hud_splits_it_in_shares():
     line = next(l for l in scene.hud_details() if l.startswith("physics time: "))
     assert "ms" not in line                          # one ms/step figure: the window's
     assert "  |  " in scene.hud_details()[0]         # "LMB: move+lock  |  RMB: unlock  |  ..."
+
+
+@pytest.mark.parametrize("name, before, after", [("substeps", 1, 4), ("substeps", 4, 1),
+                                                 ("substeps", 1, 3), ("hertz", 60, 180),
+                                                 ("hertz", 240, 60)])
+def test_the_velocity_carries_over_when_substeps_or_hertz_change_live(name, before, after):
+    """x - x_prev is the velocity times the h it was travelled in. Set live from 1 substep to
+    4, a falling cloth's next step used it as the distance of a substep a quarter as long: it
+    fell 4 times as fast (297 -> 1194 px/s), and 4 -> 1 quartered it. Now the velocity carries
+    over, gaining g dt in the step as a falling body does (no drag here)."""
+    scene = ClothScene({"rows": 6, "cols": 6, "pins": "none", "drag_coef": 0.0, name: before})
+
+    def fall_speed():
+        c = scene.cloth
+        return float((c.x[1] - c.x_prev[1]).astype(float).mean()) / (scene.dt / scene.p["substeps"])
+    for _ in range(20):
+        scene.advance()
+    v0 = fall_speed()
+    scene.set(name, after)
+    scene.advance()
+    gained = fall_speed() - v0
+    assert v0 > 50 and gained == pytest.approx(scene.p["g"] * scene.dt, rel=0.05)

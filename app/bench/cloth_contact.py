@@ -40,15 +40,15 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
    particles' discs allow (4,096 particles in ~500 x 65 px): ~52,000 pairs every step, ~47,000
    of them still closer than 95 % of self_distance after the pass (the HUD says so), and the
    pass costs ~3 x the step. That heap is crushed: self-collision does not hold it up there.
-   Measured (2026-11-27, the same cloth, the substeps changed live): landed and settled at 4
-   substeps (~240 px tall, ~1,600 pairs still close at step 200), then switched to 1 it falls
-   to ~60 px tall within 40 steps and rocks at 45-80 px, 29,000-72,000 pairs still close
-   (~44,000 at 100 steps; at 2: ~170 px, ~5,600; at 3: ~210 px, ~2,500): its weight presses
-   the layers into one another faster than two Jacobi sweeps a substep part them (at 1
-   substep gravity moves a particle g h^2 = 0.27 px a step, 9 x what it does in a substep of
-   3); with g cut to 980 / 9 (the g h^2 a substep of 3 substeps) it holds at 1 substep, at
-   ~200-240 px (a review's run). More sweeps at 1 substep do not hold it (SELF_SWEEPS 4, 8, 16
-   from the start: ~95-150 px tall, 24,000-10,000 pairs still close at step 400).
+   Measured (2026-11-27, the same cloth, the substeps changed live, the velocity carried over:
+   app/physics/cloth.py): landed and settled at 4 substeps (~240 px tall, ~1,600 pairs still
+   close at step 200), then switched to 1 it sinks to ~90 px in 40 steps and ~60 px in 60, and
+   lies at 50-56 px with ~40,000 pairs still close (at 2: 150-200 px, ~6,000; at 3: 210-230
+   px, ~2,300): its weight presses the layers into one another faster than two Jacobi sweeps
+   a substep part them (at 1 substep gravity moves a particle g h^2 = 0.27 px a step, 9 x what
+   it does in a substep of 3); with g cut to 980 / 9 (the g h^2 a substep of 3 substeps) it
+   holds at 1 substep, at 210-270 px. More sweeps at 1 substep do not hold it (SELF_SWEEPS 4,
+   8, 16 from the start: ~95-150 px tall, 24,000-10,000 pairs still close at step 400).
    So the goal's settled row is the heap landed and settled at SETTLED_SUBSTEPS = 3, the fewest
    substeps at which it stands (the step without self-collision at 3 substeps too; of 3, 4 and
    6 substeps, 3 gives the highest pass / step: 0.85, 0.81, 0.81 in one review's run, 2
