@@ -50,9 +50,9 @@ def follow(scene, wide: tuple[float, float, float, float], pts: np.ndarray,
     last = getattr(scene, "_follow", None)
     if t <= 0.0 or (last is not None and t < last[0]):
         now = (x0, y0, x1, y1)
-    elif last is None:          # first asked after the start (a headless run's picture at its
-        now = (tx0, ty0, tx1, ty1)      # end): where a view asked every frame would be by now
     else:
+        if last is None:        # first asked after the start (a headless run's picture at
+            last = (0.0, (x0, y0, x1, y1))  # its end): eased from the start over all of t
         k_in, k_out = (1.0 - math.exp(-(t - last[0]) / tau) for tau in (TAU, TAU_OUT))
         now = tuple(a + (k_out if (b - a) * side > 0 else k_in) * (b - a)
                     for a, b, side in zip(last[1], (tx0, ty0, tx1, ty1), (-1, -1, 1, 1)))
