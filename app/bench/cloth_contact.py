@@ -98,7 +98,7 @@ def _self_states(self_steps: int, quick: bool) -> list[tuple[str, str, dict, int
     fold = {k: v for k, v in card.settings.items() if k != "self_collision"}
     big = {"rows": N, "cols": N}
     crumpled = {**big, "pins": "none", "start": "crumpled", "obstacles": "floor"}
-    settled = 40 if quick else SETTLED_STEPS
+    settled = 20 if quick else SETTLED_STEPS
     return [("hanging", "cloth", {**big, "pins": "top"}, self_steps),
             ("crumpled", "cloth", crumpled, self_steps),
             (SETTLED, "cloth", {**crumpled, "substeps": SETTLED_SUBSTEPS}, settled),
