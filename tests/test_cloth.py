@@ -341,10 +341,13 @@ def test_the_strain_key_is_in_the_hud_with_every_colour():
     assert [c for c, _ in keys if c is not None] == list(STRAIN_COLORS)
 
 
-def test_the_benchmark_runs_quickly(tmp_path, png_charts):
+def test_the_benchmark_runs_quickly(tmp_path, png_charts, capsys):
     from app.bench import Report
     from app.bench.cloth import run as bench
     out = bench(Report(out_dir=str(tmp_path), quick=True))
+    printed = capsys.readouterr()        # (a table's title was 1,128 characters: no line over
+    longest = max(len(line) for line in (printed.out + printed.err).splitlines())
+    assert longest <= 1000, longest      # 1,000, the command line's rule; titles now wrap)
     assert out["big_ms"] > 0 and out["naive"]["speedup"] > 0 and out["draw"]["draw_ms"] > 0
     assert all(math.isfinite(g["mean_stretch"]) for g in out["grid"])
     assert (tmp_path / "cloth.png").exists()

@@ -16,6 +16,7 @@ import json
 import os
 import statistics
 import sys
+import textwrap
 import time
 from typing import Any, Callable, Sequence
 
@@ -64,7 +65,7 @@ class Report:
         widths = [max(len(h), *(len(r[i]) for r in cells)) if cells else len(h)
                   for i, h in enumerate(headers)]
         out = self._out()
-        print(f"\n{title}", file=out)
+        print(f"\n{_wrapped(title)}", file=out)
         print("  ".join(h.rjust(w) for h, w in zip(headers, widths)), file=out)
         print("  ".join("-" * w for w in widths), file=out)
         for r in cells:
@@ -78,7 +79,7 @@ class Report:
         `widths`: each column's least width (a wider cell pushes its row along)."""
         widths = [max(len(h), w) for h, w in zip(headers, widths)]
         out = self._out()
-        print(f"\n{title}", file=out)
+        print(f"\n{_wrapped(title)}", file=out)
         print("  ".join(h.rjust(w) for h, w in zip(headers, widths)), file=out)
         print("  ".join("-" * w for w in widths), file=out, flush=True)
 
@@ -91,6 +92,15 @@ class Report:
         path = os.path.join(self.out_dir, name)
         self.charts.append(path)
         return path
+
+
+TITLE_WIDTH = 100      # a table's title is wrapped to lines this long (one was 1,128 characters)
+
+
+def _wrapped(title: str) -> str:
+    """A table's title in lines of at most TITLE_WIDTH characters (words kept whole)."""
+    return "\n".join(textwrap.fill(part, TITLE_WIDTH, break_long_words=False,
+                                   break_on_hyphens=False) for part in title.split("\n"))
 
 
 def _cell(v: Any) -> str:
