@@ -293,7 +293,7 @@ class TrampolineScene(PymunkScene):
         mass cloth_mass / particles each, v = (x - x_prev)/h."""
         c = self.cloth
         x = c.x
-        h = self.dt / self.p["substeps"]
+        h = c.travelled_in(self.dt / self.p["substeps"])   # (substeps or hertz set since)
         free = c.w > 0
         v = (x.astype(np.float64) - c.x_prev) / h
         m = self.particle_mass
@@ -351,7 +351,7 @@ class TrampolineScene(PymunkScene):
     # ----- reports -------------------------------------------------------------------------------
     def momentum(self) -> np.ndarray:
         """Total momentum, cloth + body (kg px/s)."""
-        h = self.dt / self.p["substeps"]
+        h = self.cloth.travelled_in(self.dt / self.p["substeps"])
         cloth = cloth_momentum(self.cloth.x, self.cloth.x_prev, self.particle_mass, h)
         return cloth + self.body.mass * np.array(self.body.velocity)
 

@@ -378,6 +378,10 @@ class Cloth:
         d = self.x[:, self.locked] - self.anchor[:, self.locked]
         return float(np.sqrt((d.astype(np.float64) ** 2).sum(0)).max())
 
+    def travelled_in(self, h: float) -> float:
+        """The substep x - x_prev was travelled in: the last step's (h_prev), h before any."""
+        return self.h_prev or h
+
     def state_arrays(self) -> list[np.ndarray]:
         return [self.x, self.x_prev, self.w] + [f.alive for rs in self.sets.values()
                                                  for f in rs.families]
