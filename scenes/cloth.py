@@ -260,8 +260,8 @@ class ClothScene(ClothContact, Scene):
         c = self.cloth
         ids = grid_sample(c.rows, c.cols)
         x = c.x.reshape(2, -1)[:, ids].T.astype(float)
-        v = (c.x - c.x_prev).reshape(2, -1)[:, ids].T.astype(float) * \
-            (self.p["substeps"] / self.dt)
+        v = (c.x - c.x_prev).reshape(2, -1)[:, ids].T.astype(float) / \
+            c.travelled_in(self.dt / self.p["substeps"])
         return Arrows(ids, x, v, None, sample_text(len(ids), c.rows * c.cols, "particle"))
 
     # ----- drawing ------------------------------------------------------------------------------
@@ -296,7 +296,7 @@ class ClothScene(ClothContact, Scene):
         tearing take energy out."""
         from app.energy import Energies
         c = self.cloth
-        h = self.dt / self.p["substeps"]
+        h = c.travelled_in(self.dt / self.p["substeps"])    # the last substep's
         free = c.w > 0
         v = (c.x - c.x_prev) / h
         kinetic = 0.5 * float(np.sum(free * (v[0] * v[0] + v[1] * v[1])))

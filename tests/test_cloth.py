@@ -448,3 +448,16 @@ def test_the_velocity_carries_over_when_substeps_or_hertz_change_live(name, befo
     scene.advance()
     gained = fall_speed() - v0
     assert v0 > 50 and gained == pytest.approx(scene.p["g"] * scene.dt, rel=0.05)
+
+
+def test_the_arrows_and_energy_bars_read_the_velocity_of_the_last_substep_after_a_live_change():
+    """Substeps set live (no step yet): x - x_prev is still the last substep's travel, so the
+    velocity arrows and the kinetic bar stay what they were (they read it over the new h:
+    4 times too fast, 16 times the energy)."""
+    scene = ClothScene({"rows": 6, "cols": 6, "pins": "none", "drag_coef": 0.0, "substeps": 1})
+    for _ in range(20):
+        scene.advance()
+    v0, ke0 = scene.arrows().vel.copy(), dict(scene.energies().parts)["kinetic"]
+    scene.set("substeps", 4)
+    assert scene.arrows().vel == pytest.approx(v0, rel=1e-9)
+    assert dict(scene.energies().parts)["kinetic"] == pytest.approx(ke0, rel=1e-9)
