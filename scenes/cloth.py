@@ -219,6 +219,8 @@ class ClothScene(ClothContact, Scene):
         if self.obstacles:
             self.move_obstacles(h)
         self.cloth.step(h)
+        if "self_collision" in self.on:
+            self.note_pressed()                 # (the HUD's "pressed into itself": cloth_contact)
         self._stretch = None
 
     def stretches(self) -> tuple[np.ndarray, np.ndarray]:

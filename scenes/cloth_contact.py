@@ -149,8 +149,8 @@ class ClothContact:
         self.dragged: int | None = None           # the obstacle LMB drags, and where to
         self.drag_target = (0.0, 0.0)
         self._contact_cache: dict | None = None
-        self._pressed_since: float | None = None  # when the pairs too close began to outnumber
-                                                  # the particles (None: they do not)
+        self._pressed_since: float | None = None  # when the pairs pushed began to outnumber
+                                                  # the particles (note_pressed; None: not now)
         self.sync_contact()
 
     def sync_contact(self) -> None:
@@ -224,10 +224,18 @@ class ClothContact:
                 "tunneled": st.tunneled,
                 "self_overlaps": self_overlaps(c, st.self_distance, st.self_method)}}
             self._contact_cache = cache
-            pressed = cache["values"]["self_overlaps"] > c.rows * c.cols
-            if not pressed or self._pressed_since is None:
-                self._pressed_since = self.time if pressed else None
         return dict(cache["values"])
+
+    def note_pressed(self) -> None:
+        """After each substep with self-collision on: since when the pairs it pushed have
+        outnumbered the particles (None: they do not now). One comparison a substep, so the
+        HUD's line below does not hang on how often the metrics are asked (a headless run asks
+        once, at its end)."""
+        c = self.cloth
+        if c.contact.self_pairs <= c.rows * c.cols:
+            self._pressed_since = None
+        elif self._pressed_since is None:
+            self._pressed_since = self.time
 
     def contact_hud(self, m: dict) -> list[str]:
         lines = []
@@ -280,14 +288,16 @@ class ClothContact:
 
     def contact_snapshot(self) -> dict:
         return {"obstacles": copy.deepcopy(self.obstacles), "tunneled": self.cloth.contact.tunneled,
-                "dragged": self.dragged, "target": self.drag_target}
+                "dragged": self.dragged, "target": self.drag_target,
+                "pressed_since": self._pressed_since}
 
     def contact_restore(self, snap: dict) -> None:
         for ob, saved in zip(self.obstacles, snap["obstacles"]):
             ob.__dict__.update(copy.deepcopy(saved.__dict__))
         self.cloth.contact.tunneled = snap["tunneled"]
         self.dragged, self.drag_target = snap["dragged"], snap["target"]
-        self._contact_cache = self._pressed_since = None
+        self._contact_cache = None
+        self._pressed_since = snap.get("pressed_since")
 
     def obstacle_state(self) -> np.ndarray:
         """Every obstacle's centre, for the state hash and the finite check."""
