@@ -289,7 +289,8 @@ class ClothContact:
     def contact_snapshot(self) -> dict:
         return {"obstacles": copy.deepcopy(self.obstacles), "tunneled": self.cloth.contact.tunneled,
                 "dragged": self.dragged, "target": self.drag_target,
-                "pressed_since": self._pressed_since}
+                "pressed_since": self._pressed_since,
+                "follow": getattr(self, "_follow", None)}     # (the view: app/draw/follow.py)
 
     def contact_restore(self, snap: dict) -> None:
         for ob, saved in zip(self.obstacles, snap["obstacles"]):
@@ -298,6 +299,7 @@ class ClothContact:
         self.dragged, self.drag_target = snap["dragged"], snap["target"]
         self._contact_cache = None
         self._pressed_since = snap.get("pressed_since")
+        self._follow = snap.get("follow")
 
     def obstacle_state(self) -> np.ndarray:
         """Every obstacle's centre, for the state hash and the finite check."""

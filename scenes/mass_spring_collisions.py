@@ -54,6 +54,16 @@ class MassSpringCollisionsScene(MassSpringClothScene):
             compare=({"contact": "projection"}, {"contact": "penalty"})),
     )
 
+    def snapshot(self):
+        """The cloth's state and the view's (app/draw/follow.py): a rewind shows the picture of
+        its moment, not the start's wide one closing in again."""
+        return {"state": super().snapshot(), "follow": getattr(self, "_follow", None)}
+
+    def restore(self, snap) -> None:
+        super().restore(None if snap is None else snap["state"])
+        if snap is not None:
+            self._follow = snap["follow"]
+
     def content_bounds(self) -> tuple[float, float, float, float]:
         """The strip, room for its ends to hang (half its length) and every obstacle, as it
         starts; then closing in on the strip and the obstacles as it settles (app/draw/follow.py:

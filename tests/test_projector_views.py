@@ -260,3 +260,21 @@ def test_the_cradles_view_holds_its_swing_and_no_more(card):
             bx, by = b.position
             assert x <= bx - RADIUS and bx + RADIUS <= x + w, (card, scene.time, bx, (x, w))
             assert y <= by - RADIUS and by + RADIUS <= y + h, (card, scene.time, by, (y, h))
+
+
+@pytest.mark.parametrize("name", ["cloth_collisions", "mass_spring_collisions"])
+def test_a_rewind_shows_the_view_of_its_moment_not_the_start_closing_in_again(name):
+    """The view that closes in on the strip (app/draw/follow.py) is kept in the scene's
+    snapshot: restored to 2 s, the picture is the one of 2 s (both scenes' snapshots left it
+    out, and a scrub back jumped to the start's wide bounds)."""
+    scene = get_scene(name)({})
+    for _ in range(120):
+        scene.advance()
+        scene.content_bounds()                  # (asked every frame, as the window does)
+    snap, then, t, steps = scene.snapshot(), scene.content_bounds(), scene.time, scene.steps
+    for _ in range(60):
+        scene.advance()
+        scene.content_bounds()
+    scene.restore(snap)
+    scene.time, scene.steps = t, steps          # (as the runner's rewind does)
+    assert scene.content_bounds() == pytest.approx(then)

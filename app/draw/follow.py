@@ -7,8 +7,9 @@ closing in (TAU_OUT widening), so the picture closes in while the strip drapes a
 with every frame. It never goes outside the wide bounds, or the world where the world reaches
 further: a crumpled cloth's heap, wider than the cloth it started as, stays in the picture (it
 was cut off at the pane's edge); a particle flung far off the world does not zoom it out. A
-reset (time 0) starts wide again; the state is an attribute of the scene, so a rollback or a
-scrub of the timeline takes it back with the rest.
+reset (time 0) starts wide again; the state is an attribute of the scene, kept in its
+snapshot, so a rollback or a scrub of the timeline takes it back with the rest (the collision
+scenes' snapshots did not keep it: a scrub back jumped to the start's wide view).
 """
 
 from __future__ import annotations
