@@ -36,7 +36,8 @@ STARTS = ("flat", "folded", "crumpled")
 MU = 0.5                       # Coulomb coefficient: holds a cloth on a slope up to atan(0.5) = 27 deg
 BOX_ANGLE = 20.0               # degrees
 BAR_THICKNESS = 2.0            # px each side of its line (4 px thick): where fast particles tunnel
-PRESSED_FOR = 1.0              # s: more pairs too close than particles this long: the HUD says so
+PRESSED_FOR = 1.0              # s: the pairs pushed outnumber the particles this long: the HUD
+                               # says so (if more pairs than particles are still too close)
 
 CONTACT_PARAMS = (
     Param("obstacles", "none", str, choices=OBSTACLE_SETS,

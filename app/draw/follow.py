@@ -28,7 +28,8 @@ def follow(scene, wide: tuple[float, float, float, float], pts: np.ndarray,
            spacing: float) -> tuple[float, float, float, float]:
     """The content's bounds for `scene` at its time: eased from `wide` (the bounds a strip
     needs at its start) towards the strip's particles `pts` (2 x n) and the scene's obstacles
-    (its contact_bounds), MARGIN spacings around them, clipped to `wide`."""
+    (its contact_bounds), MARGIN spacings around them, clipped to `wide` or the world,
+    whichever reaches further on each side."""
     x0, y0, x1, y1 = wide[0], wide[1], wide[0] + wide[2], wide[1] + wide[3]
     m = MARGIN * spacing
     finite = np.isfinite(pts).all(axis=0)
@@ -45,7 +46,7 @@ def follow(scene, wide: tuple[float, float, float, float], pts: np.ndarray,
     tx0, ty0 = max(min(x0, 0.0), tight[0]), max(min(y0, 0.0), tight[1])
     tx1 = min(max(x1, float(ww)), tight[0] + tight[2])
     ty1 = min(max(y1, float(wh)), tight[1] + tight[3])
-    if tx1 <= tx0 or ty1 <= ty0:                    # the strip has left the wide bounds
+    if tx1 <= tx0 or ty1 <= ty0:        # the strip has left the wide bounds and the world
         return wide
     t = scene.time
     last = getattr(scene, "_follow", None)
