@@ -43,7 +43,7 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
    Measured (2026-11-27, the same cloth, the substeps changed live, the velocity carried over:
    app/physics/cloth.py): landed and settled at 4 substeps (~240 px tall, ~1,600 pairs still
    close at step 200), then switched to 1 it sinks to ~90 px in 40 steps and ~60 px in 60, and
-   lies at 50-56 px with ~40,000 pairs still close (at 2: 150-200 px, ~6,000; at 3: 210-230
+   lies at 53-61 px with ~39,000 pairs still close (at 2: 150-200 px, ~6,000; at 3: 210-230
    px, ~2,300): its weight presses the layers into one another faster than two Jacobi sweeps
    a substep part them (at 1 substep gravity moves a particle g h^2 = 0.27 px a step, 9 x what
    it does in a substep of 3); with g cut to 980 / 9 (the g h^2 a substep of 3 substeps) it

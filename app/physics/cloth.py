@@ -11,9 +11,9 @@ The lecture's cloth (Jakobsen, "Advanced Character Physics", GDC 2001) in three 
    x - x_prev is the velocity times the h it was travelled in: where h changes (substeps or
    hertz set live) it is scaled by h / h_prev first, so the velocity carries over (without
    it, a falling cloth set from 1 substep to 4 fell 4 times as fast, and 4 set to 1 a quarter
-   as fast). To first order: that one step adds a h^2 where the step exact for a constant a
-   would add a h (h + h_prev) / 2, so a falling cloth's speed is off by g (h_prev - h) / 2
-   from then on (6 px/s, 2 % of its 297 px/s, for 1 -> 4 substeps: tests/test_cloth.py).
+   as fast), and in that one step each acceleration adds a h (h + h_prev) / 2, not a h^2: the
+   step exact for a constant a (with a h^2 alone a falling cloth's speed was off by
+   g (h_prev - h) / 2 from then on, 6 px/s of 297 for 1 -> 4 substeps: tests/test_cloth.py).
    `drag` is the fraction of velocity lost per 1/60 s (the slide's step at 60 fps). A substep of
    h seconds applies the same loss per second, (1 - drag) ** (h * 60): otherwise the damping would
    grow with hertz x substeps (at drag 0.01, 50 substeps at 60 Hz would keep 8e-14 of the velocity
@@ -287,12 +287,16 @@ class Cloth:
         sweeps. `timed` only measures what each part costs, around the formulas."""
         timed = self.timed
         v = np.subtract(self.x, self.x_prev, out=self.v)     # x - x_prev = velocity * h
-        if h != self.h_prev and self.h_prev:    # h changed (substeps or hertz set live): the
-            v *= h / self.h_prev                # same velocity over the new h (module docstring)
+        h_prev = self.h_prev
+        changed = bool(h_prev) and h != h_prev  # (substeps or hertz set live: module docstring)
+        if changed:
+            v *= h / h_prev                     # the same velocity over the new h
         self.h_prev = h
         for name, force in self.forces:
             with timed(name):
                 force(self, v, h)
+        if changed:
+            self._first_after_change(v, h, h_prev)
         with timed("verlet"):
             v *= self.free                                   # pinned and grabbed: no motion
             np.add(self.x, v, out=self.x_prev)               # x' = x + (x - x_prev)(..) + a h^2
@@ -312,6 +316,16 @@ class Cloth:
         if self.ease_end > -math.inf:
             self.ease_rest_lengths(h)
         self.t += h
+
+    def _first_after_change(self, v: np.ndarray, h: float, h_prev: float) -> None:
+        """The first step after h changed: each acceleration's a h^2 (drag is none) becomes
+        a h (h + h_prev) / 2, so that x' = x + (x - x_prev) h / h_prev + a h (h + h_prev) / 2,
+        the step that is exact for a constant a (time-corrected Verlet)."""
+        extra = np.zeros_like(v)
+        for name, force in self.forces:
+            if name != "drag":
+                force(self, extra, h)           # a h^2 of each acceleration, alone
+        v += extra * ((h_prev - h) / (2 * h))
 
     def relax(self, iterations: int) -> None:
         """`iterations` Gauss-Seidel sweeps over every active rod set, batch after batch."""
