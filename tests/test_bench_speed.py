@@ -216,12 +216,15 @@ def test_the_instruction_counts_of_a_case_are_exact_and_the_labs_larger(tmp_path
 
 
 def test_the_at_the_line_sentence_says_a_middle_half_only_of_enough_rounds():
-    # statistics.quantiles' 'exclusive' quartiles of three values are the smallest and largest
-    # (and _middle_half gives those of two): --quick's 2 rounds have no middle half to name
-    from app.bench.pymunk_cost import _middle_half, at_the_line
-    assert _middle_half([1.4, 1.6, 1.5]) == (1.4, 1.6) and _middle_half([1.6, 1.4]) == (1.4, 1.6)
-    q1, q3 = _middle_half([1.1, 1.9, 1.3, 1.4, 1.5, 1.6, 1.7, 1.2, 1.8])
-    assert (q1, q3) == pytest.approx((1.25, 1.75))
+    # the 'rounds' column is Timing.of's quartiles, the smallest and largest of fewer than 4
+    # values: --quick's 2 rounds (or 3) have no middle half to name
+    from app.bench import Timing
+    from app.bench.pymunk_cost import at_the_line
+    for few in ([1.4, 1.6, 1.5], [1.6, 1.4]):
+        t = Timing.of(few)
+        assert (t.lo, t.hi) == (1.4, 1.6)
+    t = Timing.of([1.1, 1.9, 1.3, 1.4, 1.5, 1.6, 1.7, 1.2, 1.8])
+    assert (t.lo, t.hi) == pytest.approx((1.3, 1.7))
     for rounds in (2, 3):
         few = at_the_line(["pivoting_l"], rounds)
         assert "middle half" not in few and "interquartile" not in few

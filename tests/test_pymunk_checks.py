@@ -109,7 +109,6 @@ def test_a_ball_that_leaves_is_removed_the_step_it_leaves():
     assert scene.counts["removed"] == 1 and body not in scene.space.bodies
 
 
-
 def test_with_substeps_the_balls_are_looked_at_once_a_step_and_the_joints_every_substep():
     # pivoting_l takes two substeps a step: the balls are read and checked after the last one
     # only (as the tutorial looks once a frame), while the joints' records take the L's pose
@@ -140,7 +139,6 @@ def test_with_substeps_the_balls_are_looked_at_once_a_step_and_the_joints_every_
     before = scene.L_pose()
     scene.advance()
     assert Counted.looks[-1] == before and scene.L_pose() != before
-
 
 
 def looked_at_by_hand(cls):

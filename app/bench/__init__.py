@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import math
 import os
 import statistics
 import sys
@@ -170,12 +171,20 @@ def median_time(fn: Callable[[], Any], repeats: int = 7, warmup: int = 1,
     return Timing.of(times)
 
 
+def load_average() -> float:
+    """The load average over the last minute, printed beside a timing; NaN where the system
+    has none."""
+    try:
+        return os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return math.nan
+
+
 def machine_note() -> str:
     """CPU count and load average, printed first: timings made on a busy machine are noisy."""
     cores = os.cpu_count() or 1
-    try:
-        load = os.getloadavg()[0]
-    except (AttributeError, OSError):
+    load = load_average()
+    if math.isnan(load):
         return f"{cores} cores (load average unknown)"
     busy = "  (busy: timings will be noisy)" if load > 0.75 * cores else ""
     return f"{cores} cores, load average {load:.2f} over the last minute{busy}"

@@ -62,11 +62,10 @@ cost on a 64 x 64 Verlet cloth, measured in the same run as the step without the
 
 from __future__ import annotations
 
-import os
 import time
 from typing import Callable
 
-from app.bench import Report, Timing
+from app.bench import Report, Timing, load_average
 from app.physics.cloth_contact import self_overlaps
 from app.physics.obstacles import Box, floor
 
@@ -107,10 +106,7 @@ def _self_states(self_steps: int, quick: bool) -> list[tuple[str, str, dict, int
 
 
 def _load() -> str:
-    try:
-        return f"load average {os.getloadavg()[0]:.2f}"
-    except OSError:
-        return "load average unknown"
+    return f"load average {load_average():.2f}"
 
 
 def verdict(met: bool) -> str:

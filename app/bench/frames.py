@@ -15,12 +15,11 @@ the others ran; on a quiet one the two agree (drawing and stepping run in this o
 
 from __future__ import annotations
 
-import math
 import os
 import statistics
 import time
 
-from app.bench import Report
+from app.bench import Report, load_average
 
 SIZE = (1920, 1080)
 BUDGET_MS = {1: 1000 / 60, 2: 1000 / 30, 4: 1000 / 30}
@@ -107,4 +106,4 @@ def run(report: Report) -> dict:
                 f"over budget: {', '.join(late)}") + f" ({len(out)} cases)")
     return {"size": list(SIZE), "frames": frames, "cases": out,
             "late": late, "cores": os.cpu_count() or 1,
-            "load": os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan}
+            "load": load_average()}

@@ -16,11 +16,9 @@ iterations it took. Goal (issue 28): 128x128 at most 33 ms a step.
 
 from __future__ import annotations
 
-import math
-import os
 import statistics
 import time
-from app.bench import Report, Timing
+from app.bench import Report, Timing, load_average
 from app.physics import blas_threads
 
 GOAL_MS = 33.0
@@ -73,7 +71,7 @@ def run(report: Report) -> dict:
             for label in order:
                 for _ in range(min(block, steps - b)):
                     runs[label].append(_step(c, label == "one BLAS thread"))
-        entry = {"n": n, "load": _load()}
+        entry = {"n": n, "load": load_average()}
         for label, got in runs.items():
             ms = [g[0] * 1e3 for g in got]
             solve = statistics.median(g[3] for g in got) * 1e3
@@ -113,5 +111,3 @@ def run(report: Report) -> dict:
     return {"goal_ms": GOAL_MS, "sizes": out, "limited_by": limit}
 
 
-def _load() -> float:
-    return os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan

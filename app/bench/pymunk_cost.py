@@ -39,12 +39,10 @@ largest lab/bare.
 from __future__ import annotations
 
 import math
-import os
-import statistics
 import time
 from typing import Callable
 
-from app.bench import Report, Timing
+from app.bench import Report, Timing, load_average
 from app.bench.bare_pymunk import Replay, counts, record
 from app.scene import Scene
 
@@ -173,13 +171,14 @@ def run(report: Report) -> dict:
         lab_ms, bare_ms = Timing.of(lab) * 1e3, Timing.of(bare) * 1e3
         ratio = float(lab_ms) / float(bare_ms)
         each = [a / b for a, b in zip(lab, bare)]      # (each round's pair, taken side by side)
-        load = _load()
+        load = load_average()
         changes = f"{added} / {removed} in {WARM + steps}" if added or removed else "none"
         out.append({"scene": label, "lab_ms": lab_ms, "bare_ms": bare_ms, "ratio": ratio,
                     "ratio_rounds": each, "lab_spread_ms": (max(lab) - min(lab)) * 1e3,
                     "rounds": rounds, "bare_adds": added, "bare_removes": removed,
                     "load": load})
-        q1, q3 = _middle_half(each)
+        spread = Timing.of(each)                        # (its quartiles; of 3 or fewer rounds,
+        q1, q3 = spread.lo, spread.hi                   # the smallest and largest)
         out[-1].update(ratio_q1=q1, ratio_q3=q3)
         rows.append([label, lab_ms, bare_ms, changes, ratio, f"{q1:.2f}-{q3:.2f}",
                      "yes" if ratio <= GOAL else "NO", f"{load:.2f}"])
@@ -202,7 +201,7 @@ def run(report: Report) -> dict:
                    f"{run_['bare_ms'] * 1e3:.1f} us, lab/bare {run_['ratio']:.2f} "
                    f"({'within' if run_['ratio'] <= GOAL else 'NOT within'} {GOAL}); the lab's own "
                    f"cost {run_['own_us']:.1f} us a step; the blocks' lab/bare "
-                   f"{min(each):.2f}-{max(each):.2f} (load {_load():.2f})")
+                   f"{min(each):.2f}-{max(each):.2f} (load {load_average():.2f})")
     ghost = ghost_cost(steps, rounds)
     by_label = {o["scene"]: o for o in out}
     on, off = by_label[GHOST_ON], by_label[GHOST_OFF]
@@ -215,7 +214,7 @@ def run(report: Report) -> dict:
         f"{ghost['ms'] * 1e3:.1f} us a step here ({ghost['rk4_steps']:.2f} RK4 steps of its "
         f"adaptive size, {ghost['us_per_rk4']:.1f} us each: four evaluations of the equations "
         f"of motion and an energy check, in Python floats; median of {rounds} rounds of {steps} "
-        f"steps, load {_load():.2f}), {share:.2f}x the bare pymunk step beside it "
+        f"steps, load {load_average():.2f}), {share:.2f}x the bare pymunk step beside it "
         f"({float(on['bare_ms']) * 1e3:.1f} us). So with the ghost on, lab/bare is at least "
         f"1 + {share:.2f} before any bookkeeping (measured: {on['ratio']:.2f}; with the ghost off "
         f"{off['ratio']:.2f}): the goal of {GOAL} is out of reach while the ghost runs.")
@@ -276,28 +275,15 @@ def long_run(build: Callable[[], Scene], steps: int = LONG_STEPS, block: int = L
             "block_ratios": [x / y for x, y in zip(lab, bare)]}
 
 
-def _load() -> float:
-    """The load average over the last minute (NaN where the system has none)."""
-    return os.getloadavg()[0] if hasattr(os, "getloadavg") else math.nan
-
-
 def at_the_line(near: list[str], rounds: int) -> str:
-    """The line naming the scenes whose 'rounds' column (_middle_half) holds the goal."""
+    """The line naming the scenes whose 'rounds' column (Timing.of's quartiles) holds the
+    goal."""
     what = ("The middle half of their rounds' lab/bare (the 'rounds' column: each round's lab "
             "over its own bare, measured side by side; interquartile range) lies" if rounds > 3
             else f"The smallest and largest of their {rounds} rounds' lab/bare (the 'rounds' "
             f"column: each round's lab over its own bare, measured side by side) lie")
     return (f"At the line: {'; '.join(near)}. {what} on both sides of {GOAL}: another run "
             f"of the same code may give the other verdict.")
-
-
-def _middle_half(values: list[float]) -> tuple[float, float]:
-    """(first quartile, third quartile) of a few numbers; the smallest and largest of up to
-    three (statistics.quantiles' 'exclusive' quartiles of three are those)."""
-    if len(values) < 3:
-        return min(values), max(values)
-    q1, _, q3 = statistics.quantiles(values, n=4)
-    return q1, q3
 
 
 def ghost_cost(steps: int, rounds: int) -> dict:
