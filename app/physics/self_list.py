@@ -52,26 +52,26 @@ substeps late (after lists that did not pay, up to COOL_MAX: below). Measured on
 load 1.6-1.9; the same positions to the last bit): the crumpled cloth's pass 1.9-2.1 % shorter,
 the hanging cloth's 4-6 %.
 
-A list that did not pay: in the crumpled 64 x 64 cloth settled on the floor (`bench cloth`'s
-settled row: ~52,000 pairs, the median particle 0.01 px a step, 6-13 of the 4,096 shaking 1-2.3
-px a step back and forth: 20 steps from step 400, 2026-11-27) the fastest particle's net move
-over the back-off's substeps is small, so a skin was tried every ~7 substeps, and no such list
-outlived a substep: ~40 searches over R + skin in 300 steps (the grid's search alone: 2.75 ms
-over R + skin, ~143,000 pairs, against 1.11 ms over R; load 0.5). Now a list built with a skin
-and never reused starts a back-off of COOL substeps, twice as long after each such list in a row
-(up to COOL_MAX), and a list reused at least once resets it; nothing else does (a fast fall, a
-key change, a restore of a snapshot in between keep it). Measured on 2026-11-27 (one process,
-the two versions taking turns, five runs of 60 steps each, load 0.8; the same positions to the
-last bit): the settled heap's pass 3.03 -> 2.75 ms (6 skinned builds in one run of 300 steps,
-not ~40; five runs of 60 from a fresh list make 3 each, 3.32 -> 3.10 ms, load 0.9; a plain
-search every step: 2.57 ms); the falling crumpled cloth 1.21 -> 1.19, the fold card 0.129 ->
-0.130, the hanging cloth 0.260 -> 0.256 ms (their lists as before in those runs). The price,
-over a whole run: in the crumpled 64 x 64 cloth from step 0 the list was reused from step ~777
-on, when the cloth had settled; now it waits out a back-off of 256 that began at step ~745,
-until step ~1000 (reused 236 times in 1,000 steps before, 37 now). Measured on 2026-11-27 (one
-process, the versions taking turns, three runs each): the pass over steps 780-1000 2.57 -> 2.71
-ms (load 2.6-3.2), over steps 0-1000 2.88 -> 2.62 ms (load 0.9; with COOL_MAX = 32: reused 200
-times, 2.71 ms); the same positions to the last bit.
+A list that did not pay: in the crumpled 64 x 64 cloth settled on the floor at 1 substep (`bench
+cloth`'s "crumpled, crushed" row: ~52,000 pairs, the median particle 0.01 px a step, 6-13 of the
+4,096 shaking 1-2.3 px a step back and forth: 20 steps from step 400, 2026-11-27) the fastest
+particle's net move over the back-off's substeps is small, so a skin was tried every ~7
+substeps, and no such list outlived a substep: ~40 searches over R + skin in 300 steps (the
+grid's search alone: 2.75 ms over R + skin, ~143,000 pairs, against 1.11 ms over R; load 0.5).
+Now a list built with a skin and never reused starts a back-off of COOL substeps, twice as long
+after each such list in a row (up to COOL_MAX), and a list reused at least once resets it;
+nothing else does (a fast fall, a key change, a restore of a snapshot in between keep it).
+Measured on 2026-11-27 (one process, the two versions taking turns, five runs of 60 steps each,
+load 0.8; the same positions to the last bit): the settled heap's pass 3.03 -> 2.75 ms (6
+skinned builds in one run of 300 steps, not ~40; five runs of 60 from a fresh list make 3 each,
+3.32 -> 3.10 ms, load 0.9; a plain search every step: 2.57 ms); the falling crumpled cloth 1.21
+-> 1.19, the fold card 0.129 -> 0.130, the hanging cloth 0.260 -> 0.256 ms (their lists as
+before in those runs). The price, over a whole run: in the crumpled 64 x 64 cloth from step 0
+the list was reused from step ~777 on, when the cloth had settled; now it waits out a back-off
+of 256 that began at step ~745, until step ~1000 (reused 236 times in 1,000 steps before, 37
+now). Measured on 2026-11-27 (one process, the versions taking turns, three runs each): the pass
+over steps 780-1000 2.57 -> 2.71 ms (load 2.6-3.2), over steps 0-1000 2.88 -> 2.62 ms (load 0.9;
+with COOL_MAX = 32: reused 200 times, 2.71 ms); the same positions to the last bit.
 
 The compiled pass (kernel=numba, app/physics/self_compiled.py) does not use the list: its
 search is one loop over the candidates (~0.1 ms of a 0.33 ms pass on the crumpled cloth,
