@@ -4,6 +4,8 @@ rectangles, pixels counted; cheap."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pygame
 import pytest
@@ -278,3 +280,23 @@ def test_a_rewind_shows_the_view_of_its_moment_not_the_start_closing_in_again(na
     scene.restore(snap)
     scene.time, scene.steps = t, steps          # (as the runner's rewind does)
     assert scene.content_bounds() == pytest.approx(then)
+
+
+def test_a_view_first_asked_after_the_start_is_eased_not_the_start_nor_the_content():
+    """A headless run asks for the picture once, at its end. That ask came back with the
+    start's wide bounds (the strip draped in a third of the picture); then, for a while, with
+    the content's own bounds, closer in than any window would be after half a second. It is
+    eased from the start over all of t (TAU = 1 s): at 0.5 s still most of the way out."""
+    from app.draw import follow
+    start = get_scene("cloth_collisions")({}).content_bounds()
+    for seconds, steps in ((0.5, 30), (4.0, 240)):
+        scene, twin = get_scene("cloth_collisions")({}), get_scene("cloth_collisions")({})
+        for _ in range(steps):
+            scene.advance()
+            twin.advance()
+        w = scene.content_bounds()[2]
+        twin._follow = (twin.time - 1e6, (0.0, 0.0, 1.0, 1.0))     # (eased all the way: the
+        target = twin.content_bounds()[2]                           # content's own bounds)
+        k = 1 - math.exp(-seconds / follow.TAU)
+        assert target < w < start[2], (seconds, target, w, start[2])
+        assert w == pytest.approx(start[2] + k * (target - start[2]), rel=0.05)
