@@ -289,7 +289,7 @@ def test_a_view_first_asked_after_the_start_is_eased_not_the_start_nor_the_conte
     eased from the start over all of t (TAU = 1 s): at 0.5 s still most of the way out."""
     from app.draw import follow
     start = get_scene("cloth_collisions")({}).content_bounds()
-    for seconds, steps in ((0.5, 30), (4.0, 240)):
+    for seconds, steps in ((0.5, 30), (1.5, 90)):
         scene, twin = get_scene("cloth_collisions")({}), get_scene("cloth_collisions")({})
         for _ in range(steps):
             scene.advance()

@@ -232,7 +232,7 @@ def interleaved(timers: dict[str, Callable[[], float]], rounds: int) -> dict[str
 def run(report: Report) -> dict:
     quick = report.quick
     settle = 10 if quick else 60
-    rounds = 3 if quick else 21            # (self-collision: each a run of SELF_RUN steps)
+    rounds = 2 if quick else 21            # (self-collision: each a run of SELF_RUN steps)
     step_rounds = 5 if quick else 101      # (a step costs ~1 ms: more rounds, a steadier median)
     self_steps = 3 if quick else SELF_STEPS
     out: dict = {"n": N, "rounds": rounds, "collisions": [], "self_collision": []}
