@@ -38,23 +38,26 @@ import numpy as np
 import pymunk
 import pymunk.batch
 
-try:          # the batch API's own C entry points (pymunk 7), to read the bodies without the
-    from pymunk._chipmunk import ffi as _ffi, lib as _lib     # ~1.3 us a call of its wrapper
-    _BATCH_GET, _EACH_BODY = (_ffi.addressof(_lib, "pmSpaceBodyGetIteratorFuncBatched"),
-                              _lib.cpSpaceEachBody)
-except (ImportError, AttributeError):      # (another pymunk: the public wrapper, same data)
-    _ffi = _lib = _BATCH_GET = _EACH_BODY = None
-
 from app.draw.pymunk_draw import draw_pivot_joint
 from app.physics.bounds import clamp_point
+from app.pymunk_reader import _STATE_FIELDS, _StateReader
 from app.scene import Effect, InputEvent, Param, Scene
 from app.vectors import Arrows, sample_every, sample_text
 
-# The fields read for the state hash and the finiteness check, all at once.
-_STATE_FIELDS = (pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
-                 | pymunk.batch.BodyFields.VELOCITY | pymunk.batch.BodyFields.ANGULAR_VELOCITY)
-_STATE_ID = _STATE_FIELDS | pymunk.batch.BodyFields.BODY_ID   # (an enum's | costs a few us)
 _ROW = struct.Struct("6d")          # one of those rows: (x, y, angle, vx, vy, w), float64s
+FEW_NUMBERS = 96                    # is_finite: a state of up to this many numbers (16
+                                    # bodies) is measured without a BLAS call (_numbers)
+
+
+def _numbers(n: int) -> struct.Struct:
+    """The struct that unpacks n float64s (made once for each n)."""
+    made = _STRUCTS.get(n)
+    if made is None:
+        made = _STRUCTS[n] = struct.Struct(f"{n}d")
+    return made
+
+
+_STRUCTS: dict[int, struct.Struct] = {}
 
 # The same names as the cloth's: the number is the param `g`, the on/off switch the effect `gravity`
 # (so `--scene all --set g=...` means one thing everywhere).
@@ -381,18 +384,27 @@ class PymunkScene(Scene):
         state = self.state_rows()[1]
         if self.finite_read == self._state_reader.reads:
             return True     # these very rows were found finite by the scene's checks (1.75 us)
-        # One pass first: the sum of the squares of every number (a dot product of the flat
-        # state with itself, one BLAS call: a ufunc's sum() or isfinite().all() costs several
-        # times more in the step's loop) is finite only if every number is, and below r^2 only
-        # if every |x| and |y| is below r, inside the blow-up reach. If not, each test again on
-        # its own (finite numbers can overflow the sum; a fast body may be within reach).
+        # One pass first: the length of the flat state as one vector, |s| = sqrt(the sum of
+        # the squares of every number), is finite only if every number is, and below r only if
+        # every |x| and |y| is below r, inside the blow-up reach. If not, each test again on its
+        # own (a fast body may be within reach; the dot product's sum can overflow).
         # (The reader keeps a flat view beside its rows: a reshape a step cost 0.7 us, a third.)
         flat = self._state_reader.flat
-        squares = flat.dot(flat)
         reach = self.blowup_reach
-        if reach is not None and squares < reach * reach:
-            return True
-        if not math.isfinite(squares) and not np.isfinite(state).all():
+        if flat.size <= FEW_NUMBERS:
+            # a few bodies (the pendulums, the cradle): math.hypot over the numbers as Python
+            # floats, no NumPy call. Not the dot product flat.dot(flat): that is a BLAS call,
+            # and after OpenBLAS's AVX-512 kernel the engine's next steps run slower (the
+            # cradle's 30 substeps: ~3-4 us a step, ~6 % of the lab's step; none with
+            # OPENBLAS_CORETYPE=Haswell, whose kernel is AVX2: bench pymunk, 2026-11-27)
+            size = math.hypot(*_numbers(flat.size).unpack_from(flat))
+            if reach is not None and size < reach:
+                return True
+        else:   # (many bodies: one BLAS call beats a Python float per number)
+            size = flat.dot(flat)
+            if reach is not None and size < reach * reach:
+                return True
+        if not math.isfinite(size) and not np.isfinite(state).all():
             return False
         if reach is None or not len(state):
             return True
@@ -437,64 +449,3 @@ def extent(rows: np.ndarray) -> tuple[float, float, float, float]:
     min() on one column costs several times an argmin: so argmin and argmax, column by column."""
     x, y = rows[:, 0], rows[:, 1]
     return x[x.argmin()], y[y.argmin()], x[x.argmax()], y[y.argmax()]
-
-
-class _StateReader:
-    """Reads _STATE_ID of every body into a buffer of its own, as pymunk.batch.get_space_bodies
-    does, with its C call's arguments made once (the same C function and data). Two buffers, one
-    read into each in turn: the rows of a read stay good through the next read (a scene may keep
-    them a step without a copy: `keep`). While as many bodies are read as in a buffer's last
-    read, the views of that read are returned again (refilled in place)."""
-
-    def __init__(self) -> None:
-        self.buffers = (pymunk.batch.Buffer(), pymunk.batch.Buffer())
-        self.cur = 1              # the buffer of the last read
-        self.last: list = [None, None]   # a buffer's (n, its arrays, (ids, rows), flat) last
-        self.room: list = [None, None]   # a buffer's (arrays, bodies they hold, ids, flat)
-        self.flat = np.empty(0)   # the rows of the last read as one flat view (n * 6,)
-        self.reads = 0            # reads made (PymunkScene.finite_read names one of them)
-        # (buffer, callback): the rows of that buffer's read are kept by a scene; a read about
-        # to refill it calls callback first (to copy what it keeps), then forgets it
-        self.keep: tuple | None = None
-        self.arrays = []          # each buffer's (float array, int array, the C call's data)
-        for buf in self.buffers if _lib is not None else ():
-            data, floats, ints = _ffi.new("pmBatchedData *"), buf._float_arr, buf._int_arr
-            data.fields, data.floatArray, data.intArray = _STATE_ID.value, floats, ints
-            self.arrays.append((floats, ints, data))
-
-    def read(self, space: pymunk.Space) -> tuple[np.ndarray, np.ndarray]:
-        self.reads += 1
-        i = self.cur = 1 - self.cur
-        keep = self.keep
-        if keep is not None and keep[0] == i:
-            self.keep = None
-            keep[1]()
-        if _lib is None:
-            buf = self.buffers[i]
-            buf.clear()
-            pymunk.batch.get_space_bodies(space, _STATE_ID, buf)
-            ids = np.frombuffer(buf.int_buf(), dtype=np.int64)
-            self.flat = np.frombuffer(buf.float_buf(), dtype=np.float64)
-            return ids, self.flat.reshape(len(ids), 6)
-        floats, ints, data = self.arrays[i]
-        floats.num = ints.num = 0
-        _EACH_BODY(space._space, _BATCH_GET, data)
-        n, last = ints.num, self.last[i]
-        if last is not None and last[0] == n:
-            # as many bodies as this buffer's last read: the same pushes, so Chipmunk grew no
-            # array (pm*ArrayPush grows one only when nearly full): the same views (~1.5k saved)
-            self.flat = last[4]
-            return last[3]
-        int_arr, float_arr = ints.arr, floats.arr
-        # views of the arrays' whole room, made again when Chipmunk moves them (grown by half)
-        room = self.room[i]
-        if room is None or room[0] != int_arr or room[1] != float_arr or room[2] < n:
-            size = min(ints.max, floats.max // 6)
-            room = self.room[i] = (int_arr, float_arr, size,
-                                   np.frombuffer(_ffi.buffer(int_arr, 8 * size), dtype=np.int64),
-                                   np.frombuffer(_ffi.buffer(float_arr, 48 * size)))
-        ids, flat = room[3][:n], room[4][:6 * n]
-        self.flat = flat
-        rows = ids, flat.reshape(n, 6)
-        self.last[i] = (n, int_arr, float_arr, rows, flat)
-        return rows

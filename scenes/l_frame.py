@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pymunk
 
-from app.pymunk_scene import _lib
+from app.pymunk_reader import _lib
 
 
 def body_pose(body: pymunk.Body) -> tuple[float, float, float]:

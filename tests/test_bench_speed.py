@@ -136,7 +136,7 @@ def test_the_bare_pymunk_loop_holds_the_labs_bodies_step_by_step():
     import numpy as np
     from app.bench.bare_pymunk import Replay, record
     from app.bench.bare_pymunk import counts as bare_counts
-    from app.pymunk_scene import _StateReader
+    from app.pymunk_reader import _StateReader
     from scenes import get_scene
 
     for name, settings in (("falling_balls", {"spawn_rate": 20}),
@@ -170,7 +170,7 @@ def test_the_bare_loop_numbers_each_ball_once_over_a_long_run():
     import numpy as np
     from app.bench.bare_pymunk import Replay, record
     from app.bench.bare_pymunk import counts as bare_counts
-    from app.pymunk_scene import _StateReader
+    from app.pymunk_reader import _StateReader
     from scenes import get_scene
 
     for name in ("falling_balls", "pivoting_l"):

@@ -474,6 +474,7 @@ FLOORS = {"app.keys": 0, "app.units": 0, "app.loop": 0, "app.physics": 0, "app.p
           "app.instruments": 3,
           "app.frames": 3, "app.headless_compare": 3, "app.cli_checks": 3, "app.cli_args": 3,
           "app.pymunk_scene": 3, "app.headless": 3, "scenes": 4, "app.bench": 5,
+          "app.pymunk_reader": 0,  # every body of a space read in one C call (pymunk alone)
           "app.scenefile": 3,      # scene files: a pymunk scene made from data
           "app.window": 5, "app.clips": 3, "app.exercises": 5, "app.__main__": 6,
           "app.docs": 7,                    # the docs' generator reads the command line itself

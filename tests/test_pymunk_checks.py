@@ -519,3 +519,53 @@ def test_balls_falling_asleep_or_waking_take_the_short_way_to_the_exact_results(
                    for shape, slot in zip(short.balls, short._slots))
     assert Short.taken > 20 and short.counts == exact.counts and short.counts["removed"] > 20
     assert short.state_hash() == exact.state_hash()
+
+
+@pytest.mark.parametrize("bodies", [3, 14, 15, 40])
+def test_the_one_pass_finite_check_agrees_with_each_number_tested_on_its_own(bodies):
+    # _state_is_finite's first pass is math.hypot over the numbers up to FEW_NUMBERS (16
+    # bodies: no BLAS call) and a dot product above: both must say what testing every number
+    # says, for any body, any field, any bad or far value (seeded; the seed is the test's id)
+    import random
+
+    import pymunk
+
+    from app.pymunk_scene import FEW_NUMBERS, PymunkScene
+
+    class Bodies(PymunkScene):
+        name = "bodies"
+        blowup_reach = 1e6
+
+        def build_space(self, space):
+            for k in range(bodies):
+                body = pymunk.Body(1.0, 10.0)
+                body.position = (10.0 * k, 20.0)
+                space.add(body, pymunk.Circle(body, 3.0))
+
+    rng = random.Random(bodies)
+    values = [math.nan, math.inf, -math.inf, 1.7e308, -1.7e308, 2e6, -2e6, 1.2e6, -1.2e6, 1.0005e6,
+              -1.0005e6, 9.9e5, -9.9e5, 1e200, 0.0]
+    scene = Bodies({})
+    # (the rows: the bodies, the base's static marker and the space's static body: 14 bodies
+    # are the last few)
+    assert (scene.body_state().size <= FEW_NUMBERS) == (bodies <= 14)
+    w, h = scene.world_size
+    r = scene.blowup_reach
+    for trial in range(100):
+        scene = Bodies({})
+        for body in rng.sample(list(scene.space.bodies), rng.randint(1, 3)):
+            field, value = rng.choice(("x", "y", "angle", "vx", "vy", "w")), rng.choice(values)
+            x, y = body.position
+            vx, vy = body.velocity
+            if field in ("x", "y"):
+                body.position = (value, y) if field == "x" else (x, value)
+            elif field in ("vx", "vy"):
+                body.velocity = (value, vy) if field == "vx" else (vx, value)
+            else:
+                setattr(body, "angle" if field == "angle" else "angular_velocity", value)
+        scene.wake()
+        state = scene.body_state()
+        want = bool(np.isfinite(state).all() and (state[:, 0] > -r).all()
+                    and (state[:, 0] < w + r).all() and (state[:, 1] > -r).all()
+                    and (state[:, 1] < h + r).all())
+        assert scene._state_is_finite() is want, (trial, state.tolist())
