@@ -24,3 +24,22 @@ def test_a_timing_is_its_median_with_the_interquartile_range_and_the_repeats():
 def test_quick_and_full_together_are_refused(capsys):
     assert main(["bench", "cloth", "--quick", "--full"]) == 2
     assert "give one" in capsys.readouterr().err
+
+
+def test_the_machine_note_names_the_blas_kernels_or_says_nothing_of_them(monkeypatch):
+    # which kernels OpenBLAS picked changes the pymunk ratios (app/bench blas_kernels): the
+    # note names them as threadpoolctl reads them, and leaves them out when it cannot tell
+    import threadpoolctl
+
+    from app.bench import machine_note
+    fake = {"user_api": "blas", "internal_api": "openblas", "version": "0.3.31",
+            "architecture": "Haswell"}
+    monkeypatch.setattr(threadpoolctl, "threadpool_info", lambda: [fake])
+    assert ", BLAS: openblas 0.3.31, Haswell kernels" in machine_note()
+    monkeypatch.setattr(threadpoolctl, "threadpool_info", lambda: [])
+    assert "BLAS" not in machine_note()
+
+    def broken():
+        raise OSError("a library threadpoolctl cannot read")
+    monkeypatch.setattr(threadpoolctl, "threadpool_info", broken)
+    assert "BLAS" not in machine_note() and "cores" in machine_note()

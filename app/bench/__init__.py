@@ -181,13 +181,33 @@ def load_average() -> float:
 
 
 def machine_note() -> str:
-    """CPU count and load average, printed first: timings made on a busy machine are noisy."""
+    """CPU count, load average and BLAS kernels, printed first: timings made on a busy machine
+    are noisy, and the kernels change more than the products (blas_kernels)."""
     cores = os.cpu_count() or 1
     load = load_average()
     if math.isnan(load):
-        return f"{cores} cores (load average unknown)"
+        return f"{cores} cores (load average unknown){blas_kernels()}"
     busy = "  (busy: timings will be noisy)" if load > 0.75 * cores else ""
-    return f"{cores} cores, load average {load:.2f} over the last minute{busy}"
+    return f"{cores} cores, load average {load:.2f} over the last minute{blas_kernels()}{busy}"
+
+
+def blas_kernels() -> str:
+    """', BLAS: <library> <version>, <kernels> kernels' for the BLAS NumPy loaded (threadpoolctl),
+    or '' if it cannot tell. Which kernels OpenBLAS picked for this CPU (OPENBLAS_CORETYPE sets
+    them) changes more than its own products: on a Xeon with AVX-512 the engine's substeps
+    after one AVX-512 dot product ran slower (bench pymunk: the cradle's lab/bare 1.30-1.33
+    with the SkylakeX kernels in is_finite, 1.24-1.27 with the Haswell ones; 2026-11-27)."""
+    try:
+        import numpy  # noqa: F401 (its BLAS loaded: threadpoolctl lists the loaded ones)
+        from threadpoolctl import threadpool_info
+        blas = [i for i in threadpool_info() if i.get("user_api") == "blas"]
+    except Exception:                  # (no threadpoolctl, or a library it cannot read)
+        return ""
+    if not blas:
+        return ""
+    b = blas[0]
+    kernels = f", {b['architecture']} kernels" if b.get("architecture") else ""
+    return f", BLAS: {b.get('internal_api', '?')} {b.get('version') or ''}".rstrip() + kernels
 
 
 def run_benchmarks(which: str, as_json: bool = False, out_dir: str = "lab-output/bench",
