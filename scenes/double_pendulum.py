@@ -222,7 +222,7 @@ class DoublePendulumScene(PymunkScene):
         if self.mouse_joint is not None:       # held by the mouse: nothing to compare yet
             return
         t = self.track
-        rows = self.rows_list(self.bobs)           # (x, y, angle, vx, vy, w) of each bob
+        rows = self.rows_list(self.bobs, guard=True)   # (x, y, angle, vx, vy, w) of each bob
         drift = abs(self.energy_drift(rows))
         if drift > t["energy_drift_max"]:          # (max(seen, drift): a NaN leaves it)
             t["energy_drift_max"] = drift

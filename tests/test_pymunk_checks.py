@@ -570,3 +570,40 @@ def test_the_one_pass_finite_check_agrees_with_each_number_tested_on_its_own(bod
                     and (state[:, 1] < h + r).all())
         with np.errstate(over="ignore"):    # (the dot product's sum overflows at 1.7e308)
             assert scene._state_is_finite() is want, (trial, state.tolist())
+
+
+def test_the_pendulums_guard_in_its_read_agrees_with_each_number_tested_on_its_own():
+    # the double pendulum makes the non-finite guard's one pass in its own read of the bobs
+    # (rows_list(guard=True)): whatever the bobs hold, is_finite after that read must say what
+    # testing every number says; read as the step reads them (the joints pull a far bob back
+    # within the step), and after a step (seeded: the seed is the test's)
+    import random
+    rng = random.Random(11)
+    values = [math.nan, math.inf, -math.inf, 1e300, -1e300, 2e6, -2e6, 1.2e6, 1.0005e6,
+              -1.0005e6, 9.9e5, -9.9e5, 5e5, 0.0]
+    for trial in range(80):
+        scene = DoublePendulumScene({"reference": trial % 2 == 0})
+        scene.advance()
+        for _ in range(rng.randint(1, 3)):
+            bob = rng.choice(scene.bobs)
+            field, value = rng.choice(("x", "y", "vx", "vy", "w")), rng.choice(values)
+            x, y = bob.position
+            vx, vy = bob.velocity
+            if field in ("x", "y"):
+                bob.position = (value, y) if field == "x" else (x, value)
+            elif field in ("vx", "vy"):
+                bob.velocity = (value, vy) if field == "vx" else (vx, value)
+            else:
+                bob.angular_velocity = value
+        scene.wake()
+        if trial % 4 == 3:
+            with np.errstate(all="ignore"):
+                scene.advance()                     # (after_step's read, guarded)
+        else:
+            scene.rows_list(scene.bobs, guard=True)     # the same read, of the bobs as set
+        state = scene.body_state()
+        (w, h), r = scene.world_size, scene.blowup_reach
+        want = bool(np.isfinite(state).all() and (state[:, 0] > -r).all()
+                    and (state[:, 0] < w + r).all() and (state[:, 1] > -r).all()
+                    and (state[:, 1] < h + r).all())
+        assert scene.is_finite() is want, (trial, state.tolist())
