@@ -363,15 +363,109 @@ def test_the_huds_self_collision_line_counts_what_it_names():
 def test_the_sweeps_lazy_projection_moves_the_points_as_project_does():
     # self-collision projects the obstacles before each sweep through _push_out, which makes
     # nothing while no point is near one: the same positions as project, to the last bit
-    from app.physics.cloth_contact import _push_out
+    from app.physics.cloth_contact import ContactState, _push_out
     from app.physics.obstacles import project
     rng = np.random.default_rng(5)
     obstacles = [Circle(120.0, 80.0, 30.0), Box(60.0, 150.0, 80.0, 16.0, 0.3), floor(200.0)]
-    for spread in ((0, 240), (0, 40)):          # crossing the obstacles; all far above them
+    st = ContactState(obstacles=obstacles, margin=0.25)
+    for spread in ((0, 240), (0, 40), (0, 240)):    # crossing the obstacles; all far above them
         points = rng.uniform(*spread, (500, 2)).astype(np.float32)
         movable = rng.random(500) > 0.1
         a, b = points.copy(), points.copy()
         project(obstacles, a, 0.25, movable)
-        _push_out(obstacles, b, 0.25, movable)
+        _push_out(st, b, movable)
         assert np.array_equal(a, b)
         assert (spread[1] > 40) == (not np.array_equal(a, points))   # (it did move some)
+
+
+def test_the_quick_clear_test_never_says_clear_where_near_bounds_finds_a_point():
+    # _push_out asks near_bounds only where clear_of, told from the points' extremes in double
+    # precision, cannot rule a point out: float32 points a few ulps either side of near_bounds's
+    # edge (each cluster's nearest one there), on every side of obstacles of every kind placed
+    # at random (their numbers rounded up or down to float32)
+    from app.physics.self_obstacles import clear_of
+    from app.physics.obstacles import NEAR_SLACK, HalfPlane, Segment, near_bounds
+    rng = np.random.default_rng(11)
+    u = rng.uniform
+    kinds = [lambda: floor(u(150, 250)), lambda: HalfPlane(u(0, 99), u(0, 99), 0.6, -0.8),
+             lambda: HalfPlane(u(300, 400), 0.0, -1.0, 0.0),
+             lambda: Circle(u(99, 150), u(50, 99), u(20, 40)),
+             lambda: Box(u(50, 70), u(140, 160), 80.0, 16.0, u(0, 1)),
+             lambda: Segment(u(0, 20), u(0, 30), u(80, 99), u(30, 50), u(1, 4))]
+    margin, said = 0.25, {True: 0, False: 0}
+    edge = margin + NEAR_SLACK
+    for make in kinds:
+        for _ in range(500):
+            ob = make()
+            if isinstance(ob, HalfPlane):       # out: the normal; along: the line
+                out, along = np.array([ob.nx, ob.ny]), np.array([-ob.ny, ob.nx])
+                at = np.array([ob.px, ob.py]) + out * edge + along * u(-50, 50)
+            else:                               # a side of the bounds grown by the edge
+                x0, y0, x1, y1 = ob.bounds()
+                side = rng.integers(4)
+                out = np.array([(-1, 0), (1, 0), (0, -1), (0, 1)][side], float)
+                along = out[::-1].copy()
+                at = np.array([(x0 - edge, y0), (x1 + edge, y0), (x0, y0 - edge),
+                               (x0, y1 + edge)][side]) + along * u(0, x1 - x0 + y1 - y0)
+            shift = rng.choice([0.0, 1e-3, 0.1]) + u(-4e-5, 4e-5)
+            away = u(0, 20, (30, 1)) * (np.arange(30) > 0)[:, None]     # (the first: none)
+            p = (at + out * (shift + away) + along * u(-20, 20, (30, 1))).astype(np.float32)
+            clear = clear_of(ob, p[:, 0], p[:, 1], margin) > 0
+            assert not (clear and near_bounds(ob, p[:, 0], p[:, 1], margin).size), (ob, p[0])
+            said[clear] += 1
+    assert said[True] > 500 and said[False] > 500, said
+
+
+def test_a_sweep_moves_no_particle_further_than_over_relax_times_self_distance(monkeypatch):
+    # self-collision skips the obstacles' look before a later sweep while every particle was
+    # further from them than that bound at the last look: a crowd with pinned particles (a free
+    # end takes the whole push) and a pair at one point, swept once
+    from app.physics import cloth_contact
+    from app.physics.cloth_contact import OVER_RELAX, self_collide
+    monkeypatch.setattr(cloth_contact, "SELF_SWEEPS", 1)
+    rng = np.random.default_rng(3)
+    largest = 0.0
+    for trial in range(20):
+        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision"})
+        c.contact.self_distance = dmin = 8.0
+        x = c.x.reshape(2, -1)
+        if trial:                               # crowded to sparse, a few pinned
+            x[:] = rng.uniform(100, 100 + rng.uniform(5, 60), x.shape)
+            pins = rng.integers(0, 12, (rng.integers(0, 40), 2))
+        else:                                   # as built (no pairs), one pinned particle and a
+            pins = [(0, 0)]                     # free one where it is (not a rod neighbour)
+        x[:, 50] = x[:, 0] + 1e-3 * (trial % 2 == 0)      # two nearly or exactly at one point
+        c.lock_cells([tuple(rc) for rc in pins])
+        before = x.copy()
+        self_collide(c, 1 / 60)
+        moved = np.hypot(*(x - before)).max()
+        assert moved <= OVER_RELAX * dmin, (trial, moved)
+        largest = max(largest, moved / dmin)
+    assert largest > 0.99 * OVER_RELAX     # (reached: the free end of a pair at one point)
+
+
+
+def test_the_obstacles_are_looked_at_again_once_a_sweep_may_have_reached_them(monkeypatch):
+    # a crowd just above the floor, pushed apart (some of it downwards, into the floor's
+    # margin) by the first sweep: the second sweep's projection sees them. The same positions,
+    # to the last bit, as projecting before every sweep
+    from app.physics import cloth_contact
+    from app.physics.obstacles import project
+    rng = np.random.default_rng(8)
+
+    def always(st, points, movable):
+        project(st.obstacles, points, st.margin, movable)
+        return -math.inf
+    for gap in (0.5, 3.0, 8.0, 30.0):
+        start = np.stack([rng.uniform(100, 130, 144), rng.uniform(150, 199.74 - gap, 144)])
+        ends = []
+        for push_out in (cloth_contact._push_out, always):
+            monkeypatch.setattr(cloth_contact, "_push_out", push_out)
+            c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
+            c.set_obstacles([floor(200.0)])
+            c.contact.self_distance = 8.0
+            x = c.x.reshape(2, -1)
+            x[:] = start
+            cloth_contact.self_collide(c, 1 / 60)
+            ends.append(x.copy())
+        assert np.array_equal(*ends), gap

@@ -53,124 +53,126 @@ arrays: neutral; their fancy indexing, a[:, ids], is 4 to 5 times slower than a 
 arrays kept for the path boxes and masks: no faster), is in `git log
 app/physics/cloth_contact.py app/physics/cloth_obstacles.py`.
 
-Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour
-grid finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high),
-or all pairs, the O(n^2) reference (`self_method`). Pairs of one grid cell (its sides and
-diagonals) and pairs joined by a rod of an active set are left out: the rods keep them apart,
-and a cell may shear freely (as it does without self-collision). Before each of its sweeps the
-obstacles are projected (if on), so a pair resting on a floor is parted by moving the upper
-particle, not by pushing the lower one in. All pairs found are pushed apart at once (Jacobi:
-each particle moves by the average of its pairs' corrections, times OVER_RELAX, so a particle in
-many pairs is not thrown out), SELF_SWEEPS times, reusing the pairs found.
+Self-collision needs the pairs closer than the minimum distance: the particle dance's neighbour grid
+finds them (app/physics/neighbours.py, fine_pairs: cells self_distance/8 wide and /2 high), or all
+pairs, the O(n^2) reference (`self_method`). Pairs of one grid cell (its sides and diagonals) and
+pairs joined by a rod of an active set are left out: the rods keep them apart, and a cell may shear
+freely (as it does without self-collision). Before each of its sweeps the obstacles are projected
+(if on: self_obstacles.py), so a pair resting on a floor is parted by moving the upper particle, not
+by pushing the lower one in. All pairs found are pushed apart at once (Jacobi: each particle moves
+by the average of its pairs' corrections, times OVER_RELAX, so a particle in many pairs is not
+thrown out), SELF_SWEEPS times, reusing the pairs found.
 
-What the pair search costs, and what was chosen. The grid is sorted once per substep (a radix
-sort of 16-bit cell keys), each pair met once (the half stencil), and a pair of rod neighbours
-is told by one table read (close_ij, _joined). The pairs go through a Verlet neighbour list
-(app/physics/self_list.py: the pairs within self_distance plus a skin, filtered instead of
-searched while no particle has moved half the skin): it pays where the cloth lies still (the
-fold card's pass 0.29 -> 0.17 ms, a settled 64 x 64 heap 3.9 -> 3.0 ms), not on a crumpled
-cloth still falling (12-22 px a step against 6.4 px: a plain search every step). On that cloth
-(17,924 pairs closer than 6.4 px, 14,037 not rod neighbours) cells self_distance wide gave
-~64,000 candidates, the finer cells with their stencil trimmed to the circle give 34,826. The
-work arrays are kept (neighbours.Scratch) or small: a fresh 264 kB cell table a call made the
-allocator hand pages back and fault them in again (~104 minor page faults, ~0.26 ms a pass;
-now 0-2). `python -m app bench cloth` (15 consecutive steps, CPU time): 1.26 x the step
-crumpled on 2026-11-26 (load 1.1; 1.58 x before that day's changes); on 2026-11-27 1.08 and
-1.09 x, hanging 0.34 and 0.33 x (two runs, load 0.6-0.8, taking turns with the day before's
-code: 1.27 and 1.24 x crumpled, 0.37 and 0.35 x hanging): the goal of at most 1 x is still NOT
-met by NumPy crumpled. Later that day the list backs off where it never pays (self_list.py: no
-displacement test or copy for 4 substeps after 2 too fast; 2 % of the crumpled pass, 4-6 % of
-the hanging one): the bench's self-collision rows, four runs taking turns with the code before
-(41 rounds, load 0.9-1.4), crumpled 1.02-1.11 x (before 1.03-1.09 x: within the noise of the
-runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, twelve runs each taking
-turns with the code before (load 1.4-3.8): crumpled 0.97-1.25 x, median 1.025 (before 0.99-1.14
-x, median 1.015), hanging 0.30-0.36 x (0.31-0.46 x). At the line, NOT robustly met. There the ~1.0
-ms go to the search ~0.5,
-the rod filter and the list ~0.1, the 2 sweeps ~0.35 (each one's four bincounts over 14,037 weighted
-entries the largest part). What 2026-11-27 gained (each measured in one process against the commit
-before, the pass over the bench's 15 steps in 101-201 interleaved rounds, load 0.6-3.4; the
-same positions to the last bit): the arrays' own methods, a.take, a.repeat (np.take and the like
-go through a Python wrapper: ~1.2 us a call, ~6 %); the mask's indices and two takes, not
-a.compress twice (3 x faster alone, ~4 %); the run's particle by its index, so i needs no
-gather through the sort after the search (~4 %); four bincounts over j and i instead of two over
-[j, j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share and the coincident
-test done once, the obstacles projected only when a particle is near one (~4 %). Tried and not
-kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs:
-no faster), fewer cells per particle (more candidates), blocks over 8,192 candidates
-(np.repeat's fresh arrays cross glibc's 128 kB: page faults again), blocks of 4,096 (1.03-1.06
-x), one repeat of the (owner, first) pairs of a run (1.04 x: its 16-byte rows cross 128 kB
-again), the candidates as running sums of their steps (np.cumsum) instead of np.repeat (15 %
-faster alone, 0-5 % inside the step), x and y as one complex number in the sweeps (4 % faster
-once, 1.02 x on 2026-11-27), the rod filter fused into the search, read on the sorted
+What the pair search costs, and what was chosen. The grid is sorted once per substep (a radix sort
+of 16-bit cell keys), each pair met once (the half stencil), and a pair of rod neighbours is told by
+one table read (close_ij, _joined). The pairs go through a Verlet neighbour list
+(app/physics/self_list.py: the pairs within self_distance plus a skin, filtered instead of searched
+while no particle has moved half the skin): it pays where the cloth lies still (the fold card's pass
+0.29 -> 0.17 ms, a settled 64 x 64 heap 3.9 -> 3.0 ms), not on a crumpled cloth still falling (12-22
+px a step against 6.4 px: a plain search every step). On that cloth (17,924 pairs closer than 6.4
+px, 14,037 not rod neighbours) cells self_distance wide gave ~64,000 candidates, the finer cells
+with their stencil trimmed to the circle give 34,826. The work arrays are kept (neighbours.Scratch)
+or small: a fresh 264 kB cell table a call made the allocator hand pages back and fault them in
+again (~104 minor page faults, ~0.26 ms a pass; now 0-2). `python -m app bench cloth` (15
+consecutive steps, CPU time): 1.26 x the step crumpled on 2026-11-26 (load 1.1; 1.58 x before that
+day's changes); on 2026-11-27 1.08 and 1.09 x, hanging 0.34 and 0.33 x (two runs, load 0.6-0.8,
+taking turns with the day before's code: 1.27 and 1.24 x crumpled, 0.37 and 0.35 x hanging): the
+goal of at most 1 x is still NOT met by NumPy crumpled. Later that day the list backs off where it
+never pays (self_list.py: no displacement test or copy for 4 substeps after 2 too fast; 2 % of the
+crumpled pass, 4-6 % of the hanging one): the bench's self-collision rows, four runs taking turns
+with the code before (41 rounds, load 0.9-1.4), crumpled 1.02-1.11 x (before 1.03-1.09 x: within the
+noise of the runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, twelve runs each
+taking turns with the code before (load 1.4-3.8): crumpled 0.97-1.25 x, median 1.025 (before
+0.99-1.14 x, median 1.015), hanging 0.30-0.36 x (0.31-0.46 x). At the line, NOT robustly met. There
+the ~1.0 ms go to the search ~0.5, the rod filter and the list ~0.1, the 2 sweeps ~0.35 (each one's
+four bincounts over 14,037 weighted entries the largest part). What 2026-11-27 gained (each measured
+in one process against the commit before, the pass over the bench's 15 steps in 101-201 interleaved
+rounds, load 0.6-3.4; the same positions to the last bit): the arrays' own methods, a.take, a.repeat
+(np.take and the like go through a Python wrapper: ~1.2 us a call, ~6 %); the mask's indices and two
+takes, not a.compress twice (3 x faster alone, ~4 %); the run's particle by its index, so i needs no
+gather through the sort after the search (~4 %); four bincounts over j and i instead of two over [j,
+j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share and the coincident test done
+once, the obstacles projected only when a particle is near one (~4 %). Tried and not kept: cells R/8
+x R/3 or R/4 (fewer candidates, more runs: no faster), fewer cells per particle (more candidates),
+blocks over 8,192 candidates (np.repeat's fresh arrays cross glibc's 128 kB: page faults again),
+blocks of 4,096 (1.03-1.06 x), one repeat of the (owner, first) pairs of a run (1.04 x: its 16-byte
+rows cross 128 kB again), the candidates as running sums of their steps (np.cumsum) instead of
+np.repeat (15 % faster alone, 0-5 % inside the step), x and y as one complex number in the sweeps (4
+% faster once, 1.02 x on 2026-11-27), the rod filter fused into the search, read on the sorted
 positions (1.03 x), int32 index arrays in the search (1.15 x crumpled, 1.6 x hanging: take and
-repeat cast int32 indices to intp, a pass each), np.add.at instead of bincount (1.05 x), a
-sparse matrix (scipy CSR) for the sweeps' scatter (its mat-vec: 35 us against bincount's 80
-alone, but building it from the pairs needs a sort of 2 x 14,037 ends by particle, 112 us a
-substep for two sweeps). After the step's own work the pass waits on memory: an operation
-costs 2-4 x inside the step what it costs alone (the cell table's bincount and cumsum: 18 us
-alone, ~86 us in the step), so fewer passes over fewer bytes, not fewer operations, is what
-counts. The compiled pass (kernel=numba, optional, app/physics/self_compiled.py: the same grid
-and pairs, searched every substep, no list) visits each candidate once. It took 0.73 x the
-NumPy step, but it runs
-with the compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like
-it is 1.33 x that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT
-met either (bench of 2026-11-27, load 1.1); with the rod table read in a pass of its own (later
-that day) 1.17-1.29 x (before 1.25-1.37 x in the same runs; the whole bench, six runs each:
-1.21-1.29 x, median 1.23, before 1.23-1.28 x, median 1.26; twelve: median 1.235 x, before
-1.275 x), still NOT met then. Later that day the compiled search walks each particle's runs as
-one loop, with 32-bit unsigned indices and the sweeps' pushes in float32 as NumPy's pass: 0.88-
-0.91 x the compiled step crumpled, median 0.90 (four whole bench runs taking turns with the code
-before, which gave 1.42-1.50 x; load 5.5-9.2), 0.33-0.35 x hanging: MET with kernel=numba. Its
-search, sort and sweeps and what was tried on them are in self_compiled.py's docstring.
+repeat cast int32 indices to intp, a pass each), np.add.at instead of bincount (1.05 x), a sparse
+matrix (scipy CSR) for the sweeps' scatter (its mat-vec: 35 us against bincount's 80 alone, but
+building it from the pairs needs a sort of 2 x 14,037 ends by particle, 112 us a substep for two
+sweeps). After the step's own work the pass waits on memory: an operation costs 2-4 x inside the
+step what it costs alone (the cell table's bincount and cumsum: 18 us alone, ~86 us in the step), so
+fewer passes over fewer bytes, not fewer operations, is what counts. The compiled pass
+(kernel=numba, optional, app/physics/self_compiled.py: the same grid and pairs, searched every
+substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs with the
+compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like it is 1.33 x
+that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT met either (bench of
+2026-11-27, load 1.1); with the rod table read in a pass of its own (later that day) 1.17-1.29 x
+(before 1.25-1.37 x in the same runs), still NOT met then. Later that day the compiled search walks
+each particle's runs as one loop, with 32-bit unsigned indices and the sweeps' pushes in float32 as
+NumPy's pass: 0.88- 0.91 x the compiled step crumpled, median 0.90 (four whole bench runs taking
+turns with the code before, which gave 1.42-1.50 x; load 5.5-9.2), 0.33-0.35 x hanging: MET with
+kernel=numba. Its search, sort, sweeps and what was tried on them: self_compiled.py's docstring.
 
 Later on 2026-11-27, the NumPy search itself (neighbours.fine_pairs; the same pairs in the same
-order, the same positions to the last bit): the cell table made by one repeat over the gaps
-between the sorted cells, not a bincount and a cumsum over its ~30,000 cells (a cumsum waits
-on its last sum at every cell: 4x slower alone); one repeat of each run's (owner, first) as two
-int32s, not two repeats; all of the crumpled cloth's ~29,000 candidates in one block (not
-blocks of 8,192: fewer calls); the table and the repeat's array held until the next search
-(minor page faults of a crumpled pass ~9 -> 0). In the step (the bench's 15 steps, 30 rounds,
-five runs taking turns with the code before, load 4.9-5.2; medians): the search 670 -> 621
-us, the crumpled pass 1,116 -> 1,065 us (-5 %); hanging 429-448 -> 374-397 us (three runs).
-The bench's rows (the whole contact bench, four runs each taking turns, load 4.6-6.0): crumpled
-1.11-1.23 x (before 1.10-1.20 x: the same within the noise of the runs), hanging 0.38-0.42 x
-(0.43-0.44 x). The goal is still NOT met by NumPy crumpled. What is left is work per element:
-the search's candidates (~10 passes over each), the rod filter (~0.07 ms) and the sweeps (~0.3
-ms, half of it their bincounts). Tried that day and not kept: the sweeps' x and y as one
-complex number again (one gather per end: the sweeps 301-341 us, without it 297-303 us);
-two bincounts over [j, j + n] and [i, i + n] again, written into kept arrays with no 4m array
-built (each bin the same sum: the sweeps 363-409 us, the four bincounts 327-348 us, load 5.7);
-blocks of 16,384-32,768 candidates (~100 page faults a pass, the pass ~10 % slower); the cell
-table's cumsum down the columns of a column-major table (vectorised, but its lookups then cost
-more: the table and lookups 200 -> 170 us alone, where the repeat makes the table in 29 us
-against bincount and cumsum's ~100 us).
+order, the same positions to the last bit): the cell table made by one repeat over the gaps between
+the sorted cells, not a bincount and a cumsum over its ~30,000 cells (a cumsum waits on its last sum
+at every cell: 4x slower alone); one repeat of each run's (owner, first) as two int32s, not two
+repeats; all of the crumpled cloth's ~29,000 candidates in one block (not blocks of 8,192: fewer
+calls); the table and the repeat's array held until the next search (minor page faults of a crumpled
+pass ~9 -> 0). In the step (the bench's 15 steps, 30 rounds, five runs in turns with the code
+before, load 4.9-5.2; medians): the search 670 -> 621 us, the crumpled pass 1,116 -> 1,065 us (-5
+%); hanging 429-448 -> 374-397 us (three runs). The bench's rows (the whole contact bench, four runs
+each in turns, load 4.6-6.0): crumpled 1.11-1.23 x (before 1.10-1.20 x: within the noise), hanging
+0.38-0.42 x (0.43-0.44 x). The goal is still NOT met by NumPy crumpled. What is left is work per
+element: the search's candidates (~10 passes over each), the rod filter (~0.07 ms) and the sweeps
+(~0.3 ms, half of it their bincounts). Tried that day and not kept: the sweeps' x and y as one
+complex number again (one gather per end: the sweeps 301-341 us, without it 297-303 us); two
+bincounts over [j, j + n] and [i, i + n] again, written into kept arrays with no 4m array built
+(each bin the same sum: the sweeps 363-409 us, the four bincounts 327-348 us, load 5.7); blocks of
+16,384-32,768 candidates (~100 page faults a pass, the pass ~10 % slower); the cell table's cumsum
+down the columns of a column-major table (vectorised, but its lookups then cost more: the table and
+lookups 200 -> 170 us alone, where the repeat makes the table in 29 us against bincount and cumsum's
+~100 us).
 
-Measured later still on 2026-11-27 (the bench's crumpled state, load 0.3-1.3), nothing kept:
-after the first sweep 85-91 % of the pairs are still closer than self_distance, so a second
-sweep over those alone saves at most ~18 us, what compressing i and j costs alone (21 us); the
-search's pairs are grouped by i only within each stencil row (7,873 runs of 3,880 particles),
-and np.add.reduceat takes 70 us alone where bincount takes 19. Neither the step nor the pass
-calls a BLAS product, exp or hypot here: with NumPy's AVX-512 loops off
-(NPY_DISABLE_CPU_FEATURES) the step is 7-14 % shorter and the pass the same (0.88-0.96 ms,
-default 0.91-0.93); OPENBLAS_CORETYPE=Prescott changes neither. Nor is it the step before that
-makes the pass's operations dearer than alone: the pass run again at once on the same positions
-costs what it did after the step (929-958 us both times), fine_pairs alone in a loop 460-560 us,
-about its share in the step: most likely the pass's own other work evicts its arrays (the cell
-table and its lookups: 37 us alone in a loop, 46-50 us after the cloth's 10 rod sweeps, 63-81 us
-after a 32 MB pass). By perf, np.repeat is 19 % of fine_pairs alone (a branch per run); each
-candidate's run found without it (a cumsum of the jumps at the runs' starts, two takes): 11-15 %
-slower. SELF_SWEEPS = 1 (OVER_RELAX 1.5-2.0): the pass over the bench's 15 steps only 1-5 %
-shorter (more pairs stay close), 1.5-3.3 x as many pairs left closer than 95 % of self_distance
-(120 steps; self_distance 0.5-1, iterations 2-50, substeps 1 and 4), the fold card 8-24 at the
-end, not 0; at 2.0 tests/test_self_list.py fails (its heap's list reused 5 times, not over 10):
-2 sweeps kept. Also not faster (the same positions; the noise of these runs +-1.5 %): the cell
-table in int16, |d|^2 in dp's bytes, _push_out without project's arrays, the rod filter reading
-the table only where j - i is an offset's (25 %); in fine_pairs alone (1.00-1.02 x), the runs'
-rows with int64 halves, or with the owner's position in them (16 bytes: no gather of it).
-Nor a sweep's four bincounts as one sparse product B^T W (scipy's CSC array, made once a substep:
-column k holds +1 at j_k and -1 at i_k; W the pairs' x and y corrections): alone 78 us against
-136 (27,233 pairs), but the bench's crumpled pass took 1.00-1.04 ms against 0.89-0.95 (three
-whole bench runs each, taking turns, load 0.5-1.0).
+Measured later still on 2026-11-27 (the bench's crumpled state, load 0.3-1.3), nothing kept: after
+the first sweep 85-91 % of the pairs are still closer than self_distance, so a second sweep over
+those alone saves at most ~18 us, what compressing i and j costs alone (21 us); the search's pairs
+are grouped by i only within each stencil row (7,873 runs of 3,880 particles), and np.add.reduceat
+takes 70 us alone where bincount takes 19. Neither the step nor the pass calls a BLAS product, exp
+or hypot here: with NumPy's AVX-512 loops off (NPY_DISABLE_CPU_FEATURES) the step is 7-14 % shorter
+and the pass the same (0.88-0.96 ms, default 0.91-0.93); OPENBLAS_CORETYPE=Prescott changes neither.
+Nor is it the step before that makes the pass's operations dearer than alone: the pass run again at
+once on the same positions costs what it did after the step (929-958 us both times), fine_pairs
+alone in a loop 460-560 us, its share in the step: most likely the pass's own other work evicts its
+arrays (the cell table and its lookups: 37 us alone in a loop, 46-50 us after the cloth's 10 rod
+sweeps, 63-81 us after a 32 MB pass). By perf, np.repeat is 19 % of fine_pairs alone (a branch per
+run); each candidate's run found without it (a cumsum of the jumps at the runs' starts, two takes):
+11-15 % slower. SELF_SWEEPS = 1 (OVER_RELAX 1.5-2.0): the pass over the bench's 15 steps only 1-5 %
+shorter (more pairs stay close), 1.5-3.3 x as many pairs left closer than 95 % of self_distance (120
+steps; self_distance 0.5-1, iterations 2-50, substeps 1 and 4), the fold card 8-24 at the end, not
+0; at 2.0 tests/test_self_list.py fails (its heap's list reused 5 times, not over 10): 2 sweeps
+kept. Also not faster (the same positions; noise +-1.5 %): the cell table in int16, |d|^2 in dp's
+bytes, _push_out without project's arrays, the rod filter reading the table only where j - i is an
+offset's (25 %); in fine_pairs alone (1.00-1.02 x), the runs' rows with int64 halves, or with the
+owner's position in them (16 bytes: no gather of it). Nor a sweep's four bincounts as one sparse
+product B^T W (scipy's CSC array, made once a substep: column k holds +1 at j_k and -1 at i_k; W the
+pairs' x and y corrections): alone 78 us against 136 (27,233 pairs), but the bench's crumpled pass
+took 1.00-1.04 ms against 0.89-0.95 (three bench runs each, in turns, load 0.5-1.0).
+
+Last on 2026-11-27 (the pass over the bench's 15 steps against the code before, in turns in one
+process, 61 rounds, medians, load 0.3-0.9; the same positions to the last bit in all five states),
+kept: the obstacles' look before a sweep told from the particles' extremes (one reduction, not
+near_bounds's ~8 passes), none before the second while every particle was further from them than a
+sweep moves one (OVER_RELAX x self_distance: each push at most self_distance, averaged, times
+OVER_RELAX); the weights' evenness and movable mask asked when the weights change. Crumpled
+0.95-0.98 x (12 runs, median 0.97), hanging 1.00, settled 0.98, fold card 0.99 x. Not kept: the
+search's d = x_j - x_i carried to sweep 1 (split by the rod filter 1.03-1.04 x, complex and read
+strided 1.01-1.03 x, through hits[kept] 1.00 x: gathers from 16 kB arrays are cheap); a run's
+(owner, first) split by a mask and a shift of int64 rows, the rod table kept negated (1.00 x each).
 
 Settled on the floor at 1 substep (400 steps) the crumpled cloth is crushed: a 2D heap ~4 x too
 dense for its particles' discs, ~47,000 of ~52,000 pairs still too close (the HUD says so and
@@ -185,6 +187,7 @@ unseen. Raise substeps (or lower the drop) for fast folds.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -195,7 +198,8 @@ from app.physics.self_list import PairList
 from app.physics.self_list import close_pairs as listed_pairs
 from app.physics.cloth_obstacles import Touched, may_touch, settle_corners, tunnel_and_project
 from app.physics.friction import slide_back
-from app.physics.obstacles import Obstacle, near_bounds, project
+from app.physics.self_obstacles import push_out as _push_out
+from app.physics.obstacles import Obstacle, project
 
 CONTACT_EFFECTS = ("collisions", "friction", "self_collision")
 MARGIN = 0.25          # px: particles are pushed this far outside a surface (drawn lines touch it)
@@ -238,6 +242,8 @@ class ContactState:
     self_list: PairList = field(default_factory=PairList)   # the grid's Verlet list (self_list)
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
+    weights_of: tuple | None = None       # (cloth.free, all w equal and > 0, free > 0)
+    pushed: bool = False                  # self-collision's last projection moved particles
 
 
 Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
@@ -391,8 +397,11 @@ def self_collide(c, h: float) -> None:
     xs, ys = x[0], x[1]                                 # views: writing moves the cloth
     w = c.w.ravel()
     # every particle free with the same weight (nothing pinned or grabbed: the usual case):
-    # every share is 1/2, with no weights to read pair by pair
-    even = bool(w[0] > 0 and w.min() == w.max())
+    # every share is 1/2, with no weights to read pair by pair (asked, with the movable mask,
+    # when the weights change: the cloth's update_weights makes a new `free` each time)
+    if st.weights_of is None or st.weights_of[0] is not c.free:
+        st.weights_of = (c.free, bool(w[0] > 0 and w.min() == w.max()), c.free.ravel() > 0)
+    even, movable = st.weights_of[1:]
     if not even:
         wi, wj = w.take(i), w.take(j)
         total = wi + wj
@@ -420,12 +429,15 @@ def self_collide(c, h: float) -> None:
     flag = scratch.get("same", m, bool)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
-    movable = c.free.ravel() > 0
+    # how far every particle is from the obstacles' bounds, less what the sweeps since can have
+    # moved it (OVER_RELAX x dmin each: the module docstring): a look only where not > 0
+    clear = -math.inf
     for sweep in range(SELF_SWEEPS):
-        if floor_too:
+        clear -= OVER_RELAX * dmin * 1.001
+        if floor_too and not clear > 0:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
-            _push_out(st.obstacles, x.T, st.margin, movable)
+            clear = _push_out(st, x.T, movable)
         # d = x_j - x_i for every pair, r = |d| (in kept work arrays: no fresh pages)
         # (the arrays' own take, not np.take: its Python wrapper costs ~1 us a call)
         dx = np.subtract(xs.take(j, out=xj, mode="wrap"), xs.take(i, out=xi, mode="wrap"), out=xj)
@@ -453,16 +465,6 @@ def self_collide(c, h: float) -> None:
         np.add(ys, moved_y, out=ys, casting="unsafe")
 
 
-def _push_out(obstacles: list, points: np.ndarray, margin: float, movable: np.ndarray) -> None:
-    """project(obstacles, points, margin, movable), without the contacts it returns and with
-    nothing made while no point is near an obstacle's bounds (a sweep above the floor)."""
-    px, py = points[:, 0], points[:, 1]
-    for k, ob in enumerate(obstacles):
-        if near_bounds(ob, px, py, margin, movable).size:     # (project skips those before k)
-            project(obstacles[k:], points, margin, movable)
-            return
-
-
 def _weights(move: np.ndarray, dx: np.ndarray, dy: np.ndarray, f: np.ndarray
              ) -> tuple[np.ndarray, np.ndarray]:
     """(dx f, dy f) in `move`: one end's corrections, x and y, as bincount's weights."""
@@ -486,9 +488,7 @@ def _self_collide_compiled(c) -> None:
     between = None
     if "collisions" in c.on and st.obstacles:          # as in self_collide: before each sweep
         movable = c.free.ravel() > 0
-
-        def between() -> None:
-            _push_out(st.obstacles, x.T, st.margin, movable)
+        between = lambda: _push_out(st, x.T, movable)    # noqa: E731
     self_compiled.push_apart(x[0], x[1], i, j, c.w.ravel(), dmin, OVER_RELAX, SELF_SWEEPS,
                              between, st.compiled)
 
