@@ -129,14 +129,13 @@ before, load 4.9-5.2; medians): the search 670 -> 621 us, the crumpled pass 1,11
 each in turns, load 4.6-6.0): crumpled 1.11-1.23 x (before 1.10-1.20 x: within the noise), hanging
 0.38-0.42 x (0.43-0.44 x). The goal is still NOT met by NumPy crumpled. What is left is work per
 element: the search's candidates (~10 passes over each), the rod filter (~0.07 ms) and the sweeps
-(~0.3 ms, half of it their bincounts). Tried that day and not kept: the sweeps' x and y as one
-complex number again (one gather per end: the sweeps 301-341 us, without it 297-303 us); two
-bincounts over [j, j + n] and [i, i + n] again, written into kept arrays with no 4m array built
-(each bin the same sum: the sweeps 363-409 us, the four bincounts 327-348 us, load 5.7); blocks of
-16,384-32,768 candidates (~100 page faults a pass, the pass ~10 % slower); the cell table's cumsum
-down the columns of a column-major table (vectorised, but its lookups then cost more: the table and
-lookups 200 -> 170 us alone, where the repeat makes the table in 29 us against bincount and cumsum's
-~100 us).
+(~0.3 ms, half of it their bincounts). Not kept: the sweeps' x and y as one complex number again
+(one gather per end: the sweeps 301-341 us, without it 297-303 us); two bincounts over [j, j + n]
+and [i, i + n] again, written into kept arrays with no 4m array built (each bin the same sum: the
+sweeps 363-409 us, the four bincounts 327-348 us, load 5.7); blocks of 16,384-32,768 candidates
+(~100 page faults a pass, the pass ~10 % slower); the cell table's cumsum down the columns of a
+column-major table (vectorised, but its lookups then cost more: the table and lookups 200 -> 170 us
+alone, where the repeat makes the table in 29 us against bincount and cumsum's ~100 us).
 
 Measured later still on 2026-11-27 (the bench's crumpled state, load 0.3-1.3), nothing kept: after
 the first sweep 85-91 % of the pairs are still closer than self_distance, so a second sweep over
@@ -164,15 +163,16 @@ pairs' x and y corrections): alone 78 us against 136 (27,233 pairs), but the ben
 took 1.00-1.04 ms against 0.89-0.95 (three bench runs each, in turns, load 0.5-1.0).
 
 Last on 2026-11-27 (the pass over the bench's 15 steps against the code before, in turns in one
-process, 61 rounds, medians, load 0.3-0.9; the same positions to the last bit in all five states),
-kept: the obstacles' look before a sweep told from the particles' extremes (one reduction, not
-near_bounds's ~8 passes), none before the second while every particle was further from them than a
-sweep moves one (OVER_RELAX x self_distance: each push at most self_distance, averaged, times
-OVER_RELAX); the weights' evenness and movable mask asked when the weights change. Crumpled
-0.95-0.98 x (12 runs, median 0.97), hanging 1.00, settled 0.98, fold card 0.99 x. Not kept: the
-search's d = x_j - x_i carried to sweep 1 (split by the rod filter 1.03-1.04 x, complex and read
-strided 1.01-1.03 x, through hits[kept] 1.00 x: gathers from 16 kB arrays are cheap); a run's
-(owner, first) split by a mask and a shift of int64 rows, the rod table kept negated (1.00 x each).
+process, 61 rounds, medians, load 0.6-0.8; the same positions to the last bit in all five states),
+kept: the obstacles' look before a sweep told from the particles' extremes (one reduction, not ~8
+passes), none before the second while every particle was further from them than a sweep moves one
+(OVER_RELAX x self_distance: each push at most self_distance, averaged, times OVER_RELAX); the
+weights' evenness and movable mask asked when the weights change. Crumpled 0.95-0.98 x (12 runs,
+median 0.97), hanging 1.00, settled 0.98, fold card 0.99 x; `bench cloth` crumpled 0.98 and 1.03 x
+(main between them: 1.06 x; load 0.6-1.0), NOT robustly met. Not kept: the search's d = x_j - x_i
+carried to sweep 1 (split by the rod filter 1.03-1.04 x, complex and read strided 1.01-1.03 x,
+through hits[kept] 1.00 x: gathers from 16 kB arrays are cheap); a run's (owner, first) split by a
+mask and a shift of int64 rows, the rod table kept negated (1.00 x each).
 
 Settled on the floor at 1 substep (400 steps) the crumpled cloth is crushed: a 2D heap ~4 x too
 dense for its particles' discs, ~47,000 of ~52,000 pairs still too close (the HUD says so and
