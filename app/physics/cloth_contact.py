@@ -107,15 +107,11 @@ sweeps). After the step's own work the pass waits on memory: an operation costs 
 step what it costs alone (the cell table's bincount and cumsum: 18 us alone, ~86 us in the step), so
 fewer passes over fewer bytes, not fewer operations, is what counts. The compiled pass
 (kernel=numba, optional, app/physics/self_compiled.py: the same grid and pairs, searched every
-substep, no list) visits each candidate once. It took 0.73 x the NumPy step, but it runs with the
-compiled step (kernel=numba compiles the rods too: 0.35 ms, not 0.89): like with like it is 1.33 x
-that step crumpled (1.6 x before it searched this grid; 0.42 x hanging), so NOT met either (bench of
-2026-11-27, load 1.1); with the rod table read in a pass of its own (later that day) 1.17-1.29 x
-(before 1.25-1.37 x in the same runs), still NOT met then. Later that day the compiled search walks
-each particle's runs as one loop, with 32-bit unsigned indices and the sweeps' pushes in float32 as
-NumPy's pass: 0.88- 0.91 x the compiled step crumpled, median 0.90 (four whole bench runs taking
-turns with the code before, which gave 1.42-1.50 x; load 5.5-9.2), 0.33-0.35 x hanging: MET with
-kernel=numba. Its search, sort, sweeps and what was tried on them: self_compiled.py's docstring.
+substep, no list) visits each candidate once and runs with the compiled step (kernel=numba compiles
+the rods too: 0.35 ms, not 0.89): 0.88-0.91 x that step crumpled, median 0.90 (four whole bench runs
+taking turns with the code before, which gave 1.42-1.50 x; load 5.5-9.2), 0.33-0.35 x hanging: MET
+with kernel=numba. Its search, sort, sweeps and what was tried on them: self_compiled.py's
+docstring; its figures before (1.33 x on 2026-11-27, load 1.1): git log.
 
 Later on 2026-11-27, the NumPy search itself (neighbours.fine_pairs; the same pairs in the same
 order, the same positions to the last bit): the cell table made by one repeat over the gaps between
@@ -172,17 +168,21 @@ median 0.97), hanging 1.00, settled 0.98, fold card 0.99 x; `bench cloth` crumpl
 (main between them: 1.06 x; load 0.6-1.0), NOT robustly met. Not kept: the search's d = x_j - x_i
 carried to sweep 1 (split by the rod filter 1.03-1.04 x, complex and read strided 1.01-1.03 x,
 through hits[kept] 1.00 x: gathers from 16 kB arrays are cheap); a run's (owner, first) split by a
-mask and a shift of int64 rows, the rod table kept negated (1.00 x each).
+mask and a shift of int64 rows, the rod table kept negated (1.00 x each). Then (crumpled, 61 rounds,
+load 0.1-0.4) not kept: a sweep's scatter as one bincount a coordinate over [j, i] (made once a
+pass; the i ends' weights negated): 1.035, 1.036 x; the search's extremes to the first look, its
+cumsum and cells: self_obstacles.py, neighbours.py. In the step (timers, load 0.2): the search ~545
+us, rod filter and list ~95, count and scale ~37, the two sweeps ~280 (8 bincounts ~106).
 
 Settled on the floor at 1 substep (400 steps) the crumpled cloth is crushed: a 2D heap ~4 x too
-dense for its particles' discs, ~47,000 of ~52,000 pairs still too close (the HUD says so and
-what to try), the pass ~2.9-3.0 x the step. Its weight presses the layers together faster than 2
-sweeps a substep part them; at 3 substeps it stands (~2,900 still close): the goal's row, 0.81 x
-the step, compiled 0.75 x (2026-11-27, load 0.6; app/bench/cloth_contact.py says how measured).
+dense for its particles' discs, ~47,000 of ~52,000 pairs still too close (the HUD says so and what
+to try), the pass ~2.9-3.0 x the step. Its weight presses the layers together faster than 2 sweeps a
+substep part them; at 3 substeps it stands (~2,900 still close): the goal's row, 0.81 x the step,
+compiled 0.75 x (2026-11-27, load 0.6; app/bench/cloth_contact.py says how measured).
 
-Self-collision is discrete, like the projection without the sweep test: a particle that moves
-more than about self_distance in one substep can pass between two particles of another layer
-unseen. Raise substeps (or lower the drop) for fast folds.
+Self-collision is discrete, like the projection without the sweep test: a particle that moves more
+than about self_distance in one substep can pass between two particles of another layer unseen.
+Raise substeps (or lower the drop) for fast folds.
 """
 
 from __future__ import annotations

@@ -242,7 +242,14 @@ def crowded_share(grid_tests: int, n: int) -> float:
 # and 15 cells): the bench's crumpled 64 x 64 cloth has 34,826 candidates for 17,924 pairs, where
 # cells R wide gave ~64,000 and cells of exactly R/8 x R/2 ~41,000 (they need a 9th column and a
 # 4th row for the rounding slack). Cells numbered row by row again, so each row of the stencil
-# is one run of the sorted list: three runs per particle.
+# is one run of the sorted list: three runs per particle. Where the search's time goes in the
+# cloth's step (the bench's crumpled state, a timer between the parts, 60 rounds, load 0.2,
+# 2026-11-27): ~545 us, of it the runs' repeat ~100 (73 alone for 12,288 runs: ~6 ns a run, a
+# branch per run, not its bytes), the candidates' d and |d|^2 ~80, the cell table ~64 (15 alone),
+# the sort ~50, p and q ~50, the hits ~41, the runs' ends (cumsum) ~33. Not faster: cells R/4 or
+# R/6 wide (the pass 1.00 and 1.03 x), and any other NumPy form of that cumsum (along either axis
+# of a 2-D array it is a serial loop per row or column too, 24-42 us alone against 25; a log-step
+# scan in blocks 78-111 us; int32, uint16 or float64 24-27 us).
 FINE_CELLS = (8, 2)       # cells per cut-off across and down
 CELLS_PER_PARTICLE = 8    # at most this many cells per particle: a spread-out crowd gets bigger
                           # cells (its count array stays small; it has few candidates anyway)
