@@ -408,7 +408,7 @@ class PymunkScene(Scene):
             # a few bodies (the pendulums, the cradle): math.hypot over the numbers as Python
             # floats, no NumPy call. Not the dot product flat.dot(flat): that is a BLAS call,
             # and after OpenBLAS's AVX-512 kernel the engine's next steps run slower (the
-            # cradle's 30 substeps: ~3-4 us a step, ~6 % of the lab's step; none with
+            # cradle's 30 substeps: 3-5 us a step, 5-9 % of the lab's step; none with
             # OPENBLAS_CORETYPE=Haswell, whose kernel is AVX2: bench pymunk, 2026-11-27)
             size = math.hypot(*_numbers(flat.size).unpack_from(flat))
             if reach is not None and size < reach:
