@@ -160,7 +160,7 @@ took 1.00-1.04 ms against 0.89-0.95 (three bench runs each, in turns, load 0.5-1
 
 Last on 2026-11-27 (the pass over the bench's 15 steps against the code before, in turns in one
 process, 61 rounds, medians, load 0.6-0.8; the same positions to the last bit in all five states),
-kept: the obstacles' look before a sweep told from the particles' extremes (one reduction, not ~8
+kept: the obstacles' look before a sweep told from the particles' extremes (1-4 reductions, not ~8
 passes), none before the second while every particle was further from them than a sweep moves one
 (OVER_RELAX x self_distance: each push at most self_distance, averaged, times OVER_RELAX); the
 weights' evenness and movable mask asked when the weights change. Crumpled 0.95-0.98 x (12 runs,
