@@ -469,3 +469,27 @@ def test_the_obstacles_are_looked_at_again_once_a_sweep_may_have_reached_them(mo
             cloth_contact.self_collide(c, 1 / 60)
             ends.append(x.copy())
         assert np.array_equal(*ends), gap
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+@pytest.mark.parametrize("dmin", [0.5, 1.0, 8.0])
+def test_two_particles_at_one_point_are_pushed_the_whole_self_distance_apart(kernel, dmin):
+    # a pair at one point (r = 0) overlaps by all of self_distance: its first sweep parts it
+    # along x by OVER_RELAX x self_distance (each free end half of it, or a pinned end's
+    # partner all of it), as any pair's overlap dmin - r; not by dmin - 1 px (nothing at all
+    # for a self_distance of 1 px or less)
+    if kernel == "numba":
+        pytest.importorskip("numba")
+    from app.physics.cloth_contact import OVER_RELAX, self_collide
+    for pinned in (False, True):
+        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision"})
+        c.kernel = kernel
+        c.contact.self_distance = dmin
+        x = c.x.reshape(2, -1)
+        x[:, 50] = x[:, 0]                      # (4, 2) onto (0, 0): not rod neighbours
+        if pinned:
+            c.lock_cells([(0, 0)])
+        self_collide(c, 1 / 60)
+        d = x[:, 50] - x[:, 0]
+        assert d[1] == 0.0, (pinned, d)
+        assert abs(abs(d[0]) - OVER_RELAX * dmin) < 1e-4 * dmin, (pinned, d)

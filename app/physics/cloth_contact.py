@@ -443,9 +443,9 @@ def self_collide(c, h: float) -> None:
         dx = np.subtract(xs.take(j, out=xj, mode="wrap"), xs.take(i, out=xi, mode="wrap"), out=xj)
         dy = np.subtract(ys.take(j, out=yj, mode="wrap"), ys.take(i, out=yi, mode="wrap"), out=yj)
         r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
-        if r.min() < 1e-6 * dmin:                       # at one point: part them along x
-            same = np.less(r, 1e-6 * dmin, out=flag)
-            dx[same], r[same] = 1.0, 1.0
+        if r.min() < 1e-6 * dmin:       # at one point: as if 1e-6 dmin apart along x (dmin's
+            same = np.less(r, 1e-6 * dmin, out=flag)     # overlap, not dmin - 1 px or none)
+            dx[same], dy[same], r[same] = 1e-6 * dmin, 0.0, 1e-6 * dmin
         push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
