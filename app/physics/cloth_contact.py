@@ -243,7 +243,7 @@ class ContactState:
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
     weights_of: tuple | None = None       # (cloth.free, all w equal and > 0, free > 0)
-    pushed: bool = False                  # self-collision's last projection moved particles
+    pushed: bool = False                  # self-collision's last look found particles near one
 
 
 Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
