@@ -469,3 +469,54 @@ def test_the_obstacles_are_looked_at_again_once_a_sweep_may_have_reached_them(mo
             cloth_contact.self_collide(c, 1 / 60)
             ends.append(x.copy())
         assert np.array_equal(*ends), gap
+
+
+@pytest.mark.parametrize("kernel", ["numpy", "numba"])
+@pytest.mark.parametrize("dmin", [0.5, 1.0, 8.0])
+def test_two_particles_at_one_point_are_pushed_the_whole_self_distance_apart(kernel, dmin):
+    # a pair at one point (r = 0) overlaps by all of self_distance: its first sweep parts it
+    # along x by OVER_RELAX x self_distance (each free end half of it, or a pinned end's
+    # partner all of it), as any pair's overlap dmin - r; not by dmin - 1 px (nothing at all
+    # for a self_distance of 1 px or less)
+    if kernel == "numba":
+        pytest.importorskip("numba")
+    from app.physics.cloth_contact import OVER_RELAX, self_collide
+    for pinned in (False, True):
+        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision"})
+        c.kernel = kernel
+        c.contact.self_distance = dmin
+        x = c.x.reshape(2, -1)
+        x[:, 50] = x[:, 0]                      # (4, 2) onto (0, 0): not rod neighbours
+        if pinned:
+            c.lock_cells([(0, 0)])
+        self_collide(c, 1 / 60)
+        d = x[:, 50] - x[:, 0]
+        assert d[1] == 0.0, (pinned, d)
+        assert abs(abs(d[0]) - OVER_RELAX * dmin) < 1e-4 * dmin, (pinned, d)
+
+
+def test_a_particle_pushed_the_whole_sweep_bound_towards_the_floor_is_projected(monkeypatch):
+    # the bound's edge: a free particle right under a pinned one (its share of the push is
+    # all of it) moves OVER_RELAX x self_distance (12 px) down in the first sweep, towards a
+    # floor 9 px below it; the look before the second sweep must see it (as projecting before
+    # every sweep does), which a bound of half that (6 px) would skip
+    from app.physics import cloth_contact
+    from app.physics.obstacles import project
+
+    def always(st, points, movable):
+        project(st.obstacles, points, st.margin, movable)
+        return -math.inf
+    ends = []
+    for push_out in (cloth_contact._push_out, always):
+        monkeypatch.setattr(cloth_contact, "_push_out", push_out)
+        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
+        c.set_obstacles([floor(109.261)])
+        c.contact.self_distance = 8.0
+        x = c.x.reshape(2, -1)
+        x[1] = 200.0 - x[1]                     # the first row lowest, at y = 100
+        x[:, 50] = x[:, 0] + (0.0, 1e-3)        # (4, 2) just under (0, 0), which is pinned
+        c.lock_cells([(0, 0)])
+        cloth_contact.self_collide(c, 1 / 60)
+        ends.append(x.copy())
+    assert ends[1][1, 50] < 109.261             # (on the floor, not 3 px in)
+    assert np.array_equal(*ends)

@@ -160,7 +160,7 @@ took 1.00-1.04 ms against 0.89-0.95 (three bench runs each, in turns, load 0.5-1
 
 Last on 2026-11-27 (the pass over the bench's 15 steps against the code before, in turns in one
 process, 61 rounds, medians, load 0.6-0.8; the same positions to the last bit in all five states),
-kept: the obstacles' look before a sweep told from the particles' extremes (one reduction, not ~8
+kept: the obstacles' look before a sweep told from the particles' extremes (1-4 reductions, not ~8
 passes), none before the second while every particle was further from them than a sweep moves one
 (OVER_RELAX x self_distance: each push at most self_distance, averaged, times OVER_RELAX); the
 weights' evenness and movable mask asked when the weights change. Crumpled 0.95-0.98 x (12 runs,
@@ -243,7 +243,7 @@ class ContactState:
     touch_key: tuple | None = None        # the obstacles' bounds when `crowded` was last asked
     touch_value: bool = False
     weights_of: tuple | None = None       # (cloth.free, all w equal and > 0, free > 0)
-    pushed: bool = False                  # self-collision's last projection moved particles
+    pushed: bool = False                  # self-collision's last look found particles near one
 
 
 Pass = Callable[["Cloth", float], None]   # noqa: F821 (the Cloth of app/physics/cloth.py)
@@ -443,9 +443,9 @@ def self_collide(c, h: float) -> None:
         dx = np.subtract(xs.take(j, out=xj, mode="wrap"), xs.take(i, out=xi, mode="wrap"), out=xj)
         dy = np.subtract(ys.take(j, out=yj, mode="wrap"), ys.take(i, out=yi, mode="wrap"), out=yj)
         r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
-        if r.min() < 1e-6 * dmin:                       # at one point: part them along x
-            same = np.less(r, 1e-6 * dmin, out=flag)
-            dx[same], r[same] = 1.0, 1.0
+        if r.min() < 1e-6 * dmin:       # at one point: as if 1e-6 dmin apart along x (dmin's
+            same = np.less(r, 1e-6 * dmin, out=flag)     # overlap, not dmin - 1 px or none)
+            dx[same], dy[same], r[same] = 1e-6 * dmin, 0.0, 1e-6 * dmin
         push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r

@@ -206,8 +206,8 @@ def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved):
             count[b] += 1
         dx, dy = xs[b] - xs[a], ys[b] - ys[a]
         r = np.sqrt(dx * dx + dy * dy)
-        if r < 1e-6 * dmin:                             # at one point: part them along x
-            dx, r = 1.0, 1.0
+        if r < 1e-6 * dmin:                 # at one point: as if 1e-6 dmin apart along x
+            dx, dy, r = 1e-6 * dmin, 0.0, 1e-6 * dmin
         push = max(dmin - r, 0.0) / r                   # the overlap per unit of d
         mx, my = dx * push, dy * push
         moved[2 * b] += mx * share_b
@@ -221,7 +221,7 @@ def _push_apart(xs, ys, i, j, w, dmin, once, over_relax, count, scale, moved):
         ys[p] += moved[2 * p + 1] * scale[p]
 
 
-def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved, fx, fy):
+def _push_even(xs, ys, i, j, dmin, tiny, once, over_relax, count, scale, moved, fx, fy):
     """_push_apart's sweep with every particle free and of the same weight (nothing pinned or
     grabbed): every share is 1/2 (in scale), no weights read. In three loops: d gathered pair
     by pair; the pushes, a loop with no gather and no branch that the compiler turns into
@@ -233,13 +233,14 @@ def _push_even(xs, ys, i, j, dmin, once, over_relax, count, scale, moved, fx, fy
         a, b = i[k], j[k]
         fx[k] = xs[b] - xs[a]
         fy[k] = ys[b] - ys[a]
-    one, zero, tiny = np.float32(1.0), np.float32(0.0), 1e-6 * dmin
+    zero = np.float32(0.0)
     for k in range(m):
         dx, dy = fx[k], fy[k]
         r = np.sqrt(dx * dx + dy * dy)
-        same = r < tiny                                 # at one point: part them along x
-        dx = one if same else dx
-        r = one if same else r
+        same = r < tiny                     # at one point: as if tiny apart along x (tiny is
+        dx = tiny if same else dx           # 1e-6 dmin in the positions' type: push_apart)
+        dy = zero if same else dy
+        r = tiny if same else r
         over = dmin - r
         push = (over if over > 0 else zero) / r         # the overlap per unit of d
         fx[k] = dx * push
@@ -357,12 +358,13 @@ def push_apart(xs, ys, i, j, w, dmin: float, over_relax: float, sweeps: int, bet
             size = i.size + i.size // 2
             fx, fy = buf.pushes[xs.dtype] = np.empty(size, xs.dtype), np.empty(size, xs.dtype)
         dmin = xs.dtype.type(dmin)                      # (the pushes in the positions' precision)
+        tiny = xs.dtype.type(1e-6 * float(dmin))        # (a pair at one point: _push_even)
     for sweep in range(sweeps):
         if between is not None:
             between()
         if even:
-            _push_same(xs, ys, i, j, dmin, sweep == 0, float(over_relax), buf.count, buf.scale,
-                       buf.moved, fx, fy)
+            _push_same(xs, ys, i, j, dmin, tiny, sweep == 0, float(over_relax), buf.count,
+                       buf.scale, buf.moved, fx, fy)
         else:
             _push(xs, ys, i, j, w, float(dmin), sweep == 0, float(over_relax), buf.count,
                   buf.scale, buf.moved)

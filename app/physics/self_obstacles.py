@@ -2,11 +2,13 @@
 a point may be near one.
 
 Self-collision (app/physics/cloth_contact.py) projects the obstacles before each of its sweeps,
-so that a pair resting on the floor is parted by moving the upper particle. obstacles.near_bounds
-finds the points within a margin of an obstacle's bounds: some 8 passes over the points (and a
-list of indices) even when none is near, as while a crumpled cloth falls towards the floor.
-`clear_of` tells "none is near" from one or two reductions (the points' smallest or largest x
-and y): near_bounds's test at the corner of the points' box nearest the obstacle. Each
+so that a pair resting on the floor is parted by moving the upper particle.
+obstacles.near_bounds finds the points within a margin of an obstacle's bounds: some 8 passes
+over the points (and a list of indices) even when none is near, as while a crumpled cloth falls
+towards the floor. `clear_of` tells "none is near" from the points' extremes (a half-plane: the
+smallest or largest x, y or both, as its normal points: one reduction for a floor; an obstacle
+with bounds: all four, the smallest and largest x and y): near_bounds's test at the corner of
+the points' box nearest the obstacle (for bounds: the points' box beyond one side of them). Each
 operation of that test is monotone in a coordinate (rounding too), so where the corner does not
 pass it, no point does. The corner is computed in double precision with 1e-5 of the numbers'
 size to spare for float32's rounding (the positions', and the obstacle's numbers rounded to
