@@ -444,22 +444,24 @@ def test_a_sweep_moves_no_particle_further_than_over_relax_times_self_distance(m
     assert largest > 0.99 * OVER_RELAX     # (reached: the free end of a pair at one point)
 
 
+def _project_always(st, points, movable):
+    """self-collision's look before a sweep as it was: project every time (no clear_of, no
+    bound): the reference the lazy look must match to the last bit."""
+    from app.physics.obstacles import project
+    project(st.obstacles, points, st.margin, movable)
+    return -math.inf
+
 
 def test_the_obstacles_are_looked_at_again_once_a_sweep_may_have_reached_them(monkeypatch):
     # a crowd just above the floor, pushed apart (some of it downwards, into the floor's
     # margin) by the first sweep: the second sweep's projection sees them. The same positions,
     # to the last bit, as projecting before every sweep
     from app.physics import cloth_contact
-    from app.physics.obstacles import project
     rng = np.random.default_rng(8)
-
-    def always(st, points, movable):
-        project(st.obstacles, points, st.margin, movable)
-        return -math.inf
     for gap in (0.5, 3.0, 8.0, 30.0):
         start = np.stack([rng.uniform(100, 130, 144), rng.uniform(150, 199.74 - gap, 144)])
         ends = []
-        for push_out in (cloth_contact._push_out, always):
+        for push_out in (cloth_contact._push_out, _project_always):
             monkeypatch.setattr(cloth_contact, "_push_out", push_out)
             c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
             c.set_obstacles([floor(200.0)])
@@ -501,13 +503,8 @@ def test_a_particle_pushed_the_whole_sweep_bound_towards_the_floor_is_projected(
     # floor 9 px below it; the look before the second sweep must see it (as projecting before
     # every sweep does), which a bound of half that (6 px) would skip
     from app.physics import cloth_contact
-    from app.physics.obstacles import project
-
-    def always(st, points, movable):
-        project(st.obstacles, points, st.margin, movable)
-        return -math.inf
     ends = []
-    for push_out in (cloth_contact._push_out, always):
+    for push_out in (cloth_contact._push_out, _project_always):
         monkeypatch.setattr(cloth_contact, "_push_out", push_out)
         c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
         c.set_obstacles([floor(109.261)])

@@ -521,6 +521,28 @@ def test_balls_falling_asleep_or_waking_take_the_short_way_to_the_exact_results(
     assert short.state_hash() == exact.state_hash()
 
 
+def _set_field(body, field: str, value: float) -> None:
+    """One of a body's six state numbers set to value ("x", "y", "angle", "vx", "vy", "w")."""
+    x, y = body.position
+    vx, vy = body.velocity
+    if field in ("x", "y"):
+        body.position = (value, y) if field == "x" else (x, value)
+    elif field in ("vx", "vy"):
+        body.velocity = (value, vy) if field == "vx" else (vx, value)
+    else:
+        setattr(body, "angle" if field == "angle" else "angular_velocity", value)
+
+
+def _finite_by_hand(scene) -> bool:
+    """is_finite's answer, every number tested on its own: all finite, and every body within
+    blowup_reach of the world."""
+    state = scene.body_state()
+    (w, h), r = scene.world_size, scene.blowup_reach
+    return bool(np.isfinite(state).all() and (state[:, 0] > -r).all()
+                and (state[:, 0] < w + r).all() and (state[:, 1] > -r).all()
+                and (state[:, 1] < h + r).all())
+
+
 @pytest.mark.parametrize("bodies", [3, 14, 15, 40])
 def test_the_one_pass_finite_check_agrees_with_each_number_tested_on_its_own(bodies):
     # _state_is_finite's first pass is math.hypot over the numbers up to FEW_NUMBERS (16
@@ -549,27 +571,14 @@ def test_the_one_pass_finite_check_agrees_with_each_number_tested_on_its_own(bod
     # (the rows: the bodies, the base's static marker and the space's static body: 14 bodies
     # are the last few)
     assert (scene.body_state().size <= FEW_NUMBERS) == (bodies <= 14)
-    w, h = scene.world_size
-    r = scene.blowup_reach
     for trial in range(100):
         scene = Bodies({})
         for body in rng.sample(list(scene.space.bodies), rng.randint(1, 3)):
-            field, value = rng.choice(("x", "y", "angle", "vx", "vy", "w")), rng.choice(values)
-            x, y = body.position
-            vx, vy = body.velocity
-            if field in ("x", "y"):
-                body.position = (value, y) if field == "x" else (x, value)
-            elif field in ("vx", "vy"):
-                body.velocity = (value, vy) if field == "vx" else (vx, value)
-            else:
-                setattr(body, "angle" if field == "angle" else "angular_velocity", value)
+            _set_field(body, rng.choice(("x", "y", "angle", "vx", "vy", "w")), rng.choice(values))
         scene.wake()
-        state = scene.body_state()
-        want = bool(np.isfinite(state).all() and (state[:, 0] > -r).all()
-                    and (state[:, 0] < w + r).all() and (state[:, 1] > -r).all()
-                    and (state[:, 1] < h + r).all())
+        want = _finite_by_hand(scene)
         with np.errstate(over="ignore"):    # (the dot product's sum overflows at 1.7e308)
-            assert scene._state_is_finite() is want, (trial, state.tolist())
+            assert scene._state_is_finite() is want, (trial, scene.body_state().tolist())
 
 
 def test_the_pendulums_guard_in_its_read_agrees_with_each_number_tested_on_its_own():
@@ -585,25 +594,13 @@ def test_the_pendulums_guard_in_its_read_agrees_with_each_number_tested_on_its_o
         scene = DoublePendulumScene({"reference": trial % 2 == 0})
         scene.advance()
         for _ in range(rng.randint(1, 3)):
-            bob = rng.choice(scene.bobs)
-            field, value = rng.choice(("x", "y", "vx", "vy", "w")), rng.choice(values)
-            x, y = bob.position
-            vx, vy = bob.velocity
-            if field in ("x", "y"):
-                bob.position = (value, y) if field == "x" else (x, value)
-            elif field in ("vx", "vy"):
-                bob.velocity = (value, vy) if field == "vx" else (vx, value)
-            else:
-                bob.angular_velocity = value
+            _set_field(rng.choice(scene.bobs), rng.choice(("x", "y", "vx", "vy", "w")),
+                       rng.choice(values))
         scene.wake()
         if trial % 4 == 3:
             with np.errstate(all="ignore"):
                 scene.advance()                     # (after_step's read, guarded)
         else:
             scene.rows_list(scene.bobs, guard=True)     # the same read, of the bobs as set
-        state = scene.body_state()
-        (w, h), r = scene.world_size, scene.blowup_reach
-        want = bool(np.isfinite(state).all() and (state[:, 0] > -r).all()
-                    and (state[:, 0] < w + r).all() and (state[:, 1] > -r).all()
-                    and (state[:, 1] < h + r).all())
-        assert scene.is_finite() is want, (trial, state.tolist())
+        want = _finite_by_hand(scene)          # (not a read of the state reader's)
+        assert scene.is_finite() is want, (trial, scene.body_state().tolist())
