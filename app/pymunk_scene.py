@@ -29,6 +29,7 @@ and which handle_event pulls within REACH (1e5 px) of the world as the cloth doe
 from __future__ import annotations
 
 import copy
+import functools
 import math
 import struct
 from dataclasses import replace
@@ -49,15 +50,10 @@ FEW_NUMBERS = 96                    # is_finite: a state of up to this many numb
                                     # bodies) is measured without a BLAS call (_numbers)
 
 
+@functools.cache
 def _numbers(n: int) -> struct.Struct:
     """The struct that unpacks n float64s (made once for each n)."""
-    made = _STRUCTS.get(n)
-    if made is None:
-        made = _STRUCTS[n] = struct.Struct(f"{n}d")
-    return made
-
-
-_STRUCTS: dict[int, struct.Struct] = {}
+    return struct.Struct(f"{n}d")
 
 # The same names as the cloth's: the number is the param `g`, the on/off switch the effect `gravity`
 # (so `--scene all --set g=...` means one thing everywhere).

@@ -452,25 +452,35 @@ def _project_always(st, points, movable):
     return -math.inf
 
 
+def _lazy_and_always(monkeypatch, floor_y: float, place) -> list[np.ndarray]:
+    """The positions after one self-collision pass (self_distance 8 px) of a 12 x 12 cloth over
+    a floor at floor_y, placed by place(c, x) (x: its (2, n) positions), with the lazy look
+    before each sweep and with a projection before every sweep (_project_always)."""
+    from app.physics import cloth_contact
+    ends = []
+    for push_out in (cloth_contact._push_out, _project_always):
+        monkeypatch.setattr(cloth_contact, "_push_out", push_out)
+        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
+        c.set_obstacles([floor(floor_y)])
+        c.contact.self_distance = 8.0
+        x = c.x.reshape(2, -1)
+        place(c, x)
+        cloth_contact.self_collide(c, 1 / 60)
+        ends.append(x.copy())
+    return ends
+
+
 def test_the_obstacles_are_looked_at_again_once_a_sweep_may_have_reached_them(monkeypatch):
     # a crowd just above the floor, pushed apart (some of it downwards, into the floor's
     # margin) by the first sweep: the second sweep's projection sees them. The same positions,
     # to the last bit, as projecting before every sweep
-    from app.physics import cloth_contact
     rng = np.random.default_rng(8)
     for gap in (0.5, 3.0, 8.0, 30.0):
         start = np.stack([rng.uniform(100, 130, 144), rng.uniform(150, 199.74 - gap, 144)])
-        ends = []
-        for push_out in (cloth_contact._push_out, _project_always):
-            monkeypatch.setattr(cloth_contact, "_push_out", push_out)
-            c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
-            c.set_obstacles([floor(200.0)])
-            c.contact.self_distance = 8.0
-            x = c.x.reshape(2, -1)
+
+        def place(c, x):
             x[:] = start
-            cloth_contact.self_collide(c, 1 / 60)
-            ends.append(x.copy())
-        assert np.array_equal(*ends), gap
+        assert np.array_equal(*_lazy_and_always(monkeypatch, 200.0, place)), gap
 
 
 @pytest.mark.parametrize("kernel", ["numpy", "numba"])
@@ -502,18 +512,10 @@ def test_a_particle_pushed_the_whole_sweep_bound_towards_the_floor_is_projected(
     # all of it) moves OVER_RELAX x self_distance (12 px) down in the first sweep, towards a
     # floor 9 px below it; the look before the second sweep must see it (as projecting before
     # every sweep does), which a bound of half that (6 px) would skip
-    from app.physics import cloth_contact
-    ends = []
-    for push_out in (cloth_contact._push_out, _project_always):
-        monkeypatch.setattr(cloth_contact, "_push_out", push_out)
-        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision", "collisions"})
-        c.set_obstacles([floor(109.261)])
-        c.contact.self_distance = 8.0
-        x = c.x.reshape(2, -1)
+    def place(c, x):
         x[1] = 200.0 - x[1]                     # the first row lowest, at y = 100
         x[:, 50] = x[:, 0] + (0.0, 1e-3)        # (4, 2) just under (0, 0), which is pinned
         c.lock_cells([(0, 0)])
-        cloth_contact.self_collide(c, 1 / 60)
-        ends.append(x.copy())
+    ends = _lazy_and_always(monkeypatch, 109.261, place)
     assert ends[1][1, 50] < 109.261             # (on the floor, not 3 px in)
     assert np.array_equal(*ends)
