@@ -99,6 +99,12 @@ TRAIL_COLOR = (86, 180, 233)
 MARK_COLOR = (230, 97, 76)
 
 
+def relative_drift(energy: float, energy0: float) -> float:
+    """(E - E0) / E0, the energy drift since the release; 0 while E0 is about 0 (released at
+    rest, hanging straight down: no drift to measure against)."""
+    return (energy - energy0) / energy0 if energy0 > 1e-9 else 0.0
+
+
 def build_double_pendulum(space: pymunk.Space, anchor: tuple[float, float],
                           lengths: tuple[float, float], masses: tuple[float, float],
                           angles: tuple[float, float]) -> tuple[pymunk.Body, pymunk.Body]:
@@ -140,6 +146,7 @@ class DoublePendulumScene(PymunkScene):
     title = "Double pendulum vs. its equations"
     category = "Rigid bodies (pymunk)"
     blowup_reach = 1e6      # px beyond the world: a body held by rods out there has blown up
+    _energy_terms = None    # (bobs, each bob's terms of energy()): made for these bobs and g
     params = PYMUNK_PARAMS + PENDULUM_PARAMS
     effects = PYMUNK_EFFECTS + (
         Effect("reference", True, "the ghost: the same pendulum integrated with RK4"),
@@ -223,13 +230,14 @@ class DoublePendulumScene(PymunkScene):
             return
         t = self.track
         rows = self.rows_list(self.bobs, guard=True)   # (x, y, angle, vx, vy, w) of each bob
-        drift = abs(self.energy_drift(rows))
+        drift = abs(relative_drift(self.energy(rows), t["energy0"]))
         if drift > t["energy_drift_max"]:          # (max(seen, drift): a NaN leaves it)
             t["energy_drift_max"] = drift
         if t["engine_blowup"] is None and not drift <= BLOWUP_DRIFT:   # (NaN counts)
             t["engine_blowup"] = self.time - t["start"]
         tip = rows[1][0], rows[1][1]               # (the batch read's copy of bobs[1].position)
-        if self.ghost_alive():
+        on = self.on
+        if "reference" in on and t["ref_blowup"] is None:     # (ghost_alive, written out)
             if not self.ode.advance(self.dt):
                 t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
                 return
@@ -237,9 +245,9 @@ class DoublePendulumScene(PymunkScene):
             if t["divergence_time"] is None and math.dist(tip, ghost_tip) > PART_PX:
                 t["divergence_time"] = self.time - t["start"]
                 t["mark"] = (float(tip[0]), float(tip[1]))
-            if "trail" in self.on:
+            if "trail" in on:
                 self.ghost_trail.append(ghost_tip)
-        if "trail" in self.on:
+        if "trail" in on:
             self.trail.append(tip)
 
     def ghost_alive(self) -> bool:
@@ -273,7 +281,7 @@ class DoublePendulumScene(PymunkScene):
         bobs' rows_of as a list, if already read."""
         # the terms are made again for new bobs (a build: the lengths are rebuild params; a
         # restore) and for a new g (gravity_changed forgets them)
-        cache = getattr(self, "_energy_terms", None)
+        cache = self._energy_terms
         if cache is None or cache[0] is not self.bobs:
             g = self.gravity()
             l1, l2 = self.p["length1"], self.p["length2"]
@@ -306,8 +314,7 @@ class DoublePendulumScene(PymunkScene):
         return cache[1]
 
     def energy_drift(self, rows: list | None = None) -> float:
-        e0 = self.track["energy0"]
-        return (self.energy(rows) - e0) / e0 if e0 > 1e-9 else 0.0
+        return relative_drift(self.energy(rows), self.track["energy0"])
 
     def pin_error(self) -> float:
         b1, b2 = self.bobs
