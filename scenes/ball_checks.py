@@ -3,12 +3,12 @@ L's long arm, and balls that left the world (removed). A part of FallingBallsSce
 module of its own (FallingBallsScene inherits BallChecks).
 
 The usual step is cheap: while the same bodies stay awake, one product of their rows (x, y,
-angle, vx, vy, w) with a (6, 5) matrix and one comparison give five flags a body: its centre
-inside the world's box (x >= -2r, x <= w + 2r, y >= -h, y <= h + 2r: four, the very comparisons
-of the exact test) and on or below the arm's line. If the flags' bytes are the ones kept from
-the last step, no ball crossed the line and none left: 3 NumPy calls however many balls there
-are (in the step's loop each costs 1-2 us; an (n, 2) reduction along an axis, a ufunc's max()
-or a comparison with a broadcast row costs several). A change (a ball that crossed the line, a
+angle, vx, vy, w) with a (6, 5) matrix and one comparison give five flags a body (or, with the
+L along x, comparisons alone: ball_look.py): its centre inside the world's box (x >= -2r, x <=
+w + 2r, y >= -h, y <= h + 2r: four, the very comparisons of the exact test) and on or below the
+arm's line. If the flags' bytes are the ones kept from the last step, no ball crossed the line
+and none left: 3 NumPy calls however many balls (in the step's loop each costs 1-2 us; a ufunc's
+max() or a comparison with a broadcast row costs several). A change (a ball that crossed the line, a
 ball outside the box, a NaN) is found among the few flags that changed, and each goes to the
 exact test on that ball alone (plain Python). A few balls falling asleep or waking (the L
 static) take the short way: the awake rows mirrored as Chipmunk moves them, the usual check on
@@ -265,23 +265,23 @@ class BallChecks:
 
     def _usual_check(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple):
         """check_balls while the same bodies stay awake (rows_now: their rows, balls and maybe
-        the L): one product of the rows with a (6, 5) matrix and one comparison give five flags
-        a row (x and y inside the world's box, four, and the centre on or below the arm's
-        line); if their bytes are the ones of the last step, no ball crossed the line and none
-        left (the usual step: 3 NumPy calls). Otherwise a crossing is found by a change in the
-        line's flag and a ball outside by the box's, and each goes to the exact tests."""
+        the L): five flags a row (x and y inside the world's box, four, and the centre on or
+        below the arm's line), out of look's comparisons where the L lies along x, else one
+        product of the rows with a (6, 5) matrix and one comparison; a crossing is found by a
+        change in the line's flag and a ball outside by the box's: each to the exact tests."""
         kept = self._flag_rows      # (for these rows and L1 already, unless a moving L moved)
         if kept is None or kept[0] != len(rows_now):
             kept = self._flag_rows_at(len(rows_now), L1)
         elif kept[3] != L1:
             self._flag_matrix(L1)   # (a moving L: its line's limit written again, kept's too)
-        flags = np.less_equal(rows_now.dot(kept[5], out=kept[1]), kept[2])
-        return self._flags_seen(rows_now, L0, L1, awake, fast, flags, flags.tobytes())
+        from scenes.ball_look import compared_flags    # (ball_look imports this module)
+        b = compared_flags(self, rows_now) or np.less_equal(      # (None: the product)
+            rows_now.dot(kept[5], out=kept[1]), kept[2]).tobytes()
+        return self._flags_seen(rows_now, L0, L1, awake, fast, b)
 
-    def _flags_seen(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple,
-                    flags: np.ndarray, b: bytes):
-        """_usual_check's end, from the flags made (flags, and their bytes b: the key, and the
-        L's box flags, from one call); ball_look.look comes here when they changed."""
+    def _flags_seen(self, rows_now: np.ndarray, L0, L1, awake: Awake, fast: tuple, b: bytes):
+        """_usual_check's end, from the flags' bytes made (b: the key, and the L's box flags,
+        from one call); ball_look.look comes here when they changed."""
         L_row = awake.L_row
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
         # (for flush_xy) the reader's rows themselves, no copy: they stay good through the next
@@ -295,7 +295,7 @@ class BallChecks:
             self.finite_read = reader.reads
         if same:
             return L1
-        changed = _changed(fast[1], b, flags)
+        changed = _changed(fast[1], b)
         slots = awake.slots
         crossed = [r for r, col in changed if col == 4 and b[5 * r + 4] and slots[r] >= 0]
         if crossed:                   # above the line before, on or below it now: inside the

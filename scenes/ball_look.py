@@ -9,9 +9,10 @@ kept arrays' size and pose: ~10k instructions a step, against the usual look's ~
 read; callgrind, 37 balls): those are made once, when the usual case starts (`arm`), and kept in
 scene._quick, which is good while scene._awake and scene._fast are the very objects it was made
 with (anything that changes who is awake, a ball added or removed, a restore, a look the general
-way, makes new ones). With the L static at angle 0 (falling_balls), look does not even make the
-product while the flags stay: one comparison of the rows with bounds (bounds_for) says whether
-they did, exactly (the flags are comparisons of x and y then). Not for its cost alone (about one
+way, makes new ones). With the L static at angle 0 (falling_balls), look makes no product: one
+comparison of the rows with bounds (bounds_for) says whether the flags stayed, exactly (the flags
+are comparisons of x and y then), and when they did not, the flags are made out of its bytes
+(flags_of_compared; the product only for a row not finite). Not for its cost alone (about one
 product's): right after OpenBLAS's product (its FMA kernels) pymunk's next step took ~1.5 us
 longer (falling_balls' space.step, 37 balls, medians of 20 rounds: 18.6-18.7 us alone, 20.3-20.6
 with a product of (37, 6) by (6, 5) between steps, 18.5-19.1 with the comparison; load 1.1),
@@ -93,9 +94,13 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                     if _NAN_FAILS:
                         scene.finite_read = reader.reads
                     return L0
-            kept = q.kept
-            flags = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2])
-            b = flags.tobytes()
+                # the flags out of the comparisons: no product (flags_of_compared)
+                b = flags_of_compared(sig, now)
+            else:
+                b = None
+            if b is None:
+                kept = q.kept
+                b = np.less_equal(now.dot(kept[5], out=kept[1]), kept[2]).tobytes()
             fast = q.fast
             if b == fast[2]:                       # the same flags as after the last look
                 _kept(scene, reader, q.awake, now, _NAN_FAILS)
@@ -103,7 +108,7 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                 if bounds is not None:             # (the comparisons of rows with these flags)
                     q.sig = sig
                 return L0
-            L1 = scene._flags_seen(now, L0, L0, q.awake, fast, flags, b)
+            L1 = scene._flags_seen(now, L0, L0, q.awake, fast, b)
             armed = scene._quick = arm(scene, L1)
             if bounds is not None and armed is not None and armed.bounds is bounds \
                     and scene._fast[1] is b:
@@ -146,6 +151,64 @@ def compared_of(b: bytes) -> bytes:
     lower[0::6], lower[1::6] = b[0::5].translate(_NOT), b[2::5].translate(_NOT)
     line[1::6] = b[4::5].translate(_NOT)
     return bytes(upper + lower + line)
+
+
+def flags_of_compared(sig: bytes, rows: np.ndarray) -> bytes | None:
+    """The flags' bytes (5 a row) the product would give the n rows (n, 6) whose comparisons
+    with bounds_for's bounds have the bytes sig, made out of sig (compared_of the other way
+    round: bytes moves, no NumPy call), or None if a row may hold a number that is not finite
+    (then the product: NaN * 0 makes such a row's flags). Why not the product: it is a BLAS
+    call, and after OpenBLAS's AVX-512 kernel the engine's next steps run slower (look made
+    one whenever the flags changed, ~290 times in the bench's 2,400 steps of falling_balls:
+    with OPENBLAS_CORETYPE=Prescott, whose kernels use no AVX, the lab's own cost was ~1.2 us
+    a step less; with the flags made here, and in _usual_check the same way, Prescott's kernels
+    gain nothing any more (10.3-10.7 us a step either way). The bench's long run's lab/bare,
+    medians of runs taking turns with the product in one process: 1.594 -> 1.562, 1.585 ->
+    1.543 and 1.607 -> 1.592, load 0.1-0.4, 2026-11-27). A row's angle, vx, vy and w are
+    finite when each is at most the largest float (the first comparisons) and none is -inf
+    (the second); its x and y are compared with the
+    box's ends, so they are read (as Python floats) only for a row outside the box, where a
+    NaN or an inf would be too (a ball that left: one every ~15 steps)."""
+    n = len(sig) // 18
+    k = 6 * n
+    upper, lower = sig[:k], sig[k:2 * k]
+    ones, zeros = b"\1" * n, bytes(n)
+    for col in (2, 3, 4, 5):
+        if upper[col::6] != ones or lower[col::6] != zeros:
+            return None
+    x_in, x_left, y_in, y_above = upper[0::6], lower[0::6], upper[1::6], lower[1::6]
+    if x_in != ones or y_in != ones or x_left != zeros or y_above != zeros:
+        out = {r for b, v in ((x_in, 0), (y_in, 0), (x_left, 1), (y_above, 1))
+               for r in _where(b, v)}
+        for r in out:                       # (outside the box: finite?)
+            x, y = rows[r, :2].tolist()
+            if not (math.isfinite(x) and math.isfinite(y)):
+                return None
+    flags = bytearray(5 * n)
+    flags[0::5], flags[1::5] = x_left.translate(_NOT), x_in
+    flags[2::5], flags[3::5] = y_above.translate(_NOT), y_in
+    flags[4::5] = sig[2 * k + 1::6].translate(_NOT)       # (not y < -c: on or below the line)
+    return bytes(flags)
+
+
+def compared_flags(scene, rows: np.ndarray) -> bytes | None:
+    """flags_of_compared for these rows, compared as look compares them, with the L at the
+    pose its flags' matrix was last made for (BallChecks._flag_matrix), if look's bounds are
+    made for it (the L along x: bounds_for); else None (then the product)."""
+    made = bounds_for(scene, len(rows))
+    if made is None:
+        return None
+    bounds, inside = made
+    return flags_of_compared(np.less_equal(rows, bounds, out=inside).tobytes(), rows)
+
+
+def _where(b: bytes, value: int) -> list[int]:
+    """The indices of the bytes of b equal to value."""
+    out, at = [], b.find(value)
+    while at >= 0:
+        out.append(at)
+        at = b.find(value, at + 1)
+    return out
 
 
 _BIG = float(np.finfo(np.float64).max)
@@ -259,7 +322,7 @@ def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, fl
                 if (b[r:r + 4] == b"\1\1\1\1") is (line is None):    # (the L left the box
                     q.line = line_for(scene, kept[0], q.awake.L_row, b)   # or came back: Line
                 return L1                          # keeps the bytes, so only with them true)
-            L1 = scene._flags_seen(now, L0, L1, q.awake, fast, flags, b)
+            L1 = scene._flags_seen(now, L0, L1, q.awake, fast, b)
             scene._quick_moving = arm_moving(scene, L1)
             return L1
     L1 = scene.check_balls(L0)

@@ -167,14 +167,14 @@ def fast_of(pose: tuple[float, float, float], b: bytes, L_row: int | None,
     return pose, b, key if _inside(key) else None
 
 
-def _changed(old: bytes, new: bytes, flags: np.ndarray) -> list[tuple[int, int]]:
+def _changed(old: bytes, new: bytes) -> list[tuple[int, int]]:
     """(row, column) of each flag that differs between two flags' bytes (the last step's and
-    this one's, whose array is flags), in order. A few: the bytes as two integers, XOR, and its
-    set bits read off one by one (plain Python, a fraction of a NumPy call each); many (a bit
-    read is O(size) then): NumPy."""
+    this one's), in order. A few: the bytes as two integers, XOR, and its set bits read off one
+    by one (plain Python, a fraction of a NumPy call each); many (a bit read is O(size) then):
+    NumPy."""
     x = int.from_bytes(old, "little") ^ int.from_bytes(new, "little")
     if x.bit_count() > 16:
-        diff = np.frombuffer(old, dtype=np.bool_) != flags.reshape(-1)
+        diff = np.frombuffer(old, dtype=np.uint8) != np.frombuffer(new, dtype=np.uint8)
         return [divmod(i, 5) for i in np.flatnonzero(diff).tolist()]
     out = []
     while x:

@@ -372,6 +372,51 @@ def test_the_looks_comparisons_change_exactly_when_the_flags_do():
             assert (compared(a) == compared(b)) == (flags(a) == flags(b)), (a, b)
 
 
+def test_the_flags_made_out_of_the_looks_comparisons_are_the_products():
+    # ball_look.flags_of_compared: the flags' bytes made out of the comparisons' bytes (no
+    # product) for n random rows: at the box's ends and the arm's line, a float either side,
+    # far outside, NaN and +-inf in any column, 1-3 of them in a row. Either exactly the
+    # product's flags, or None (then look makes the product); None only if a row holds a
+    # number that is not finite. Seeded; the seed is in the message.
+    from scenes import ball_look
+    seed = 20261127
+    rng = np.random.default_rng(seed)
+    scene = FallingBallsScene({})
+    M, limits = scene._flag_matrix(scene._L_static_pose)
+    lx, ux, ly, uy, c = limits.tolist()
+    edges_x = [-lx, ux, 0.0, 300.0, -5000.0, 5000.0]
+    edges_y = [-ly, uy, -c, 0.0, 100.0, -9000.0, 9000.0]
+    near = lambda vs: [math.nextafter(v, d) for v in vs for d in (-math.inf, math.inf)] + vs
+    xs, ys = near(edges_x), near(edges_y)
+    bad = [math.nan, math.inf, -math.inf]
+    made = none = 0
+    for trial in range(3000):
+        n = int(rng.integers(1, 40))
+        rows = np.column_stack([rng.uniform(0, 600, n), rng.uniform(-50, 400, n),
+                                rng.normal(0, 3, (n, 4))])
+        for _ in range(int(rng.integers(0, 4))):
+            r, col = int(rng.integers(n)), int(rng.integers(6))
+            pick = rng.random()
+            if pick < 0.3:
+                rows[r, col] = bad[int(rng.integers(3))]
+            elif col == 0:
+                rows[r, 0] = xs[int(rng.integers(len(xs)))]
+            elif col == 1:
+                rows[r, 1] = ys[int(rng.integers(len(ys)))]
+            else:
+                rows[r, col] = float(rng.choice([1e300, -1e300, 1.7e308, 0.0]))
+        with np.errstate(invalid="ignore"):
+            want = (rows.dot(M) <= limits).tobytes()
+        bounds, inside = ball_look.bounds_for(scene, n)
+        got = ball_look.flags_of_compared(np.less_equal(rows, bounds, out=inside).tobytes(),
+                                          rows)
+        finite = bool(np.isfinite(rows).all())
+        assert got == want or (got is None and not finite), (seed, trial, rows.tolist())
+        made += got is not None
+        none += got is None
+    assert made > 1500 and none > 300, (made, none)
+
+
 def test_the_moving_looks_line_test_says_same_exactly_when_the_flags_are():
     # ball_look.Line (pivoting_l's look without the product): over random poses of the L and
     # random rows (moved a little, across the arm's line, out of the box, NaN or inf in any
