@@ -28,7 +28,8 @@ import warnings
 import numpy as np
 
 from app.pymunk_scene import extent
-from scenes.ball_tables import Awake, _changed, fast_of
+from scenes.ball_bounds import compared_flags
+from scenes.ball_tables import Awake, _changed, fast_of, sizes_full
 from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as _to_local
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
@@ -61,22 +62,6 @@ def _nan_fails_box() -> bool:
 
 
 _NAN_FAILS = _nan_fails_box()
-# Arrays kept by the number of awake rows (and pose), up to SIZES_KEPT sizes, then made afresh
-# (in 6,000 steps of pivoting_l, 16 kept made 160 new flag arrays and 160 new Lines, one by
-# size and the L's row; 64 kept, a Line by size alone: 50 and 49). A size's arrays take ~250
-# bytes a row, so fewer are kept when the size coming in is large: ROWS_KEPT // n sizes, never
-# fewer than 16 (so ROWS_KEPT rows' worth only below 512 rows: 16 sizes of 5000 rows are ~20 MB
-# at that rate; 64 had kept up to 74 MB for a 5000-ball pile with its spawner on). Counted as a
-# size comes in: the sizes kept before it may be larger.
-SIZES_KEPT = 64
-ROWS_KEPT = 8192
-
-
-def sizes_full(sizes: dict, n: int) -> bool:
-    """Whether a table of arrays kept by size, about to take n rows more, is full (clear it)."""
-    return len(sizes) >= min(SIZES_KEPT, max(16, ROWS_KEPT // max(n, 1)))
-
-
 def rows_finite(b: bytes, L_row: int | None) -> bool:
     """Whether the flags' bytes b (5 a row) of rows whose balls are all in the box (their key
     says so) also say that every row is finite: a NaN or inf anywhere in a row fails its box
@@ -274,7 +259,6 @@ class BallChecks:
             kept = self._flag_rows_at(len(rows_now), L1)
         elif kept[3] != L1:
             self._flag_matrix(L1)   # (a moving L: its line's limit written again, kept's too)
-        from scenes.ball_look import compared_flags    # (ball_look imports this module)
         b = compared_flags(self, rows_now) or np.less_equal(      # (None: the product)
             rows_now.dot(kept[5], out=kept[1]), kept[2]).tobytes()
         return self._flags_seen(rows_now, L0, L1, awake, fast, b)

@@ -20,6 +20,22 @@ import numpy as np
 _NO_IDS = (b"", np.empty(0, dtype=np.int64))   # (slot_index's last: ids as bytes, slots)
 
 
+# Arrays kept by the number of awake rows (and pose), up to SIZES_KEPT sizes, then made afresh
+# (in 6,000 steps of pivoting_l, 16 kept made 160 new flag arrays and 160 new Lines, one by
+# size and the L's row; 64 kept, a Line by size alone: 50 and 49). A size's arrays take ~250
+# bytes a row, so fewer are kept when the size coming in is large: ROWS_KEPT // n sizes, never
+# fewer than 16 (so ROWS_KEPT rows' worth only below 512 rows: 16 sizes of 5000 rows are ~20 MB
+# at that rate; 64 had kept up to 74 MB for a 5000-ball pile with its spawner on). Counted as a
+# size comes in: the sizes kept before it may be larger.
+SIZES_KEPT = 64
+ROWS_KEPT = 8192
+
+
+def sizes_full(sizes: dict, n: int) -> bool:
+    """Whether a table of arrays kept by size, about to take n rows more, is full (clear it)."""
+    return len(sizes) >= min(SIZES_KEPT, max(16, ROWS_KEPT // max(n, 1)))
+
+
 def slot_table(n: int) -> np.ndarray:
     """An empty table of centres for n balls and room for as many more."""
     return np.zeros((max(64, 2 * n + 2), 2))

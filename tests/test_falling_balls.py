@@ -257,9 +257,10 @@ def test_the_written_out_look_leaves_what_check_balls_leaves(cls, compared, sett
     # step the same counts, flags, kept centres, finite check's word and state; and it is the
     # one that looked on most steps. look with its comparisons (bounds_for), and without them
     # (as for a static L at another angle: the product every step)
-    from scenes import ball_look
+    from scenes import ball_bounds, ball_look
     if not compared:
-        monkeypatch.setattr(ball_look, "bounds_for", lambda scene, n: None)
+        for module in (ball_look, ball_bounds):
+            monkeypatch.setattr(module, "bounds_for", lambda scene, n: None)
     kept = "_quick" if cls is FallingBallsScene else "_quick_moving"
 
     class General(cls):
@@ -332,14 +333,14 @@ def test_after_a_ball_came_or_went_the_finite_check_reads_the_bodies_only_if_it_
 
 
 def test_the_looks_comparisons_change_exactly_when_the_flags_do():
-    # ball_look.bounds_for: look compares the rows with bounds instead of the flags' product;
+    # ball_bounds.bounds_for: look compares the rows with bounds instead of the flags' product;
     # rows at each bound, one float either side, and NaN or inf in each column: for a row
     # finite and inside the box (what an armed look kept), another row gives the same
     # comparisons' bytes exactly when it gives the same flags
-    from scenes import ball_look
+    from scenes import ball_bounds
     scene = FallingBallsScene({})
     M, limits = scene._flag_matrix(scene._L_static_pose)
-    bounds, inside = ball_look.bounds_for(scene, 1)
+    bounds, inside = ball_bounds.bounds_for(scene, 1)
     lx, ux, ly, uy, c = limits.tolist()
     xs = [-lx, ux, 0.0, 300.0]
     ys = [-ly, uy, -c, 0.0, 100.0]
@@ -362,10 +363,10 @@ def test_the_looks_comparisons_change_exactly_when_the_flags_do():
     assert len(kept) > 20
     # (what an armed look starts from: the comparisons made out of the flags, for finite rows)
     finite = [row for row in rows if all(map(math.isfinite, row))]
-    assert all(ball_look.compared_of(flags(row)) == compared(row) for row in finite)
+    assert all(ball_bounds.compared_of(flags(row)) == compared(row) for row in finite)
     three = np.array(finite[:3])
-    bounds3, inside3 = ball_look.bounds_for(scene, 3)
-    assert ball_look.compared_of((three.dot(M) <= limits).tobytes()) \
+    bounds3, inside3 = ball_bounds.bounds_for(scene, 3)
+    assert ball_bounds.compared_of((three.dot(M) <= limits).tobytes()) \
         == np.less_equal(three, bounds3, out=inside3).tobytes()
     for a in kept:
         for b in rows:
@@ -373,12 +374,12 @@ def test_the_looks_comparisons_change_exactly_when_the_flags_do():
 
 
 def test_the_flags_made_out_of_the_looks_comparisons_are_the_products():
-    # ball_look.flags_of_compared: the flags' bytes made out of the comparisons' bytes (no
+    # ball_bounds.flags_of_compared: the flags' bytes made out of the comparisons' bytes (no
     # product) for n random rows: at the box's ends and the arm's line, a float either side,
     # far outside, NaN and +-inf in any column, 1-3 of them in a row. Either exactly the
     # product's flags, or None (then look makes the product); None only if a row holds a
     # number that is not finite. Seeded; the seed is in the message.
-    from scenes import ball_look
+    from scenes import ball_bounds
     seed = 20261127
     rng = np.random.default_rng(seed)
     scene = FallingBallsScene({})
@@ -407,8 +408,8 @@ def test_the_flags_made_out_of_the_looks_comparisons_are_the_products():
                 rows[r, col] = float(rng.choice([1e300, -1e300, 1.7e308, 0.0]))
         with np.errstate(invalid="ignore"):
             want = (rows.dot(M) <= limits).tobytes()
-        bounds, inside = ball_look.bounds_for(scene, n)
-        got = ball_look.flags_of_compared(np.less_equal(rows, bounds, out=inside).tobytes(),
+        bounds, inside = ball_bounds.bounds_for(scene, n)
+        got = ball_bounds.flags_of_compared(np.less_equal(rows, bounds, out=inside).tobytes(),
                                           rows)
         finite = bool(np.isfinite(rows).all())
         assert got == want or (got is None and not finite), (seed, trial, rows.tolist())
