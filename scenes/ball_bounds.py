@@ -46,9 +46,9 @@ def flags_of_compared(sig: bytes, rows: np.ndarray) -> bytes | None:
     medians of runs taking turns with the product in one process: 1.594 -> 1.562, 1.585 ->
     1.543 and 1.607 -> 1.592, load 0.1-0.4, 2026-11-27). A row's angle, vx, vy and w are
     finite when each is at most the largest float (the first comparisons) and none is -inf
-    (the second); its x and y are compared with the
-    box's ends, so they are read (as Python floats) only for a row outside the box, where a
-    NaN or an inf would be too (a ball that left: one every ~15 steps)."""
+    (the second); its x and y are compared with the box's ends, so they are read (as Python
+    floats) only for a row outside the box, where a NaN or an inf would be too (a ball that
+    left: one every ~15 steps)."""
     n = len(sig) // 18
     k = 6 * n
     upper, lower = sig[:k], sig[k:2 * k]

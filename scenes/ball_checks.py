@@ -4,7 +4,7 @@ module of its own (FallingBallsScene inherits BallChecks).
 
 The usual step is cheap: while the same bodies stay awake, one product of their rows (x, y,
 angle, vx, vy, w) with a (6, 5) matrix and one comparison give five flags a body (or, with the
-L along x, comparisons alone: ball_look.py): its centre inside the world's box (x >= -2r, x <=
+L along x, comparisons alone: ball_bounds.py): its centre inside the world's box (x >= -2r, x <=
 w + 2r, y >= -h, y <= h + 2r: four, the very comparisons of the exact test) and on or below the
 arm's line. If the flags' bytes are the ones kept from the last step, no ball crossed the line
 and none left: 3 NumPy calls however many balls (in the step's loop each costs 1-2 us; a ufunc's
