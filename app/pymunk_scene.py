@@ -102,7 +102,8 @@ class PymunkScene(Scene):
         self._rows = None           # the state read since the last step (state_rows)
         self.finite_read = -1       # the reader's read the scene's own checks found finite
         self.finite_kept = -1       # one after which only bodies found finite came or went
-        self._rows_of = None        # (bodies, batch ids as bytes, their rows) for rows_of
+        self._rows_of = None        # (bodies, batch ids as bytes, _rows_at's answer: where their
+                                    # rows are) for rows_of and rows_list
         # A static body without shapes: it costs nothing and guarantees the batch's row order
         # (awake | static | sleeping) has a static part to split at (see sleeping_rows).
         self.space.add(pymunk.Body(body_type=pymunk.Body.STATIC))

@@ -103,8 +103,10 @@ def bounds_for(scene, n: int) -> tuple | None:
     only then) these say exactly what the flags say: x <= w + 2r is flag 1; -x <= 2r (flag 0)
     is not x < -2r, which is x <= the float before -2r; the same for y; the arm's line with the
     L at angle 0 (its column in the flags' matrix (0, -1)) is -y <= c, not y < -c. A NaN fails
-    all of them and an inf one of the first; so do the flags (NaN times 0 is NaN). So when the
-    comparisons' bytes are those of a look whose flags were the kept ones, so are the flags.
+    all of them, +inf one of the first, and -inf passes one of the second (a kept row fails
+    each of those): either way the row's bytes are not a kept row's, nor are its flags (NaN
+    times 0 is NaN). So when the comparisons' bytes are those of a look whose flags were the
+    kept ones, so are the flags.
     None if the arm's line is not along x (a static L at another angle: the product then)."""
     now = scene._flag_now
     key = (n, now[0])               # (the matrix and limits are made for a pose: _flag_matrix)

@@ -89,7 +89,7 @@ class BallChecks:
         self._flag_rows = None      # [n, product, limits (n, 5), their pose, their column 4,
                                     # M] (_flag_rows_at), and those for other n by n
         self._flag_sizes: dict = {}
-        self._bound_sizes: dict = {}  # (ball_look.bounds_for: by rows and limits)
+        self._bound_sizes: dict = {}  # (ball_bounds.bounds_for: by rows and pose; Lines by rows)
         self._frames: dict = {}     # the L's frame at a few poses (_frame)
         self._views: dict = {}      # a read's views by its rows' id (_awake_views)
 

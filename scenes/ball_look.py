@@ -2,8 +2,8 @@
 out: the L static, the same bodies awake as after the last look, every ball's five flags
 (ball_checks.py) as they were; look_moving does the same for pivoting_l's moving L. What they
 compute is what BallChecks.check_balls and _usual_check compute then, on the same arrays: the
-read, the ids' bytes against the kept key, one product and one comparison (or, while the flags
-stay, comparisons alone: below), the flags' bytes against the last ones. They leave out the
+read, the ids' bytes against the kept key, one product and one comparison (or, with the L along
+x, comparisons alone: below), the flags' bytes against the last ones. They leave out the
 checks those make on every step to find which case this is (who is awake and where the L is, the
 kept arrays' size and pose: ~10k instructions a step, against the usual look's ~19k besides the
 read; callgrind, 37 balls): those are made once, when the usual case starts (`arm`), and kept in

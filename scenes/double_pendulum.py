@@ -58,7 +58,7 @@ re-baselines the energy (the potential energy depends on g; the ghost switches g
 from __future__ import annotations
 
 import math
-from typing import Iterable
+from typing import Iterable, Sequence
 
 import numpy as np
 import pygame
@@ -275,10 +275,10 @@ class DoublePendulumScene(PymunkScene):
         self.new_release()
 
     # ----- measuring ------------------------------------------------------------------------
-    def energy(self, rows: list | None = None) -> float:
+    def energy(self, rows: Sequence | None = None) -> float:
         """Kinetic (incl. spin) + potential energy of the bobs, zero when both hang straight down
         at rest (y is down, so a bob's height above its lowest point is lowest_y - y). rows: the
-        bobs' rows_of as a list, if already read."""
+        bobs' rows as Python floats (rows_list), if already read."""
         # the terms are made again for new bobs (a build: the lengths are rebuild params; a
         # restore) and for a new g (gravity_changed forgets them)
         cache = self._energy_terms
@@ -313,7 +313,7 @@ class DoublePendulumScene(PymunkScene):
             cache = self._bob_masses = (self.bobs, [(b.mass, b.moment) for b in self.bobs])
         return cache[1]
 
-    def energy_drift(self, rows: list | None = None) -> float:
+    def energy_drift(self, rows: Sequence | None = None) -> float:
         return relative_drift(self.energy(rows), self.track["energy0"])
 
     def pin_error(self) -> float:
