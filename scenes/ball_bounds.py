@@ -18,14 +18,23 @@ from scenes.ball_tables import sizes_full
 _NOT = bytes.maketrans(b"\0\1", b"\1\0")
 
 
-def compared_of(b: bytes) -> bytes:
+def compared_of(b: bytes, inside: bool = False) -> bytes:
     """The bytes of look's comparisons (bounds_for) of finite rows whose flags' bytes are b (5
     a row): for each row (x <= w + 2r, y <= h + 2r, and four 1s: finite), then (x < -2r, y <
     -h, four 0s), then (0, y < -c, four 0s); flag 1 is the first, flag 0 not the second, and so
     on. Bytes moves, no NumPy call (~1.5 us): with it a look armed after a ball came or went,
     or after flags changed, needs no product. (Rows not finite: their comparisons differ from
-    these, so look goes on to the product, which finds them.)"""
+    these, so look goes on to the product, which finds them.) inside: the caller knows every
+    box flag of b is true (a look armed: its key says so); then the first two thirds are all 1s
+    and all 0s, and only the line's bytes are moved (alone, 37 rows: 1.8 -> 0.7 us; in look's
+    344 calls of the bench's long run, 2,400 steps of falling_balls: 263.8k -> 261.9k
+    instructions a step, callgrind)."""
     n = len(b) // 5
+    if inside:
+        k = 6 * n
+        out = bytearray(b"\1" * k + bytes(2 * k))
+        out[2 * k + 1::6] = b[4::5].translate(_NOT)
+        return bytes(out)
     upper, lower, line = bytearray(b"\1" * (6 * n)), bytearray(6 * n), bytearray(6 * n)
     upper[0::6], upper[1::6] = b[1::5], b[3::5]
     lower[0::6], lower[1::6] = b[0::5].translate(_NOT), b[2::5].translate(_NOT)

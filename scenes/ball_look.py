@@ -88,8 +88,8 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
             if bounds is not None:                 # (the flags' comparisons, no product)
                 sig = np.less_equal(now, bounds, out=q.inside).tobytes()
                 kept_sig = q.sig
-                if kept_sig is None:               # (armed since the last look)
-                    kept_sig = q.sig = compared_of(q.fast[1])
+                if kept_sig is None:               # (armed since the last look: every box
+                    kept_sig = q.sig = compared_of(q.fast[1], True)       # flag true)
                 if sig == kept_sig:                # the same flags as after the last look
                     scene._prev = (q.awake, now)                # (_kept's, written out)
                     reader.keep = (reader.cur, scene._own_prev)
