@@ -60,13 +60,13 @@ def flags_of_compared(sig: bytes, rows: np.ndarray) -> bytes | None:
     left: one every ~15 steps)."""
     n = len(sig) // 18
     k = 6 * n
-    upper, lower = sig[:k], sig[k:2 * k]
-    ones, zeros = b"\1" * n, bytes(n)
-    for col in (2, 3, 4, 5):
-        if upper[col::6] != ones or lower[col::6] != zeros:
-            return None
-    x_in, x_left, y_in, y_above = upper[0::6], lower[0::6], upper[1::6], lower[1::6]
-    if x_in != ones or y_in != ones or x_left != zeros or y_above != zeros:
+    x_in, y_in, x_left, y_above = sig[0:k:6], sig[1:k:6], sig[k:2 * k:6], sig[k + 1:2 * k:6]
+    outside = (x_in.count(0) + y_in.count(0), x_left.count(1) + y_above.count(1))
+    # (the other columns: every first comparison true, every second false; counted, not
+    # sliced: 2.5 -> 2.3 us alone, 37 rows; long run 259.6k -> 259.3k instructions a step)
+    if sig.count(0, 0, k) != outside[0] or sig.count(1, k, 2 * k) != outside[1]:
+        return None
+    if outside != (0, 0):
         out = {r for b, v in ((x_in, 0), (y_in, 0), (x_left, 1), (y_above, 1))
                for r in _where(b, v)}
         for r in out:                       # (outside the box: finite?)
