@@ -66,13 +66,15 @@ def flags_of_compared(sig: bytes, rows: np.ndarray) -> bytes | None:
     # sliced: 2.5 -> 2.3 us alone, 37 rows; long run 259.6k -> 259.3k instructions a step)
     if sig.count(0, 0, k) != outside[0] or sig.count(1, k, 2 * k) != outside[1]:
         return None
-    if outside != (0, 0):
-        out = {r for b, v in ((x_in, 0), (y_in, 0), (x_left, 1), (y_above, 1))
-               for r in _where(b, v)}
-        for r in out:                       # (outside the box: finite?)
-            x, y = rows[r, :2].tolist()
-            if not (math.isfinite(x) and math.isfinite(y)):
-                return None
+    if outside != (0, 0):   # (each row outside the box, by each flag it fails: finite? 259.2k
+        # -> 258.9k instructions a step in the long run against a set of the rows first)
+        for b, v in ((x_in, 0), (y_in, 0), (x_left, 1), (y_above, 1)):
+            r = b.find(v)
+            while r >= 0:
+                x, y = rows[r, :2].tolist()
+                if not (math.isfinite(x) and math.isfinite(y)):
+                    return None
+                r = b.find(v, r + 1)
     flags = bytearray(5 * n)
     flags[0::5], flags[1::5] = x_left.translate(_NOT), x_in
     flags[2::5], flags[3::5] = y_above.translate(_NOT), y_in
@@ -89,15 +91,6 @@ def compared_flags(scene, rows: np.ndarray) -> bytes | None:
         return None
     bounds, inside = made
     return flags_of_compared(np.less_equal(rows, bounds, out=inside).tobytes(), rows)
-
-
-def _where(b: bytes, value: int) -> list[int]:
-    """The indices of the bytes of b equal to value."""
-    out, at = [], b.find(value)
-    while at >= 0:
-        out.append(at)
-        at = b.find(value, at + 1)
-    return out
 
 
 _BIG = float(np.finfo(np.float64).max)
