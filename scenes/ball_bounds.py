@@ -34,14 +34,9 @@ def compared_of(b: bytes, inside: bool = False) -> bytes:
     n = len(b) // 5
     if inside:
         k = 6 * n
-        head = _HEADS.get(k)
-        if head is None:
-            if len(_HEADS) >= 64:
-                _HEADS.clear()
-            head = _HEADS[k] = b"\1" * k + bytes(k)
         line = bytearray(k)
         line[1::6] = b[4::5].translate(_NOT)
-        return head + line
+        return _head(k) + line
     upper, lower, line = bytearray(b"\1" * (6 * n)), bytearray(6 * n), bytearray(6 * n)
     upper[0::6], upper[1::6] = b[1::5], b[3::5]
     lower[0::6], lower[1::6] = b[0::5].translate(_NOT), b[2::5].translate(_NOT)
@@ -67,6 +62,10 @@ def flags_of_compared(sig: bytes, rows: np.ndarray) -> bytes | None:
     left: one every ~15 steps)."""
     n = len(sig) // 18
     k = 6 * n
+    if sig.startswith(_head(k)):    # every row finite and in the box: every box flag true,
+        flags = bytearray(b"\1" * (5 * n))         # only the line's to read (a ball crossed
+        flags[4::5] = sig[2 * k + 1::6].translate(_NOT)     # it: 2.3 -> 0.7 us alone, 37
+        return bytes(flags)                         # rows; long run 258.4k -> 256.8k a step)
     x_in, y_in, x_left, y_above = sig[0:k:6], sig[1:k:6], sig[k:2 * k:6], sig[k + 1:2 * k:6]
     outside = (x_in.count(0) + y_in.count(0), x_left.count(1) + y_above.count(1))
     # (the other columns: every first comparison true, every second false; counted, not
@@ -87,6 +86,17 @@ def flags_of_compared(sig: bytes, rows: np.ndarray) -> bytes | None:
     flags[2::5], flags[3::5] = y_above.translate(_NOT), y_in
     flags[4::5] = sig[2 * k + 1::6].translate(_NOT)       # (not y < -c: on or below the line)
     return bytes(flags)
+
+
+def _head(k: int) -> bytes:
+    """The comparisons' first two thirds (k bytes each) of rows finite and in the box: k 1s,
+    then k 0s (compared_of, flags_of_compared); kept by size, up to 64."""
+    head = _HEADS.get(k)
+    if head is None:
+        if len(_HEADS) >= 64:
+            _HEADS.clear()
+        head = _HEADS[k] = b"\1" * k + bytes(k)
+    return head
 
 
 def compared_flags(scene, rows: np.ndarray) -> bytes | None:
