@@ -9,7 +9,8 @@ kept arrays' size and pose: ~10k instructions a step, against the usual look's ~
 read; callgrind, 37 balls): those are made once, when the usual case starts (`arm`), and kept in
 scene._quick, which is good while scene._awake and scene._fast are the very objects it holds
 (anything that changes who is awake, a ball added or removed, a restore, a look the general
-way, makes new ones; a look whose flags changed, no ball gone, puts its new scene._fast in it). With the L static at angle 0 (falling_balls), look makes no product: one
+way, makes new ones; a look whose flags changed, no ball gone, puts its new scene._fast in
+it). With the L static at angle 0 (falling_balls), look makes no product: one
 comparison of the rows with bounds (ball_bounds.py) says whether the flags stayed, exactly (the
 flags are comparisons of x and y then), and when they did not, the flags are made out of its
 bytes (flags_of_compared; the product only for a row not finite). Not for its cost alone (about one
