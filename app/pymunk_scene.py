@@ -42,13 +42,15 @@ import pymunk.batch
 
 from app.draw.pymunk_draw import draw_pivot_joint
 from app.physics.bounds import clamp_point
-from app.pymunk_reader import _STATE_FIELDS, _StateReader
+from app.pymunk_reader import _STATE_FIELDS, _StateReader, _ffi, _lib
 from app.scene import Effect, InputEvent, Param, Scene
 from app.vectors import Arrows, sample_every, sample_text
 
 _ROW = struct.Struct("6d")          # one of those rows: (x, y, angle, vx, vy, w), float64s
 FEW_NUMBERS = 96                    # is_finite: a state of up to this many numbers (16
                                     # bodies) is measured without a BLAS call (_numbers)
+_ANY = pymunk.ShapeFilter()         # place_taken's filter (every shape), and its C answer
+_NEAREST = _ffi.new("cpPointQueryInfo *") if _ffi is not None else None
 
 
 def _rows_getter(rows: list[int]) -> Callable[[tuple], tuple]:
@@ -211,6 +213,17 @@ class PymunkScene(Scene):
         self.mouse_joint.error_bias = (1 - 0.15) ** 60
         self.space.add(self.mouse_joint)
         return True
+
+    def place_taken(self, point: tuple[float, float], r: float) -> bool:
+        """Whether a shape of the space lies within r of point: space.point_query(point, r,
+        ShapeFilter()) not empty, asked as Chipmunk's nearest-point query (the same test, one C
+        call, no list of hits: 2.35 -> 0.43 us alone, falling_balls' spawner in the bench's long
+        run 256.8k -> 256.2k instructions a step; the same answer for 15,000 random points and
+        radii in a running falling_balls, 2,422 of them taken: tests/test_falling_balls.py)."""
+        if _lib is None:
+            return bool(self.space.point_query(point, r, _ANY))
+        return _lib.cpSpacePointQueryNearest(self.space._space, point, r, _ANY, _NEAREST) \
+            != _ffi.NULL
 
     def release(self) -> None:
         """Let go of the body held by the mouse, if any (then the dropped() hook runs)."""

@@ -243,7 +243,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         while added < n and y > r:
             x = r + 10 + gap + (dx / 2 if row % 2 else 0)
             while added < n and x < w - 10 - r:
-                if not self.space.point_query((x, y), r + gap, pymunk.ShapeFilter()):
+                if not self.place_taken((x, y), r + gap):
                     self.add_ball((x, y), index=False)
                     added += 1
                 x += dx
@@ -444,7 +444,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             # a place already taken (balls due in one long step, or not yet fallen: gravity
             # off) puts the ball on top: overlapping balls by the hundred made a step take
             # seconds; a column over a world's height is full (it would be removed at once)
-            while self.space.point_query((x, y), r, pymunk.ShapeFilter()):
+            while self.place_taken((x, y), r):
                 y -= 2 * r
             if y > -self.world_size[1]:
                 self.add_ball((x, y))
@@ -454,7 +454,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         """A left click on empty space drops a ball there, unless max_balls are alive (the
         spawner's cap, which check_combination's step budget counts on)."""
         if (button == 1 and len(self.balls) < self.p["max_balls"]
-                and not self.space.point_query(pos, self.p["radius"], pymunk.ShapeFilter())):
+                and not self.place_taken(pos, self.p["radius"])):
             self.add_ball(pos)
 
     # ----- drawing --------------------------------------------------------------------------

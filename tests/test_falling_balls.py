@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pygame
+import pymunk
 import pytest
 
 from app.draw.view import View
@@ -538,3 +539,24 @@ def test_the_moving_look_leaves_the_Ls_box_flags_of_its_step_after_the_L_came_ba
         assert _without_L_line(a) == _without_L_line(b)
         assert (a._fast[1][5 * L:5 * L + 4] == b"\1\1\1\1") == (not far)
     assert said == [True]                     # (Line's way again, the L back in the box)
+
+
+def test_a_place_taken_is_what_the_point_query_finds():
+    # PymunkScene.place_taken (Chipmunk's nearest-point query, one C call) against
+    # space.point_query's list over seeded random points and radii in a running scene: balls
+    # in the air, on the L and touching each other, the L, points just off a ball's rim
+    import random
+    scene = FallingBallsScene({"spawn_rate": 20})
+    rng = random.Random(7)
+    taken = 0
+    for step in range(200):
+        scene.advance()
+        points = [(rng.uniform(-50, 1010), rng.uniform(-100, 780)) for _ in range(20)]
+        points += [(x + scene.p["radius"] * 2.0, y) for x, y in
+                   (tuple(s.body.position) for s in scene.balls[:3])]
+        for p in points:
+            for r in (0.0, 1.0, 21.0, 42.0, 100.0):
+                want = bool(scene.space.point_query(p, r, pymunk.ShapeFilter()))
+                assert scene.place_taken(p, r) == want, (step, p, r)
+                taken += want
+    assert taken > 500
