@@ -219,7 +219,8 @@ class PymunkScene(Scene):
         ShapeFilter()) not empty, asked as Chipmunk's nearest-point query (the same test, one C
         call, no list of hits: 2.35 -> 0.43 us alone, falling_balls' spawner in the bench's long
         run 256.8k -> 256.2k instructions a step; the same answer for 15,000 random points and
-        radii in a running falling_balls, 2,422 of them taken: tests/test_falling_balls.py)."""
+        radii in a running falling_balls, 2,422 of them taken; tests/test_falling_balls.py asks
+        both too)."""
         if _lib is None:
             return bool(self.space.point_query(point, r, _ANY))
         return _lib.cpSpacePointQueryNearest(self.space._space, point, r, _ANY, _NEAREST) \
