@@ -215,12 +215,10 @@ class PymunkScene(Scene):
         return True
 
     def place_taken(self, point: tuple[float, float], r: float) -> bool:
-        """Whether a shape of the space lies within r of point: space.point_query(point, r,
-        ShapeFilter()) not empty, asked as Chipmunk's nearest-point query (the same test, one C
-        call, no list of hits: 2.35 -> 0.43 us alone, falling_balls' spawner in the bench's long
-        run 256.8k -> 256.2k instructions a step; the same answer for 15,000 random points and
-        radii in a running falling_balls, 2,422 of them taken; tests/test_falling_balls.py asks
-        both too)."""
+        """Whether a shape lies within r of point: space.point_query(point, r, ShapeFilter())
+        not empty, asked as Chipmunk's nearest-point query (one C call, no list: 2.35 -> 0.43 us
+        alone; falling_balls' long run 256.8k -> 256.2k instructions a step; the same answer for
+        15,000 random points and radii in a running falling_balls, 2,422 taken; the test too)."""
         if _lib is None:
             return bool(self.space.point_query(point, r, _ANY))
         return _lib.cpSpacePointQueryNearest(self.space._space, point, r, _ANY, _NEAREST) \
