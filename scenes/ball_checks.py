@@ -372,16 +372,17 @@ class BallChecks:
     def flags_row(self, pos: tuple[float, float], pose: tuple[float, float, float]) -> bytes:
         """The flags' bytes (5) of a body at rest at pos with the L at pose, as _usual_check
         makes them for a body's row."""
-        M, limits = self._flag_matrix(pose)
-        x, y = float(pos[0]), float(pos[1])
         now = self._flag_now
-        if now[3] is None:          # (limits and M[:2, 4] as floats, made once a pose)
+        if now is None or now[0] != pose or now[3] is None:     # (else made for this pose)
+            M, limits = self._flag_matrix(pose)
+            now = self._flag_now    # (limits and M[:2, 4] as floats, made once a pose)
             now[3] = tuple(limits.tolist() + M[:2, 4].tolist())
+        x, y = float(pos[0]), float(pos[1])
         lx, ux, ly, uy, c, m0, m1 = now[3]
         ax, ay = -m0, -m1
         v = x * -ax + y * -ay                  # the product's last column, in plain Python:
         if abs(v - c) <= 1e-12 * (abs(x * ax) + abs(y * ay) + abs(c)):   # its sign is the
-            return (np.array(((x, y, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits).tobytes()
+            return (np.array(((x, y, 0.0, 0.0, 0.0, 0.0),)).dot(now[1]) <= now[2]).tobytes()
         return bytes((-x <= lx, x <= ux, -y <= ly, y <= uy, v <= c))   # product's unless near
 
     def L_pose(self) -> tuple[float, float, float]:

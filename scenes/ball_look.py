@@ -134,16 +134,15 @@ def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
     """scene._quick after a look that left the L at L1 (Armed), or None if look's usual case
     does not hold (a moving L, a ball outside the box, no ball awake, the flags made for
     another pose, a subclass's own check_balls)."""
-    awake, fast, kept = scene._awake, scene._fast, scene._flag_rows
-    if type(scene).check_balls is not BallChecks.check_balls or type(scene)._usual_check \
-            is not BallChecks._usual_check:       # (a subclass checks otherwise: its way)
+    awake, fast, kept, cls = scene._awake, scene._fast, scene._flag_rows, type(scene)
+    if cls.check_balls is not BallChecks.check_balls \
+            or cls._usual_check is not BallChecks._usual_check:    # (a subclass: its way)
         return None
     if awake is None or fast is None or fast[2] is None or awake.L_row is not None \
             or not awake.balls or L1 != scene._L_static_pose or fast[0] != L1 \
             or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
         return None
-    return Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3],
-                 bounds=bounds_for(scene, kept[0]))
+    return Armed(awake, fast, kept, awake.key, L1, kept[3], 0, 0, bounds_for(scene, kept[0]))
 
 
 def rearm(scene) -> None:

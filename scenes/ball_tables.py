@@ -17,6 +17,7 @@ import sys
 
 import numpy as np
 
+_ORDER = sys.byteorder                          # (Awake.plus: an id's bytes)
 _NO_IDS = (b"", np.empty(0, dtype=np.int64))   # (slot_index's last: ids as bytes, slots)
 
 
@@ -72,7 +73,7 @@ class Awake:
         """The same with a new ball's body last (Chipmunk appends a new body to its array)."""
         key = self.key
         return Awake(self.ids + [body], self.slots + [slot], self.L_row, self.balls + 1,
-                     key[:-8] + body.to_bytes(8, sys.byteorder, signed=True) + key[-8:])
+                     key[:-8] + body.to_bytes(8, _ORDER, signed=True) + key[-8:])
 
     def without(self, body: int, flags: bytes) -> tuple["Awake", bytes] | None:
         """(the same without this body, the flags' bytes (5 a row) without its row): as
