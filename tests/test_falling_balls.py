@@ -560,3 +560,18 @@ def test_a_place_taken_is_what_the_point_query_finds():
                 assert scene.place_taken(p, r) == want, (step, p, r)
                 taken += want
     assert taken > 500
+
+
+def test_flags_row_follows_the_pose_it_is_given():
+    # flags_row makes the flags' matrix only for a pose it was not made for: asked at poses in
+    # turn (a moving L), each answer must be the product's at that very pose
+    import random
+    rng = random.Random(11)
+    scene = PivotingLScene({"spawn_rate": 0})
+    poses = [(rng.uniform(0, 960), rng.uniform(0, 720), rng.uniform(-3.2, 3.2)) for _ in range(3)]
+    for _ in range(200):
+        pose = rng.choice(poses)
+        pos = (rng.uniform(-100, 1100), rng.uniform(-800, 800))
+        got = scene.flags_row(pos, pose)
+        M, limits = scene._flag_matrix(pose)
+        assert got == (np.array(((*pos, 0.0, 0.0, 0.0, 0.0),)).dot(M) <= limits).tobytes()
