@@ -306,10 +306,9 @@ class PymunkScene(Scene):
         bodies' rows are then taken out of those numbers by one itemgetter of their slices
         (kept with where they are: _rows_at), not a list comprehension (a function call of its
         own), and the read is asked for once, not twice: with the double pendulum's after_step
-        written out (its energy terms a class attribute, not getattr; ghost_alive inline), its
-        lab step 13.6 -> 12.8 and 14.4 -> 13.6 us, lab/bare 1.45 -> 1.37 and 1.46 -> 1.38 (one
-        process, the two versions taking turns, 60 rounds of 120 steps, load ~0.3;
-        2026-11-27)."""
+        written out (its energy terms a class attribute, not getattr; one call less), its
+        lab step 13.2 -> 12.4 us twice, lab/bare 1.44 -> 1.35 and 1.44 -> 1.36 (one process, the
+        two versions taking turns, 60 rounds of 120 steps, load ~0.4; 2026-11-27)."""
         ids, state = self.state_rows()
         at = self._rows_at(bodies, ids)
         if at is None:

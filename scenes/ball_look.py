@@ -93,7 +93,7 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                 sig = np.less_equal(now, bounds, out=q.inside).tobytes()
                 kept_sig = q.sig
                 if kept_sig is None:               # (armed since the last look: every box
-                    kept_sig = q.sig = compared_of(q.fast[1], True)       # flag true)
+                    kept_sig = q.sig = compared_of(q.fast[1], inside=True)    # flag true)
                 if sig == kept_sig:                # the same flags as after the last look
                     scene._prev = (q.awake, now)                # (_kept's, written out)
                     reader.keep = (reader.cur, scene._own_prev)
@@ -142,7 +142,8 @@ def arm(scene, L1: tuple[float, float, float]) -> Armed | None:
             or not awake.balls or L1 != scene._L_static_pose or fast[0] != L1 \
             or kept is None or kept[0] != len(awake.ids) or kept[3] != L1:
         return None
-    return Armed(awake, fast, kept, awake.key, L1, kept[3], 0, 0, bounds_for(scene, kept[0]))
+    return Armed(awake, fast, kept, awake.key, pose=L1, kept_pose=kept[3],
+                 bounds=bounds_for(scene, kept[0]))
 
 
 def rearm(scene) -> None:

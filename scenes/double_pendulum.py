@@ -237,7 +237,7 @@ class DoublePendulumScene(PymunkScene):
             t["engine_blowup"] = self.time - t["start"]
         tip = rows[1][0], rows[1][1]               # (the batch read's copy of bobs[1].position)
         on = self.on
-        if "reference" in on and t["ref_blowup"] is None:     # (ghost_alive, written out)
+        if self.ghost_alive():
             if not self.ode.advance(self.dt):
                 t["ref_blowup"] = self.time     # frozen at its last finite state, hidden
                 return

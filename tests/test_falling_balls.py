@@ -368,10 +368,10 @@ def test_the_looks_comparisons_change_exactly_when_the_flags_do():
     # (and the short way for rows inside the box, every box flag true: an armed look's)
     boxed = [row for row in finite if flags(row)[:4] == b"\1\1\1\1"]
     assert len(boxed) > 20
-    assert all(ball_bounds.compared_of(flags(row), True) == compared(row) for row in boxed)
+    assert all(ball_bounds.compared_of(flags(row), inside=True) == compared(row) for row in boxed)
     many = np.array(boxed[:25])
     bounds25, inside25 = ball_bounds.bounds_for(scene, 25)
-    assert ball_bounds.compared_of((many.dot(M) <= limits).tobytes(), True) \
+    assert ball_bounds.compared_of((many.dot(M) <= limits).tobytes(), inside=True) \
         == np.less_equal(many, bounds25, out=inside25).tobytes()
     three = np.array(finite[:3])
     bounds3, inside3 = ball_bounds.bounds_for(scene, 3)
