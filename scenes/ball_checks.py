@@ -93,6 +93,8 @@ class BallChecks:
         self._bound_sizes: dict = {}  # (ball_bounds.bounds_for: by rows and pose; Lines by rows)
         self._frames: dict = {}     # the L's frame at a few poses (_frame)
         self._views: dict = {}      # a read's views by its rows' id (_awake_views)
+        # the reader's keep for each of its two buffers (made once: the look's quiet case)
+        self._keeps = ((0, self._own_prev), (1, self._own_prev))
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -179,16 +181,18 @@ class BallChecks:
         return L1
 
     def _awake_views(self, data: np.ndarray, awake: Awake) -> tuple:
-        """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data, and with the L
-        awake the rows' centres x + iy as complex numbers (ball_look.Line) or None) for a read's
+        """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data, with the L
+        awake the rows' centres x + iy as complex numbers (ball_look.Line) or None, and (awake,
+        data[:n]): what a look keeps in self._prev, made once) for a read's
         rows, kept by the rows' id (the reader's two buffers give two; a slice costs ~1.7k
         instructions, as much as a tenth of the usual check): made again when who is awake
         changed (data kept too, so an id is not a new array's)."""
         if len(self._views) >= 2:
             self._views.clear()
         L_row, n = awake.L_row, len(awake.ids)
-        views = (awake, data[:n], None if L_row is None else data[L_row, :3], data,
-                 None if L_row is None else data[:n, :2].view(complex)[:, 0])
+        now = data[:n]
+        views = (awake, now, None if L_row is None else data[L_row, :3], data,
+                 None if L_row is None else data[:n, :2].view(complex)[:, 0], (awake, now))
         self._views[id(data)] = views
         return views
 

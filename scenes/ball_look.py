@@ -95,8 +95,8 @@ def look(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
                 if kept_sig is None:               # (armed since the last look: every box
                     kept_sig = q.sig = compared_of(q.fast[1], inside=True)    # flag true)
                 if sig == kept_sig:                # the same flags as after the last look
-                    scene._prev = (q.awake, now)                # (_kept's, written out)
-                    reader.keep = (reader.cur, scene._own_prev)
+                    scene._prev = views[5]                      # (_kept's, written out)
+                    reader.keep = scene._keeps[reader.cur]
                     if _NAN_FAILS:
                         scene.finite_read = reader.reads
                     return L0
