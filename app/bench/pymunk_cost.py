@@ -38,6 +38,7 @@ largest lab/bare.
 
 from __future__ import annotations
 
+import gc
 import math
 import time
 from typing import Callable
@@ -104,10 +105,19 @@ def side_by_side(build: Callable[[], Scene], schedule: list, block: int, blocks:
     """For each of `rounds` fresh pairs (the scene, and the bare loop over a twin replaying
     `schedule`: app/bench/bare_pymunk.py), after WARM untimed steps on each side: the CPU seconds
     of each of `blocks` blocks of `block` steps of the lab (advance + is_finite) and of the bare
-    loop, taking turns (which side goes first alternates block by block and round by round)."""
+    loop, taking turns (which side goes first alternates block by block and round by round).
+    The garbage of the rounds before (their scenes and spaces) is collected before each round's
+    timed blocks, not inside whichever block the collector's next full pass fell in: that pass
+    frees every body and space of the scenes dropped since (four falling_balls scenes: 9-11 ms),
+    charged to whichever side's block it fell in. falling_balls' long run, 8 runs in one process (2026-11-27, load 0.7-1.1): lab/bare
+    1.49-1.72, median 1.52, with it in the timed blocks; 1.49-1.52, median 1.50, with the
+    collector off; 1.47-1.52, medians 1.495 and 1.491, collected before each round (two runs of
+    8). The collector stays on in the timed blocks: the garbage the lab's own
+    steps make is the lab's cost."""
     out = []
     for r in range(rounds):
         a, replay = build(), Replay(build(), schedule)
+        gc.collect()
         for _ in range(WARM):           # untimed: the first steps of a fresh scene, both sides
             a.advance()
             a.is_finite()
