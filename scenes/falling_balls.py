@@ -15,16 +15,16 @@ The lecture idea (pymunk tutorial, "add_ball" and "add_static_L"):
     steps (inside its x-extent) has passed THROUGH it; the `tunneled` metric counts them. Raise
     g, lower hertz or shrink the radius to look for it.
 
-Like pymunk's current tutorial (gravity (0, 900), pygame's y down; its older edition was y up
-with balls starting at y=550), this lab uses y DOWN with gravity (0, +g): the balls fall down onto
-the L, which is the tutorial's L scaled by 1.5 to fill the 960x720 world. New balls fall in from just above the top of the world, as in the
-tutorial (from higher up they land faster, which is what makes tunneling show).
+Like pymunk's current tutorial (gravity (0, 900), pygame's y down; its older edition was y up with
+balls starting at y=550), this lab uses y DOWN with gravity (0, +g): balls fall onto the L (the
+tutorial's, scaled by 1.5 to fill the 960x720 world) from just above the top of the world, as in
+the tutorial (from higher up they land faster, which is what makes tunneling show).
 
 Controls: drag a ball (or anything that moves) with the left mouse button; a left click on empty
-space drops a ball there (not while max_balls are alive: clicks obey the same cap as the spawner,
-so no amount of clicking can push a step past its budget). A ball that leaves the world on any
-side (below, to either side, or more than a world's height above it) is removed. Parameters: spawn_rate, radius, max_balls, friction, container,
-g, iterations; effects: sleeping, gravity (off: the balls float where they appear).
+space drops a ball there (not while max_balls are alive: clicks obey the spawner's cap, so no
+clicking can push a step past its budget). A ball that leaves the world on any side (below, to
+either side, or more than a world's height above it) is removed. Parameters: spawn_rate, radius,
+max_balls, friction, container, g, iterations; effects: sleeping, gravity (off: balls float).
 """
 
 from __future__ import annotations
@@ -62,7 +62,6 @@ STEP_BUDGET = 2_500_000
 
 
 _POS_ANGLE = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.ANGLE
-_POS_ID = pymunk.batch.BodyFields.POSITION | pymunk.batch.BodyFields.BODY_ID
 
 BALL_PARAMS: tuple[Param, ...] = (
     Param("spawn_rate", 4.0, float, 0.0, 200.0, help="balls dropped per simulated second",
@@ -191,8 +190,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
 
     def set_sleeping(self, on: bool) -> None:
         """Sleeping on: groups at rest for SLEEP_TIME (and 4 substeps) fall asleep. Off: the
-        threshold is infinite,
-        so Chipmunk never counts idle time for sleeping, and sleepers are woken."""
+        threshold is infinite, so Chipmunk never counts idle time, and sleepers are woken."""
         self.space.sleep_time_threshold = SLEEP_TIME if on else math.inf
         self.space.idle_speed_threshold = IDLE_SPEED
         self._sleep_h = None
@@ -299,11 +297,10 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
 
     def advance(self) -> None:
         """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
-        engine's steps: nothing moves, nothing to read or test (step's first case, for every
-        substep at once; what it takes is looked up once per rest: anything that could change
-        it wakes the scene). A usual step (one substep, awake) is written out too, what step()
-        tests first made once (step_plan; Python lines a step in the bench's 120: 119 -> 112);
-        tests/test_pymunk_checks.py compares both with the general way, step by step."""
+        engine's steps (step's first case, every substep at once, looked up once a rest: what
+        could change it wakes the scene). A usual step (one substep, awake) is written out too,
+        step_done with it (step_plan; tests/test_pymunk_checks.py compares both with the
+        general way, step by step)."""
         if self.resting:
             plan = self._rest_plan
             if plan is None:
@@ -314,8 +311,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
                 for _ in range(n):
                     step(h)
                 self._rows = self._L_after = None
-                self.time += dt
-                self.steps += 1
+                self.time, self.steps = self.time + dt, self.steps + 1
                 if after:
                     self.after_step()
                 return
@@ -323,18 +319,23 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             plan = self._step_plan
             if plan is None:
                 plan = self._step_plan = self.step_plan()
-            if plan and self._L_known is not None:     # (step()'s last case, written out)
-                dt, spawning, after = plan
+            if plan and self._L_known is not None:     # (step()'s last case, written out;
+                dt, spawning, after = plan              # step_done's: ~780 instructions less)
                 L0 = self._L_known
                 self.space.step(dt)
                 self._rows = None
                 self._L_after = self._L_known = look(self, L0)
-                self.step_done(dt, dt, spawning, after)
+                if spawning:
+                    self._spawn_due -= dt
+                    if self._spawn_due <= 0:
+                        self.spawn(0.0)
+                self.time, self.steps = self.time + dt, self.steps + 1
+                if after:
+                    self.after_step()
                 return
-        # The general way: Scene.advance's substeps (PymunkScene.advance would go there, two
-        # super() calls later). The balls are looked at once, after the last substep (as the
-        # tutorial looks once a frame): a ball that tunneled is counted, and one that left
-        # removed; the substeps before only step the engine, the spawner and pivoting_l's joints
+        # The general way: Scene.advance's substeps. The balls are looked at once, after the
+        # last substep (as the tutorial looks once a frame): a ball that tunneled is counted, one
+        # that left removed; the substeps before step the engine, spawner and pivoting_l's joints
         n = self.p["substeps"]
         dt = self.dt
         h = dt / n
@@ -345,8 +346,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         finally:
             self._look = True
         self.step(h)
-        self.time += dt
-        self.steps += 1
+        self.time, self.steps = self.time + dt, self.steps + 1
         self.after_step()
 
     # False during the substeps before a step's last (advance): step() does not look at the balls
