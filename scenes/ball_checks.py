@@ -93,8 +93,7 @@ class BallChecks:
         self._bound_sizes: dict = {}  # (ball_bounds.bounds_for: by rows and pose; Lines by rows)
         self._frames: dict = {}     # the L's frame at a few poses (_frame)
         self._views: dict = {}      # a read's views by its rows' id (_awake_views)
-        # the reader's keep for each of its two buffers (made once: the look's quiet case)
-        self._keeps = ((0, self._own_prev), (1, self._own_prev))
+        self._keeps = ((0, self._own_prev), (1, self._own_prev))    # (the reader's keep, a buffer)
 
     def flush_xy(self) -> None:
         """Write the awake balls' centres from the last step into self._xy (the usual step keeps
@@ -190,8 +189,7 @@ class BallChecks:
         if len(self._views) >= 2:
             self._views.clear()
         L_row, n = awake.L_row, len(awake.ids)
-        now = data[:n]
-        views = (awake, now, None if L_row is None else data[L_row, :3], data,
+        views = (awake, now := data[:n], None if L_row is None else data[L_row, :3], data,
                  None if L_row is None else data[:n, :2].view(complex)[:, 0], (awake, now))
         self._views[id(data)] = views
         return views
