@@ -302,10 +302,12 @@ class BallChecks:
                 self._write_centres(prev)                   # went since the last step: its
                 prev = None                                 # rows are in another order)
             ax, bx = self.arm_extent
-            for r in crossed:
+            for r in crossed:           # (where it is now first: a ball that rolled off the
+                x1 = _local_x(rows_now[r, :2].tolist(), L1)     # arm's end is outside it)
+                if not ax <= x1 <= bx:
+                    continue
                 p0 = self._xy[slots[r]].tolist() if prev is None else prev[1][r, :2].tolist()
-                x0, x1 = _local_x(p0, L0), _local_x(rows_now[r, :2].tolist(), L1)
-                if ax <= x0 <= bx and ax <= x1 <= bx:
+                if ax <= _local_x(p0, L0) <= bx:
                     self.counts["tunneled"] += 1
         if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
             out = []                # flags changed (they were all true), by the exact test
