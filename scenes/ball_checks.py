@@ -22,7 +22,6 @@ keeps the usual path on at the cost of a few Python list and bytes moves, no Num
 
 from __future__ import annotations
 
-import math
 import warnings
 from itertools import filterfalse
 
@@ -30,7 +29,8 @@ import numpy as np
 
 from app.pymunk_scene import extent
 from scenes.ball_bounds import compared_flags
-from scenes.ball_tables import Awake, _changed, fast_of, sizes_full
+from scenes.ball_tables import (_NAN_FAILS, Awake, _changed, fast_of,  # noqa: F401
+                                 rows_finite, sizes_full)     # (ball_look: _NAN_FAILS)
 from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as _to_local
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
@@ -41,34 +41,6 @@ from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as 
 # hide a rare one).
 warnings.filterwarnings("ignore", message="invalid value encountered in dot",
                         category=RuntimeWarning, module=r"scenes\.ball_(checks|look)")
-
-
-def _nan_fails_box() -> bool:
-    """Whether a NaN or an inf anywhere in a row makes its box flags false in _usual_check's
-    product (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights
-    would not propagate a NaN from the angle or velocities: then the runner's own check stays
-    on)."""
-    M = np.zeros((6, 5))
-    M[0, 0], M[0, 1], M[1, 2], M[1, 3], M[0, 4], M[1, 4] = -1.0, 1.0, -1.0, 1.0, 0.5, -0.8
-    limits = np.full(5, 1e9)
-    for n in (1, 2, 5, 16, 65, 300):
-        for col in range(6):
-            for bad in (math.nan, math.inf, -math.inf):
-                rows = np.ones((n, 6))
-                rows[n // 2, col] = bad
-                with np.errstate(invalid="ignore"):
-                    if (rows.dot(M) <= limits)[n // 2, :4].all():
-                        return False
-    return True
-
-
-_NAN_FAILS = _nan_fails_box()
-def rows_finite(b: bytes, L_row: int | None) -> bool:
-    """Whether the flags' bytes b (5 a row) of rows whose balls are all in the box (their key
-    says so) also say that every row is finite: a NaN or inf anywhere in a row fails its box
-    flags (_NAN_FAILS), so the balls' are; the L's too if its box flags hold. Then the runner's
-    non-finite check need not look at these rows again (~1.75 us a step)."""
-    return _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1")
 
 
 class BallChecks:
@@ -182,10 +154,10 @@ class BallChecks:
     def _awake_views(self, data: np.ndarray, awake: Awake) -> tuple:
         """(awake, the awake rows data[:n], the L's (x, y, angle) or None, data, with the L
         awake the rows' centres x + iy as complex numbers (ball_look.Line) or None, and (awake,
-        data[:n]): what a look keeps in self._prev, made once) for a read's
-        rows, kept by the rows' id (the reader's two buffers give two; a slice costs ~1.7k
-        instructions, as much as a tenth of the usual check): made again when who is awake
-        changed (data kept too, so an id is not a new array's)."""
+        data[:n]): what a look keeps in self._prev, made once) for a read's rows, kept by the
+        rows' id (the reader's two buffers give two; a slice costs ~1.7k instructions, a tenth
+        of the usual check): made again when who is awake changed (data kept: a new array's id
+        is never a kept one's)."""
         if len(self._views) >= 2:
             self._views.clear()
         L_row, n = awake.L_row, len(awake.ids)
@@ -302,13 +274,11 @@ class BallChecks:
                 self._write_centres(prev)                   # went since the last step: its
                 prev = None                                 # rows are in another order)
             ax, bx = self.arm_extent
-            for r in crossed:           # (where it is now first: a ball that rolled off the
-                x1 = _local_x(rows_now[r, :2].tolist(), L1)     # arm's end is outside it)
-                if not ax <= x1 <= bx:
-                    continue
-                p0 = self._xy[slots[r]].tolist() if prev is None else prev[1][r, :2].tolist()
-                if ax <= _local_x(p0, L0) <= bx:
-                    self.counts["tunneled"] += 1
+            for r in crossed:     # (where it is now first: off the arm's end, where it was is
+                if ax <= _local_x(rows_now[r, :2].tolist(), L1) <= bx:        # not looked up)
+                    p0 = self._xy[slots[r]].tolist() if prev is None else prev[1][r, :2].tolist()
+                    if ax <= _local_x(p0, L0) <= bx:
+                        self.counts["tunneled"] += 1
         if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
             out = []                # flags changed (they were all true), by the exact test
             x0, y0, x1, y1 = self.box()

@@ -8,11 +8,12 @@ removed costs plain Python and no NumPy call (each costs 1-2 us in the step's lo
     last (cpArrayDeleteObj). The same moves on Python lists and on the bytes of the ids and of
     the flags let the usual check (ball_checks.py) go on after a ball came or went, with no
     read;
-  * the flags' bytes themselves (fast_of, _changed, _inside: BallChecks._fast).
+  * the flags' bytes themselves (fast_of, _changed, _inside: BallChecks._fast; rows_finite).
 """
 
 from __future__ import annotations
 
+import math
 import sys
 
 import numpy as np
@@ -40,6 +41,36 @@ def sizes_full(sizes: dict, n: int) -> bool:
 def slot_table(n: int) -> np.ndarray:
     """An empty table of centres for n balls and room for as many more."""
     return np.zeros((max(64, 2 * n + 2), 2))
+
+
+def _nan_fails_box() -> bool:
+    """Whether a NaN or an inf anywhere in a row makes its box flags false in _usual_check's
+    product (NaN * 0 is NaN in every BLAS that multiplies through; one that skips zero weights
+    would not propagate a NaN from the angle or velocities: then the runner's own check stays
+    on)."""
+    M = np.zeros((6, 5))
+    M[0, 0], M[0, 1], M[1, 2], M[1, 3], M[0, 4], M[1, 4] = -1.0, 1.0, -1.0, 1.0, 0.5, -0.8
+    limits = np.full(5, 1e9)
+    for n in (1, 2, 5, 16, 65, 300):
+        for col in range(6):
+            for bad in (math.nan, math.inf, -math.inf):
+                rows = np.ones((n, 6))
+                rows[n // 2, col] = bad
+                with np.errstate(invalid="ignore"):
+                    if (rows.dot(M) <= limits)[n // 2, :4].all():
+                        return False
+    return True
+
+
+_NAN_FAILS = _nan_fails_box()
+
+
+def rows_finite(b: bytes, L_row: int | None) -> bool:
+    """Whether the flags' bytes b (5 a row) of rows whose balls are all in the box (their key
+    says so) also say that every row is finite: a NaN or inf anywhere in a row fails its box
+    flags (_NAN_FAILS), so the balls' are; the L's too if its box flags hold. Then the runner's
+    non-finite check need not look at these rows again (~1.75 us a step)."""
+    return _NAN_FAILS and (L_row is None or b[5 * L_row:5 * L_row + 4] == b"\1\1\1\1")
 
 
 class Awake:
