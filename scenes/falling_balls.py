@@ -41,7 +41,7 @@ from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
 from scenes.ball_look import look, rearm
-from scenes.ball_tables import BallTables, slot_table
+from scenes.ball_tables import _NO_IDS, BallTables, slot_table
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -184,7 +184,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         self.wake()
 
     def _bodies_changed(self) -> None:
-        """A ball came or went: what wake() forgets, but the L's pose (it did not move)."""
+        """A ball came or went: the lookups made from the slots (BallTables._index_changed's,
+        written out), and what wake() forgets, but the L's pose (it did not move)."""
+        self._last, self._ball_of = _NO_IDS, None
         PymunkScene.wake(self)
         self._rest_plan = None
 
@@ -222,7 +224,6 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             # who is awake, in Chipmunk's order, with the new ball (ball_checks; None: read again)
             self._awake, self._fast = self.awake_after_add(body_id, slot, pos)
             rearm(self)             # (ball_look: the next look's usual case, for them)
-            self._index_changed()
             self._bodies_changed()
         else:
             self.wake()
@@ -259,20 +260,17 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         held = self.mouse_joint
         if held is not None and any(self.balls[k].body is held.b for k in gone):
             self.release()
-        removed = []
+        removed, balls, slots, slot_of = [], self.balls, self._slots, self._slot_of
         for k in gone:                      # (in the set's order: the space's order after it)
-            shape = self.balls[k]
-            self.space.remove(shape, shape.body)
-            body_id = shape.body.id
-            removed.append(body_id)
-            del self._slot_of[body_id]          # (a freed id may be a new body's one day)
-        for k in sorted(gone, reverse=True):
-            del self.balls[k]
-            del self._slots[k]
+            body = balls[k].body
+            self.space.remove(balls[k], body)
+            removed.append(body.id)
+            del slot_of[removed[-1]]            # (a freed id may be a new body's one day)
+        for k in (gone if len(gone) == 1 else sorted(gone, reverse=True)):
+            del balls[k], slots[k]
         # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
         self._awake, self._fast = self.awake_after_removal(removed)
         rearm(self)                 # (ball_look: the next look's usual case, for them)
-        self._index_changed()
         self._bodies_changed()
         self.counts["removed"] += len(gone)
 
