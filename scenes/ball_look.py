@@ -167,16 +167,28 @@ def rearm(scene) -> None:
     # again after the change (PymunkScene.is_finite: a read and a check, ~5 us)
     if (scene._rows is not None or kept == reader.reads) and rows_finite(fast[1], awake.L_row):
         scene.finite_kept = reader.reads
-    pose = fast[0]
-    rows = scene._flag_rows_at(len(awake.ids), pose)
+    pose, n = fast[0], len(awake.ids)
+    if q is not None and awake.L_row is None and pose == q.pose:
+        # armed before the change (so by arm, for this class and the L's static pose, which
+        # only restored() changes, and it disarms): arm's other tests are those above. The
+        # kept rows and bounds for n rows, if made for this pose (_flag_rows_at's and
+        # bounds_for's lookups, written out: ~0.5 us of a ball added or removed)
+        rows, now = scene._flag_rows, scene._flag_now
+        if rows is None or rows[0] != n:
+            rows = scene._flag_sizes.get(n)
+        bounds = scene._bound_sizes.get((n, now[0]))
+        if bounds and rows is not None and now[0] == pose and rows[3] == pose:
+            scene._flag_rows = rows
+            scene._quick = Armed(awake, fast, rows, awake.key, pose=pose, kept_pose=rows[3],
+                                 bounds=bounds)
+            return
+        rows = scene._flag_rows_at(n, pose)
+        scene._quick = Armed(awake, fast, rows, awake.key, pose=pose, kept_pose=rows[3],
+                             bounds=bounds_for(scene, n))
+        return
+    scene._flag_rows_at(n, pose)
     if awake.L_row is not None:
         scene._quick_moving = arm_moving(scene, pose)
-    elif q is not None and pose == q.pose:
-        # armed before the change (so by arm, for this class and the L's static pose, which
-        # only restored() changes, and it disarms): arm's other tests are those above, and
-        # the kept rows are made for these rows and this pose just now
-        scene._quick = Armed(awake, fast, rows, awake.key, pose=pose, kept_pose=rows[3],
-                             bounds=bounds_for(scene, rows[0]))
     else:
         scene._quick = arm(scene, pose)
 
