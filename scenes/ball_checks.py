@@ -259,7 +259,7 @@ class BallChecks:
         # read, and a read that would refill them first has _own_prev copy them (0.5 us a check)
         prev, self._prev = self._prev, (awake, rows_now)
         reader = self._state_reader
-        reader.keep = (reader.cur, self._own_prev)
+        reader.keep = self._keeps[reader.cur]  # ((reader.cur, self._own_prev), made once)
         same = key == fast[2]                  # the same flags as after the last step
         self._fast = (L1, b, key) if same else fast_of(L1, b, L_row, key)
         if self._fast[2] is not None and rows_finite(b, L_row):    # (every ball in the box)
@@ -268,7 +268,13 @@ class BallChecks:
             return L1
         changed = _changed(fast[1], b)
         slots = awake.slots
-        crossed = [r for r, col in changed if col == 4 and b[5 * r + 4] and slots[r] >= 0]
+        crossed, box = [], set()        # (a loop: a comprehension is a call of its own)
+        for r, col in changed:
+            if col == 4:
+                if b[5 * r + 4] and slots[r] >= 0:
+                    crossed.append(r)
+            elif slots[r] >= 0:
+                box.add(r)
         if crossed:                   # above the line before, on or below it now: inside the
             if prev is not None and prev[0] is not awake:   # arm's extent? (a ball came or
                 self._write_centres(prev)                   # went since the last step: its
@@ -282,7 +288,7 @@ class BallChecks:
         if self._fast[2] is None:   # a ball outside the box, or not finite: those whose box
             out = []                # flags changed (they were all true), by the exact test
             x0, y0, x1, y1 = self.box()
-            for r in sorted({r for r, col in changed if col < 4 and slots[r] >= 0}):
+            for r in sorted(box):
                 x, y = rows_now[r, :2].tolist()
                 if not (x >= x0 and y >= y0 and x <= x1 and y <= y1):     # (NaN fails)
                     out.append(slots[r])

@@ -221,6 +221,8 @@ def _changed(old: bytes, new: bytes) -> list[tuple[int, int]]:
     by one (plain Python, a fraction of a NumPy call each); many (a bit read is O(size) then):
     NumPy."""
     x = int.from_bytes(old, "little") ^ int.from_bytes(new, "little")
+    if not x & (x - 1):                    # (one flag: the usual case, a ball crossed a line)
+        return [divmod((x.bit_length() - 1) >> 3, 5)] if x else []
     if x.bit_count() > 16:
         diff = np.frombuffer(old, dtype=np.uint8) != np.frombuffer(new, dtype=np.uint8)
         return [divmod(i, 5) for i in np.flatnonzero(diff).tolist()]
