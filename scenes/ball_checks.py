@@ -199,6 +199,8 @@ class BallChecks:
         slot_of, awake, flags, gone, xy = self._slot_of, old, fast[1], [], self._xy
         for body in asleep:
             i, slot = awake.ids.index(body), slot_of.get(body, -1)
+            if slot < 0:
+                return False                 # (not a ball)
             p0 = (xy[slot] if prev is None else prev[1][old.ids.index(body), :2]).tolist()
             gone.append((slot, id_list.index(body), flags[5 * i:5 * i + 5], p0))
             awake, flags = awake.without(body, flags)
@@ -206,7 +208,7 @@ class BallChecks:
             if body not in slot_of:
                 return False                 # (not a ball)
             awake = awake.plus(body, slot_of[body])
-        if awake.ids != awake_ids or any(slot < 0 for slot, _, _, _ in gone):
+        if awake.ids != awake_ids:
             return False
         for body in woke:                    # (asleep until now: its centre is in self._xy)
             flags += self.flags_row(tuple(xy[slot_of[body]].tolist()), pose)

@@ -196,9 +196,8 @@ class BallTables:
     def remove_slots(self, slots: list[int]) -> None:
         """remove_balls for the balls in these slots, their indices listed in this order (the
         set remove_balls makes of them is built in it: the order the space loses them in)."""
-        if len(slots) <= 8:
-            where = self._slots.index
-            self.remove_balls([where(s) for s in slots])
+        if len(slots) <= 8:                 # (map: a comprehension is a call of its own)
+            self.remove_balls(list(map(self._slots.index, slots)))
         else:
             place = {s: k for k, s in enumerate(self._slots)}
             self.remove_balls([place[s] for s in slots])
