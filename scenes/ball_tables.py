@@ -8,7 +8,7 @@ removed costs plain Python and no NumPy call (each costs 1-2 us in the step's lo
     last (cpArrayDeleteObj). The same moves on Python lists and on the bytes of the ids and of
     the flags let the usual check (ball_checks.py) go on after a ball came or went, with no
     read;
-  * the flags' bytes themselves (fast_of, _changed, _inside: BallChecks._fast; rows_finite).
+  * the flags' bytes themselves (fast_of, _changed: BallChecks._fast; rows_finite).
 """
 
 from __future__ import annotations
@@ -110,19 +110,16 @@ class Awake:
         """(the same without this body, the flags' bytes (5 a row) without its row): as
         cpArrayDeleteObj takes it out of Chipmunk's array, the last row moves into its place.
         None if the body is not among them."""
-        ids, slots = list(self.ids), list(self.slots)
         try:
-            i = ids.index(body)
+            i = self.ids.index(body)
         except ValueError:
             return None
-        last = len(ids) - 1
-        balls = self.balls - (slots[i] >= 0)
+        last = len(self.ids) - 1
+        ids, slots = self.ids[:last], self.slots[:last]     # (copies but of the last row)
+        balls = self.balls - (self.slots[i] >= 0)
         key, L_row = self.key, self.L_row
-        for column in (ids, slots):
-            moved = column.pop()
-            if i < last:
-                column[i] = moved
         if i < last:
+            ids[i], slots[i] = self.ids[last], self.slots[last]
             key = key[:8 * i] + key[8 * last:8 * last + 8] + key[8 * i + 8:8 * last] + key[-8:]
             flags = flags[:5 * i] + flags[5 * last:] + flags[5 * i + 5:5 * last]
             L_row = i if L_row == last else L_row
@@ -211,7 +208,11 @@ def fast_of(pose: tuple[float, float, float], b: bytes, L_row: int | None,
     the next step looks again). key: the caller's, if it has it."""
     if key is None:
         key = b if L_row is None else b[:5 * L_row] + b[5 * L_row + 5:]
-    return pose, b, key if _inside(key) else None
+    # every ball's four box flags true (each centre inside the world's box): every fifth byte
+    # from the first, the second, the third and the fourth (plain Python, no NumPy call)
+    if 0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5]:
+        return pose, b, None
+    return pose, b, key
 
 
 def _changed(old: bytes, new: bytes) -> list[tuple[int, int]]:
@@ -231,10 +232,3 @@ def _changed(old: bytes, new: bytes) -> list[tuple[int, int]]:
         out.append(divmod((low.bit_length() - 1) >> 3, 5))
         x ^= low
     return out
-
-
-def _inside(key: bytes) -> bool:
-    """Whether every ball's four box flags are true (each centre inside the world's box), from
-    the flags' key: every fifth byte from the first, the second, the third and the fourth (in
-    plain Python: the key is at hand, no NumPy call)."""
-    return not (0 in key[0::5] or 0 in key[1::5] or 0 in key[2::5] or 0 in key[3::5])
