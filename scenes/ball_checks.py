@@ -188,11 +188,11 @@ class BallChecks:
         while n and id_list[n - 1] in static:
             n -= 1
         awake_ids = id_list[:n]
-        now, before = set(awake_ids), set(old.ids)
-        asleep = list(filterfalse(now.__contains__, old.ids))
-        woke = list(filterfalse(before.__contains__, awake_ids))
-        if not n or len(asleep) + len(woke) > 8:
+        asleep = list(filterfalse(set(awake_ids).__contains__, old.ids))
+        woken = n - len(old.ids) + len(asleep)    # (how many woke: the ids are unique)
+        if not n or len(asleep) + woken > 8:
             return False
+        woke = list(filterfalse(set(old.ids).__contains__, awake_ids)) if woken else []
         if prev is not None and prev[0] is not old:     # (kept before a ball came or went)
             self.flush_xy()
             prev = None
