@@ -262,21 +262,28 @@ class BallChecks:
         prev, self._prev = self._prev, (awake, rows_now)
         reader = self._state_reader
         reader.keep = self._keeps[reader.cur]  # ((reader.cur, self._own_prev), made once)
-        same = key == fast[2]                  # the same flags as after the last step
-        self._fast = (L1, b, key) if same else fast_of(L1, b, L_row, key)
-        if self._fast[2] is not None and rows_finite(b, L_row):    # (every ball in the box)
-            self.finite_read = reader.reads
-        if same:
+        if key == fast[2]:                     # the same flags as after the last step
+            self._fast = (L1, b, key)
+            if rows_finite(b, L_row):          # (every ball in the box: the key says so)
+                self.finite_read = reader.reads
             return L1
         changed = _changed(fast[1], b)
         slots = awake.slots
-        crossed, box = [], set()        # (a loop: a comprehension is a call of its own)
+        crossed, box, other = [], set(), False  # (a loop: a comprehension is a call of its own)
         for r, col in changed:
             if col == 4:
                 if b[5 * r + 4] and slots[r] >= 0:
                     crossed.append(r)
             elif slots[r] >= 0:
                 box.add(r)
+            elif r != L_row:                   # (a row in the key that is no ball)
+                other = True
+        # no box flag of the key's rows changed, and the key before said every ball in the box:
+        # so does this one (fast_of's look at every fifth byte not needed)
+        self._fast = (L1, b, key) if fast[2] is not None and not box and not other else \
+            fast_of(L1, b, L_row, key)
+        if self._fast[2] is not None and rows_finite(b, L_row):    # (every ball in the box)
+            self.finite_read = reader.reads
         if crossed:                   # above the line before, on or below it now: inside the
             if prev is not None and prev[0] is not awake:   # arm's extent? (a ball came or
                 self._write_centres(prev)                   # went since the last step: its
