@@ -261,23 +261,34 @@ def test_the_goal_verdict_says_what_a_reader_could_misread():
 def test_each_rounds_timed_blocks_start_after_the_garbage_of_the_rounds_before_is_collected(
         monkeypatch):
     """side_by_side collects the garbage of earlier rounds (their scenes and spaces: a full
-    collection of four falling_balls scenes took 9-11 ms) before a round's timed blocks, after
-    its two builds, so no timed block pays for the harness's own garbage. The order of the
-    builds, the collections and the clock's reads is recorded, round by round."""
+    collection of four falling_balls scenes took 9-11 ms) before a round's two builds (whose
+    steps warm the caches again), so no timed block pays for the harness's own garbage. The
+    order of the collections, the builds and the clock's reads is recorded, round by round, and
+    the last round's pair is garbage by the collection (weak references to it are dead)."""
     from app.bench import pymunk_cost as pc
     from scenes import get_scene
 
-    order = []
+    import weakref
+
+    order, built, alive = [], [], []
 
     def build():
         order.append("build")
-        return get_scene("falling_balls")({"spawn_rate": 20})
+        scene = get_scene("falling_balls")({"spawn_rate": 20})
+        built.append(weakref.ref(scene))
+        return scene
+
+    def collect(*args):
+        real_collect(*args)
+        order.append("collect")
+        alive.append(sum(ref() is not None for ref in built))
 
     schedule = pc.record(build, pc.WARM + 2 * 3)
     order.clear()
     real_clock, real_collect = pc.time.process_time, pc.gc.collect
     monkeypatch.setattr(pc.time, "process_time", lambda: order.append("clock") or real_clock())
-    monkeypatch.setattr(pc.gc, "collect", lambda *a: order.append("collect") or real_collect(*a))
+    monkeypatch.setattr(pc.gc, "collect", collect)
     pc.side_by_side(build, schedule, 3, 2, 3)
     rounds = "".join("b" if o == "build" else "c" if o == "collect" else "t" for o in order)
-    assert rounds == "bbc" + "t" * 8 + "bbc" + "t" * 8 + "bbc" + "t" * 8, rounds
+    assert rounds == ("c" + "bb" + "t" * 8) * 3, rounds
+    assert alive == [0, 0, 0], alive          # every scene built before a collection is gone

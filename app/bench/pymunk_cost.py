@@ -107,17 +107,21 @@ def side_by_side(build: Callable[[], Scene], schedule: list, block: int, blocks:
     of each of `blocks` blocks of `block` steps of the lab (advance + is_finite) and of the bare
     loop, taking turns (which side goes first alternates block by block and round by round).
     The garbage of the rounds before (their scenes and spaces) is collected before each round's
-    timed blocks, not inside whichever block the collector's next full pass fell in: that pass
+    builds, not inside whichever timed block the collector's next full pass fell in: that pass
     frees every body and space of the scenes dropped since (four falling_balls scenes: 9-11 ms),
-    charged to whichever side's block it fell in. falling_balls' long run, 8 runs in one process (2026-11-27, load 0.7-1.1): lab/bare
-    1.49-1.72, median 1.52, with it in the timed blocks; 1.49-1.52, median 1.50, with the
-    collector off; 1.47-1.52, medians 1.495 and 1.491, collected before each round (two runs of
-    8). The collector stays on in the timed blocks: the garbage the lab's own
-    steps make is the lab's cost."""
+    charged to whichever side's block it fell in. falling_balls' long run, 8 runs in one
+    process (2026-11-27, load 0.6-1.1): lab/bare 1.49-1.72, median 1.52, with it in the timed
+    blocks; 1.49-1.52, median 1.50, with the collector off; 1.44-1.49, median 1.457, collected
+    before the builds. Not after them: a full pass leaves the caches cold, and the WARM steps
+    did not warm them again (the double pendulum's table row, 12 rounds each taking turns:
+    1.41 collected after the builds, 1.368 not collected; 1.377 collected before the builds,
+    1.375 not). The collector stays on in the timed blocks: the garbage the lab's own steps
+    make is the lab's cost."""
     out = []
     for r in range(rounds):
+        a = replay = None               # (the last round's pair is garbage now: collected here,
+        gc.collect()                    # before the builds, whose steps warm the caches again)
         a, replay = build(), Replay(build(), schedule)
-        gc.collect()
         for _ in range(WARM):           # untimed: the first steps of a fresh scene, both sides
             a.advance()
             a.is_finite()
