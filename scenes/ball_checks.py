@@ -29,8 +29,7 @@ import numpy as np
 
 from app.pymunk_scene import extent
 from scenes.ball_bounds import compared_flags
-from scenes.ball_tables import (_NAN_FAILS, Awake, _changed, fast_of,  # noqa: F401
-                                 rows_finite, sizes_full)     # (ball_look: _NAN_FAILS)
+from scenes.ball_tables import Awake, _changed, fast_of, rows_finite, sizes_full
 from scenes.l_frame import body_pose, cos_sin, local_x as _local_x, to_local as _to_local
 
 # A ball gone non-finite (NaN or inf in any of its row's numbers) makes NaN flags in the
@@ -269,19 +268,14 @@ class BallChecks:
             return L1
         changed = _changed(fast[1], b)
         slots = awake.slots
-        crossed, box, other = [], set(), False  # (a loop: a comprehension is a call of its own)
+        crossed, box = [], set()              # (a loop: a comprehension is a call of its own)
         for r, col in changed:
             if col == 4:
                 if b[5 * r + 4] and slots[r] >= 0:
                     crossed.append(r)
             elif slots[r] >= 0:
                 box.add(r)
-            elif r != L_row:                   # (a row in the key that is no ball)
-                other = True
-        # no box flag of the key's rows changed, and the key before said every ball in the box:
-        # so does this one (fast_of's look at every fifth byte not needed)
-        self._fast = (L1, b, key) if fast[2] is not None and not box and not other else \
-            fast_of(L1, b, L_row, key)
+        self._fast = fast_of(L1, b, L_row, key)
         if self._fast[2] is not None and rows_finite(b, L_row):    # (every ball in the box)
             self.finite_read = reader.reads
         if crossed:                   # above the line before, on or below it now: inside the

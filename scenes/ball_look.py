@@ -33,8 +33,8 @@ import math
 import numpy as np
 
 from scenes.ball_bounds import _box_rows, bounds_for, compared_of, flags_of_compared
-from scenes.ball_checks import _NAN_FAILS, BallChecks, rows_finite
-from scenes.ball_tables import sizes_full
+from scenes.ball_checks import BallChecks
+from scenes.ball_tables import _NAN_FAILS, rows_finite, sizes_full
 
 
 class Armed:
@@ -168,26 +168,13 @@ def rearm(scene) -> None:
     if (scene._rows is not None or kept == reader.reads) and rows_finite(fast[1], awake.L_row):
         scene.finite_kept = reader.reads
     pose, n = fast[0], len(awake.ids)
+    rows = scene._flag_rows_at(n, pose)
     if q is not None and awake.L_row is None and pose == q.pose:
         # armed before the change (so by arm, for this class and the L's static pose, which
-        # only restored() changes, and it disarms): arm's other tests are those above. The
-        # kept rows and bounds for n rows, if made for this pose (_flag_rows_at's and
-        # bounds_for's lookups, written out: ~0.5 us of a ball added or removed)
-        rows, now = scene._flag_rows, scene._flag_now
-        if rows is None or rows[0] != n:
-            rows = scene._flag_sizes.get(n)
-        bounds = scene._bound_sizes.get((n, now[0]))
-        if bounds and rows is not None and now[0] == pose and rows[3] == pose:
-            scene._flag_rows = rows
-            scene._quick = Armed(awake, fast, rows, awake.key, pose=pose, kept_pose=rows[3],
-                                 bounds=bounds)
-            return
-        rows = scene._flag_rows_at(n, pose)
+        # only restored() changes, and it disarms): arm's other tests are those above
         scene._quick = Armed(awake, fast, rows, awake.key, pose=pose, kept_pose=rows[3],
                              bounds=bounds_for(scene, n))
-        return
-    scene._flag_rows_at(n, pose)
-    if awake.L_row is not None:
+    elif awake.L_row is not None:
         scene._quick_moving = arm_moving(scene, pose)
     else:
         scene._quick = arm(scene, pose)

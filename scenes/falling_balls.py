@@ -41,7 +41,7 @@ from app.pymunk_scene import PYMUNK_EFFECTS, PYMUNK_PARAMS, PymunkScene
 from app.scene import Effect, Param, ParamError, Scene, Try
 from scenes.ball_checks import BallChecks
 from scenes.ball_look import look, rearm
-from scenes.ball_tables import _NO_IDS, BallTables, slot_table
+from scenes.ball_tables import BallTables, slot_table
 
 S = 1.5                      # the tutorial's lengths scaled to this world
 L_ORIGIN = (400.0, 440.0)    # where the tutorial's (300, 300) lands (y down)
@@ -185,9 +185,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
         self.wake()
 
     def _bodies_changed(self) -> None:
-        """A ball came or went: the lookups made from the slots (BallTables._index_changed's,
-        written out), and what wake() forgets, but the L's pose (it did not move)."""
-        self._last, self._ball_of = _NO_IDS, None
+        """A ball came or went: the lookups made from the slots (BallTables._index_changed),
+        and what wake() forgets, but the L's pose (it did not move)."""
+        self._index_changed()
         PymunkScene.wake(self)
         self._rest_plan = None
 
@@ -267,7 +267,7 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             self.space.remove(balls[k], balls[k].body)
             removed.append(ids[k])          # (kept: Body.id is a C call, ~0.4 us)
             del slot_of[ids[k]]                 # (a freed id may be a new body's one day)
-        for k in (gone if len(gone) == 1 else sorted(gone, reverse=True)):
+        for k in sorted(gone, reverse=True):
             del balls[k], slots[k], ids[k]
         # who is awake, in Chipmunk's order, after the removal (ball_checks; None: read again)
         self._awake, self._fast = self.awake_after_removal(removed)

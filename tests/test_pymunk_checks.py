@@ -439,7 +439,7 @@ def test_the_flags_answer_the_finite_check_only_for_rows_they_found_finite(cls):
     # After a usual step with every ball in the box, the runner's is_finite takes the flags'
     # word for the rows just read (finite_read); a NaN anywhere (the L's row too, which the
     # flags' key leaves out) must not get that word, and is caught the step it happens.
-    import scenes.ball_checks as checks
+    import scenes.ball_tables as checks
     assert checks._NAN_FAILS                     # (this BLAS propagates NaN * 0)
     scene = balls_on_the_L(cls)
     scene.advance()
