@@ -363,7 +363,11 @@ def test_the_benchmark_runs_quickly(tmp_path, png_charts, capsys):
     assert rows["crumpled, crushed"]["steps"] == rows["crumpled, settled"]["steps"]
     assert rows["crumpled, crushed"]["substeps"] == 1 and not rows["crumpled, crushed"]["goal"]
     assert all(rows[s]["goal"] for s in judged)
-    assert all(0 <= r["still_close"] <= r["pairs"] for r in rows.values())
+    # (not at most `pairs`: pushing one pair apart can press a particle into a third, and the
+    # crushed heap has ended its pass with 12,289 pairs close of the 12,140 it found)
+    assert all(0 <= r["still_close"] <= 1.1 * r["pairs"] for r in rows.values())
+    assert all(r["still_close"] < r["pairs"] for r in rows.values() if r["pairs"] and
+               r["state"] in ("fold card", "crumpled, settled"))
     card = rows["fold card"]
     assert card["scene"] == "cloth_collisions" and card["particles"] == 120 and not card["goal"]
     assert card["pairs"] > 0 and card["grid_ms"] > 0 and card["step_ms"] > 0

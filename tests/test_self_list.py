@@ -111,22 +111,29 @@ def test_the_list_hands_out_exactly_the_pairs_a_fresh_search_finds(checked):
     (ClothScene, {"rows": 16, "cols": 16, "pins": "none", "start": "crumpled", "obstacles": "floor",
       "self_collision": True}, 180)], ids=["fold card", "heap"])
 def test_the_list_moves_the_cloth_as_the_plain_search_does(monkeypatch, scene_of, settings, run):
-    """Positions after a run with the list (reused in many steps: the fold lying on the floor,
-    the 16 x 16 heap settled) and with a plain search every step (SKIN = 0: the pass as it was
-    before the list) agree to 1e-6 of the cloth's size, some 16 float32 steps of a coordinate:
-    the same pairs, only summed in another order. (Measured: bit for bit, as the sweeps sum in
-    float64 and round to float32 once; not asserted, a rounding tie could tip one value.)"""
-    runs = []
-    for skin in (self_list.SKIN, 0.0):
-        monkeypatch.setattr(self_list, "SKIN", skin)
-        scene = scene_of(settings)
-        for _ in range(run):
-            scene.advance()
-        runs.append((scene.cloth.x.astype(float), scene.cloth.contact.self_list.reuses))
-    (with_list, reuses), (plain, none) = runs
-    assert reuses > 10 and none == 0
-    size = np.ptp(plain.reshape(2, -1), axis=1).max()
-    assert np.abs(with_list - plain).max() <= 1e-6 * size
+    """At every step of a run with the list (reused in many steps: the fold lying on the floor,
+    the 16 x 16 heap settled), the pass through the list and a plain search's pass (a fresh list:
+    no skin), from the same positions, leave every particle at the same place to float32
+    rounding: 8 steps of the largest coordinate (the same pairs, only summed in another order).
+    Step by step, not the two runs' ends: the sums round in float32, and a crumpled heap is
+    chaotic (one step of a coordinate grows to pixels within 15 steps of the bench's cloth)."""
+    worst, plain = [], cloth_contact.self_collide
+
+    def both(c, h):
+        start, kept = c.x.copy(), c.contact.self_list
+        c.contact.self_list = self_list.PairList()      # a fresh list: a plain search
+        plain(c, h)
+        searched = c.x.copy()
+        c.x[...], c.contact.self_list = start, kept
+        plain(c, h)                                     # through the run's list
+        rounding = np.spacing(np.abs(searched).max())
+        worst.append(float(np.abs(c.x - searched).max() / rounding))
+    monkeypatch.setattr(cloth_contact, "self_collide", both)
+    scene = scene_of(settings)
+    for _ in range(run):
+        scene.advance()
+    assert scene.cloth.contact.self_list.reuses > 10 and len(worst) == run
+    assert max(worst) <= 8, max(worst)
 
 
 @pytest.mark.parametrize("dtype", [np.float32, np.float64])

@@ -187,6 +187,7 @@ Raise substeps (or lower the drop) for fast folds.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 from typing import Callable
@@ -373,7 +374,7 @@ def _joined(c, i: np.ndarray, j: np.ndarray) -> np.ndarray:
     plus, minus, table = joined_table(c)
     scratch = c.contact.scratch
     k = plus.take(j, out=scratch.get("joined_k", j.size, np.intp), mode="wrap")
-    k -= minus.take(i)
+    k -= minus.take(i, out=scratch.get("joined_i", i.size, np.intp), mode="wrap")
     return table.take(k, out=scratch.get("joined", j.size, bool), mode="wrap")
 
 
@@ -410,23 +411,27 @@ def self_collide(c, h: float) -> None:
             i, j, wi, wj, total = i[ok], j[ok], wi[ok], wj[ok], total[ok]
         even = bool(np.array_equal(wi, wj))             # equal weights at both ends, all pairs
     n, m = xs.size, i.size
-    # each sweep gathers every particle's corrections with bincounts, x and y apart: the j
-    # ends pushed by + share_j of d times the overlap, the i ends by - share_i of it; they
-    # replace `for pair: x[j] += share_j * move; x[i] -= share_i * move`. Both ends free (w = 1
-    # each, the usual case): both shares are 1/2, one set of weights. (Four bincounts over j
-    # and i, not two over [j, j + n] and [i, i + n]: no 4m-entry index array to build and keep
-    # in the cache; ~3 % of the crumpled cloth's pass, the same sums.)
+    # each sweep adds every particle's corrections up, x and y at once as one complex number
+    # x + i y (in the positions' precision): + share_j of d times the overlap at the j ends,
+    # - share_i of it at the i ends (np.add.at, np.subtract.at); they replace `for pair: x[j]
+    # += share_j * move; x[i] -= share_i * move`. Both ends free (w = 1 each, the usual case):
+    # both shares are 1/2, one set of weights. (One complex scatter an end, not x's and y's
+    # bincounts in float64: the crumpled cloth's pass ~7 % shorter. Float32 sums depend on
+    # their order, to a step of a coordinate: tests/test_self_list.py says what stays exact.)
     scratch = st.scratch
     share_j, share_i = (None, None) if even else (wj / total, wi / total)
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
-    scale = scratch.get("scale", n, np.float64)        # Jacobi's average, over-relaxed
-    # (both shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
-    np.divide(OVER_RELAX / 2 if even else OVER_RELAX, np.maximum(count, 1, out=count),
-              out=scale)
-    move = scratch.get("move", 2 * m, np.float64)      # (weights in float64: bincount's own)
-    xi, xj, yi, yj = (scratch.get(name, m, x.dtype) for name in ("xi", "xj", "yi", "yj"))
-    flag = scratch.get("same", m, bool)
+    pair = np.complex64 if x.dtype == np.float32 else np.complex128
+    # Jacobi's average, over-relaxed: OVER_RELAX / count, read from a table of 1/k (both
+    # shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
+    scale = _averages(int(count.max()), OVER_RELAX / 2 if even else OVER_RELAX, pair).take(
+        count, out=scratch.get("scale", n, pair), mode="wrap")
+    z, zi, zj = (scratch.get(name, k, pair) for name, k in (("z", n), ("zi", m), ("zj", m)))
+    r, push, flag = (scratch.get(name, m, t) for name, t in (("r", x.dtype), ("push", x.dtype),
+                                                             ("same", bool)))
+    corr = scratch.get("corr", m, pair)               # each pair's correction, d x overlap
+    moved = scratch.get("moved", n, pair)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     # how far every particle is from the obstacles' bounds, less what the sweeps since can have
@@ -440,36 +445,27 @@ def self_collide(c, h: float) -> None:
             clear = _push_out(st, x.T, movable)
         # d = x_j - x_i for every pair, r = |d| (in kept work arrays: no fresh pages)
         # (the arrays' own take, not np.take: its Python wrapper costs ~1 us a call)
-        dx = np.subtract(xs.take(j, out=xj, mode="wrap"), xs.take(i, out=xi, mode="wrap"), out=xj)
-        dy = np.subtract(ys.take(j, out=yj, mode="wrap"), ys.take(i, out=yi, mode="wrap"), out=yj)
-        r = np.sqrt(np.add(np.square(dx, out=xi), np.square(dy, out=yi), out=xi), out=xi)
+        z.real, z.imag = xs, ys
+        d = np.subtract(z.take(j, out=zj, mode="wrap"), z.take(i, out=zi, mode="wrap"), out=zj)
+        np.abs(d, out=r)                                # |d| = sqrt(dx^2 + dy^2)
         if r.min() < 1e-6 * dmin:       # at one point: as if 1e-6 dmin apart along x (dmin's
             same = np.less(r, 1e-6 * dmin, out=flag)     # overlap, not dmin - 1 px or none)
-            dx[same], dy[same], r[same] = 1e-6 * dmin, 0.0, 1e-6 * dmin
-        push = np.subtract(dmin, r, out=yi)             # the overlap, per unit of d
+            d[same], r[same] = 1e-6 * dmin, 1e-6 * dmin
+        np.subtract(dmin, r, out=push)                  # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
-        if even:                                        # both shares 1/2 (in scale): one
-            f_j = f_i = push                            # set of weights
-        else:
-            f_j, f_i = push * share_j, push * share_i
-        wx, wy = _weights(move, dx, dy, f_j)
-        moved_x, moved_y = np.bincount(j, wx, n), np.bincount(j, wy, n)     # + at the j ends
-        if not even:
-            _weights(move, dx, dy, f_i)
-        moved_x -= np.bincount(i, wx, n)                                     # - at the i ends
-        moved_y -= np.bincount(i, wy, n)
-        moved_x *= scale
-        moved_y *= scale
-        np.add(xs, moved_x, out=xs, casting="unsafe")
-        np.add(ys, moved_y, out=ys, casting="unsafe")
+        moved.fill(0)
+        np.add.at(moved, j, np.multiply(d, push if even else push * share_j, out=corr))
+        np.subtract.at(moved, i, corr if even else np.multiply(d, push * share_i, out=corr))
+        moved *= scale
+        xs += moved.real
+        ys += moved.imag
 
 
-def _weights(move: np.ndarray, dx: np.ndarray, dy: np.ndarray, f: np.ndarray
-             ) -> tuple[np.ndarray, np.ndarray]:
-    """(dx f, dy f) in `move`: one end's corrections, x and y, as bincount's weights."""
-    m = dx.size
-    return (np.multiply(dx, f, out=move[:m]), np.multiply(dy, f, out=move[m:]))
+@functools.lru_cache(maxsize=8)
+def _averages(top: int, factor: float, dtype) -> np.ndarray:
+    """factor / max(k, 1) for k = 0 .. top: a particle's Jacobi scale by its pair count k."""
+    return (factor / np.maximum(np.arange(top + 1), 1)).astype(dtype)
 
 
 def _self_collide_compiled(c) -> None:

@@ -259,6 +259,7 @@ FINE_BLOCK = 1 << 16      # candidates per block (whole runs): the crumpled 64 x
                           # calls), blocks of 16-32 k ~10 % (100 page faults a pass)
 SLACK = 1e-3              # in cells: float32 rounding of a cell index never hides a pair
 HALF_LIMIT = 1 << 31      # a run's (owner, first) as two int32s below this many candidates
+_ROW = {t: np.dtype((np.void, 2 * np.dtype(t).itemsize)) for t in (np.int32, np.int64)}
 
 
 @functools.lru_cache(maxsize=64)       # (the same cells step after step: asked once)
@@ -417,7 +418,7 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     runs_of = scratch.get("runs_of", 2 * first.size, half).reshape(below + 1, n, 2)
     runs_of[:, :, 0] = order
     runs_of[:, :, 1] = first.reshape(below + 1, n)
-    runs_of = runs_of.reshape(-1, 2).view(np.dtype((np.void, 2 * runs_of.itemsize))).reshape(-1)
+    runs_of = runs_of.reshape(-1, 2).view(_ROW[half]).reshape(-1)
     z_id = np.empty(n, pair)                   # positions x + i y, by index...
     z_id.real, z_id.imag = xs, ys
     z = z_id.take(order)                       # ...and in sorted order (the partners q)
@@ -426,8 +427,10 @@ def fine_pairs(xs: np.ndarray, ys: np.ndarray, cutoff: float, scratch: Scratch |
     hit_q = scratch.get("hit_q", total, np.intp)
     found = 0
     # blocks of whole runs, about FINE_BLOCK candidates each: their arrays stay in the cache
-    cuts = ends.searchsorted(np.arange(FINE_BLOCK, total, FINE_BLOCK)) + 1
-    bounds = [0, *sorted(set(np.minimum(cuts, ends.size).tolist()) - {0, ends.size}), ends.size]
+    bounds = [0, ends.size]                    # (one block: the crumpled cloth's ~29,000)
+    if total > FINE_BLOCK:
+        cuts = ends.searchsorted(np.arange(FINE_BLOCK, total, FINE_BLOCK)) + 1
+        bounds[1:1] = sorted(set(np.minimum(cuts, ends.size).tolist()) - {0, ends.size})
     for r0, r1 in zip(bounds[:-1], bounds[1:]):
         c0 = int(ends[r0 - 1]) if r0 else 0
         runs = length[r0:r1]
