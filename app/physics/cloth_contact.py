@@ -187,7 +187,6 @@ Raise substeps (or lower the drop) for fast folds.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 from typing import Callable
@@ -423,10 +422,10 @@ def self_collide(c, h: float) -> None:
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
     pair = np.complex64 if x.dtype == np.float32 else np.complex128
-    # Jacobi's average, over-relaxed: OVER_RELAX / count, read from a table of 1/k (both
-    # shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
-    scale = _averages(int(count.max()), OVER_RELAX / 2 if even else OVER_RELAX, pair).take(
-        count, out=scratch.get("scale", n, pair), mode="wrap")
+    scale = scratch.get("scale", n, pair)              # Jacobi's average, over-relaxed
+    # (both shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
+    np.divide(OVER_RELAX / 2 if even else OVER_RELAX, np.maximum(count, 1, out=count),
+              out=scale)
     z, zi, zj = (scratch.get(name, k, pair) for name, k in (("z", n), ("zi", m), ("zj", m)))
     r, push, flag = (scratch.get(name, m, t) for name, t in (("r", x.dtype), ("push", x.dtype),
                                                              ("same", bool)))
@@ -460,12 +459,6 @@ def self_collide(c, h: float) -> None:
         moved *= scale
         xs += moved.real
         ys += moved.imag
-
-
-@functools.lru_cache(maxsize=8)
-def _averages(top: int, factor: float, dtype) -> np.ndarray:
-    """factor / max(k, 1) for k = 0 .. top: a particle's Jacobi scale by its pair count k."""
-    return (factor / np.maximum(np.arange(top + 1), 1)).astype(dtype)
 
 
 def _self_collide_compiled(c) -> None:
