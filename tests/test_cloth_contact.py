@@ -519,3 +519,37 @@ def test_a_particle_pushed_the_whole_sweep_bound_towards_the_floor_is_projected(
     ends = _lazy_and_always(monkeypatch, 109.261, place)
     assert ends[1][1, 50] < 109.261             # (on the floor, not 3 px in)
     assert np.array_equal(*ends)
+
+
+@pytest.mark.parametrize("dtype", [np.float32, np.float64])
+def test_self_collision_moves_each_end_by_its_share_and_never_a_pinned_one(dtype):
+    """Each end of a pair moves by its share w / (w_i + w_j) of the correction: a pinned
+    particle (w = 0) keeps its place to the last bit in a crowd with free ones, and of a pair
+    of a grabbed particle (w = 0.25, heavier) and a free one (w = 1) the free one moves 4
+    times as far, apart along the line through them."""
+    from app.physics.cloth_contact import OVER_RELAX, self_collide
+    rng = np.random.default_rng(24)
+    for trial in range(10):
+        c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision"}, dtype)
+        c.contact.self_distance = 8.0
+        x = c.x.reshape(2, -1)
+        x[:] = rng.uniform(100, 100 + rng.uniform(20, 60), x.shape)       # a crowd
+        c.lock_cells([tuple(rc) for rc in rng.integers(0, 12, (30, 2))])
+        pinned = c.w.reshape(-1) == 0
+        before = x.copy()
+        self_collide(c, 1 / 60)
+        assert c.contact.self_pairs > 50 and pinned.any(), trial
+        assert np.array_equal(x[:, pinned], before[:, pinned]), trial
+        assert np.hypot(*(x - before))[~pinned].max() > 1.0, trial
+    c = Cloth(12, 12, 10.0, (100.0, 100.0), "none", {"self_collision"}, dtype)
+    c.contact.self_distance = 8.0
+    x = c.x.reshape(2, -1)
+    x[:, 50] = x[:, 0] - (4.0, 0.0)          # (4, 2) 4 px left of (0, 0): their only pair
+    c.w.reshape(-1)[0] = 0.25                # (0, 0) grabbed
+    c.update_weights()
+    before = x.copy()
+    self_collide(c, 1 / 60)
+    grabbed, free = x[:, 0] - before[:, 0], x[:, 50] - before[:, 50]
+    assert grabbed[1] == free[1] == 0.0 and grabbed[0] > 0 > free[0]
+    assert abs(free[0] / grabbed[0] + 4) < 1e-4
+    assert abs(grabbed[0] - free[0] - OVER_RELAX * 4.0) < 1e-4     # the overlap, over-relaxed

@@ -75,37 +75,36 @@ with their stencil trimmed to the circle give 34,826. The work arrays are kept (
 or small: a fresh 264 kB cell table a call made the allocator hand pages back and fault them in
 again (~104 minor page faults, ~0.26 ms a pass; now 0-2). `python -m app bench cloth` (15
 consecutive steps, CPU time): 1.26 x the step crumpled on 2026-11-26 (load 1.1; 1.58 x before that
-day's changes); on 2026-11-27 1.08 and 1.09 x, hanging 0.34 and 0.33 x (two runs, load 0.6-0.8,
-taking turns with the day before's code: 1.27 and 1.24 x crumpled, 0.37 and 0.35 x hanging): the
-goal of at most 1 x is still NOT met by NumPy crumpled. Later that day the list backs off where it
-never pays (self_list.py: no displacement test or copy for 4 substeps after 2 too fast; 2 % of the
-crumpled pass, 4-6 % of the hanging one): the bench's self-collision rows, four runs taking turns
-with the code before (41 rounds, load 0.9-1.4), crumpled 1.02-1.11 x (before 1.03-1.09 x: within the
-noise of the runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, twelve runs each
-taking turns with the code before (load 1.4-3.8): crumpled 0.97-1.25 x, median 1.025 (before
-0.99-1.14 x, median 1.015), hanging 0.30-0.36 x (0.31-0.46 x). At the line, NOT robustly met. There
-the ~1.0 ms go to the search ~0.5, the rod filter and the list ~0.1, the 2 sweeps ~0.35 (each one's
-four bincounts over 14,037 weighted entries the largest part). What 2026-11-27 gained (each measured
-in one process against the commit before, the pass over the bench's 15 steps in 101-201 interleaved
-rounds, load 0.6-3.4; the same positions to the last bit): the arrays' own methods, a.take, a.repeat
-(np.take and the like go through a Python wrapper: ~1.2 us a call, ~6 %); the mask's indices and two
-takes, not a.compress twice (3 x faster alone, ~4 %); the run's particle by its index, so i needs no
-gather through the sort after the search (~4 %); four bincounts over j and i instead of two over [j,
-j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share and the coincident test done
-once, the obstacles projected only when a particle is near one (~4 %). Tried and not kept: cells R/8
-x R/3 or R/4 (fewer candidates, more runs: no faster), fewer cells per particle (more candidates),
-blocks over 8,192 candidates (np.repeat's fresh arrays cross glibc's 128 kB: page faults again),
-blocks of 4,096 (1.03-1.06 x), one repeat of the (owner, first) pairs of a run (1.04 x: its 16-byte
-rows cross 128 kB again), the candidates as running sums of their steps (np.cumsum) instead of
-np.repeat (15 % faster alone, 0-5 % inside the step), x and y as one complex number in the sweeps (4
-% faster once, 1.02 x on 2026-11-27), the rod filter fused into the search, read on the sorted
-positions (1.03 x), int32 index arrays in the search (1.15 x crumpled, 1.6 x hanging: take and
-repeat cast int32 indices to intp, a pass each), np.add.at instead of bincount (1.05 x), a sparse
-matrix (scipy CSR) for the sweeps' scatter (its mat-vec: 35 us against bincount's 80 alone, but
-building it from the pairs needs a sort of 2 x 14,037 ends by particle, 112 us a substep for two
-sweeps). After the step's own work the pass waits on memory: an operation costs 2-4 x inside the
-step what it costs alone (the cell table's bincount and cumsum: 18 us alone, ~86 us in the step), so
-fewer passes over fewer bytes, not fewer operations, is what counts. The compiled pass
+day's changes), 1.08 and 1.09 x on 2026-11-27 (load 0.6-0.8; the day before's code 1.27 and 1.24 x,
+in turns; hanging 0.33-0.37 x): NOT met by NumPy crumpled. Later that day the list backs off where
+it never pays (self_list.py: no displacement test or copy for 4 substeps after 2 too fast; 2 % of
+the crumpled pass, 4-6 % of the hanging one): the bench's self-collision rows, four runs taking
+turns with the code before (41 rounds, load 0.9-1.4), crumpled 1.02-1.11 x (before 1.03-1.09 x:
+within the noise of the runs), hanging 0.32-0.34 x (0.35-0.38 x); the whole `bench cloth`, twelve
+runs each taking turns with the code before (load 1.4-3.8): crumpled 0.97-1.25 x, median 1.025
+(before 0.99-1.14 x, median 1.015), hanging 0.30-0.36 x (0.31-0.46 x). At the line, NOT robustly
+met. There the ~1.0 ms go to the search ~0.5, the rod filter and the list ~0.1, the 2 sweeps ~0.35
+(each one's four bincounts over 14,037 weighted entries the largest part). What 2026-11-27 gained
+(each measured in one process against the commit before, the pass over the bench's 15 steps in
+101-201 interleaved rounds, load 0.6-3.4; the same positions to the last bit): the arrays' own
+methods, a.take, a.repeat (np.take and the like go through a Python wrapper: ~1.2 us a call, ~6 %);
+the mask's indices and two takes, not a.compress twice (3 x faster alone, ~4 %); the run's particle
+by its index, so i needs no gather through the sort after the search (~4 %); four bincounts over j
+and i instead of two over [j, j + n] and [i, i + n] (no 4m index array, ~3 %); the sweeps' 1/2 share
+and the coincident test done once, the obstacles projected only when a particle is near one (~4 %).
+Tried and not kept: cells R/8 x R/3 or R/4 (fewer candidates, more runs: no faster), fewer cells per
+particle (more candidates), blocks over 8,192 candidates (np.repeat's fresh arrays cross glibc's 128
+kB: page faults again), blocks of 4,096 (1.03-1.06 x), one repeat of the (owner, first) pairs of a
+run (1.04 x: its 16-byte rows cross 128 kB again), the candidates as running sums of their steps
+(np.cumsum) instead of np.repeat (15 % faster alone, 0-5 % inside the step), x and y as one complex
+number in the sweeps (4 % faster once, 1.02 x on 2026-11-27), the rod filter fused into the search,
+read on the sorted positions (1.03 x), int32 index arrays in the search (1.15 x crumpled, 1.6 x
+hanging: take and repeat cast int32 indices to intp, a pass each), np.add.at instead of bincount
+(1.05 x), a sparse matrix (scipy CSR) for the sweeps' scatter (its mat-vec: 35 us against bincount's
+80 alone, but building it from the pairs needs a sort of 2 x 14,037 ends by particle, 112 us a
+substep for two sweeps). After the step's own work the pass waits on memory: an operation costs 2-4
+x inside the step what it costs alone (the cell table's bincount and cumsum: 18 us alone, ~86 us in
+the step), so fewer passes over fewer bytes, not fewer operations, is what counts. The compiled pass
 (kernel=numba, optional, app/physics/self_compiled.py: the same grid and pairs, searched every
 substep, no list) visits each candidate once and runs with the compiled step (kernel=numba compiles
 the rods too: 0.35 ms, not 0.89): 0.88-0.91 x that step crumpled, median 0.90 (four whole bench runs
@@ -175,14 +174,12 @@ cumsum and cells: self_obstacles.py, neighbours.py. In the step (timers, load 0.
 us, rod filter and list ~95, count and scale ~37, the two sweeps ~280 (8 bincounts ~106).
 
 Evening of 2026-11-27, kept: a sweep adds each end's corrections as one complex number x + i y
-(np.add.at, np.subtract.at: one scatter an end, not bincounts of x and y) in the positions'
-precision, |d| by np.abs (not square, add, sqrt), and fine_pairs' takes into kept arrays in mode
-"wrap" (with out=, "raise" writes through a copy). The pass over the bench's 15 steps against the
-code before (in turns, one process, 61 rounds, load 0.5-0.7): crumpled 0.89 x, settled 0.93, fold
-card 0.94, hanging 0.92. `bench cloth`: crumpled 0.90-0.98 x the step in five runs (the code
-before 1.01-1.06 x in four, in turns, load 0.6-1.2): MET by NumPy, by 0.02-0.10. Float32 sums
-depend on their order (a step of a coordinate, which a crumpled heap grows to pixels within 15
-steps): tests/test_self_list.py compares the list and a plain search pass by pass.
+(np.add.at, np.subtract.at: one scatter an end for x and y; above, add.at a coordinate and complex
+gathers beside bincounts were not faster), and fine_pairs' takes into kept arrays in mode "wrap".
+The pass on the bench's 15 crumpled states, the same inputs for both (41 rounds in turns, load
+0.6-0.7): 0.90 x the code before. Float32 sums depend on their order (a step of a coordinate, grown
+to pixels within 15 steps of a crumpled heap): tests/test_self_list.py compares the list and a plain
+search pass by pass. Not kept: |d| by np.abs, ~4 % faster, as hypot's last bit varies with the CPU.
 
 Settled on the floor at 1 substep (400 steps) the crumpled cloth is crushed: a 2D heap ~4 x too
 dense for its particles' discs, ~47,000 of ~52,000 pairs still too close (the HUD says so and what
@@ -421,26 +418,26 @@ def self_collide(c, h: float) -> None:
         even = bool(np.array_equal(wi, wj))             # equal weights at both ends, all pairs
     n, m = xs.size, i.size
     # each sweep adds every particle's corrections up, x and y at once as one complex number
-    # x + i y (in the positions' precision): + share_j of d times the overlap at the j ends,
-    # - share_i of it at the i ends (np.add.at, np.subtract.at); they replace `for pair: x[j]
-    # += share_j * move; x[i] -= share_i * move`. Both ends free (w = 1 each, the usual case):
-    # both shares are 1/2, one set of weights. (One complex scatter an end, not x's and y's
-    # bincounts in float64: the crumpled cloth's pass ~7 % shorter. Float32 sums depend on
-    # their order, to a step of a coordinate: tests/test_self_list.py says what stays exact.)
+    # x + i y (in the positions' precision: the module docstring says why): + share_j of d
+    # times the overlap at the j ends, - share_i of it at the i ends; they replace `for pair:
+    # x[j] += share_j * move; x[i] -= share_i * move`. Both ends free (w = 1 each, the usual
+    # case): both shares are 1/2, one set of weights.
     scratch = st.scratch
     share_j, share_i = (None, None) if even else (wj / total, wi / total)
     count = np.bincount(j, minlength=n)                # pairs per particle
     count += np.bincount(i, minlength=n)
-    pair = np.complex64 if x.dtype == np.float32 else np.complex128
-    scale = scratch.get("scale", n, pair)              # Jacobi's average, over-relaxed
-    # (both shares 1/2: the 1/2 is taken here, once, not pair by pair in each sweep)
+    cplx = np.complex64 if x.dtype == np.float32 else np.complex128     # x + i y
+    # Jacobi's average, over-relaxed (complex, with no imaginary part: `moved *= scale` then
+    # scales x and y alike with no cast); both shares 1/2: the 1/2 is taken here, once
+    scale = scratch.get("scale", n, cplx)
     np.divide(OVER_RELAX / 2 if even else OVER_RELAX, np.maximum(count, 1, out=count),
               out=scale)
-    z, zi, zj = (scratch.get(name, k, pair) for name, k in (("z", n), ("zi", m), ("zj", m)))
+    z, zi, zj = (scratch.get(name, k, cplx) for name, k in (("z", n), ("zi", m), ("zj", m)))
     r, push, flag = (scratch.get(name, m, t) for name, t in (("r", x.dtype), ("push", x.dtype),
                                                              ("same", bool)))
-    corr = scratch.get("corr", m, pair)               # each pair's correction, d x overlap
-    moved = scratch.get("moved", n, pair)
+    square = scratch.get("square", 2 * m, x.dtype)     # dx^2 and dy^2 side by side
+    corr = scratch.get("corr", m, cplx)                # one end's corrections, d x overlap
+    moved = scratch.get("moved", n, cplx)
     dmin = st.self_distance
     floor_too = "collisions" in c.on and st.obstacles      # resting on an obstacle: see below
     # how far every particle is from the obstacles' bounds, less what the sweeps since can have
@@ -452,20 +449,24 @@ def self_collide(c, h: float) -> None:
             # a pair pushed apart on an obstacle pushes its lower particle into it; projecting
             # before each sweep lets the upper one take the whole correction, as on a floor
             clear = _push_out(st, x.T, movable)
-        # d = x_j - x_i for every pair, r = |d| (in kept work arrays: no fresh pages)
-        # (the arrays' own take, not np.take: its Python wrapper costs ~1 us a call)
+        # d = x_j - x_i for every pair (kept arrays; a.take: np.take's wrapper costs ~1 us)
         z.real, z.imag = xs, ys
         d = np.subtract(z.take(j, out=zj, mode="wrap"), z.take(i, out=zi, mode="wrap"), out=zj)
-        np.abs(d, out=r)                                # |d| = sqrt(dx^2 + dy^2)
+        # |d| = sqrt(dx^2 + dy^2) (not np.abs(d): the module docstring says why)
+        np.square(d.view(x.dtype), out=square)
+        np.sqrt(np.add(square[0::2], square[1::2], out=r), out=r)
         if r.min() < 1e-6 * dmin:       # at one point: as if 1e-6 dmin apart along x (dmin's
             same = np.less(r, 1e-6 * dmin, out=flag)     # overlap, not dmin - 1 px or none)
             d[same], r[same] = 1e-6 * dmin, 1e-6 * dmin
         np.subtract(dmin, r, out=push)                  # the overlap, per unit of d
         np.maximum(push, 0.0, out=push)
         push /= r
+        f_j, f_i = (push, push) if even else (push * share_j, push * share_i)
         moved.fill(0)
-        np.add.at(moved, j, np.multiply(d, push if even else push * share_j, out=corr))
-        np.subtract.at(moved, i, corr if even else np.multiply(d, push * share_i, out=corr))
+        np.add.at(moved, j, np.multiply(d, f_j, out=corr))          # + at the j ends
+        if not even:
+            np.multiply(d, f_i, out=corr)
+        np.subtract.at(moved, i, corr)                               # - at the i ends
         moved *= scale
         xs += moved.real
         ys += moved.imag
