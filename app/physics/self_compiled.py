@@ -48,9 +48,12 @@ states in turn, CPU us a step, load 1.5-7.6):
 
 With float32 pushes summed in float64 (a sum of a few float32 numbers is exact in float64
 unless their sizes differ by some 2^25 or more, so the order of the sums does not matter) the
-compiled pass now leaves the very positions the NumPy pass leaves: over the bench's 15 crumpled
-steps, kernel=numba and kernel=numpy agreed to the last bit at every step (main's float64
-pushes: 6e-5 px apart after one step, 14 px after 15, the crumpled cloth being chaotic). Where
+compiled pass left the very positions the NumPy pass left: over the bench's 15 crumpled steps,
+kernel=numba and kernel=numpy agreed to the last bit at every step (main's float64 pushes: 6e-5
+px apart after one step, 14 px after 15, the crumpled cloth being chaotic). Since the evening of
+2026-11-27 the NumPy pass sums in float32 (app/physics/cloth_contact.py says why): the two
+kernels agree to a float32 step of a coordinate after a pass (6.1e-5 px, the bench's crumpled
+cloth) and, chaos again, by 17 px after its 15 steps; tests compare single passes (1e-4 px). Where
 the time goes now (the same states, 41 rounds, load ~4, CPU us a step): the Python side,
 fine_grid's four NumPy reductions and numba's dispatch ~25-30; the cells and their running sum
 ~26; the sort's fill ~15; each particle's runs ~7; the 28,700 candidates ~99 (10,100 pairs,
