@@ -154,7 +154,7 @@ def rearm(scene) -> None:
     general way, as before. Without this, the step after every ball added or removed went the
     general way (check_balls, then arm: ~20 us). The kept arrays are made for the new number
     of rows here (_flag_rows_at), as _usual_check would make them in the next look."""
-    awake, fast, q = scene._awake, scene._fast, scene._quick
+    awake, fast = scene._awake, scene._fast
     scene._quick = scene._quick_moving = None
     reader, kept = scene._state_reader, scene.finite_kept
     scene.finite_kept = -1
@@ -167,17 +167,12 @@ def rearm(scene) -> None:
     # again after the change (PymunkScene.is_finite: a read and a check, ~5 us)
     if (scene._rows is not None or kept == reader.reads) and rows_finite(fast[1], awake.L_row):
         scene.finite_kept = reader.reads
-    pose, n = fast[0], len(awake.ids)
-    rows = scene._flag_rows_at(n, pose)
-    if q is not None and awake.L_row is None and pose == q.pose:
-        # armed before the change (so by arm, for this class and the L's static pose, which
-        # only restored() changes, and it disarms): arm's other tests are those above
-        scene._quick = Armed(awake, fast, rows, awake.key, pose=pose, kept_pose=rows[3],
-                             bounds=bounds_for(scene, n))
-    elif awake.L_row is not None:
-        scene._quick_moving = arm_moving(scene, pose)
-    else:
+    pose = fast[0]
+    scene._flag_rows_at(len(awake.ids), pose)
+    if awake.L_row is None:
         scene._quick = arm(scene, pose)
+    else:
+        scene._quick_moving = arm_moving(scene, pose)
 
 
 def look_moving(scene, L0: tuple[float, float, float]) -> tuple[float, float, float]:
