@@ -297,9 +297,9 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
     def advance(self) -> None:
         """Scene.advance; while every body sleeps and no ball is due (a settled pile), only the
         engine's steps (step's first case, every substep at once, looked up once a rest: what
-        could change it wakes the scene). A usual step (one substep, awake) is written out too,
-        step_done with it (step_plan; tests/test_pymunk_checks.py compares both with the
-        general way, step by step)."""
+        could change it wakes the scene). A usual step (one substep, awake) is written out too
+        (step_plan; tests/test_pymunk_checks.py compares both with the general way, step by
+        step)."""
         if self.resting:
             plan = self._rest_plan
             if plan is None:
@@ -318,19 +318,13 @@ class FallingBallsScene(BallChecks, BallTables, PymunkScene):
             plan = self._step_plan
             if plan is None:
                 plan = self._step_plan = self.step_plan()
-            if plan and self._L_known is not None:     # (step()'s last case, written out;
-                dt, spawning, after = plan              # step_done's: ~800 instructions less)
+            if plan and self._L_known is not None:     # (step()'s last case, written out)
+                dt, spawning, after = plan
                 L0 = self._L_known
                 self.space.step(dt)
                 self._rows = None
                 self._L_after = self._L_known = look(self, L0)
-                if spawning:
-                    self._spawn_due -= dt
-                    if self._spawn_due <= 0:
-                        self.spawn(0.0)
-                self.time, self.steps = self.time + dt, self.steps + 1
-                if after:
-                    self.after_step()
+                self.step_done(dt, dt, spawning, after)
                 return
         # The general way: Scene.advance's substeps. The balls are looked at once, after the
         # last substep (as the tutorial looks once a frame): a ball that tunneled is counted, one
